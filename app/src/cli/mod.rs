@@ -1,0 +1,77 @@
+//! Command line: one subcommand per file, each a thin shell over library code the GUI also uses.
+//!
+//! Errors are reported exactly once, by `main`, as one line `error: <file>: <what is wrong>`
+//! (see `../shared/CONTRACT.md`).
+
+use std::ffi::OsString;
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand};
+
+pub mod extrude;
+pub mod info;
+pub mod open;
+pub mod render;
+pub mod scalpel;
+pub mod subtract;
+
+/// Context-preserving cutaways of segmented anatomy.
+#[derive(Debug, Parser)]
+#[command(name = "cutaway", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Open the GUI with meshes, directories of meshes, or a session file.
+    Open(open::OpenArgs),
+    /// Print mesh facts.
+    Info(info::InfoArgs),
+    /// Cut CUTTER out of every region of TARGET; write kept, walls, removed and contour to DIR.
+    Subtract(subtract::SubtractArgs),
+    /// Replay a recorded mouse gesture through the cutter editor; write the cutter.
+    Extrude(extrude::ExtrudeArgs),
+    /// Render a session headless to a PNG image.
+    Render(render::RenderArgs),
+    /// Progressive scalpel cut along a path on the surface.
+    Scalpel(scalpel::ScalpelArgs),
+}
+
+/// Parses `args` (program name first) and runs the command. No subcommand opens the GUI on the
+/// embedded default scene.
+pub fn run<I, T>(args: I) -> anyhow::Result<()>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => {
+            // Help and version go to stdout with success; usage errors print clap's own message.
+            if e.use_stderr() {
+                e.print().ok();
+                std::process::exit(2);
+            }
+            e.print().ok();
+            return Ok(());
+        }
+    };
+    match cli.command {
+        None => open::run(&open::OpenArgs { paths: Vec::<PathBuf>::new() }),
+        Some(Command::Open(a)) => open::run(&a),
+        Some(Command::Info(a)) => info::run(&a),
+        Some(Command::Subtract(a)) => subtract::run(&a),
+        Some(Command::Extrude(a)) => extrude::run(&a),
+        Some(Command::Render(a)) => render::run(&a),
+        Some(Command::Scalpel(a)) => scalpel::run(&a),
+    }
+}
+
+/// The one line `main` prints for an error: `error: ` and the context chain joined by `: `, with
+/// any newline inside a message folded to a space so that the report stays on one line.
+pub fn error_line(error: &anyhow::Error) -> String {
+    let text = format!("{error:#}");
+    format!("error: {}", text.split_whitespace().collect::<Vec<_>>().join(" "))
+}

@@ -1,0 +1,7 @@
+//! # cutaway: the application
+//!
+//! The CLI (clap), file formats, the scene and session, the egui UI and the wgpu renderer. The
+//! mesh core (`csg`) and the tools (`cutter`) never see any of these.
+
+pub mod cli;
+pub mod io;
