@@ -11,6 +11,7 @@ pub mod aabb;
 pub mod mesh;
 pub mod regions;
 pub mod spatial;
+pub mod testkit;
 pub mod validate;
 pub mod weld;
 

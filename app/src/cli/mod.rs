@@ -11,6 +11,7 @@ use clap::{Parser, Subcommand};
 pub mod extrude;
 pub mod info;
 pub mod open;
+pub mod phantom;
 pub mod render;
 pub mod scalpel;
 pub mod subtract;
@@ -37,6 +38,9 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Progressive scalpel cut along a path on the surface.
     Scalpel(scalpel::ScalpelArgs),
+    /// Regenerate the embedded synthetic anatomy phantoms into a folder (maintainers only).
+    #[command(hide = true)]
+    Phantom(phantom::PhantomArgs),
 }
 
 /// Parses `args` (program name first) and runs the command. No subcommand opens the GUI on the
@@ -66,6 +70,7 @@ where
         Some(Command::Extrude(a)) => extrude::run(&a),
         Some(Command::Render(a)) => render::run(&a),
         Some(Command::Scalpel(a)) => scalpel::run(&a),
+        Some(Command::Phantom(a)) => phantom::run(&a),
     }
 }
 

@@ -1,0 +1,222 @@
+//! Camera manipulation of the viewport: orbit, pan, zoom, framing and picking.
+//!
+//! Behaves like VTK's trackball-camera style that the thesis used (section 3.5, "Mode buttons"):
+//! a left drag orbits the eye around the target (horizontal motion about the camera's up axis,
+//! vertical motion about its right axis, with the up vector re-orthogonalised so the camera can go
+//! over the poles), Shift + drag pans eye and target together so the point under the cursor stays
+//! under it, and the wheel dollies toward the target. All functions work on [`cutter::Camera`] in
+//! world space; pixel deltas are in viewport pixels (origin top-left, y down).
+
+use glam::{DQuat, DVec2, DVec3};
+
+use csg::{Aabb, Mesh};
+use cutter::{Camera, Ray};
+
+/// Radians of orbit per pixel of drag.
+const ORBIT_RADIANS_PER_PIXEL: f64 = 0.008;
+/// Distance factor per wheel notch (one notch = 1.0 of `notches`).
+const ZOOM_PER_NOTCH: f64 = 0.88;
+
+/// Orbits the eye around the target by a drag of `delta_px` pixels.
+pub fn orbit(camera: &mut Camera, delta_px: DVec2) {
+    let (right, up, _forward) = camera.basis();
+    let yaw = DQuat::from_axis_angle(up, -delta_px.x * ORBIT_RADIANS_PER_PIXEL);
+    let pitch = DQuat::from_axis_angle(right, -delta_px.y * ORBIT_RADIANS_PER_PIXEL);
+    let rotation = yaw * pitch;
+    let eye_from_target = camera.eye - camera.target;
+    camera.eye = camera.target + rotation * eye_from_target;
+    // Keep the up vector orthogonal to the new view direction (VTK's OrthogonalizeViewUp).
+    camera.up = (rotation * up).try_normalize().unwrap_or(up);
+}
+
+/// World-space length of one pixel at the target's depth, for a viewport `height_px` tall.
+pub fn world_per_pixel(camera: &Camera, height_px: f64) -> f64 {
+    let tan_half = (camera.fov_y_deg.to_radians() * 0.5).tan();
+    2.0 * camera.distance() * tan_half / height_px.max(1.0)
+}
+
+/// Pans eye and target together so the scene follows a drag of `delta_px` pixels.
+pub fn pan(camera: &mut Camera, delta_px: DVec2, viewport_px: DVec2) {
+    let (right, up, _) = camera.basis();
+    let scale = world_per_pixel(camera, viewport_px.y);
+    let shift = (-right * delta_px.x + up * delta_px.y) * scale;
+    camera.eye += shift;
+    camera.target += shift;
+}
+
+/// Dollies toward (positive `notches`) or away from the target; never reaches or passes it.
+pub fn zoom(camera: &mut Camera, notches: f64, min_distance: f64) {
+    let distance = camera.distance();
+    let wanted = (distance * ZOOM_PER_NOTCH.powf(notches)).max(min_distance.max(1e-9));
+    camera.eye = camera.target - camera.forward() * wanted;
+}
+
+/// Moves the target to `centre`, keeping the viewing direction and distance.
+pub fn centre_on(camera: &mut Camera, centre: DVec3) {
+    let shift = centre - camera.target;
+    camera.eye += shift;
+    camera.target += shift;
+}
+
+/// A camera looking at `bbox` from the front (−Y toward the eye would hide it; anatomy is Z-up and
+/// faces −Y), framing all of it. An empty box gives a unit view of the origin.
+pub fn frame_all(bbox: &Aabb, fov_y_deg: f64) -> Camera {
+    if bbox.is_empty() || !bbox.diagonal().is_finite() || bbox.diagonal() <= 0.0 {
+        return Camera {
+            eye: DVec3::new(0.0, -3.0, 0.0),
+            target: DVec3::ZERO,
+            up: DVec3::Z,
+            fov_y_deg,
+        };
+    }
+    Camera::framing(bbox, DVec3::NEG_Y, DVec3::Z, fov_y_deg)
+}
+
+/// Nearest intersection of `ray` with `mesh` (Möller–Trumbore in f64), or `None`.
+///
+/// Brute force with a bounding-box early out: used for double-click picking only, where one ray
+/// per click over a few million triangles costs tens of milliseconds at most.
+pub fn ray_cast_mesh(mesh: &Mesh, bbox: &Aabb, ray: &Ray) -> Option<f64> {
+    if !ray_hits_box(ray, bbox) {
+        return None;
+    }
+    let mut best: Option<f64> = None;
+    for t in 0..mesh.triangle_count() {
+        let [a, b, c] = mesh.corners(t);
+        if let Some(hit) = ray_triangle(ray, a, b, c)
+            && best.is_none_or(|b| hit < b)
+        {
+            best = Some(hit);
+        }
+    }
+    best
+}
+
+/// Slab test of a ray against a box.
+fn ray_hits_box(ray: &Ray, bbox: &Aabb) -> bool {
+    if bbox.is_empty() {
+        return false;
+    }
+    let (lo, hi) = (bbox.min, bbox.max);
+    let mut t_near = 0.0_f64;
+    let mut t_far = f64::INFINITY;
+    for axis in 0..3 {
+        let o = ray.origin[axis];
+        let d = ray.direction[axis];
+        if d.abs() < 1e-300 {
+            if o < lo[axis] || o > hi[axis] {
+                return false;
+            }
+            continue;
+        }
+        let t0 = (lo[axis] - o) / d;
+        let t1 = (hi[axis] - o) / d;
+        t_near = t_near.max(t0.min(t1));
+        t_far = t_far.min(t0.max(t1));
+        if t_near > t_far {
+            return false;
+        }
+    }
+    true
+}
+
+/// Ray parameter of the hit with triangle `abc` (both sides), if in front of the origin.
+fn ray_triangle(ray: &Ray, a: DVec3, b: DVec3, c: DVec3) -> Option<f64> {
+    let e1 = b - a;
+    let e2 = c - a;
+    let p = ray.direction.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() < 1e-300 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let s = ray.origin - a;
+    let u = s.dot(p) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let q = s.cross(e1);
+    let v = ray.direction.dot(q) * inv;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let t = e2.dot(q) * inv;
+    (t > 0.0).then_some(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn camera() -> Camera {
+        Camera {
+            eye: DVec3::new(0.0, -300.0, 0.0),
+            target: DVec3::ZERO,
+            up: DVec3::Z,
+            fov_y_deg: 30.0,
+        }
+    }
+
+    #[test]
+    fn orbit_keeps_distance_and_turns_the_view() {
+        let mut c = camera();
+        orbit(&mut c, DVec2::new(120.0, -40.0));
+        assert!((c.distance() - 300.0).abs() < 1e-9);
+        assert!(c.forward().dot(DVec3::Y) < 0.99, "the view must have turned");
+        assert!(c.up.dot(c.forward()).abs() < 1e-9, "up stays orthogonal to the view");
+        // Dragging back undoes a pure horizontal orbit.
+        let mut d = camera();
+        orbit(&mut d, DVec2::new(50.0, 0.0));
+        orbit(&mut d, DVec2::new(-50.0, 0.0));
+        assert!((d.eye - camera().eye).length() < 1e-9);
+    }
+
+    #[test]
+    fn pan_keeps_the_target_under_the_cursor() {
+        let vp = DVec2::new(1280.0, 800.0);
+        let mut c = camera();
+        let before = c.project(vp, DVec3::ZERO).unwrap();
+        pan(&mut c, DVec2::new(30.0, -12.0), vp);
+        let after = c.project(vp, DVec3::ZERO).unwrap();
+        assert!((after - before - DVec2::new(30.0, -12.0)).length() < 1e-6, "{before} -> {after}");
+    }
+
+    #[test]
+    fn zoom_moves_toward_the_target_and_stops_short() {
+        let mut c = camera();
+        zoom(&mut c, 1.0, 1.0);
+        assert!(c.distance() < 300.0);
+        zoom(&mut c, 1000.0, 2.0);
+        assert!((c.distance() - 2.0).abs() < 1e-9);
+        assert!(c.forward().dot(DVec3::Y) > 0.999);
+    }
+
+    #[test]
+    fn ray_cast_finds_the_nearest_triangle() {
+        // Two parallel squares at y = 0 and y = 10, viewed from -y.
+        let mut positions = Vec::new();
+        let mut triangles = Vec::new();
+        for y in [10.0, 0.0] {
+            let base = positions.len() as u32;
+            positions.extend([
+                DVec3::new(-1.0, y, -1.0),
+                DVec3::new(1.0, y, -1.0),
+                DVec3::new(1.0, y, 1.0),
+                DVec3::new(-1.0, y, 1.0),
+            ]);
+            triangles.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+        }
+        let mesh = Mesh::new(positions, triangles).unwrap();
+        let ray = Ray {
+            origin: DVec3::new(0.2, -5.0, 0.3),
+            direction: DVec3::Y,
+        };
+        let t = ray_cast_mesh(&mesh, &mesh.bbox(), &ray).unwrap();
+        assert!((t - 5.0).abs() < 1e-12);
+        let miss = Ray {
+            origin: DVec3::new(3.0, -5.0, 0.0),
+            direction: DVec3::Y,
+        };
+        assert!(ray_cast_mesh(&mesh, &mesh.bbox(), &miss).is_none());
+    }
+}

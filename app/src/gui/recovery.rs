@@ -1,0 +1,220 @@
+//! Crash recovery and the recent-files list: the small state the window keeps between runs.
+//!
+//! While the window is open, the scene is autosaved as a normal `cutaway-session/1` file into the
+//! state folder every [`AUTOSAVE_EVERY`] when something changed. A clean exit deletes it, so a
+//! recovery file found at start-up means the last run ended without one (crash, kill, power loss)
+//! and the window offers to reopen it. The file records the process that owns it: a second window
+//! started while the first still runs does not offer the first one's live autosave.
+//!
+//! The state folder is `$CUTAWAY_STATE_DIR`, else `$XDG_STATE_HOME/cutaway`, else
+//! `~/.local/state/cutaway`, else a folder under the system temp dir. Tests point
+//! `CUTAWAY_STATE_DIR` at a private folder.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use anyhow::Context as _;
+
+/// Minimum time between two autosaves.
+pub const AUTOSAVE_EVERY: Duration = Duration::from_secs(20);
+/// How many recent files the File menu lists.
+pub const RECENT_LIMIT: usize = 10;
+
+/// The folder holding the recovery session, its owner marker and the recent-files list.
+pub fn state_dir() -> PathBuf {
+    if let Some(dir) = std::env::var_os("CUTAWAY_STATE_DIR").filter(|d| !d.is_empty()) {
+        return PathBuf::from(dir);
+    }
+    if let Some(dir) = std::env::var_os("XDG_STATE_HOME").filter(|d| !d.is_empty()) {
+        return PathBuf::from(dir).join("cutaway");
+    }
+    if let Some(home) = std::env::var_os("HOME").filter(|d| !d.is_empty()) {
+        return PathBuf::from(home).join(".local/state/cutaway");
+    }
+    std::env::temp_dir().join("cutaway-state")
+}
+
+/// Autosave bookkeeping for one window.
+#[derive(Debug)]
+pub struct Recovery {
+    /// Folder of the files below; created on first save.
+    dir: PathBuf,
+    /// When the last autosave happened (or the window started).
+    last_save: Instant,
+    /// True when the scene changed since the last autosave.
+    dirty: bool,
+}
+
+impl Recovery {
+    pub fn new(dir: PathBuf) -> Recovery {
+        Recovery {
+            dir,
+            last_save: Instant::now(),
+            dirty: false,
+        }
+    }
+
+    /// The autosaved session.
+    pub fn session_path(&self) -> PathBuf {
+        self.dir.join("recovery-session.json")
+    }
+
+    fn owner_path(&self) -> PathBuf {
+        self.dir.join("recovery-owner.pid")
+    }
+
+    /// The recovery session left behind by a run that did not exit cleanly, if any.
+    pub fn pending(&self) -> Option<PathBuf> {
+        let session = self.session_path();
+        if !session.is_file() {
+            return None;
+        }
+        if let Ok(text) = std::fs::read_to_string(self.owner_path())
+            && let Ok(pid) = text.trim().parse::<u32>()
+            && pid != std::process::id()
+            && Path::new(&format!("/proc/{pid}")).exists()
+        {
+            // Another window is alive and owns this autosave.
+            return None;
+        }
+        Some(session)
+    }
+
+    /// Notes that the scene changed; the next [`Recovery::tick`] after the interval saves it.
+    pub fn mark_dirty(&mut self) {
+        self.dirty = true;
+    }
+
+    /// Saves through `save` (which writes a session to the given path) when the scene changed
+    /// and the interval has passed. Returns the error of a failed save (shown in the status line).
+    pub fn tick(&mut self, save: impl FnOnce(&Path) -> anyhow::Result<()>) -> anyhow::Result<bool> {
+        if !self.dirty || self.last_save.elapsed() < AUTOSAVE_EVERY {
+            return Ok(false);
+        }
+        self.save_now(save)?;
+        Ok(true)
+    }
+
+    /// Saves immediately (used by tests and before risky operations).
+    pub fn save_now(&mut self, save: impl FnOnce(&Path) -> anyhow::Result<()>) -> anyhow::Result<()> {
+        self.last_save = Instant::now();
+        self.dirty = false;
+        std::fs::create_dir_all(&self.dir).with_context(|| format!("{}", self.dir.display()))?;
+        std::fs::write(self.owner_path(), std::process::id().to_string())
+            .with_context(|| format!("{}", self.owner_path().display()))?;
+        save(&self.session_path())
+    }
+
+    /// A clean exit (or the user declined recovery): the autosave is no longer needed.
+    pub fn discard(&mut self) {
+        let _ = std::fs::remove_file(self.session_path());
+        let _ = std::fs::remove_file(self.owner_path());
+        self.dirty = false;
+    }
+}
+
+/// Recently opened files and sessions, most recent first, stored as JSON in the state folder.
+#[derive(Debug, Default)]
+pub struct RecentFiles {
+    /// At most [`RECENT_LIMIT`] entries, no duplicates, most recent first.
+    pub paths: Vec<PathBuf>,
+    /// Where the list is stored; `None` keeps it in memory only.
+    file: Option<PathBuf>,
+}
+
+impl RecentFiles {
+    /// Reads the list from `dir/recent.json`; a missing or unreadable file gives an empty list.
+    pub fn load(dir: &Path) -> RecentFiles {
+        let file = dir.join("recent.json");
+        let paths = std::fs::read_to_string(&file)
+            .ok()
+            .and_then(|text| serde_json::from_str::<Vec<PathBuf>>(&text).ok())
+            .unwrap_or_default();
+        let mut list = RecentFiles {
+            paths: Vec::new(),
+            file: Some(file),
+        };
+        for p in paths.into_iter().rev() {
+            list.insert(p);
+        }
+        list
+    }
+
+    fn insert(&mut self, path: PathBuf) {
+        self.paths.retain(|p| p != &path);
+        self.paths.insert(0, path);
+        self.paths.truncate(RECENT_LIMIT);
+    }
+
+    /// Moves `path` to the front and stores the list (errors are ignored: the list is a
+    /// convenience, never a reason to fail an open).
+    pub fn add(&mut self, path: &Path) {
+        let path = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+        self.insert(path);
+        if let Some(file) = &self.file {
+            if let Some(dir) = file.parent() {
+                let _ = std::fs::create_dir_all(dir);
+            }
+            if let Ok(text) = serde_json::to_string_pretty(&self.paths) {
+                let tmp = file.with_extension("json.tmp");
+                if std::fs::write(&tmp, text).is_ok() {
+                    let _ = std::fs::rename(&tmp, file);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn temp_dir(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("cutaway-recovery-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        dir
+    }
+
+    #[test]
+    fn an_autosave_left_behind_is_offered_and_a_clean_exit_removes_it() {
+        let dir = temp_dir("offer");
+        let mut r = Recovery::new(dir.clone());
+        assert!(r.pending().is_none());
+        r.save_now(|p| Ok(std::fs::write(p, "{}")?)).unwrap();
+        // Our own pid owns it: a restart of this same process (the crash case) is offered it.
+        assert_eq!(r.pending(), Some(dir.join("recovery-session.json")));
+        r.discard();
+        assert!(r.pending().is_none());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn autosave_waits_for_a_change_and_the_interval() {
+        let dir = temp_dir("tick");
+        let mut r = Recovery::new(dir.clone());
+        let mut calls = 0;
+        assert!(!r.tick(|_| { calls += 1; Ok(()) }).unwrap());
+        r.mark_dirty();
+        assert!(!r.tick(|_| { calls += 1; Ok(()) }).unwrap(), "interval not yet passed");
+        r.last_save = Instant::now() - AUTOSAVE_EVERY;
+        assert!(r.tick(|_| { calls += 1; Ok(()) }).unwrap());
+        assert_eq!(calls, 1);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn recent_files_are_unique_bounded_and_persisted() {
+        let dir = temp_dir("recent");
+        let mut list = RecentFiles::load(&dir);
+        for i in 0..(RECENT_LIMIT + 3) {
+            list.add(Path::new(&format!("/data/m{i}.obj")));
+        }
+        list.add(Path::new("/data/m5.obj"));
+        assert_eq!(list.paths.len(), RECENT_LIMIT);
+        assert_eq!(list.paths[0], PathBuf::from("/data/m5.obj"));
+        assert_eq!(list.paths.iter().filter(|p| p.ends_with("m5.obj")).count(), 1);
+        let again = RecentFiles::load(&dir);
+        assert_eq!(again.paths, list.paths);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

@@ -1,0 +1,1 @@
+//! End-to-end tests: extrude (to be written).
