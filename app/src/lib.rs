@@ -4,4 +4,11 @@
 //! mesh core (`csg`) and the tools (`cutter`) never see any of these.
 
 pub mod cli;
+pub mod cutaway_geometry;
+pub mod gesture;
+pub mod gui;
 pub mod io;
+pub mod phantom;
+pub mod render;
+pub mod scene;
+pub mod session;

@@ -8,14 +8,26 @@
 
 pub mod adjacency;
 pub mod aabb;
+pub mod boolean;
+pub(crate) mod classify;
+pub(crate) mod contour;
+pub mod exact;
+pub(crate) mod intersect;
+pub mod lattice;
 pub mod mesh;
+pub mod output;
 pub mod regions;
 pub mod spatial;
+pub(crate) mod split;
+pub mod target;
 pub mod testkit;
 pub mod validate;
 pub mod weld;
 
 pub use aabb::Aabb;
+pub use boolean::{CutError, subtract, subtract_many};
+pub use output::{Contour, CutResult, Part, Provenance};
+pub use target::TargetIndex;
 pub use adjacency::EdgeAdjacency;
 pub use glam::DVec3;
 pub use mesh::{Mesh, MeshError};

@@ -21,7 +21,10 @@ const PHI: f64 = 1.618_033_988_749_895;
 /// # Panics
 /// When `subdivisions > 12` (that would be over 300M triangles, beyond `u32` vertex counts in practice).
 pub fn icosphere(subdivisions: u32, radius: f64) -> Mesh {
-    assert!(subdivisions <= 12, "icosphere: {subdivisions} subdivisions is too many");
+    assert!(
+        subdivisions <= 12,
+        "icosphere: {subdivisions} subdivisions is too many"
+    );
     geodesic_sphere(1 << subdivisions, radius)
 }
 
@@ -36,7 +39,10 @@ pub fn icosphere(subdivisions: u32, radius: f64) -> Mesh {
 /// # Panics
 /// When `frequency` is 0 or so large that the vertex count exceeds `u32`.
 pub fn geodesic_sphere(frequency: u32, radius: f64) -> Mesh {
-    assert!(frequency >= 1, "geodesic_sphere: frequency must be at least 1");
+    assert!(
+        frequency >= 1,
+        "geodesic_sphere: frequency must be at least 1"
+    );
     let f = frequency as usize;
     let vertex_total = 10 * (f as u64) * (f as u64) + 2;
     assert!(
@@ -244,7 +250,10 @@ pub fn torus(major: f64, minor: f64, major_segments: u32, minor_segments: u32) -
 /// # Panics
 /// When `rings < 2` or `segments < 3`.
 pub fn uv_sphere(rings: u32, segments: u32, radius: f64) -> Mesh {
-    assert!(rings >= 2 && segments >= 3, "uv_sphere: needs rings >= 2 and segments >= 3");
+    assert!(
+        rings >= 2 && segments >= 3,
+        "uv_sphere: needs rings >= 2 and segments >= 3"
+    );
     let (nr, ns) = (rings as usize, segments as usize);
     let mut positions = vec![DVec3::new(0.0, 0.0, radius)];
     for r in 1..nr {
@@ -252,7 +261,11 @@ pub fn uv_sphere(rings: u32, segments: u32, radius: f64) -> Mesh {
         for s in 0..ns {
             let phi = std::f64::consts::TAU * s as f64 / ns as f64;
             positions.push(
-                DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()) * radius,
+                DVec3::new(
+                    theta.sin() * phi.cos(),
+                    theta.sin() * phi.sin(),
+                    theta.cos(),
+                ) * radius,
             );
         }
     }
@@ -266,7 +279,12 @@ pub fn uv_sphere(rings: u32, segments: u32, radius: f64) -> Mesh {
     }
     for r in 1..nr - 1 {
         for s in 0..ns {
-            let (a, b, c, d) = (ring(r, s), ring(r + 1, s), ring(r + 1, s + 1), ring(r, s + 1));
+            let (a, b, c, d) = (
+                ring(r, s),
+                ring(r + 1, s),
+                ring(r + 1, s + 1),
+                ring(r, s + 1),
+            );
             triangles.push([a, b, c]);
             triangles.push([a, c, d]);
         }
@@ -303,7 +321,10 @@ mod tests {
         directed.dedup();
         assert_eq!(directed.len(), len, "a directed edge is used twice");
         for &(a, b) in &directed {
-            assert!(directed.binary_search(&(b, a)).is_ok(), "edge {a}-{b} has no twin");
+            assert!(
+                directed.binary_search(&(b, a)).is_ok(),
+                "edge {a}-{b} has no twin"
+            );
         }
     }
 

@@ -6,5 +6,20 @@
 //! no egui, no wgpu, no file formats.
 
 pub mod camera;
+pub mod cutter;
+pub mod edits;
+pub mod editor;
+pub mod events;
+pub mod extrude;
+mod geom;
+pub mod plane;
+pub mod scalpel;
+pub mod subcutters;
+pub mod subdivision;
+pub mod surface;
 
 pub use camera::{Camera, Ray};
+pub use cutter::{CutKind, Cutter, CutterError, QuadMesh};
+pub use editor::{CursorHint, Editor, EditorResponse, EditorSettings};
+pub use events::{EditorEvent, Key};
+pub use plane::BoundedPlane;

@@ -1,6 +1,22 @@
-//! `cutaway extrude TARGET --gesture G.json --out CUTTER.obj --json`. OWNER: editor helper.
+//! `cutaway extrude TARGET --gesture G.json --out CUTTER.obj --json`: replays a recorded gesture
+//! through the same [`cutter::Editor`] the GUI uses and writes the cutter as OBJ quads.
+//!
+//! The target file is the whole scene: δ comes from its bounding box (see
+//! [`cutter::EditorSettings::delta_for_scene`], with the gesture camera's field of view), and the
+//! region painted on is the one under the first press (else the first one seen through the
+//! initial drag, else the one nearest to the press ray), as the thesis picks "the first region
+//! under the press" when no target was selected.
 
 use std::path::PathBuf;
+use std::sync::Arc;
+
+use anyhow::{Context, bail};
+use glam::DVec2;
+
+use csg::{EdgeAdjacency, Mesh, SpatialIndex};
+use cutter::{Cutter, Editor, EditorEvent, EditorSettings};
+
+use crate::gesture::{Gesture, read_gesture};
 
 #[derive(Debug, clap::Args)]
 pub struct ExtrudeArgs {
@@ -17,6 +33,117 @@ pub struct ExtrudeArgs {
     pub json: bool,
 }
 
+/// The outcome of a replay.
+#[derive(Clone, Debug)]
+pub struct Replay {
+    pub cutter: Cutter,
+    /// Scene increment δ.
+    pub delta: f64,
+    /// Largest distance from a plane's front-edge midpoint to the painted region's surface.
+    pub max_surface_gap: f64,
+    /// Index of the painted region (connected component) of the target.
+    pub region: usize,
+}
+
+/// Replays `gesture` on `target` (the whole file). Errors when the gesture makes no cutter.
+pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
+    if target.is_empty() {
+        bail!("the target has no triangles");
+    }
+    let delta = EditorSettings::delta_for_scene(&target.bbox(), gesture.camera.fov_y_deg);
+    let region = painted_region(target, gesture);
+    let mut pieces = csg::regions::split_regions(target);
+    if region >= pieces.len() {
+        bail!("the target has no region {region}");
+    }
+    let mesh = Arc::new(pieces.swap_remove(region));
+    let index = Arc::new(SpatialIndex::build(&mesh));
+    let settings = EditorSettings {
+        kind: gesture.cut.kind,
+        spacing: gesture.cut.spacing,
+        smooth: gesture.cut.smooth,
+        delta,
+    };
+    let mut editor = Editor::new(mesh, index, gesture.camera, gesture.viewport, settings);
+    for &event in &gesture.events {
+        editor.handle(event);
+    }
+    let Some(cutter) = editor.cutter().cloned() else {
+        bail!("the gesture made no cutter (the first press-drag-release must be at least 3 pixels long)");
+    };
+    let max_surface_gap = editor.max_surface_gap().unwrap_or(f64::INFINITY);
+    Ok(Replay {
+        cutter,
+        delta,
+        max_surface_gap,
+        region,
+    })
+}
+
+/// The region under the first press: the region hit by the press ray, else by a ray through the
+/// initial drag, else the region nearest to the press ray.
+fn painted_region(target: &Mesh, gesture: &Gesture) -> usize {
+    let adjacency = EdgeAdjacency::build(target);
+    let regions = csg::regions::Regions::build(target, &adjacency);
+    if regions.count <= 1 {
+        return 0;
+    }
+    let index = SpatialIndex::build(target);
+    let press = gesture.events.iter().find_map(|e| match *e {
+        EditorEvent::Press { x, y, .. } => Some(DVec2::new(x, y)),
+        _ => None,
+    });
+    let release = gesture.events.iter().find_map(|e| match *e {
+        EditorEvent::Release { x, y, .. } => Some(DVec2::new(x, y)),
+        _ => None,
+    });
+    let Some(a) = press else {
+        return 0;
+    };
+    let b = release.unwrap_or(a);
+    let region_of = |face: u32| regions.region_of_triangle[face as usize] as usize;
+    for k in 0..=8 {
+        let px = a.lerp(b, k as f64 / 8.0);
+        let ray = gesture.camera.ray_through_pixel(gesture.viewport, px);
+        if let Some(hit) = index.ray_cast(target, ray.origin, ray.direction, f64::INFINITY) {
+            return region_of(hit.face);
+        }
+    }
+    let ray = gesture.camera.ray_through_pixel(gesture.viewport, a);
+    let depth = (target.bbox().center() - ray.origin).dot(ray.direction).max(0.0);
+    index
+        .closest_point(target, ray.at(depth))
+        .map_or(0, |c| region_of(c.face))
+}
+
 pub fn run(args: &ExtrudeArgs) -> anyhow::Result<()> {
-    anyhow::bail!("{}: extrude is not implemented yet", args.gesture.display())
+    let target = crate::io::read_mesh(&args.target)?;
+    let gesture = read_gesture(&args.gesture)?;
+    let result = replay(&target, &gesture).with_context(|| args.gesture.display().to_string())?;
+    let mesh = result.cutter.display_mesh();
+    crate::io::write_obj_polygons(&args.out, &mesh.positions, &mesh.faces)?;
+    let closed = mesh.check_closed().is_ok() && mesh.volume() > 0.0;
+    if args.json {
+        let json = serde_json::json!({
+            "planes": result.cutter.planes.len(),
+            "boxes": result.cutter.box_count(),
+            "kind": result.cutter.kind.name(),
+            "closed": closed,
+            "max_surface_gap": result.max_surface_gap,
+            "delta": result.delta,
+            "smooth": result.cutter.smooth,
+            "region": result.region,
+        });
+        println!("{json}");
+    } else {
+        println!(
+            "{}: {} planes, {} boxes ({}), written to {}",
+            args.target.display(),
+            result.cutter.planes.len(),
+            result.cutter.box_count(),
+            result.cutter.kind.name(),
+            args.out.display()
+        );
+    }
+    Ok(())
 }

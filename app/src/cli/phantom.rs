@@ -1,4 +1,9 @@
 //! `cutaway phantom --out assets/`: regenerates the embedded synthetic phantoms. OWNER: phantom helper.
+//!
+//! Maintainers only (hidden from `--help`): writes `OUT/<scene>/<part>.ply` for every scene of
+//! [`crate::phantom`], checking closedness, budgets and clearances on the way, and prints one line
+//! per part. The app embeds the committed files (`crate::assets`), so after changing a shape run
+//! `cargo run --release -- phantom --out assets` and commit the files with the code.
 
 use std::path::PathBuf;
 
@@ -10,5 +15,5 @@ pub struct PhantomArgs {
 }
 
 pub fn run(args: &PhantomArgs) -> anyhow::Result<()> {
-    anyhow::bail!("{}: phantom is not implemented yet", args.out.display())
+    crate::phantom::write_all(&args.out)
 }

@@ -85,24 +85,20 @@ impl Recovery {
         self.dirty = true;
     }
 
-    /// Saves through `save` (which writes a session to the given path) when the scene changed
-    /// and the interval has passed. Returns the error of a failed save (shown in the status line).
-    pub fn tick(&mut self, save: impl FnOnce(&Path) -> anyhow::Result<()>) -> anyhow::Result<bool> {
-        if !self.dirty || self.last_save.elapsed() < AUTOSAVE_EVERY {
-            return Ok(false);
-        }
-        self.save_now(save)?;
-        Ok(true)
+    /// True when the scene changed and the autosave interval has passed.
+    pub fn due(&self) -> bool {
+        self.dirty && self.last_save.elapsed() >= AUTOSAVE_EVERY
     }
 
-    /// Saves immediately (used by tests and before risky operations).
-    pub fn save_now(&mut self, save: impl FnOnce(&Path) -> anyhow::Result<()>) -> anyhow::Result<()> {
+    /// Starts an autosave: records this process as the owner and returns the path the caller
+    /// writes the session to.
+    pub fn begin_save(&mut self) -> anyhow::Result<PathBuf> {
         self.last_save = Instant::now();
         self.dirty = false;
         std::fs::create_dir_all(&self.dir).with_context(|| format!("{}", self.dir.display()))?;
         std::fs::write(self.owner_path(), std::process::id().to_string())
             .with_context(|| format!("{}", self.owner_path().display()))?;
-        save(&self.session_path())
+        Ok(self.session_path())
     }
 
     /// A clean exit (or the user declined recovery): the autosave is no longer needed.
@@ -180,7 +176,8 @@ mod tests {
         let dir = temp_dir("offer");
         let mut r = Recovery::new(dir.clone());
         assert!(r.pending().is_none());
-        r.save_now(|p| Ok(std::fs::write(p, "{}")?)).unwrap();
+        let path = r.begin_save().unwrap();
+        std::fs::write(path, "{}").unwrap();
         // Our own pid owns it: a restart of this same process (the crash case) is offered it.
         assert_eq!(r.pending(), Some(dir.join("recovery-session.json")));
         r.discard();
@@ -192,13 +189,13 @@ mod tests {
     fn autosave_waits_for_a_change_and_the_interval() {
         let dir = temp_dir("tick");
         let mut r = Recovery::new(dir.clone());
-        let mut calls = 0;
-        assert!(!r.tick(|_| { calls += 1; Ok(()) }).unwrap());
+        assert!(!r.due());
         r.mark_dirty();
-        assert!(!r.tick(|_| { calls += 1; Ok(()) }).unwrap(), "interval not yet passed");
+        assert!(!r.due(), "interval not yet passed");
         r.last_save = Instant::now() - AUTOSAVE_EVERY;
-        assert!(r.tick(|_| { calls += 1; Ok(()) }).unwrap());
-        assert_eq!(calls, 1);
+        assert!(r.due());
+        r.begin_save().unwrap();
+        assert!(!r.due(), "saved: nothing changed since");
         let _ = std::fs::remove_dir_all(&dir);
     }
 

@@ -1,0 +1,641 @@
+//! The geometry Preview mode draws: for every cutter, the kept part of its target, the walls, the
+//! removed piece, the contour, and the ribbons and slices of its thin sub-cutters (thesis 3.4).
+//!
+//! This is the adapter between the scene and the boolean. It speaks only in plain meshes
+//! ([`CutParts`]), so the renderer does not care which boolean produced them.
+//!
+//! TODO(boolean): `csg` has no boolean yet. Until it lands, [`cut`] uses a stand-in that is exact
+//! only for what it claims: every box between two consecutive planes is treated as a convex
+//! hexahedron (its four side quads replaced by their best-fit planes), target triangles are split
+//! by those planes (Sutherland–Hodgman) into kept and removed pieces, and walls are produced only
+//! when the target is convex (the cutter faces clipped by the target's face planes). The contour is
+//! the boundary of the removed piece. Swap the body of [`cut`] for `csg`'s boolean when it exists;
+//! nothing else changes.
+//!
+//! TODO(cutter): ribbon/slice sub-cutters come from the `cutter` crate once it has them; until
+//! then [`sub_cutter_planes`] places `count` thin boxes at regular intervals along the path with
+//! height and depth interpolated between the planes on either side (thesis 3.4.2).
+
+use std::collections::HashMap;
+
+use csg::Mesh;
+use glam::DVec3;
+
+use crate::scene::{CutterPlane, Scene};
+
+/// The three surfaces and the contour of one cut of a target by a closed cutter.
+#[derive(Clone, Debug, Default)]
+pub struct CutParts {
+    /// The target outside the cutter, original orientation.
+    pub kept: Mesh,
+    /// The cutter surface inside the target, facing out of `kept`.
+    pub walls: Mesh,
+    /// The target inside the cutter.
+    pub removed: Mesh,
+    /// Where the target surface crosses the cutter surface, as polylines (closed loops repeat
+    /// their first point at the end).
+    pub contour: Vec<Vec<DVec3>>,
+}
+
+/// What a part of the preview is, which decides its colour and how it is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PartKind {
+    /// The target outside every cutter: the model's own colour, opacity and style.
+    Kept,
+    /// Cutter surface inside the target (normal cut): the wall colour, opaque.
+    Wall,
+    /// The removed piece with the Transparency view: model colour at the cutter's opacity.
+    Removed,
+    /// Removed surface inside a thin sub-cutter: model colour, opaque, two-sided.
+    Ribbon,
+    /// Walls of a solid slice: the wall colour, opaque.
+    SliceWall,
+}
+
+/// One mesh of the preview.
+#[derive(Clone, Debug)]
+pub struct PreviewPart {
+    /// Index of the model (in `Scene::models`) the part belongs to.
+    pub model: usize,
+    /// Index of the cutter (in `Scene::cutters`) that made it (`usize::MAX` for `Kept`).
+    pub cutter: usize,
+    pub kind: PartKind,
+    /// Opacity for `Removed` parts; 1 for the others.
+    pub opacity: f32,
+    pub mesh: Mesh,
+}
+
+/// Everything Preview mode draws for a scene.
+#[derive(Clone, Debug, Default)]
+pub struct PreviewGeometry {
+    /// Per model (same length as `Scene::models`): true when the model is drawn by its parts
+    /// instead of its own mesh.
+    pub replaced: Vec<bool>,
+    pub parts: Vec<PreviewPart>,
+    /// Thick contour lines: (model index, polyline). Only for cutters with the normal-cut view.
+    pub contours: Vec<(usize, Vec<DVec3>)>,
+}
+
+impl PreviewGeometry {
+    /// Total triangles of all parts (for the status line).
+    pub fn triangle_count(&self) -> usize {
+        self.parts.iter().map(|p| p.mesh.triangle_count()).sum()
+    }
+}
+
+/// Executes every cutter of `scene` whose views show anything. Cutters on the same model apply
+/// one after another (the second cuts the kept part of the first).
+pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
+    let mut out = PreviewGeometry {
+        replaced: vec![false; scene.models.len()],
+        ..PreviewGeometry::default()
+    };
+    for (model_index, model) in scene.models.iter().enumerate() {
+        let cutters: Vec<usize> = (0..scene.cutters.len())
+            .filter(|&c| scene.cutters[c].target == model_index && scene.cutters[c].views.any())
+            .collect();
+        if cutters.is_empty() {
+            continue;
+        }
+        out.replaced[model_index] = true;
+        let mut current: Mesh = (*model.mesh).clone();
+        for c in cutters {
+            let cutter = &scene.cutters[c];
+            let views = cutter.views;
+            let parts = cut(&current, &cutter.planes, views.cut);
+            if views.cut {
+                push_part(&mut out, model_index, c, PartKind::Wall, 1.0, parts.walls);
+                for line in parts.contour {
+                    out.contours.push((model_index, line));
+                }
+            }
+            if let Some(opacity) = views.transparency {
+                push_part(&mut out, model_index, c, PartKind::Removed, opacity, parts.removed);
+            }
+            for (view, with_walls) in [(views.ribbons, false), (views.slices, true)] {
+                let Some(view) = view else { continue };
+                for sub in sub_cutter_planes(&cutter.planes, view.count, view.width) {
+                    let piece = cut(&current, &sub, with_walls);
+                    push_part(&mut out, model_index, c, PartKind::Ribbon, 1.0, piece.removed);
+                    if with_walls {
+                        // The slice is closed by the sub-cutter's walls facing out of the slice.
+                        push_part(&mut out, model_index, c, PartKind::SliceWall, 1.0, piece.walls.reversed());
+                    }
+                }
+            }
+            current = parts.kept;
+        }
+        push_part(&mut out, model_index, usize::MAX, PartKind::Kept, 1.0, current);
+    }
+    out
+}
+
+fn push_part(out: &mut PreviewGeometry, model: usize, cutter: usize, kind: PartKind, opacity: f32, mesh: Mesh) {
+    if mesh.is_empty() {
+        return;
+    }
+    out.parts.push(PreviewPart {
+        model,
+        cutter,
+        kind,
+        opacity,
+        mesh,
+    });
+}
+
+/// Cuts the closed cutter bounded by `planes` out of `target` (see the module doc for what the
+/// stand-in guarantees). `with_walls: false` skips the walls (ribbons need none).
+pub fn cut(target: &Mesh, planes: &[CutterPlane], with_walls: bool) -> CutParts {
+    let boxes = convex_boxes(planes);
+    if boxes.is_empty() {
+        return CutParts {
+            kept: target.clone(),
+            ..CutParts::default()
+        };
+    }
+    let mut kept = Polygons::default();
+    let mut removed = Polygons::default();
+    let mut untouched: Vec<[u32; 3]> = Vec::new();
+    for &tri in &target.triangles {
+        let corners = tri.map(|i| target.positions[i as usize]);
+        let mut outside = vec![corners.to_vec()];
+        let mut touched = false;
+        for b in &boxes {
+            let mut next = Vec::new();
+            for piece in outside {
+                if !b.bbox_overlaps(&piece) {
+                    next.push(piece);
+                    continue;
+                }
+                touched = true;
+                let mut inside = piece;
+                for h in &b.halfspaces {
+                    let (out_part, in_part) = h.split(&inside);
+                    if out_part.len() >= 3 {
+                        next.push(out_part);
+                    }
+                    inside = in_part;
+                    if inside.len() < 3 {
+                        break;
+                    }
+                }
+                if inside.len() >= 3 {
+                    removed.push(&inside);
+                }
+            }
+            outside = next;
+        }
+        if touched {
+            for piece in &outside {
+                kept.push(piece);
+            }
+        } else {
+            untouched.push(tri);
+        }
+    }
+    let mut kept_mesh = Mesh {
+        positions: target.positions.clone(),
+        triangles: untouched,
+    };
+    kept_mesh.append(&kept.into_mesh());
+    let removed_mesh = removed.into_mesh();
+    let contour = boundary_polylines(&removed_mesh);
+    let walls = if with_walls && !removed_mesh.is_empty() {
+        convex_walls(target, planes)
+    } else {
+        Mesh::default()
+    };
+    CutParts {
+        kept: kept_mesh.compacted(),
+        walls,
+        removed: removed_mesh,
+        contour,
+    }
+}
+
+/// The closed cutter surface of `planes` as triangles: two per side quad of each box between
+/// consecutive planes and two per end cap, outward-facing. Degenerate quads (wedge axes) give
+/// zero-area triangles, which draw as nothing.
+pub fn cutter_surface(planes: &[CutterPlane]) -> Mesh {
+    let mut mesh = Mesh::default();
+    if planes.len() < 2 {
+        return mesh;
+    }
+    for q in cutter_faces(planes) {
+        let base = mesh.positions.len() as u32;
+        mesh.positions.extend_from_slice(&q);
+        mesh.triangles.push([base, base + 1, base + 2]);
+        mesh.triangles.push([base, base + 2, base + 3]);
+    }
+    mesh
+}
+
+/// The outer quads of the cutter (side quads of every box, and the two end caps), each oriented
+/// counter-clockwise seen from outside the cutter.
+fn cutter_faces(planes: &[CutterPlane]) -> Vec<[DVec3; 4]> {
+    let n = planes.len();
+    let mut quads = Vec::new();
+    for i in 0..n - 1 {
+        let (p, q) = (planes[i], planes[i + 1]);
+        // Corner order: 0 front-top, 1 back-top, 2 back-bottom, 3 front-bottom.
+        for (a, b) in [(0, 1), (1, 2), (2, 3), (3, 0)] {
+            quads.push([p[a], q[a], q[b], p[b]]);
+        }
+    }
+    quads.push(planes[0]);
+    quads.push(planes[n - 1]);
+    // Orient each quad away from the centre of its box region (all boxes are roughly convex).
+    for (k, quad) in quads.iter_mut().enumerate() {
+        let local_centre = if k < 4 * (n - 1) {
+            let i = k / 4;
+            (planes[i].iter().chain(planes[i + 1].iter()).copied().sum::<DVec3>()) / 8.0
+        } else if k == 4 * (n - 1) {
+            let i = 0;
+            (planes[i].iter().chain(planes[i + 1].iter()).copied().sum::<DVec3>()) / 8.0
+        } else {
+            (planes[n - 2].iter().chain(planes[n - 1].iter()).copied().sum::<DVec3>()) / 8.0
+        };
+        let normal = newell_normal(quad);
+        let mid = quad.iter().copied().sum::<DVec3>() / 4.0;
+        if normal.dot(mid - local_centre) < 0.0 {
+            quad.reverse();
+        }
+    }
+    quads
+}
+
+/// Planes of `count` thin sub-cutters of width `width` at regular intervals along the path of
+/// `planes`, each as two bounded planes (a one-box cutter).
+pub fn sub_cutter_planes(planes: &[CutterPlane], count: u32, width: f64) -> Vec<Vec<CutterPlane>> {
+    let n = planes.len();
+    if n < 2 || count == 0 || !(width > 0.0) {
+        return Vec::new();
+    }
+    let centre = |p: &CutterPlane| p.iter().copied().sum::<DVec3>() / 4.0;
+    let mut out = Vec::new();
+    for k in 0..count {
+        // Path parameter in plane-index units, away from the end caps.
+        let s = (k as f64 + 0.5) / count as f64 * (n - 1) as f64;
+        let i = (s.floor() as usize).min(n - 2);
+        let f = s - i as f64;
+        let plane: CutterPlane = std::array::from_fn(|c| planes[i][c].lerp(planes[i + 1][c], f));
+        let Some(along) = (centre(&planes[i + 1]) - centre(&planes[i])).try_normalize() else {
+            continue;
+        };
+        let half = along * (0.5 * width);
+        out.push(vec![plane.map(|p| p - half), plane.map(|p| p + half)]);
+    }
+    out
+}
+
+/// A plane `normal · x = offset`; "inside" is `normal · x - offset <= 0`.
+#[derive(Clone, Copy, Debug)]
+struct Halfspace {
+    normal: DVec3,
+    offset: f64,
+}
+
+impl Halfspace {
+    fn distance(&self, p: DVec3) -> f64 {
+        self.normal.dot(p) - self.offset
+    }
+
+    fn flipped(&self) -> Halfspace {
+        Halfspace {
+            normal: -self.normal,
+            offset: -self.offset,
+        }
+    }
+
+    /// Splits a convex polygon into its (outside, inside) parts. Intersection points are computed
+    /// from the edge's endpoints in a canonical order, so two polygons sharing an edge get the
+    /// same point bit for bit.
+    fn split(&self, poly: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
+        let d: Vec<f64> = poly.iter().map(|&p| self.distance(p)).collect();
+        if d.iter().all(|&x| x <= 0.0) {
+            return (Vec::new(), poly.to_vec());
+        }
+        if d.iter().all(|&x| x > 0.0) {
+            return (poly.to_vec(), Vec::new());
+        }
+        let (mut outside, mut inside) = (Vec::new(), Vec::new());
+        for i in 0..poly.len() {
+            let j = (i + 1) % poly.len();
+            let (p, dp) = (poly[i], d[i]);
+            if dp > 0.0 {
+                outside.push(p);
+            } else {
+                inside.push(p);
+            }
+            let dq = d[j];
+            if (dp > 0.0) != (dq > 0.0) && dp != 0.0 && dq != 0.0 {
+                let x = edge_point(p, dp, poly[j], dq);
+                outside.push(x);
+                inside.push(x);
+            } else if dp == 0.0 {
+                // A vertex on the plane belongs to both sides.
+                outside.push(p);
+            }
+        }
+        // A vertex exactly on the plane was pushed to `outside` twice in a row when the polygon
+        // only touches the plane; drop repeats.
+        outside.dedup();
+        (outside, inside)
+    }
+}
+
+fn edge_point(p: DVec3, dp: f64, q: DVec3, dq: f64) -> DVec3 {
+    let (a, da, b, db) = if p.to_array() < q.to_array() { (p, dp, q, dq) } else { (q, dq, p, dp) };
+    let t = da / (da - db);
+    a + (b - a) * t
+}
+
+fn newell_normal(poly: &[DVec3]) -> DVec3 {
+    let mut n = DVec3::ZERO;
+    for i in 0..poly.len() {
+        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+        n += DVec3::new((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+    }
+    n
+}
+
+/// One box of the cutter as the intersection of its half-spaces.
+struct ConvexBox {
+    halfspaces: Vec<Halfspace>,
+    min: DVec3,
+    max: DVec3,
+}
+
+impl ConvexBox {
+    fn bbox_overlaps(&self, poly: &[DVec3]) -> bool {
+        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for &p in poly {
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        lo.cmple(self.max).all() && hi.cmpge(self.min).all()
+    }
+}
+
+/// The boxes between consecutive planes. The plane shared by two boxes is computed once and
+/// flipped exactly for the second box, so pieces on both sides split at identical points.
+fn convex_boxes(planes: &[CutterPlane]) -> Vec<ConvexBox> {
+    let n = planes.len();
+    if n < 2 {
+        return Vec::new();
+    }
+    let plane_of = |quad: &[DVec3; 4], inside_point: DVec3| -> Option<Halfspace> {
+        let normal = newell_normal(quad).try_normalize()?;
+        let mid = quad.iter().copied().sum::<DVec3>() / 4.0;
+        let h = Halfspace {
+            normal,
+            offset: normal.dot(mid),
+        };
+        Some(if h.distance(inside_point) > 0.0 { h.flipped() } else { h })
+    };
+    let box_centre = |i: usize| planes[i].iter().chain(planes[i + 1].iter()).copied().sum::<DVec3>() / 8.0;
+    // Cap plane k, oriented so that box k (after it) is inside; the last one (k = n - 1) so
+    // that box n - 2 (before it) is inside.
+    let caps: Vec<Option<Halfspace>> = (0..n)
+        .map(|k| plane_of(&planes[k], box_centre(k.min(n - 2))))
+        .collect();
+    let mut boxes = Vec::new();
+    for i in 0..n - 1 {
+        let (p, q) = (planes[i], planes[i + 1]);
+        let c = box_centre(i);
+        let mut halfspaces = Vec::new();
+        if let Some(h) = caps[i] {
+            halfspaces.push(h);
+        }
+        if let Some(h) = caps[i + 1] {
+            // caps[i + 1] has box i + 1 inside (box i is on its other side), except the end cap.
+            halfspaces.push(if i + 1 == n - 1 { h } else { h.flipped() });
+        }
+        for (a, b) in [(0, 1), (1, 2), (2, 3), (3, 0)] {
+            if let Some(h) = plane_of(&[p[a], q[a], q[b], p[b]], c) {
+                halfspaces.push(h);
+            }
+        }
+        let (mut min, mut max) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for &v in p.iter().chain(q.iter()) {
+            min = min.min(v);
+            max = max.max(v);
+        }
+        boxes.push(ConvexBox { halfspaces, min, max });
+    }
+    boxes
+}
+
+/// Walls for a convex target: the cutter's outer faces clipped to the inside of every target face
+/// plane, facing into the cutter (out of the kept part). Empty when the target is not convex.
+fn convex_walls(target: &Mesh, planes: &[CutterPlane]) -> Mesh {
+    const MAX_TRIANGLES: usize = 20_000;
+    if target.triangle_count() > MAX_TRIANGLES || planes.len() < 2 {
+        return Mesh::default();
+    }
+    let mut halfspaces = Vec::new();
+    for t in 0..target.triangle_count() {
+        let [a, b, c] = target.corners(t);
+        let Some(normal) = (b - a).cross(c - a).try_normalize() else { continue };
+        halfspaces.push(Halfspace {
+            normal,
+            offset: normal.dot(a),
+        });
+    }
+    let scale = target.bbox().diagonal().max(1e-300);
+    let convex = halfspaces
+        .iter()
+        .all(|h| target.positions.iter().all(|&p| h.distance(p) <= 1e-9 * scale));
+    if !convex {
+        return Mesh::default();
+    }
+    let mut walls = Polygons::default();
+    for quad in cutter_faces(planes) {
+        let mut inside = quad.to_vec();
+        for h in &halfspaces {
+            inside = h.split(&inside).1;
+            if inside.len() < 3 {
+                break;
+            }
+        }
+        if inside.len() >= 3 {
+            inside.reverse();
+            walls.push(&inside);
+        }
+    }
+    walls.into_mesh()
+}
+
+/// Polygons welded by exact position into one mesh (fan-triangulated; every polygon is convex).
+#[derive(Default)]
+struct Polygons {
+    positions: Vec<DVec3>,
+    index: HashMap<[u64; 3], u32>,
+    triangles: Vec<[u32; 3]>,
+}
+
+impl Polygons {
+    fn vertex(&mut self, p: DVec3) -> u32 {
+        let key = p.to_array().map(|c| (c + 0.0).to_bits());
+        *self.index.entry(key).or_insert_with(|| {
+            self.positions.push(p);
+            (self.positions.len() - 1) as u32
+        })
+    }
+
+    fn push(&mut self, poly: &[DVec3]) {
+        let ids: Vec<u32> = poly.iter().map(|&p| self.vertex(p)).collect();
+        for k in 1..ids.len().saturating_sub(1) {
+            let t = [ids[0], ids[k], ids[k + 1]];
+            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                self.triangles.push(t);
+            }
+        }
+    }
+
+    fn into_mesh(self) -> Mesh {
+        Mesh {
+            positions: self.positions,
+            triangles: self.triangles,
+        }
+    }
+}
+
+/// The boundary edges (used by exactly one triangle) of `mesh`, chained into polylines; closed
+/// loops repeat their first point at the end.
+pub fn boundary_polylines(mesh: &Mesh) -> Vec<Vec<DVec3>> {
+    let mut count: HashMap<(u32, u32), i32> = HashMap::new();
+    for t in &mesh.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            *count.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let mut next: HashMap<u32, Vec<u32>> = HashMap::new();
+    let mut edges: Vec<(u32, u32)> = count.into_iter().filter(|&(_, c)| c == 1).map(|(e, _)| e).collect();
+    edges.sort_unstable();
+    for &(a, b) in &edges {
+        next.entry(a).or_default().push(b);
+        next.entry(b).or_default().push(a);
+    }
+    let mut used: HashMap<(u32, u32), bool> = edges.iter().map(|&e| (e, false)).collect();
+    let mut lines = Vec::new();
+    for &(a0, b0) in &edges {
+        if used[&(a0, b0)] {
+            continue;
+        }
+        used.insert((a0, b0), true);
+        let mut line = vec![a0, b0];
+        let mut cur = b0;
+        loop {
+            let step = next[&cur]
+                .iter()
+                .copied()
+                .find(|&n| !used[&(cur.min(n), cur.max(n))]);
+            let Some(n) = step else { break };
+            used.insert((cur.min(n), cur.max(n)), true);
+            line.push(n);
+            cur = n;
+            if n == a0 {
+                break;
+            }
+        }
+        lines.push(line.into_iter().map(|i| mesh.positions[i as usize]).collect());
+    }
+    lines
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// An axis-aligned closed box mesh, outward-facing.
+    pub fn cube(min: DVec3, max: DVec3) -> Mesh {
+        let p = |x: usize, y: usize, z: usize| {
+            DVec3::new(
+                if x == 0 { min.x } else { max.x },
+                if y == 0 { min.y } else { max.y },
+                if z == 0 { min.z } else { max.z },
+            )
+        };
+        let positions: Vec<DVec3> = (0..8).map(|i| p(i & 1, (i >> 1) & 1, (i >> 2) & 1)).collect();
+        let quads = [
+            [0, 2, 3, 1], // z min
+            [4, 5, 7, 6], // z max
+            [0, 1, 5, 4], // y min
+            [2, 6, 7, 3], // y max
+            [0, 4, 6, 2], // x min
+            [1, 3, 7, 5], // x max
+        ];
+        let mut triangles = Vec::new();
+        for q in quads {
+            triangles.push([q[0], q[1], q[2]]);
+            triangles.push([q[0], q[2], q[3]]);
+        }
+        Mesh { positions, triangles }
+    }
+
+    /// A straight two-plane cutter spanning x in [x0, x1], y in [y0, y1] (front at y0), z in
+    /// [z0, z1].
+    pub fn box_cutter(x0: f64, x1: f64, y0: f64, y1: f64, z0: f64, z1: f64) -> Vec<CutterPlane> {
+        let plane = |x: f64| {
+            [
+                DVec3::new(x, y0, z1),
+                DVec3::new(x, y1, z1),
+                DVec3::new(x, y1, z0),
+                DVec3::new(x, y0, z0),
+            ]
+        };
+        vec![plane(x0), plane((x0 + x1) * 0.5), plane(x1)]
+    }
+
+    #[test]
+    fn cutting_a_cube_corner_conserves_area_and_closes() {
+        let target = cube(DVec3::ZERO, DVec3::splat(2.0));
+        let planes = box_cutter(1.0, 3.0, -1.0, 1.0, 1.0, 3.0);
+        let parts = cut(&target, &planes, true);
+        let area = |m: &Mesh| m.area();
+        assert!((area(&parts.kept) + area(&parts.removed) - area(&target)).abs() < 1e-9);
+        // The removed corner: three unit squares of the cube surface.
+        assert!((area(&parts.removed) - 3.0).abs() < 1e-9, "{}", area(&parts.removed));
+        // Walls: three unit squares of the cutter inside the cube.
+        assert!((area(&parts.walls) - 3.0).abs() < 1e-9, "{}", area(&parts.walls));
+        // kept + walls is closed: the volume is the cube minus the unit corner.
+        let mut closed = parts.kept.clone();
+        closed.append(&parts.walls);
+        assert!((closed.volume() - 7.0).abs() < 1e-9, "{}", closed.volume());
+        // One contour loop around the corner (6 unit edges), closed.
+        assert_eq!(parts.contour.len(), 1);
+        let line = &parts.contour[0];
+        assert_eq!(line.first(), line.last());
+        let length: f64 = line.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+        assert!((length - 6.0).abs() < 1e-9, "{length}");
+    }
+
+    #[test]
+    fn cutter_outside_the_target_removes_nothing() {
+        let target = cube(DVec3::ZERO, DVec3::ONE);
+        let planes = box_cutter(5.0, 6.0, 5.0, 6.0, 5.0, 6.0);
+        let parts = cut(&target, &planes, true);
+        assert!(parts.removed.is_empty() && parts.walls.is_empty() && parts.contour.is_empty());
+        assert_eq!(parts.kept.triangle_count(), 12);
+    }
+
+    #[test]
+    fn cutter_surface_is_closed_and_outward() {
+        let planes = box_cutter(0.0, 2.0, 0.0, 1.0, 0.0, 1.0);
+        let surface = cutter_surface(&planes);
+        assert!((surface.volume() - 2.0).abs() < 1e-9, "{}", surface.volume());
+    }
+
+    #[test]
+    fn sub_cutters_are_thin_and_inside_the_path() {
+        let planes = box_cutter(0.0, 4.0, 0.0, 1.0, 0.0, 1.0);
+        let subs = sub_cutter_planes(&planes, 4, 0.2);
+        assert_eq!(subs.len(), 4);
+        for (k, sub) in subs.iter().enumerate() {
+            let x = (k as f64 + 0.5) / 4.0 * 4.0;
+            assert!((sub[0][0].x - (x - 0.1)).abs() < 1e-12 && (sub[1][0].x - (x + 0.1)).abs() < 1e-12);
+        }
+    }
+}

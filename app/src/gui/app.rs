@@ -1,0 +1,1021 @@
+//! The eframe application: window state, actions, jobs, and the layout of the panels.
+//!
+//! Every user command (menu item, button, shortcut, context menu, dropped file) becomes an
+//! [`Action`] applied in one place ([`CutawayApp::apply`]), so the menus and panels only describe
+//! what the user asked for and the undo history sees every scene change.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+use glam::DVec3;
+
+use csg::{Aabb, Mesh};
+
+use crate::scene::{CutKind, Scene, SceneModel};
+
+use super::camera_controls;
+use super::jobs::{self, Job, Progress};
+use super::recovery::{self, RecentFiles, Recovery};
+use super::status_bar::StatusInfo;
+use super::undo::{Apply, History};
+use super::viewport::ViewportState;
+
+/// What the mouse does in the viewport (thesis 3.5 C).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// Drag orbits, Shift+drag pans, wheel zooms, double-click selects and centres a model.
+    Camera,
+    /// Mouse input goes to the cutter editor.
+    Edit,
+    /// Cuts executed, cutters hidden, camera controls.
+    Preview,
+    /// Progressive scalpel cut (when the scalpel module exists).
+    Scalpel,
+}
+
+impl Mode {
+    pub fn label(self) -> &'static str {
+        match self {
+            Mode::Camera => "Camera",
+            Mode::Edit => "Edit",
+            Mode::Preview => "Preview",
+            Mode::Scalpel => "Scalpel",
+        }
+    }
+}
+
+/// Cut settings applied to the next cutter (thesis 3.5 E, Initialization tab).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CutterInit {
+    /// Segment spacing ω: a new box starts each ω·δ of extrusion.
+    pub spacing: f64,
+    /// Curving (freeform path) or wedge; Shift while extruding gives the straight path.
+    pub kind: CutKind,
+    /// Rounded (subdivided) cutter.
+    pub smooth: bool,
+}
+
+impl Default for CutterInit {
+    fn default() -> Self {
+        CutterInit {
+            spacing: 20.0,
+            kind: CutKind::Curving,
+            smooth: false,
+        }
+    }
+}
+
+/// Triangles of all models of `scene`.
+pub fn triangle_count(scene: &Scene) -> usize {
+    scene.models.iter().map(|m| m.mesh.triangle_count()).sum()
+}
+
+/// What a file dialog was opened for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Purpose {
+    LoadModel,
+    LoadDirectory,
+    AddModel,
+    OpenSession,
+    SaveSessionAs,
+    ExportImage,
+    ExportMeshes,
+    SaveGesture,
+}
+
+impl Purpose {
+    fn title(self) -> &'static str {
+        match self {
+            Purpose::LoadModel => "Load Model",
+            Purpose::LoadDirectory => "Load Directory",
+            Purpose::AddModel => "Add Model",
+            Purpose::OpenSession => "Open Session",
+            Purpose::SaveSessionAs => "Save Session As",
+            Purpose::ExportImage => "Export Image",
+            Purpose::ExportMeshes => "Export Cut Meshes to Folder",
+            Purpose::SaveGesture => "Save Gesture",
+        }
+    }
+}
+
+/// Every command the user can give.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Action {
+    /// Open a file dialog for this purpose.
+    Dialog(Purpose),
+    /// Replace the scene with these files (models or one session).
+    Open(Vec<PathBuf>),
+    /// Add these model files to the scene.
+    Add(Vec<PathBuf>),
+    SaveSession,
+    SaveSessionTo(PathBuf),
+    ExportImageTo(PathBuf),
+    ExportMeshesTo(PathBuf),
+    Exit,
+    Undo,
+    Redo,
+    SetMode(Mode),
+    RemoveAllCutGeometry,
+    ToggleCutters,
+    ResetCamera,
+    SelectModel(Option<usize>),
+    /// Centre the camera on a model.
+    FocusModel(usize),
+    RemoveModel(usize),
+    StartGesture,
+    StopGesture,
+    RestoreRecovery,
+    DiscardRecovery,
+}
+
+/// Result of a background job.
+pub enum JobOutput {
+    /// A file dialog closed; `paths` is empty when it was cancelled.
+    Picked { purpose: Purpose, paths: Vec<PathBuf>, took: std::time::Duration },
+    /// Models were read.
+    Models { models: Vec<crate::io::Model>, replace: bool, sources: Vec<PathBuf> },
+    /// Something finished that only needs a message.
+    Done(String),
+}
+
+/// How the app starts.
+#[derive(Clone, Debug)]
+pub struct StartOptions {
+    /// Meshes, directories, or one session file. Empty: the embedded default scene.
+    pub paths: Vec<PathBuf>,
+    /// Folder of the recovery autosave and recent files (see [`recovery::state_dir`]).
+    pub state_dir: PathBuf,
+    /// Offer an autosave left behind by a crash.
+    pub offer_recovery: bool,
+}
+
+impl StartOptions {
+    pub fn new(paths: Vec<PathBuf>) -> StartOptions {
+        StartOptions {
+            paths,
+            state_dir: recovery::state_dir(),
+            offer_recovery: true,
+        }
+    }
+}
+
+/// The whole window.
+pub struct CutawayApp {
+    /// Models, cutters, camera and render settings: what is drawn and saved.
+    pub scene: Scene,
+    pub mode: Mode,
+    pub cutter_init: CutterInit,
+    /// Index into `scene.models` of the selected (target) model.
+    pub selected_model: Option<usize>,
+    /// Index of the cutter whose Visualization settings are shown.
+    pub selected_cutter: usize,
+    /// "Hide/Show Current Cutters".
+    pub cutters_hidden: bool,
+    /// Undo snapshots are whole scenes (meshes shared); the camera is not part of undo.
+    pub history: History<Scene>,
+    pub jobs: Vec<Job<JobOutput>>,
+    pub recovery: Recovery,
+    pub recent: RecentFiles,
+    /// Where "Save Session" writes; set by Open Session and Save Session As.
+    pub session_path: Option<PathBuf>,
+    pub status: StatusInfo,
+    pub viewport: ViewportState,
+    /// A recovery file found at start-up, offered until answered.
+    pub pending_recovery: Option<PathBuf>,
+    /// Text of the manual path entry shown when no native file dialog is available.
+    pub manual_path: Option<(Purpose, String)>,
+    /// A path typed into the manual path entry, handled after the frame's panels.
+    pending_manual: Option<(Purpose, PathBuf)>,
+    /// Export Image settings (width, height, transparent background).
+    pub export_image: super::menus::ExportImageSettings,
+    /// Which cut parts Export Cut Meshes writes, and the format.
+    pub export_meshes: super::menus::ExportMeshSettings,
+    /// The GPU, when the window runs on wgpu (None under a non-wgpu test harness).
+    pub wgpu: Option<egui_wgpu::RenderState>,
+    /// Which cutter tab is shown.
+    pub cutter_tab: super::cutter_panel::CutterTab,
+    /// A scene edit in progress (slider or colour drag): its label and the scene before it.
+    /// Committed to the history when the pointer is released.
+    pending_edit: Option<(String, Scene)>,
+    /// True once a close was requested (Exit); the recovery file is removed then.
+    exiting: bool,
+    frame_started: Instant,
+}
+
+impl CutawayApp {
+    pub fn new(cc: &eframe::CreationContext<'_>, start: StartOptions) -> CutawayApp {
+        super::menus::apply_style(&cc.egui_ctx);
+        let recovery = Recovery::new(start.state_dir.clone());
+        let pending_recovery = if start.offer_recovery { recovery.pending() } else { None };
+        let mut app = CutawayApp {
+            scene: new_scene(),
+            mode: Mode::Camera,
+            cutter_init: CutterInit::default(),
+            selected_model: None,
+            selected_cutter: 0,
+            cutters_hidden: false,
+            history: History::default(),
+            jobs: Vec::new(),
+            recent: RecentFiles::load(&start.state_dir),
+            recovery,
+            session_path: None,
+            status: StatusInfo {
+                message: "Ready".into(),
+                ..Default::default()
+            },
+            viewport: ViewportState::new(cc.wgpu_render_state.as_ref()),
+            pending_recovery,
+            manual_path: None,
+            pending_manual: None,
+            export_image: Default::default(),
+            export_meshes: Default::default(),
+            wgpu: cc.wgpu_render_state.clone(),
+            cutter_tab: Default::default(),
+            pending_edit: None,
+            exiting: false,
+            frame_started: Instant::now(),
+        };
+        if start.paths.is_empty() {
+            app.load_default_scene(&cc.egui_ctx);
+        } else {
+            app.apply(&cc.egui_ctx, Action::Open(start.paths));
+        }
+        app
+    }
+
+    /// True while any background job runs (tests wait on this).
+    pub fn busy(&self) -> bool {
+        self.jobs.iter().any(Job::is_running)
+    }
+
+    /// Sets the status message.
+    pub fn say(&mut self, message: impl Into<String>) {
+        self.status.message = message.into();
+        self.status.is_error = false;
+    }
+
+    /// Sets an error message (one line, kept until the next message).
+    pub fn complain(&mut self, error: &anyhow::Error) {
+        self.status.message = crate::cli::error_line(error);
+        self.status.is_error = true;
+    }
+
+    fn spawn(
+        &mut self,
+        ctx: &egui::Context,
+        label: impl Into<String>,
+        work: impl FnOnce(&Progress) -> anyhow::Result<JobOutput> + Send + 'static,
+    ) {
+        let ctx = ctx.clone();
+        self.jobs.push(Job::spawn(label, move || ctx.request_repaint(), work));
+    }
+
+    fn load_default_scene(&mut self, ctx: &egui::Context) {
+        self.spawn(ctx, "Loading the default scene", |progress| {
+            progress.set_message("knee");
+            let models = super::bridge::default_scene_models()?;
+            Ok(JobOutput::Models {
+                models,
+                replace: true,
+                sources: Vec::new(),
+            })
+        });
+    }
+
+    /// Records a scene change for undo (call with the state from before the change).
+    pub fn record(&mut self, label: &str, before: Scene) {
+        self.history.push_scene(label, before, self.scene.clone());
+        self.recovery.mark_dirty();
+    }
+
+    /// Starts (or continues) an undoable property edit: call before changing the scene.
+    pub fn begin_edit(&mut self, label: &str) {
+        if self.pending_edit.is_none() {
+            self.pending_edit = Some((label.to_string(), self.scene.clone()));
+        }
+        self.recovery.mark_dirty();
+    }
+
+    /// Commits the pending property edit once no pointer button is held (one step per drag).
+    fn commit_edit_if_idle(&mut self, ctx: &egui::Context) {
+        if self.pending_edit.is_some() && !ctx.input(|i| i.pointer.any_down()) {
+            if let Some((label, before)) = self.pending_edit.take() {
+                self.history.push_scene(label, before, self.scene.clone());
+            }
+        }
+    }
+
+    /// Applies one user command.
+    pub fn apply(&mut self, ctx: &egui::Context, action: Action) {
+        match action {
+            Action::Dialog(purpose) => self.open_dialog(ctx, purpose),
+            Action::Open(paths) => self.open_paths(ctx, paths, true),
+            Action::Add(paths) => self.open_paths(ctx, paths, false),
+            Action::SaveSession => match self.session_path.clone() {
+                Some(path) => self.apply(ctx, Action::SaveSessionTo(path)),
+                None => self.open_dialog(ctx, Purpose::SaveSessionAs),
+            },
+            Action::SaveSessionTo(path) => match self.save_session(&path) {
+                Ok(()) => {
+                    self.recent.add(&path);
+                    self.session_path = Some(path.clone());
+                    self.say(format!("Saved {}", path.display()));
+                }
+                Err(e) => self.complain(&e),
+            },
+            Action::ExportImageTo(path) => self.export_image_to(ctx, path),
+            Action::ExportMeshesTo(dir) => self.export_meshes_to(ctx, dir),
+            Action::Exit => {
+                self.exiting = true;
+                self.recovery.discard();
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+            Action::Undo => self.undo(),
+            Action::Redo => self.redo(),
+            Action::SetMode(mode) => self.set_mode(mode),
+            Action::RemoveAllCutGeometry => self.remove_all_cut_geometry(),
+            Action::ToggleCutters => {
+                self.cutters_hidden = !self.cutters_hidden;
+                self.say(if self.cutters_hidden { "Cutters hidden" } else { "Cutters shown" });
+            }
+            Action::ResetCamera => {
+                self.scene.camera = self.scene.framing_camera();
+            }
+            Action::SelectModel(index) => {
+                self.selected_model = index.filter(|&i| i < self.scene.models.len());
+            }
+            Action::FocusModel(index) => {
+                if let Some(model) = self.scene.models.get(index) {
+                    let name = model.name.clone();
+                    let centre = model.mesh.bbox().center();
+                    camera_controls::centre_on(&mut self.scene.camera, centre);
+                    self.selected_model = Some(index);
+                    self.say(format!("Target: {name}"));
+                }
+            }
+            Action::RemoveModel(index) => {
+                if index < self.scene.models.len() {
+                    let before = self.scene.clone();
+                    let removed = self.scene.models.remove(index);
+                    self.selected_model = None;
+                    self.scene.cutters.retain(|c| c.target != index);
+                    for c in &mut self.scene.cutters {
+                        if c.target > index {
+                            c.target -= 1;
+                        }
+                    }
+                    self.record(&format!("remove {}", removed.name), before);
+                }
+            }
+            Action::StartGesture => self.viewport.start_recording(&self.scene.camera, &self.cutter_init),
+            Action::StopGesture => {
+                if self.viewport.recording.is_some() {
+                    self.open_dialog(ctx, Purpose::SaveGesture);
+                }
+            }
+            Action::RestoreRecovery => {
+                if let Some(path) = self.pending_recovery.take() {
+                    self.open_paths(ctx, vec![path], true);
+                    // The restored scene lives in memory now; keep the file until the next autosave.
+                }
+            }
+            Action::DiscardRecovery => {
+                self.pending_recovery = None;
+                self.recovery.discard();
+            }
+        }
+    }
+
+    fn set_mode(&mut self, mode: Mode) {
+        if mode == self.mode {
+            return;
+        }
+        if mode == Mode::Scalpel && !super::bridge::SCALPEL_AVAILABLE {
+            self.say("The scalpel is not available in this build");
+            return;
+        }
+        self.viewport.cancel_drag();
+        self.mode = mode;
+        self.say(format!("{} mode", mode.label()));
+    }
+
+    fn undo(&mut self) {
+        if let Some((label, before)) = self.pending_edit.take() {
+            self.history.push_scene(label, before, self.scene.clone());
+        }
+        let applied = match self.history.undo() {
+            Some(Apply::Scene(state)) => {
+                let camera = self.scene.camera;
+                self.scene = state.clone();
+                self.scene.camera = camera;
+                true
+            }
+            Some(Apply::Editor) => {
+                self.viewport.editor_undo();
+                true
+            }
+            None => false,
+        };
+        if applied {
+            self.fix_selection();
+            self.recovery.mark_dirty();
+            self.say("Undone");
+        } else {
+            self.say("Nothing to undo");
+        }
+    }
+
+    fn redo(&mut self) {
+        let applied = match self.history.redo() {
+            Some(Apply::Scene(state)) => {
+                let camera = self.scene.camera;
+                self.scene = state.clone();
+                self.scene.camera = camera;
+                true
+            }
+            Some(Apply::Editor) => {
+                self.viewport.editor_redo();
+                true
+            }
+            None => false,
+        };
+        if applied {
+            self.fix_selection();
+            self.recovery.mark_dirty();
+            self.say("Redone");
+        } else {
+            self.say("Nothing to redo");
+        }
+    }
+
+    fn fix_selection(&mut self) {
+        if self.selected_model.is_some_and(|i| i >= self.scene.models.len()) {
+            self.selected_model = None;
+        }
+    }
+
+    fn remove_all_cut_geometry(&mut self) {
+        self.say("Remove All Cut Geometry: no cut results yet");
+    }
+
+    fn open_dialog(&mut self, ctx: &egui::Context, purpose: Purpose) {
+        if std::env::var_os("CUTAWAY_NO_DIALOGS").is_some() {
+            self.manual_path = Some((purpose, String::new()));
+            return;
+        }
+        let start_dir = self
+            .session_path
+            .as_ref()
+            .and_then(|p| p.parent().map(Path::to_path_buf))
+            .or_else(|| self.recent.paths.first().and_then(|p| p.parent().map(Path::to_path_buf)));
+        self.spawn(ctx, purpose.title(), move |_| {
+            let started = Instant::now();
+            let mut dialog = rfd::AsyncFileDialog::new().set_title(purpose.title());
+            if let Some(dir) = &start_dir {
+                dialog = dialog.set_directory(dir);
+            }
+            let meshes = ["obj", "stl", "ply", "vtk"];
+            let paths: Vec<PathBuf> = pollster::block_on(async move {
+                match purpose {
+                    Purpose::LoadModel | Purpose::AddModel => dialog
+                        .add_filter("Meshes", &meshes)
+                        .add_filter("Session", &["json"])
+                        .pick_files()
+                        .await
+                        .map(|files| files.iter().map(|f| f.path().to_path_buf()).collect())
+                        .unwrap_or_default(),
+                    Purpose::LoadDirectory | Purpose::ExportMeshes => {
+                        dialog.pick_folder().await.map(|f| vec![f.path().to_path_buf()]).unwrap_or_default()
+                    }
+                    Purpose::OpenSession => dialog
+                        .add_filter("Cutaway session", &["json"])
+                        .pick_file()
+                        .await
+                        .map(|f| vec![f.path().to_path_buf()])
+                        .unwrap_or_default(),
+                    Purpose::SaveSessionAs => dialog
+                        .add_filter("Cutaway session", &["json"])
+                        .set_file_name("session.json")
+                        .save_file()
+                        .await
+                        .map(|f| vec![f.path().to_path_buf()])
+                        .unwrap_or_default(),
+                    Purpose::ExportImage => dialog
+                        .add_filter("PNG image", &["png"])
+                        .set_file_name("cutaway.png")
+                        .save_file()
+                        .await
+                        .map(|f| vec![f.path().to_path_buf()])
+                        .unwrap_or_default(),
+                    Purpose::SaveGesture => dialog
+                        .add_filter("Gesture", &["json"])
+                        .set_file_name("gesture.json")
+                        .save_file()
+                        .await
+                        .map(|f| vec![f.path().to_path_buf()])
+                        .unwrap_or_default(),
+                }
+            });
+            Ok(JobOutput::Picked {
+                purpose,
+                paths,
+                took: started.elapsed(),
+            })
+        });
+    }
+
+    /// What happens once a dialog (native or manual) gave paths.
+    fn picked(&mut self, ctx: &egui::Context, purpose: Purpose, paths: Vec<PathBuf>) {
+        let Some(first) = paths.first().cloned() else {
+            return;
+        };
+        match purpose {
+            Purpose::LoadModel | Purpose::LoadDirectory => self.apply(ctx, Action::Open(paths)),
+            Purpose::AddModel => self.apply(ctx, Action::Add(paths)),
+            Purpose::OpenSession => self.apply(ctx, Action::Open(vec![first])),
+            Purpose::SaveSessionAs => self.apply(ctx, Action::SaveSessionTo(with_extension(first, "json"))),
+            Purpose::ExportImage => self.apply(ctx, Action::ExportImageTo(with_extension(first, "png"))),
+            Purpose::ExportMeshes => self.apply(ctx, Action::ExportMeshesTo(first)),
+            Purpose::SaveGesture => {
+                let path = with_extension(first, "json");
+                match self.viewport.save_recording(&path) {
+                    Ok(n) => self.say(format!("Saved gesture of {n} events to {}", path.display())),
+                    Err(e) => self.complain(&e),
+                }
+            }
+        }
+    }
+
+    /// Opens files: a session replaces everything; meshes and directories load in the background.
+    fn open_paths(&mut self, ctx: &egui::Context, paths: Vec<PathBuf>, replace: bool) {
+        if paths.is_empty() {
+            return;
+        }
+        if paths.len() == 1 && is_session_path(&paths[0]) {
+            let path = paths[0].clone();
+            match self.load_session(ctx, &path) {
+                Ok(()) => {
+                    self.recent.add(&path);
+                    self.session_path = Some(path.clone());
+                    self.say(format!("Opened {}", path.display()));
+                }
+                Err(e) => self.complain(&e),
+            }
+            return;
+        }
+        for p in &paths {
+            self.recent.add(p);
+        }
+        let label = match paths.as_slice() {
+            [one] => format!("Loading {}", file_label(one)),
+            many => format!("Loading {} items", many.len()),
+        };
+        let sources = paths.clone();
+        self.spawn(ctx, label, move |progress| {
+            let models = load_paths(&paths, progress)?;
+            Ok(JobOutput::Models { models, replace, sources })
+        });
+    }
+
+    fn finish_job(&mut self, ctx: &egui::Context, output: JobOutput) {
+        match output {
+            JobOutput::Picked { purpose, paths, took } => {
+                // A dialog that "closes" within a blink never opened: no portal and no zenity.
+                if paths.is_empty() && took < std::time::Duration::from_millis(150) {
+                    self.manual_path = Some((purpose, String::new()));
+                } else {
+                    self.picked(ctx, purpose, paths);
+                }
+            }
+            JobOutput::Models { models, replace, sources } => self.add_models(models, replace, &sources),
+            JobOutput::Done(message) => self.say(message),
+        }
+    }
+
+    fn add_models(&mut self, models: Vec<crate::io::Model>, replace: bool, sources: &[PathBuf]) {
+        let before = self.scene.clone();
+        if replace {
+            let render = self.scene.render;
+            self.scene = new_scene();
+            self.scene.render = render;
+            self.session_path = None;
+            self.selected_model = None;
+            self.history.clear();
+            self.viewport.reset_editor();
+        }
+        let first_new = self.scene.models.len();
+        let count = models.len();
+        let mut region_of_source: std::collections::HashMap<PathBuf, usize> = Default::default();
+        for model in self.scene.models.iter() {
+            *region_of_source.entry(model.source.clone()).or_default() += 1;
+        }
+        for (i, model) in models.into_iter().enumerate() {
+            let color = model_colour(&model.name, first_new + i);
+            let region = region_of_source.entry(model.source.clone()).or_default();
+            let mut entry = SceneModel::new(model.name, model.source, Arc::new(model.mesh), color);
+            entry.region = *region;
+            *region += 1;
+            self.scene.models.push(entry);
+        }
+        if replace {
+            self.scene.camera = self.scene.framing_camera();
+            self.recovery.mark_dirty();
+        } else {
+            self.record(&format!("add {count} models"), before);
+        }
+        let what = match sources {
+            [] => "the default scene".to_string(),
+            [one] => file_label(one),
+            many => format!("{} items", many.len()),
+        };
+        self.say(format!(
+            "Loaded {what}: {count} models, {} triangles",
+            super::status_bar::grouped(triangle_count(&self.scene))
+        ));
+    }
+
+    fn save_session(&mut self, path: &Path) -> anyhow::Result<()> {
+        super::bridge::save_session(self, path)
+    }
+
+    fn load_session(&mut self, ctx: &egui::Context, path: &Path) -> anyhow::Result<()> {
+        let _ = ctx;
+        super::bridge::load_session(self, path)
+    }
+
+    fn export_image_to(&mut self, ctx: &egui::Context, path: PathBuf) {
+        let _ = ctx;
+        match super::bridge::export_image(self, &path) {
+            Ok(()) => self.say(format!("Exported {}", path.display())),
+            Err(e) => self.complain(&e),
+        }
+    }
+
+    fn export_meshes_to(&mut self, ctx: &egui::Context, dir: PathBuf) {
+        let _ = ctx;
+        match super::bridge::export_meshes(self, &dir) {
+            Ok(n) => self.say(format!("Exported {n} meshes to {}", dir.display())),
+            Err(e) => self.complain(&e),
+        }
+    }
+
+    fn poll_jobs(&mut self, ctx: &egui::Context) {
+        let mut finished = Vec::new();
+        for job in &mut self.jobs {
+            if let Some(result) = job.poll() {
+                finished.push((job.label.clone(), result));
+            }
+        }
+        self.jobs.retain(Job::is_running);
+        for (label, result) in finished {
+            match result {
+                Ok(output) => self.finish_job(ctx, output),
+                Err(e) if jobs::is_cancelled(&e) => self.say(format!("{label}: cancelled")),
+                Err(e) => self.complain(&e),
+            }
+        }
+    }
+
+    fn shortcuts(&mut self, ctx: &egui::Context) -> Vec<Action> {
+        use egui::{Key, KeyboardShortcut, Modifiers};
+        let mut actions = Vec::new();
+        if ctx.egui_wants_keyboard_input() {
+            return actions;
+        }
+        let redo = KeyboardShortcut::new(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
+        let redo_y = KeyboardShortcut::new(Modifiers::COMMAND, Key::Y);
+        let undo = KeyboardShortcut::new(Modifiers::COMMAND, Key::Z);
+        let save = KeyboardShortcut::new(Modifiers::COMMAND, Key::S);
+        let open = KeyboardShortcut::new(Modifiers::COMMAND, Key::O);
+        ctx.input_mut(|i| {
+            // Longest modifier set first so Ctrl+Shift+Z is not taken for Ctrl+Z.
+            if i.consume_shortcut(&redo) || i.consume_shortcut(&redo_y) {
+                actions.push(Action::Redo);
+            }
+            if i.consume_shortcut(&undo) {
+                actions.push(Action::Undo);
+            }
+            if i.consume_shortcut(&save) {
+                actions.push(Action::SaveSession);
+            }
+            if i.consume_shortcut(&open) {
+                actions.push(Action::Dialog(Purpose::LoadModel));
+            }
+            for (key, mode) in [(Key::F1, Mode::Camera), (Key::F2, Mode::Edit), (Key::F3, Mode::Preview)] {
+                if i.consume_key(Modifiers::NONE, key) {
+                    actions.push(Action::SetMode(mode));
+                }
+            }
+        });
+        actions
+    }
+
+    fn dropped_files(&mut self, ctx: &egui::Context) -> Vec<Action> {
+        let dropped: Vec<PathBuf> = ctx.input(|i| i.raw.dropped_files.iter().filter_map(|f| f.path.clone()).collect());
+        if dropped.is_empty() {
+            return Vec::new();
+        }
+        // Dropping one session opens it; dropping meshes adds them to what is there.
+        if dropped.len() == 1 && is_session_path(&dropped[0]) || self.scene.models.is_empty() {
+            vec![Action::Open(dropped)]
+        } else {
+            vec![Action::Add(dropped)]
+        }
+    }
+
+    fn dialogs_ui(&mut self, ctx: &egui::Context) -> Vec<Action> {
+        let mut actions = Vec::new();
+        if let Some(path) = self.pending_recovery.clone() {
+            egui::Modal::new(egui::Id::new("cutaway-recovery")).show(ctx, |ui| {
+                ui.heading("Restore the previous session?");
+                ui.label("Cutaway did not exit cleanly last time. An autosaved session was found:");
+                ui.label(egui::RichText::new(path.display().to_string()).monospace().small());
+                ui.add_space(8.0);
+                ui.horizontal(|ui| {
+                    if ui.button("Restore").clicked() {
+                        actions.push(Action::RestoreRecovery);
+                    }
+                    if ui.button("Discard").clicked() {
+                        actions.push(Action::DiscardRecovery);
+                    }
+                });
+            });
+        }
+        if let Some((purpose, mut text)) = self.manual_path.take() {
+            let mut keep = true;
+            egui::Window::new(purpose.title())
+                .id(egui::Id::new("cutaway-manual-path"))
+                .collapsible(false)
+                .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
+                .show(ctx, |ui| {
+                    ui.label("No native file dialog is available (install xdg-desktop-portal or zenity). Type a path:");
+                    let edit = ui.add(egui::TextEdit::singleline(&mut text).desired_width(420.0).hint_text("/path/to/file"));
+                    let enter = edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                    ui.horizontal(|ui| {
+                        if ui.button("OK").clicked() || enter {
+                            keep = false;
+                            if !text.trim().is_empty() {
+                                self.pending_manual = Some((purpose, PathBuf::from(text.trim())));
+                            }
+                        }
+                        if ui.button("Cancel").clicked() {
+                            keep = false;
+                        }
+                    });
+                });
+            if keep {
+                self.manual_path = Some((purpose, text));
+            }
+        }
+        actions
+    }
+}
+
+impl eframe::App for CutawayApp {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        let ctx = ui.ctx().clone();
+        let frame_ms = self.frame_started.elapsed().as_secs_f32() * 1000.0;
+        self.frame_started = Instant::now();
+        self.status.frame_ms = 0.9 * self.status.frame_ms + 0.1 * frame_ms;
+        self.poll_jobs(&ctx);
+
+        let mut actions = self.shortcuts(&ctx);
+        actions.extend(self.dropped_files(&ctx));
+
+        egui::Panel::top("cutaway-menu").show(ui, |ui| {
+            actions.extend(super::menus::menu_bar_ui(ui, self));
+        });
+        egui::Panel::top("cutaway-toolbar").show(ui, |ui| {
+            actions.extend(super::menus::toolbar_ui(ui, self));
+        });
+        egui::Panel::bottom("cutaway-status").show(ui, |ui| {
+            self.refresh_status();
+            super::status_bar::status_bar_ui(ui, &self.status);
+        });
+        egui::Panel::left("cutaway-side")
+            .resizable(true)
+            .default_size(290.0)
+            .min_size(230.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    actions.extend(super::models_panel::models_panel_ui(ui, self));
+                    ui.add_space(10.0);
+                    actions.extend(super::cutter_panel::cutter_panel_ui(ui, self));
+                });
+            });
+        egui::CentralPanel::default().frame(egui::Frame::NONE).show(ui, |ui| {
+            egui::Frame::NONE.inner_margin(egui::Margin::symmetric(8, 4)).show(ui, |ui| {
+                super::key_reference::key_reference_ui(ui, self.mode);
+            });
+            actions.extend(super::viewport::viewport_ui(ui, self));
+        });
+
+        actions.extend(self.dialogs_ui(&ctx));
+        if let Some((purpose, path)) = self.pending_manual.take() {
+            self.picked(&ctx, purpose, vec![path]);
+        }
+        for i in jobs::progress_window_ui(&ctx, &self.jobs).into_iter().rev() {
+            self.jobs[i].progress.cancel();
+            let job = self.jobs.remove(i);
+            self.say(format!("{}: cancelled", job.label));
+        }
+        self.commit_edit_if_idle(&ctx);
+        for action in actions {
+            self.apply(&ctx, action);
+        }
+
+        if !self.exiting && self.recovery.due() {
+            let result = self.recovery.begin_save().and_then(|path| super::bridge::save_session(self, &path));
+            if let Err(e) = result {
+                self.complain(&e.context("autosave"));
+            }
+        }
+        if self.busy() {
+            ctx.request_repaint_after(std::time::Duration::from_millis(100));
+        }
+    }
+
+    fn on_exit(&mut self) {
+        self.recovery.discard();
+    }
+}
+
+impl CutawayApp {
+    fn refresh_status(&mut self) {
+        self.status.models = self.scene.models.len();
+        self.status.triangles = triangle_count(&self.scene);
+        self.status.visible_triangles = self
+            .scene
+            .models
+            .iter()
+            .filter(|m| m.visible)
+            .map(|m| m.mesh.triangle_count())
+            .sum();
+        self.status.cutters = self.viewport.cutter_count();
+        self.status.selected = self.selected_model.and_then(|i| self.scene.models.get(i)).map(|m| m.name.clone());
+    }
+}
+
+/// An empty scene with the window's defaults (a soft grey background instead of the export
+/// default white, so light models stand out while editing).
+pub fn new_scene() -> Scene {
+    let mut scene = Scene::default();
+    scene.render.background = [0.80, 0.83, 0.87, 1.0];
+    scene
+}
+
+/// True for `.json` files (sessions); everything else is a mesh or a directory.
+pub fn is_session_path(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"))
+}
+
+fn with_extension(path: PathBuf, ext: &str) -> PathBuf {
+    if path.extension().is_some() { path } else { path.with_extension(ext) }
+}
+
+fn file_label(path: &Path) -> String {
+    path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| path.display().to_string())
+}
+
+/// Mesh extensions the loaders understand.
+const MESH_EXTENSIONS: [&str; 4] = ["obj", "stl", "ply", "vtk"];
+
+/// Reads meshes and directories of meshes one file at a time, reporting progress per file and
+/// stopping between files when cancelled.
+pub fn load_paths(paths: &[PathBuf], progress: &Progress) -> anyhow::Result<Vec<crate::io::Model>> {
+    let mut files = Vec::new();
+    for path in paths {
+        if path.is_dir() {
+            let mut entries: Vec<PathBuf> = std::fs::read_dir(path)
+                .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| {
+                    p.is_file()
+                        && p.extension()
+                            .is_some_and(|e| MESH_EXTENSIONS.iter().any(|m| e.eq_ignore_ascii_case(m)))
+                })
+                .collect();
+            entries.sort();
+            if entries.is_empty() {
+                anyhow::bail!("{}: no .obj, .stl, .ply or .vtk files in this folder", path.display());
+            }
+            files.extend(entries);
+        } else {
+            files.push(path.clone());
+        }
+    }
+    let mut models = Vec::new();
+    let total = files.len() as u64;
+    for (i, file) in files.iter().enumerate() {
+        progress.check()?;
+        progress.set(i as u64, total);
+        progress.set_message(file_label(file));
+        models.extend(crate::io::load_models(file)?);
+    }
+    progress.set(total, total);
+    Ok(models)
+}
+
+/// A colour for a model: anatomy-like colours for well-known names, else distinct hues spread by
+/// the golden angle so neighbours in the list never look alike.
+pub fn model_colour(name: &str, index: usize) -> [f32; 3] {
+    let lower = name.to_ascii_lowercase();
+    let named: [(&str, [f32; 3]); 8] = [
+        ("skin", [0.93, 0.74, 0.62]),
+        ("fat", [0.95, 0.86, 0.55]),
+        ("muscle", [0.72, 0.25, 0.22]),
+        ("cartilage", [0.62, 0.78, 0.86]),
+        ("ligament", [0.85, 0.85, 0.75]),
+        ("vessel", [0.75, 0.12, 0.15]),
+        ("artery", [0.80, 0.10, 0.12]),
+        ("vein", [0.25, 0.32, 0.70]),
+    ];
+    for (key, colour) in named {
+        if lower.contains(key) {
+            return colour;
+        }
+    }
+    let bones = ["bone", "femur", "tibia", "fibula", "patella", "skull", "vertebra", "mandible", "pelvis"];
+    if bones.iter().any(|b| lower.contains(b)) {
+        // Ivory with a slight variation so adjacent bones stay distinguishable.
+        let t = (index as f32 * 0.618_034).fract() * 0.08;
+        return [0.92 - t, 0.88 - t, 0.76 - t];
+    }
+    let hue = (index as f32 * 0.618_034 + 0.08).fract();
+    hsv_to_rgb(hue, 0.55, 0.85)
+}
+
+fn hsv_to_rgb(h: f32, s: f32, v: f32) -> [f32; 3] {
+    let c = v * s;
+    let hp = h * 6.0;
+    let x = c * (1.0 - (hp % 2.0 - 1.0).abs());
+    let (r, g, b) = match hp as u32 {
+        0 => (c, x, 0.0),
+        1 => (x, c, 0.0),
+        2 => (0.0, c, x),
+        3 => (0.0, x, c),
+        4 => (x, 0.0, c),
+        _ => (c, 0.0, x),
+    };
+    let m = v - c;
+    [r + m, g + m, b + m]
+}
+
+/// A small mesh for tests of the window's state handling: a closed box.
+pub fn box_mesh(min: DVec3, max: DVec3) -> Mesh {
+    let p = |x: bool, y: bool, z: bool| {
+        DVec3::new(if x { max.x } else { min.x }, if y { max.y } else { min.y }, if z { max.z } else { min.z })
+    };
+    let positions = vec![
+        p(false, false, false),
+        p(true, false, false),
+        p(true, true, false),
+        p(false, true, false),
+        p(false, false, true),
+        p(true, false, true),
+        p(true, true, true),
+        p(false, true, true),
+    ];
+    let triangles = vec![
+        [0, 2, 1],
+        [0, 3, 2],
+        [4, 5, 6],
+        [4, 6, 7],
+        [0, 1, 5],
+        [0, 5, 4],
+        [1, 2, 6],
+        [1, 6, 5],
+        [2, 3, 7],
+        [2, 7, 6],
+        [3, 0, 4],
+        [3, 4, 7],
+    ];
+    Mesh { positions, triangles }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn colours_are_distinct_for_unnamed_models() {
+        let colours: Vec<[f32; 3]> = (0..8).map(|i| model_colour("part", i)).collect();
+        for i in 0..colours.len() {
+            for j in (i + 1)..colours.len() {
+                let d: f32 = (0..3).map(|k| (colours[i][k] - colours[j][k]).abs()).sum();
+                assert!(d > 0.05, "{i} and {j} look alike: {:?} {:?}", colours[i], colours[j]);
+            }
+        }
+        assert_eq!(model_colour("knee_skin 1", 3), [0.93, 0.74, 0.62]);
+    }
+
+    #[test]
+    fn load_paths_names_an_empty_folder() {
+        let dir = std::env::temp_dir().join(format!("cutaway-empty-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let err = load_paths(&[dir.clone()], &Progress::default()).unwrap_err();
+        assert!(format!("{err:#}").contains(&dir.display().to_string()));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

@@ -1,0 +1,347 @@
+//! The menu bar (File, Edit, Rendering, View, Debug), the mode toolbar, the export dialogs and the
+//! window's visual style.
+//!
+//! Menus describe what the user asked for as [`Action`]s; only the Rendering menu's toggles change
+//! settings in place (they are view settings, not undoable scene edits).
+
+use super::app::{Action, CutawayApp, Mode, Purpose};
+use crate::scene::Stereo;
+
+/// The largest exported image side (8k).
+pub const MAX_EXPORT_SIDE: u32 = 8192;
+
+/// The Export Image dialog's settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExportImageSettings {
+    /// The dialog is open.
+    pub open: bool,
+    /// Output size in pixels, each in 1..=[`MAX_EXPORT_SIDE`].
+    pub width: u32,
+    pub height: u32,
+    /// Write a transparent background instead of the scene's background colour.
+    pub transparent: bool,
+}
+
+impl Default for ExportImageSettings {
+    fn default() -> Self {
+        ExportImageSettings {
+            open: false,
+            width: 3840,
+            height: 2160,
+            transparent: false,
+        }
+    }
+}
+
+/// Mesh file format of Export Cut Meshes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshFormat {
+    Obj,
+    Stl,
+    Ply,
+}
+
+impl MeshFormat {
+    pub fn extension(self) -> &'static str {
+        match self {
+            MeshFormat::Obj => "obj",
+            MeshFormat::Stl => "stl",
+            MeshFormat::Ply => "ply",
+        }
+    }
+}
+
+/// The Export Cut Meshes dialog's settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExportMeshSettings {
+    pub open: bool,
+    pub format: MeshFormat,
+    pub kept: bool,
+    pub walls: bool,
+    pub removed: bool,
+}
+
+impl Default for ExportMeshSettings {
+    fn default() -> Self {
+        ExportMeshSettings {
+            open: false,
+            format: MeshFormat::Obj,
+            kept: true,
+            walls: true,
+            removed: true,
+        }
+    }
+}
+
+/// A calm dark theme with one accent colour and a little more room than egui's default.
+pub fn apply_style(ctx: &egui::Context) {
+    ctx.set_theme(egui::Theme::Dark);
+    ctx.all_styles_mut(|style| {
+        style.spacing.item_spacing = egui::vec2(8.0, 5.0);
+        style.spacing.button_padding = egui::vec2(8.0, 3.0);
+        style.spacing.interact_size.y = 22.0;
+        let accent = egui::Color32::from_rgb(64, 138, 214);
+        style.visuals.selection.bg_fill = accent;
+        style.visuals.hyperlink_color = accent;
+        style.visuals.widgets.hovered.corner_radius = egui::CornerRadius::same(4);
+        style.visuals.widgets.inactive.corner_radius = egui::CornerRadius::same(4);
+        style.visuals.widgets.active.corner_radius = egui::CornerRadius::same(4);
+        style.visuals.widgets.noninteractive.corner_radius = egui::CornerRadius::same(4);
+        style.visuals.window_corner_radius = egui::CornerRadius::same(8);
+    });
+}
+
+fn item(ui: &mut egui::Ui, text: &str, shortcut: &str) -> bool {
+    let button = egui::Button::new(text).shortcut_text(shortcut);
+    ui.add(button).clicked()
+}
+
+/// The menu bar.
+pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
+    let mut actions = Vec::new();
+    egui::MenuBar::new().ui(ui, |ui| {
+        ui.menu_button("File", |ui| {
+            if item(ui, "Load Model…", "Ctrl+O") {
+                actions.push(Action::Dialog(Purpose::LoadModel));
+            }
+            if item(ui, "Load Directory…", "") {
+                actions.push(Action::Dialog(Purpose::LoadDirectory));
+            }
+            if item(ui, "Add Model…", "") {
+                actions.push(Action::Dialog(Purpose::AddModel));
+            }
+            ui.separator();
+            if item(ui, "Open Session…", "") {
+                actions.push(Action::Dialog(Purpose::OpenSession));
+            }
+            if item(ui, "Save Session", "Ctrl+S") {
+                actions.push(Action::SaveSession);
+            }
+            if item(ui, "Save Session As…", "") {
+                actions.push(Action::Dialog(Purpose::SaveSessionAs));
+            }
+            ui.separator();
+            if item(ui, "Export Image…", "") {
+                app.export_image.open = true;
+            }
+            if item(ui, "Export Cut Meshes…", "") {
+                app.export_meshes.open = true;
+            }
+            ui.separator();
+            ui.menu_button("Recent Files", |ui| {
+                if app.recent.paths.is_empty() {
+                    ui.label(egui::RichText::new("(none)").weak());
+                }
+                for path in app.recent.paths.clone() {
+                    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+                    if ui.button(name).on_hover_text(path.display().to_string()).clicked() {
+                        actions.push(Action::Open(vec![path]));
+                    }
+                }
+            });
+            ui.separator();
+            if item(ui, "Exit", "") {
+                actions.push(Action::Exit);
+            }
+        });
+        ui.menu_button("Edit", |ui| {
+            let undo = app.history.undo_label().map(|l| format!("Undo {l}")).unwrap_or_else(|| "Undo".into());
+            if ui.add_enabled(app.history.undo_label().is_some(), egui::Button::new(undo).shortcut_text("Ctrl+Z")).clicked() {
+                actions.push(Action::Undo);
+            }
+            let redo = app.history.redo_label().map(|l| format!("Redo {l}")).unwrap_or_else(|| "Redo".into());
+            if ui
+                .add_enabled(app.history.redo_label().is_some(), egui::Button::new(redo).shortcut_text("Ctrl+Shift+Z"))
+                .clicked()
+            {
+                actions.push(Action::Redo);
+            }
+        });
+        ui.menu_button("Rendering", |ui| {
+            if ui.checkbox(&mut app.scene.render.antialias, "Anti-aliasing").changed() {
+                app.recovery.mark_dirty();
+            }
+            let mut stereo = app.scene.render.stereo == Stereo::Anaglyph;
+            if ui.checkbox(&mut stereo, "Red/Blue Stereoscopic 3D").changed() {
+                app.scene.render.stereo = if stereo { Stereo::Anaglyph } else { Stereo::None };
+                app.recovery.mark_dirty();
+            }
+            ui.separator();
+            ui.horizontal(|ui| {
+                ui.label("Background");
+                let bg = &mut app.scene.render.background;
+                let mut srgb = [to_u8(bg[0]), to_u8(bg[1]), to_u8(bg[2])];
+                if ui.color_edit_button_srgb(&mut srgb).changed() {
+                    for k in 0..3 {
+                        bg[k] = srgb[k] as f32 / 255.0;
+                    }
+                    app.recovery.mark_dirty();
+                }
+            });
+            ui.horizontal(|ui| {
+                for (name, rgb) in [("White", [1.0, 1.0, 1.0]), ("Grey", [0.80, 0.83, 0.87]), ("Dark", [0.12, 0.13, 0.15]), ("Black", [0.0, 0.0, 0.0])] {
+                    if ui.small_button(name).clicked() {
+                        app.scene.render.background = [rgb[0], rgb[1], rgb[2], 1.0];
+                        app.recovery.mark_dirty();
+                    }
+                }
+            });
+        });
+        ui.menu_button("View", |ui| {
+            if ui.button("Reset Camera").clicked() {
+                actions.push(Action::ResetCamera);
+            }
+            let label = if app.cutters_hidden { "Show Current Cutters" } else { "Hide Current Cutters" };
+            if ui.button(label).clicked() {
+                actions.push(Action::ToggleCutters);
+            }
+            if ui.button("Remove All Cut Geometry").clicked() {
+                actions.push(Action::RemoveAllCutGeometry);
+            }
+        });
+        ui.menu_button("Debug", |ui| {
+            if app.viewport.recording.is_none() {
+                if ui.button("Record Gesture").on_hover_text("Record Edit-mode input as a cutaway-gesture/1 file").clicked() {
+                    actions.push(Action::StartGesture);
+                }
+            } else if ui.button("Stop Recording and Save Gesture…").clicked() {
+                actions.push(Action::StopGesture);
+            }
+        });
+    });
+    actions.extend(export_image_window_ui(ui.ctx(), app));
+    actions.extend(export_meshes_window_ui(ui.ctx(), app));
+    actions
+}
+
+fn to_u8(c: f32) -> u8 {
+    (c.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// The mode buttons (thesis 3.5 C), undo/redo and a busy indicator.
+pub fn toolbar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
+    let mut actions = Vec::new();
+    ui.horizontal(|ui| {
+        ui.add_space(2.0);
+        for (mode, tip) in [
+            (Mode::Camera, "Orbit, pan and zoom the camera (F1)"),
+            (Mode::Edit, "Paint and edit cutters on the target (F2)"),
+            (Mode::Preview, "Execute the cuts and show the cutaway (F3)"),
+        ] {
+            let button = egui::Button::selectable(app.mode == mode, egui::RichText::new(mode.label()).strong()).min_size(egui::vec2(78.0, 24.0));
+            if ui.add(button).on_hover_text(tip).clicked() {
+                actions.push(Action::SetMode(mode));
+            }
+        }
+        let scalpel = egui::Button::selectable(app.mode == Mode::Scalpel, egui::RichText::new("Scalpel").strong()).min_size(egui::vec2(78.0, 24.0));
+        let tip = if super::bridge::SCALPEL_AVAILABLE { "Progressive scalpel cut along a path" } else { "The scalpel is not part of this build" };
+        if ui.add_enabled(super::bridge::SCALPEL_AVAILABLE, scalpel).on_hover_text(tip).on_disabled_hover_text(tip).clicked() {
+            actions.push(Action::SetMode(Mode::Scalpel));
+        }
+        ui.separator();
+        if ui.add_enabled(app.history.undo_label().is_some(), egui::Button::new("⟲ Undo")).on_hover_text("Ctrl+Z").clicked() {
+            actions.push(Action::Undo);
+        }
+        if ui.add_enabled(app.history.redo_label().is_some(), egui::Button::new("⟳ Redo")).on_hover_text("Ctrl+Shift+Z").clicked() {
+            actions.push(Action::Redo);
+        }
+        ui.separator();
+        if ui.button("Frame All").on_hover_text("Reset the camera to show every visible model").clicked() {
+            actions.push(Action::ResetCamera);
+        }
+        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+            if app.busy() {
+                ui.spinner();
+                if let Some(job) = app.jobs.iter().find(|j| j.is_running()) {
+                    ui.label(egui::RichText::new(&job.label).weak());
+                }
+            }
+        });
+    });
+    actions
+}
+
+fn export_image_window_ui(ctx: &egui::Context, app: &mut CutawayApp) -> Vec<Action> {
+    let mut actions = Vec::new();
+    if !app.export_image.open {
+        return actions;
+    }
+    let mut open = true;
+    let view = app.viewport.size_px;
+    egui::Window::new("Export Image")
+        .open(&mut open)
+        .collapsible(false)
+        .resizable(false)
+        .show(ctx, |ui| {
+            let s = &mut app.export_image;
+            egui::Grid::new("export-image-grid").num_columns(2).show(ui, |ui| {
+                ui.label("Width");
+                ui.add(egui::DragValue::new(&mut s.width).range(1..=MAX_EXPORT_SIDE).suffix(" px"));
+                ui.end_row();
+                ui.label("Height");
+                ui.add(egui::DragValue::new(&mut s.height).range(1..=MAX_EXPORT_SIDE).suffix(" px"));
+                ui.end_row();
+            });
+            ui.horizontal_wrapped(|ui| {
+                let (vw, vh) = (view.x.max(1.0) as u32, view.y.max(1.0) as u32);
+                for (name, w, h) in [
+                    ("Window".to_string(), vw, vh),
+                    ("2× window".to_string(), vw * 2, vh * 2),
+                    ("4× window".to_string(), vw * 4, vh * 4),
+                    ("1080p".to_string(), 1920, 1080),
+                    ("4k".to_string(), 3840, 2160),
+                    ("8k".to_string(), 7680, 4320),
+                ] {
+                    if ui.small_button(name).clicked() {
+                        let scale = (MAX_EXPORT_SIDE as f64 / w.max(h) as f64).min(1.0);
+                        s.width = ((w as f64 * scale) as u32).max(1);
+                        s.height = ((h as f64 * scale) as u32).max(1);
+                    }
+                }
+            });
+            ui.checkbox(&mut s.transparent, "Transparent background");
+            ui.add_space(6.0);
+            if ui.button("Export…").clicked() {
+                actions.push(Action::Dialog(Purpose::ExportImage));
+                s.open = false;
+            }
+        });
+    if !open {
+        app.export_image.open = false;
+    }
+    actions
+}
+
+fn export_meshes_window_ui(ctx: &egui::Context, app: &mut CutawayApp) -> Vec<Action> {
+    let mut actions = Vec::new();
+    if !app.export_meshes.open {
+        return actions;
+    }
+    let mut open = true;
+    egui::Window::new("Export Cut Meshes")
+        .open(&mut open)
+        .collapsible(false)
+        .resizable(false)
+        .show(ctx, |ui| {
+            let s = &mut app.export_meshes;
+            ui.label("Parts of every cut, one file per cutter and part:");
+            ui.checkbox(&mut s.kept, "Kept (target outside the cutter)");
+            ui.checkbox(&mut s.walls, "Walls (cutter surface inside the target)");
+            ui.checkbox(&mut s.removed, "Removed (target inside the cutter)");
+            ui.horizontal(|ui| {
+                ui.label("Format");
+                for f in [MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Ply] {
+                    ui.radio_value(&mut s.format, f, f.extension().to_uppercase());
+                }
+            });
+            ui.add_space(6.0);
+            if ui.add_enabled(s.kept || s.walls || s.removed, egui::Button::new("Choose Folder…")).clicked() {
+                actions.push(Action::Dialog(Purpose::ExportMeshes));
+                s.open = false;
+            }
+        });
+    if !open {
+        app.export_meshes.open = false;
+    }
+    actions
+}

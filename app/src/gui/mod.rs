@@ -1,0 +1,50 @@
+//! # The window
+//!
+//! The ExtrusionCutter user interface of the thesis (section 3.5) on eframe/egui with a wgpu 3D
+//! view: File and Rendering menus, mode buttons (Camera, Edit, Preview, Scalpel), the Models list,
+//! the cutter Initialization / Visualization tabs, a key reference above the viewport and a status
+//! line below it. One panel per file; every function that draws takes `&mut egui::Ui` and ends in
+//! `_ui`.
+//!
+//! The UI thread only draws and translates input. Loads, index builds, cuts, exports and native
+//! file dialogs run on worker threads ([`jobs`]) with a progress window and Cancel for anything
+//! longer than half a second, so a 2M-triangle model never freezes the window.
+
+use std::path::PathBuf;
+
+pub mod app;
+pub mod bridge;
+pub mod camera_controls;
+pub mod cutter_panel;
+pub mod jobs;
+pub mod key_reference;
+pub mod menus;
+pub mod models_panel;
+pub mod recovery;
+pub mod status_bar;
+pub mod undo;
+pub mod viewport;
+
+pub use app::{CutawayApp, Mode, StartOptions};
+
+/// Opens the window on `paths` (meshes, directories of meshes, or one session file); no paths
+/// opens the embedded default scene. Returns when the window is closed.
+pub fn run(paths: &[PathBuf]) -> anyhow::Result<()> {
+    let options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_title("Cutaway")
+            .with_app_id("cutaway")
+            .with_inner_size([1280.0, 800.0])
+            .with_min_inner_size([640.0, 400.0])
+            .with_drag_and_drop(true),
+        renderer: eframe::Renderer::Wgpu,
+        ..Default::default()
+    };
+    let start = StartOptions::new(paths.to_vec());
+    eframe::run_native(
+        "Cutaway",
+        options,
+        Box::new(move |cc| Ok(Box::new(CutawayApp::new(cc, start)))),
+    )
+    .map_err(|e| anyhow::anyhow!("could not open the window: {e}"))
+}

@@ -1,0 +1,443 @@
+//! The 3D viewport: input (camera navigation or editor events), the right-click context menu, the
+//! gesture recorder, and the paint callback that lets the renderer draw offscreen in `prepare` and
+//! composite in `paint`.
+//!
+//! Read in the order size → allocate → interact → paint. Pixel coordinates handed to the camera
+//! and the editor are physical pixels of the viewport (origin top-left, y down), the same
+//! convention as the gesture format, so a recorded gesture replays identically in `cutaway
+//! extrude`.
+
+use std::path::Path;
+
+use glam::{DVec2, DVec3};
+
+use cutter::Camera;
+use cutter::events::{EditorEvent, Key};
+
+use super::app::{Action, CutawayApp, CutterInit, Mode};
+use super::camera_controls;
+
+/// What the primary-button drag in progress does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Drag {
+    Orbit,
+    Pan,
+    /// The press went to the editor; the release must too.
+    Editor,
+}
+
+/// A gesture being recorded (the "record gesture" debug action).
+#[derive(Clone, Debug)]
+pub struct Recording {
+    /// Camera when recording started (Edit mode never moves the camera).
+    pub camera: Camera,
+    /// Viewport size in pixels when recording started.
+    pub viewport: DVec2,
+    pub init: CutterInit,
+    pub events: Vec<EditorEvent>,
+}
+
+/// Viewport state that lives across frames.
+pub struct ViewportState {
+    drag: Option<Drag>,
+    /// Size of the viewport in physical pixels at the last frame.
+    pub size_px: DVec2,
+    /// Pointer position of the last editor event (to send moves only when it changes).
+    last_pointer: Option<DVec2>,
+    pub recording: Option<Recording>,
+    /// Events of the current gesture, also fed to the editor.
+    pub editor: super::bridge::EditorSlot,
+    /// The renderer is installed in egui's callback resources.
+    pub gpu: bool,
+}
+
+impl ViewportState {
+    pub fn new(render_state: Option<&egui_wgpu::RenderState>) -> ViewportState {
+        ViewportState {
+            drag: None,
+            size_px: DVec2::new(1280.0, 800.0),
+            last_pointer: None,
+            recording: None,
+            editor: super::bridge::EditorSlot::default(),
+            gpu: super::bridge::install_renderer(render_state),
+        }
+    }
+
+    pub fn cancel_drag(&mut self) {
+        self.drag = None;
+    }
+
+    pub fn editor_undo(&mut self) {
+        self.editor.undo();
+    }
+
+    pub fn editor_redo(&mut self) {
+        self.editor.redo();
+    }
+
+    pub fn reset_editor(&mut self) {
+        self.editor = super::bridge::EditorSlot::default();
+        self.drag = None;
+    }
+
+    pub fn cutter_count(&self) -> usize {
+        self.editor.cutter_count()
+    }
+
+    pub fn start_recording(&mut self, camera: &Camera, init: &CutterInit) {
+        self.recording = Some(Recording {
+            camera: *camera,
+            viewport: self.size_px,
+            init: init.clone(),
+            events: Vec::new(),
+        });
+    }
+
+    /// Writes the recording as a `cutaway-gesture/1` file and stops recording; returns the number
+    /// of events written.
+    pub fn save_recording(&mut self, path: &Path) -> anyhow::Result<usize> {
+        let Some(recording) = self.recording.take() else {
+            anyhow::bail!("{}: no gesture is being recorded", path.display());
+        };
+        let json = gesture_json(&recording);
+        let text = serde_json::to_string_pretty(&json)?;
+        let tmp = path.with_extension("json.tmp");
+        std::fs::write(&tmp, text).map_err(|e| anyhow::anyhow!("{}: {e}", tmp.display()))?;
+        std::fs::rename(&tmp, path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        Ok(recording.events.len())
+    }
+
+    /// Sends one event to the editor (and the recorder).
+    fn editor_event(&mut self, app_scene: &mut crate::scene::Scene, target: Option<usize>, event: EditorEvent) -> bool {
+        if let Some(r) = &mut self.recording {
+            r.events.push(event);
+        }
+        self.editor.handle(app_scene, target, self.size_px, event)
+    }
+}
+
+/// The gesture file (`cutaway-gesture/1`, see CONTRACT.md) of a recording.
+pub fn gesture_json(recording: &Recording) -> serde_json::Value {
+    use serde_json::json;
+    let c = &recording.camera;
+    let events: Vec<serde_json::Value> = recording
+        .events
+        .iter()
+        .map(|e| match *e {
+            EditorEvent::Press { x, y, shift, ctrl } => json!({"type": "press", "x": x, "y": y, "shift": shift, "ctrl": ctrl}),
+            EditorEvent::Move { x, y, shift, ctrl } => json!({"type": "move", "x": x, "y": y, "shift": shift, "ctrl": ctrl}),
+            EditorEvent::Release { x, y, shift, ctrl } => {
+                json!({"type": "release", "x": x, "y": y, "shift": shift, "ctrl": ctrl})
+            }
+            EditorEvent::Wheel { x, y, delta, ctrl } => json!({"type": "wheel", "x": x, "y": y, "delta": delta, "ctrl": ctrl}),
+            EditorEvent::Key { key, x, y } => json!({"type": "key", "key": key.name(), "x": x, "y": y}),
+        })
+        .collect();
+    json!({
+        "format": "cutaway-gesture/1",
+        "viewport": [recording.viewport.x.round() as u32, recording.viewport.y.round() as u32],
+        "camera": {
+            "eye": c.eye.to_array(),
+            "target": c.target.to_array(),
+            "up": c.up.to_array(),
+            "fov_y_deg": c.fov_y_deg,
+        },
+        "cut": {"kind": recording.init.kind.as_str(), "spacing": recording.init.spacing, "smooth": recording.init.smooth},
+        "events": events,
+    })
+}
+
+/// Wheel notches of this frame (positive = wheel up, away from the user), and whether Ctrl/Cmd
+/// was held.
+fn wheel_notches(ui: &egui::Ui) -> (f64, bool) {
+    ui.input(|i| {
+        let mut notches = 0.0;
+        let mut ctrl = false;
+        for event in &i.events {
+            if let egui::Event::MouseWheel { unit, delta, modifiers, .. } = event {
+                let d = delta.y as f64;
+                notches += match unit {
+                    egui::MouseWheelUnit::Point => d / 50.0,
+                    egui::MouseWheelUnit::Line => d,
+                    egui::MouseWheelUnit::Page => d * 10.0,
+                };
+                ctrl |= modifiers.command || modifiers.ctrl;
+            }
+        }
+        (notches, ctrl)
+    })
+}
+
+/// The viewport panel: fills the remaining space.
+pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
+    let mut actions = Vec::new();
+    // Size.
+    let size = ui.available_size().max(egui::vec2(16.0, 16.0));
+    let ppp = ui.ctx().pixels_per_point() as f64;
+    // Allocate.
+    let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click_and_drag());
+    app.viewport.size_px = DVec2::new((rect.width() as f64 * ppp).round(), (rect.height() as f64 * ppp).round());
+    let to_px = |p: egui::Pos2| DVec2::new((p.x - rect.left()) as f64 * ppp, (p.y - rect.top()) as f64 * ppp);
+
+    // Interact.
+    match app.mode {
+        Mode::Camera | Mode::Preview | Mode::Scalpel => camera_input(ui, &response, app, ppp, to_px, &mut actions),
+        Mode::Edit => edit_input(ui, &response, app, to_px),
+    }
+    response.context_menu(|ui| {
+        actions.extend(context_menu_ui(ui, app));
+    });
+
+    // Paint.
+    let painter = ui.painter_at(rect);
+    if !super::bridge::paint_scene(ui, rect, app) {
+        super::bridge::paint_fallback(&painter, rect, app);
+    }
+    if app.scene.models.is_empty() && !app.busy() {
+        painter.text(
+            rect.center(),
+            egui::Align2::CENTER_CENTER,
+            "Drop mesh files here, or use File ▸ Load Model",
+            egui::FontId::proportional(18.0),
+            egui::Color32::from_gray(90),
+        );
+    }
+    if let Some(r) = &app.viewport.recording {
+        painter.text(
+            rect.left_top() + egui::vec2(12.0, 12.0),
+            egui::Align2::LEFT_TOP,
+            format!("● REC gesture ({} events)", r.events.len()),
+            egui::FontId::proportional(14.0),
+            egui::Color32::from_rgb(220, 40, 40),
+        );
+    }
+    let hovering_files = ui.input(|i| !i.raw.hovered_files.is_empty());
+    if hovering_files {
+        painter.rect_filled(rect, 0.0, egui::Color32::from_black_alpha(90));
+        painter.text(
+            rect.center(),
+            egui::Align2::CENTER_CENTER,
+            "Drop to load",
+            egui::FontId::proportional(22.0),
+            egui::Color32::WHITE,
+        );
+    }
+    actions
+}
+
+fn camera_input(
+    ui: &egui::Ui,
+    response: &egui::Response,
+    app: &mut CutawayApp,
+    ppp: f64,
+    to_px: impl Fn(egui::Pos2) -> DVec2,
+    actions: &mut Vec<Action>,
+) {
+    let shift = ui.input(|i| i.modifiers.shift);
+    if response.drag_started_by(egui::PointerButton::Primary) {
+        app.viewport.drag = Some(if shift { Drag::Pan } else { Drag::Orbit });
+    } else if response.drag_started_by(egui::PointerButton::Middle) {
+        app.viewport.drag = Some(Drag::Pan);
+    }
+    if response.dragged() {
+        let delta = response.drag_delta();
+        let delta_px = DVec2::new(delta.x as f64 * ppp, delta.y as f64 * ppp);
+        match app.viewport.drag {
+            Some(Drag::Orbit) => camera_controls::orbit(&mut app.scene.camera, delta_px),
+            Some(Drag::Pan) => camera_controls::pan(&mut app.scene.camera, delta_px, app.viewport.size_px),
+            _ => {}
+        }
+    }
+    if response.drag_stopped() {
+        app.viewport.drag = None;
+    }
+    if response.hovered() {
+        let (notches, _) = wheel_notches(ui);
+        if notches != 0.0 {
+            let min = app.scene.bbox().diagonal().max(1e-6) * 1e-3;
+            camera_controls::zoom(&mut app.scene.camera, notches, min);
+        }
+    }
+    if response.double_clicked()
+        && let Some(pos) = response.interact_pointer_pos()
+    {
+        let pixel = to_px(pos);
+        let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, pixel);
+        match pick(&app.scene, &ray) {
+            Some((index, _t)) => actions.push(Action::FocusModel(index)),
+            None => actions.push(Action::SelectModel(None)),
+        }
+    }
+}
+
+/// The visible model hit first by `ray`, with the ray parameter.
+pub fn pick(scene: &crate::scene::Scene, ray: &cutter::Ray) -> Option<(usize, f64)> {
+    let mut best: Option<(usize, f64)> = None;
+    for (i, model) in scene.models.iter().enumerate() {
+        if !model.visible || model.opacity <= 0.0 {
+            continue;
+        }
+        if let Some(t) = camera_controls::ray_cast_mesh(&model.mesh, &model.mesh.bbox(), ray)
+            && best.is_none_or(|(_, b)| t < b)
+        {
+            best = Some((i, t));
+        }
+    }
+    best
+}
+
+fn edit_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, to_px: impl Fn(egui::Pos2) -> DVec2) {
+    let (shift, ctrl) = ui.input(|i| (i.modifiers.shift, i.modifiers.command || i.modifiers.ctrl));
+    let pointer = ui.input(|i| i.pointer.latest_pos());
+    let target = app.selected_model;
+    let mut changed = false;
+    let pressed = ui.input(|i| i.pointer.primary_pressed());
+    let released = ui.input(|i| i.pointer.primary_released());
+    if let Some(pos) = pointer {
+        let px = to_px(pos);
+        let inside = response.rect.contains(pos);
+        if pressed && inside && response.hovered() {
+            app.viewport.drag = Some(Drag::Editor);
+            app.viewport.last_pointer = Some(px);
+            changed |= app.viewport.editor_event(&mut app.scene, target, EditorEvent::Press { x: px.x, y: px.y, shift, ctrl });
+        } else if app.viewport.last_pointer != Some(px) && (inside || app.viewport.drag == Some(Drag::Editor)) {
+            app.viewport.last_pointer = Some(px);
+            changed |= app.viewport.editor_event(&mut app.scene, target, EditorEvent::Move { x: px.x, y: px.y, shift, ctrl });
+        }
+        if released && app.viewport.drag == Some(Drag::Editor) {
+            app.viewport.drag = None;
+            changed |= app.viewport.editor_event(&mut app.scene, target, EditorEvent::Release { x: px.x, y: px.y, shift, ctrl });
+        }
+        if response.hovered() {
+            let (notches, wheel_ctrl) = wheel_notches(ui);
+            if notches != 0.0 {
+                changed |= app
+                    .viewport
+                    .editor_event(&mut app.scene, target, EditorEvent::Wheel { x: px.x, y: px.y, delta: notches, ctrl: wheel_ctrl });
+            }
+            let keys: Vec<Key> = ui.input(|i| {
+                let mut keys = Vec::new();
+                if i.key_pressed(egui::Key::Delete) || i.key_pressed(egui::Key::Backspace) {
+                    keys.push(Key::Delete);
+                }
+                if i.key_pressed(egui::Key::Escape) {
+                    keys.push(Key::Escape);
+                }
+                keys
+            });
+            for key in keys {
+                changed |= app.viewport.editor_event(&mut app.scene, target, EditorEvent::Key { key, x: px.x, y: px.y });
+            }
+        }
+    }
+    if changed {
+        app.history.push_editor("cutter edit");
+        app.recovery.mark_dirty();
+    }
+}
+
+/// The right-click menu of the viewport (thesis 3.5 G).
+pub fn context_menu_ui(ui: &mut egui::Ui, app: &CutawayApp) -> Vec<Action> {
+    let mut actions = Vec::new();
+    if ui.button("Switch to Camera").clicked() {
+        actions.push(Action::SetMode(Mode::Camera));
+    }
+    if ui.button("Switch to Edit").clicked() {
+        actions.push(Action::SetMode(Mode::Edit));
+    }
+    if ui.button("Switch to Preview").clicked() {
+        actions.push(Action::SetMode(Mode::Preview));
+    }
+    ui.separator();
+    if ui.button("Remove All Cut Geometry").clicked() {
+        actions.push(Action::RemoveAllCutGeometry);
+    }
+    let label = if app.cutters_hidden { "Show Current Cutters" } else { "Hide Current Cutters" };
+    if ui.button(label).clicked() {
+        actions.push(Action::ToggleCutters);
+    }
+    ui.separator();
+    if ui.button("Reset Camera").clicked() {
+        actions.push(Action::ResetCamera);
+    }
+    actions
+}
+
+/// World-space point under pixel `px` on the pick plane through the camera target (for tools
+/// that need a 3D point where nothing is hit).
+pub fn point_on_target_plane(camera: &Camera, viewport: DVec2, px: DVec2) -> DVec3 {
+    let ray = camera.ray_through_pixel(viewport, px);
+    let normal = camera.forward();
+    let denom = ray.direction.dot(normal);
+    if denom.abs() < 1e-12 {
+        return camera.target;
+    }
+    ray.at((camera.target - ray.origin).dot(normal) / denom)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gesture_json_follows_the_contract() {
+        let recording = Recording {
+            camera: Camera {
+                eye: DVec3::new(0.0, -300.0, 0.0),
+                target: DVec3::ZERO,
+                up: DVec3::Z,
+                fov_y_deg: 30.0,
+            },
+            viewport: DVec2::new(1280.0, 800.0),
+            init: CutterInit::default(),
+            events: vec![
+                EditorEvent::press(600.0, 380.0),
+                EditorEvent::move_shift(660.0, 380.0),
+                EditorEvent::release(660.0, 380.0),
+                EditorEvent::wheel(100.0, 100.0, 3.0, true),
+                EditorEvent::key(Key::Delete, 640.0, 320.0),
+            ],
+        };
+        let v = gesture_json(&recording);
+        assert_eq!(v["format"], "cutaway-gesture/1");
+        assert_eq!(v["viewport"], serde_json::json!([1280, 800]));
+        assert_eq!(v["camera"]["eye"], serde_json::json!([0.0, -300.0, 0.0]));
+        assert_eq!(v["cut"]["kind"], "curving");
+        let events = v["events"].as_array().unwrap();
+        assert_eq!(events.len(), 5);
+        assert_eq!(events[0]["type"], "press");
+        assert_eq!(events[1]["shift"], true);
+        assert_eq!(events[3]["delta"], 3.0);
+        assert_eq!(events[3]["ctrl"], true);
+        assert_eq!(events[4]["key"], "Delete");
+    }
+
+    #[test]
+    fn pick_finds_the_front_model() {
+        use std::sync::Arc;
+        let mut scene = crate::scene::Scene::default();
+        let near = super::super::app::box_mesh(DVec3::new(-1.0, -1.0, -1.0), DVec3::new(1.0, 1.0, 1.0));
+        let far = super::super::app::box_mesh(DVec3::new(-1.0, 5.0, -1.0), DVec3::new(1.0, 7.0, 1.0));
+        scene.models.push(crate::scene::SceneModel::new("far", "far.obj", Arc::new(far), [1.0; 3]));
+        scene.models.push(crate::scene::SceneModel::new("near", "near.obj", Arc::new(near), [1.0; 3]));
+        let ray = cutter::Ray {
+            origin: DVec3::new(0.1, -10.0, 0.2),
+            direction: DVec3::Y,
+        };
+        assert_eq!(pick(&scene, &ray).map(|(i, _)| i), Some(1));
+        scene.models[1].visible = false;
+        assert_eq!(pick(&scene, &ray).map(|(i, _)| i), Some(0));
+    }
+
+    #[test]
+    fn target_plane_point_is_on_the_plane() {
+        let camera = Camera {
+            eye: DVec3::new(0.0, -300.0, 0.0),
+            target: DVec3::ZERO,
+            up: DVec3::Z,
+            fov_y_deg: 30.0,
+        };
+        let p = point_on_target_plane(&camera, DVec2::new(800.0, 600.0), DVec2::new(100.0, 50.0));
+        assert!(p.y.abs() < 1e-9);
+    }
+}

@@ -1,0 +1,198 @@
+//! Wavefront OBJ: reading through `tobj` (built with `use_f64`, so coordinates are parsed straight
+//! to `f64`), writing with Rust's shortest round-trip formatting (`{}` on `f64` prints the fewest
+//! digits that parse back to the same bits), so written values read back exactly.
+//!
+//! Reading options: `single_index` (one index per corner; tobj splits a position used with
+//! different normals or texture coordinates, and our weld merges it back), `triangulate`
+//! (polygons become fans), points and lines ignored (they bound no surface). Each OBJ object or
+//! group (`o`/`g`) is a part; tobj's placeholder name for faces before any `o`/`g` becomes "the
+//! file". Materials are not loaded.
+
+use std::io::{BufReader, Write};
+
+use csg::{DVec3, Mesh};
+
+use super::RawPart;
+
+/// tobj's name for faces that come before any `o`/`g` line.
+const TOBJ_UNNAMED: &str = "unnamed_object";
+
+pub(crate) fn parse(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
+    let options = tobj::LoadOptions {
+        single_index: true,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let mut reader = BufReader::new(bytes);
+    let (models, _materials) = tobj::load_obj_buf(&mut reader, &options, |_| {
+        Err(tobj::LoadError::OpenFileFailed)
+    })
+    .map_err(|e| match e {
+        tobj::LoadError::ReadError => anyhow::anyhow!("not a text OBJ file (unreadable line or a non-UTF-8 byte)"),
+        other => anyhow::anyhow!("malformed OBJ: {other}"),
+    })?;
+    models
+        .into_iter()
+        .map(|model| {
+            let mesh = model.mesh;
+            if mesh.indices.len() % 3 != 0 {
+                anyhow::bail!("malformed OBJ: object '{}' has an incomplete triangle", model.name);
+            }
+            let positions = mesh
+                .positions
+                .chunks_exact(3)
+                .map(|p| DVec3::new(p[0], p[1], p[2]))
+                .collect();
+            let triangles = mesh
+                .indices
+                .chunks_exact(3)
+                .map(|t| [t[0], t[1], t[2]])
+                .collect();
+            let name = (model.name != TOBJ_UNNAMED && !model.name.is_empty()).then_some(model.name);
+            Ok(RawPart {
+                name,
+                positions,
+                triangles,
+            })
+        })
+        .collect()
+}
+
+fn write_vertices(w: &mut dyn Write, positions: &[DVec3]) -> std::io::Result<()> {
+    for p in positions {
+        writeln!(w, "v {} {} {}", p.x, p.y, p.z)?;
+    }
+    Ok(())
+}
+
+/// Writes `mesh` as `v` and `f` records (1-based indices).
+pub(crate) fn write_mesh(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
+    writeln!(w, "# written by cutaway: {} vertices, {} triangles", mesh.positions.len(), mesh.triangles.len())?;
+    write_vertices(w, &mesh.positions)?;
+    for [a, b, c] in &mesh.triangles {
+        writeln!(w, "f {} {} {}", a + 1, b + 1, c + 1)?;
+    }
+    Ok(())
+}
+
+/// Checks polygon faces before anything is written: at least 3 corners, indices in range.
+pub(crate) fn check_polygons(positions: &[DVec3], faces: &[Vec<u32>]) -> anyhow::Result<()> {
+    if let Some((v, p)) = positions.iter().enumerate().find(|(_, p)| !p.is_finite()) {
+        anyhow::bail!("vertex {v} has a non-finite coordinate {p}");
+    }
+    for (f, face) in faces.iter().enumerate() {
+        if face.len() < 3 {
+            anyhow::bail!("face {f} has {} corners; a polygon needs at least 3", face.len());
+        }
+        if let Some(&i) = face.iter().find(|&&i| i as usize >= positions.len()) {
+            anyhow::bail!("face {f} uses vertex {i}, but there are only {} vertices", positions.len());
+        }
+    }
+    Ok(())
+}
+
+/// Writes general polygons (`f a b c d …`).
+pub(crate) fn write_polygons(w: &mut dyn Write, positions: &[DVec3], faces: &[Vec<u32>]) -> std::io::Result<()> {
+    writeln!(w, "# written by cutaway: {} vertices, {} polygons", positions.len(), faces.len())?;
+    write_vertices(w, positions)?;
+    for face in faces {
+        w.write_all(b"f")?;
+        for i in face {
+            write!(w, " {}", i + 1)?;
+        }
+        w.write_all(b"\n")?;
+    }
+    Ok(())
+}
+
+/// Checks polylines before anything is written: at least 2 points each, all finite.
+pub(crate) fn check_polylines(polylines: &[Vec<DVec3>]) -> anyhow::Result<()> {
+    for (l, line) in polylines.iter().enumerate() {
+        if line.len() < 2 {
+            anyhow::bail!("polyline {l} has {} points; a polyline needs at least 2", line.len());
+        }
+        if let Some(p) = line.iter().find(|p| !p.is_finite()) {
+            anyhow::bail!("polyline {l} has a non-finite point {p}");
+        }
+    }
+    Ok(())
+}
+
+/// True when a polyline ends where it starts (bit for bit): it is written as a closed loop.
+fn is_closed(line: &[DVec3]) -> bool {
+    line.len() > 2 && line.first().map(|p| p.to_array().map(f64::to_bits)) == line.last().map(|p| p.to_array().map(f64::to_bits))
+}
+
+/// Writes polylines: each point once as `v`, then one `l` record per polyline.
+pub(crate) fn write_polylines(w: &mut dyn Write, polylines: &[Vec<DVec3>]) -> std::io::Result<()> {
+    writeln!(w, "# written by cutaway: {} polylines", polylines.len())?;
+    for line in polylines {
+        let points = if is_closed(line) { &line[..line.len() - 1] } else { &line[..] };
+        write_vertices(w, points)?;
+    }
+    let mut next = 1usize;
+    for line in polylines {
+        let closed = is_closed(line);
+        let count = if closed { line.len() - 1 } else { line.len() };
+        w.write_all(b"l")?;
+        for i in next..next + count {
+            write!(w, " {i}")?;
+        }
+        if closed {
+            write!(w, " {next}")?;
+        }
+        w.write_all(b"\n")?;
+        next += count;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn groups_become_named_parts_and_polygons_fans() {
+        let text = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\n\
+o first\ng first\nf 1 2 3 4\no second\nf 1 2 5\n";
+        let parts = parse(text).unwrap();
+        assert_eq!(parts.len(), 2);
+        assert_eq!(parts[0].name.as_deref(), Some("first"));
+        assert_eq!(parts[0].triangles.len(), 2);
+        assert_eq!(parts[1].name.as_deref(), Some("second"));
+        assert_eq!(parts[1].triangles.len(), 1);
+        assert_eq!(parts[1].positions[2], DVec3::new(0.0, 0.0, 1.0));
+    }
+
+    #[test]
+    fn faces_before_any_group_belong_to_the_file() {
+        let parts = parse(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        assert_eq!(parts.len(), 1);
+        assert_eq!(parts[0].name, None);
+    }
+
+    #[test]
+    fn decimal_text_is_parsed_to_f64_not_f32() {
+        let parts = parse(b"v 0.1 0.2 0.3\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        assert_eq!(parts[0].positions[0], DVec3::new(0.1, 0.2, 0.3));
+    }
+
+    #[test]
+    fn out_of_range_face_index_is_an_error() {
+        assert!(parse(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n").is_err());
+    }
+
+    #[test]
+    fn closed_polyline_reuses_its_first_vertex() {
+        let square = vec![DVec3::ZERO, DVec3::X, DVec3::ONE, DVec3::ZERO];
+        let open = vec![DVec3::Z, DVec3::Y];
+        let mut out = Vec::new();
+        write_polylines(&mut out, &[square, open]).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let records: Vec<&str> = text.lines().filter(|l| l.starts_with('l')).collect();
+        assert_eq!(records, ["l 1 2 3 1", "l 4 5"]);
+        assert_eq!(text.lines().filter(|l| l.starts_with("v ")).count(), 5);
+    }
+}

@@ -1,0 +1,267 @@
+//! Rendering with no window: a device of its own, the same [`Renderer`] as the window, tiles for
+//! images larger than the device's maximum texture size, PNG pixels read back.
+//!
+//! On a machine with no GPU, Mesa's lavapipe (`WGPU_BACKEND=vulkan`) or llvmpipe over EGL
+//! (`WGPU_BACKEND=gl`) serve; snapshot tests pin Vulkan because the two differ in a few pixels.
+
+use std::sync::Arc;
+
+use anyhow::Context as _;
+
+use super::{FrameInputs, OutputTarget, Renderer, Tile, ViewMode};
+use crate::cutaway_geometry::preview_geometry;
+use crate::scene::Scene;
+
+/// Largest tile rendered at once (output pixels per side); bigger images are tiled.
+const MAX_TILE: u32 = 2048;
+
+/// Options of [`render_png`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderPngOptions {
+    /// Image size in pixels, each 1..=16384.
+    pub width: u32,
+    pub height: u32,
+    /// Clear to a fully transparent background instead of the scene's background colour.
+    /// Default: false.
+    pub transparent_background: bool,
+    /// No supersampling whatever the scene says (golden images). Default: false.
+    pub deterministic: bool,
+    /// Default: Preview (cuts executed) when the scene has cutters, else Camera.
+    pub mode: Option<ViewMode>,
+}
+
+impl RenderPngOptions {
+    pub fn new(width: u32, height: u32) -> RenderPngOptions {
+        RenderPngOptions {
+            width,
+            height,
+            transparent_background: false,
+            deterministic: false,
+            mode: None,
+        }
+    }
+}
+
+/// A device, a queue and a renderer painting into `Rgba8Unorm` images.
+pub struct HeadlessRenderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    renderer: Renderer,
+    adapter: wgpu::AdapterInfo,
+}
+
+impl HeadlessRenderer {
+    /// Opens the first adapter `WGPU_BACKEND` (or the platform default) offers, software ones
+    /// included. The error says why none could be opened.
+    pub fn new() -> anyhow::Result<HeadlessRenderer> {
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle().with_env());
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: None,
+        }))
+        .map_err(|e| anyhow::anyhow!("no GPU adapter (install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan): {e}"))?;
+        let limits = adapter.limits();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("cutaway headless device"),
+            required_limits: wgpu::Limits {
+                max_texture_dimension_2d: limits.max_texture_dimension_2d,
+                ..wgpu::Limits::downlevel_defaults()
+            },
+            ..Default::default()
+        }))
+        .context("could not open the GPU device")?;
+        let renderer = Renderer::new(&device, OutputTarget::png());
+        Ok(HeadlessRenderer {
+            device,
+            queue,
+            renderer,
+            adapter: adapter.get_info(),
+        })
+    }
+
+    /// Name and backend of the adapter, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan)`.
+    pub fn adapter_name(&self) -> String {
+        format!("{} ({:?})", self.adapter.name, self.adapter.backend)
+    }
+
+    /// True for software rasterizers (lavapipe, llvmpipe).
+    pub fn is_software(&self) -> bool {
+        self.adapter.device_type == wgpu::DeviceType::Cpu
+    }
+
+    /// Renders `frame` (whose `size` is the full image size) into an image, tile by tile when it is
+    /// larger than [`MAX_TILE`]. Straight alpha, sRGB-encoded.
+    pub fn render(&mut self, frame: &FrameInputs) -> anyhow::Result<image::RgbaImage> {
+        let [width, height] = frame.size;
+        if width == 0 || height == 0 || width > 16384 || height > 16384 {
+            anyhow::bail!("image size {width}x{height} is outside 1..16384");
+        }
+        let supersample = if frame.scene.render.antialias && !frame.deterministic { 2 } else { 1 };
+        let max_tile = (self.device.limits().max_texture_dimension_2d / supersample).clamp(64, MAX_TILE);
+        let mut image = image::RgbaImage::new(width, height);
+        let mut y = 0;
+        while y < height {
+            let th = max_tile.min(height - y);
+            let mut x = 0;
+            while x < width {
+                let tw = max_tile.min(width - x);
+                let mut tile_frame = frame.clone();
+                tile_frame.size = [tw, th];
+                tile_frame.tile = (tw != width || th != height).then_some(Tile {
+                    full_size: [width, height],
+                    origin: [x, y],
+                });
+                let pixels = self.render_tile(&tile_frame)?;
+                for row in 0..th {
+                    for col in 0..tw {
+                        let at = ((row * tw + col) * 4) as usize;
+                        image.put_pixel(
+                            x + col,
+                            y + row,
+                            image::Rgba([pixels[at], pixels[at + 1], pixels[at + 2], pixels[at + 3]]),
+                        );
+                    }
+                }
+                x += tw;
+            }
+            y += th;
+        }
+        Ok(image)
+    }
+
+    /// One tile: prepare, blit into an `Rgba8Unorm` texture, copy out. Returns tightly packed
+    /// RGBA rows.
+    fn render_tile(&mut self, frame: &FrameInputs) -> anyhow::Result<Vec<u8>> {
+        let [width, height] = frame.size;
+        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("cutaway export tile"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: self.renderer.output().format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let padded_row = (width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let readback = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cutaway export readback"),
+            size: padded_row as u64 * height as u64,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("cutaway export"),
+        });
+        self.renderer.prepare(&self.device, &self.queue, &mut encoder, frame);
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("cutaway export blit"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &view,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                    depth_slice: None,
+                })],
+                depth_stencil_attachment: None,
+                occlusion_query_set: None,
+                timestamp_writes: None,
+                multiview_mask: None,
+            });
+            self.renderer.paint(&mut pass);
+        }
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &readback,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded_row),
+                    rows_per_image: Some(height),
+                },
+            },
+            wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+        );
+        self.queue.submit([encoder.finish()]);
+        let slice = readback.slice(..);
+        let (sender, receiver) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |result| {
+            let _ = sender.send(result);
+        });
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .context("GPU readback did not finish")?;
+        receiver
+            .recv()
+            .context("GPU readback was dropped")?
+            .context("GPU readback failed")?;
+        let mapped = slice.get_mapped_range().context("GPU readback could not be read")?;
+        let mut pixels = Vec::with_capacity((width * height * 4) as usize);
+        for row in 0..height as usize {
+            let start = row * padded_row as usize;
+            pixels.extend_from_slice(&mapped[start..start + width as usize * 4]);
+        }
+        drop(mapped);
+        readback.unmap();
+        Ok(pixels)
+    }
+}
+
+/// Renders `scene` as `cutaway render` does: Preview (cuts executed) when it has cutters, from
+/// the scene camera, at the requested size.
+pub fn render_png(scene: &Scene, options: &RenderPngOptions) -> anyhow::Result<image::RgbaImage> {
+    let mut renderer = HeadlessRenderer::new()?;
+    render_with(&mut renderer, scene, options)
+}
+
+/// [`render_png`] with an existing headless renderer (tests render several images with one).
+pub fn render_with(
+    renderer: &mut HeadlessRenderer,
+    scene: &Scene,
+    options: &RenderPngOptions,
+) -> anyhow::Result<image::RgbaImage> {
+    let mut scene = scene.clone();
+    if options.transparent_background {
+        scene.render.background[3] = 0.0;
+    }
+    let mode = options.mode.unwrap_or(if scene.cutters.is_empty() {
+        ViewMode::Camera
+    } else {
+        ViewMode::Preview
+    });
+    let mut frame = FrameInputs::new(scene, [options.width, options.height], mode);
+    frame.deterministic = options.deterministic;
+    if mode == ViewMode::Preview {
+        frame.preview = Some(Arc::new(preview_geometry(&frame.scene)));
+    }
+    if mode == ViewMode::Edit {
+        frame.overlays = frame
+            .scene
+            .cutters
+            .iter()
+            .map(|c| super::CutterOverlay {
+                planes: c.planes.clone(),
+                ..Default::default()
+            })
+            .collect();
+    }
+    renderer.render(&frame)
+}

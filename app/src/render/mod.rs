@@ -1,0 +1,234 @@
+//! # The renderer: one for the window and for headless PNG export
+//!
+//! A long-lived [`Renderer`] owns the pipelines, the offscreen targets and a cache of uploaded
+//! meshes; everything that changes per frame comes in a [`FrameInputs`] and lives in per-frame
+//! draw data ([`draw_data`]). The 3D view is always rendered offscreen ([`Renderer::prepare`])
+//! and then composited into whatever target the caller has ([`Renderer::paint`]): egui's render
+//! pass in the window, a plain texture in [`headless`]. So the window and `cutaway render` produce
+//! the same pixels.
+//!
+//! ## Using it from an egui paint callback (offscreen in `prepare`, blit in `paint`)
+//!
+//! ```ignore
+//! // Once, at startup (eframe's CreationContext):
+//! let rs = cc.wgpu_render_state.as_ref().unwrap();
+//! let renderer = Renderer::new(&rs.device, OutputTarget::egui(rs.target_format));
+//! rs.renderer.write().callback_resources.insert(renderer);
+//!
+//! // Each frame, for the viewport rect:
+//! struct ViewCallback { inputs: FrameInputs }      // FrameInputs is Send + Sync + 'static
+//! impl egui_wgpu::CallbackTrait for ViewCallback {
+//!     fn prepare(&self, device, queue, _screen, encoder, resources) -> Vec<wgpu::CommandBuffer> {
+//!         resources.get_mut::<Renderer>().unwrap().prepare(device, queue, encoder, &self.inputs);
+//!         Vec::new()
+//!     }
+//!     fn paint(&self, _info, pass, resources) {
+//!         resources.get::<Renderer>().unwrap().paint(pass);
+//!     }
+//! }
+//! // inputs.size = rect size in physical pixels (rect.size() * pixels_per_point, rounded).
+//! ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ViewCallback { inputs }));
+//! ```
+//!
+//! [`FrameInputs::scene`] is a [`Scene`] clone: cheap, since meshes are `Arc`s. The renderer
+//! uploads a mesh once and re-uploads only when the `Arc` is replaced (see `scene.rs`). Preview
+//! geometry (the cut parts) is computed on the CPU by [`crate::cutaway_geometry::preview_geometry`]
+//! — the GUI should do that on a worker thread and pass the `Arc` result every frame.
+//!
+//! ## What is drawn (thesis 3.4)
+//! - Models: per-model colour, opacity (< 1 → order-independent transparency), solid or
+//!   wireframe, visibility. Two-sided headlight shading; back faces darker.
+//! - [`ViewMode::Edit`]: the cutters of [`FrameInputs::overlays`] semi-transparent, plane outlines
+//!   on top, the highlighted plane in orange.
+//! - [`ViewMode::Preview`] with [`FrameInputs::preview`]: per cutter the kept part, the walls in
+//!   their own colour, a thick screen-space contour line, the removed piece by weighted-blended
+//!   order-independent transparency (McGuire and Bavoil 2013; correct for any number of
+//!   overlapping layers without sorting), ribbons and solid slices.
+//! - Anti-aliasing: 2×2 supersampling (the blit's bilinear tap averages each 2×2 block exactly).
+//!   [`FrameInputs::deterministic`] turns it off for golden images.
+//! - Red/blue anaglyph: the scene rendered from two eye cameras, combined in the blit.
+//!
+//! Colour pipeline: sRGB colours from the scene → linear light → shaded into `Rgba16Float`
+//! premultiplied targets → gamma-encoded by the blit shader when the output format is not sRGB
+//! (egui's `Bgra8Unorm` surface is not), so lighting never looks dark.
+
+use std::sync::Arc;
+
+use cutter::Camera;
+
+use crate::cutaway_geometry::PreviewGeometry;
+use crate::scene::{CutterPlane, Scene};
+
+pub mod draw_data;
+pub mod gpu_data;
+pub mod headless;
+mod pipelines;
+mod renderer;
+
+pub use headless::{HeadlessRenderer, RenderPngOptions, render_png};
+pub use renderer::Renderer;
+
+/// What the view shows (the GUI's mode buttons; Scalpel draws like Camera).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ViewMode {
+    /// The models as they are; cutters hidden.
+    #[default]
+    Camera,
+    /// The models as they are and the cutters of [`FrameInputs::overlays`], semi-transparent.
+    Edit,
+    /// Cuts executed: [`FrameInputs::preview`] replaces the cut models; cutters hidden.
+    Preview,
+}
+
+/// A cutter as the editor shows it in Edit mode.
+#[derive(Clone, Debug, Default)]
+pub struct CutterOverlay {
+    /// The bounded cutting planes (front-top, back-top, back-bottom, front-bottom).
+    pub planes: Vec<CutterPlane>,
+    /// The closed cutter surface when the editor has one (e.g. the smooth, subdivided cutter);
+    /// `None` draws the boxes between consecutive planes.
+    pub surface: Option<Arc<csg::Mesh>>,
+    /// Index into `planes` of the plane under the mouse or selected; drawn in orange.
+    pub highlighted_plane: Option<usize>,
+    /// The cutter being edited (drawn a little stronger than the others).
+    pub active: bool,
+}
+
+/// A rectangle of a larger image, for rendering exports bigger than the device's maximum texture
+/// size tile by tile. The camera still frames the full image.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Tile {
+    /// Size of the full image in pixels.
+    pub full_size: [u32; 2],
+    /// Top-left pixel of this tile in the full image (y down); the tile's size is
+    /// [`FrameInputs::size`].
+    pub origin: [u32; 2],
+}
+
+/// Everything that may change from one frame to the next. `Send + Sync + 'static`, so it can
+/// live in an egui paint callback.
+#[derive(Clone, Debug)]
+pub struct FrameInputs {
+    /// Snapshot of the scene (cheap clone: meshes are shared).
+    pub scene: Scene,
+    /// The camera to render with (usually `scene.camera`).
+    pub camera: Camera,
+    /// Output size in physical pixels, each at least 1.
+    pub size: [u32; 2],
+    pub mode: ViewMode,
+    /// Cut parts for Preview mode; `None` draws the models uncut.
+    pub preview: Option<Arc<PreviewGeometry>>,
+    /// Cutters to draw in Edit mode.
+    pub overlays: Vec<CutterOverlay>,
+    /// No supersampling whatever `scene.render.antialias` says (golden-image tests).
+    pub deterministic: bool,
+    /// Render only this part of a larger image (`None`: the whole image is `size`).
+    pub tile: Option<Tile>,
+}
+
+impl FrameInputs {
+    /// A frame of `scene` from its own camera, in `mode`, with no preview and no overlays.
+    pub fn new(scene: Scene, size: [u32; 2], mode: ViewMode) -> FrameInputs {
+        FrameInputs {
+            camera: scene.camera,
+            scene,
+            size,
+            mode,
+            preview: None,
+            overlays: Vec::new(),
+            deterministic: false,
+            tile: None,
+        }
+    }
+}
+
+/// The render target [`Renderer::paint`] draws into.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OutputTarget {
+    pub format: wgpu::TextureFormat,
+    /// Sample count of the render pass `paint` is called in.
+    pub sample_count: u32,
+    /// Depth format of that pass, if it has a depth attachment (egui's has none by default).
+    pub depth_format: Option<wgpu::TextureFormat>,
+    /// Write straight alpha (for PNG files) instead of premultiplied alpha (for egui).
+    pub straight_alpha: bool,
+}
+
+impl OutputTarget {
+    /// egui's render pass: its target format, no MSAA, no depth buffer, premultiplied alpha.
+    /// (If the app sets `NativeOptions::multisampling` or `depth_buffer`, fill the fields in.)
+    pub fn egui(format: wgpu::TextureFormat) -> OutputTarget {
+        OutputTarget {
+            format,
+            sample_count: 1,
+            depth_format: None,
+            straight_alpha: false,
+        }
+    }
+
+    /// A PNG export: `Rgba8Unorm`, straight alpha.
+    pub fn png() -> OutputTarget {
+        OutputTarget {
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            sample_count: 1,
+            depth_format: None,
+            straight_alpha: true,
+        }
+    }
+}
+
+/// sRGB-encoded component (0..=1) → linear light.
+pub fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+}
+
+/// Linear light (0..=1) → sRGB-encoded component.
+pub fn linear_to_srgb(c: f32) -> f32 {
+    if c <= 0.003_130_8 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 }
+}
+
+/// The WGSL sources, for the pipelines and for the naga validation test.
+pub mod shaders {
+    pub const MESH: &str = include_str!("shaders/mesh.wgsl");
+    pub const LINES: &str = include_str!("shaders/lines.wgsl");
+    pub const COMPOSITE: &str = include_str!("shaders/composite.wgsl");
+    pub const BLIT: &str = include_str!("shaders/blit.wgsl");
+    /// Every shader with its file name.
+    pub const ALL: [(&str, &str); 4] = [
+        ("mesh.wgsl", MESH),
+        ("lines.wgsl", LINES),
+        ("composite.wgsl", COMPOSITE),
+        ("blit.wgsl", BLIT),
+    ];
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every WGSL shader parses and validates with naga, so a broken shader cannot hide behind a
+    /// GPU-less CI machine.
+    #[test]
+    fn shaders_validate_with_naga() {
+        for (name, source) in shaders::ALL {
+            let module = naga::front::wgsl::parse_str(source)
+                .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
+            let mut validator = naga::valid::Validator::new(
+                naga::valid::ValidationFlags::all(),
+                naga::valid::Capabilities::default(),
+            );
+            if let Err(e) = validator.validate(&module) {
+                panic!("{name}: {}", e.emit_to_string(source));
+            }
+        }
+    }
+
+    #[test]
+    fn srgb_round_trip() {
+        for i in 0..=20 {
+            let c = i as f32 / 20.0;
+            assert!((linear_to_srgb(srgb_to_linear(c)) - c).abs() < 1e-5, "{c}");
+        }
+        assert!(srgb_to_linear(0.5) < 0.25 && srgb_to_linear(0.5) > 0.2);
+    }
+}

@@ -1,0 +1,805 @@
+//! The [`Renderer`]: offscreen scene rendering ([`Renderer::prepare`]) and compositing into the
+//! caller's pass ([`Renderer::paint`]).
+//!
+//! Passes per eye: (1) opaque meshes and lines with depth; (2) transparent meshes into the
+//! weighted-blended accumulation targets, depth-tested against (1) without writing; (3) the
+//! transparency composite over (1), then overlay lines (cutter outlines) on top. The blit in
+//! `paint` downsamples the supersampled image, combines the anaglyph eyes and gamma-encodes.
+
+use std::collections::HashMap;
+use std::sync::{Arc, Weak};
+
+use csg::Mesh;
+use glam::{DMat4, DVec2, DVec3, DVec4};
+
+use super::draw_data::{GpuMesh, GpuSegments, cutter_outline_segments, polyline_segments};
+use super::gpu_data::{BlitUniform, DRAW_UNIFORM_STRIDE, DrawUniform, FrameUniform};
+use super::pipelines::{ACCUM_FORMAT, COLOR_FORMAT, DEPTH_FORMAT, Pipelines, REVEALAGE_FORMAT};
+use super::{FrameInputs, OutputTarget, ViewMode, srgb_to_linear};
+use crate::cutaway_geometry::{PartKind, PreviewGeometry, cutter_surface};
+use crate::scene::{ModelStyle, Stereo};
+
+/// Wall colour (sRGB) that the cut surfaces lean toward: a pale cream, distinct from anatomy
+/// colours yet close enough to read as "inside of the same thing".
+const WALL_TINT: [f32; 3] = [0.98, 0.93, 0.78];
+/// How far a wall's colour goes from its model's colour toward [`WALL_TINT`].
+const WALL_MIX: f32 = 0.6;
+/// Contour line colour (sRGB) and width in pixels at 800 px image height.
+const CONTOUR_COLOR: [f32; 3] = [0.08, 0.07, 0.1];
+const CONTOUR_WIDTH_PX: f32 = 3.0;
+const WIREFRAME_WIDTH_PX: f32 = 1.0;
+/// Cutter overlay colours (sRGB) and opacities.
+const CUTTER_FILL: [f32; 3] = [0.35, 0.6, 0.95];
+const CUTTER_OUTLINE: [f32; 3] = [0.08, 0.28, 0.75];
+const HIGHLIGHT: [f32; 3] = [1.0, 0.55, 0.1];
+/// Brightness of back faces relative to front faces.
+const BACK_FACE: f32 = 0.55;
+/// Eye separation of the anaglyph as a fraction of the camera distance.
+const EYE_SEPARATION: f64 = 0.035;
+/// Cached uploads not used for this many frames are dropped.
+const CACHE_FRAMES: u64 = 120;
+
+struct CachedMesh {
+    mesh: Weak<Mesh>,
+    gpu: Option<GpuMesh>,
+    last_used: u64,
+}
+
+struct CachedPreview {
+    preview: Weak<PreviewGeometry>,
+    /// One per `PreviewGeometry::parts` entry.
+    parts: Vec<Option<GpuMesh>>,
+    /// Per model: its contour polylines.
+    contours: HashMap<usize, GpuSegments>,
+}
+
+/// Offscreen images for one output size.
+struct Targets {
+    /// Size of the offscreen images (the output size times the supersampling factor).
+    size: [u32; 2],
+    /// One per eye.
+    color_views: Vec<wgpu::TextureView>,
+    depth_view: wgpu::TextureView,
+    accum_view: wgpu::TextureView,
+    revealage_view: wgpu::TextureView,
+    composite_bind_group: wgpu::BindGroup,
+    blit_bind_group: wgpu::BindGroup,
+}
+
+/// What one draw call draws.
+#[derive(Clone, Copy)]
+enum Source {
+    /// A scene model's mesh, by cache key.
+    Model(usize),
+    /// `PreviewGeometry::parts[i]`.
+    Part(usize),
+    /// A per-frame overlay mesh.
+    Overlay(usize),
+}
+
+#[derive(Clone, Copy)]
+enum Draw {
+    Mesh(Source, u32),
+    Edges(Source, u32),
+    Contour(usize, u32),
+    Lines(usize, u32),
+}
+
+/// See the module documentation of [`crate::render`].
+pub struct Renderer {
+    output: OutputTarget,
+    pipelines: Pipelines,
+    frame_buffer: wgpu::Buffer,
+    frame_bind_group: wgpu::BindGroup,
+    draw_buffer: wgpu::Buffer,
+    /// Number of [`DrawUniform`] slots in `draw_buffer`.
+    draw_capacity: u64,
+    draw_bind_group: wgpu::BindGroup,
+    blit_buffer: wgpu::Buffer,
+    targets: Option<Targets>,
+    models: HashMap<usize, CachedMesh>,
+    preview: Option<CachedPreview>,
+    overlay_meshes: Vec<Option<GpuMesh>>,
+    overlay_lines: Vec<Option<GpuSegments>>,
+    frame_index: u64,
+}
+
+impl Renderer {
+    /// Creates the pipelines for painting into `output` (see [`OutputTarget::egui`]).
+    pub fn new(device: &wgpu::Device, output: OutputTarget) -> Renderer {
+        let pipelines = Pipelines::new(device, output);
+        let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cutaway frame uniforms (one per eye)"),
+            size: 2 * DRAW_UNIFORM_STRIDE,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let frame_bind_group = uniform_bind_group(
+            device,
+            "cutaway frame bind group",
+            &pipelines.frame_layout,
+            &frame_buffer,
+            size_of::<FrameUniform>() as u64,
+        );
+        let draw_capacity = 64;
+        let (draw_buffer, draw_bind_group) = draw_buffer(device, &pipelines, draw_capacity);
+        let blit_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cutaway blit uniform"),
+            size: size_of::<BlitUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Renderer {
+            output,
+            pipelines,
+            frame_buffer,
+            frame_bind_group,
+            draw_buffer,
+            draw_capacity,
+            draw_bind_group,
+            blit_buffer,
+            targets: None,
+            models: HashMap::new(),
+            preview: None,
+            overlay_meshes: Vec::new(),
+            overlay_lines: Vec::new(),
+            frame_index: 0,
+        }
+    }
+
+    /// The target this renderer paints into.
+    pub fn output(&self) -> OutputTarget {
+        self.output
+    }
+
+    /// Renders `frame` offscreen, recording into `encoder` (egui's encoder in a paint callback's
+    /// `prepare`). Uploads new or changed meshes first. Call [`Renderer::paint`] afterwards.
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameInputs,
+    ) {
+        self.frame_index += 1;
+        let supersample = if frame.scene.render.antialias && !frame.deterministic { 2 } else { 1 };
+        let max_dim = device.limits().max_texture_dimension_2d;
+        let size = [
+            (frame.size[0].max(1) * supersample).min(max_dim),
+            (frame.size[1].max(1) * supersample).min(max_dim),
+        ];
+        let eyes = if frame.scene.render.stereo == Stereo::Anaglyph { 2 } else { 1 };
+        if self
+            .targets
+            .as_ref()
+            .is_none_or(|t| t.size != size || t.color_views.len() != eyes)
+        {
+            self.targets = Some(self.create_targets(device, size, eyes));
+        }
+
+        // Phase 1: uploads (mutable caches).
+        let draws = self.upload_and_list(device, frame);
+        let (draws, uniforms) = draws;
+
+        // Phase 2: uniforms.
+        let line_scale = supersample as f32 * (full_size(frame)[1] as f32 / 800.0).max(1.0);
+        let uniforms: Vec<DrawUniform> = uniforms
+            .into_iter()
+            .map(|mut u| {
+                u.params[2] *= line_scale;
+                u
+            })
+            .collect();
+        if uniforms.len() as u64 > self.draw_capacity {
+            self.draw_capacity = (uniforms.len() as u64).next_power_of_two();
+            let (buffer, bind_group) = draw_buffer(device, &self.pipelines, self.draw_capacity);
+            self.draw_buffer = buffer;
+            self.draw_bind_group = bind_group;
+        }
+        let mut bytes = vec![0u8; uniforms.len() * DRAW_UNIFORM_STRIDE as usize];
+        for (i, u) in uniforms.iter().enumerate() {
+            let at = i * DRAW_UNIFORM_STRIDE as usize;
+            bytes[at..at + size_of::<DrawUniform>()].copy_from_slice(bytemuck::bytes_of(u));
+        }
+        if !bytes.is_empty() {
+            queue.write_buffer(&self.draw_buffer, 0, &bytes);
+        }
+        let (near, far, radius) = depth_range(frame);
+        let cameras = eye_cameras(frame);
+        let mut frame_bytes = vec![0u8; 2 * DRAW_UNIFORM_STRIDE as usize];
+        for (eye, camera) in cameras.iter().enumerate() {
+            let u = frame_uniform(frame, camera, size, near, far);
+            let at = eye * DRAW_UNIFORM_STRIDE as usize;
+            frame_bytes[at..at + size_of::<FrameUniform>()].copy_from_slice(bytemuck::bytes_of(&u));
+        }
+        queue.write_buffer(&self.frame_buffer, 0, &frame_bytes);
+        let _ = radius;
+        let blit = BlitUniform {
+            mode: u32::from(eyes == 2),
+            encode_srgb: u32::from(!self.output.format.is_srgb()),
+            straight_alpha: u32::from(self.output.straight_alpha),
+            _pad: 0,
+        };
+        queue.write_buffer(&self.blit_buffer, 0, bytemuck::bytes_of(&blit));
+
+        // Phase 3: passes.
+        let background = frame.scene.render.background;
+        let alpha = background[3] as f64;
+        let clear = wgpu::Color {
+            r: srgb_to_linear(background[0]) as f64 * alpha,
+            g: srgb_to_linear(background[1]) as f64 * alpha,
+            b: srgb_to_linear(background[2]) as f64 * alpha,
+            a: alpha,
+        };
+        for eye in 0..eyes {
+            self.encode_eye(encoder, eye, clear, &draws);
+        }
+        self.evict();
+    }
+
+    /// Composites the last prepared image into `pass` (a fullscreen triangle: the caller sets the
+    /// viewport, as egui does for a paint callback's rect). Draws nothing before the first
+    /// `prepare`.
+    pub fn paint(&self, pass: &mut wgpu::RenderPass<'_>) {
+        let Some(targets) = &self.targets else { return };
+        pass.set_pipeline(&self.pipelines.blit);
+        pass.set_bind_group(0, &targets.blit_bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+
+    fn create_targets(&self, device: &wgpu::Device, size: [u32; 2], eyes: usize) -> Targets {
+        let texture = |label: &str, format: wgpu::TextureFormat, sampled: bool| {
+            let mut usage = wgpu::TextureUsages::RENDER_ATTACHMENT;
+            if sampled {
+                usage |= wgpu::TextureUsages::TEXTURE_BINDING;
+            }
+            device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size: wgpu::Extent3d {
+                        width: size[0],
+                        height: size[1],
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format,
+                    usage,
+                    view_formats: &[],
+                })
+                .create_view(&wgpu::TextureViewDescriptor::default())
+        };
+        let color_views: Vec<wgpu::TextureView> = (0..eyes)
+            .map(|eye| texture(&format!("cutaway colour (eye {eye})"), COLOR_FORMAT, true))
+            .collect();
+        let depth_view = texture("cutaway depth", DEPTH_FORMAT, false);
+        let accum_view = texture("cutaway transparency accumulation", ACCUM_FORMAT, true);
+        let revealage_view = texture("cutaway transparency revealage", REVEALAGE_FORMAT, true);
+        let composite_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("cutaway composite bind group"),
+            layout: &self.pipelines.composite_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&accum_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&revealage_view),
+                },
+            ],
+        });
+        let right = color_views.last().unwrap_or(&color_views[0]);
+        let blit_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("cutaway blit bind group"),
+            layout: &self.pipelines.blit_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&color_views[0]),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(right),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::Sampler(&self.pipelines.sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: self.blit_buffer.as_entire_binding(),
+                },
+            ],
+        });
+        Targets {
+            size,
+            color_views,
+            depth_view,
+            accum_view,
+            revealage_view,
+            composite_bind_group,
+            blit_bind_group,
+        }
+    }
+
+    /// Uploads what is missing and lists the draws of the frame with their uniforms.
+    fn upload_and_list(&mut self, device: &wgpu::Device, frame: &FrameInputs) -> (DrawList, Vec<DrawUniform>) {
+        let scene = &frame.scene;
+        let mut list = DrawList::default();
+        let mut uniforms: Vec<DrawUniform> = Vec::new();
+        let mut push_uniform = |color: [f32; 3], opacity: f32, lit: bool, width: f32, bias: f32| {
+            uniforms.push(DrawUniform {
+                color: [
+                    srgb_to_linear(color[0]),
+                    srgb_to_linear(color[1]),
+                    srgb_to_linear(color[2]),
+                    opacity,
+                ],
+                params: [BACK_FACE, if lit { 1.0 } else { 0.0 }, width, bias],
+            });
+            (uniforms.len() - 1) as u32
+        };
+        let radius = 0.5 * scene.bbox().diagonal().max(1e-9);
+        let contour_bias = (radius * 0.004) as f32;
+
+        // Preview parts.
+        let preview = if frame.mode == ViewMode::Preview { frame.preview.clone() } else { None };
+        if let Some(p) = &preview {
+            let stale = self
+                .preview
+                .as_ref()
+                .is_none_or(|c| !c.preview.upgrade().is_some_and(|q| Arc::ptr_eq(&q, p)));
+            if stale {
+                self.preview = Some(upload_preview(device, p));
+            }
+        }
+        let replaced = |m: usize| preview.as_ref().is_some_and(|p| p.replaced.get(m).copied().unwrap_or(false));
+
+        // Models (uncut, or the kept parts of cut ones).
+        for (index, model) in scene.models.iter().enumerate() {
+            if !model.visible || model.opacity <= 0.0 || replaced(index) {
+                continue;
+            }
+            let key = Arc::as_ptr(&model.mesh) as usize;
+            let fresh = self
+                .models
+                .get(&key)
+                .is_some_and(|c| c.mesh.upgrade().is_some_and(|m| Arc::ptr_eq(&m, &model.mesh)));
+            if !fresh {
+                self.models.insert(
+                    key,
+                    CachedMesh {
+                        mesh: Arc::downgrade(&model.mesh),
+                        gpu: GpuMesh::upload(device, &model.name, &model.mesh),
+                        last_used: 0,
+                    },
+                );
+            }
+            let Some(cached) = self.models.get_mut(&key) else { continue };
+            cached.last_used = self.frame_index;
+            let Some(gpu) = cached.gpu.as_mut() else { continue };
+            match model.style {
+                ModelStyle::Solid => {
+                    let u = push_uniform(model.color, model.opacity, true, 0.0, 0.0);
+                    if model.opacity < 1.0 {
+                        list.transparent.push(Draw::Mesh(Source::Model(key), u));
+                    } else {
+                        list.opaque.push(Draw::Mesh(Source::Model(key), u));
+                    }
+                }
+                ModelStyle::Wireframe => {
+                    gpu.ensure_edges(device, &model.name, &model.mesh);
+                    let u = push_uniform(model.color, 1.0, false, WIREFRAME_WIDTH_PX, 0.0);
+                    list.opaque.push(Draw::Edges(Source::Model(key), u));
+                }
+            }
+        }
+
+        if let (Some(p), Some(cache)) = (&preview, self.preview.as_mut()) {
+            for (i, part) in p.parts.iter().enumerate() {
+                let Some(model) = scene.models.get(part.model) else { continue };
+                if !model.visible {
+                    continue;
+                }
+                let Some(gpu) = cache.parts.get_mut(i).and_then(|g| g.as_mut()) else { continue };
+                let wall = mix(model.color, WALL_TINT, WALL_MIX);
+                match part.kind {
+                    PartKind::Kept => match model.style {
+                        ModelStyle::Solid if model.opacity <= 0.0 => {}
+                        ModelStyle::Solid => {
+                            let u = push_uniform(model.color, model.opacity, true, 0.0, 0.0);
+                            if model.opacity < 1.0 {
+                                list.transparent.push(Draw::Mesh(Source::Part(i), u));
+                            } else {
+                                list.opaque.push(Draw::Mesh(Source::Part(i), u));
+                            }
+                        }
+                        ModelStyle::Wireframe => {
+                            gpu.ensure_edges(device, &model.name, &part.mesh);
+                            let u = push_uniform(model.color, 1.0, false, WIREFRAME_WIDTH_PX, 0.0);
+                            list.opaque.push(Draw::Edges(Source::Part(i), u));
+                        }
+                    },
+                    PartKind::Wall | PartKind::SliceWall => {
+                        let u = push_uniform(wall, 1.0, true, 0.0, 0.0);
+                        list.opaque.push(Draw::Mesh(Source::Part(i), u));
+                    }
+                    PartKind::Ribbon => {
+                        let u = push_uniform(model.color, 1.0, true, 0.0, 0.0);
+                        list.opaque.push(Draw::Mesh(Source::Part(i), u));
+                    }
+                    PartKind::Removed => {
+                        let u = push_uniform(model.color, part.opacity, true, 0.0, 0.0);
+                        list.transparent.push(Draw::Mesh(Source::Part(i), u));
+                    }
+                }
+            }
+            let mut models: Vec<usize> = cache.contours.keys().copied().collect();
+            models.sort_unstable();
+            for m in models {
+                if scene.models.get(m).is_some_and(|model| model.visible) {
+                    let u = push_uniform(CONTOUR_COLOR, 1.0, false, CONTOUR_WIDTH_PX, contour_bias);
+                    list.opaque.push(Draw::Contour(m, u));
+                }
+            }
+        }
+
+        // Cutter overlays (Edit mode), re-uploaded every frame: they change while dragging.
+        self.overlay_meshes.clear();
+        self.overlay_lines.clear();
+        if frame.mode == ViewMode::Edit {
+            for (k, overlay) in frame.overlays.iter().enumerate() {
+                let surface = match &overlay.surface {
+                    Some(mesh) => GpuMesh::upload(device, "cutter overlay surface", mesh),
+                    None => GpuMesh::upload(device, "cutter overlay surface", &cutter_surface(&overlay.planes)),
+                };
+                if surface.is_some() {
+                    let opacity = if overlay.active { 0.35 } else { 0.22 };
+                    let u = push_uniform(CUTTER_FILL, opacity, true, 0.0, 0.0);
+                    list.transparent.push(Draw::Mesh(Source::Overlay(self.overlay_meshes.len()), u));
+                    self.overlay_meshes.push(surface);
+                }
+                let outline = GpuSegments::upload(
+                    device,
+                    &format!("cutter {k} outline"),
+                    &cutter_outline_segments(&overlay.planes),
+                );
+                if outline.is_some() {
+                    let width = if overlay.active { 1.5 } else { 1.0 };
+                    let u = push_uniform(CUTTER_OUTLINE, 0.85, false, width, 0.0);
+                    list.overlay.push(Draw::Lines(self.overlay_lines.len(), u));
+                    self.overlay_lines.push(outline);
+                }
+                if let Some(plane) = overlay.highlighted_plane.and_then(|i| overlay.planes.get(i)) {
+                    let quad = Mesh {
+                        positions: plane.to_vec(),
+                        triangles: vec![[0, 1, 2], [0, 2, 3]],
+                    };
+                    let u = push_uniform(HIGHLIGHT, 0.55, false, 0.0, 0.0);
+                    list.transparent.push(Draw::Mesh(Source::Overlay(self.overlay_meshes.len()), u));
+                    self.overlay_meshes.push(GpuMesh::upload(device, "highlighted plane", &quad));
+                    let u = push_uniform(HIGHLIGHT, 1.0, false, 3.0, 0.0);
+                    list.overlay.push(Draw::Lines(self.overlay_lines.len(), u));
+                    self.overlay_lines.push(GpuSegments::upload(
+                        device,
+                        "highlighted plane outline",
+                        &cutter_outline_segments(std::slice::from_ref(plane)),
+                    ));
+                }
+            }
+        }
+        (list, uniforms)
+    }
+
+    fn mesh(&self, source: Source) -> Option<&GpuMesh> {
+        match source {
+            Source::Model(key) => self.models.get(&key)?.gpu.as_ref(),
+            Source::Part(i) => self.preview.as_ref()?.parts.get(i)?.as_ref(),
+            Source::Overlay(i) => self.overlay_meshes.get(i)?.as_ref(),
+        }
+    }
+
+    fn segments(&self, draw: Draw) -> Option<&GpuSegments> {
+        match draw {
+            Draw::Edges(source, _) => self.mesh(source)?.edges.as_ref(),
+            Draw::Contour(model, _) => self.preview.as_ref()?.contours.get(&model),
+            Draw::Lines(i, _) => self.overlay_lines.get(i)?.as_ref(),
+            Draw::Mesh(..) => None,
+        }
+    }
+
+    fn encode_eye(&self, encoder: &mut wgpu::CommandEncoder, eye: usize, clear: wgpu::Color, draws: &DrawList) {
+        let Some(targets) = &self.targets else { return };
+        let frame_offset = (eye as u64 * DRAW_UNIFORM_STRIDE) as u32;
+        let color_view = &targets.color_views[eye];
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("cutaway opaque pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: color_view,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(clear),
+                        store: wgpu::StoreOp::Store,
+                    },
+                    depth_slice: None,
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                occlusion_query_set: None,
+                timestamp_writes: None,
+                multiview_mask: None,
+            });
+            pass.set_bind_group(0, &self.frame_bind_group, &[frame_offset]);
+            self.draw_all(&mut pass, &draws.opaque, false);
+        }
+        if !draws.transparent.is_empty() {
+            {
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("cutaway transparency pass"),
+                    color_attachments: &[
+                        Some(wgpu::RenderPassColorAttachment {
+                            view: &targets.accum_view,
+                            resolve_target: None,
+                            ops: wgpu::Operations {
+                                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                                store: wgpu::StoreOp::Store,
+                            },
+                            depth_slice: None,
+                        }),
+                        Some(wgpu::RenderPassColorAttachment {
+                            view: &targets.revealage_view,
+                            resolve_target: None,
+                            ops: wgpu::Operations {
+                                load: wgpu::LoadOp::Clear(wgpu::Color::WHITE),
+                                store: wgpu::StoreOp::Store,
+                            },
+                            depth_slice: None,
+                        }),
+                    ],
+                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                        view: &targets.depth_view,
+                        depth_ops: Some(wgpu::Operations {
+                            load: wgpu::LoadOp::Load,
+                            store: wgpu::StoreOp::Store,
+                        }),
+                        stencil_ops: None,
+                    }),
+                    occlusion_query_set: None,
+                    timestamp_writes: None,
+                    multiview_mask: None,
+                });
+                pass.set_bind_group(0, &self.frame_bind_group, &[frame_offset]);
+                self.draw_all(&mut pass, &draws.transparent, true);
+            }
+        }
+        if !draws.transparent.is_empty() || !draws.overlay.is_empty() {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("cutaway composite pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: color_view,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                    depth_slice: None,
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                occlusion_query_set: None,
+                timestamp_writes: None,
+                multiview_mask: None,
+            });
+            if !draws.transparent.is_empty() {
+                pass.set_pipeline(&self.pipelines.composite);
+                pass.set_bind_group(0, &targets.composite_bind_group, &[]);
+                pass.draw(0..3, 0..1);
+            }
+            if !draws.overlay.is_empty() {
+                pass.set_bind_group(0, &self.frame_bind_group, &[frame_offset]);
+                self.draw_all(&mut pass, &draws.overlay, false);
+            }
+        }
+    }
+
+    fn draw_all(&self, pass: &mut wgpu::RenderPass<'_>, draws: &[Draw], transparent: bool) {
+        for &draw in draws {
+            match draw {
+                Draw::Mesh(source, u) => {
+                    let Some(mesh) = self.mesh(source) else { continue };
+                    pass.set_pipeline(if transparent {
+                        &self.pipelines.mesh_oit
+                    } else {
+                        &self.pipelines.mesh_opaque
+                    });
+                    pass.set_bind_group(1, &self.draw_bind_group, &[u * DRAW_UNIFORM_STRIDE as u32]);
+                    pass.set_vertex_buffer(0, mesh.vertex_buffer.slice(..));
+                    pass.set_index_buffer(mesh.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+                }
+                Draw::Edges(_, u) | Draw::Contour(_, u) | Draw::Lines(_, u) => {
+                    let Some(segments) = self.segments(draw) else { continue };
+                    pass.set_pipeline(if matches!(draw, Draw::Lines(..)) {
+                        &self.pipelines.lines_overlay
+                    } else {
+                        &self.pipelines.lines_opaque
+                    });
+                    pass.set_bind_group(1, &self.draw_bind_group, &[u * DRAW_UNIFORM_STRIDE as u32]);
+                    pass.set_vertex_buffer(0, segments.buffer.slice(..));
+                    pass.draw(0..6, 0..segments.count);
+                }
+            }
+        }
+    }
+
+    /// Drops uploads of meshes that no longer exist or were not drawn for a while.
+    fn evict(&mut self) {
+        let now = self.frame_index;
+        self.models
+            .retain(|_, c| c.mesh.strong_count() > 0 && now.saturating_sub(c.last_used) <= CACHE_FRAMES);
+    }
+}
+
+#[derive(Default)]
+struct DrawList {
+    opaque: Vec<Draw>,
+    transparent: Vec<Draw>,
+    /// Drawn after the transparency composite, with no depth test.
+    overlay: Vec<Draw>,
+}
+
+fn upload_preview(device: &wgpu::Device, preview: &Arc<PreviewGeometry>) -> CachedPreview {
+    let parts = preview
+        .parts
+        .iter()
+        .map(|p| GpuMesh::upload(device, &format!("preview part {:?} of model {}", p.kind, p.model), &p.mesh))
+        .collect();
+    let mut by_model: HashMap<usize, Vec<&[DVec3]>> = HashMap::new();
+    for (model, line) in &preview.contours {
+        by_model.entry(*model).or_default().push(line);
+    }
+    let contours = by_model
+        .into_iter()
+        .filter_map(|(model, lines)| {
+            let segments = polyline_segments(lines);
+            GpuSegments::upload(device, &format!("contour of model {model}"), &segments).map(|s| (model, s))
+        })
+        .collect();
+    CachedPreview {
+        preview: Arc::downgrade(preview),
+        parts,
+        contours,
+    }
+}
+
+fn uniform_bind_group(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    buffer: &wgpu::Buffer,
+    size: u64,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer,
+                offset: 0,
+                size: wgpu::BufferSize::new(size),
+            }),
+        }],
+    })
+}
+
+fn draw_buffer(device: &wgpu::Device, pipelines: &Pipelines, capacity: u64) -> (wgpu::Buffer, wgpu::BindGroup) {
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("cutaway draw uniforms"),
+        size: capacity * DRAW_UNIFORM_STRIDE,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let bind_group = uniform_bind_group(
+        device,
+        "cutaway draw bind group",
+        &pipelines.draw_layout,
+        &buffer,
+        size_of::<DrawUniform>() as u64,
+    );
+    (buffer, bind_group)
+}
+
+fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
+    [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t)
+}
+
+/// The full image size (the tile's image, or the frame itself).
+fn full_size(frame: &FrameInputs) -> [u32; 2] {
+    frame.tile.map_or(frame.size, |t| t.full_size)
+}
+
+/// Near and far distances that enclose everything drawn, and the scene radius.
+fn depth_range(frame: &FrameInputs) -> (f64, f64, f64) {
+    let mut bbox = frame.scene.bbox();
+    if frame.mode == ViewMode::Edit {
+        for o in &frame.overlays {
+            for p in o.planes.iter().flatten() {
+                bbox.grow(*p);
+            }
+        }
+    }
+    if bbox.is_empty() {
+        return (0.1, 1000.0, 1.0);
+    }
+    let radius = (0.5 * bbox.diagonal()).max(1e-6);
+    // The anaglyph eyes sit a little off the camera.
+    let distance = (bbox.center() - frame.camera.eye).length() + EYE_SEPARATION * frame.camera.distance();
+    let far = distance + radius * 1.05;
+    let near = (distance - radius * 1.05).max(far * 1e-4);
+    (near, far, radius)
+}
+
+/// The camera of each eye: the scene camera, or two toed-in cameras for the anaglyph.
+fn eye_cameras(frame: &FrameInputs) -> Vec<cutter::Camera> {
+    let camera = frame.camera;
+    if frame.scene.render.stereo != Stereo::Anaglyph {
+        return vec![camera];
+    }
+    let (right, _, _) = camera.basis();
+    let half = right * (0.5 * EYE_SEPARATION * camera.distance());
+    vec![
+        cutter::Camera {
+            eye: camera.eye - half,
+            ..camera
+        },
+        cutter::Camera {
+            eye: camera.eye + half,
+            ..camera
+        },
+    ]
+}
+
+fn frame_uniform(frame: &FrameInputs, camera: &cutter::Camera, size: [u32; 2], near: f64, far: f64) -> FrameUniform {
+    let full = full_size(frame);
+    let viewport = DVec2::new(full[0] as f64, full[1] as f64);
+    let mut clip_from_world = camera.clip_from_world(viewport, near, far);
+    if let Some(tile) = frame.tile {
+        // Scale and shift NDC so the tile's rectangle fills the target.
+        let (w, h) = (frame.size[0] as f64, frame.size[1] as f64);
+        let sx = viewport.x / w;
+        let sy = viewport.y / h;
+        let cx = (tile.origin[0] as f64 + 0.5 * w) / viewport.x * 2.0 - 1.0;
+        let cy = 1.0 - (tile.origin[1] as f64 + 0.5 * h) / viewport.y * 2.0;
+        let tile_from_full = DMat4::from_cols(
+            DVec4::new(sx, 0.0, 0.0, 0.0),
+            DVec4::new(0.0, sy, 0.0, 0.0),
+            DVec4::new(0.0, 0.0, 1.0, 0.0),
+            DVec4::new(-cx * sx, -cy * sy, 0.0, 1.0),
+        );
+        clip_from_world = tile_from_full * clip_from_world;
+    }
+    let (right, up, forward) = camera.basis();
+    let light = (-forward + up * 0.55 - right * 0.35).normalize();
+    FrameUniform {
+        clip_from_world: clip_from_world.as_mat4().to_cols_array_2d(),
+        eye_in_world: camera.eye.as_vec3().extend(1.0).to_array(),
+        light_in_world: light.as_vec3().extend(0.0).to_array(),
+        viewport: [size[0] as f32, size[1] as f32, near as f32, far as f32],
+    }
+}

@@ -1,0 +1,111 @@
+// Shaded triangle meshes: opaque (fs_opaque) and weighted-blended order-independent
+// transparency (fs_oit, McGuire and Bavoil 2013). Two-sided headlight shading in linear light.
+
+// Keep in sync with FrameUniform in gpu_data.rs.
+struct Frame {
+    clip_from_world: mat4x4<f32>,
+    eye_in_world: vec4<f32>,
+    light_in_world: vec4<f32>,
+    // x, y: target size in pixels; z: near, w: far.
+    viewport: vec4<f32>,
+};
+
+// Keep in sync with DrawUniform in gpu_data.rs.
+struct Draw {
+    // Linear RGB, straight opacity.
+    color: vec4<f32>,
+    // x: back-face brightness; y: 1 lit / 0 flat; z: line width px; w: line offset toward the eye.
+    params: vec4<f32>,
+};
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(1) @binding(0) var<uniform> draw: Draw;
+
+// Keep in sync with Vertex in gpu_data.rs.
+struct VertexIn {
+    @location(0) position_in_world: vec3<f32>,
+    @location(1) normal_in_world: vec3<f32>,
+};
+
+struct VertexOut {
+    @builtin(position) position_in_clip: vec4<f32>,
+    @location(0) position_in_world: vec3<f32>,
+    @location(1) normal_in_world: vec3<f32>,
+};
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    out.position_in_clip = frame.clip_from_world * vec4<f32>(v.position_in_world, 1.0);
+    out.position_in_world = v.position_in_world;
+    out.normal_in_world = v.normal_in_world;
+    return out;
+}
+
+// Screen-space derivatives are only defined in uniform control flow, so the face normal is
+// computed before any branch that depends on the fragment.
+fn face_normal(p: vec3<f32>) -> vec3<f32> {
+    let n = cross(dpdx(p), dpdy(p));
+    return n / max(length(n), 1e-30);
+}
+
+fn shade(in: VertexOut, front_facing: bool, flat_normal: vec3<f32>) -> vec3<f32> {
+    let base = draw.color.rgb;
+    if draw.params.y < 0.5 {
+        return base;
+    }
+    let to_eye = normalize(frame.eye_in_world.xyz - in.position_in_world);
+    var n = in.normal_in_world;
+    var brightness = 1.0;
+    if dot(n, n) < 1e-12 {
+        // No vertex normal: the face normal, turned toward the eye.
+        n = flat_normal;
+        n = n * sign(dot(n, to_eye) + 1e-20);
+        if !front_facing {
+            brightness = draw.params.x;
+        }
+    } else {
+        n = normalize(n);
+        if !front_facing {
+            n = -n;
+            brightness = draw.params.x;
+        }
+    }
+    let l = frame.light_in_world.xyz;
+    let diffuse = max(dot(n, l), 0.0);
+    // A weak fill light from the eye keeps faces turned away from the key light readable.
+    let fill = max(dot(n, to_eye), 0.0);
+    let h = normalize(l + to_eye);
+    let specular = pow(max(dot(n, h), 0.0), 40.0) * 0.18;
+    let lit = base * (0.16 + 0.62 * diffuse + 0.22 * fill) * brightness + vec3<f32>(specular * brightness);
+    return lit;
+}
+
+@fragment
+fn fs_opaque(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let flat_normal = face_normal(in.position_in_world);
+    return vec4<f32>(shade(in, front_facing, flat_normal), 1.0);
+}
+
+struct OitOut {
+    // Premultiplied colour and opacity, both multiplied by the depth weight; summed.
+    @location(0) accum: vec4<f32>,
+    // Opacity; the target keeps the product of (1 - opacity) over all layers.
+    @location(1) revealage: vec4<f32>,
+};
+
+@fragment
+fn fs_oit(in: VertexOut, @builtin(front_facing) front_facing: bool) -> OitOut {
+    let flat_normal = face_normal(in.position_in_world);
+    let color = shade(in, front_facing, flat_normal);
+    let alpha = clamp(draw.color.a, 0.0, 1.0);
+    let near = frame.viewport.z;
+    let far = frame.viewport.w;
+    let depth = clamp((distance(frame.eye_in_world.xyz, in.position_in_world) - near) / max(far - near, 1e-6), 0.0, 1.0);
+    // Nearer layers weigh more; the clamp keeps the f16 sums finite.
+    let weight = alpha * clamp(0.03 / (1e-5 + pow(depth, 4.0)), 1e-2, 1e3);
+    var out: OitOut;
+    out.accum = vec4<f32>(color * alpha, alpha) * weight;
+    out.revealage = vec4<f32>(alpha, alpha, alpha, alpha);
+    return out;
+}

@@ -1,0 +1,388 @@
+//! The in-memory scene: what the GUI edits, the session file stores and the renderer draws.
+//!
+//! One [`Scene`] holds the models (one per connected region of a loaded file, in file order), the
+//! cutters (each aimed at one model), the camera and the render settings. It is cheap to clone:
+//! meshes sit behind [`Arc`], so the GUI can hand a snapshot to the renderer's paint callback or
+//! to an undo stack every frame without copying triangles.
+//!
+//! Change tracking needs no bookkeeping: the renderer remembers a [`std::sync::Weak`] to every
+//! mesh it uploaded. Replacing `SceneModel::mesh` with a new `Arc` (or mutating it through
+//! `Arc::make_mut`, which moves the data out while the renderer's weak pointer exists) makes the
+//! old weak pointer stale, and the renderer re-uploads. A weak pointer also keeps its allocation
+//! reserved, so a new mesh can never reuse the old address by accident.
+//!
+//! Colours are sRGB-encoded components in 0..=1, as the colour picker shows them and as the
+//! session file stores them; the renderer converts them to linear light.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use csg::{Aabb, Mesh};
+use cutter::Camera;
+use glam::DVec3;
+
+/// How a model's surface is drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ModelStyle {
+    /// Shaded triangles (default).
+    #[default]
+    Solid,
+    /// Every triangle edge as a thin line, no surface.
+    Wireframe,
+}
+
+/// One model of the scene: one connected region of one file.
+#[derive(Clone, Debug)]
+pub struct SceneModel {
+    /// Display name: file stem + region number (`knee_skin 1`).
+    pub name: String,
+    /// The file the region came from (absolute or relative to the working directory; sessions
+    /// store it relative to the session file).
+    pub source: PathBuf,
+    /// Index of this region among the regions of `source`, in file order (0-based). Together
+    /// with `source` it says which model a session entry is.
+    pub region: usize,
+    /// The welded, validated mesh of the region.
+    pub mesh: Arc<Mesh>,
+    /// sRGB colour, each component in 0..=1.
+    pub color: [f32; 3],
+    /// 1 = opaque, 0 = invisible; below 1 the model is drawn with order-independent transparency.
+    pub opacity: f32,
+    pub style: ModelStyle,
+    pub visible: bool,
+}
+
+impl SceneModel {
+    /// A visible, opaque, solid model with the given colour.
+    pub fn new(name: impl Into<String>, source: impl Into<PathBuf>, mesh: Arc<Mesh>, color: [f32; 3]) -> SceneModel {
+        SceneModel {
+            name: name.into(),
+            source: source.into(),
+            region: 0,
+            mesh,
+            color,
+            opacity: 1.0,
+            style: ModelStyle::Solid,
+            visible: true,
+        }
+    }
+}
+
+/// The cut kinds of the contract (`kind` in the session and gesture formats).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CutKind {
+    /// Freeform path following the mouse (default).
+    #[default]
+    Curving,
+    /// Straight path (the Shift constraint).
+    Straight,
+    /// All planes share one top edge (prism fan).
+    Wedge,
+}
+
+impl CutKind {
+    /// The contract's name of the kind.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CutKind::Curving => "curving",
+            CutKind::Straight => "straight",
+            CutKind::Wedge => "wedge",
+        }
+    }
+
+    /// Parses the contract's name of a kind.
+    pub fn parse(text: &str) -> Option<CutKind> {
+        match text {
+            "curving" => Some(CutKind::Curving),
+            "straight" => Some(CutKind::Straight),
+            "wedge" => Some(CutKind::Wedge),
+            _ => None,
+        }
+    }
+}
+
+/// Thin sub-cutters placed at regular intervals along the cutter path (ribbons or slices).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SubCutterView {
+    /// Number of sub-cutters, at least 1.
+    pub count: u32,
+    /// Width of each sub-cutter along the path, in model units; positive.
+    pub width: f64,
+}
+
+/// Which context-preserving views a cutter shows in Preview mode (thesis 3.4).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CutterViews {
+    /// Normal cut: the kept part with the walls in their own colour and a thick contour line.
+    pub cut: bool,
+    /// The removed piece drawn with this opacity (0..=1) by order-independent transparency.
+    pub transparency: Option<f32>,
+    /// Ribbons: the removed surface inside thin sub-cutters, no walls.
+    pub ribbons: Option<SubCutterView>,
+    /// Solid slices: ribbons closed by their walls.
+    pub slices: Option<SubCutterView>,
+}
+
+impl Default for CutterViews {
+    /// Normal cut only.
+    fn default() -> CutterViews {
+        CutterViews {
+            cut: true,
+            transparency: None,
+            ribbons: None,
+            slices: None,
+        }
+    }
+}
+
+impl CutterViews {
+    /// True when the cutter changes the picture at all in Preview mode.
+    pub fn any(&self) -> bool {
+        self.cut || self.transparency.is_some() || self.ribbons.is_some() || self.slices.is_some()
+    }
+}
+
+/// One bounded cutting plane: front-top, back-top, back-bottom, front-bottom (front = on the
+/// occluding surface), in world coordinates.
+pub type CutterPlane = [DVec3; 4];
+
+/// A cutter of the scene: the bounded cutting planes the editor produced, aimed at one model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneCutter {
+    /// Index into [`Scene::models`] of the model this cutter cuts.
+    pub target: usize,
+    pub kind: CutKind,
+    /// The rounded/freeform (subdivided) cutter instead of the plain boxes.
+    pub smooth: bool,
+    /// At least one plane; consecutive planes bound one box of the cutter.
+    pub planes: Vec<CutterPlane>,
+    pub views: CutterViews,
+}
+
+/// Stereo output of the renderer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Stereo {
+    #[default]
+    None,
+    /// Red/blue anaglyph: left eye in red, right eye in blue.
+    Anaglyph,
+}
+
+impl Stereo {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Stereo::None => "none",
+            Stereo::Anaglyph => "anaglyph",
+        }
+    }
+
+    pub fn parse(text: &str) -> Option<Stereo> {
+        match text {
+            "none" => Some(Stereo::None),
+            "anaglyph" => Some(Stereo::Anaglyph),
+            _ => None,
+        }
+    }
+}
+
+/// The Rendering menu.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// sRGB background colour with straight alpha; alpha 0 exports a transparent PNG.
+    /// Default: white, opaque.
+    pub background: [f32; 4],
+    /// Supersampling (2×2) when true. Default: true.
+    pub antialias: bool,
+    /// Default: none.
+    pub stereo: Stereo,
+}
+
+impl Default for RenderSettings {
+    fn default() -> RenderSettings {
+        RenderSettings {
+            background: [1.0, 1.0, 1.0, 1.0],
+            antialias: true,
+            stereo: Stereo::None,
+        }
+    }
+}
+
+/// Everything the user sees and edits.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub models: Vec<SceneModel>,
+    pub cutters: Vec<SceneCutter>,
+    pub camera: Camera,
+    pub render: RenderSettings,
+}
+
+impl Default for Scene {
+    fn default() -> Scene {
+        Scene {
+            models: Vec::new(),
+            cutters: Vec::new(),
+            camera: Camera {
+                eye: DVec3::new(0.0, -300.0, 0.0),
+                target: DVec3::ZERO,
+                up: DVec3::Z,
+                fov_y_deg: 30.0,
+            },
+            render: RenderSettings::default(),
+        }
+    }
+}
+
+impl Scene {
+    /// Bounding box of the visible models (of all models if none is visible; empty if there are
+    /// no models).
+    pub fn bbox(&self) -> Aabb {
+        let mut visible = Aabb::EMPTY;
+        let mut all = Aabb::EMPTY;
+        for model in &self.models {
+            let b = model.mesh.bbox();
+            all = all.union(&b);
+            if model.visible {
+                visible = visible.union(&b);
+            }
+        }
+        if visible.is_empty() { all } else { visible }
+    }
+
+    /// A camera framing every visible model from the front (−Y toward +Y, +Z up), as after a load.
+    pub fn framing_camera(&self) -> Camera {
+        let bbox = self.bbox();
+        if bbox.is_empty() {
+            return Scene::default().camera;
+        }
+        Camera::framing(&bbox, DVec3::NEG_Y, DVec3::Z, 30.0)
+    }
+
+    /// Checks what the renderer and the cut code rely on: cutter targets in range, at least one
+    /// plane per cutter, finite values, opacities in 0..=1. Returns a one-line description of the
+    /// first problem.
+    pub fn sanity_check(&self) -> Result<(), String> {
+        let Scene {
+            models,
+            cutters,
+            camera,
+            render,
+        } = self;
+        for (i, m) in models.iter().enumerate() {
+            if !(0.0..=1.0).contains(&m.opacity) {
+                return Err(format!("model {i} ({}): opacity {} is outside 0..1", m.name, m.opacity));
+            }
+            if m.color.iter().any(|c| !c.is_finite()) {
+                return Err(format!("model {i} ({}): colour is not finite", m.name));
+            }
+        }
+        for (i, c) in cutters.iter().enumerate() {
+            if c.target >= models.len() {
+                return Err(format!(
+                    "cutter {i}: target {} does not exist (the scene has {} models)",
+                    c.target,
+                    models.len()
+                ));
+            }
+            if c.planes.is_empty() {
+                return Err(format!("cutter {i}: has no planes"));
+            }
+            if c.planes.iter().flatten().any(|p| !p.is_finite()) {
+                return Err(format!("cutter {i}: a plane point is not finite"));
+            }
+            if let Some(t) = c.views.transparency
+                && !(0.0..=1.0).contains(&t)
+            {
+                return Err(format!("cutter {i}: transparency {t} is outside 0..1"));
+            }
+            for (what, v) in [("ribbons", c.views.ribbons), ("slices", c.views.slices)] {
+                if let Some(v) = v
+                    && (v.count == 0 || !(v.width.is_finite() && v.width > 0.0))
+                {
+                    return Err(format!(
+                        "cutter {i}: {what} need a count of at least 1 and a positive width (got {} and {})",
+                        v.count, v.width
+                    ));
+                }
+            }
+        }
+        if !(camera.eye.is_finite() && camera.target.is_finite() && camera.up.is_finite()) {
+            return Err("camera: eye, target or up is not finite".to_string());
+        }
+        if camera.eye == camera.target {
+            return Err("camera: eye and target are the same point".to_string());
+        }
+        if !(camera.fov_y_deg > 0.0 && camera.fov_y_deg < 180.0) {
+            return Err(format!("camera: fov_y_deg {} is outside (0, 180)", camera.fov_y_deg));
+        }
+        if render.background.iter().any(|c| !(0.0..=1.0).contains(c)) {
+            return Err("render: background components must lie in 0..1".to_string());
+        }
+        Ok(())
+    }
+}
+
+/// `count` colours that are easy to tell apart (golden-angle hues, moderate saturation), for
+/// models loaded without a colour.
+pub fn distinct_colors(count: usize) -> Vec<[f32; 3]> {
+    (0..count)
+        .map(|i| {
+            let hue = (0.08 + i as f32 * 0.381_966) % 1.0;
+            hsv_to_rgb(hue, 0.45, 0.9)
+        })
+        .collect()
+}
+
+fn hsv_to_rgb(h: f32, s: f32, v: f32) -> [f32; 3] {
+    let h6 = h * 6.0;
+    let sector = h6.floor() as i32 % 6;
+    let f = h6 - h6.floor();
+    let (p, q, t) = (v * (1.0 - s), v * (1.0 - s * f), v * (1.0 - s * (1.0 - f)));
+    match sector {
+        0 => [v, t, p],
+        1 => [q, v, p],
+        2 => [p, v, t],
+        3 => [p, q, v],
+        4 => [t, p, v],
+        _ => [v, p, q],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn triangle() -> Arc<Mesh> {
+        Arc::new(Mesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+            triangles: vec![[0, 1, 2]],
+        })
+    }
+
+    #[test]
+    fn sanity_check_rejects_bad_cutter_target() {
+        let mut scene = Scene::default();
+        scene.models.push(SceneModel::new("a", "a.obj", triangle(), [1.0, 0.0, 0.0]));
+        scene.cutters.push(SceneCutter {
+            target: 0,
+            kind: CutKind::Curving,
+            smooth: false,
+            planes: vec![[DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z]],
+            views: CutterViews::default(),
+        });
+        assert!(scene.sanity_check().is_ok());
+        scene.cutters[0].target = 3;
+        let err = scene.sanity_check().unwrap_err();
+        assert!(err.contains("target 3"), "{err}");
+    }
+
+    #[test]
+    fn distinct_colors_differ() {
+        let colors = distinct_colors(6);
+        for i in 0..6 {
+            for j in 0..i {
+                let d: f32 = (0..3).map(|k| (colors[i][k] - colors[j][k]).abs()).sum();
+                assert!(d > 0.1, "{i} and {j} look alike: {:?} {:?}", colors[i], colors[j]);
+            }
+        }
+    }
+}

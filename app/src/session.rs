@@ -1,0 +1,423 @@
+//! `cutaway-session/1`: the session file of `../shared/CONTRACT.md`, saved and loaded exactly.
+//!
+//! - Model paths are written relative to the session file's folder and resolved against it on
+//!   load (absolute paths are accepted and kept when no relative path exists).
+//! - Regions count as models, in file order: an entry without `region` stands for every region of
+//!   its file (each region becomes one model with the entry's colour, opacity, style and
+//!   visibility), which is what a hand-written session or another tool writes. Cutaway itself adds
+//!   `"region": k` (0-based) to every entry, so per-region colours survive a round trip.
+//! - Unknown fields are ignored, never an error; missing optional fields take their defaults
+//!   (colour: distinct colours, opacity 1, solid, visible, no cutters, a framing camera, default
+//!   render settings).
+//! - Saving is atomic: the JSON goes to a temporary file next to the target, then is renamed over
+//!   it, so a crash never leaves a half-written session.
+//! - Every error is one line naming the session file and the problem.
+
+use std::path::{Component, Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::Context as _;
+use cutter::Camera;
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use crate::scene::{
+    CutKind, CutterViews, ModelStyle, RenderSettings, Scene, SceneCutter, SceneModel, Stereo, SubCutterView,
+    distinct_colors,
+};
+
+/// The `format` value of this version.
+pub const FORMAT: &str = "cutaway-session/1";
+
+/// The file as it is on disk.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SessionFile {
+    pub format: String,
+    pub models: Vec<ModelEntry>,
+    #[serde(default)]
+    pub cutters: Vec<CutterEntry>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera: Option<CameraEntry>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub render: Option<RenderEntry>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ModelEntry {
+    /// Relative to the session file's folder (or absolute).
+    pub path: PathBuf,
+    /// Which region of the file (0-based, file order); absent: every region.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub region: Option<usize>,
+    /// sRGB, 0..=1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub color: Option<[f32; 3]>,
+    #[serde(default = "one")]
+    pub opacity: f32,
+    /// `solid` or `wireframe`.
+    #[serde(default = "solid")]
+    pub style: String,
+    #[serde(default = "yes")]
+    pub visible: bool,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CutterEntry {
+    pub target: usize,
+    /// `curving`, `straight` or `wedge`.
+    #[serde(default = "curving")]
+    pub kind: String,
+    #[serde(default)]
+    pub smooth: bool,
+    pub planes: Vec<[[f64; 3]; 4]>,
+    #[serde(default)]
+    pub views: ViewsEntry,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ViewsEntry {
+    #[serde(default = "yes")]
+    pub cut: bool,
+    #[serde(default)]
+    pub transparency: Option<f32>,
+    #[serde(default)]
+    pub ribbons: Option<SubCutterEntry>,
+    #[serde(default)]
+    pub slices: Option<SubCutterEntry>,
+}
+
+impl Default for ViewsEntry {
+    fn default() -> ViewsEntry {
+        ViewsEntry {
+            cut: true,
+            transparency: None,
+            ribbons: None,
+            slices: None,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SubCutterEntry {
+    pub count: u32,
+    pub width: f64,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CameraEntry {
+    pub eye: [f64; 3],
+    pub target: [f64; 3],
+    pub up: [f64; 3],
+    pub fov_y_deg: f64,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RenderEntry {
+    #[serde(default = "white")]
+    pub background: [f32; 4],
+    #[serde(default = "yes")]
+    pub antialias: bool,
+    /// `none` or `anaglyph`.
+    #[serde(default = "none")]
+    pub stereo: String,
+}
+
+fn one() -> f32 {
+    1.0
+}
+fn yes() -> bool {
+    true
+}
+fn solid() -> String {
+    "solid".to_string()
+}
+fn curving() -> String {
+    "curving".to_string()
+}
+fn none() -> String {
+    "none".to_string()
+}
+fn white() -> [f32; 4] {
+    [1.0, 1.0, 1.0, 1.0]
+}
+
+/// Parses a session's text (no file access). Errors say what is wrong and where (line, column).
+pub fn parse(text: &str) -> anyhow::Result<SessionFile> {
+    let file: SessionFile = serde_json::from_str(text).map_err(|e| anyhow::anyhow!("not a valid session: {e}"))?;
+    if file.format != FORMAT {
+        anyhow::bail!("format is {:?}, expected {FORMAT:?}", file.format);
+    }
+    Ok(file)
+}
+
+/// Reads the session at `path` and loads its models with [`crate::io::load_models`].
+pub fn load(path: &Path) -> anyhow::Result<Scene> {
+    load_with(path, crate::io::load_models)
+}
+
+/// Reads the session at `path`, loading each model file with `load_models` (a file or folder →
+/// its regions in file order). Errors name the session file (or the model file that failed).
+pub fn load_with(
+    path: &Path,
+    mut load_models: impl FnMut(&Path) -> anyhow::Result<Vec<crate::io::Model>>,
+) -> anyhow::Result<Scene> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("{}", path.display()))?;
+    let file = parse(&text).with_context(|| format!("{}", path.display()))?;
+    let folder = path.parent().unwrap_or(Path::new(""));
+    let scene = scene_from_file(&file, folder, &mut load_models).with_context(|| format!("{}", path.display()))?;
+    Ok(scene)
+}
+
+/// Builds the scene a parsed session describes; model paths are resolved against `folder`.
+pub fn scene_from_file(
+    file: &SessionFile,
+    folder: &Path,
+    load_models: &mut dyn FnMut(&Path) -> anyhow::Result<Vec<crate::io::Model>>,
+) -> anyhow::Result<Scene> {
+    let mut scene = Scene::default();
+    // Files loaded once, however many entries name them.
+    let mut loaded: Vec<(PathBuf, Vec<crate::io::Model>)> = Vec::new();
+    for (i, entry) in file.models.iter().enumerate() {
+        let source = folder.join(&entry.path);
+        let slot = match loaded.iter().position(|(p, _)| *p == source) {
+            Some(k) => k,
+            None => {
+                let models = load_models(&source)?;
+                loaded.push((source.clone(), models));
+                loaded.len() - 1
+            }
+        };
+        let regions = &loaded[slot].1;
+        let style = match entry.style.as_str() {
+            "solid" => ModelStyle::Solid,
+            "wireframe" => ModelStyle::Wireframe,
+            other => anyhow::bail!("model {i}: style {other:?} is neither \"solid\" nor \"wireframe\""),
+        };
+        let picked: Vec<(usize, &crate::io::Model)> = match entry.region {
+            Some(r) => match regions.get(r) {
+                Some(m) => vec![(r, m)],
+                None => anyhow::bail!(
+                    "model {i}: region {r} of {} does not exist (it has {} regions)",
+                    entry.path.display(),
+                    regions.len()
+                ),
+            },
+            None => regions.iter().enumerate().collect(),
+        };
+        for (region, model) in picked {
+            let color = entry
+                .color
+                .unwrap_or_else(|| distinct_colors(scene.models.len() + 1)[scene.models.len()]);
+            scene.models.push(SceneModel {
+                name: model.name.clone(),
+                source: model.source.clone(),
+                region,
+                mesh: Arc::new(model.mesh.clone()),
+                color,
+                opacity: entry.opacity,
+                style,
+                visible: entry.visible,
+            });
+        }
+    }
+    for (i, c) in file.cutters.iter().enumerate() {
+        let kind = CutKind::parse(&c.kind)
+            .ok_or_else(|| anyhow::anyhow!("cutter {i}: kind {:?} is not curving, straight or wedge", c.kind))?;
+        let sub = |v: Option<SubCutterEntry>| {
+            v.map(|v| SubCutterView {
+                count: v.count,
+                width: v.width,
+            })
+        };
+        scene.cutters.push(SceneCutter {
+            target: c.target,
+            kind,
+            smooth: c.smooth,
+            planes: c.planes.iter().map(|p| p.map(DVec3::from_array)).collect(),
+            views: CutterViews {
+                cut: c.views.cut,
+                transparency: c.views.transparency,
+                ribbons: sub(c.views.ribbons),
+                slices: sub(c.views.slices),
+            },
+        });
+    }
+    scene.camera = match file.camera {
+        Some(c) => Camera {
+            eye: DVec3::from_array(c.eye),
+            target: DVec3::from_array(c.target),
+            up: DVec3::from_array(c.up),
+            fov_y_deg: c.fov_y_deg,
+        },
+        None => scene.framing_camera(),
+    };
+    if let Some(r) = &file.render {
+        scene.render = RenderSettings {
+            background: r.background,
+            antialias: r.antialias,
+            stereo: Stereo::parse(&r.stereo)
+                .ok_or_else(|| anyhow::anyhow!("render: stereo {:?} is neither \"none\" nor \"anaglyph\"", r.stereo))?,
+        };
+    }
+    scene.sanity_check().map_err(anyhow::Error::msg)?;
+    Ok(scene)
+}
+
+/// The session file describing `scene`, model paths relative to `folder` (the session file's
+/// folder) where possible.
+pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
+    let models = scene
+        .models
+        .iter()
+        .map(|m| ModelEntry {
+            path: relative_path(&m.source, folder),
+            region: Some(m.region),
+            color: Some(m.color),
+            opacity: m.opacity,
+            style: match m.style {
+                ModelStyle::Solid => "solid",
+                ModelStyle::Wireframe => "wireframe",
+            }
+            .to_string(),
+            visible: m.visible,
+        })
+        .collect();
+    let cutters = scene
+        .cutters
+        .iter()
+        .map(|c| {
+            let sub = |v: Option<SubCutterView>| {
+                v.map(|v| SubCutterEntry {
+                    count: v.count,
+                    width: v.width,
+                })
+            };
+            CutterEntry {
+                target: c.target,
+                kind: c.kind.as_str().to_string(),
+                smooth: c.smooth,
+                planes: c.planes.iter().map(|p| p.map(|v| v.to_array())).collect(),
+                views: ViewsEntry {
+                    cut: c.views.cut,
+                    transparency: c.views.transparency,
+                    ribbons: sub(c.views.ribbons),
+                    slices: sub(c.views.slices),
+                },
+            }
+        })
+        .collect();
+    let c = scene.camera;
+    SessionFile {
+        format: FORMAT.to_string(),
+        models,
+        cutters,
+        camera: Some(CameraEntry {
+            eye: c.eye.to_array(),
+            target: c.target.to_array(),
+            up: c.up.to_array(),
+            fov_y_deg: c.fov_y_deg,
+        }),
+        render: Some(RenderEntry {
+            background: scene.render.background,
+            antialias: scene.render.antialias,
+            stereo: scene.render.stereo.as_str().to_string(),
+        }),
+    }
+}
+
+/// Saves `scene` to `path` atomically (temporary file in the same folder, then rename).
+pub fn save(path: &Path, scene: &Scene) -> anyhow::Result<()> {
+    let folder = path.parent().unwrap_or(Path::new(""));
+    let file = file_from_scene(scene, folder);
+    let mut text = serde_json::to_string_pretty(&file).with_context(|| format!("{}", path.display()))?;
+    text.push('\n');
+    write_atomic(path, text.as_bytes())
+}
+
+/// Writes `bytes` to `path` through a temporary file next to it and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    let name = path
+        .file_name()
+        .ok_or_else(|| anyhow::anyhow!("{}: not a file path", path.display()))?;
+    let mut tmp_name = std::ffi::OsString::from(".");
+    tmp_name.push(name);
+    tmp_name.push(format!(".{}.tmp", std::process::id()));
+    let tmp = path.with_file_name(tmp_name);
+    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(anyhow::anyhow!("{}: could not write: {e}", path.display()));
+    }
+    Ok(())
+}
+
+/// `path` relative to `folder` when both can be made absolute and share a root; else `path` made
+/// absolute (or as given).
+pub fn relative_path(path: &Path, folder: &Path) -> PathBuf {
+    let (Ok(path_abs), Ok(folder_abs)) = (std::path::absolute(path), std::path::absolute(folder)) else {
+        return path.to_path_buf();
+    };
+    let p: Vec<Component> = normalized(&path_abs);
+    let f: Vec<Component> = normalized(&folder_abs);
+    if p.first() != f.first() {
+        return path_abs;
+    }
+    let common = p.iter().zip(&f).take_while(|(a, b)| a == b).count();
+    let mut out = PathBuf::new();
+    for _ in common..f.len() {
+        out.push("..");
+    }
+    for c in &p[common..] {
+        out.push(c.as_os_str());
+    }
+    out
+}
+
+/// Components with `.` dropped and `..` folded into their parent.
+fn normalized(path: &Path) -> Vec<Component<'_>> {
+    let mut out: Vec<Component> = Vec::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir if matches!(out.last(), Some(Component::Normal(_))) => {
+                out.pop();
+            }
+            other => out.push(other),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn relative_paths() {
+        assert_eq!(relative_path(Path::new("/a/b/c.obj"), Path::new("/a/d")), PathBuf::from("../b/c.obj"));
+        assert_eq!(relative_path(Path::new("/a/b/c.obj"), Path::new("/a/b")), PathBuf::from("c.obj"));
+        assert_eq!(relative_path(Path::new("/a/./b/../c.obj"), Path::new("/a")), PathBuf::from("c.obj"));
+    }
+
+    #[test]
+    fn contract_example_parses_with_defaults() {
+        let text = r#"{
+          "format": "cutaway-session/1",
+          "models": [{"path": "knee.obj", "color": [0.9, 0.7, 0.6], "opacity": 1.0, "style": "solid", "visible": true}],
+          "cutters": [{"target": 0, "kind": "curving", "smooth": false,
+                       "planes": [[[0,0,0],[0,1,0],[0,1,-1],[0,0,-1]]],
+                       "views": {"cut": true, "transparency": 0.25, "ribbons": {"count": 5, "width": 2.0}, "slices": null}}],
+          "camera": {"eye": [0, -300, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 30},
+          "render": {"background": [1, 1, 1, 1], "antialias": true, "stereo": "none"},
+          "some_future_field": {"x": 1}
+        }"#;
+        let file = parse(text).unwrap();
+        assert_eq!(file.models[0].region, None);
+        assert_eq!(file.cutters[0].views.ribbons, Some(SubCutterEntry { count: 5, width: 2.0 }));
+        assert_eq!(file.cutters[0].views.transparency, Some(0.25));
+        let err = parse(&text.replace("cutaway-session/1", "cutaway-session/9")).unwrap_err();
+        assert!(format!("{err}").contains("cutaway-session/9"));
+        let err = parse("{\"format\": \"cutaway-session/1\", \"models\": [").unwrap_err();
+        assert!(format!("{err}").contains("line"), "{err}");
+    }
+}

@@ -1,0 +1,145 @@
+//! Mesh-core benchmarks: adjacency, regions, welding, the spatial index and its queries on
+//! geodesic spheres of about 1M and 2M triangles (generated here, never committed).
+//!
+//! Run: `CARGO_TARGET_DIR=/work/target-release cargo bench -p csg --bench index`.
+//! Target (DESIGN.md): adjacency + BVH for 1M triangles in at most 0.5 s on the 2-core machine.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use csg::adjacency::EdgeAdjacency;
+use csg::regions::Regions;
+use csg::weld::weld_soup;
+use csg::{Aabb, DVec3, Mesh, SpatialIndex, testkit};
+
+/// Deterministic SplitMix64 stream (no RNG dependency for a bench).
+struct SplitMix(u64);
+
+impl SplitMix {
+    fn next_f64(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in the cube `[-r, r]³`.
+    fn in_cube(&mut self, r: f64) -> DVec3 {
+        DVec3::new(self.next_f64(), self.next_f64(), self.next_f64()) * (2.0 * r) - DVec3::splat(r)
+    }
+}
+
+/// (label, geodesic frequency): 20·f² triangles.
+const SIZES: [(&str, u32); 2] = [("1M", 224), ("2M", 316)];
+
+fn sphere(frequency: u32) -> Mesh {
+    let mesh = testkit::geodesic_sphere(frequency, 1.0);
+    mesh.sanity_check().expect("generated sphere is valid");
+    mesh
+}
+
+fn build_benches(c: &mut Criterion) {
+    let mut group = c.benchmark_group("build");
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(8));
+    for (label, frequency) in SIZES {
+        let mesh = sphere(frequency);
+        let soup = testkit::to_soup(&mesh);
+        let adjacency = EdgeAdjacency::build(&mesh);
+        println!(
+            "{label}: {} triangles, {} vertices",
+            mesh.triangle_count(),
+            mesh.vertex_count()
+        );
+        group.bench_with_input(BenchmarkId::new("adjacency", label), &mesh, |b, m| {
+            b.iter(|| EdgeAdjacency::build(black_box(m)))
+        });
+        group.bench_with_input(BenchmarkId::new("regions", label), &mesh, |b, m| {
+            b.iter(|| Regions::build(black_box(m), &adjacency))
+        });
+        group.bench_with_input(BenchmarkId::new("weld_soup", label), &soup, |b, s| {
+            b.iter(|| weld_soup(black_box(s)))
+        });
+        group.bench_with_input(BenchmarkId::new("bvh", label), &mesh, |b, m| {
+            b.iter(|| SpatialIndex::build(black_box(m)))
+        });
+        group.bench_with_input(BenchmarkId::new("adjacency+bvh", label), &mesh, |b, m| {
+            b.iter(|| (EdgeAdjacency::build(black_box(m)), SpatialIndex::build(m)))
+        });
+        group.bench_with_input(BenchmarkId::new("report", label), &mesh, |b, m| {
+            b.iter(|| black_box(m).report())
+        });
+    }
+    group.finish();
+}
+
+fn query_benches(c: &mut Criterion) {
+    let mut group = c.benchmark_group("query");
+    for (label, frequency) in SIZES {
+        let mesh = sphere(frequency);
+        let index = SpatialIndex::build(&mesh);
+        let mut rng = SplitMix(7);
+        // Rays from outside through a random point near the centre: each hits the sphere.
+        let rays: Vec<(DVec3, DVec3)> = (0..4096)
+            .map(|_| {
+                let origin = rng.in_cube(1.0).normalize_or(DVec3::X) * 3.0;
+                let target = rng.in_cube(0.5);
+                (origin, target - origin)
+            })
+            .collect();
+        let points: Vec<DVec3> = (0..4096).map(|_| rng.in_cube(1.5)).collect();
+        let near_points: Vec<DVec3> = (0..4096)
+            .map(|_| rng.in_cube(1.0).normalize_or(DVec3::X) * 1.001)
+            .collect();
+        let mut i = 0;
+        group.bench_function(BenchmarkId::new("ray_cast", label), |b| {
+            b.iter(|| {
+                i = (i + 1) % rays.len();
+                let (o, d) = rays[i];
+                index.ray_cast(&mesh, o, d, f64::INFINITY)
+            })
+        });
+        group.bench_function(BenchmarkId::new("closest_point", label), |b| {
+            b.iter(|| {
+                i = (i + 1) % points.len();
+                index.closest_point(&mesh, points[i])
+            })
+        });
+        group.bench_function(BenchmarkId::new("closest_point_near_surface", label), |b| {
+            b.iter(|| {
+                i = (i + 1) % near_points.len();
+                index.closest_point(&mesh, near_points[i])
+            })
+        });
+        group.bench_function(BenchmarkId::new("closest_point_within_0.01", label), |b| {
+            b.iter(|| {
+                i = (i + 1) % points.len();
+                index.closest_point_within(&mesh, points[i], 0.01)
+            })
+        });
+        let mut out = Vec::new();
+        group.bench_function(BenchmarkId::new("faces_in_box_0.02", label), |b| {
+            b.iter(|| {
+                i = (i + 1) % near_points.len();
+                out.clear();
+                let p = near_points[i];
+                index.faces_in_box(
+                    &Aabb {
+                        min: p - DVec3::splat(0.01),
+                        max: p + DVec3::splat(0.01),
+                    },
+                    &mut out,
+                );
+                out.len()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, build_benches, query_benches);
+criterion_main!(benches);

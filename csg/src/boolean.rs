@@ -1,0 +1,807 @@
+//! The local exact boolean: cut a closed cutter out of a cached target.
+//!
+//! # Robustness contract
+//!
+//! **Input.** The target is any [`Mesh`] that passed [`Mesh::sanity_check`], indexed once with
+//! [`TargetIndex::build`]: closed or open, manifold or not, several regions, degenerate faces
+//! allowed. The cutter must be closed, edge-manifold, consistently oriented outward (positive
+//! volume), free of self-intersections (sub-cutters of [`subtract_many`] must also be disjoint
+//! and not nested), finite, and lie within four target sizes of the target's centre. Anything
+//! else is a typed [`CutError`]; a cut never panics and never modifies the target.
+//!
+//! **Decisions.** Coordinates are quantized once to an integer lattice (steps of about
+//! 2⁻²⁷ × the target's size, see [`crate::lattice`]); every topological decision is an exact
+//! integer predicate of [`crate::exact`], with one tie-break rule for all degeneracies: the
+//! cutter is symbolically translated by δ = (ε, ε², ε³) (Simulation of Simplicity). No epsilon
+//! enters anywhere.
+//!
+//! **Output** ([`CutResult`]):
+//! - **kept** (target outside the cutter, as a delta against the target: `removed_faces` plus
+//!   `kept_new_faces`), **removed** (target inside the cutter), **walls** (cutter inside the
+//!   target, facing out of kept), **contours**, and the provenance of every output face.
+//! - Every vertex the cut did not create keeps its exact input coordinates (same bits); the new
+//!   contour vertices are rounded once from their exact lattice value. Each contour vertex has
+//!   one id, shared by kept, removed, walls and contours, so they weld bit for bit.
+//! - For a closed, edge-manifold target: kept + walls and removed + reversed walls are each
+//!   closed, edge-manifold and consistently oriented, without T-junctions; kept and removed
+//!   together are exactly the target's faces, split along the contour (so their areas add up to
+//!   the target's area, and the volumes add up to the target's up to the rounding of the new
+//!   vertices); contours are closed loops. "Inside the target" uses the even-odd rule over all
+//!   regions, so nested regions (a bone inside skin) get walls only where the parity is odd.
+//! - Open or non-manifold targets: kept and removed are exact as above (they are classified
+//!   relative to the closed cutter). Walls are split along the contour wherever it runs through
+//!   a cutter face as a simple path or loop; contour pieces that end or branch inside a cutter
+//!   face (target boundary or non-manifold edge) do not split it. The seed status of each cutter
+//!   component comes from the target's generalized winding number (≥ ½ is inside), which is a
+//!   classifier, not an exact test, and costs O(N) per cutter component.
+//! - Target faces with a repeated vertex index have no area and no edges of their own: they are
+//!   never split; if one is crossed it is dropped from both kept and removed.
+//! - Geometry after rounding: new vertices move by at most half a lattice step plus one `f64`
+//!   rounding, so tiny inversions of slivers next to the contour are possible, never topological
+//!   defects.
+//!
+//! **Cost.** Only faces whose boxes overlap cutter faces are examined; untouched faces are
+//! classified by flood fill from the contour (inside the cutter only, so output-sensitive) and at
+//! most one exact inside test per untouched region whose box overlaps the cutter. No per-cut
+//! allocation or clear is proportional to the target size.
+//!
+//! # Stages
+//! 1. Validate and quantize the cutter ([`prepare_cutter`]). Early-out: boxes disjoint.
+//! 2. Exact intersection ([`crate::intersect`]).
+//! 3. Cutter vertex statuses: one inside test per cutter component, then crossing parity.
+//! 4. Split touched target faces and cutter faces ([`crate::split`]); statuses of the pieces.
+//! 5. Flood fill of untouched target faces inside the cutter; untouched regions.
+//! 6. Assemble the output and the contours ([`crate::contour`]).
+
+use glam::DVec3;
+
+use crate::adjacency::NO_EDGE;
+use crate::classify;
+use crate::contour;
+use crate::exact::{self, HPoint, LPoint};
+use crate::intersect::{self, FxMap, PointKey, PreparedCutter};
+use crate::mesh::{Mesh, MeshError};
+use crate::output::{CutResult, CutStats, Part, Provenance};
+use crate::split::{self, FaceInput, Piece, PieceStatus, Vx, OUT, UNKNOWN};
+use crate::target::{IBox, TargetIndex};
+
+pub use crate::target::TargetIndex as Target;
+
+/// Why a cut was refused. Each variant names the sub-cutter and what to fix.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CutError {
+    /// The cutter has no triangles.
+    #[error("cutter {sub_cutter} has no triangles")]
+    EmptyCutter { sub_cutter: usize },
+    /// Bad indices or a non-finite coordinate.
+    #[error("cutter {sub_cutter}: {source}")]
+    InvalidMesh {
+        sub_cutter: usize,
+        #[source]
+        source: MeshError,
+    },
+    /// A cutter vertex is more than four target sizes from the target's centre.
+    #[error(
+        "cutter {sub_cutter}: vertex {vertex} at {position:?} is too far from the target (more than four target sizes from its centre)"
+    )]
+    OutOfRange {
+        sub_cutter: usize,
+        vertex: usize,
+        position: [f64; 3],
+    },
+    /// A triangle uses one vertex twice.
+    #[error("cutter {sub_cutter}: triangle {triangle} uses a vertex twice")]
+    DegenerateTriangle { sub_cutter: usize, triangle: usize },
+    /// An edge is not shared by exactly two triangles: the cutter is open (1) or non-manifold (3+).
+    #[error(
+        "cutter {sub_cutter} is not closed: edge ({a}, {b}) has {faces} triangle(s); a cutter must be a closed surface (every edge in exactly two triangles)"
+    )]
+    NotClosed {
+        sub_cutter: usize,
+        a: u32,
+        b: u32,
+        faces: usize,
+    },
+    /// The two triangles of an edge traverse it in the same direction.
+    #[error(
+        "cutter {sub_cutter} is not consistently oriented: both triangles of edge ({a}, {b}) run the same way"
+    )]
+    NotOriented { sub_cutter: usize, a: u32, b: u32 },
+    /// Negative or zero enclosed volume (inward-facing or flat).
+    #[error(
+        "cutter {sub_cutter} encloses no positive volume (its triangles face inward, or it is flat); reverse its triangles or fix its shape"
+    )]
+    NotPositive { sub_cutter: usize },
+    /// Two cutter triangles (of one sub-cutter, or of two sub-cutters) intersect.
+    #[error(
+        "cutter triangles {first} and {second} intersect (sub-cutters {first_sub} and {second_sub}); a cutter must not self-intersect and sub-cutters must be disjoint"
+    )]
+    SelfIntersecting {
+        first: usize,
+        second: usize,
+        first_sub: usize,
+        second_sub: usize,
+    },
+    /// An internal consistency check failed (a bug; the target is untouched).
+    #[error("internal error in the boolean: {0}")]
+    Internal(String),
+}
+
+/// Cuts `cutter` out of the target (see the robustness contract in the module doc).
+pub fn subtract(target: &TargetIndex, cutter: &Mesh) -> Result<CutResult, CutError> {
+    subtract_many(target, &[cutter])
+}
+
+/// Cuts several disjoint sub-cutters (ribbons, slices) at once. Every output face carries the
+/// id of its sub-cutter (`sub_cutter` of [`Part`] and [`crate::output::Contour`]); use
+/// [`Part::of_sub_cutter`] for one sub-cutter's removed piece or walls.
+pub fn subtract_many(target: &TargetIndex, cutters: &[&Mesh]) -> Result<CutResult, CutError> {
+    let cutter = prepare_cutter(target, cutters)?;
+    run(target, &cutter)
+}
+
+/// Stage 1: validation and quantization of the cutter(s).
+pub(crate) fn prepare_cutter(
+    target: &TargetIndex,
+    cutters: &[&Mesh],
+) -> Result<PreparedCutter, CutError> {
+    let mut positions = Vec::new();
+    let mut lpoints = Vec::new();
+    let mut triangles = Vec::new();
+    let mut face_component = Vec::new();
+    let mut sub_of_vertex = Vec::new();
+    for (k, m) in cutters.iter().enumerate() {
+        m.sanity_check().map_err(|source| CutError::InvalidMesh {
+            sub_cutter: k,
+            source,
+        })?;
+        if m.triangles.is_empty() {
+            return Err(CutError::EmptyCutter { sub_cutter: k });
+        }
+        let base = positions.len() as u32;
+        for (i, &p) in m.positions.iter().enumerate() {
+            let q = target.lattice.quantize(p).ok_or(CutError::OutOfRange {
+                sub_cutter: k,
+                vertex: i,
+                position: p.to_array(),
+            })?;
+            positions.push(p);
+            lpoints.push(q);
+            sub_of_vertex.push(k as u32);
+        }
+        for (i, t) in m.triangles.iter().enumerate() {
+            if t[0] == t[1] || t[1] == t[2] || t[2] == t[0] {
+                return Err(CutError::DegenerateTriangle {
+                    sub_cutter: k,
+                    triangle: i,
+                });
+            }
+            triangles.push(t.map(|v| v + base));
+            face_component.push(k as u32);
+        }
+    }
+    // Edges: every undirected edge in exactly two faces, traversed in opposite directions.
+    let mut edge_map: FxMap<(u32, u32), u32> = Default::default();
+    let mut edges: Vec<[u32; 2]> = Vec::new();
+    let mut edge_faces: Vec<[u32; 2]> = Vec::new();
+    let mut edge_dirs: Vec<[bool; 2]> = Vec::new();
+    let mut edge_count: Vec<usize> = Vec::new();
+    let mut tri_edges = Vec::with_capacity(triangles.len());
+    for (f, t) in triangles.iter().enumerate() {
+        let mut te = [0u32; 3];
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let key = (a.min(b), a.max(b));
+            let id = *edge_map.entry(key).or_insert_with(|| {
+                edges.push([key.0, key.1]);
+                edge_faces.push([u32::MAX; 2]);
+                edge_dirs.push([false; 2]);
+                edge_count.push(0);
+                (edges.len() - 1) as u32
+            });
+            let c = edge_count[id as usize];
+            if c < 2 {
+                edge_faces[id as usize][c] = f as u32;
+                edge_dirs[id as usize][c] = a < b;
+            }
+            edge_count[id as usize] += 1;
+            te[k] = id;
+        }
+        tri_edges.push(te);
+    }
+    for (e, &c) in edge_count.iter().enumerate() {
+        let [a, b] = edges[e];
+        let sub_cutter = sub_of_vertex[a as usize] as usize;
+        let local = |v: u32| v - first_vertex(cutters, sub_cutter);
+        if c != 2 {
+            return Err(CutError::NotClosed {
+                sub_cutter,
+                a: local(a),
+                b: local(b),
+                faces: c,
+            });
+        }
+        if edge_dirs[e][0] == edge_dirs[e][1] {
+            return Err(CutError::NotOriented {
+                sub_cutter,
+                a: local(a),
+                b: local(b),
+            });
+        }
+    }
+    let mut face_boxes = Vec::with_capacity(triangles.len());
+    let mut bounds = IBox::EMPTY;
+    for t in &triangles {
+        let b = IBox::of_triangle(t.map(|v| &lpoints[v as usize]));
+        bounds = bounds.union(&b);
+        face_boxes.push(b);
+    }
+    let cutter = PreparedCutter {
+        positions,
+        lpoints,
+        triangles,
+        edges,
+        tri_edges,
+        edge_faces,
+        face_component,
+        components: cutters.len() as u32,
+        face_boxes,
+        bounds,
+    };
+    // Orientation: positive exact volume per sub-cutter.
+    let mut vol = vec![0i128; cutters.len()];
+    let o = [0i64; 3];
+    for (f, t) in cutter.triangles.iter().enumerate() {
+        let [a, b, c] = t.map(|v| &cutter.lpoints[v as usize]);
+        let k = cutter.face_component[f] as usize;
+        vol[k] = vol[k].saturating_add(exact::orient3d(&o, a, b, c));
+    }
+    if let Some(k) = vol.iter().position(|&v| v <= 0) {
+        return Err(CutError::NotPositive { sub_cutter: k });
+    }
+    check_self_intersections(&cutter)?;
+    Ok(cutter)
+}
+
+fn first_vertex(cutters: &[&Mesh], k: usize) -> u32 {
+    cutters[..k].iter().map(|m| m.positions.len() as u32).sum()
+}
+
+/// Exact self-intersection check of the cutter (touching counts). Triangles sharing an edge are
+/// not compared; triangles sharing one vertex are compared through their opposite edges.
+fn check_self_intersections(cutter: &PreparedCutter) -> Result<(), CutError> {
+    let bvh = intersect::cutter_bvh(cutter);
+    let mut found: Option<(usize, usize)> = None;
+    for f1 in 0..cutter.triangles.len() {
+        if found.is_some() {
+            break;
+        }
+        let t1 = cutter.triangles[f1];
+        bvh.query(&cutter.face_boxes[f1], |f2| {
+            let f2 = f2 as usize;
+            if f2 <= f1 || found.is_some() {
+                return;
+            }
+            let t2 = cutter.triangles[f2];
+            let shared: Vec<u32> = t1.iter().copied().filter(|v| t2.contains(v)).collect();
+            if shared.len() >= 2 {
+                return;
+            }
+            let p1 = t1.map(|v| &cutter.lpoints[v as usize]);
+            let p2 = t2.map(|v| &cutter.lpoints[v as usize]);
+            let hit = |ta: &[u32; 3], pa: &[&LPoint; 3], pb: &[&LPoint; 3]| {
+                (0..3).any(|k| {
+                    let (i, j) = (k, (k + 1) % 3);
+                    if shared.len() == 1 && (ta[i] == shared[0] || ta[j] == shared[0]) {
+                        return false;
+                    }
+                    exact::segment_meets_triangle(pa[i], pa[j], pb[0], pb[1], pb[2])
+                })
+            };
+            if hit(&t1, &p1, &p2) || hit(&t2, &p2, &p1) {
+                found = Some((f1, f2));
+            }
+        });
+    }
+    match found {
+        Some((a, b)) => Err(CutError::SelfIntersecting {
+            first: a,
+            second: b,
+            first_sub: cutter.face_component[a] as usize,
+            second_sub: cutter.face_component[b] as usize,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Stages 2–6 on a validated cutter.
+pub(crate) fn run(target: &TargetIndex, cutter: &PreparedCutter) -> Result<CutResult, CutError> {
+    let mesh = &target.mesh;
+    let nt = mesh.positions.len() as u32;
+    let mut stats = CutStats::default();
+    let mut result = CutResult {
+        target_vertex_count: nt as usize,
+        ..Default::default()
+    };
+    // Stage 1b: early-out when the boxes are disjoint.
+    if !cutter.bounds.overlaps(&target.bounds) {
+        result.stats = stats;
+        return Ok(result);
+    }
+    // Stage 2: intersections.
+    let isect = intersect::intersect(target, cutter).map_err(CutError::Internal)?;
+    stats.candidate_pairs = isect.candidate_pairs;
+    let face_of_point = |p: u32| -> u32 {
+        match isect.keys[p as usize] {
+            PointKey::Ef { face, .. } => face,
+            PointKey::Fe { face, .. } => face,
+        }
+    };
+
+    // Stage 3: cutter vertex statuses (true = inside the target).
+    let nv = cutter.positions.len();
+    let mut vertex_edges: Vec<Vec<u32>> = vec![Vec::new(); nv];
+    for (g, e) in cutter.edges.iter().enumerate() {
+        vertex_edges[e[0] as usize].push(g as u32);
+        vertex_edges[e[1] as usize].push(g as u32);
+    }
+    let mut cutter_in: Vec<Option<bool>> = vec![None; nv];
+    let closed = target.is_closed();
+    for seed in 0..nv {
+        if cutter_in[seed].is_some() {
+            continue;
+        }
+        stats.inside_tests += 1;
+        let s = classify::cutter_point_inside_target(
+            target,
+            &cutter.lpoints[seed],
+            cutter.positions[seed],
+        );
+        cutter_in[seed] = Some(s);
+        let mut stack = vec![seed];
+        while let Some(v) = stack.pop() {
+            let sv = cutter_in[v].unwrap_or(false);
+            for &g in &vertex_edges[v] {
+                let [a, b] = cutter.edges[g as usize];
+                let other = if a as usize == v { b } else { a } as usize;
+                let so = sv ^ (isect.cutter_edges[g as usize].len() % 2 == 1);
+                match cutter_in[other] {
+                    None => {
+                        cutter_in[other] = Some(so);
+                        stack.push(other);
+                    }
+                    Some(x) if x != so && closed => {
+                        return Err(CutError::Internal(format!(
+                            "crossing parity disagrees around cutter vertex {other}"
+                        )));
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+    let cutter_in: Vec<bool> = cutter_in.into_iter().map(|s| s.unwrap_or(false)).collect();
+
+    // Stage 4a: split the touched target faces.
+    let target_corner = |v: Vx| match v {
+        Vx::T(i) => HPoint::target_vertex(&target.lpoints[i as usize]),
+        Vx::C(i) => HPoint::cutter_vertex(&cutter.lpoints[i as usize]),
+        Vx::X(_) => unreachable_point(),
+    };
+    let mut target_pieces: Vec<(u32, Vec<Piece>)> = Vec::with_capacity(isect.target_order.len());
+    for &t in &isect.target_order {
+        let tri = mesh.triangles[t as usize];
+        let mut boundary = Vec::with_capacity(8);
+        let mut arc_status = Vec::with_capacity(8);
+        for k in 0..3 {
+            boundary.push(Vx::T(tri[k]));
+            arc_status.push(UNKNOWN);
+            let e = target.adjacency.triangle_edges[t as usize][k];
+            if e == NO_EDGE {
+                continue;
+            }
+            let Some(list) = isect.target_edges.get(&e) else {
+                continue;
+            };
+            let forward = target.adjacency.edges[e as usize][0] == tri[k];
+            let mut push = |x: &intersect::Crossing| {
+                let u_side = if forward { x.lo_side } else { -x.lo_side };
+                let f = face_of_point(x.point);
+                boundary.push(Vx::X(x.point));
+                arc_status.push(if u_side < 0 {
+                    1 + cutter.face_component[f as usize]
+                } else {
+                    OUT
+                });
+            };
+            if forward {
+                list.iter().for_each(&mut push);
+            } else {
+                list.iter().rev().for_each(&mut push);
+            }
+        }
+        let segments = isect.target_faces[&t]
+            .iter()
+            .map(|&s| {
+                let seg = &isect.segments[s as usize];
+                (seg.a, seg.b, 1 + cutter.face_component[seg.f as usize])
+            })
+            .collect();
+        let [u, v, w] = target.face_points(t);
+        let input = FaceInput {
+            boundary,
+            arc_status,
+            segments,
+            points: &isect.points,
+            corner_point: &target_corner,
+            projection: exact::projection(&exact::normal(u, v, w)),
+        };
+        let split = split::split_face(&input)
+            .map_err(|e| CutError::Internal(format!("target face {t}: {e}")))?;
+        stats.triangulation_fallbacks += split.fallbacks;
+        target_pieces.push((t, split.pieces));
+    }
+    stats.touched_target_faces = target_pieces.len();
+
+    // Stage 4b: statuses of the target pieces.
+    let mut vertex_status: FxMap<u32, u32> = Default::default();
+    let mut statuses: Vec<Vec<u32>> = Vec::with_capacity(target_pieces.len());
+    for (_, pieces) in &target_pieces {
+        let mut st = vec![UNKNOWN; pieces.len()];
+        for (i, p) in pieces.iter().enumerate() {
+            if let PieceStatus::Known(s) = p.status {
+                st[i] = s;
+                for &c in &p.corners {
+                    vertex_status.insert(c, s);
+                }
+            }
+        }
+        statuses.push(st);
+    }
+    for (fi, (_, pieces)) in target_pieces.iter().enumerate() {
+        for (i, p) in pieces.iter().enumerate() {
+            if matches!(p.status, PieceStatus::Default) && !p.corners.is_empty() {
+                let known = p.corners.iter().find_map(|c| vertex_status.get(c).copied());
+                let s = match known {
+                    Some(s) => s,
+                    None => {
+                        stats.inside_tests += 1;
+                        classify::target_point_status(
+                            cutter,
+                            &target.lpoints[p.corners[0] as usize],
+                        )
+                    }
+                };
+                statuses[fi][i] = s;
+                for &c in &p.corners {
+                    vertex_status.insert(c, s);
+                }
+            }
+        }
+        resolve_loops(pieces, &mut statuses[fi])?;
+    }
+
+    // Stage 4c: split the touched cutter faces.
+    let mut wall_tris: Vec<([Vx; 3], u32)> = Vec::new();
+    for f in 0..cutter.triangles.len() as u32 {
+        let tri = cutter.triangles[f as usize];
+        let seg_ids = &isect.cutter_faces[f as usize];
+        if seg_ids.is_empty() {
+            if cutter_in[tri[0] as usize] {
+                wall_tris.push(([Vx::C(tri[0]), Vx::C(tri[1]), Vx::C(tri[2])], f));
+            }
+            continue;
+        }
+        stats.touched_cutter_faces += 1;
+        let mut boundary = Vec::with_capacity(16);
+        let mut arc_status = Vec::with_capacity(16);
+        let mut on_boundary: FxMap<u32, ()> = Default::default();
+        for k in 0..3 {
+            boundary.push(Vx::C(tri[k]));
+            arc_status.push(UNKNOWN);
+            let g = cutter.tri_edges[f as usize][k];
+            let list = &isect.cutter_edges[g as usize];
+            let forward = cutter.edges[g as usize][0] == tri[k];
+            let start_in = cutter_in[tri[k] as usize];
+            let n = list.len();
+            for i in 0..n {
+                let x = if forward { list[i] } else { list[n - 1 - i] };
+                boundary.push(Vx::X(x.point));
+                on_boundary.insert(x.point, ());
+                // The arc before the i-th crossing has the start's status flipped i times.
+                arc_status.push(u32::from(start_in ^ (i % 2 == 1)));
+            }
+        }
+        let mut segments: Vec<(u32, u32, u32)> = seg_ids
+            .iter()
+            .map(|&s| {
+                let seg = &isect.segments[s as usize];
+                (seg.a, seg.b, 1)
+            })
+            .collect();
+        prune_segments(&mut segments, &on_boundary);
+        let [a, b, c] = cutter.face_points(f);
+        let input = FaceInput {
+            boundary,
+            arc_status,
+            segments,
+            points: &isect.points,
+            corner_point: &target_corner,
+            projection: exact::projection(&exact::normal(a, b, c)),
+        };
+        let split = split::split_face(&input)
+            .map_err(|e| CutError::Internal(format!("cutter face {f}: {e}")))?;
+        stats.triangulation_fallbacks += split.fallbacks;
+        let mut st = vec![UNKNOWN; split.pieces.len()];
+        for (i, p) in split.pieces.iter().enumerate() {
+            match p.status {
+                PieceStatus::Known(s) => st[i] = s,
+                PieceStatus::Default => st[i] = u32::from(cutter_in[tri[0] as usize]),
+                PieceStatus::LoopOf { .. } => {}
+            }
+        }
+        resolve_loops(&split.pieces, &mut st)?;
+        for (p, &s) in split.pieces.iter().zip(&st) {
+            if s != OUT {
+                for t in &p.triangles {
+                    wall_tris.push((*t, f));
+                }
+            }
+        }
+    }
+
+    // Stage 5: flood fill of untouched target faces inside the cutter.
+    let touched: FxMap<u32, ()> = isect.target_order.iter().map(|&t| (t, ())).collect();
+    let mut flooded: FxMap<u32, u32> = Default::default();
+    let mut stack: Vec<(u32, u32)> = Vec::new();
+    for &t in &isect.target_order {
+        let tri = mesh.triangles[t as usize];
+        for k in 0..3 {
+            let e = target.adjacency.triangle_edges[t as usize][k];
+            if e == NO_EDGE || isect.target_edges.contains_key(&e) {
+                continue;
+            }
+            let s = vertex_status.get(&tri[k]).copied().unwrap_or(UNKNOWN);
+            if s == OUT || s == UNKNOWN {
+                continue;
+            }
+            for &t2 in target.adjacency.faces_of_edge(e) {
+                if !touched.contains_key(&t2) && !flooded.contains_key(&t2) {
+                    flooded.insert(t2, s);
+                    stack.push((t2, s));
+                }
+            }
+        }
+    }
+    // Untouched regions whose box overlaps the cutter: one inside test each.
+    let mut touched_regions: FxMap<u32, ()> = Default::default();
+    for &t in &isect.target_order {
+        touched_regions.insert(target.regions.region_of_triangle[t as usize], ());
+    }
+    for r in 0..target.regions.count {
+        if touched_regions.contains_key(&(r as u32))
+            || !target.region_boxes[r].overlaps(&cutter.bounds)
+        {
+            continue;
+        }
+        let t0 = target.region_first_face[r];
+        if t0 == u32::MAX || flooded.contains_key(&t0) {
+            continue;
+        }
+        stats.inside_tests += 1;
+        let v0 = mesh.triangles[t0 as usize][0];
+        let s = classify::target_point_status(cutter, &target.lpoints[v0 as usize]);
+        if s != OUT {
+            flooded.insert(t0, s);
+            stack.push((t0, s));
+        }
+    }
+    let mut flood_order: Vec<(u32, u32)> = Vec::new();
+    while let Some((t, s)) = stack.pop() {
+        flood_order.push((t, s));
+        for &e in &target.adjacency.triangle_edges[t as usize] {
+            if e == NO_EDGE {
+                continue;
+            }
+            for &t2 in target.adjacency.faces_of_edge(e) {
+                if !touched.contains_key(&t2) && !flooded.contains_key(&t2) {
+                    flooded.insert(t2, s);
+                    stack.push((t2, s));
+                }
+            }
+        }
+    }
+
+    // Stage 6: output.
+    // A new vertex whose exact limit is the lattice point of one of its defining input vertices
+    // (degenerate contact at a vertex) takes that vertex's exact input position, so that it
+    // welds with it; otherwise it is its exact value rounded once.
+    result.new_positions = isect
+        .points
+        .iter()
+        .zip(&isect.keys)
+        .map(|(h, key)| {
+            if let Some(l) = h.limit_lattice_point() {
+                let (tv, cv): (Vec<u32>, Vec<u32>) = match *key {
+                    PointKey::Ef { edge, face } => (
+                        target.adjacency.edges[edge as usize].to_vec(),
+                        cutter.triangles[face as usize].to_vec(),
+                    ),
+                    PointKey::Fe { edge, face } => (
+                        mesh.triangles[face as usize].to_vec(),
+                        cutter.edges[edge as usize].to_vec(),
+                    ),
+                };
+                if let Some(&v) = tv.iter().find(|&&v| target.lpoints[v as usize] == l) {
+                    return mesh.positions[v as usize];
+                }
+                if let Some(&v) = cv.iter().find(|&&v| cutter.lpoints[v as usize] == l) {
+                    return cutter.positions[v as usize];
+                }
+            }
+            target.lattice.to_world(h.limit())
+        })
+        .collect();
+    let new_pos = &result.new_positions;
+    let mut removed = PartBuilder::default();
+    // Kept ids: a new vertex whose rounded position equals (bit for bit) a corner of a touched
+    // face or an earlier new vertex takes that id, and triangles that collapse are dropped
+    // (they have no area; dropping them is an edge collapse, which keeps the surface closed).
+    let mut kept_ids: FxMap<[u64; 3], u32> = Default::default();
+    let bits = |p: DVec3| p.to_array().map(|c| (c + 0.0).to_bits());
+    for &t in &isect.target_order {
+        for v in mesh.triangles[t as usize] {
+            kept_ids.entry(bits(mesh.positions[v as usize])).or_insert(v);
+        }
+    }
+    for (fi, (t, pieces)) in target_pieces.iter().enumerate() {
+        for (p, &s) in pieces.iter().zip(&statuses[fi]) {
+            for tri in &p.triangles {
+                if s == OUT {
+                    let ids = tri.map(|v| match v {
+                        Vx::T(i) => i,
+                        Vx::X(x) => *kept_ids.entry(bits(new_pos[x as usize])).or_insert(nt + x),
+                        Vx::C(_) => u32::MAX,
+                    });
+                    if ids[0] == ids[1] || ids[1] == ids[2] || ids[2] == ids[0] {
+                        continue;
+                    }
+                    result.kept_new_faces.push(ids);
+                    result.kept_new_provenance.push(*t);
+                } else {
+                    let ids = tri.map(|v| removed.vertex(v, &mesh.positions, &cutter.positions, new_pos));
+                    removed.push(ids, Provenance::Target(*t), s - 1);
+                }
+            }
+        }
+    }
+    flood_order.sort_unstable();
+    for &(t, s) in &flood_order {
+        let tri = mesh.triangles[t as usize].map(Vx::T);
+        let ids = tri.map(|v| removed.vertex(v, &mesh.positions, &cutter.positions, new_pos));
+        removed.push(ids, Provenance::Target(t), s - 1);
+    }
+    let mut walls = PartBuilder::default();
+    for (tri, f) in &wall_tris {
+        // Reversed: walls face out of kept (into the cutter).
+        let ids = [tri[0], tri[2], tri[1]]
+            .map(|v| walls.vertex(v, &mesh.positions, &cutter.positions, new_pos));
+        walls.push(ids, Provenance::Cutter(*f), cutter.face_component[*f as usize]);
+    }
+    let mut removed_faces: Vec<u32> = isect.target_order.clone();
+    removed_faces.extend(flood_order.iter().map(|&(t, _)| t));
+    removed_faces.sort_unstable();
+    result.removed_faces = removed_faces;
+    result.removed = removed.finish();
+    result.walls = walls.finish();
+    result.contours = contour::chain(&isect.segments, new_pos, |s| {
+        cutter.face_component[isect.segments[s].f as usize]
+    });
+    result.stats = stats;
+    Ok(result)
+}
+
+fn unreachable_point() -> HPoint {
+    // Intersection points are looked up by id in `split`, never through the corner callback.
+    HPoint::target_vertex(&[0, 0, 0])
+}
+
+/// Resolves `LoopOf` statuses (a loop's inside is the flip of its container).
+fn resolve_loops(pieces: &[Piece], st: &mut [u32]) -> Result<(), CutError> {
+    for _ in 0..pieces.len() + 1 {
+        let mut pending = false;
+        for (i, p) in pieces.iter().enumerate() {
+            if let PieceStatus::LoopOf { container, inside } = p.status
+                && st[i] == UNKNOWN
+            {
+                let c = st[container];
+                if c == UNKNOWN {
+                    pending = true;
+                } else {
+                    st[i] = if c == OUT { inside } else { OUT };
+                }
+            }
+        }
+        if !pending {
+            break;
+        }
+    }
+    if st.contains(&UNKNOWN) {
+        return Err(CutError::Internal("unresolved piece status".into()));
+    }
+    Ok(())
+}
+
+/// Drops contour segments of a cutter face that end or branch inside it (open or non-manifold
+/// targets), repeatedly, so that the rest forms simple paths and loops.
+fn prune_segments(segments: &mut Vec<(u32, u32, u32)>, on_boundary: &FxMap<u32, ()>) {
+    loop {
+        let mut deg: FxMap<u32, u32> = Default::default();
+        for &(a, b, _) in segments.iter() {
+            *deg.entry(a).or_default() += 1;
+            *deg.entry(b).or_default() += 1;
+        }
+        let bad = |p: u32| {
+            let d = deg[&p];
+            if on_boundary.contains_key(&p) {
+                d != 1
+            } else {
+                d != 2
+            }
+        };
+        let before = segments.len();
+        segments.retain(|&(a, b, _)| !bad(a) && !bad(b));
+        if segments.len() == before {
+            break;
+        }
+    }
+}
+
+/// Accumulates a compacted output part.
+///
+/// Vertices are identified by their rounded position (bit for bit), so that new vertices that
+/// coincide after rounding (degenerate configurations: the tie-break keeps them apart
+/// symbolically) become one vertex, and triangles that collapse are dropped.
+#[derive(Default)]
+struct PartBuilder {
+    map: FxMap<[u64; 3], u32>,
+    positions: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    provenance: Vec<Provenance>,
+    sub_cutter: Vec<u32>,
+}
+
+impl PartBuilder {
+    fn vertex(&mut self, v: Vx, target: &[DVec3], cutter: &[DVec3], new: &[DVec3]) -> u32 {
+        let p = match v {
+            Vx::T(i) => target[i as usize],
+            Vx::C(i) => cutter[i as usize],
+            Vx::X(i) => new[i as usize],
+        };
+        let key = p.to_array().map(|c| (c + 0.0).to_bits());
+        *self.map.entry(key).or_insert_with(|| {
+            self.positions.push(p);
+            (self.positions.len() - 1) as u32
+        })
+    }
+
+    fn push(&mut self, tri: [u32; 3], provenance: Provenance, sub_cutter: u32) {
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0] {
+            return;
+        }
+        self.triangles.push(tri);
+        self.provenance.push(provenance);
+        self.sub_cutter.push(sub_cutter);
+    }
+
+    fn finish(self) -> Part {
+        Part {
+            mesh: Mesh {
+                positions: self.positions,
+                triangles: self.triangles,
+            },
+            provenance: self.provenance,
+            sub_cutter: self.sub_cutter,
+        }
+    }
+}

@@ -1,0 +1,89 @@
+//! Stage 4 of the boolean: inside tests for what the contour does not classify locally.
+//!
+//! Most statuses come from the exact crossing signs (see `boolean.rs`). What is left:
+//! - a cutter component: one ray-parity test of one of its vertices against the target (closed
+//!   targets), or the generalized winding number of the target (open targets);
+//! - a target region the cutter does not cross but whose box overlaps it, or a touched face
+//!   crossed only by contour loops: one ray-parity test of one vertex against the cutter.
+//!
+//! Rays run along +x from the point to beyond the other mesh's box; they are segments, so the
+//! same exact EF/FE predicates (and the same tie-break) decide every crossing.
+
+use crate::exact::{self, LPoint};
+use crate::intersect::PreparedCutter;
+use crate::split::OUT;
+use crate::target::{IBox, TargetIndex};
+
+/// Status of target point `p` relative to the cutter: `OUT`, or `1 + sub-cutter id`.
+pub(crate) fn target_point_status(cutter: &PreparedCutter, p: &LPoint) -> u32 {
+    if p[0] > cutter.bounds.max[0] {
+        return OUT;
+    }
+    let far = [cutter.bounds.max[0] + 1, p[1], p[2]];
+    let mut parity = vec![false; cutter.components as usize];
+    for f in 0..cutter.triangles.len() as u32 {
+        let b = &cutter.face_boxes[f as usize];
+        if b.max[0] < p[0] || b.min[1] > p[1] || b.max[1] < p[1] || b.min[2] > p[2] || b.max[2] < p[2]
+        {
+            continue;
+        }
+        let [a, bb, c] = cutter.face_points(f);
+        if exact::segment_crosses_cutter_face(p, &far, a, bb, c) {
+            let k = cutter.face_component[f as usize] as usize;
+            parity[k] = !parity[k];
+        }
+    }
+    parity
+        .iter()
+        .position(|&odd| odd)
+        .map_or(OUT, |k| k as u32 + 1)
+}
+
+/// Is perturbed cutter point `a'` inside the target? Ray parity for closed targets; for open
+/// targets the generalized winding number (≥ 1/2) at the point's rounded position.
+pub(crate) fn cutter_point_inside_target(
+    target: &TargetIndex,
+    a: &LPoint,
+    a_world: glam::DVec3,
+) -> bool {
+    if !target.is_closed() {
+        return winding_number(target, a_world) >= 0.5;
+    }
+    if a[0] > target.bounds.max[0] {
+        return false;
+    }
+    let far = [target.bounds.max[0] + 1, a[1], a[2]];
+    let query = IBox {
+        min: [a[0], a[1], a[2]],
+        max: [far[0], a[1], a[2]],
+    };
+    let mut odd = false;
+    let tris = &target.mesh.triangles;
+    target.bvh.query(&query, |t| {
+        let tri = tris[t as usize];
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0] {
+            return;
+        }
+        let [u, v, w] = target.face_points(t);
+        if exact::cutter_edge_crosses_target_face(a, &far, u, v, w).is_some() {
+            odd = !odd;
+        }
+    });
+    odd
+}
+
+/// Generalized winding number of the whole target at `p` (Jacobson et al. 2013): the sum of the
+/// signed solid angles of its triangles over 4π. O(N); used only for open targets.
+pub(crate) fn winding_number(target: &TargetIndex, p: glam::DVec3) -> f64 {
+    let mesh = &target.mesh;
+    let mut sum = 0.0;
+    for t in 0..mesh.triangles.len() {
+        let [a, b, c] = mesh.corners(t);
+        let (a, b, c) = (a - p, b - p, c - p);
+        let (la, lb, lc) = (a.length(), b.length(), c.length());
+        let num = a.dot(b.cross(c));
+        let den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+        sum += 2.0 * num.atan2(den);
+    }
+    sum / (4.0 * std::f64::consts::PI)
+}

@@ -1,0 +1,219 @@
+//! Shared helpers of the boolean tests: cutter generators and the invariant checks.
+#![allow(dead_code)]
+
+use std::collections::HashMap;
+
+use csg::{CutResult, DVec3, Mesh, TargetIndex};
+
+/// Signed volume about the origin (Σ a·(b×c)/6).
+pub fn volume(m: &Mesh) -> f64 {
+    m.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| m.positions[i as usize]);
+            a.dot(b.cross(c))
+        })
+        .sum::<f64>()
+        / 6.0
+}
+
+pub fn area(m: &Mesh) -> f64 {
+    m.area()
+}
+
+/// Welds bit-identical positions (so parts from different meshes share contour vertices).
+pub fn weld(m: &Mesh) -> Mesh {
+    let mut map: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut positions = Vec::new();
+    let mut remap = Vec::with_capacity(m.positions.len());
+    for p in &m.positions {
+        let key = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+        let id = *map.entry(key).or_insert_with(|| {
+            positions.push(*p);
+            (positions.len() - 1) as u32
+        });
+        remap.push(id);
+    }
+    Mesh {
+        positions,
+        triangles: m
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| remap[i as usize]))
+            .collect(),
+    }
+}
+
+/// `Err` naming the first problem unless every edge has exactly two faces traversing it in
+/// opposite directions and no triangle repeats an index.
+pub fn check_closed_oriented(m: &Mesh) -> Result<(), String> {
+    let m = weld(m);
+    let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
+    for (f, t) in m.triangles.iter().enumerate() {
+        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+            return Err(format!("triangle {f} repeats a vertex: {t:?}"));
+        }
+        for k in 0..3 {
+            *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    for (&(a, b), &n) in &directed {
+        if n != 1 {
+            return Err(format!("directed edge ({a},{b}) used {n} times"));
+        }
+        if directed.get(&(b, a)) != Some(&1) {
+            return Err(format!(
+                "edge ({a},{b}) at {:?}–{:?} has no opposite",
+                m.positions[a as usize], m.positions[b as usize]
+            ));
+        }
+    }
+    Ok(())
+}
+
+pub fn concat(a: &Mesh, b: &Mesh) -> Mesh {
+    let mut m = a.clone();
+    m.append(b);
+    m
+}
+
+/// The measure identities only: area partition and volume identity, exact vertices.
+pub fn check_measures(target: &Mesh, result: &CutResult) -> Result<(), String> {
+    let kept = result.materialize(target);
+    let walls = &result.walls.mesh;
+    let removed = &result.removed.mesh;
+    let rel = |x: f64, y: f64| (x - y).abs() / y.abs().max(1e-300);
+    let (at, ak, ar) = (area(target), area(&kept), area(removed));
+    if rel(ak + ar, at) > 1e-9 {
+        return Err(format!("area: kept {ak} + removed {ar} != target {at}"));
+    }
+    let kw = concat(&kept, walls);
+    let rw = concat(removed, &walls.reversed());
+    let (vt, vk, vr) = (volume(target), volume(&kw), volume(&rw));
+    if rel(vk + vr, vt) > 1e-9 {
+        return Err(format!("volume: kept+walls {vk} + removed+walls {vr} != target {vt}"));
+    }
+    for (i, p) in target.positions.iter().enumerate() {
+        if kept.positions[i].to_array().map(f64::to_bits) != p.to_array().map(f64::to_bits) {
+            return Err(format!("vertex {i} moved"));
+        }
+    }
+    Ok(())
+}
+
+/// Checks every invariant of the robustness contract for a closed target.
+pub fn check_cut(target: &Mesh, result: &CutResult) -> Result<(), String> {
+    let kept = result.materialize(target);
+    let walls = &result.walls.mesh;
+    let removed = &result.removed.mesh;
+    let rel = |x: f64, y: f64| (x - y).abs() / y.abs().max(1e-300);
+    // Area partition.
+    let (at, ak, ar) = (area(target), area(&kept), area(removed));
+    if rel(ak + ar, at) > 1e-9 {
+        return Err(format!("area: kept {ak} + removed {ar} != target {at}"));
+    }
+    let kw = concat(&kept, walls);
+    let rw = concat(removed, &walls.reversed());
+    check_measures(target, result)?;
+    // Closedness.
+    check_closed_oriented(&kw).map_err(|e| format!("kept + walls: {e}"))?;
+    check_closed_oriented(&rw).map_err(|e| format!("removed + reversed walls: {e}"))?;
+    // Volume identity.
+    let (vt, vk, vr) = (volume(target), volume(&kw), volume(&rw));
+    if rel(vk + vr, vt) > 1e-9 {
+        return Err(format!("volume: kept+walls {vk} + removed+walls {vr} != target {vt}"));
+    }
+    if vk < -1e-9 * vt.abs() || vr < -1e-9 * vt.abs() {
+        return Err(format!("negative part volume: {vk}, {vr}"));
+    }
+    // Provenance lengths.
+    if result.walls.provenance.len() != walls.triangles.len()
+        || result.removed.provenance.len() != removed.triangles.len()
+        || result.kept_new_provenance.len() != result.kept_new_faces.len()
+    {
+        return Err("provenance length mismatch".into());
+    }
+    // Untouched vertices keep their exact coordinates.
+    for (i, p) in target.positions.iter().enumerate() {
+        if kept.positions[i].to_array().map(f64::to_bits) != p.to_array().map(f64::to_bits) {
+            return Err(format!("vertex {i} moved"));
+        }
+    }
+    for c in &result.contours {
+        if !c.closed {
+            return Err("open contour on a closed target".into());
+        }
+    }
+    if result.stats.triangulation_fallbacks != 0 {
+        return Err(format!(
+            "{} triangulation fallbacks",
+            result.stats.triangulation_fallbacks
+        ));
+    }
+    Ok(())
+}
+
+/// A closed strip: a rectangle (`width` along `side`, `height` along `up`) swept along `path`,
+/// as triangles; ends capped. Outward oriented when the path turns gently.
+pub fn strip(path: &[DVec3], up: DVec3, width: f64, height: f64) -> Mesh {
+    let n = path.len();
+    let mut positions = Vec::new();
+    for i in 0..n {
+        let tangent = if i + 1 < n {
+            path[i + 1] - path[i]
+        } else {
+            path[i] - path[i - 1]
+        };
+        let side = tangent.cross(up).normalize() * (width * 0.5);
+        let u = up.normalize() * (height * 0.5);
+        let c = path[i];
+        // 0: -side -up, 1: +side -up, 2: +side +up, 3: -side +up
+        positions.extend([c - side - u, c + side - u, c + side + u, c - side + u]);
+    }
+    let mut quads: Vec<[u32; 4]> = Vec::new();
+    for i in 0..n as u32 - 1 {
+        let (a, b) = (4 * i, 4 * (i + 1));
+        for k in 0..4u32 {
+            let k1 = (k + 1) % 4;
+            quads.push([a + k, a + k1, b + k1, b + k]);
+        }
+    }
+    let last = 4 * (n as u32 - 1);
+    quads.push([0, 3, 2, 1]);
+    quads.push([last, last + 1, last + 2, last + 3]);
+    let mut triangles = Vec::new();
+    for [a, b, c, d] in quads {
+        triangles.push([a, b, c]);
+        triangles.push([a, c, d]);
+    }
+    let mut m = Mesh {
+        positions,
+        triangles,
+    };
+    if volume(&m) < 0.0 {
+        m = m.reversed();
+    }
+    m
+}
+
+/// Snaps every coordinate to a multiple of `step`.
+pub fn snapped(m: &Mesh, step: f64) -> Mesh {
+    Mesh {
+        positions: m
+            .positions
+            .iter()
+            .map(|p| (*p / step).round() * step)
+            .collect(),
+        triangles: m.triangles.clone(),
+    }
+}
+
+/// Cuts and checks; panics with the problem.
+pub fn cut_and_check(target: &Mesh, cutter: &Mesh) -> CutResult {
+    let index = TargetIndex::build(target.clone()).expect("target index");
+    let r = csg::subtract(&index, cutter).unwrap_or_else(|e| panic!("cut failed: {e}"));
+    if let Err(e) = check_cut(target, &r) {
+        panic!("invariant broken: {e}");
+    }
+    r
+}

@@ -1,0 +1,789 @@
+//! The event-driven cutter editor (thesis 3.3, Edit mode): the one place that turns input events
+//! into a [`Cutter`]. The GUI, `cutaway extrude` and the tests all drive it with the same
+//! [`EditorEvent`]s, so the interaction metaphor is tested headless.
+//!
+//! ## Using it (GUI)
+//! ```text
+//! let settings = EditorSettings::for_scene(&all_models_bbox, camera.fov_y_deg);
+//! let mut editor = Editor::new(target_mesh, target_index, camera, viewport, settings);
+//! // each frame: editor.set_view(camera, viewport) if the camera moved (not while dragging),
+//! // then feed pointer/wheel/key input:
+//! let response = editor.handle(EditorEvent::Press { x, y, shift, ctrl });
+//! if response.changed { /* re-mesh editor.cutter(), re-run the live cut */ }
+//! // highlight editor.hovered_plane() / editor.selected_plane(); set the cursor from
+//! // response.cursor; draw editor.init_strip() while the first drag is in progress.
+//! ```
+//!
+//! ## What the events do (CONTRACT.md, thesis 3.3.1–3.3.3)
+//! - No cutter yet: press A, drag, release B initialises one on the target ([`extrude::initialize`]).
+//! - Press within [`HANDLE_PX`] of the middle third of the leading plane's projected front edge:
+//!   grabs the handle; the pointer is treated as if warped to the middle of that edge (the
+//!   offset is kept for the whole drag, and [`EditorResponse::warp_cursor`] tells the GUI where
+//!   to put the real cursor); each move extrudes ([`extrude::extrude_move`]); Shift = straight.
+//! - Press within [`VERTEX_PX`] of a plane's projected front vertex: drags that edge.
+//! - Press on a plane (its quad under the pointer, or its front edge within [`HANDLE_PX`]):
+//!   selects it. Press elsewhere: clears the selection.
+//! - Wheel: over the cutter, the depth of the selected (else hovered) plane; off the cutter, the
+//!   depth of every plane. Ctrl+wheel rotates the selected (else hovered) plane.
+//! - Delete with the pointer over the cutter removes the last box (down to one).
+//! - Escape cancels a drag in progress.
+//!
+//! Every completed action (a whole drag, one wheel event, one key) is one undo step; undo and
+//! redo restore whole snapshots, so an undo can never lose or corrupt a cutter. An edit that
+//! would make the cutter invalid ([`Cutter::sanity_check`]) is refused and leaves it unchanged.
+
+use std::sync::Arc;
+
+use glam::{DVec2, DVec3};
+
+use csg::{Aabb, Mesh, SpatialIndex};
+
+use crate::camera::{Camera, Ray};
+use crate::cutter::{CutKind, Cutter};
+use crate::edits::{self, DepthTarget};
+use crate::events::{EditorEvent, Key};
+use crate::extrude::{self, RollSettings};
+use crate::geom;
+use crate::surface::Surface;
+
+/// Pick radius of the leading plane's handle (middle third of its front edge), in pixels.
+pub const HANDLE_PX: f64 = 12.0;
+/// Pick radius of a plane's front vertex, in pixels.
+pub const VERTEX_PX: f64 = 8.0;
+/// Shortest initialisation drag, in pixels.
+pub const MIN_DRAG_PX: f64 = 3.0;
+
+/// Editor options (the thesis's "Cutter Initialization" tab).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EditorSettings {
+    /// Cut type of the next cutter. Default `Curving`. `Straight` behaves like Shift always held;
+    /// `Wedge` applies from the next initialisation.
+    pub kind: CutKind,
+    /// Segment spacing ω: a box is locked when it reaches ω·δ wide. Default 20.
+    pub spacing: f64,
+    /// Rounded/freeform (subdivided) cutter. Default false.
+    pub smooth: bool,
+    /// Scene increment δ (see [`EditorSettings::delta_for_scene`]). Default 1.
+    pub delta: f64,
+}
+
+impl Default for EditorSettings {
+    fn default() -> Self {
+        EditorSettings {
+            kind: CutKind::Curving,
+            spacing: 20.0,
+            smooth: false,
+            delta: 1.0,
+        }
+    }
+}
+
+impl EditorSettings {
+    /// δ for a scene: the distance at which a camera with vertical field of view `fov_y_deg`
+    /// frames the bounding sphere of every model ([`Camera::framing_distance`], our reading of
+    /// the thesis's VTK camera reset), divided by 2000.
+    pub fn delta_for_scene(scene: &Aabb, fov_y_deg: f64) -> f64 {
+        Camera::framing_distance(scene, fov_y_deg) / 2000.0
+    }
+
+    /// Default settings with δ for `scene`.
+    pub fn for_scene(scene: &Aabb, fov_y_deg: f64) -> Self {
+        EditorSettings {
+            delta: Self::delta_for_scene(scene, fov_y_deg),
+            ..Default::default()
+        }
+    }
+
+    /// Builder: the cut kind.
+    pub fn with_kind(self, kind: CutKind) -> Self {
+        EditorSettings { kind, ..self }
+    }
+
+    /// Builder: the segment spacing ω.
+    pub fn with_spacing(self, spacing: f64) -> Self {
+        EditorSettings { spacing, ..self }
+    }
+
+    /// Builder: smooth (rounded/freeform).
+    pub fn with_smooth(self, smooth: bool) -> Self {
+        EditorSettings { smooth, ..self }
+    }
+}
+
+/// The cursor the GUI should show.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CursorHint {
+    /// Nothing under the pointer.
+    #[default]
+    Default,
+    /// No cutter yet: a press starts one.
+    Crosshair,
+    /// Over the leading plane's handle.
+    Grab,
+    /// Extruding.
+    Grabbing,
+    /// Over (or dragging) a plane's front vertex.
+    Move,
+    /// Over a plane (a press selects it).
+    PointingHand,
+}
+
+/// What [`Editor::handle`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EditorResponse {
+    /// The cutter (or its existence) changed: re-mesh and re-cut.
+    pub changed: bool,
+    /// The cursor to show now.
+    pub cursor: CursorHint,
+    /// Where the GUI should move the real cursor (pixels), when the editor snapped it.
+    pub warp_cursor: Option<DVec2>,
+}
+
+/// What a pixel is over.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Pick {
+    Nothing,
+    Handle,
+    Vertex { plane: usize, top: bool },
+    Plane(usize),
+}
+
+#[derive(Clone, Debug)]
+enum Drag {
+    None,
+    Init { a: DVec2, b: DVec2 },
+    Extrude { offset: DVec2, before: Cutter },
+    Vertex { plane: usize, top: bool, before: Cutter },
+}
+
+/// The editor of one cutter on one target. See the module docs.
+pub struct Editor {
+    target: Arc<Mesh>,
+    /// Built from `target`.
+    index: Arc<SpatialIndex>,
+    camera: Camera,
+    viewport: DVec2,
+    settings: EditorSettings,
+    /// Always valid by [`Cutter::sanity_check`] when present.
+    cutter: Option<Cutter>,
+    undo_stack: Vec<Option<Cutter>>,
+    redo_stack: Vec<Option<Cutter>>,
+    drag: Drag,
+    hovered: Option<usize>,
+    selected: Option<usize>,
+    recording: Vec<EditorEvent>,
+}
+
+impl std::fmt::Debug for Editor {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Editor")
+            .field("settings", &self.settings)
+            .field("cutter", &self.cutter)
+            .field("undo", &self.undo_stack.len())
+            .field("redo", &self.redo_stack.len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl Editor {
+    /// An editor for `target` (the model painted on; `index` built from it), seen through
+    /// `camera` in a `viewport`-pixel view.
+    pub fn new(
+        target: Arc<Mesh>,
+        index: Arc<SpatialIndex>,
+        camera: Camera,
+        viewport: DVec2,
+        settings: EditorSettings,
+    ) -> Editor {
+        Editor {
+            target,
+            index,
+            camera,
+            viewport,
+            settings,
+            cutter: None,
+            undo_stack: Vec::new(),
+            redo_stack: Vec::new(),
+            drag: Drag::None,
+            hovered: None,
+            selected: None,
+            recording: Vec::new(),
+        }
+    }
+
+    /// The current cutter, valid by [`Cutter::sanity_check`].
+    pub fn cutter(&self) -> Option<&Cutter> {
+        self.cutter.as_ref()
+    }
+
+    /// Replaces the cutter (e.g. loaded from a session) as an undoable action. Refused (false)
+    /// when the cutter is invalid.
+    pub fn set_cutter(&mut self, cutter: Option<Cutter>) -> bool {
+        if let Some(c) = &cutter
+            && c.sanity_check().is_err()
+        {
+            return false;
+        }
+        self.commit(cutter);
+        true
+    }
+
+    /// The target mesh.
+    pub fn target(&self) -> &Mesh {
+        &self.target
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &EditorSettings {
+        &self.settings
+    }
+
+    /// Scene increment δ.
+    pub fn delta(&self) -> f64 {
+        self.settings.delta
+    }
+
+    /// The camera events are interpreted with.
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// The viewport size in pixels.
+    pub fn viewport(&self) -> DVec2 {
+        self.viewport
+    }
+
+    /// Updates camera and viewport (the GUI calls this when the view changes; a drag in progress
+    /// keeps working in the new view).
+    pub fn set_view(&mut self, camera: Camera, viewport: DVec2) {
+        self.camera = camera;
+        self.viewport = viewport;
+    }
+
+    /// Sets the cut kind. Curving/straight switch the current cutter's behaviour at once; wedge
+    /// (and leaving wedge) applies from the next initialisation.
+    pub fn set_kind(&mut self, kind: CutKind) {
+        self.settings.kind = kind;
+    }
+
+    /// Sets the segment spacing ω (clamped to at least 1).
+    pub fn set_spacing(&mut self, spacing: f64) {
+        if spacing.is_finite() {
+            self.settings.spacing = spacing.max(1.0);
+        }
+    }
+
+    /// Turns smoothing (rounded/freeform) on or off, for the current cutter (an undoable action)
+    /// and the next ones. Returns true when the cutter changed.
+    pub fn set_smooth(&mut self, smooth: bool) -> bool {
+        self.settings.smooth = smooth;
+        match &self.cutter {
+            Some(c) if c.smooth != smooth => {
+                let mut c = c.clone();
+                c.smooth = smooth;
+                self.commit(Some(c));
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// The plane under the pointer after the last event (for highlighting).
+    pub fn hovered_plane(&self) -> Option<usize> {
+        self.hovered
+    }
+
+    /// The selected plane (for highlighting; the target of wheel edits).
+    pub fn selected_plane(&self) -> Option<usize> {
+        self.selected
+    }
+
+    /// True while a press-drag is in progress.
+    pub fn is_dragging(&self) -> bool {
+        !matches!(self.drag, Drag::None)
+    }
+
+    /// The initial strip while the first drag is in progress, as world points A, D, H, E on the
+    /// plane through the target's centre facing the camera (for drawing only).
+    pub fn init_strip(&self) -> Option<[DVec3; 4]> {
+        let Drag::Init { a, b } = self.drag else {
+            return None;
+        };
+        let f = self.camera.forward();
+        let z = (self.target.bbox().center() - self.camera.eye).dot(f).max(1e-9);
+        let px = 2.0 * z * (self.camera.fov_y_deg.to_radians() * 0.5).tan() / self.viewport.y.max(1.0);
+        let corners = extrude::strip_pixels(a, b, extrude::INITIAL_WIDTH * self.settings.delta / px);
+        Some(corners.map(|c| {
+            let ray = self.camera.ray_through_pixel(self.viewport, c);
+            ray.at(z / ray.direction.dot(f).max(1e-12))
+        }))
+    }
+
+    /// True when an undo step exists.
+    pub fn can_undo(&self) -> bool {
+        !self.undo_stack.is_empty()
+    }
+
+    /// True when a redo step exists.
+    pub fn can_redo(&self) -> bool {
+        !self.redo_stack.is_empty()
+    }
+
+    /// Undoes the last action (cancelling any drag first). Returns true when something changed.
+    pub fn undo(&mut self) -> bool {
+        self.cancel_drag();
+        let Some(previous) = self.undo_stack.pop() else {
+            return false;
+        };
+        let current = std::mem::replace(&mut self.cutter, previous);
+        self.redo_stack.push(current);
+        self.clamp_selection();
+        true
+    }
+
+    /// Redoes the last undone action. Returns true when something changed.
+    pub fn redo(&mut self) -> bool {
+        self.cancel_drag();
+        let Some(next) = self.redo_stack.pop() else {
+            return false;
+        };
+        let current = std::mem::replace(&mut self.cutter, next);
+        self.undo_stack.push(current);
+        self.clamp_selection();
+        true
+    }
+
+    /// Every event handled so far, in order (the "record gesture" debug action saves these with
+    /// the camera, viewport and settings as a `cutaway-gesture/1` file).
+    pub fn recorded_events(&self) -> &[EditorEvent] {
+        &self.recording
+    }
+
+    /// Forgets the recorded events (start a new recording).
+    pub fn clear_recording(&mut self) {
+        self.recording.clear();
+    }
+
+    /// Handles one input event.
+    pub fn handle(&mut self, event: EditorEvent) -> EditorResponse {
+        self.recording.push(event);
+        match event {
+            EditorEvent::Press { x, y, .. } => self.press(DVec2::new(x, y)),
+            EditorEvent::Move { x, y, shift, .. } => self.pointer_move(DVec2::new(x, y), shift),
+            EditorEvent::Release { x, y, shift, .. } => self.release(DVec2::new(x, y), shift),
+            EditorEvent::Wheel { x, y, delta, ctrl } => self.wheel(DVec2::new(x, y), delta, ctrl),
+            EditorEvent::Key { key, x, y } => self.key(key, DVec2::new(x, y)),
+        }
+    }
+
+    fn surface(&self) -> Surface<'_> {
+        Surface::new(&self.target, &self.index)
+    }
+
+    fn ray(&self, px: DVec2) -> Ray {
+        self.camera.ray_through_pixel(self.viewport, px)
+    }
+
+    fn commit(&mut self, cutter: Option<Cutter>) {
+        let previous = std::mem::replace(&mut self.cutter, cutter);
+        self.undo_stack.push(previous);
+        self.redo_stack.clear();
+        self.clamp_selection();
+    }
+
+    fn clamp_selection(&mut self) {
+        let n = self.cutter.as_ref().map_or(0, |c| c.planes.len());
+        if self.selected.is_some_and(|s| s >= n) {
+            self.selected = None;
+        }
+        if self.hovered.is_some_and(|s| s >= n) {
+            self.hovered = None;
+        }
+    }
+
+    fn cancel_drag(&mut self) {
+        match std::mem::replace(&mut self.drag, Drag::None) {
+            Drag::Extrude { before, .. } | Drag::Vertex { before, .. } => self.cutter = Some(before),
+            Drag::Init { .. } | Drag::None => {}
+        }
+    }
+
+    fn hint(&self, pick: Pick) -> CursorHint {
+        if self.cutter.is_none() {
+            return CursorHint::Crosshair;
+        }
+        match pick {
+            Pick::Nothing => CursorHint::Default,
+            Pick::Handle => CursorHint::Grab,
+            Pick::Vertex { .. } => CursorHint::Move,
+            Pick::Plane(_) => CursorHint::PointingHand,
+        }
+    }
+
+    fn project(&self, p: DVec3) -> Option<DVec2> {
+        self.camera.project(self.viewport, p)
+    }
+
+    /// What the pixel `px` is over: the handle first, then a front vertex, then a plane.
+    fn pick(&self, px: DVec2) -> Pick {
+        let Some(cutter) = &self.cutter else {
+            return Pick::Nothing;
+        };
+        let lead = cutter.leading();
+        if let (Some(a), Some(d)) = (self.project(lead.front_top), self.project(lead.front_bottom)) {
+            let s0 = a + (d - a) / 3.0;
+            let s1 = a + (d - a) * (2.0 / 3.0);
+            if segment_distance(px, s0, s1) <= HANDLE_PX {
+                return Pick::Handle;
+            }
+        }
+        let mut best: Option<(f64, Pick)> = None;
+        for (i, p) in cutter.planes.iter().enumerate() {
+            for (top, v) in [(true, p.front_top), (false, p.front_bottom)] {
+                if cutter.kind == CutKind::Wedge && top {
+                    continue;
+                }
+                if let Some(q) = self.project(v) {
+                    let dist = (q - px).length();
+                    if dist <= VERTEX_PX && best.is_none_or(|(b, _)| dist < b) {
+                        best = Some((dist, Pick::Vertex { plane: i, top }));
+                    }
+                }
+            }
+        }
+        if let Some((_, pick)) = best {
+            return pick;
+        }
+        self.plane_under(px).map_or(Pick::Nothing, Pick::Plane)
+    }
+
+    /// The plane whose quad the pointer's ray hits first, else the plane whose projected front
+    /// edge is nearest within [`HANDLE_PX`].
+    fn plane_under(&self, px: DVec2) -> Option<usize> {
+        let cutter = self.cutter.as_ref()?;
+        let ray = self.ray(px);
+        let mut best: Option<(f64, usize)> = None;
+        for (i, p) in cutter.planes.iter().enumerate() {
+            for t in geom::quad_triangles(&p.corners()) {
+                if let Some(s) = geom::ray_triangle(ray.origin, ray.direction, &t)
+                    && best.is_none_or(|(b, _)| s < b)
+                {
+                    best = Some((s, i));
+                }
+            }
+        }
+        if let Some((_, i)) = best {
+            return Some(i);
+        }
+        let mut near: Option<(f64, usize)> = None;
+        for (i, p) in cutter.planes.iter().enumerate() {
+            if let (Some(a), Some(d)) = (self.project(p.front_top), self.project(p.front_bottom)) {
+                let dist = segment_distance(px, a, d);
+                if dist <= HANDLE_PX && near.is_none_or(|(b, _)| dist < b) {
+                    near = Some((dist, i));
+                }
+            }
+        }
+        near.map(|(_, i)| i)
+    }
+
+    /// True when the pointer is over any part of the cutter (its mesh, or near a front edge).
+    fn over_cutter(&self, px: DVec2) -> bool {
+        let Some(cutter) = &self.cutter else {
+            return false;
+        };
+        if self.pick(px) != Pick::Nothing {
+            return true;
+        }
+        let ray = self.ray(px);
+        let mesh = cutter.quad_mesh().triangulate();
+        (0..mesh.triangles.len())
+            .any(|t| geom::ray_triangle(ray.origin, ray.direction, &mesh.corners(t)).is_some())
+    }
+
+    fn press(&mut self, px: DVec2) -> EditorResponse {
+        if self.is_dragging() {
+            // A second press without release: treat the first drag as finished.
+            self.release(px, false);
+        }
+        let Some(cutter) = self.cutter.clone() else {
+            self.drag = Drag::Init { a: px, b: px };
+            return EditorResponse {
+                changed: false,
+                cursor: CursorHint::Crosshair,
+                warp_cursor: None,
+            };
+        };
+        let pick = self.pick(px);
+        match pick {
+            Pick::Handle => {
+                let lead = *cutter.leading();
+                let handle = self.project(lead.front_mid()).unwrap_or(px);
+                self.selected = Some(cutter.planes.len() - 1);
+                self.drag = Drag::Extrude {
+                    offset: handle - px,
+                    before: cutter,
+                };
+                EditorResponse {
+                    changed: false,
+                    cursor: CursorHint::Grabbing,
+                    warp_cursor: Some(handle),
+                }
+            }
+            Pick::Vertex { plane, top } => {
+                self.selected = Some(plane);
+                self.drag = Drag::Vertex {
+                    plane,
+                    top,
+                    before: cutter,
+                };
+                EditorResponse {
+                    changed: false,
+                    cursor: CursorHint::Move,
+                    warp_cursor: None,
+                }
+            }
+            Pick::Plane(i) => {
+                self.selected = Some(i);
+                EditorResponse {
+                    changed: false,
+                    cursor: CursorHint::PointingHand,
+                    warp_cursor: None,
+                }
+            }
+            Pick::Nothing => {
+                self.selected = None;
+                EditorResponse::default()
+            }
+        }
+    }
+
+    fn pointer_move(&mut self, px: DVec2, shift: bool) -> EditorResponse {
+        match &mut self.drag {
+            Drag::Init { b, .. } => {
+                *b = px;
+                EditorResponse {
+                    changed: false,
+                    cursor: CursorHint::Crosshair,
+                    warp_cursor: None,
+                }
+            }
+            Drag::Extrude { offset, .. } => {
+                let offset = *offset;
+                let changed = self.extrude_to(px + offset, shift);
+                EditorResponse {
+                    changed,
+                    cursor: CursorHint::Grabbing,
+                    warp_cursor: None,
+                }
+            }
+            Drag::Vertex { plane, top, .. } => {
+                let (plane, top) = (*plane, *top);
+                let changed = self.drag_vertex(plane, top, px);
+                EditorResponse {
+                    changed,
+                    cursor: CursorHint::Move,
+                    warp_cursor: None,
+                }
+            }
+            Drag::None => {
+                let pick = self.pick(px);
+                self.hovered = match pick {
+                    Pick::Handle => self.cutter.as_ref().map(|c| c.planes.len() - 1),
+                    Pick::Vertex { plane, .. } | Pick::Plane(plane) => Some(plane),
+                    Pick::Nothing => None,
+                };
+                EditorResponse {
+                    changed: false,
+                    cursor: self.hint(pick),
+                    warp_cursor: None,
+                }
+            }
+        }
+    }
+
+    fn extrude_to(&mut self, px: DVec2, shift: bool) -> bool {
+        let ray = self.ray(px);
+        let settings = RollSettings {
+            delta: self.settings.delta,
+            spacing: self.settings.spacing,
+            straight: shift || self.settings.kind == CutKind::Straight,
+        };
+        let Some(mut cutter) = self.cutter.take() else {
+            return false;
+        };
+        let changed = {
+            let surface = Surface::new(&self.target, &self.index);
+            extrude::extrude_move(&mut cutter, &surface, &ray, &settings)
+        };
+        self.selected = Some(cutter.planes.len() - 1);
+        self.cutter = Some(cutter);
+        changed
+    }
+
+    fn drag_vertex(&mut self, plane: usize, top: bool, px: DVec2) -> bool {
+        let Some(cutter) = &self.cutter else {
+            return false;
+        };
+        let Some(p) = cutter.planes.get(plane) else {
+            return false;
+        };
+        let (front, back) = if top {
+            (p.front_top, p.back_top)
+        } else {
+            (p.front_bottom, p.back_bottom)
+        };
+        let ray = self.ray(px);
+        let Some(t) = geom::line_plane(ray.origin, ray.direction, front, front - back) else {
+            return false;
+        };
+        if t <= 0.0 {
+            return false;
+        }
+        match edits::move_edge(cutter, plane, top, ray.at(t)) {
+            Some(c) => {
+                self.cutter = Some(c);
+                true
+            }
+            None => false,
+        }
+    }
+
+    fn release(&mut self, px: DVec2, shift: bool) -> EditorResponse {
+        let drag = std::mem::replace(&mut self.drag, Drag::None);
+        let mut response = EditorResponse {
+            changed: false,
+            cursor: CursorHint::Default,
+            warp_cursor: None,
+        };
+        match drag {
+            Drag::Init { a, .. } => {
+                if (px - a).length() >= MIN_DRAG_PX {
+                    let surface = self.surface();
+                    let created = extrude::initialize(
+                        &surface,
+                        &self.camera,
+                        self.viewport,
+                        a,
+                        px,
+                        self.settings.delta,
+                        self.settings.kind,
+                        self.settings.smooth,
+                    );
+                    if let Some(c) = created {
+                        self.selected = Some(c.planes.len() - 1);
+                        self.commit(Some(c));
+                        response.changed = true;
+                    }
+                }
+            }
+            Drag::Extrude { offset, before } => {
+                let moved = self.extrude_to(px + offset, shift);
+                response.changed = moved;
+                self.finish_drag(before);
+            }
+            Drag::Vertex { plane, top, before } => {
+                response.changed = self.drag_vertex(plane, top, px);
+                self.finish_drag(before);
+            }
+            Drag::None => {}
+        }
+        response.cursor = self.hint(self.pick(px));
+        response
+    }
+
+    /// Ends a drag that started from `before`: a valid, different result is one undo step; an
+    /// invalid one (it should not happen, every move is checked) falls back to `before`.
+    fn finish_drag(&mut self, before: Cutter) {
+        let valid = self.cutter.as_ref().is_some_and(|c| c.sanity_check().is_ok());
+        if !valid {
+            // Drop boxes from the end until valid, else restore.
+            if let Some(c) = &mut self.cutter {
+                while c.planes.len() > 2 && c.sanity_check().is_err() {
+                    c.planes.pop();
+                }
+            }
+            if !self.cutter.as_ref().is_some_and(|c| c.sanity_check().is_ok()) {
+                self.cutter = Some(before.clone());
+            }
+        }
+        if self.cutter.as_ref() != Some(&before) {
+            self.undo_stack.push(Some(before));
+            self.redo_stack.clear();
+        }
+        self.clamp_selection();
+    }
+
+    fn wheel(&mut self, px: DVec2, notches: f64, ctrl: bool) -> EditorResponse {
+        let mut response = EditorResponse {
+            cursor: self.hint(self.pick(px)),
+            ..Default::default()
+        };
+        if self.is_dragging() || notches == 0.0 || !notches.is_finite() {
+            return response;
+        }
+        let Some(cutter) = &self.cutter else {
+            return response;
+        };
+        let over = self.over_cutter(px);
+        let plane = if over {
+            self.selected.or_else(|| self.plane_under(px))
+        } else {
+            None
+        };
+        let edited = if ctrl {
+            plane.and_then(|i| edits::rotate_plane(cutter, i, notches))
+        } else {
+            let target = match plane {
+                Some(i) => DepthTarget::Plane(i),
+                None => DepthTarget::All,
+            };
+            edits::change_depth(cutter, target, notches, self.settings.delta)
+        };
+        if let Some(c) = edited {
+            self.commit(Some(c));
+            response.changed = true;
+        }
+        response
+    }
+
+    fn key(&mut self, key: Key, px: DVec2) -> EditorResponse {
+        let mut response = EditorResponse {
+            cursor: self.hint(self.pick(px)),
+            ..Default::default()
+        };
+        match key {
+            Key::Escape => {
+                response.changed = matches!(self.drag, Drag::Extrude { .. } | Drag::Vertex { .. });
+                self.cancel_drag();
+            }
+            Key::Delete => {
+                if self.is_dragging() || !self.over_cutter(px) {
+                    return response;
+                }
+                if let Some(c) = self.cutter.as_ref().and_then(edits::remove_last_box) {
+                    self.commit(Some(c));
+                    response.changed = true;
+                }
+            }
+        }
+        response
+    }
+
+    /// Largest distance from a plane's front-edge midpoint to the target surface.
+    pub fn max_surface_gap(&self) -> Option<f64> {
+        let c = self.cutter.as_ref()?;
+        Some(extrude::max_surface_gap(c, &self.surface()))
+    }
+}
+
+/// Distance from `p` to the segment `a`–`b`.
+fn segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let ab = b - a;
+    let t = if ab.length_squared() > 0.0 {
+        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + ab * t - p).length()
+}

@@ -1,0 +1,567 @@
+//! Initialising and extruding a cutter: the paint-roller metaphor of thesis 3.3.1–3.3.2.
+//!
+//! Notation (the thesis's figures 23, 27, 28): the previous plane is `ABCD` (A front-top, B
+//! back-top, C back-bottom, D front-bottom); the leading plane being moved is `EFGH`. `Q` is the
+//! midpoint of `AD`, `M` the mouse point projected on the front plane, `x` the intersection of the
+//! lines `AD` and `E'H'`, δ the scene increment.
+//!
+//! Stages of one extrusion step ([`roll`]), in order:
+//! 1. project the mouse ray onto the front plane (the plane of the leading box's front face) → M;
+//!    Shift (straight) turns M about Q so that MQ ⟂ AD;
+//! 2. E'H' ⟂ MQ through M with |E'H'| = |AD|;
+//! 3. parallel correction: E''H'' is AD turned about x (isosceles triangle x A E''), so AE'' ∥
+//!    DH''. When x falls inside (or too near) AD the turn would fold the box, so x is held at
+//!    1.25·|AD|/2 from Q and the turn keeps the box width instead (our addition: the thesis does
+//!    not say what happens then);
+//! 4. iterative face rotation about DA in 2δ steps: outward while the front face AE''H''D crosses
+//!    the surface, else inward until it does and then one step back out (so the face rests 0–2δ
+//!    above the surface). Capped at 45 steps or 60° inward; a face that never finds the surface
+//!    (the roller left the object) keeps its unrotated position;
+//! 5. the back edge F'G' along the negative normal of the new front face, at the previous depth.
+//!
+//! When the leading box reaches ω·δ wide it is locked and a new, thin leading box starts (several
+//! per move when the mouse jumps far).
+
+use glam::{DQuat, DVec2, DVec3};
+
+use crate::camera::{Camera, Ray};
+use crate::cutter::{CutKind, Cutter};
+use crate::geom;
+use crate::plane::BoundedPlane;
+use crate::surface::Surface;
+
+/// Initial strip width as a multiple of δ (thesis 3.3.1).
+pub const INITIAL_WIDTH: f64 = 10.0;
+/// Initial depth as a multiple of δ.
+pub const INITIAL_DEPTH: f64 = 5.0;
+/// Width of a freshly started leading box, as a multiple of δ ("very narrow").
+pub const MIN_WIDTH: f64 = 0.25;
+/// Displacement of one face-rotation step, as a multiple of δ.
+pub const ROTATION_STEP: f64 = 2.0;
+
+/// Largest number of boxes one mouse move may lock (a far jump of the mouse).
+const MAX_BOXES_PER_MOVE: usize = 64;
+
+/// The strip dragged from `a` to `b` (pixels) as the four pixel corners A, D, H, E: the box
+/// extends `width_px` to the screen-right of A→B (toward screen-right when A is below B).
+pub fn strip_pixels(a: DVec2, b: DVec2, width_px: f64) -> [DVec2; 4] {
+    let s = b - a;
+    let w = DVec2::new(-s.y, s.x).normalize_or_zero() * width_px;
+    [a, b, b + w, a + w]
+}
+
+/// Pixel size (world length per pixel) at view depth `z`.
+fn pixel_size(camera: &Camera, viewport: DVec2, z: f64) -> f64 {
+    2.0 * z * (camera.fov_y_deg.to_radians() * 0.5).tan() / viewport.y.max(1.0)
+}
+
+/// The point seen at pixel `px` at view depth `z` (distance along the forward axis).
+fn point_at_depth(camera: &Camera, viewport: DVec2, px: DVec2, z: f64) -> DVec3 {
+    let ray = camera.ray_through_pixel(viewport, px);
+    let f = camera.forward();
+    ray.at(z / ray.direction.dot(f).max(1e-12))
+}
+
+/// View depth of the surface point nearest to the view plane among those seen through the pixel
+/// polygon `corners` (the thesis's "deep box" behind the strip, figure 22). None when the polygon
+/// sees no surface.
+fn min_depth_behind(surface: &Surface, camera: &Camera, viewport: DVec2, corners: &[DVec2; 4]) -> Option<f64> {
+    let f = camera.forward();
+    let eye = camera.eye;
+    let bbox = surface.bbox();
+    if bbox.is_empty() {
+        return None;
+    }
+    let mut zmin = f64::INFINITY;
+    let mut zmax = f64::NEG_INFINITY;
+    for i in 0..8 {
+        let c = DVec3::new(
+            if i & 1 == 0 { bbox.min.x } else { bbox.max.x },
+            if i & 2 == 0 { bbox.min.y } else { bbox.max.y },
+            if i & 4 == 0 { bbox.min.z } else { bbox.max.z },
+        );
+        let z = (c - eye).dot(f);
+        zmin = zmin.min(z);
+        zmax = zmax.max(z);
+    }
+    if zmax <= 0.0 {
+        return None;
+    }
+    zmin = zmin.max(zmax * 1e-6);
+    let dirs = corners.map(|c| camera.ray_through_pixel(viewport, c).direction);
+    let mut region = csg::Aabb::EMPTY;
+    for d in &dirs {
+        for z in [zmin, zmax] {
+            region.grow(eye + *d * (z / d.dot(f).max(1e-12)));
+        }
+    }
+    let inside: DVec3 = dirs.iter().copied().sum();
+    let planes: Vec<DVec3> = (0..4)
+        .filter_map(|i| {
+            let n = dirs[i].cross(dirs[(i + 1) % 4]).try_normalize()?;
+            Some(if n.dot(inside) < 0.0 { -n } else { n })
+        })
+        .collect();
+    let mut faces = Vec::new();
+    surface.index.faces_in_box(&region, &mut faces);
+    let mut best = f64::INFINITY;
+    let mut poly = Vec::with_capacity(8);
+    let mut next = Vec::with_capacity(8);
+    for &fi in &faces {
+        poly.clear();
+        poly.extend_from_slice(&surface.mesh.corners(fi as usize));
+        for n in &planes {
+            next.clear();
+            for k in 0..poly.len() {
+                let p = poly[k];
+                let q = poly[(k + 1) % poly.len()];
+                let dp = (p - eye).dot(*n);
+                let dq = (q - eye).dot(*n);
+                if dp >= 0.0 {
+                    next.push(p);
+                }
+                if (dp >= 0.0) != (dq >= 0.0) {
+                    next.push(p + (q - p) * (dp / (dp - dq)));
+                }
+            }
+            std::mem::swap(&mut poly, &mut next);
+            if poly.is_empty() {
+                break;
+            }
+        }
+        for p in &poly {
+            let z = (*p - eye).dot(f);
+            if z > 0.0 && z < best {
+                best = z;
+            }
+        }
+    }
+    best.is_finite().then_some(best)
+}
+
+/// Initialises a cutter from a drag A→B in pixels (thesis 3.3.1): the strip is built in the view
+/// plane, pushed along the view direction onto the closest surface point behind it, and given a
+/// back face 5δ deeper. Plane 0 is `ABCD` with A the press point; plane 1, 10δ to the
+/// screen-right of A→B, is the leading plane. Returns None for a drag shorter than 2 pixels.
+///
+/// When the strip sees no surface at all (a surrounding cut started off the object), the strip is
+/// pushed to the depth of the surface point nearest to the view ray through its centre.
+pub fn initialize(
+    surface: &Surface,
+    camera: &Camera,
+    viewport: DVec2,
+    a: DVec2,
+    b: DVec2,
+    delta: f64,
+    kind: CutKind,
+    smooth: bool,
+) -> Option<Cutter> {
+    if (b - a).length() < 2.0 || delta <= 0.0 {
+        return None;
+    }
+    let f = camera.forward();
+    let (r, u, _) = camera.basis();
+    let width = INITIAL_WIDTH * delta;
+    // First depth estimate: a ray through the drag, else the target's centre.
+    let mut z = [a, (a + b) * 0.5, b]
+        .iter()
+        .find_map(|&px| {
+            let ray = camera.ray_through_pixel(viewport, px);
+            surface
+                .ray_cast(ray.origin, ray.direction, f64::INFINITY)
+                .map(|(_, p)| (p - camera.eye).dot(f))
+        })
+        .unwrap_or_else(|| (surface.bbox().center() - camera.eye).dot(f));
+    let mut found = false;
+    for _ in 0..2 {
+        let width_px = width / pixel_size(camera, viewport, z.max(1e-9));
+        let corners = strip_pixels(a, b, width_px);
+        if let Some(zc) = min_depth_behind(surface, camera, viewport, &corners) {
+            z = zc;
+            found = true;
+        } else {
+            break;
+        }
+    }
+    if !found {
+        let centre_px = (a + b) * 0.5;
+        let ray = camera.ray_through_pixel(viewport, centre_px);
+        let probe = ray.at((surface.bbox().center() - camera.eye).dot(f).max(0.0));
+        if let Some(c) = surface.closest_point(probe) {
+            z = (c - camera.eye).dot(f);
+        }
+    }
+    if !(z > 0.0) {
+        return None;
+    }
+    let s = b - a;
+    let w3 = (r * -s.y - u * s.x).try_normalize()?;
+    let a3 = point_at_depth(camera, viewport, a, z);
+    let d3 = point_at_depth(camera, viewport, b, z);
+    let depth = INITIAL_DEPTH * delta;
+    let p0 = BoundedPlane::from_front_edge(a3, d3, f, depth);
+    let p1 = match kind {
+        CutKind::Wedge => {
+            let len = (d3 - a3).length();
+            let h = a3 + (d3 + w3 * width - a3).try_normalize()? * len;
+            BoundedPlane::from_front_edge(a3, h, f, depth)
+        }
+        _ => BoundedPlane::from_front_edge(a3 + w3 * width, d3 + w3 * width, f, depth),
+    };
+    let cutter = Cutter {
+        kind,
+        smooth,
+        planes: vec![p0, p1],
+    };
+    cutter.sanity_check().ok()?;
+    Some(cutter)
+}
+
+/// Settings of one extrusion move.
+#[derive(Clone, Copy, Debug)]
+pub struct RollSettings {
+    /// Scene increment δ.
+    pub delta: f64,
+    /// Segment spacing ω: a box is locked when it reaches ω·δ wide.
+    pub spacing: f64,
+    /// Straight-path constraint (Shift, or the Straight kind).
+    pub straight: bool,
+}
+
+/// Moves the leading plane toward the mouse ray (one extrusion move), locking boxes and starting
+/// new ones as they reach ω·δ. Returns true when the cutter changed. The cutter stays valid: a
+/// move that would fold the leading box onto the previous one is ignored.
+pub fn extrude_move(cutter: &mut Cutter, surface: &Surface, ray: &Ray, settings: &RollSettings) -> bool {
+    if cutter.planes.len() < 2 {
+        return false;
+    }
+    if cutter.kind == CutKind::Wedge {
+        return wedge_move(cutter, surface, ray, settings);
+    }
+    let mut scratch = Vec::new();
+    let lock_width = (settings.spacing * settings.delta).max(2.0 * MIN_WIDTH * settings.delta);
+    let mut changed = false;
+    for _ in 0..MAX_BOXES_PER_MOVE {
+        let n = cutter.planes.len();
+        let (prev, lead) = (cutter.planes[n - 2], cutter.planes[n - 1]);
+        let Some(frame) = FrontFrame::new(&prev, &lead) else {
+            break;
+        };
+        let Some(m) = frame.project(ray) else {
+            break;
+        };
+        let v = frame.forward_offset(m, settings.straight, MIN_WIDTH * settings.delta);
+        // A box locks when the mouse is ω·δ ahead along the path; a sideways mouse turns the
+        // roller but never widens the box beyond ω·δ (so a mouse beside the roller cannot make
+        // it spin around the pointer, locking box after box).
+        let ahead = v.dot(frame.forward);
+        let v = v * (lock_width / v.length()).min(1.0);
+        if ahead > lock_width + MIN_WIDTH * settings.delta {
+            // Lock this box at ω·δ and start a new thin one beyond it.
+            let m_lock = frame.q + v;
+            let Some(locked) = roll(&prev, &frame, m_lock, surface, settings, &mut scratch) else {
+                break;
+            };
+            cutter.planes[n - 1] = locked;
+            let dir = (locked.front_mid() - prev.front_mid()).normalize_or_zero();
+            cutter.planes.push(locked.translated(dir * MIN_WIDTH * settings.delta));
+            if cutter.sanity_check().is_err() {
+                cutter.planes.pop();
+                cutter.planes[n - 1] = lead;
+                break;
+            }
+            changed = true;
+            continue;
+        }
+        let target = frame.q + v;
+        if let Some(new_lead) = roll(&prev, &frame, target, surface, settings, &mut scratch) {
+            changed |= new_lead != lead;
+            cutter.planes[n - 1] = new_lead;
+        }
+        break;
+    }
+    changed
+}
+
+/// The front plane of the leading box and the roller's frame in it.
+struct FrontFrame {
+    /// Front-top and front-bottom of the previous plane.
+    a: DVec3,
+    d: DVec3,
+    /// Midpoint of AD.
+    q: DVec3,
+    /// Unit direction D→A.
+    up: DVec3,
+    /// Unit normal of the front plane, pointing out of the object (away from the back).
+    normal: DVec3,
+    /// Unit in-plane direction ⟂ AD toward the leading plane.
+    forward: DVec3,
+    /// Back direction and depth of the previous plane.
+    back: DVec3,
+    depth: f64,
+}
+
+impl FrontFrame {
+    fn new(prev: &BoundedPlane, lead: &BoundedPlane) -> Option<FrontFrame> {
+        let a = prev.front_top;
+        let d = prev.front_bottom;
+        let q = (a + d) * 0.5;
+        let up = (a - d).try_normalize()?;
+        let back = prev.back_direction();
+        let mut normal = (lead.front_top - a)
+            .cross(d - a)
+            .try_normalize()
+            .or_else(|| (-back).try_normalize())?;
+        if normal.dot(back) > 0.0 {
+            normal = -normal;
+        }
+        let mut forward = normal.cross(up).try_normalize()?;
+        if forward.dot(lead.front_mid() - q) < 0.0 {
+            forward = -forward;
+        }
+        Some(FrontFrame {
+            a,
+            d,
+            q,
+            up,
+            normal,
+            forward,
+            back,
+            depth: prev.depth(),
+        })
+    }
+
+    /// M: the mouse ray meets the front plane (None when parallel or behind the eye).
+    fn project(&self, ray: &Ray) -> Option<DVec3> {
+        let t = geom::line_plane(ray.origin, ray.direction, self.a, self.normal)?;
+        (t > 0.0).then(|| ray.at(t))
+    }
+
+    /// The in-plane offset Q→M, forced at least `min_width` forward; with `straight`, turned
+    /// ⟂ AD (thesis 3.3.2.2).
+    fn forward_offset(&self, m: DVec3, straight: bool, min_width: f64) -> DVec3 {
+        let mut v = m - self.q;
+        v -= self.normal * v.dot(self.normal);
+        if straight {
+            return self.forward * v.dot(self.forward).max(min_width);
+        }
+        let ahead = v.dot(self.forward);
+        if ahead < min_width {
+            v += self.forward * (min_width - ahead);
+        }
+        v
+    }
+}
+
+/// One paint-roller placement of the leading plane for the in-plane target point `m` (stages 2–5
+/// of the module doc). None when the result would fold onto the previous plane.
+fn roll(
+    prev: &BoundedPlane,
+    frame: &FrontFrame,
+    m: DVec3,
+    surface: &Surface,
+    settings: &RollSettings,
+    scratch: &mut Vec<u32>,
+) -> Option<BoundedPlane> {
+    let FrontFrame {
+        a, d, q, up, normal, ..
+    } = *frame;
+    let half = (a - d).length() * 0.5;
+    let v = m - q;
+    let width = v.length();
+    // Stage 2: E'H' ⟂ MQ through M; its direction `p` is v turned 90° in the plane, on A's side.
+    let mut p = normal.cross(v).try_normalize()?;
+    if p.dot(up) < 0.0 {
+        p = -p;
+    }
+    // Stage 3: parallel correction by turning AD about x.
+    let (mut e, mut h);
+    let denom = up.cross(p);
+    if denom.length() < 1e-9 {
+        e = a + v;
+        h = d + v;
+    } else {
+        // x = Q + up·s = M + p·t  →  solve in the plane.
+        let s = (m - q).cross(p).dot(denom) / denom.length_squared();
+        let min_s = 1.25 * half;
+        let (x, phi) = if s.abs() < min_s {
+            let s = if s >= 0.0 { min_s } else { -min_s };
+            let x = q + up * s;
+            let turn = 2.0 * (width / (2.0 * s.abs())).min(1.0).asin();
+            let sign = normal.dot((q - x).cross(v)).signum();
+            (x, turn * sign)
+        } else {
+            let x = q + up * s;
+            let (u0, u1) = (q - x, m - x);
+            let phi = normal.dot(u0.cross(u1)).atan2(u0.dot(u1));
+            (x, phi)
+        };
+        let phi = phi.clamp(-60f64.to_radians(), 60f64.to_radians());
+        let rot = DQuat::from_axis_angle(normal, phi);
+        e = x + rot * (a - x);
+        h = x + rot * (d - x);
+        if (e + h) * 0.5 == q {
+            return None;
+        }
+    }
+    // Stage 4: rotate the face about DA until it rests just above the surface.
+    let axis = up;
+    let radius = {
+        let w = e - d;
+        (w - axis * w.dot(axis)).length()
+    };
+    if radius <= 0.0 {
+        return None;
+    }
+    let step = (ROTATION_STEP * settings.delta / radius).clamp(1e-4, 10f64.to_radians());
+    let rotate = |p: DVec3, angle: f64| d + DQuat::from_axis_angle(axis, angle) * (p - d);
+    // Sign of an outward (away from the object) rotation.
+    let outward = if (rotate(e, step) - e).dot(normal) >= 0.0 { 1.0 } else { -1.0 };
+    let hits = |e: DVec3, h: DVec3, scratch: &mut Vec<u32>| surface.quad_intersects(&[a, e, h, d], scratch);
+    if hits(e, h, scratch) {
+        for _ in 0..45 {
+            e = rotate(e, outward * step);
+            h = rotate(h, outward * step);
+            if !hits(e, h, scratch) {
+                break;
+            }
+        }
+    } else {
+        let (e0, h0) = (e, h);
+        let mut total = 0.0;
+        let mut touched = false;
+        while total < 60f64.to_radians() {
+            let (e1, h1) = (rotate(e, -outward * step), rotate(h, -outward * step));
+            total += step;
+            if hits(e1, h1, scratch) {
+                touched = true;
+                break;
+            }
+            e = e1;
+            h = h1;
+        }
+        if !touched {
+            e = e0;
+            h = h0;
+        }
+    }
+    // Stage 5: back edge along the new face's negative normal, at the previous depth.
+    let mut n = (e - a).cross(d - a).try_normalize()?;
+    if n.dot(frame.back) > 0.0 {
+        n = -n;
+    }
+    let lead = BoundedPlane::from_front_edge(e, h, -n, frame.depth);
+    let pair = Cutter {
+        kind: CutKind::Curving,
+        smooth: false,
+        planes: vec![*prev, lead],
+    };
+    pair.sanity_check().ok()?;
+    Some(lead)
+}
+
+/// Wedge extrusion (thesis 3.3.2.3): E' stays on the shared axis, M sets the rotation, and on a
+/// collision the whole cutter moves 2δ along BA (out of the object) until the new front triangle
+/// is clear.
+fn wedge_move(cutter: &mut Cutter, surface: &Surface, ray: &Ray, settings: &RollSettings) -> bool {
+    let mut scratch = Vec::new();
+    let delta = settings.delta;
+    let lock = (settings.spacing * delta).max(2.0 * MIN_WIDTH * delta);
+    let mut changed = false;
+    for _ in 0..MAX_BOXES_PER_MOVE {
+        let n = cutter.planes.len();
+        let p0 = cutter.planes[0];
+        let prev = cutter.planes[n - 2];
+        let lead = cutter.planes[n - 1];
+        let a = p0.front_top;
+        let axis_back = p0.back_top - p0.front_top;
+        let Some(normal) = (cutter.planes[0].front_bottom - a)
+            .cross(cutter.planes[1].front_bottom - a)
+            .try_normalize()
+        else {
+            break;
+        };
+        // Rotation sense: from plane 0 toward plane 1 about `normal`.
+        let Some(t) = geom::line_plane(ray.origin, ray.direction, a, normal) else {
+            break;
+        };
+        if t <= 0.0 {
+            break;
+        }
+        let m = ray.at(t);
+        let radius = (prev.front_bottom - a).length();
+        let u0 = prev.front_bottom - a;
+        let Some(um) = (m - a).try_normalize() else {
+            break;
+        };
+        let mut phi = normal.dot(u0.cross(um)).atan2(u0.dot(um));
+        let min_phi = MIN_WIDTH * delta / radius;
+        let lock_phi = 2.0 * (lock / (2.0 * radius)).min(1.0).asin();
+        let locking = phi > lock_phi + min_phi;
+        if locking {
+            phi = lock_phi;
+        }
+        phi = phi.max(min_phi).min(90f64.to_radians());
+        let h = a + DQuat::from_axis_angle(normal, phi) * u0;
+        let new_lead = BoundedPlane {
+            front_top: a,
+            back_top: p0.back_top,
+            back_bottom: h + axis_back,
+            front_bottom: h,
+        };
+        let previous_planes = cutter.planes.clone();
+        cutter.planes[n - 1] = new_lead;
+        // Collision: push the whole cutter out along BA in 2δ steps.
+        let out = (-axis_back).normalize_or_zero() * ROTATION_STEP * delta;
+        let mut pushes = 0;
+        while pushes < 50 {
+            let l = cutter.planes[n - 1];
+            if !surface.triangle_intersects(&[l.front_top, prev_front_bottom(cutter, n), l.front_bottom], &mut scratch) {
+                break;
+            }
+            for p in &mut cutter.planes {
+                *p = p.translated(out);
+            }
+            pushes += 1;
+        }
+        if locking {
+            let l = cutter.planes[n - 1];
+            let turn = DQuat::from_axis_angle(normal, min_phi);
+            let fb = a_of(cutter) + turn * (l.front_bottom - a_of(cutter));
+            let shared = cutter.planes[0];
+            cutter.planes.push(BoundedPlane {
+                front_top: shared.front_top,
+                back_top: shared.back_top,
+                back_bottom: fb + (shared.back_top - shared.front_top),
+                front_bottom: fb,
+            });
+        }
+        if cutter.sanity_check().is_err() {
+            cutter.planes = previous_planes;
+            break;
+        }
+        changed |= cutter.planes[n - 1] != lead || locking;
+        if !locking {
+            break;
+        }
+    }
+    changed
+}
+
+fn a_of(cutter: &Cutter) -> DVec3 {
+    cutter.planes[0].front_top
+}
+
+fn prev_front_bottom(cutter: &Cutter, n: usize) -> DVec3 {
+    cutter.planes[n - 2].front_bottom
+}
+
+/// Largest distance from a plane's front-edge midpoint to the surface (the `max_surface_gap` of
+/// `cutaway extrude --json`).
+pub fn max_surface_gap(cutter: &Cutter, surface: &Surface) -> f64 {
+    cutter
+        .planes
+        .iter()
+        .map(|p| surface.distance(p.front_mid()))
+        .fold(0.0, f64::max)
+}

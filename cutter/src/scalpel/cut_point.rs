@@ -1,0 +1,187 @@
+//! Cut points (on a vertex, on an edge, inside a face), their classification with relative
+//! snapping, and the one exact predicate the scalpel decides topology with.
+//!
+//! A point is classified once, from barycentric weights, with thresholds relative to the triangle
+//! (vertex before edge, as SOFA's `computeIncisionPath`), so a point exactly on a vertex never
+//! becomes "on an edge at t = 1e-17" and no sliver triangle is created next to a vertex or edge.
+//!
+//! The exact predicate is `robust::orient3d` (Shewchuk). TODO(lead): unify with the csg exact
+//! predicates module once it exists.
+
+use glam::DVec3;
+
+use super::dyn_mesh::DynMesh;
+
+/// Where a cut point lies on the current mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CutPoint {
+    /// Exactly on an existing vertex.
+    Vertex(u32),
+    /// On the edge of half-edge `h` at position `point` (strictly inside the edge).
+    Edge { h: u32, point: DVec3 },
+    /// Strictly inside triangle `t` at `point`.
+    Face { t: u32, point: DVec3 },
+}
+
+/// Side of `x` relative to the plane through `a`, `b`, `c`: `+1`, `-1` or `0` (exact).
+#[inline]
+pub fn side(a: DVec3, b: DVec3, c: DVec3, x: DVec3) -> i8 {
+    let p = |v: DVec3| robust::Coord3D {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+    };
+    let o = robust::orient3d(p(a), p(b), p(c), p(x));
+    if o > 0.0 {
+        1
+    } else if o < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+/// Classifies the point with barycentric weights `bary` (corners 0, 1, 2 of triangle `t`) with
+/// snapping radius `tau` (fraction of the triangle): a weight above `1 - tau` snaps to its
+/// vertex; else a weight below `tau / 2` puts the point on the opposite edge.
+pub fn classify(mesh: &DynMesh, t: u32, bary: DVec3, tau: f64) -> CutPoint {
+    let tri = mesh.triangles[t as usize];
+    let w = [bary.x, bary.y, bary.z];
+    let (kmax, wmax) = (0..3)
+        .map(|k| (k, w[k]))
+        .fold((0, f64::NEG_INFINITY), |acc, x| if x.1 > acc.1 { x } else { acc });
+    if wmax >= 1.0 - tau {
+        return CutPoint::Vertex(tri[kmax]);
+    }
+    let (kmin, wmin) = (0..3)
+        .map(|k| (k, w[k]))
+        .fold((0, f64::INFINITY), |acc, x| if x.1 < acc.1 { x } else { acc });
+    let p = mesh.pos(tri[0]) * w[0] + mesh.pos(tri[1]) * w[1] + mesh.pos(tri[2]) * w[2];
+    if wmin < tau * 0.5 {
+        // On the edge opposite corner kmin: half-edge from corner kmin+1 to kmin+2.
+        let h = 3 * t + ((kmin + 1) % 3) as u32;
+        let (a, b) = (mesh.pos(mesh.origin(h)), mesh.pos(mesh.dest(h)));
+        let s = (w[(kmin + 2) % 3] / (1.0 - wmin).max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+        return CutPoint::Edge {
+            h,
+            point: a.lerp(b, s),
+        };
+    }
+    CutPoint::Face { t, point: p }
+}
+
+/// Closest point of triangle `(a, b, c)` to `p`, as barycentric weights (Ericson, RTCD 5.1.5).
+pub fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    let ab = b - a;
+    let ac = c - a;
+    let ap = p - a;
+    let d1 = ab.dot(ap);
+    let d2 = ac.dot(ap);
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return DVec3::new(1.0, 0.0, 0.0);
+    }
+    let bp = p - b;
+    let d3 = ab.dot(bp);
+    let d4 = ac.dot(bp);
+    if d3 >= 0.0 && d4 <= d3 {
+        return DVec3::new(0.0, 1.0, 0.0);
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return DVec3::new(1.0 - v, v, 0.0);
+    }
+    let cp = p - c;
+    let d5 = ab.dot(cp);
+    let d6 = ac.dot(cp);
+    if d6 >= 0.0 && d5 <= d6 {
+        return DVec3::new(0.0, 0.0, 1.0);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return DVec3::new(1.0 - w, 0.0, w);
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return DVec3::new(0.0, 1.0 - w, w);
+    }
+    let denom = 1.0 / (va + vb + vc);
+    let v = vb * denom;
+    let w = vc * denom;
+    DVec3::new(1.0 - v - w, v, w)
+}
+
+/// The triangle of `mesh` closest to `p` with the closest point's barycentric weights and
+/// distance, by a linear scan. Used only where a stroke (re)starts, never inside a step.
+pub fn closest_face(mesh: &DynMesh, p: DVec3) -> Option<(u32, DVec3, f64)> {
+    let mut best: Option<(u32, DVec3, f64)> = None;
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        let (a, b, c) = (mesh.pos(tri[0]), mesh.pos(tri[1]), mesh.pos(tri[2]));
+        // Cheap reject on the box distance.
+        if let Some((_, _, d)) = best {
+            let lo = a.min(b).min(c);
+            let hi = a.max(b).max(c);
+            let q = p.clamp(lo, hi);
+            if q.distance_squared(p) >= d * d {
+                continue;
+            }
+        }
+        let w = closest_on_triangle(p, a, b, c);
+        let q = a * w.x + b * w.y + c * w.z;
+        let d = q.distance(p);
+        if best.is_none_or(|(_, _, bd)| d < bd) {
+            best = Some((t as u32, w, d));
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri_mesh() -> DynMesh {
+        DynMesh::from_mesh(&csg::Mesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+            triangles: vec![[0, 1, 2]],
+        })
+    }
+
+    #[test]
+    fn vertex_before_edge() {
+        let m = tri_mesh();
+        assert_eq!(classify(&m, 0, DVec3::new(0.9, 0.05, 0.05), 0.25), CutPoint::Vertex(0));
+        match classify(&m, 0, DVec3::new(0.5, 0.48, 0.02), 0.25) {
+            CutPoint::Edge { h, point } => {
+                assert_eq!(h, 0);
+                assert!((point - DVec3::new(0.48 / 0.98, 0.0, 0.0)).length() < 1e-12);
+            }
+            other => panic!("expected an edge point, got {other:?}"),
+        }
+        assert!(matches!(
+            classify(&m, 0, DVec3::splat(1.0 / 3.0), 0.25),
+            CutPoint::Face { t: 0, .. }
+        ));
+    }
+
+    #[test]
+    fn exact_side_of_plane() {
+        let (a, b, c) = (DVec3::ZERO, DVec3::X, DVec3::Z);
+        assert_eq!(side(a, b, c, DVec3::new(0.3, 0.0, 0.7)), 0);
+        assert_ne!(side(a, b, c, DVec3::new(0.3, 1e-300, 0.7)), 0);
+        assert_eq!(
+            side(a, b, c, DVec3::new(0.3, 1e-300, 0.7)),
+            -side(a, b, c, DVec3::new(0.3, -1e-300, 0.7))
+        );
+    }
+
+    #[test]
+    fn closest_point_regions() {
+        let (a, b, c) = (DVec3::ZERO, DVec3::X, DVec3::Y);
+        assert_eq!(closest_on_triangle(DVec3::new(-1., -1., 0.), a, b, c), DVec3::X);
+        let w = closest_on_triangle(DVec3::new(0.25, 0.25, 5.0), a, b, c);
+        assert!((w - DVec3::new(0.5, 0.25, 0.25)).length() < 1e-12);
+    }
+}

@@ -1,0 +1,140 @@
+//! # Scalpel mode: progressive cutting of a triangle surface along a tool path
+//!
+//! The second way to cut (issue 6; papers: Bruyns 2002, interactive cross cutting, progressive
+//! re-meshing of thin membranes, Sela 2004 DFFD incision; goals in `notes/scalpel.md`).
+//!
+//! ## Model
+//! A [`Scalpel`] owns a [`DynMesh`] (the `csg` mesh plus half-edge twins it patches locally) and
+//! receives tool samples: [`Scalpel::begin_stroke`], [`Scalpel::step`] per sample,
+//! [`Scalpel::end_stroke`]. Each step walks the surface from the last permanent cut vertex toward
+//! the sample (a plane through the cut vertex, the sample and the local normal), splitting each
+//! triangle it crosses so that the cut runs along mesh edges, then opens those edges (a slit with
+//! two lips) or, with a depth on a closed surface, closes the slit with groove walls.
+//!
+//! - Cut points are vertices, points on edges or points inside faces ([`cut_point`]); an edge
+//!   crossing closer than `snap_edge` (relative edge parameter) to a vertex goes through the
+//!   vertex, an end point closer than `snap_end` to a vertex or edge lands on it, so no sliver is
+//!   created and the mesh never has a T-junction.
+//! - The end of the cut inside its last triangle (the tool tip) is *temporary*: it is undone at
+//!   the next step and redone further on (Mor–Kanade), so sampling density and trembling do not
+//!   leave permanent triangles.
+//! - Every step is a transaction over the mesh's journal: it commits a valid mesh or returns an
+//!   error with the mesh exactly as before. [`Scalpel::undo_stroke`] undoes a whole stroke.
+//! - Crossing an existing slit ([`cross`]): at 15° or more between the cuts the new cut continues
+//!   on the other lip; under 15° it merges into the existing cut (ends there).
+//! - [`Tool::Loop`] closes the stroke back to its start and reports the pieces it detached
+//!   ([`loop_tool`]).
+//! - [`dffd`] opens the incision by a displacement that is discontinuous across the cut, over a
+//!   trailing time window; vertices outside its support are never written.
+//! - [`invariants`] validates the whole structure (used after every step in tests).
+//!
+//! ## Robustness contract
+//! Input: any [`csg::Mesh`] that passes `sanity_check`. Non-manifold edges and bow-tie vertices
+//! are kept but never cut through (error, mesh unchanged). The only topological decision taken on
+//! coordinates, the side of the walking plane a vertex is on, uses the exact `robust::orient3d`;
+//! snapping thresholds are relative to local edge lengths, never absolute.
+
+pub mod cross;
+pub mod cut_point;
+pub mod dffd;
+pub mod dyn_mesh;
+pub mod groove;
+pub mod invariants;
+pub mod loop_tool;
+pub mod step;
+
+pub use cut_point::CutPoint;
+pub use dffd::OpenOptions;
+pub use dyn_mesh::DynMesh;
+pub use invariants::{TopologyReport, ValidationError};
+pub use step::{Scalpel, StepReport, StrokeReport};
+
+/// What the blade does.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Tool {
+    /// An open cut along the path.
+    #[default]
+    Scalpel,
+    /// A closed path: the stroke is closed back to its start and cuts through, detaching the
+    /// enclosed piece.
+    Loop,
+}
+
+/// Settings of the blade.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScalpelOptions {
+    /// Blade depth below the surface (model units). `0` cuts a slit (thin membrane). Default `0`.
+    pub depth: f64,
+    /// Open or closed tool. Default [`Tool::Scalpel`].
+    pub tool: Tool,
+    /// Edge crossings at edge parameter below this (or above `1 - snap_edge`) go through the
+    /// vertex instead. Default `0.25` (worst new angle ≈ 0.2 × parent's: notes §2).
+    pub snap_edge: f64,
+    /// End points within this fraction of the last segment from its ends snap to them; end
+    /// points near an edge land on it. Default `0.25`.
+    pub snap_end: f64,
+    /// Cuts meeting an existing slit at less than this angle (degrees) merge into it instead of
+    /// crossing. Default `15`.
+    pub merge_angle_deg: f64,
+    /// A sample farther than this from the surface is off the mesh. `None` (default) uses
+    /// `depth + 5%` of the mesh's bounding-box diagonal.
+    pub max_surface_distance: Option<f64>,
+}
+
+impl Default for ScalpelOptions {
+    fn default() -> Self {
+        ScalpelOptions {
+            depth: 0.0,
+            tool: Tool::Scalpel,
+            snap_edge: 0.25,
+            snap_end: 0.25,
+            merge_angle_deg: 15.0,
+            max_surface_distance: None,
+        }
+    }
+}
+
+impl ScalpelOptions {
+    pub fn with_depth(mut self, depth: f64) -> Self {
+        self.depth = depth;
+        self
+    }
+
+    pub fn with_tool(mut self, tool: Tool) -> Self {
+        self.tool = tool;
+        self
+    }
+}
+
+/// Why a scalpel step or stroke failed. The mesh is unchanged whenever one of these is returned.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ScalpelError {
+    /// The sample is too far from the surface. Move the tool onto the mesh.
+    #[error("tool sample {point:?} is {distance} from the surface (more than {tolerance}): off the mesh")]
+    OffMesh {
+        point: [f64; 3],
+        distance: f64,
+        tolerance: f64,
+    },
+    /// The mesh has no triangle to cut.
+    #[error("the mesh has no triangles")]
+    EmptyMesh,
+    /// The cut reached an edge with more than two faces or a bow-tie vertex.
+    #[error("non-manifold region at the cut near {point:?}: the scalpel cuts only manifold surfaces")]
+    NonManifold { point: [f64; 3] },
+    /// A sample coordinate is NaN or infinite.
+    #[error("tool sample {point:?} is not finite")]
+    NonFinite { point: [f64; 3] },
+    /// `step` or `end_stroke` without `begin_stroke`.
+    #[error("no stroke in progress")]
+    NoStroke,
+    /// The surface walk did not reach the sample (degenerate geometry).
+    #[error("the cut could not follow the surface toward {point:?}")]
+    WalkFailed { point: [f64; 3] },
+    /// A loop stroke did not come back to its start.
+    #[error("the loop did not close: its end is {gap} from its start")]
+    LoopNotClosed { gap: f64 },
+    /// The options are invalid (negative depth, thresholds outside [0, 0.5)).
+    #[error("invalid scalpel options: {0}")]
+    BadOptions(String),
+}

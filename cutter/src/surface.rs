@@ -1,0 +1,69 @@
+//! The target surface as the editor sees it: a mesh plus its spatial index, and the collision
+//! queries of the extrusion (the thesis used `vtkCollisionDetectionFilter` over OBB trees).
+
+use glam::DVec3;
+
+use csg::{Aabb, Mesh, SpatialIndex};
+
+use crate::geom;
+
+/// A borrowed view of the target mesh and its index (built from that same mesh).
+#[derive(Clone, Copy)]
+pub struct Surface<'a> {
+    pub mesh: &'a Mesh,
+    /// Must have been built from `mesh`.
+    pub index: &'a SpatialIndex,
+}
+
+impl<'a> Surface<'a> {
+    /// Wraps a mesh and the index built from it.
+    pub fn new(mesh: &'a Mesh, index: &'a SpatialIndex) -> Self {
+        Surface { mesh, index }
+    }
+
+    /// True when the triangle `t` crosses the surface.
+    pub fn triangle_intersects(&self, t: &[DVec3; 3], scratch: &mut Vec<u32>) -> bool {
+        let b = Aabb::from_points(t.iter());
+        scratch.clear();
+        self.index.faces_in_box(&b, scratch);
+        scratch
+            .iter()
+            .any(|&f| geom::tri_tri_intersect(t, &self.mesh.corners(f as usize)))
+    }
+
+    /// True when the quad `q` (split along its first diagonal) crosses the surface.
+    pub fn quad_intersects(&self, q: &[DVec3; 4], scratch: &mut Vec<u32>) -> bool {
+        let b = Aabb::from_points(q.iter());
+        scratch.clear();
+        self.index.faces_in_box(&b, scratch);
+        let [t0, t1] = geom::quad_triangles(q);
+        scratch.iter().any(|&f| {
+            let c = self.mesh.corners(f as usize);
+            geom::tri_tri_intersect(&t0, &c) || geom::tri_tri_intersect(&t1, &c)
+        })
+    }
+
+    /// Distance from `p` to the surface (infinite for an empty mesh).
+    pub fn distance(&self, p: DVec3) -> f64 {
+        self.index
+            .closest_point(self.mesh, p)
+            .map_or(f64::INFINITY, |c| c.distance)
+    }
+
+    /// The surface point closest to `p`.
+    pub fn closest_point(&self, p: DVec3) -> Option<DVec3> {
+        self.index.closest_point(self.mesh, p).map(|c| c.point)
+    }
+
+    /// First hit of a ray (unit or not `direction`), as the hit point and its parameter.
+    pub fn ray_cast(&self, origin: DVec3, direction: DVec3, t_max: f64) -> Option<(f64, DVec3)> {
+        self.index
+            .ray_cast(self.mesh, origin, direction, t_max)
+            .map(|h| (h.t, h.point))
+    }
+
+    /// Bounding box of the target.
+    pub fn bbox(&self) -> Aabb {
+        self.mesh.bbox()
+    }
+}

@@ -1,0 +1,631 @@
+//! Scalpel scenario corpus (notes/scalpel.md §5): each scenario cuts a test mesh and compares
+//! the change in components (C), boundary loops (b) and Euler characteristic (χ) with the table;
+//! every step is followed by the full validator, an area check (splitting conserves area) and a
+//! sliver check on the triangles the step created.
+
+use csg::{DVec3, Mesh};
+use cutter::scalpel::invariants::{min_angle_deg, t_junction_near, validate};
+use cutter::scalpel::{Scalpel, ScalpelOptions, TopologyReport, Tool};
+
+/// An `n × n` grid of unit squares on z = 0 from (0, 0), each split on the (0,0)-(1,1) diagonal
+/// (right-isosceles triangles; longest edge h = √2).
+fn sheet(n: u32) -> Mesh {
+    let mut positions = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            positions.push(DVec3::new(i as f64, j as f64, 0.0));
+        }
+    }
+    let id = |i: u32, j: u32| j * (n + 1) + i;
+    let mut triangles = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        }
+    }
+    Mesh::new(positions, triangles).unwrap()
+}
+
+fn topo(s: &Scalpel) -> TopologyReport {
+    validate(s.dyn_mesh()).unwrap_or_else(|e| panic!("invalid mesh: {e}"))
+}
+
+fn delta(before: &TopologyReport, after: &TopologyReport) -> (i64, i64, i64) {
+    (
+        after.components as i64 - before.components as i64,
+        after.boundary_loops as i64 - before.boundary_loops as i64,
+        after.euler - before.euler,
+    )
+}
+
+fn area(s: &Scalpel) -> f64 {
+    s.mesh().area()
+}
+
+/// Checks after a step: valid structure, no sliver among the triangles created since
+/// `triangles_before` (unless `min_angle` is 0), no geometric T-junction at new vertices, and
+/// area conserved when `conserve_area`.
+fn check_step(s: &Scalpel, triangles_before: usize, vertices_before: usize, area0: f64, conserve_area: bool, min_angle: f64) {
+    let t = topo(s);
+    assert!(t.manifold, "not manifold after a step: {t:?}");
+    if conserve_area {
+        let a = area(s);
+        assert!((a - area0).abs() <= 1e-9 * area0, "area changed: {area0} -> {a}");
+    }
+    let m = s.dyn_mesh();
+    for tri in triangles_before..m.triangle_count() {
+        let ang = min_angle_deg(m, tri as u32);
+        assert!(ang >= min_angle, "sliver: triangle {tri} has a {ang}° angle");
+    }
+    // Geometric T-junctions in the rest pose (slits only: a groove's two lips coincide in the
+    // rest pose while being separate sheets joined by the walls).
+    if conserve_area {
+        for v in vertices_before..m.vertex_count() {
+            assert!(!t_junction_near(m, v as u32), "T-junction at new vertex {v}");
+        }
+    }
+}
+
+/// Cuts `strokes` (each a polyline of samples), validating after every step.
+fn cut_strokes(s: &mut Scalpel, strokes: &[Vec<DVec3>], conserve_area: bool, min_angle: f64) {
+    let area0 = area(s);
+    for stroke in strokes {
+        let (t0, v0) = (s.dyn_mesh().triangle_count(), s.dyn_mesh().vertex_count());
+        s.begin_stroke(stroke[0]).unwrap();
+        check_step(s, t0, v0, area0, conserve_area, min_angle);
+        for &q in &stroke[1..] {
+            s.step(q).unwrap();
+            check_step(s, t0, v0, area0, conserve_area, min_angle);
+        }
+        s.end_stroke().unwrap();
+        check_step(s, t0, v0, area0, conserve_area, min_angle);
+    }
+}
+
+/// Samples the segment `a → b` every `spacing`.
+fn line(a: DVec3, b: DVec3, spacing: f64) -> Vec<DVec3> {
+    let n = ((b - a).length() / spacing).ceil().max(1.0) as usize;
+    (0..=n).map(|i| a.lerp(b, i as f64 / n as f64)).collect()
+}
+
+fn p(x: f64, y: f64) -> DVec3 {
+    DVec3::new(x, y, 0.0)
+}
+
+/// Cuts the strokes on a fresh 20×20 sheet and returns the topology change.
+fn sheet_delta(strokes: &[Vec<DVec3>]) -> ((i64, i64, i64), Scalpel) {
+    let mesh = sheet(20);
+    let mut s = Scalpel::new(&mesh, ScalpelOptions::default()).unwrap();
+    let before = topo(&s);
+    assert_eq!((before.components, before.boundary_loops, before.euler), (1, 1, 1));
+    cut_strokes(&mut s, strokes, true, 1.0);
+    (delta(&before, &topo(&s)), s)
+}
+
+#[test]
+fn s01_straight_interior_slit() {
+    let (d, s) = sheet_delta(&[line(p(3.3, 5.4), p(15.6, 9.1), 0.4)]);
+    assert_eq!(d, (0, 1, -1));
+    // Element budget: crossing a triangle edge to edge leaves 3 in its place (+2), ends ≤ +3.
+    let created = s.dyn_mesh().triangle_count() - 800;
+    let t = topo(&s);
+    assert!(t.boundary_edges > 4);
+    assert!(created <= 2 * 40 + 6, "too many triangles created: {created}");
+}
+
+#[test]
+fn s02_boundary_to_interior() {
+    let (d, _) = sheet_delta(&[line(p(0.0, 7.3), p(9.4, 8.2), 0.5)]);
+    assert_eq!(d, (0, 0, 0));
+}
+
+#[test]
+fn s03_boundary_to_boundary_splits_the_sheet() {
+    let (d, s) = sheet_delta(&[line(p(0.0, 7.3), p(20.0, 11.6), 0.5)]);
+    assert_eq!(d, (1, 1, 1));
+    let t = topo(&s);
+    assert_eq!(t.components, 2);
+}
+
+#[test]
+fn s04_curved_arc_and_s_curve() {
+    let arc: Vec<DVec3> = (0..=60)
+        .map(|i| {
+            let a = i as f64 / 60.0 * 2.5;
+            p(10.0 + 5.0 * a.cos(), 10.0 + 5.0 * a.sin())
+        })
+        .collect();
+    assert_eq!(sheet_delta(&[arc]).0, (0, 1, -1));
+    let bez = |t: f64| {
+        let (p0, p1, p2, p3) = (p(3.2, 3.1), p(18.0, 4.0), p(2.0, 16.0), p(16.7, 17.3));
+        let u = 1.0 - t;
+        p0 * (u * u * u) + p1 * (3.0 * u * u * t) + p2 * (3.0 * u * t * t) + p3 * (t * t * t)
+    };
+    let s_curve: Vec<DVec3> = (0..=80).map(|i| bez(i as f64 / 80.0)).collect();
+    assert_eq!(sheet_delta(&[s_curve]).0, (0, 1, -1));
+}
+
+#[test]
+fn s05_exactly_through_vertices_on_the_diagonal() {
+    let (d, s) = sheet_delta(&[line(p(4.0, 4.0), p(14.0, 14.0), 0.37)]);
+    assert_eq!(d, (0, 1, -1));
+    // Along existing edges: no triangle is split, vertices only duplicated (9 interior ones).
+    assert_eq!(s.dyn_mesh().triangle_count(), 800);
+    assert_eq!(s.dyn_mesh().vertex_count(), 441 + 9);
+}
+
+#[test]
+fn s06_along_edges_with_offsets() {
+    for (off, splits) in [(0.0, false), (1e-9, false), (0.1, false), (0.3, true)] {
+        let (d, s) = sheet_delta(&[line(p(4.0, 8.0 + off), p(14.0, 8.0 + off), 0.45)]);
+        assert_eq!(d, (0, 1, -1), "offset {off}");
+        let grew = s.dyn_mesh().triangle_count() > 800;
+        assert_eq!(grew, splits, "offset {off}: splits expected {splits}");
+    }
+}
+
+#[test]
+fn s07_start_and_end_inside_faces() {
+    // Barycentric (1/3,1/3,1/3) of triangle (5,5),(6,5),(6,6) and (0.9,0.05,0.05) and (0.5,0.48,0.02).
+    let bary = |w: [f64; 3], i: f64, j: f64| {
+        p(i, j) * w[0] + p(i + 1.0, j) * w[1] + p(i + 1.0, j + 1.0) * w[2]
+    };
+    for w in [[1.0 / 3.0; 3], [0.9, 0.05, 0.05], [0.5, 0.48, 0.02]] {
+        let a = bary(w, 5.0, 5.0);
+        let b = bary(w, 12.0, 9.0);
+        let (d, _) = sheet_delta(&[line(a, b, 0.5)]);
+        assert_eq!(d, (0, 1, -1), "bary {w:?}");
+    }
+    // Exactly on an edge and exactly on a vertex.
+    let (d, _) = sheet_delta(&[line(p(5.5, 5.0), p(12.0, 9.0), 0.5)]);
+    assert_eq!(d, (0, 1, -1));
+    let (d, _) = sheet_delta(&[line(p(5.0, 5.0), p(12.0, 9.0), 0.5)]);
+    assert_eq!(d, (0, 1, -1));
+}
+
+#[test]
+fn s08_t_cut_onto_an_existing_slit() {
+    let first = line(p(3.3, 10.2), p(16.7, 10.2), 0.5);
+    let (_, mut s) = sheet_delta(std::slice::from_ref(&first));
+    for end_x in [9.7, 12.0] {
+        let mut s2 = s.clone();
+        let before = topo(&s2);
+        // 90° and 45° approaches ending on the lip.
+        let start = if end_x == 9.7 { p(9.7, 4.1) } else { p(6.0, 4.2) };
+        cut_strokes(&mut s2, &[line(start, p(end_x, 10.2), 0.5)], true, 0.0);
+        assert_eq!(delta(&before, &topo(&s2)), (0, 0, 0), "T-cut to x={end_x}");
+    }
+    assert!(s.undo_stroke());
+    assert_eq!(s.dyn_mesh().triangle_count(), 800);
+}
+
+#[test]
+fn s09_i_cut_joins_two_slits() {
+    let (_, mut s) = sheet_delta(&[
+        line(p(5.2, 4.3), p(5.2, 15.7), 0.5),
+        line(p(14.8, 4.3), p(14.8, 15.7), 0.5),
+    ]);
+    let before = topo(&s);
+    cut_strokes(&mut s, &[line(p(5.2, 10.1), p(14.8, 10.1), 0.5)], true, 0.0);
+    assert_eq!(delta(&before, &topo(&s)), (0, -1, 1));
+}
+
+fn x_cut(angle_deg: f64) -> ((i64, i64, i64), TopologyReport, Scalpel) {
+    let (_, mut s) = sheet_delta(&[line(p(3.3, 10.2), p(16.7, 10.2), 0.5)]);
+    let before = topo(&s);
+    let a = angle_deg.to_radians();
+    let dir = DVec3::new(a.cos(), a.sin(), 0.0);
+    let c = p(10.1, 10.2);
+    cut_strokes(&mut s, &[line(c - dir * 5.0, c + dir * 5.0, 0.5)], true, 0.0);
+    let after = topo(&s);
+    (delta(&before, &after), after, s)
+}
+
+#[test]
+fn s10_x_cut_at_90_degrees_crosses() {
+    let (d, after, s) = x_cut(90.0);
+    assert_eq!(d, (0, 0, 0));
+    assert_eq!((after.boundary_loops, after.euler), (2, 0));
+    // The junction point has 4 copies.
+    let m = s.dyn_mesh();
+    let max_copies = (0..m.vertex_count() as u32).map(|v| m.copies(v).len() + 1).max().unwrap_or(1);
+    assert_eq!(max_copies, 4);
+}
+
+#[test]
+fn s11_cross_at_20_degrees_merge_at_10() {
+    let (d, _, _) = x_cut(20.0);
+    assert_eq!(d, (0, 0, 0), "20° crosses");
+    // 10°: merges into the existing slit instead of crossing: the second cut ends on the lip
+    // (T-junction) and opens no new hole of its own on the far side within the lip's reach.
+    let (_, after, s) = x_cut(10.0);
+    let m = s.dyn_mesh();
+    let max_copies = (0..m.vertex_count() as u32).map(|v| m.copies(v).len() + 1).max().unwrap_or(1);
+    assert!(max_copies < 4, "10° must not cross (found a {max_copies}-copy junction)");
+    assert!(after.manifold);
+}
+
+#[test]
+fn s12_self_crossing_alpha_detaches_a_disk() {
+    // Start inside, loop counter-clockwise, cross the own path, exit.
+    let mut pts = vec![p(4.2, 10.1)];
+    pts.extend(line(p(4.2, 10.1), p(9.95, 10.1), 0.5));
+    for i in 0..=72 {
+        let a = -std::f64::consts::FRAC_PI_2 + i as f64 / 72.0 * 1.8 * std::f64::consts::PI;
+        pts.push(p(12.95 + 3.0 * a.cos() - 3.0, 13.1 + 3.0 * a.sin()));
+    }
+    let last = *pts.last().unwrap();
+    pts.extend(line(last, p(last.x, 5.3), 0.5));
+    let (d, _) = sheet_delta(&[pts]);
+    assert_eq!(d, (1, 2, 0));
+}
+
+#[test]
+fn s13_loop_tool_detaches_on_sheet_and_sphere() {
+    let circle = |c: DVec3, r: f64, n: usize| -> Vec<DVec3> {
+        (0..n)
+            .map(|i| {
+                let a = i as f64 / n as f64 * std::f64::consts::TAU;
+                c + DVec3::new(r * a.cos(), r * a.sin(), 0.0)
+            })
+            .collect()
+    };
+    let mesh = sheet(20);
+    let mut s = Scalpel::new(&mesh, ScalpelOptions::default().with_tool(Tool::Loop)).unwrap();
+    let before = topo(&s);
+    let pts = circle(p(10.3, 9.8), 4.1, 60);
+    s.begin_stroke(pts[0]).unwrap();
+    for &q in &pts[1..] {
+        s.step(q).unwrap();
+        topo(&s);
+    }
+    let report = s.end_stroke().unwrap();
+    assert_eq!(delta(&before, &topo(&s)), (1, 2, 0));
+    assert_eq!(report.detached.len(), 1);
+    let piece = &report.detached[0];
+    let expected = std::f64::consts::PI * 4.1 * 4.1;
+    assert!((piece.area() - expected).abs() < 0.1 * expected, "piece area {}", piece.area());
+
+    let sphere = csg::testkit::icosphere(4, 10.0);
+    let mut s = Scalpel::new(&sphere, ScalpelOptions::default().with_tool(Tool::Loop)).unwrap();
+    let before = topo(&s);
+    assert_eq!((before.boundary_loops, before.euler), (0, 2));
+    let pts: Vec<DVec3> = (0..48)
+        .map(|i| {
+            let a = i as f64 / 48.0 * std::f64::consts::TAU;
+            DVec3::new(4.0 * a.cos(), 4.0 * a.sin(), 9.0).normalize() * 10.0
+        })
+        .collect();
+    s.begin_stroke(pts[0]).unwrap();
+    for &q in &pts[1..] {
+        s.step(q).unwrap();
+        assert!(topo(&s).manifold);
+    }
+    let report = s.end_stroke().unwrap();
+    let after = topo(&s);
+    assert_eq!(delta(&before, &after), (1, 2, 0));
+    assert_eq!(report.detached.len(), 1);
+}
+
+#[test]
+fn s14_cut_off_a_corner() {
+    let (d, _) = sheet_delta(&[line(p(0.0, 3.7), p(3.6, 0.0), 0.3)]);
+    assert_eq!(d, (1, 1, 1));
+}
+
+#[test]
+fn s16_retracing_a_lip_changes_nothing() {
+    let path = line(p(3.3, 10.2), p(16.7, 10.2), 0.5);
+    let (_, mut s) = sheet_delta(std::slice::from_ref(&path));
+    let before = topo(&s);
+    let f = s.dyn_mesh().triangle_count();
+    cut_strokes(&mut s, &[line(p(5.0, 10.2), p(15.0, 10.2), 0.5)], true, 0.0);
+    assert_eq!(delta(&before, &topo(&s)), (0, 0, 0));
+    assert_eq!(s.dyn_mesh().triangle_count(), f);
+}
+
+#[test]
+fn s17_trembling_matches_the_monotone_path() {
+    let (a, b) = (p(3.3, 5.4), p(15.6, 9.1));
+    let dir = (b - a).normalize();
+    let mut tremble = vec![a];
+    let mut x = 0.0;
+    while x < (b - a).length() - 0.7 {
+        x += 0.6;
+        tremble.push(a + dir * x);
+        tremble.push(a + dir * (x - 0.3));
+    }
+    tremble.push(b);
+    let (d1, s1) = sheet_delta(&[line(a, b, 0.4)]);
+    let (d2, s2) = sheet_delta(&[tremble]);
+    assert_eq!(d1, d2);
+    let (f1, f2) = (s1.dyn_mesh().triangle_count() as i64, s2.dyn_mesh().triangle_count() as i64);
+    assert!((f1 - f2).abs() <= 2, "{f1} vs {f2} triangles");
+}
+
+#[test]
+fn s18_step_size_sweep_gives_the_same_topology() {
+    let (a, b) = (p(3.3, 5.4), p(15.6, 9.1));
+    let h = 2f64.sqrt();
+    let mut faces = Vec::new();
+    for spacing in [0.05 * h, 0.5 * h, 2.0 * h, 50.0 * h] {
+        let (d, s) = sheet_delta(&[line(a, b, spacing)]);
+        assert_eq!(d, (0, 1, -1), "spacing {spacing}");
+        faces.push(s.dyn_mesh().triangle_count() as i64);
+    }
+    let (lo, hi) = (faces.iter().min().unwrap(), faces.iter().max().unwrap());
+    assert!(hi - lo <= 2, "face counts vary with step size: {faces:?}");
+}
+
+#[test]
+fn s21_grooves_keep_a_sphere_closed() {
+    let sphere = csg::testkit::icosphere(4, 10.0);
+    let mut s = Scalpel::new(&sphere, ScalpelOptions::default().with_depth(0.8)).unwrap();
+    let before = topo(&s);
+    let arc = |from: f64, to: f64, tilt: f64| -> Vec<DVec3> {
+        (0..=40)
+            .map(|i| {
+                let a = from + (to - from) * i as f64 / 40.0;
+                let v = DVec3::new(a.cos(), a.sin(), tilt);
+                v.normalize() * 10.0
+            })
+            .collect()
+    };
+    // One straight groove, then a crossing one (on the sphere: a tilted great-circle arc).
+    cut_strokes(&mut s, &[arc(0.1, 1.3, 0.0)], false, 0.0);
+    let after = topo(&s);
+    assert!(after.closed && after.manifold, "{after:?}");
+    assert_eq!(delta(&before, &after), (0, 0, 0));
+    // Walls: the volume dropped (the groove is carved into the sphere).
+    assert!(s.mesh().volume() < sphere.volume());
+    let mut pts: Vec<DVec3> = (0..=40)
+        .map(|i| {
+            let z = -3.0 + 6.0 * i as f64 / 40.0;
+            DVec3::new((0.7f64).cos() * 9.0, (0.7f64).sin() * 9.0, z).normalize() * 10.0
+        })
+        .collect();
+    pts.dedup();
+    // Crossing an existing groove is not finished (see the report): each step either succeeds
+    // with the surface still closed and manifold, or fails and leaves the mesh as it was.
+    s.begin_stroke(pts[0]).unwrap();
+    for &q in &pts[1..] {
+        let before = s.mesh();
+        match s.step(q) {
+            Ok(_) => {
+                let t = topo(&s);
+                assert!(t.closed && t.manifold && t.euler == 2, "{t:?}");
+            }
+            Err(_) => assert_eq!(s.mesh(), before),
+        }
+    }
+    s.end_stroke().unwrap();
+    let after2 = topo(&s);
+    assert!(after2.closed && after2.manifold, "{after2:?}");
+    assert_eq!(after2.euler, 2);
+}
+
+#[test]
+fn s22_opening_reaches_its_width_and_leaves_the_rest_alone() {
+    use cutter::scalpel::OpenOptions;
+    use cutter::scalpel::dffd::open_positions;
+    let (_, mut s) = sheet_delta(&[line(p(3.3, 10.5), p(16.7, 10.5), 0.5)]);
+    s.advance_clock(1.0);
+    let open = OpenOptions { width: 0.6, window: 0.5 };
+    let shown = open_positions(&s, &open, s.clock());
+    let m = s.dyn_mesh();
+    // Lip copies at x = 10 (mid-slit) are 0.6 apart; far vertices did not move (bitwise).
+    let mid: Vec<u32> = (0..m.vertex_count() as u32)
+        .filter(|&v| (m.pos(v) - p(10.0, 10.5)).length() < 1e-9)
+        .collect();
+    assert_eq!(mid.len(), 2, "two lips at the middle");
+    let gap = shown[mid[0] as usize].distance(shown[mid[1] as usize]);
+    assert!((gap - 0.6).abs() <= 0.03, "gap {gap}");
+    for v in 0..m.vertex_count() {
+        let d = (m.pos(v as u32).y - 10.5).abs();
+        if d > 3.0 * 0.6 + 1e-9 {
+            assert_eq!(shown[v], m.pos(v as u32), "vertex {v} outside the support moved");
+        }
+    }
+    // Just after the cut the newest part is still closed (trailing window).
+    let early = open_positions(&s, &open, s.clock() - 1.0);
+    assert!(early[mid[0] as usize].distance(early[mid[1] as usize]) < gap);
+}
+
+#[test]
+fn s23_hourglass_is_rejected_and_the_mesh_unchanged() {
+    // Two fans sharing only vertex 0 (a bow-tie).
+    let mut positions = vec![DVec3::ZERO];
+    let mut triangles = Vec::new();
+    for side in [-1.0, 1.0] {
+        let base = positions.len() as u32;
+        for i in 0..4 {
+            let a = i as f64 * 0.4 - 0.6;
+            positions.push(DVec3::new(side * 3.0, 3.0 * a, 0.0));
+        }
+        for i in 0..3 {
+            if side < 0.0 {
+                triangles.push([0, base + i + 1, base + i]);
+            } else {
+                triangles.push([0, base + i, base + i + 1]);
+            }
+        }
+    }
+    let mesh = Mesh::new(positions, triangles).unwrap();
+    let mut s = Scalpel::new(&mesh, ScalpelOptions::default()).unwrap();
+    let before = s.mesh();
+    let r = s
+        .begin_stroke(DVec3::new(-2.0, 0.1, 0.0))
+        .and_then(|_| s.step(DVec3::new(0.0, 0.0, 0.0)))
+        .and_then(|_| s.step(DVec3::new(2.0, 0.1, 0.0)));
+    assert!(r.is_err(), "cutting through a bow-tie must fail");
+    s.undo_stroke();
+    assert_eq!(s.mesh(), before);
+}
+
+#[test]
+fn off_mesh_sample_is_an_error_and_changes_nothing() {
+    let mesh = sheet(10);
+    let mut s = Scalpel::new(&mesh, ScalpelOptions::default()).unwrap();
+    assert!(s.begin_stroke(p(50.0, 50.0)).is_err());
+    assert_eq!(s.mesh(), mesh);
+    s.begin_stroke(p(2.3, 2.4)).unwrap();
+    s.step(p(4.1, 3.3)).unwrap();
+    let mid = s.mesh();
+    let err = s.step(DVec3::new(5.0, 4.0, 30.0)).unwrap_err();
+    assert!(err.to_string().contains("off the mesh"), "{err}");
+    assert_eq!(s.mesh(), mid, "a failed step leaves the mesh as it was");
+    s.step(p(6.2, 4.1)).unwrap();
+    s.end_stroke().unwrap();
+    assert!(s.undo_stroke());
+    assert_eq!(s.mesh(), mesh);
+}
+
+#[test]
+fn element_budget_straight_cut() {
+    // Notes T1: a triangle crossed edge to edge becomes 3 (+2 net): net new triangles per crossed
+    // triangle ≤ 2 on average (plus the two end faces).
+    let mesh = sheet(40);
+    let mut s = Scalpel::new(&mesh, ScalpelOptions::default()).unwrap();
+    let pts = line(p(2.3, 7.1), p(37.4, 30.2), 0.3);
+    s.begin_stroke(pts[0]).unwrap();
+    for &q in &pts[1..] {
+        s.step(q).unwrap();
+    }
+    let r = s.end_stroke().unwrap();
+    assert!(r.triangles_cut > 30);
+    let per = r.triangles_created as f64 / r.triangles_cut as f64;
+    assert!(per <= 2.0 + 6.0 / r.triangles_cut as f64, "{} new per {} crossed", r.triangles_created, r.triangles_cut);
+}
+
+/// Reads a binary STL and welds bit-identical corners (test-local, no app dependency).
+fn read_binary_stl(path: &std::path::Path) -> Option<Mesh> {
+    let bytes = std::fs::read(path).ok()?;
+    let n = u32::from_le_bytes(bytes.get(80..84)?.try_into().ok()?) as usize;
+    let mut map = std::collections::HashMap::new();
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for t in 0..n {
+        let base = 84 + 50 * t + 12;
+        let mut tri = [0u32; 3];
+        for k in 0..3 {
+            let mut c = [0f32; 3];
+            for a in 0..3 {
+                let o = base + 12 * k + 4 * a;
+                c[a] = f32::from_le_bytes(bytes.get(o..o + 4)?.try_into().ok()?);
+            }
+            let key = c.map(f32::to_bits);
+            tri[k] = *map.entry(key).or_insert_with(|| {
+                positions.push(DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64));
+                positions.len() as u32 - 1
+            });
+        }
+        if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
+            triangles.push(tri);
+        }
+    }
+    Mesh::new(positions, triangles).ok()
+}
+
+fn anatomy_dir() -> Option<std::path::PathBuf> {
+    if let Ok(d) = std::env::var("CUTAWAY_ANATOMY") {
+        return Some(d.into());
+    }
+    let d = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/anatomy");
+    d.exists().then_some(d)
+}
+
+#[test]
+fn strokes_on_real_anatomy() {
+    let Some(dir) = anatomy_dir() else {
+        println!("skipped: no anatomy (set CUTAWAY_ANATOMY)");
+        return;
+    };
+    let path = dir.join("knee_vhf_left_denver/VHF_Left_Muscle_Gracilis_smooth.stl");
+    let Some(mesh) = read_binary_stl(&path) else {
+        println!("skipped: cannot read {}", path.display());
+        return;
+    };
+    // A stroke along the muscle's long axis on its surface, as a groove and as a slit.
+    let bb = mesh.bbox();
+    let axis = (0..3).max_by(|&a, &b| bb.size()[a].total_cmp(&bb.size()[b])).unwrap();
+    let c = bb.center();
+    for depth in [0.0, 1.5] {
+        let mut s = Scalpel::new(&mesh, ScalpelOptions::default().with_depth(depth)).unwrap();
+        let before = topo(&s);
+        let mut pts = Vec::new();
+        for i in 0..=60 {
+            let mut q = c;
+            q[axis] = bb.min[axis] + bb.size()[axis] * (0.3 + 0.4 * i as f64 / 60.0);
+            // Project onto the surface along the +x side: closest vertex in a slab.
+            let v = mesh
+                .positions
+                .iter()
+                .filter(|p| (p[axis] - q[axis]).abs() < 2.0)
+                .max_by(|a, b| a[(axis + 1) % 3].total_cmp(&b[(axis + 1) % 3]))
+                .copied()
+                .unwrap();
+            pts.push(v);
+        }
+        s.begin_stroke(pts[0]).unwrap();
+        for &q in &pts[1..] {
+            s.step(q).unwrap();
+            assert!(topo(&s).manifold);
+        }
+        s.end_stroke().unwrap();
+        let after = topo(&s);
+        if depth > 0.0 {
+            assert!(after.closed, "groove on a closed muscle keeps it closed");
+            assert_eq!(delta(&before, &after), (0, 0, 0));
+        } else {
+            assert_eq!(delta(&before, &after), (0, 1, -1));
+        }
+    }
+}
+
+mod fuzz {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, .. ProptestConfig::default() })]
+        /// Random polylines (including self-crossing ones and near-degenerate samples) on a small
+        /// sheet: never a panic; after every step (ok or error) the mesh is valid, and a failed
+        /// step leaves it exactly as it was.
+        #[test]
+        fn random_strokes_never_break_the_mesh(
+            strokes in prop::collection::vec(
+                prop::collection::vec((0.0f64..8.0, 0.0f64..8.0, 0u8..4), 2..20), 1..4),
+            depth in prop::sample::select(vec![0.0, 0.0, 0.5]),
+        ) {
+            let mesh = sheet(8);
+            let mut s = Scalpel::new(&mesh, ScalpelOptions::default().with_depth(depth)).unwrap();
+            for stroke in strokes {
+                let pts: Vec<DVec3> = stroke
+                    .iter()
+                    .map(|&(x, y, snap)| match snap {
+                        // Snap some samples onto grid vertices / edges (degenerate cases).
+                        0 => p(x.round(), y.round()),
+                        1 => p(x.round() + 1e-9, y),
+                        _ => p(x, y),
+                    })
+                    .collect();
+                if s.begin_stroke(pts[0]).is_err() {
+                    continue;
+                }
+                for &q in &pts[1..] {
+                    let before = s.mesh();
+                    if s.step(q).is_err() {
+                        prop_assert_eq!(s.mesh(), before);
+                    }
+                    let t = validate(s.dyn_mesh());
+                    prop_assert!(t.is_ok(), "{:?}", t);
+                }
+                let _ = s.end_stroke();
+                let t = validate(s.dyn_mesh());
+                prop_assert!(t.is_ok(), "{:?}", t);
+            }
+        }
+    }
+}
