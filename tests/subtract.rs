@@ -1,1 +1,243 @@
-//! End-to-end tests: subtract (to be written).
+//! End-to-end tests of `cutaway subtract` (contract in `../shared/CONTRACT.md`), and cuts of the
+//! real anatomy through the library (no panic, exact kept/removed area partition).
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use csg::{DVec3, Mesh};
+
+fn cutaway() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_cutaway"))
+}
+
+/// A fresh scratch folder for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("cutaway-subtract-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A box as an OBJ of quads (the form `cutaway extrude` writes), outward.
+fn write_quad_box(path: &Path, min: DVec3, max: DVec3) {
+    let mut s = String::new();
+    for k in 0..8 {
+        let x = if k & 1 != 0 { max.x } else { min.x };
+        let y = if k & 2 != 0 { max.y } else { min.y };
+        let z = if k & 4 != 0 { max.z } else { min.z };
+        s += &format!("v {x:?} {y:?} {z:?}\n");
+    }
+    for q in [
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+    ] {
+        s += &format!("f {} {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1);
+    }
+    std::fs::write(path, s).unwrap();
+}
+
+fn weld(m: &Mesh) -> Mesh {
+    let mut map: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut positions = Vec::new();
+    let remap: Vec<u32> = m
+        .positions
+        .iter()
+        .map(|p| {
+            *map.entry(p.to_array().map(f64::to_bits)).or_insert_with(|| {
+                positions.push(*p);
+                (positions.len() - 1) as u32
+            })
+        })
+        .collect();
+    Mesh {
+        positions,
+        triangles: m
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| remap[i as usize]))
+            .collect(),
+    }
+}
+
+/// Every directed edge once, with its opposite once.
+fn closed_oriented(m: &Mesh) -> bool {
+    let m = weld(m);
+    let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
+    for t in &m.triangles {
+        for k in 0..3 {
+            *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    directed
+        .iter()
+        .all(|(&(a, b), &n)| n == 1 && directed.get(&(b, a)) == Some(&1))
+}
+
+#[test]
+fn subtract_writes_the_four_files_and_the_json() {
+    let dir = scratch("files");
+    let target = dir.join("sphere.obj");
+    cutaway::io::write_mesh(&target, &csg::testkit::icosphere(3, 10.0)).unwrap();
+    let cutter = dir.join("box.obj");
+    write_quad_box(&cutter, DVec3::new(-3.0, -3.0, 4.0), DVec3::new(3.0, 3.0, 20.0));
+    let out_dir = dir.join("out");
+    let out = cutaway()
+        .args(["subtract"])
+        .arg(&target)
+        .arg(&cutter)
+        .arg("--out")
+        .arg(&out_dir)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in [
+        "target_triangles",
+        "cutter_triangles",
+        "kept_triangles",
+        "walls_triangles",
+        "removed_triangles",
+        "contour_loops",
+    ] {
+        assert!(json[key].is_u64(), "{key} missing in {json}");
+    }
+    assert!(json["boolean_ms"].is_f64());
+    assert_eq!(json["target_triangles"], 1280);
+    assert_eq!(json["cutter_triangles"], 12);
+    assert_eq!(json["contour_loops"], 1);
+    let kept = cutaway::io::read_mesh(&out_dir.join("kept.obj")).unwrap();
+    let walls = cutaway::io::read_mesh(&out_dir.join("walls.obj")).unwrap();
+    let removed = cutaway::io::read_mesh(&out_dir.join("removed.obj")).unwrap();
+    assert_eq!(json["kept_triangles"], kept.triangles.len());
+    assert_eq!(json["walls_triangles"], walls.triangles.len());
+    assert_eq!(json["removed_triangles"], removed.triangles.len());
+    // The files weld bit for bit along the contour: kept + walls and removed + reversed walls
+    // are closed and consistently oriented.
+    let mut kw = kept.clone();
+    kw.append(&walls);
+    assert!(closed_oriented(&kw));
+    let mut rw = removed.clone();
+    rw.append(&walls.reversed());
+    assert!(closed_oriented(&rw));
+    let (at, ak, ar) = (
+        csg::testkit::icosphere(3, 10.0).area(),
+        kept.area(),
+        removed.area(),
+    );
+    assert!(((ak + ar) - at).abs() < 1e-9 * at);
+    let contour = std::fs::read_to_string(out_dir.join("contour.obj")).unwrap();
+    assert!(contour.lines().any(|l| l.starts_with("l ")));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn open_cutter_is_one_error_line_naming_the_file() {
+    let dir = scratch("open");
+    let target = dir.join("sphere.obj");
+    cutaway::io::write_mesh(&target, &csg::testkit::icosphere(2, 1.0)).unwrap();
+    let cutter = dir.join("open.obj");
+    std::fs::write(&cutter, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n")
+        .unwrap();
+    let out = cutaway()
+        .args(["subtract"])
+        .arg(&target)
+        .arg(&cutter)
+        .arg("--out")
+        .arg(dir.join("out"))
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.starts_with("error: "), "{stderr}");
+    assert!(stderr.contains("open.obj") && stderr.contains("not closed"), "{stderr}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The anatomy folder: `CUTAWAY_ANATOMY`, else `../shared/anatomy` next to the workspace.
+fn anatomy_dir() -> Option<PathBuf> {
+    if let Ok(p) = std::env::var("CUTAWAY_ANATOMY") {
+        let p = PathBuf::from(p);
+        let p = if p.is_relative() {
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(p)
+        } else {
+            p
+        };
+        return p.is_dir().then_some(p);
+    }
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/anatomy");
+    p.is_dir().then_some(p)
+}
+
+fn mesh_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let mut entries: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            mesh_files(&p, out);
+        } else if matches!(
+            p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref(),
+            Some("obj" | "stl" | "ply" | "vtk")
+        ) {
+            out.push(p);
+        }
+    }
+}
+
+/// Cuts every anatomy mesh with a box through the middle of its bounding box and with a thin
+/// tilted slab: no panic, and kept + removed cover exactly the target surface.
+#[test]
+fn cuts_every_anatomy_mesh() {
+    let Some(dir) = anatomy_dir() else {
+        eprintln!("skipped: no anatomy folder (set CUTAWAY_ANATOMY)");
+        return;
+    };
+    let mut files = Vec::new();
+    mesh_files(&dir, &mut files);
+    assert!(!files.is_empty());
+    let mut cuts = 0;
+    for file in &files {
+        let Ok(mesh) = cutaway::io::read_mesh(file) else {
+            continue; // unreadable files are the formats tests' business
+        };
+        if mesh.triangles.is_empty() {
+            continue;
+        }
+        let bbox = mesh.bbox();
+        let (c, s) = (bbox.center(), bbox.size());
+        let index = csg::TargetIndex::build(mesh.clone()).unwrap();
+        let area = mesh.area();
+        // A box around the centre, a third of the size, and a slab through it.
+        let boxes = [
+            csg::testkit::cube(c - s / 6.0, c + s / 6.0),
+            csg::testkit::cube(
+                bbox.min - s * 0.1 + DVec3::new(0.0, s.y * 0.1 + c.y - bbox.min.y - s.y * 0.01, 0.0),
+                bbox.max + s * 0.1 - DVec3::new(0.0, s.y * 0.1 + bbox.max.y - c.y - s.y * 0.013, 0.0),
+            ),
+        ];
+        for cutter in &boxes {
+            let r = csg::subtract(&index, cutter)
+                .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+            let kept = r.materialize(&mesh).area();
+            let removed = r.removed.mesh.area();
+            assert!(
+                (kept + removed - area).abs() <= 1e-9 * area,
+                "{}: area {kept} + {removed} != {area}",
+                file.display()
+            );
+            cuts += 1;
+        }
+    }
+    eprintln!("{cuts} anatomy cuts");
+    assert!(cuts > 0);
+}

@@ -61,11 +61,10 @@ use crate::contour;
 use crate::exact::{self, HPoint, LPoint};
 use crate::intersect::{self, FxMap, PointKey, PreparedCutter};
 use crate::mesh::{Mesh, MeshError};
-use crate::output::{CutResult, CutStats, Part, Provenance};
+use crate::output::{CutOptions, CutResult, CutStats, Part, Provenance, VertexSource};
 use crate::split::{self, FaceInput, Piece, PieceStatus, Vx, OUT, UNKNOWN};
 use crate::target::{IBox, TargetIndex};
 
-pub use crate::target::TargetIndex as Target;
 
 /// Why a cut was refused. Each variant names the sub-cutter and what to fix.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -136,8 +135,17 @@ pub fn subtract(target: &TargetIndex, cutter: &Mesh) -> Result<CutResult, CutErr
 /// id of its sub-cutter (`sub_cutter` of [`Part`] and [`crate::output::Contour`]); use
 /// [`Part::of_sub_cutter`] for one sub-cutter's removed piece or walls.
 pub fn subtract_many(target: &TargetIndex, cutters: &[&Mesh]) -> Result<CutResult, CutError> {
+    subtract_with(target, cutters, &CutOptions::default())
+}
+
+/// [`subtract_many`] with options.
+pub fn subtract_with(
+    target: &TargetIndex,
+    cutters: &[&Mesh],
+    options: &CutOptions,
+) -> Result<CutResult, CutError> {
     let cutter = prepare_cutter(target, cutters)?;
-    run(target, &cutter)
+    run(target, &cutter, options)
 }
 
 /// Stage 1: validation and quantization of the cutter(s).
@@ -315,7 +323,11 @@ fn check_self_intersections(cutter: &PreparedCutter) -> Result<(), CutError> {
 }
 
 /// Stages 2–6 on a validated cutter.
-pub(crate) fn run(target: &TargetIndex, cutter: &PreparedCutter) -> Result<CutResult, CutError> {
+pub(crate) fn run(
+    target: &TargetIndex,
+    cutter: &PreparedCutter,
+    options: &CutOptions,
+) -> Result<CutResult, CutError> {
     let mesh = &target.mesh;
     let nt = mesh.positions.len() as u32;
     let mut stats = CutStats::default();
@@ -643,7 +655,19 @@ pub(crate) fn run(target: &TargetIndex, cutter: &PreparedCutter) -> Result<CutRe
         })
         .collect();
     let new_pos = &result.new_positions;
-    let mut removed = PartBuilder::default();
+    if std::env::var("CSG_DEBUG").is_ok() {
+        for (i, k) in isect.keys.iter().enumerate() {
+            eprintln!("X{i} {:?} {:?}", k, new_pos[i]);
+        }
+        for (t, pieces) in &target_pieces {
+            eprintln!("t{t} {:?}", mesh.triangles[*t as usize].map(|v| mesh.positions[v as usize]));
+            for (fi, p) in pieces.iter().enumerate() {
+                eprintln!("   piece {fi} {:?} {:?}", p.status, p.triangles);
+            }
+        }
+    }
+    let merge = options.merge_coincident;
+    let mut removed = PartBuilder::new(merge);
     // Kept ids: a new vertex whose rounded position equals (bit for bit) a corner of a touched
     // face or an earlier new vertex takes that id, and triangles that collapse are dropped
     // (they have no area; dropping them is an edge collapse, which keeps the surface closed).
@@ -660,7 +684,10 @@ pub(crate) fn run(target: &TargetIndex, cutter: &PreparedCutter) -> Result<CutRe
                 if s == OUT {
                     let ids = tri.map(|v| match v {
                         Vx::T(i) => i,
-                        Vx::X(x) => *kept_ids.entry(bits(new_pos[x as usize])).or_insert(nt + x),
+                        Vx::X(x) if merge => {
+                            *kept_ids.entry(bits(new_pos[x as usize])).or_insert(nt + x)
+                        }
+                        Vx::X(x) => nt + x,
                         Vx::C(_) => u32::MAX,
                     });
                     if ids[0] == ids[1] || ids[1] == ids[2] || ids[2] == ids[0] {
@@ -681,7 +708,7 @@ pub(crate) fn run(target: &TargetIndex, cutter: &PreparedCutter) -> Result<CutRe
         let ids = tri.map(|v| removed.vertex(v, &mesh.positions, &cutter.positions, new_pos));
         removed.push(ids, Provenance::Target(t), s - 1);
     }
-    let mut walls = PartBuilder::default();
+    let mut walls = PartBuilder::new(merge);
     for (tri, f) in &wall_tris {
         // Reversed: walls face out of kept (into the cutter).
         let ids = [tri[0], tri[2], tri[1]]
@@ -759,30 +786,57 @@ fn prune_segments(segments: &mut Vec<(u32, u32, u32)>, on_boundary: &FxMap<u32, 
 
 /// Accumulates a compacted output part.
 ///
-/// Vertices are identified by their rounded position (bit for bit), so that new vertices that
-/// coincide after rounding (degenerate configurations: the tie-break keeps them apart
-/// symbolically) become one vertex, and triangles that collapse are dropped.
-#[derive(Default)]
+/// With `merge`, vertices are identified by their rounded position (bit for bit), so that new
+/// vertices that coincide after rounding (degenerate configurations: the tie-break keeps them
+/// apart symbolically) become one vertex, and triangles that collapse are dropped. Without it,
+/// by their symbolic identity.
 struct PartBuilder {
-    map: FxMap<[u64; 3], u32>,
+    merge: bool,
+    by_position: FxMap<[u64; 3], u32>,
+    by_source: FxMap<Vx, u32>,
     positions: Vec<DVec3>,
+    vertex_source: Vec<VertexSource>,
     triangles: Vec<[u32; 3]>,
     provenance: Vec<Provenance>,
     sub_cutter: Vec<u32>,
 }
 
 impl PartBuilder {
+    fn new(merge: bool) -> PartBuilder {
+        PartBuilder {
+            merge,
+            by_position: Default::default(),
+            by_source: Default::default(),
+            positions: Vec::new(),
+            vertex_source: Vec::new(),
+            triangles: Vec::new(),
+            provenance: Vec::new(),
+            sub_cutter: Vec::new(),
+        }
+    }
+
     fn vertex(&mut self, v: Vx, target: &[DVec3], cutter: &[DVec3], new: &[DVec3]) -> u32 {
-        let p = match v {
-            Vx::T(i) => target[i as usize],
-            Vx::C(i) => cutter[i as usize],
-            Vx::X(i) => new[i as usize],
+        if let Some(&id) = self.by_source.get(&v) {
+            return id;
+        }
+        let (p, source) = match v {
+            Vx::T(i) => (target[i as usize], VertexSource::Target(i)),
+            Vx::C(i) => (cutter[i as usize], VertexSource::Cutter(i)),
+            Vx::X(i) => (new[i as usize], VertexSource::New(i)),
         };
-        let key = p.to_array().map(|c| (c + 0.0).to_bits());
-        *self.map.entry(key).or_insert_with(|| {
+        let next = self.positions.len() as u32;
+        let id = if self.merge {
+            let key = p.to_array().map(|c| (c + 0.0).to_bits());
+            *self.by_position.entry(key).or_insert(next)
+        } else {
+            next
+        };
+        if id == next {
             self.positions.push(p);
-            (self.positions.len() - 1) as u32
-        })
+            self.vertex_source.push(source);
+        }
+        self.by_source.insert(v, id);
+        id
     }
 
     fn push(&mut self, tri: [u32; 3], provenance: Provenance, sub_cutter: u32) {
@@ -802,6 +856,7 @@ impl PartBuilder {
             },
             provenance: self.provenance,
             sub_cutter: self.sub_cutter,
+            vertex_source: self.vertex_source,
         }
     }
 }

@@ -25,8 +25,8 @@ pub mod validate;
 pub mod weld;
 
 pub use aabb::Aabb;
-pub use boolean::{CutError, subtract, subtract_many};
-pub use output::{Contour, CutResult, Part, Provenance};
+pub use boolean::{CutError, subtract, subtract_many, subtract_with};
+pub use output::{Contour, CutOptions, CutResult, Part, Provenance, VertexSource};
 pub use target::TargetIndex;
 pub use adjacency::EdgeAdjacency;
 pub use glam::DVec3;

@@ -15,6 +15,46 @@ pub enum Provenance {
     Cutter(u32),
 }
 
+/// Where an output vertex comes from (symbolic identity: two different sources may have the same
+/// rounded position in degenerate configurations).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum VertexSource {
+    /// Target vertex (exact input coordinates).
+    Target(u32),
+    /// Cutter vertex (exact input coordinates).
+    Cutter(u32),
+    /// New contour vertex `k` (`CutResult::new_positions[k]`).
+    New(u32),
+}
+
+/// Options of a cut. `Default` is what the CLI and the GUI use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CutOptions {
+    /// Merge output vertices whose rounded positions are bit-identical and drop the triangles
+    /// that collapse (default `true`). Only degenerate configurations (tangent contact, coplanar
+    /// faces) create such vertices; merging gives files without zero-length edges, but where a
+    /// zero-thickness feature collapses the welded surface can be non-manifold there. With
+    /// `false` every output is closed and manifold by vertex identity ([`VertexSource`]), at
+    /// the price of coincident vertices.
+    pub merge_coincident: bool,
+}
+
+impl Default for CutOptions {
+    fn default() -> Self {
+        CutOptions {
+            merge_coincident: true,
+        }
+    }
+}
+
+impl CutOptions {
+    /// Sets [`CutOptions::merge_coincident`].
+    pub fn with_merge_coincident(mut self, merge: bool) -> Self {
+        self.merge_coincident = merge;
+        self
+    }
+}
+
 /// One intersection polyline between the target surface and the cutter surface.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Contour {
@@ -35,6 +75,8 @@ pub struct Part {
     pub provenance: Vec<Provenance>,
     /// Sub-cutter of each triangle (0 for a single cutter). Same length as `mesh.triangles`.
     pub sub_cutter: Vec<u32>,
+    /// Source of each vertex. Same length as `mesh.positions`.
+    pub vertex_source: Vec<VertexSource>,
 }
 
 impl Part {
@@ -49,14 +91,31 @@ impl Part {
             }
         }
         let n = faces.len();
+        let mut remap = vec![u32::MAX; self.mesh.positions.len()];
+        let mut positions = Vec::new();
+        let mut vertex_source = Vec::new();
+        let triangles = faces
+            .iter()
+            .map(|t| {
+                t.map(|i| {
+                    let r = &mut remap[i as usize];
+                    if *r == u32::MAX {
+                        *r = positions.len() as u32;
+                        positions.push(self.mesh.positions[i as usize]);
+                        vertex_source.push(self.vertex_source[i as usize]);
+                    }
+                    *r
+                })
+            })
+            .collect();
         Part {
             mesh: Mesh {
-                positions: self.mesh.positions.clone(),
-                triangles: faces,
-            }
-            .compacted(),
+                positions,
+                triangles,
+            },
             provenance,
             sub_cutter: vec![k; n],
+            vertex_source,
         }
     }
 }

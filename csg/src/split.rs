@@ -464,6 +464,10 @@ fn triangulate(
         }
         if !done {
             // Topology-only fallback: splice at the first vertices.
+            if std::env::var("CSG_DEBUG").is_ok() {
+                eprintln!("bridge fallback: outer {:?}", poly.iter().map(|&n| hp(n).limit()).collect::<Vec<_>>());
+                eprintln!("  hole {:?}", hole.iter().map(|&n| hp(n).limit()).collect::<Vec<_>>());
+            }
             fallback = true;
             let mut merged = poly.clone();
             merged.extend_from_slice(&hole);
@@ -501,8 +505,17 @@ fn triangulate(
                 }
             }
         }
-        if !is_ear && since_last > n {
+        if !is_ear && since_last > n && orient(a, b, c) == 0 {
+            // A flat vertex (collinear in every perturbed configuration: target faces folded
+            // onto each other in one plane): clipping it adds a zero-area triangle, which is
+            // geometrically harmless.
+            is_ear = true;
+        }
+        if !is_ear && since_last > 2 * n {
             // No ear in a whole pass: topology-only fallback (clip anyway).
+            if std::env::var("CSG_DEBUG").is_ok() {
+                eprintln!("ear fallback: {:?}", poly.iter().map(|&n| hp(n).limit()).collect::<Vec<_>>());
+            }
             fallback = true;
             is_ear = true;
         }

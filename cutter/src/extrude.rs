@@ -14,9 +14,12 @@
 //!    1.25·|AD|/2 from Q and the turn keeps the box width instead (our addition: the thesis does
 //!    not say what happens then);
 //! 4. iterative face rotation about DA in 2δ steps: outward while the front face AE''H''D crosses
-//!    the surface, else inward until it does and then one step back out (so the face rests 0–2δ
-//!    above the surface). Capped at 45 steps or 60° inward; a face that never finds the surface
-//!    (the roller left the object) keeps its unrotated position;
+//!    the surface, else inward until it does. The thesis then steps back out once, which leaves
+//!    the face anywhere 0–2δ above the surface; we refine the bracketed contact by bisection and
+//!    rest the leading edge [`REST_GAP`]·δ outside it, the middle of that range, so the gap does
+//!    not depend on where the 2δ grid happens to fall. Capped at 45 steps outward or 60° inward;
+//!    a face that never finds the surface (the roller left the object) keeps its unrotated
+//!    position;
 //! 5. the back edge F'G' along the negative normal of the new front face, at the previous depth.
 //!
 //! When the leading box reaches ω·δ wide it is locked and a new, thin leading box starts (several
@@ -38,6 +41,11 @@ pub const INITIAL_DEPTH: f64 = 5.0;
 pub const MIN_WIDTH: f64 = 0.25;
 /// Displacement of one face-rotation step, as a multiple of δ.
 pub const ROTATION_STEP: f64 = 2.0;
+
+/// Largest inward rotation searched for the surface, in degrees.
+const MAX_INWARD_DEG: f64 = 60.0;
+/// Height above the contact where the front face rests, as a multiple of δ (at the leading edge).
+pub const REST_GAP: f64 = 1.0;
 
 /// Largest number of boxes one mouse move may lock (a far jump of the mouse).
 const MAX_BOXES_PER_MOVE: usize = 64;
@@ -191,6 +199,9 @@ pub fn initialize(
             z = (c - camera.eye).dot(f);
         }
     }
+    // Rest the strip REST_GAP·δ in front of the contact, as every extruded face rests (our
+    // addition: a strip exactly touching the surface is a degenerate case for the boolean).
+    let z = z - REST_GAP * delta;
     if !(z > 0.0) {
         return None;
     }
@@ -251,12 +262,13 @@ pub fn extrude_move(cutter: &mut Cutter, surface: &Surface, ray: &Ray, settings:
             break;
         };
         let v = frame.forward_offset(m, settings.straight, MIN_WIDTH * settings.delta);
-        // A box locks when the mouse is ω·δ ahead along the path; a sideways mouse turns the
-        // roller but never widens the box beyond ω·δ (so a mouse beside the roller cannot make
-        // it spin around the pointer, locking box after box).
+        // A box locks when the mouse is more than ω·δ away and ahead (within about 75° of the
+        // path); the box never gets wider than ω·δ. A mouse beside or behind the roller turns
+        // it but locks nothing, so the roller cannot spin around the pointer box after box.
         let ahead = v.dot(frame.forward);
-        let v = v * (lock_width / v.length()).min(1.0);
-        if ahead > lock_width + MIN_WIDTH * settings.delta {
+        let reach = v.length();
+        let v = v * (lock_width / reach).min(1.0);
+        if reach > lock_width + MIN_WIDTH * settings.delta && ahead > 0.25 * reach {
             // Lock this box at ω·δ and start a new thin one beyond it.
             let m_lock = frame.q + v;
             let Some(locked) = roll(&prev, &frame, m_lock, surface, settings, &mut scratch) else {
@@ -265,7 +277,8 @@ pub fn extrude_move(cutter: &mut Cutter, surface: &Surface, ray: &Ray, settings:
             cutter.planes[n - 1] = locked;
             let dir = (locked.front_mid() - prev.front_mid()).normalize_or_zero();
             cutter.planes.push(locked.translated(dir * MIN_WIDTH * settings.delta));
-            if cutter.sanity_check().is_err() {
+            if let Err(_e) = cutter.sanity_check() {
+                if std::env::var("DEBUG_ROLL").is_ok() { eprintln!("DEBUG lock refused {_e}"); }
                 cutter.planes.pop();
                 cutter.planes[n - 1] = lead;
                 break;
@@ -375,7 +388,7 @@ fn roll(
         p = -p;
     }
     // Stage 3: parallel correction by turning AD about x.
-    let (mut e, mut h);
+    let (e, h);
     let denom = up.cross(p);
     if denom.length() < 1e-9 {
         e = a + v;
@@ -406,58 +419,157 @@ fn roll(
     }
     // Stage 4: rotate the face about DA until it rests just above the surface.
     let axis = up;
+    // The farther of E'' and H'' from the axis sets the step, so no point moves more than 2δ.
     let radius = {
-        let w = e - d;
-        (w - axis * w.dot(axis)).length()
+        let off_axis = |p: DVec3| {
+            let w = p - d;
+            (w - axis * w.dot(axis)).length()
+        };
+        off_axis(e).max(off_axis(h))
     };
     if radius <= 0.0 {
         return None;
     }
     let step = (ROTATION_STEP * settings.delta / radius).clamp(1e-4, 10f64.to_radians());
+    // A box narrower than one step stays in the front plane: turning it cannot move its leading
+    // edge by 2δ, and its orientation would be noise.
+    let settle = radius > ROTATION_STEP * settings.delta;
     let rotate = |p: DVec3, angle: f64| d + DQuat::from_axis_angle(axis, angle) * (p - d);
     // Sign of an outward (away from the object) rotation.
     let outward = if (rotate(e, step) - e).dot(normal) >= 0.0 { 1.0 } else { -1.0 };
-    let hits = |e: DVec3, h: DVec3, scratch: &mut Vec<u32>| surface.quad_intersects(&[a, e, h, d], scratch);
-    if hits(e, h, scratch) {
-        for _ in 0..45 {
-            e = rotate(e, outward * step);
-            h = rotate(h, outward * step);
-            if !hits(e, h, scratch) {
-                break;
-            }
-        }
-    } else {
-        let (e0, h0) = (e, h);
-        let mut total = 0.0;
-        let mut touched = false;
-        while total < 60f64.to_radians() {
-            let (e1, h1) = (rotate(e, -outward * step), rotate(h, -outward * step));
-            total += step;
-            if hits(e1, h1, scratch) {
-                touched = true;
-                break;
-            }
-            e = e1;
-            h = h1;
-        }
-        if !touched {
-            e = e0;
-            h = h0;
-        }
-    }
-    // Stage 5: back edge along the new face's negative normal, at the previous depth.
-    let mut n = (e - a).cross(d - a).try_normalize()?;
-    if n.dot(frame.back) > 0.0 {
-        n = -n;
-    }
-    let lead = BoundedPlane::from_front_edge(e, h, -n, frame.depth);
-    let pair = Cutter {
-        kind: CutKind::Curving,
-        smooth: false,
-        planes: vec![*prev, lead],
+    let (e0, h0) = (e, h);
+    // Angles are measured outward from the corrected position.
+    // The band of the face next to AD is not tested: AD was settled by the previous box, and a
+    // contact there (AD itself resting on the surface, possibly a little twisted) would stop the
+    // rotation long before the leading edge reaches the surface. A leading edge that slipped
+    // under the surface entirely counts as intersecting too (no crossing is left to see).
+    let hits_at = |angle: f64, scratch: &mut Vec<u32>| {
+        let (e1, h1) = (rotate(e0, outward * angle), rotate(h0, outward * angle));
+        let q = [a.lerp(e1, 0.2), e1, h1, d.lerp(h1, 0.2)];
+        surface.quad_intersects(&q, scratch) || surface.is_inside((e1 + h1) * 0.5)
     };
-    pair.sanity_check().ok()?;
-    Some(lead)
+    // Bracket the contact in 2δ steps: `clear` is an angle where the face floats, `hit` one where
+    // it crosses the surface.
+    let bracket = if !settle {
+        Some((0.0, 0.0))
+    } else if hits_at(0.0, scratch) {
+        let mut hit = 0.0;
+        let mut clear = None;
+        for _ in 0..45 {
+            let next = hit + step;
+            if !hits_at(next, scratch) {
+                clear = Some(next);
+                break;
+            }
+            hit = next;
+        }
+        clear.map(|c| (c, hit))
+    } else {
+        let mut clear = 0.0;
+        let mut hit = None;
+        while clear > -MAX_INWARD_DEG.to_radians() {
+            let next = clear - step;
+            if hits_at(next, scratch) {
+                hit = Some(next);
+                break;
+            }
+            clear = next;
+        }
+        // A face that never finds the surface (the roller left the object) stays unrotated.
+        Some(hit.map_or((0.0, 0.0), |h| (clear, h)))
+    };
+    let angle = match bracket {
+        None => 45.0 * step,
+        Some((clear, hit)) if clear == hit => clear,
+        Some((mut clear, mut hit)) => {
+            // Refine the contact (our addition), then rest the face REST_GAP·δ outside it: the
+            // thesis's final 2δ step leaves it anywhere 0–2δ above; this is the middle of that.
+            for _ in 0..8 {
+                let mid = 0.5 * (clear + hit);
+                if hits_at(mid, scratch) {
+                    hit = mid;
+                } else {
+                    clear = mid;
+                }
+            }
+            let rest = clear + (REST_GAP * settings.delta / radius).min(step);
+            if hits_at(rest, scratch) { clear } else { rest }
+        }
+    };
+    // Stage 5: back edge along the new face's negative normal (at the leading edge: ⟂ to the
+    // edge and to the path), at the previous depth. A box too narrow for the turn its face
+    // needs would fold (its back face would cross the previous plane), so the turn is halved
+    // until the box is well formed; turn 0 (the front plane itself) always is.
+    let place = |angle: f64, levelled: bool, scratch: &mut Vec<u32>| -> Option<BoundedPlane> {
+        let (mut e, mut h) = (rotate(e0, outward * angle), rotate(h0, outward * angle));
+        if levelled {
+            (e, h) = level(a, d, e, h, surface, settings.delta, scratch);
+        }
+        let path = ((e + h) * 0.5 - q).try_normalize()?;
+        let mut n = (e - h).cross(path).try_normalize()?;
+        if n.dot(frame.back) > 0.0 {
+            n = -n;
+        }
+        let lead = BoundedPlane::from_front_edge(e, h, -n, frame.depth);
+        let pair = Cutter {
+            kind: CutKind::Curving,
+            smooth: false,
+            planes: vec![*prev, lead],
+        };
+        pair.sanity_check().ok().map(|_| lead)
+    };
+    let r = [1.0, 0.5, 0.25, 0.125]
+        .iter()
+        .find_map(|&f| place(angle * f, settle, scratch).map(|p| (f, p)))
+        .or_else(|| place(0.0, false, scratch).map(|p| (0.0, p)));
+    if std::env::var("DEBUG_ROLL").is_ok() {
+        eprintln!("DEBUG settle {settle} r/δ {:.1} bracket {bracket:?} angle {angle:.3} used {:?}", radius / settings.delta, r.map(|x| x.0));
+    }
+    r.map(|x| x.1)
+}
+
+/// Stage 4b (our addition): levels the leading edge E''H'' across the path. Rotating about DA
+/// alone cannot undo a twist of the roller relative to the surface (it accumulates where the path
+/// turns on a curved surface, e.g. an S on a sphere), so one end would float ever higher. Turns
+/// E''H'' about the path direction through its midpoint until both ends are equally far from the
+/// surface, unless that makes the face cross it.
+fn level(
+    a: DVec3,
+    d: DVec3,
+    e: DVec3,
+    h: DVec3,
+    surface: &Surface,
+    delta: f64,
+    scratch: &mut Vec<u32>,
+) -> (DVec3, DVec3) {
+    let m = (e + h) * 0.5;
+    let q = (a + d) * 0.5;
+    let (Some(path), Some(half)) = ((m - q).try_normalize(), Some((e - h).length() * 0.5)) else {
+        return (e, h);
+    };
+    if half <= 0.0 {
+        return (e, h);
+    }
+    let (ge, gh) = (surface.distance(e), surface.distance(h));
+    if !(ge.is_finite() && gh.is_finite()) || (ge - gh).abs() < 0.5 * delta {
+        return (e, h);
+    }
+    // Lower the higher end by half the difference, raise the other by as much.
+    let alpha = ((ge - gh) * 0.5 / half).clamp(-0.5, 0.5).atan();
+    let turn = |angle: f64| {
+        let r = DQuat::from_axis_angle(path, angle);
+        (m + r * (e - m), m + r * (h - m))
+    };
+    let (e1, h1) = turn(alpha);
+    let (e2, h2) = turn(-alpha);
+    // Pick the sense that brings E toward the surface when it is the higher end.
+    let better = |x: DVec3, y: DVec3| (surface.distance(x) - surface.distance(y)).abs();
+    let (e3, h3) = if better(e1, h1) <= better(e2, h2) { (e1, h1) } else { (e2, h2) };
+    if surface.quad_intersects(&[a, e3, h3, d], scratch) {
+        (e, h)
+    } else {
+        (e3, h3)
+    }
 }
 
 /// Wedge extrusion (thesis 3.3.2.3): E' stays on the shared axis, M sets the rotation, and on a

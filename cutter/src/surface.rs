@@ -50,6 +50,17 @@ impl<'a> Surface<'a> {
             .map_or(f64::INFINITY, |c| c.distance)
     }
 
+    /// True when `p` lies behind the surface point closest to it (inside a closed, outward
+    /// target), judged by that face's normal. Approximate where the closest point is on a sharp
+    /// edge; used only to catch a face that slipped entirely under the surface, where no
+    /// crossing is left to detect.
+    pub fn is_inside(&self, p: DVec3) -> bool {
+        self.index.closest_point(self.mesh, p).is_some_and(|c| {
+            let n = self.mesh.face_normal_scaled(c.face as usize);
+            (p - c.point).dot(n) < 0.0
+        })
+    }
+
     /// The surface point closest to `p`.
     pub fn closest_point(&self, p: DVec3) -> Option<DVec3> {
         self.index.closest_point(self.mesh, p).map(|c| c.point)

@@ -4,11 +4,14 @@ use glam::DVec2;
 use cutter::CutKind;
 use editor_support::*;
 
-fn run(scene: &Scene, a: DVec2, amp: f64) {
+#[test]
+fn debug_bumpy() {
+    let scene = Scene::bumpy();
     let mut editor = scene.editor(scene.settings(CutKind::Curving));
+    let a = DVec2::new(450.0, 430.0);
     feed(&mut editor, drag(a, a + DVec2::new(0.0, -60.0), 6));
     let h = handle_px(&editor);
-    let path = s_path(220.0, amp, 80);
+    let path = s_path(320.0, 40.0, 120);
     editor.handle(cutter::EditorEvent::press(h.x, h.y));
     for (k, p) in path.iter().enumerate() {
         let q = h + *p;
@@ -16,15 +19,7 @@ fn run(scene: &Scene, a: DVec2, amp: f64) {
         let c = editor.cutter().unwrap();
         let l = c.leading();
         let cam = editor.camera();
-        eprintln!("move {k} mouse {:.1} n {} lead mid px {:.1} valid {:?} changed {}", q, c.planes.len(), cam.project(editor.viewport(), l.front_mid()).unwrap(), c.sanity_check().err(), r.changed);
+        let prev = c.planes[c.planes.len() - 2];
+        let g = scene.distance(l.front_mid()) / editor.delta(); let ins = scene.index.closest_point(&scene.mesh, l.front_mid()).map(|c| (l.front_mid() - c.point).dot(scene.mesh.face_normal_scaled(c.face as usize)) < 0.0).unwrap(); eprintln!("gap {g:.2} inside {ins} move {k} mouse {:.1} n {} lead mid px {:.1} width/δ {:.2} back {:.2} face-n {:.2} changed {}", q, c.planes.len(), cam.project(editor.viewport(), l.front_mid()).unwrap(), (l.front_mid() - prev.front_mid()).length() / editor.delta(), l.back_direction(), prev.back_direction(), r.changed);
     }
-    let c = editor.cutter().unwrap();
-    let cam = editor.camera();
-    for p in &c.planes { eprintln!("mid px {:.1}  ft px {:.1} fb px {:.1}", cam.project(editor.viewport(), p.front_mid()).unwrap(), cam.project(editor.viewport(), p.front_top).unwrap(), cam.project(editor.viewport(), p.front_bottom).unwrap()); }
-    eprintln!("mouse end px {:.1}", h + *path.last().unwrap());
 }
-
-#[test]
-fn debug_slab_s() { run(&Scene::slab(), DVec2::new(500.0, 430.0), 60.0); }
-#[test]
-fn debug_sphere_s() { run(&Scene::sphere(), DVec2::new(560.0, 430.0), 60.0); }

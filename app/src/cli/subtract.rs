@@ -1,6 +1,13 @@
 //! `cutaway subtract TARGET CUTTER --out DIR --json`. OWNER: boolean helper.
+//!
+//! Reads both meshes, builds the target index (not timed), cuts with [`csg::subtract`] (timed:
+//! `boolean_ms`), then writes `kept.obj`, `walls.obj`, `removed.obj` and `contour.obj` into DIR
+//! (see `../shared/CONTRACT.md`).
 
 use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Context;
 
 #[derive(Debug, clap::Args)]
 pub struct SubtractArgs {
@@ -16,6 +23,69 @@ pub struct SubtractArgs {
     pub json: bool,
 }
 
+/// The JSON printed by `--json` (field names fixed by the contract).
+#[derive(Debug, serde::Serialize)]
+pub struct SubtractReport {
+    pub target_triangles: usize,
+    pub cutter_triangles: usize,
+    pub kept_triangles: usize,
+    pub walls_triangles: usize,
+    pub removed_triangles: usize,
+    pub contour_loops: usize,
+    pub boolean_ms: f64,
+}
+
 pub fn run(args: &SubtractArgs) -> anyhow::Result<()> {
-    anyhow::bail!("{}: subtract is not implemented yet", args.target.display())
+    let target = crate::io::read_mesh(&args.target)?;
+    let cutter = crate::io::read_mesh(&args.cutter)?;
+    let target_triangles = target.triangles.len();
+    let index = csg::TargetIndex::build(target)
+        .with_context(|| args.target.display().to_string())?;
+
+    let clock = Instant::now();
+    let result =
+        csg::subtract(&index, &cutter).with_context(|| args.cutter.display().to_string())?;
+    let boolean_ms = clock.elapsed().as_secs_f64() * 1e3;
+
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("{}: cannot create the folder", args.out.display()))?;
+    let kept = result.kept_mesh(index.mesh());
+    crate::io::write_mesh(&args.out.join("kept.obj"), &kept)?;
+    crate::io::write_mesh(&args.out.join("walls.obj"), &result.walls.mesh)?;
+    crate::io::write_mesh(&args.out.join("removed.obj"), &result.removed.mesh)?;
+    let polylines: Vec<Vec<glam::DVec3>> = result
+        .contours
+        .iter()
+        .map(|c| {
+            let mut p = c.points.clone();
+            if c.closed && let Some(&first) = p.first() {
+                p.push(first); // written as a closed `l` record
+            }
+            p
+        })
+        .collect();
+    crate::io::write_obj_polylines(&args.out.join("contour.obj"), &polylines)?;
+
+    let report = SubtractReport {
+        target_triangles,
+        cutter_triangles: cutter.triangles.len(),
+        kept_triangles: kept.triangles.len(),
+        walls_triangles: result.walls.mesh.triangles.len(),
+        removed_triangles: result.removed.mesh.triangles.len(),
+        contour_loops: result.contours.len(),
+        boolean_ms,
+    };
+    if args.json {
+        println!("{}", serde_json::to_string(&report)?);
+    } else {
+        println!(
+            "kept {} triangles, walls {}, removed {}, {} contour loop(s), boolean {:.2} ms",
+            report.kept_triangles,
+            report.walls_triangles,
+            report.removed_triangles,
+            report.contour_loops,
+            report.boolean_ms
+        );
+    }
+    Ok(())
 }

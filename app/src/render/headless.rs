@@ -54,11 +54,20 @@ impl HeadlessRenderer {
     /// Opens the first adapter `WGPU_BACKEND` (or the platform default) offers, software ones
     /// included. The error says why none could be opened.
     pub fn new() -> anyhow::Result<HeadlessRenderer> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle().with_env());
+        let defaults = wgpu::InstanceDescriptor::new_without_display_handle().with_env();
+        HeadlessRenderer::with_backends(defaults.backends)
+    }
+
+    /// [`HeadlessRenderer::new`] restricted to `backends` (tests pin Vulkan).
+    pub fn with_backends(backends: wgpu::Backends) -> anyhow::Result<HeadlessRenderer> {
+        let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle().with_env();
+        descriptor.backends = backends;
+        let instance = wgpu::Instance::new(descriptor);
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             force_fallback_adapter: false,
             compatible_surface: None,
+            ..Default::default()
         }))
         .map_err(|e| anyhow::anyhow!("no GPU adapter (install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan): {e}"))?;
         let limits = adapter.limits();

@@ -39,10 +39,11 @@ impl Scene {
         Scene::new(height_field(|_, _| 0.0, 40), top_camera())
     }
 
-    /// A 100 × 100 solid whose top is hills and valleys (amplitude 4), seen from above.
+    /// A 100 × 100 solid whose top is hills and valleys along x (relief 6, slopes up to 20°), gently curved
+    /// along y (a flat roller spanning y cannot follow strong curvature across it), seen from above.
     pub fn bumpy() -> Scene {
         Scene::new(
-            height_field(|x, y| 4.0 * (x / 9.0).sin() * (y / 11.0).cos() + 2.0 * (x / 5.0).cos(), 100),
+            height_field(|x, y| 3.0 * (x / 8.0).sin() + 0.5 * (y / 20.0).cos(), 100),
             top_camera(),
         )
     }
