@@ -333,6 +333,12 @@ fn golden_slices() {
 fn golden_anaglyph() {
     let Some(mut r) = renderer() else { return };
     let mut scene = layered_scene();
+    // Something well in front of the convergence plane (the camera target), so the eyes disagree.
+    scene.models.push(model(
+        "near",
+        icosphere(DVec3::new(-1.0, -2.0, -0.7), 0.3, 2),
+        [0.3, 0.8, 0.4],
+    ));
     scene.render.stereo = Stereo::Anaglyph;
     let image = render(&mut r, &scene, None);
     // Red/blue only: no green anywhere, and both eyes' images present (red-only and blue-only
@@ -374,6 +380,31 @@ fn transparent_background_and_tiled_export() {
         let (a, b) = (pixel(&wide, 2047, y), pixel(&wide, 2048, y));
         let d = (0..3).map(|k| (a[k] as i32 - b[k] as i32).abs()).max().unwrap_or(0);
         assert!(d < 40, "seam at row {y}: {a:?} vs {b:?}");
+    }
+}
+
+/// Not a check: writes larger supersampled pictures of every view for people to look at
+/// (`cargo test --test render -- --ignored sample`; files in the target's tmp folder).
+#[test]
+#[ignore]
+fn sample_renders_for_people() {
+    let Some(mut r) = renderer() else { return };
+    let sub = Some(SubCutterView { count: 4, width: 0.1 });
+    let views = [
+        ("sample_plain", None),
+        ("sample_cut", Some(CutterViews::default())),
+        ("sample_transparency_ribbons", Some(CutterViews { transparency: Some(0.3), ribbons: sub, ..CutterViews::default() })),
+        ("sample_slices", Some(CutterViews { transparency: Some(0.25), slices: sub, ..CutterViews::default() })),
+    ];
+    for (name, v) in views {
+        let scene = match v {
+            Some(v) => with_cutter(layered_scene(), v),
+            None => layered_scene(),
+        };
+        let image = render_with(&mut r, &scene, &RenderPngOptions::new(640, 480)).unwrap();
+        let path = actual_dir().join(format!("{name}.png"));
+        image.save(&path).unwrap();
+        println!("wrote {}", path.display());
     }
 }
 

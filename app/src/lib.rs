@@ -8,6 +8,7 @@ pub mod cutaway_geometry;
 pub mod gesture;
 pub mod gui;
 pub mod io;
+pub mod path_file;
 pub mod phantom;
 pub mod render;
 pub mod scene;

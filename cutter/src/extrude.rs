@@ -277,8 +277,7 @@ pub fn extrude_move(cutter: &mut Cutter, surface: &Surface, ray: &Ray, settings:
             cutter.planes[n - 1] = locked;
             let dir = (locked.front_mid() - prev.front_mid()).normalize_or_zero();
             cutter.planes.push(locked.translated(dir * MIN_WIDTH * settings.delta));
-            if let Err(_e) = cutter.sanity_check() {
-                if std::env::var("DEBUG_ROLL").is_ok() { eprintln!("DEBUG lock refused {_e}"); }
+            if cutter.sanity_check().is_err() {
                 cutter.planes.pop();
                 cutter.planes[n - 1] = lead;
                 break;
@@ -288,8 +287,13 @@ pub fn extrude_move(cutter: &mut Cutter, surface: &Surface, ray: &Ray, settings:
         }
         let target = frame.q + v;
         if let Some(new_lead) = roll(&prev, &frame, target, surface, settings, &mut scratch) {
-            changed |= new_lead != lead;
             cutter.planes[n - 1] = new_lead;
+            // The leading box must not run into earlier boxes (a path folding back on itself).
+            if cutter.sanity_check().is_err() {
+                cutter.planes[n - 1] = lead;
+            } else {
+                changed |= new_lead != lead;
+            }
         }
         break;
     }
@@ -518,14 +522,10 @@ fn roll(
         };
         pair.sanity_check().ok().map(|_| lead)
     };
-    let r = [1.0, 0.5, 0.25, 0.125]
+    [1.0, 0.5, 0.25, 0.125]
         .iter()
-        .find_map(|&f| place(angle * f, settle, scratch).map(|p| (f, p)))
-        .or_else(|| place(0.0, false, scratch).map(|p| (0.0, p)));
-    if std::env::var("DEBUG_ROLL").is_ok() {
-        eprintln!("DEBUG settle {settle} r/δ {:.1} bracket {bracket:?} angle {angle:.3} used {:?}", radius / settings.delta, r.map(|x| x.0));
-    }
-    r.map(|x| x.1)
+        .find_map(|&f| place(angle * f, settle, scratch))
+        .or_else(|| place(0.0, false, scratch))
 }
 
 /// Stage 4b (our addition): levels the leading edge E''H'' across the path. Rotating about DA

@@ -1,6 +1,17 @@
 //! `cutaway scalpel TARGET --path P.json --out OUT.obj --json`. OWNER: scalpel helper.
+//!
+//! Replays a `cutaway-path/1` file through the same [`cutter::scalpel::Scalpel`] the GUI's
+//! Scalpel mode drives: one step per sample, strokes one after another, then the opening (if the
+//! file asks for one) evaluated after its whole time window. Any failed step is an error naming
+//! the path file, the stroke and the point; nothing is written then.
 
 use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::anyhow;
+use cutter::scalpel::dffd::open_positions;
+use cutter::scalpel::invariants::validate;
+use cutter::scalpel::{Scalpel, ScalpelOptions};
 
 #[derive(Debug, clap::Args)]
 pub struct ScalpelArgs {
@@ -18,5 +29,61 @@ pub struct ScalpelArgs {
 }
 
 pub fn run(args: &ScalpelArgs) -> anyhow::Result<()> {
-    anyhow::bail!("{}: scalpel is not implemented yet", args.path.display())
+    let path_file = crate::path_file::read_path_file(&args.path)?;
+    let mesh = crate::io::read_mesh(&args.target)?;
+    let target = args.target.display();
+    let options = ScalpelOptions::default()
+        .with_depth(path_file.depth)
+        .with_tool(path_file.tool);
+    let mut scalpel = Scalpel::new(&mesh, options).map_err(|e| anyhow!("{target}: {e}"))?;
+    let triangles_before = scalpel.dyn_mesh().triangle_count();
+    let mut step_us: Vec<f64> = Vec::new();
+    let mut triangles_cut = 0usize;
+    let file = args.path.display();
+    for (s, stroke) in path_file.strokes.iter().enumerate() {
+        for (k, &q) in stroke.iter().enumerate() {
+            let start = Instant::now();
+            let r = if k == 0 {
+                scalpel.begin_stroke(q)
+            } else {
+                scalpel.step(q)
+            };
+            step_us.push(start.elapsed().as_secs_f64() * 1e6);
+            r.map_err(|e| anyhow!("{file}: stroke {s} point {k}: {e}"))?;
+        }
+        let report = scalpel
+            .end_stroke()
+            .map_err(|e| anyhow!("{file}: stroke {s}: {e}"))?;
+        triangles_cut += report.triangles_cut;
+    }
+    let topology = validate(scalpel.dyn_mesh())
+        .map_err(|e| anyhow!("{target}: internal error after cutting: {e}"))?;
+    let mut out = scalpel.mesh();
+    if let Some(open) = path_file.open {
+        // Let the whole trailing window elapse: the written incision is fully open.
+        scalpel.advance_clock(open.window);
+        out.positions = open_positions(&scalpel, &open, scalpel.clock());
+    }
+    crate::io::write_mesh(&args.out, &out)?;
+    if args.json {
+        let mut sorted = step_us.clone();
+        sorted.sort_by(f64::total_cmp);
+        let p50 = if sorted.is_empty() {
+            0.0
+        } else {
+            sorted[(sorted.len() - 1) / 2]
+        };
+        let max = sorted.last().copied().unwrap_or(0.0);
+        let json = serde_json::json!({
+            "steps": step_us.len(),
+            "triangles_cut": triangles_cut,
+            "triangles_created": scalpel.dyn_mesh().triangle_count().saturating_sub(triangles_before),
+            "step_us_p50": p50,
+            "step_us_max": max,
+            "closed": topology.closed,
+            "manifold": topology.manifold,
+        });
+        println!("{json}");
+    }
+    Ok(())
 }

@@ -125,6 +125,12 @@ pub enum Action {
     RemoveModel(usize),
     StartGesture,
     StopGesture,
+    /// Keep the current cutter; the next drag in Edit mode starts a new one.
+    NewCutter,
+    /// Open scene cutter `i` in the editor.
+    EditCutter(usize),
+    /// Delete scene cutter `i`.
+    RemoveCutter(usize),
     RestoreRecovery,
     DiscardRecovery,
 }
@@ -135,6 +141,18 @@ pub enum JobOutput {
     Picked { purpose: Purpose, paths: Vec<PathBuf>, took: std::time::Duration },
     /// Models were read.
     Models { models: Vec<crate::io::Model>, replace: bool, sources: Vec<PathBuf> },
+    /// A session was read (models included).
+    Session { path: PathBuf, scene: Scene },
+    /// A target's spatial index was built.
+    Index { model: usize, mesh: std::sync::Weak<csg::Mesh>, index: Arc<csg::SpatialIndex> },
+    /// Preview cut parts for the scene state `key`, and the wall time of the cut in ms.
+    Preview {
+        geometry: Arc<crate::cutaway_geometry::PreviewGeometry>,
+        key: super::bridge::PreviewKey,
+        ms: f64,
+    },
+    /// "Remove All Cut Geometry": new meshes for the cut models, for the scene state `key`.
+    CutsApplied { meshes: Vec<(usize, Arc<csg::Mesh>)>, key: super::bridge::PreviewKey },
     /// Something finished that only needs a message.
     Done(String),
 }
@@ -195,6 +213,8 @@ pub struct CutawayApp {
     pub wgpu: Option<egui_wgpu::RenderState>,
     /// Which cutter tab is shown.
     pub cutter_tab: super::cutter_panel::CutterTab,
+    /// The scene as of the last committed undo step (the "before" of editor-made changes).
+    last_committed: Scene,
     /// A scene edit in progress (slider or colour drag): its label and the scene before it.
     /// Committed to the history when the pointer is released.
     pending_edit: Option<(String, Scene)>,
@@ -233,6 +253,7 @@ impl CutawayApp {
             wgpu: cc.wgpu_render_state.clone(),
             cutter_tab: Default::default(),
             pending_edit: None,
+            last_committed: new_scene(),
             exiting: false,
             frame_started: Instant::now(),
         };
@@ -274,7 +295,7 @@ impl CutawayApp {
     fn load_default_scene(&mut self, ctx: &egui::Context) {
         self.spawn(ctx, "Loading the default scene", |progress| {
             progress.set_message("knee");
-            let models = super::bridge::default_scene_models()?;
+            let models = super::bridge::default_scene_models(progress)?;
             Ok(JobOutput::Models {
                 models,
                 replace: true,
@@ -285,7 +306,11 @@ impl CutawayApp {
 
     /// Records a scene change for undo (call with the state from before the change).
     pub fn record(&mut self, label: &str, before: Scene) {
+        if let Some((pending_label, pending_before)) = self.pending_edit.take() {
+            self.history.push_scene(pending_label, pending_before, before.clone());
+        }
         self.history.push_scene(label, before, self.scene.clone());
+        self.last_committed = self.scene.clone();
         self.recovery.mark_dirty();
     }
 
@@ -303,6 +328,9 @@ impl CutawayApp {
             if let Some((label, before)) = self.pending_edit.take() {
                 self.history.push_scene(label, before, self.scene.clone());
             }
+        }
+        if self.pending_edit.is_none() {
+            self.last_committed = self.scene.clone();
         }
     }
 
@@ -334,7 +362,7 @@ impl CutawayApp {
             Action::Undo => self.undo(),
             Action::Redo => self.redo(),
             Action::SetMode(mode) => self.set_mode(mode),
-            Action::RemoveAllCutGeometry => self.remove_all_cut_geometry(),
+            Action::RemoveAllCutGeometry => self.remove_all_cut_geometry(ctx),
             Action::ToggleCutters => {
                 self.cutters_hidden = !self.cutters_hidden;
                 self.say(if self.cutters_hidden { "Cutters hidden" } else { "Cutters shown" });
@@ -344,6 +372,9 @@ impl CutawayApp {
             }
             Action::SelectModel(index) => {
                 self.selected_model = index.filter(|&i| i < self.scene.models.len());
+                if self.viewport.editor.target() != self.selected_model {
+                    self.viewport.editor.finish();
+                }
             }
             Action::FocusModel(index) => {
                 if let Some(model) = self.scene.models.get(index) {
@@ -351,6 +382,9 @@ impl CutawayApp {
                     let centre = model.mesh.bbox().center();
                     camera_controls::centre_on(&mut self.scene.camera, centre);
                     self.selected_model = Some(index);
+                    if self.viewport.editor.target() != Some(index) {
+                        self.viewport.editor.finish();
+                    }
                     self.say(format!("Target: {name}"));
                 }
             }
@@ -359,6 +393,7 @@ impl CutawayApp {
                     let before = self.scene.clone();
                     let removed = self.scene.models.remove(index);
                     self.selected_model = None;
+                    self.viewport.editor.finish();
                     self.scene.cutters.retain(|c| c.target != index);
                     for c in &mut self.scene.cutters {
                         if c.target > index {
@@ -372,6 +407,28 @@ impl CutawayApp {
             Action::StopGesture => {
                 if self.viewport.recording.is_some() {
                     self.open_dialog(ctx, Purpose::SaveGesture);
+                }
+            }
+            Action::NewCutter => {
+                self.viewport.editor.finish();
+                self.say("The next drag on the target starts a new cutter");
+            }
+            Action::EditCutter(i) => {
+                if self.viewport.editor.edit_existing(&self.scene, i, self.viewport.size_px, &self.cutter_init) {
+                    self.selected_model = self.viewport.editor.target();
+                    self.selected_cutter = i;
+                    self.set_mode(Mode::Edit);
+                    self.say(format!("Editing cutter {}", i + 1));
+                } else if let Some(target) = self.scene.cutters.get(i).map(|c| c.target) {
+                    self.start_index_job(ctx, target);
+                }
+            }
+            Action::RemoveCutter(i) => {
+                if i < self.scene.cutters.len() {
+                    let before = self.scene.clone();
+                    self.scene.cutters.remove(i);
+                    self.viewport.editor.finish();
+                    self.record(&format!("remove cutter {}", i + 1), before);
                 }
             }
             Action::RestoreRecovery => {
@@ -411,14 +468,13 @@ impl CutawayApp {
                 self.scene.camera = camera;
                 true
             }
-            Some(Apply::Editor) => {
-                self.viewport.editor_undo();
-                true
-            }
+            // Cutter edits are recorded as scene snapshots; the editor follows the scene.
+            Some(Apply::Editor) => false,
             None => false,
         };
         if applied {
             self.fix_selection();
+            self.viewport.editor.sync_from_scene(&self.scene);
             self.recovery.mark_dirty();
             self.say("Undone");
         } else {
@@ -434,14 +490,12 @@ impl CutawayApp {
                 self.scene.camera = camera;
                 true
             }
-            Some(Apply::Editor) => {
-                self.viewport.editor_redo();
-                true
-            }
+            Some(Apply::Editor) => false,
             None => false,
         };
         if applied {
             self.fix_selection();
+            self.viewport.editor.sync_from_scene(&self.scene);
             self.recovery.mark_dirty();
             self.say("Redone");
         } else {
@@ -455,8 +509,50 @@ impl CutawayApp {
         }
     }
 
-    fn remove_all_cut_geometry(&mut self) {
-        self.say("Remove All Cut Geometry: no cut results yet");
+    fn remove_all_cut_geometry(&mut self, ctx: &egui::Context) {
+        if self.scene.cutters.is_empty() {
+            self.say("There are no cutters to apply");
+            return;
+        }
+        let scene = self.scene.clone();
+        let key = super::bridge::PreviewKey::of(&scene);
+        self.spawn(ctx, "Removing all cut geometry", move |progress| {
+            let meshes = super::bridge::apply_all_cuts(&scene, progress)?;
+            Ok(JobOutput::CutsApplied { meshes, key })
+        });
+    }
+
+    /// Starts building the spatial index of model `target` in the background (big targets).
+    pub fn start_index_job(&mut self, ctx: &egui::Context, target: usize) {
+        let Some(model) = self.scene.models.get(target) else { return };
+        if self.jobs.iter().any(|j| j.label.starts_with("Indexing")) {
+            return;
+        }
+        let mesh = model.mesh.clone();
+        let name = model.name.clone();
+        self.say(format!("Indexing {name} for editing…"));
+        self.spawn(ctx, format!("Indexing {name}"), move |progress| {
+            let (weak, index) = super::bridge::build_index(&mesh, progress)?;
+            Ok(JobOutput::Index { model: target, mesh: weak, index })
+        });
+    }
+
+    /// The editor changed the scene's cutters: one undo step per drag (committed on release).
+    pub fn cutters_changed(&mut self) {
+        if self.pending_edit.is_none() {
+            // `begin_edit` must see the scene before the change; the editor already changed it,
+            // so the snapshot taken at the previous frame end is used.
+            self.pending_edit = Some(("cutter edit".to_string(), self.last_committed.clone()));
+        }
+        self.recovery.mark_dirty();
+    }
+
+    /// The Initialization tab changed: the active cutter follows (smoothing is an edit).
+    pub fn cutter_settings_changed(&mut self) {
+        let before = self.scene.clone();
+        if self.viewport.editor.apply_settings(&mut self.scene, &self.cutter_init) {
+            self.record("smoothing change", before);
+        }
     }
 
     fn open_dialog(&mut self, ctx: &egui::Context, purpose: Purpose) {
@@ -554,14 +650,7 @@ impl CutawayApp {
         }
         if paths.len() == 1 && is_session_path(&paths[0]) {
             let path = paths[0].clone();
-            match self.load_session(ctx, &path) {
-                Ok(()) => {
-                    self.recent.add(&path);
-                    self.session_path = Some(path.clone());
-                    self.say(format!("Opened {}", path.display()));
-                }
-                Err(e) => self.complain(&e),
-            }
+            self.load_session(ctx, &path);
             return;
         }
         for p in &paths {
@@ -589,6 +678,57 @@ impl CutawayApp {
                 }
             }
             JobOutput::Models { models, replace, sources } => self.add_models(models, replace, &sources),
+            JobOutput::Session { path, scene } => {
+                self.scene = scene;
+                self.session_path = Some(path.clone());
+                self.selected_model = None;
+                self.selected_cutter = 0;
+                self.history.clear();
+                self.viewport.reset_editor();
+                self.last_committed = self.scene.clone();
+                self.recovery.mark_dirty();
+                self.recent.add(&path);
+                self.say(format!(
+                    "Opened {}: {} models, {} cutters",
+                    path.display(),
+                    self.scene.models.len(),
+                    self.scene.cutters.len()
+                ));
+            }
+            JobOutput::Index { model, mesh, index } => {
+                self.viewport.editor.store_index(mesh, index);
+                self.say(format!(
+                    "{} is ready: drag on it to start a cutter",
+                    self.scene.models.get(model).map(|m| m.name.as_str()).unwrap_or("the target")
+                ));
+            }
+            JobOutput::Preview { geometry, key, ms } => {
+                if key == super::bridge::PreviewKey::of(&self.scene) {
+                    self.status.last_cut_ms = Some(ms);
+                    self.status.cut_triangles = geometry.triangle_count();
+                    self.viewport.preview = Some(geometry);
+                    self.viewport.preview_key = Some(key);
+                }
+            }
+            JobOutput::CutsApplied { meshes, key } => {
+                if key != super::bridge::PreviewKey::of(&self.scene) {
+                    self.say("The cutters changed while cutting; Remove All Cut Geometry was not applied");
+                    return;
+                }
+                let before = self.scene.clone();
+                let count = meshes.len();
+                for (i, mesh) in meshes {
+                    if let Some(m) = self.scene.models.get_mut(i) {
+                        m.mesh = mesh;
+                    }
+                }
+                self.scene.cutters.clear();
+                self.viewport.editor.finish();
+                self.viewport.preview = None;
+                self.viewport.preview_key = None;
+                self.record("remove all cut geometry", before);
+                self.say(format!("Applied the cuts to {count} models; new cuts reach the structures behind"));
+            }
             JobOutput::Done(message) => self.say(message),
         }
     }
@@ -620,6 +760,7 @@ impl CutawayApp {
         }
         if replace {
             self.scene.camera = self.scene.framing_camera();
+            self.last_committed = self.scene.clone();
             self.recovery.mark_dirty();
         } else {
             self.record(&format!("add {count} models"), before);
@@ -639,25 +780,47 @@ impl CutawayApp {
         super::bridge::save_session(self, path)
     }
 
-    fn load_session(&mut self, ctx: &egui::Context, path: &Path) -> anyhow::Result<()> {
-        let _ = ctx;
-        super::bridge::load_session(self, path)
+    fn load_session(&mut self, ctx: &egui::Context, path: &Path) {
+        let path = path.to_path_buf();
+        self.spawn(ctx, format!("Opening {}", file_label(&path)), move |progress| {
+            let scene = super::bridge::load_session(&path, progress)?;
+            Ok(JobOutput::Session { path, scene })
+        });
     }
 
     fn export_image_to(&mut self, ctx: &egui::Context, path: PathBuf) {
-        let _ = ctx;
-        match super::bridge::export_image(self, &path) {
-            Ok(()) => self.say(format!("Exported {}", path.display())),
-            Err(e) => self.complain(&e),
-        }
+        let scene = self.scene.clone();
+        let preview = self.mode == Mode::Preview;
+        let settings = self.export_image.clone();
+        self.spawn(ctx, format!("Exporting {}×{} image", settings.width, settings.height), move |progress| {
+            progress.set_message(file_label(&path));
+            Ok(JobOutput::Done(super::bridge::export_image(&scene, preview, &settings, &path)?))
+        });
     }
 
     fn export_meshes_to(&mut self, ctx: &egui::Context, dir: PathBuf) {
-        let _ = ctx;
-        match super::bridge::export_meshes(self, &dir) {
-            Ok(n) => self.say(format!("Exported {n} meshes to {}", dir.display())),
-            Err(e) => self.complain(&e),
+        let scene = self.scene.clone();
+        let settings = self.export_meshes.clone();
+        self.spawn(ctx, "Exporting cut meshes", move |progress| {
+            let files = super::bridge::export_meshes(&scene, &settings, &dir, progress)?;
+            Ok(JobOutput::Done(format!("Exported {} meshes to {}", files.len(), dir.display())))
+        });
+    }
+
+    /// In Preview, recompute the cut parts whenever the cutters or their targets changed.
+    fn update_preview(&mut self, ctx: &egui::Context) {
+        if self.mode != Mode::Preview || self.scene.cutters.is_empty() {
+            return;
         }
+        let key = super::bridge::PreviewKey::of(&self.scene);
+        if self.viewport.preview_key.as_ref() == Some(&key) || self.jobs.iter().any(|j| j.label == PREVIEW_JOB) {
+            return;
+        }
+        let scene = self.scene.clone();
+        self.spawn(ctx, PREVIEW_JOB, move |_| {
+            let (geometry, ms) = super::bridge::compute_preview(&scene);
+            Ok(JobOutput::Preview { geometry, key, ms })
+        });
     }
 
     fn poll_jobs(&mut self, ctx: &egui::Context) {
@@ -820,10 +983,11 @@ impl eframe::App for CutawayApp {
             let job = self.jobs.remove(i);
             self.say(format!("{}: cancelled", job.label));
         }
-        self.commit_edit_if_idle(&ctx);
         for action in actions {
             self.apply(&ctx, action);
         }
+        self.commit_edit_if_idle(&ctx);
+        self.update_preview(&ctx);
 
         if !self.exiting && self.recovery.due() {
             let result = self.recovery.begin_save().and_then(|path| super::bridge::save_session(self, &path));
@@ -852,7 +1016,10 @@ impl CutawayApp {
             .filter(|m| m.visible)
             .map(|m| m.mesh.triangle_count())
             .sum();
-        self.status.cutters = self.viewport.cutter_count();
+        self.status.cutters = self.scene.cutters.len();
+        if self.mode != Mode::Preview {
+            self.status.cut_triangles = 0;
+        }
         self.status.selected = self.selected_model.and_then(|i| self.scene.models.get(i)).map(|m| m.name.clone());
     }
 }
@@ -864,6 +1031,9 @@ pub fn new_scene() -> Scene {
     scene.render.background = [0.80, 0.83, 0.87, 1.0];
     scene
 }
+
+/// Label of the preview job (at most one runs).
+const PREVIEW_JOB: &str = "Cutting (Preview)";
 
 /// True for `.json` files (sessions); everything else is a mesh or a directory.
 pub fn is_session_path(path: &Path) -> bool {

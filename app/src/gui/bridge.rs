@@ -1,162 +1,474 @@
-//! Where the window meets the other parts of the application: the renderer, the session file, the
-//! embedded default scene, the cutter editor and the boolean. Kept in one file so the panels never
-//! depend on those APIs directly.
+//! Where the window meets the other parts of the application: the renderer (paint callback and
+//! headless export), the session file, the embedded default scene, the cutter editor and the cut
+//! geometry. Kept in one file so the panels never depend on those APIs directly.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Weak};
+use std::time::Instant;
 
-use glam::{DVec2, DVec3};
+use glam::DVec2;
 
-use cutter::events::EditorEvent;
+use csg::{Mesh, SpatialIndex};
+use cutter::{BoundedPlane, Cutter, Editor, EditorEvent, EditorSettings};
 
 use super::app::CutawayApp;
-use crate::scene::{ModelStyle, Scene};
+use super::jobs::Progress;
+use crate::cutaway_geometry::{self, PreviewGeometry};
+use crate::render::{CutterOverlay, FrameInputs, OutputTarget, Renderer, ViewMode};
+use crate::scene::{CutKind, Scene, SceneCutter};
 
 /// Whether the scalpel mode exists in this build (its button is disabled otherwise).
 pub const SCALPEL_AVAILABLE: bool = false;
 
-/// The cutter editor of the window (placeholder until `cutter::Editor` lands: counts events).
+/// Targets up to this many triangles get their spatial index built on the UI thread (a few
+/// milliseconds); bigger ones in a background job with progress.
+const SYNC_INDEX_TRIANGLES: usize = 150_000;
+
+/// Scene cut kind → editor cut kind.
+pub fn editor_kind(kind: CutKind) -> cutter::CutKind {
+    match kind {
+        CutKind::Curving => cutter::CutKind::Curving,
+        CutKind::Straight => cutter::CutKind::Straight,
+        CutKind::Wedge => cutter::CutKind::Wedge,
+    }
+}
+
+/// Editor cut kind → scene cut kind.
+pub fn scene_kind(kind: cutter::CutKind) -> CutKind {
+    match kind {
+        cutter::CutKind::Curving => CutKind::Curving,
+        cutter::CutKind::Straight => CutKind::Straight,
+        cutter::CutKind::Wedge => CutKind::Wedge,
+    }
+}
+
+/// The editor working on one cutter of the scene.
+struct Active {
+    editor: Editor,
+    /// Index into `Scene::models` of the target.
+    target: usize,
+    /// Index into `Scene::cutters` of the cutter being edited; `None` until the first drag made one.
+    cutter: Option<usize>,
+}
+
+/// The window's cutter editing: at most one active [`Editor`] (on the selected target), a cache of
+/// spatial indexes per target mesh, and the glue that mirrors the editor's cutter into
+/// `Scene::cutters` so that undo, sessions, the renderer and Preview all see one truth.
 #[derive(Default)]
 pub struct EditorSlot {
-    events: usize,
+    active: Option<Active>,
+    /// Spatial indexes by target mesh (weak: a replaced mesh invalidates its entry).
+    indexes: Vec<(Weak<Mesh>, Arc<SpatialIndex>)>,
+    /// The cursor the editor asked for at the last event.
+    pub cursor: cutter::CursorHint,
 }
 
 impl EditorSlot {
-    /// Feeds one event; returns true when the cutters changed (an undoable edit happened).
-    pub fn handle(&mut self, scene: &mut Scene, target: Option<usize>, viewport: DVec2, event: EditorEvent) -> bool {
-        let _ = (scene, target, viewport, event);
-        self.events += 1;
+    /// The cached index of `mesh`, if built.
+    pub fn index_for(&self, mesh: &Arc<Mesh>) -> Option<Arc<SpatialIndex>> {
+        self.indexes
+            .iter()
+            .find(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+            .map(|(_, i)| i.clone())
+    }
+
+    /// Stores an index built by a background job.
+    pub fn store_index(&mut self, mesh: Weak<Mesh>, index: Arc<SpatialIndex>) {
+        self.indexes.retain(|(w, _)| w.strong_count() > 0);
+        self.indexes.push((mesh, index));
+    }
+
+    /// The model the active editor works on.
+    pub fn target(&self) -> Option<usize> {
+        self.active.as_ref().map(|a| a.target)
+    }
+
+    /// Index into `Scene::cutters` of the cutter being edited.
+    pub fn active_cutter(&self) -> Option<usize> {
+        self.active.as_ref().and_then(|a| a.cutter)
+    }
+
+    /// Highlighted plane of the active cutter (selected, else hovered).
+    pub fn highlighted_plane(&self) -> Option<usize> {
+        let a = self.active.as_ref()?;
+        a.editor.selected_plane().or(a.editor.hovered_plane())
+    }
+
+    /// The initial strip while the first drag is in progress.
+    pub fn init_strip(&self) -> Option<[glam::DVec3; 4]> {
+        self.active.as_ref()?.editor.init_strip()
+    }
+
+    /// Stops editing the current cutter (it stays in the scene); the next drag starts a new one.
+    pub fn finish(&mut self) {
+        self.active = None;
+    }
+
+    /// Makes an editor for `target` ready when its index exists. Returns `Err(())` when the index
+    /// must first be built in the background (the caller starts that job).
+    pub fn ensure(&mut self, scene: &Scene, target: usize, viewport: DVec2, init: &super::app::CutterInit) -> Result<(), ()> {
+        if self.active.as_ref().is_some_and(|a| a.target == target) {
+            return Ok(());
+        }
+        let Some(model) = scene.models.get(target) else {
+            return Err(());
+        };
+        let index = match self.index_for(&model.mesh) {
+            Some(index) => index,
+            None if model.mesh.triangle_count() <= SYNC_INDEX_TRIANGLES => {
+                let index = Arc::new(SpatialIndex::build(&model.mesh));
+                self.store_index(Arc::downgrade(&model.mesh), index.clone());
+                index
+            }
+            None => return Err(()),
+        };
+        let settings = EditorSettings::for_scene(&scene.bbox(), scene.camera.fov_y_deg)
+            .with_kind(editor_kind(init.kind))
+            .with_spacing(init.spacing)
+            .with_smooth(init.smooth);
+        let editor = Editor::new(model.mesh.clone(), index, scene.camera, viewport, settings);
+        self.active = Some(Active {
+            editor,
+            target,
+            cutter: None,
+        });
+        Ok(())
+    }
+
+    /// Opens scene cutter `index` for editing (its target's index must exist or be cheap).
+    pub fn edit_existing(&mut self, scene: &Scene, index: usize, viewport: DVec2, init: &super::app::CutterInit) -> bool {
+        let Some(c) = scene.cutters.get(index) else { return false };
+        self.active = None;
+        if self.ensure(scene, c.target, viewport, init).is_err() {
+            return false;
+        }
+        let cutter = Cutter {
+            kind: editor_kind(c.kind),
+            smooth: c.smooth,
+            planes: c.planes.iter().map(|p| BoundedPlane::from_corners(*p)).collect(),
+        };
+        let Some(active) = &mut self.active else { return false };
+        if !active.editor.set_cutter(Some(cutter)) {
+            self.active = None;
+            return false;
+        }
+        active.cutter = Some(index);
+        true
+    }
+
+    /// Feeds one event to the active editor. Returns true when the scene's cutters changed.
+    pub fn handle(&mut self, scene: &mut Scene, viewport: DVec2, event: EditorEvent) -> bool {
+        let Some(active) = &mut self.active else { return false };
+        if !active.editor.is_dragging() {
+            active.editor.set_view(scene.camera, viewport);
+        }
+        let response = active.editor.handle(event);
+        self.cursor = response.cursor;
+        if !response.changed {
+            return false;
+        }
+        self.mirror_into(scene);
+        true
+    }
+
+    /// Applies Initialization-tab settings to the active editor; true when the cutter changed.
+    pub fn apply_settings(&mut self, scene: &mut Scene, init: &super::app::CutterInit) -> bool {
+        let Some(active) = &mut self.active else { return false };
+        active.editor.set_kind(editor_kind(init.kind));
+        active.editor.set_spacing(init.spacing);
+        if active.editor.set_smooth(init.smooth) {
+            self.mirror_into(scene);
+            return true;
+        }
         false
     }
 
-    pub fn undo(&mut self) {}
-
-    pub fn redo(&mut self) {}
-
-    pub fn cutter_count(&self) -> usize {
-        0
+    /// Copies the editor's cutter into `scene.cutters` (adding, updating or removing the entry).
+    fn mirror_into(&mut self, scene: &mut Scene) {
+        let Some(active) = &mut self.active else { return };
+        match (active.editor.cutter(), active.cutter) {
+            (Some(c), Some(i)) if i < scene.cutters.len() => {
+                let entry = &mut scene.cutters[i];
+                entry.kind = scene_kind(c.kind);
+                entry.smooth = c.smooth;
+                entry.planes = c.planes.iter().map(BoundedPlane::corners).collect();
+            }
+            (Some(c), _) => {
+                scene.cutters.push(SceneCutter {
+                    target: active.target,
+                    kind: scene_kind(c.kind),
+                    smooth: c.smooth,
+                    planes: c.planes.iter().map(BoundedPlane::corners).collect(),
+                    views: Default::default(),
+                });
+                active.cutter = Some(scene.cutters.len() - 1);
+            }
+            (None, Some(i)) if i < scene.cutters.len() => {
+                scene.cutters.remove(i);
+                active.cutter = None;
+            }
+            (None, _) => active.cutter = None,
+        }
     }
+
+    /// After an undo/redo replaced the scene: make the editor show what the scene now holds.
+    pub fn sync_from_scene(&mut self, scene: &Scene) {
+        let Some(active) = &mut self.active else { return };
+        if scene.models.get(active.target).is_none_or(|m| !std::ptr::eq(Arc::as_ptr(&m.mesh), active.editor.target())) {
+            self.active = None;
+            return;
+        }
+        let wanted = active.cutter.and_then(|i| scene.cutters.get(i)).filter(|c| c.target == active.target);
+        let current: Option<Vec<[glam::DVec3; 4]>> = active.editor.cutter().map(|c| c.planes.iter().map(BoundedPlane::corners).collect());
+        match wanted {
+            Some(c) if current.as_ref() != Some(&c.planes) => {
+                let cutter = Cutter {
+                    kind: editor_kind(c.kind),
+                    smooth: c.smooth,
+                    planes: c.planes.iter().map(|p| BoundedPlane::from_corners(*p)).collect(),
+                };
+                if !active.editor.set_cutter(Some(cutter)) {
+                    self.active = None;
+                }
+            }
+            Some(_) => {}
+            None => {
+                // The cutter is gone (its creation was undone): a fresh start on the same target.
+                active.editor.set_cutter(None);
+                active.cutter = None;
+            }
+        }
+    }
+
+    /// Number of cutters the editor has made or opened (for the status line, see `Scene::cutters`).
+    pub fn is_active(&self) -> bool {
+        self.active.is_some()
+    }
+
+    /// The events the active editor has handled (for gesture recording).
+    pub fn editor_settings(&self) -> Option<EditorSettings> {
+        self.active.as_ref().map(|a| *a.editor.settings())
+    }
+}
+
+/// Builds the spatial index of a target mesh in a worker.
+pub fn build_index(mesh: &Arc<Mesh>, progress: &Progress) -> anyhow::Result<(Weak<Mesh>, Arc<SpatialIndex>)> {
+    progress.set_message(format!("{} triangles", super::status_bar::grouped(mesh.triangle_count())));
+    let index = Arc::new(SpatialIndex::build(mesh));
+    progress.check()?;
+    Ok((Arc::downgrade(mesh), index))
 }
 
 /// Installs the renderer in egui's callback resources; false when there is no wgpu device.
 pub fn install_renderer(render_state: Option<&egui_wgpu::RenderState>) -> bool {
-    let _ = render_state;
-    false
+    let Some(rs) = render_state else { return false };
+    let renderer = Renderer::new(&rs.device, OutputTarget::egui(rs.target_format));
+    rs.renderer.write().callback_resources.insert(renderer);
+    true
+}
+
+/// The paint callback: offscreen render in `prepare`, composite in `paint`.
+struct ViewCallback {
+    inputs: FrameInputs,
+}
+
+impl egui_wgpu::CallbackTrait for ViewCallback {
+    fn prepare(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        _screen: &egui_wgpu::ScreenDescriptor,
+        encoder: &mut wgpu::CommandEncoder,
+        resources: &mut egui_wgpu::CallbackResources,
+    ) -> Vec<wgpu::CommandBuffer> {
+        if let Some(renderer) = resources.get_mut::<Renderer>() {
+            renderer.prepare(device, queue, encoder, &self.inputs);
+        }
+        Vec::new()
+    }
+
+    fn paint(&self, _info: egui::PaintCallbackInfo, pass: &mut wgpu::RenderPass<'static>, resources: &egui_wgpu::CallbackResources) {
+        if let Some(renderer) = resources.get::<Renderer>() {
+            renderer.paint(pass);
+        }
+    }
+}
+
+/// What the renderer draws for the window's current state.
+pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
+    use super::app::Mode;
+    let mode = match app.mode {
+        Mode::Edit => ViewMode::Edit,
+        Mode::Preview => ViewMode::Preview,
+        Mode::Camera | Mode::Scalpel => ViewMode::Camera,
+    };
+    let mut inputs = FrameInputs::new(app.scene.clone(), size, mode);
+    if app.mode == Mode::Preview {
+        inputs.preview = app.viewport.preview.clone();
+    }
+    if app.mode == Mode::Edit && !app.cutters_hidden {
+        let active = app.viewport.editor.active_cutter();
+        inputs.overlays = app
+            .scene
+            .cutters
+            .iter()
+            .enumerate()
+            .map(|(i, c)| CutterOverlay {
+                planes: c.planes.clone(),
+                surface: None,
+                highlighted_plane: if Some(i) == active { app.viewport.editor.highlighted_plane() } else { None },
+                active: Some(i) == active,
+            })
+            .collect();
+    }
+    inputs
 }
 
 /// Draws the scene with the GPU renderer into `rect`; false when no renderer is installed.
 pub fn paint_scene(ui: &mut egui::Ui, rect: egui::Rect, app: &CutawayApp) -> bool {
-    let _ = (ui, rect, app);
-    false
-}
-
-/// At most this many triangles are drawn by the CPU fallback.
-const FALLBACK_TRIANGLES: usize = 40_000;
-
-/// A CPU preview of the scene for when no GPU renderer is available: a subsample of the visible
-/// triangles, flat-shaded with a headlight and sorted back to front.
-pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &CutawayApp) {
-    let bg = app.scene.render.background;
-    let top = egui::Color32::from_rgb((bg[0] * 255.0) as u8, (bg[1] * 255.0) as u8, (bg[2] * 255.0) as u8);
-    painter.rect_filled(rect, 0.0, top);
-    let camera = &app.scene.camera;
-    let viewport = DVec2::new(rect.width() as f64, rect.height() as f64);
-    let visible: Vec<&crate::scene::SceneModel> = app.scene.models.iter().filter(|m| m.visible && m.opacity > 0.0).collect();
-    let total: usize = visible.iter().map(|m| m.mesh.triangle_count()).sum();
-    if total == 0 {
-        return;
+    if !app.viewport.gpu {
+        return false;
     }
-    let stride = total.div_ceil(FALLBACK_TRIANGLES).max(1);
-    let forward = camera.forward();
-    let mut tris: Vec<(f64, [egui::Pos2; 3], egui::Color32)> = Vec::new();
-    for model in visible {
-        let alpha = (model.opacity.clamp(0.0, 1.0) * 255.0) as u8;
-        for t in (0..model.mesh.triangle_count()).step_by(stride) {
-            let corners = model.mesh.corners(t);
-            let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
-            let Some(n) = normal.try_normalize() else { continue };
-            let mut pts = [egui::Pos2::ZERO; 3];
-            let mut ok = true;
-            for (k, c) in corners.iter().enumerate() {
-                match camera.project(viewport, *c) {
-                    Some(p) => pts[k] = rect.min + egui::vec2(p.x as f32, p.y as f32),
-                    None => ok = false,
-                }
-            }
-            if !ok {
-                continue;
-            }
-            let light = (0.25 + 0.75 * n.dot(-forward).abs()) as f32;
-            let shade = |c: f32| (c * light * 255.0).clamp(0.0, 255.0) as u8;
-            let colour = egui::Color32::from_rgba_unmultiplied(
-                shade(model.color[0]),
-                shade(model.color[1]),
-                shade(model.color[2]),
-                alpha,
-            );
-            let depth = ((corners[0] + corners[1] + corners[2]) / 3.0 - camera.eye).dot(forward);
-            if model.style == ModelStyle::Wireframe {
-                tris.push((depth, pts, egui::Color32::TRANSPARENT));
-                painter.add(egui::Shape::closed_line(pts.to_vec(), egui::Stroke::new(0.5, colour)));
-            } else {
-                tris.push((depth, pts, colour));
-            }
+    let ppp = ui.ctx().pixels_per_point();
+    let size = [
+        ((rect.width() * ppp).round() as u32).max(1),
+        ((rect.height() * ppp).round() as u32).max(1),
+    ];
+    let inputs = frame_inputs(app, size);
+    ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ViewCallback { inputs }));
+    if let Some(strip) = app.viewport.editor.init_strip() {
+        let viewport = DVec2::new(rect.width() as f64 * ppp as f64, rect.height() as f64 * ppp as f64);
+        let pts: Vec<egui::Pos2> = strip
+            .iter()
+            .filter_map(|p| app.scene.camera.project(viewport, *p))
+            .map(|p| rect.min + egui::vec2(p.x as f32 / ppp, p.y as f32 / ppp))
+            .collect();
+        if pts.len() == 4 {
+            ui.painter().add(egui::Shape::convex_polygon(
+                pts,
+                egui::Color32::from_rgba_unmultiplied(255, 160, 40, 70),
+                egui::Stroke::new(1.5, egui::Color32::from_rgb(255, 160, 40)),
+            ));
         }
     }
-    tris.sort_by(|a, b| b.0.total_cmp(&a.0));
-    let mut mesh = egui::Mesh::default();
-    for (_, pts, colour) in tris {
-        if colour == egui::Color32::TRANSPARENT {
-            continue;
-        }
-        let base = mesh.vertices.len() as u32;
-        for p in pts {
-            mesh.colored_vertex(p, colour);
-        }
-        mesh.add_triangle(base, base + 1, base + 2);
-    }
-    painter.add(egui::Shape::mesh(mesh));
-    if stride > 1 {
-        painter.text(
-            rect.right_bottom() - egui::vec2(10.0, 10.0),
-            egui::Align2::RIGHT_BOTTOM,
-            format!("CPU preview: 1 of every {stride} triangles"),
-            egui::FontId::proportional(12.0),
-            egui::Color32::from_gray(60),
-        );
-    }
+    true
 }
 
 /// The embedded default scene (the knee).
-pub fn default_scene_models() -> anyhow::Result<Vec<crate::io::Model>> {
-    anyhow::bail!("this build has no embedded default scene yet; use File ▸ Load Model")
+pub fn default_scene_models(progress: &Progress) -> anyhow::Result<Vec<crate::io::Model>> {
+    // TODO(assets): use `crate::assets::load_scene` once the embedded scenes land; until then the
+    // knee is read from the source tree's `assets/knee` folder.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/knee");
+    if !dir.is_dir() {
+        anyhow::bail!("{}: the default scene is missing from this build; use File ▸ Load Model", dir.display());
+    }
+    super::app::load_paths(&[dir], progress)
 }
 
-/// Writes the window's scene as a session file.
+/// Writes the window's scene as a session file (atomic).
 pub fn save_session(app: &CutawayApp, path: &Path) -> anyhow::Result<()> {
-    let _ = app;
-    anyhow::bail!("{}: saving sessions is not available in this build", path.display())
+    crate::session::save(path, &app.scene)
 }
 
-/// Replaces the window's scene with a session file.
-pub fn load_session(app: &mut CutawayApp, path: &Path) -> anyhow::Result<()> {
-    let _ = app;
-    anyhow::bail!("{}: opening sessions is not available in this build", path.display())
+/// Reads a session (models included) in a worker.
+pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
+    progress.set_message(path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default());
+    let mut files = 0u64;
+    let scene = crate::session::load_with(path, |file| {
+        progress.check()?;
+        files += 1;
+        progress.set_message(file.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default());
+        crate::io::load_models(file)
+    })?;
+    scene.sanity_check().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    Ok(scene)
 }
 
-/// Renders the viewport's picture into a PNG.
-pub fn export_image(app: &CutawayApp, path: &Path) -> anyhow::Result<()> {
-    let _ = app;
-    anyhow::bail!("{}: image export is not available in this build", path.display())
+/// Renders `scene` headless into a PNG at `path` (worker thread).
+pub fn export_image(scene: &Scene, preview: bool, settings: &super::menus::ExportImageSettings, path: &Path) -> anyhow::Result<String> {
+    let mut options = crate::render::RenderPngOptions::new(settings.width, settings.height);
+    options.transparent_background = settings.transparent;
+    options.mode = Some(if preview { ViewMode::Preview } else { ViewMode::Camera });
+    let image = crate::render::render_png(scene, &options).map_err(|e| anyhow::anyhow!("{}: {e:#}", path.display()))?;
+    let tmp = path.with_extension("png.tmp");
+    image
+        .save_with_format(&tmp, image::ImageFormat::Png)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    std::fs::rename(&tmp, path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    Ok(format!("Exported {}×{} image to {}", settings.width, settings.height, path.display()))
 }
 
-/// Writes the cut parts of every cutter into `dir`; returns the number of files written.
-pub fn export_meshes(app: &CutawayApp, dir: &Path) -> anyhow::Result<usize> {
-    let _ = app;
-    anyhow::bail!("{}: there are no cut results to export (cut in Edit mode, then Preview)", dir.display())
+/// Cuts every cutter out of its target (cutters on one model one after another, as Preview does)
+/// and writes the chosen parts into `dir`; returns the files written.
+pub fn export_meshes(scene: &Scene, settings: &super::menus::ExportMeshSettings, dir: &Path, progress: &Progress) -> anyhow::Result<Vec<PathBuf>> {
+    if scene.cutters.is_empty() {
+        anyhow::bail!("{}: there are no cutters to export (make one in Edit mode first)", dir.display());
+    }
+    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))?;
+    let ext = settings.format.extension();
+    let mut written = Vec::new();
+    let mut current: Vec<Option<Mesh>> = vec![None; scene.models.len()];
+    for (i, cutter) in scene.cutters.iter().enumerate() {
+        progress.check()?;
+        progress.set(i as u64, scene.cutters.len() as u64);
+        let Some(model) = scene.models.get(cutter.target) else { continue };
+        let target = current[cutter.target].take().unwrap_or_else(|| (*model.mesh).clone());
+        let parts = cutaway_geometry::cut(&target, &cutter.planes, true);
+        let stem = sanitize(&format!("cutter{}_{}", i + 1, model.name));
+        for (wanted, part, mesh) in [(settings.kept, "kept", &parts.kept), (settings.walls, "walls", &parts.walls), (settings.removed, "removed", &parts.removed)] {
+            if wanted && !mesh.triangles.is_empty() {
+                let path = dir.join(format!("{stem}_{part}.{ext}"));
+                crate::io::write_mesh(&path, mesh)?;
+                written.push(path);
+            }
+        }
+        current[cutter.target] = Some(parts.kept);
+    }
+    Ok(written)
 }
 
-/// Centre of the scene, for tools that need one.
-pub fn scene_centre(scene: &Scene) -> DVec3 {
-    let b = scene.bbox();
-    if b.is_empty() { DVec3::ZERO } else { b.center() }
+/// File-name-safe version of a model name.
+fn sanitize(name: &str) -> String {
+    name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' }).collect()
+}
+
+/// The cut parts Preview shows, computed in a worker; returns them with the wall time in ms.
+pub fn compute_preview(scene: &Scene) -> (Arc<PreviewGeometry>, f64) {
+    let started = Instant::now();
+    let geometry = cutaway_geometry::preview_geometry(scene);
+    (Arc::new(geometry), started.elapsed().as_secs_f64() * 1000.0)
+}
+
+/// "Remove All Cut Geometry": each cut model replaced by its kept part closed by the walls, so
+/// later cuts reach the structures behind. Returns (model index, new mesh) pairs.
+pub fn apply_all_cuts(scene: &Scene, progress: &Progress) -> anyhow::Result<Vec<(usize, Arc<Mesh>)>> {
+    let mut current: Vec<Option<Mesh>> = vec![None; scene.models.len()];
+    for (i, cutter) in scene.cutters.iter().enumerate() {
+        progress.check()?;
+        progress.set(i as u64, scene.cutters.len() as u64);
+        let Some(model) = scene.models.get(cutter.target) else { continue };
+        let target = current[cutter.target].take().unwrap_or_else(|| (*model.mesh).clone());
+        let parts = cutaway_geometry::cut(&target, &cutter.planes, true);
+        let mut closed = parts.kept;
+        closed.append(&parts.walls);
+        current[cutter.target] = Some(closed);
+    }
+    Ok(current.into_iter().enumerate().filter_map(|(i, m)| m.map(|m| (i, Arc::new(m)))).collect())
+}
+
+/// Preview's dependency on the scene: the cutters and their targets' meshes. When this changes,
+/// the preview is recomputed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreviewKey {
+    cutters: Vec<SceneCutter>,
+    targets: Vec<usize>,
+}
+
+impl PreviewKey {
+    pub fn of(scene: &Scene) -> PreviewKey {
+        PreviewKey {
+            cutters: scene.cutters.clone(),
+            targets: scene.cutters.iter().filter_map(|c| scene.models.get(c.target)).map(|m| Arc::as_ptr(&m.mesh) as usize).collect(),
+        }
+    }
 }

@@ -14,7 +14,7 @@ pub enum CutterTab {
 }
 
 pub fn cutter_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
-    let actions = Vec::new();
+    let mut actions = Vec::new();
     ui.heading("Cutter");
     ui.separator();
     ui.horizontal(|ui| {
@@ -26,13 +26,14 @@ pub fn cutter_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     });
     ui.add_space(4.0);
     match app.cutter_tab {
-        CutterTab::Initialization => initialization_ui(ui, app),
-        CutterTab::Visualization => visualization_ui(ui, app),
+        CutterTab::Initialization => initialization_ui(ui, app, &mut actions),
+        CutterTab::Visualization => visualization_ui(ui, app, &mut actions),
     }
     actions
 }
 
-fn initialization_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
+fn initialization_ui(ui: &mut egui::Ui, app: &mut CutawayApp, actions: &mut Vec<Action>) {
+    let before = app.cutter_init.clone();
     egui::Grid::new("cutter-init").num_columns(2).spacing([10.0, 6.0]).show(ui, |ui| {
         ui.label("Segment spacing ω").on_hover_text("A new box starts every ω·δ of extrusion (δ = scene size / 2000)");
         ui.add(egui::Slider::new(&mut app.cutter_init.spacing, 2.0..=200.0).logarithmic(true).fixed_decimals(0));
@@ -53,7 +54,13 @@ fn initialization_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
         ui.checkbox(&mut app.cutter_init.smooth, "Rounded (subdivided) cutter");
         ui.end_row();
     });
+    if app.cutter_init != before {
+        app.cutter_settings_changed();
+    }
     ui.add_space(4.0);
+    if ui.button("New Cutter").on_hover_text("Keep the current cutter; the next drag in Edit mode starts another").clicked() {
+        actions.push(Action::NewCutter);
+    }
     let target = app.selected_model.and_then(|i| app.scene.models.get(i)).map(|m| m.name.clone());
     let hint = match target {
         Some(name) => format!("Target: {name}. In Edit mode, drag on it to start a cutter."),
@@ -62,7 +69,7 @@ fn initialization_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
     ui.label(egui::RichText::new(hint).weak().small());
 }
 
-fn visualization_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
+fn visualization_ui(ui: &mut egui::Ui, app: &mut CutawayApp, actions: &mut Vec<Action>) {
     if app.scene.cutters.is_empty() {
         ui.label(egui::RichText::new("No cutters yet. Switch to Edit mode and drag on the target model.").weak());
         return;
@@ -79,7 +86,17 @@ fn visualization_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
     });
     let i = app.selected_cutter;
     let target_name = app.scene.models.get(app.scene.cutters[i].target).map(|m| m.name.clone()).unwrap_or_default();
-    ui.label(egui::RichText::new(format!("cuts {target_name}")).weak().small());
+    ui.horizontal(|ui| {
+        ui.label(egui::RichText::new(format!("cuts {target_name}")).weak().small());
+        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+            if ui.small_button("Delete").clicked() {
+                actions.push(Action::RemoveCutter(i));
+            }
+            if ui.small_button("Edit Cutter").on_hover_text("Open this cutter in the editor").clicked() {
+                actions.push(Action::EditCutter(i));
+            }
+        });
+    });
     let before = app.scene.cutters[i].views;
     let mut views = before;
     ui.checkbox(&mut views.cut, "Normal Cut");

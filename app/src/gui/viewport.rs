@@ -8,6 +8,7 @@
 //! extrude`.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use glam::{DVec2, DVec3};
 
@@ -45,8 +46,11 @@ pub struct ViewportState {
     /// Pointer position of the last editor event (to send moves only when it changes).
     last_pointer: Option<DVec2>,
     pub recording: Option<Recording>,
-    /// Events of the current gesture, also fed to the editor.
+    /// The cutter editor and its spatial-index cache.
     pub editor: super::bridge::EditorSlot,
+    /// Cut parts shown in Preview, with the scene state they were computed for.
+    pub preview: Option<Arc<crate::cutaway_geometry::PreviewGeometry>>,
+    pub preview_key: Option<super::bridge::PreviewKey>,
     /// The renderer is installed in egui's callback resources.
     pub gpu: bool,
 }
@@ -59,6 +63,8 @@ impl ViewportState {
             last_pointer: None,
             recording: None,
             editor: super::bridge::EditorSlot::default(),
+            preview: None,
+            preview_key: None,
             gpu: super::bridge::install_renderer(render_state),
         }
     }
@@ -67,21 +73,11 @@ impl ViewportState {
         self.drag = None;
     }
 
-    pub fn editor_undo(&mut self) {
-        self.editor.undo();
-    }
-
-    pub fn editor_redo(&mut self) {
-        self.editor.redo();
-    }
-
     pub fn reset_editor(&mut self) {
         self.editor = super::bridge::EditorSlot::default();
         self.drag = None;
-    }
-
-    pub fn cutter_count(&self) -> usize {
-        self.editor.cutter_count()
+        self.preview = None;
+        self.preview_key = None;
     }
 
     pub fn start_recording(&mut self, camera: &Camera, init: &CutterInit) {
@@ -99,52 +95,36 @@ impl ViewportState {
         let Some(recording) = self.recording.take() else {
             anyhow::bail!("{}: no gesture is being recorded", path.display());
         };
-        let json = gesture_json(&recording);
-        let text = serde_json::to_string_pretty(&json)?;
+        let gesture = recording.gesture();
         let tmp = path.with_extension("json.tmp");
-        std::fs::write(&tmp, text).map_err(|e| anyhow::anyhow!("{}: {e}", tmp.display()))?;
+        crate::gesture::write_gesture(&tmp, &gesture)?;
         std::fs::rename(&tmp, path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-        Ok(recording.events.len())
+        Ok(gesture.events.len())
     }
 
-    /// Sends one event to the editor (and the recorder).
-    fn editor_event(&mut self, app_scene: &mut crate::scene::Scene, target: Option<usize>, event: EditorEvent) -> bool {
+    /// Sends one event to the editor (and the recorder). True when the scene's cutters changed.
+    fn editor_event(&mut self, scene: &mut crate::scene::Scene, event: EditorEvent) -> bool {
         if let Some(r) = &mut self.recording {
             r.events.push(event);
         }
-        self.editor.handle(app_scene, target, self.size_px, event)
+        self.editor.handle(scene, self.size_px, event)
     }
 }
 
-/// The gesture file (`cutaway-gesture/1`, see CONTRACT.md) of a recording.
-pub fn gesture_json(recording: &Recording) -> serde_json::Value {
-    use serde_json::json;
-    let c = &recording.camera;
-    let events: Vec<serde_json::Value> = recording
-        .events
-        .iter()
-        .map(|e| match *e {
-            EditorEvent::Press { x, y, shift, ctrl } => json!({"type": "press", "x": x, "y": y, "shift": shift, "ctrl": ctrl}),
-            EditorEvent::Move { x, y, shift, ctrl } => json!({"type": "move", "x": x, "y": y, "shift": shift, "ctrl": ctrl}),
-            EditorEvent::Release { x, y, shift, ctrl } => {
-                json!({"type": "release", "x": x, "y": y, "shift": shift, "ctrl": ctrl})
-            }
-            EditorEvent::Wheel { x, y, delta, ctrl } => json!({"type": "wheel", "x": x, "y": y, "delta": delta, "ctrl": ctrl}),
-            EditorEvent::Key { key, x, y } => json!({"type": "key", "key": key.name(), "x": x, "y": y}),
-        })
-        .collect();
-    json!({
-        "format": "cutaway-gesture/1",
-        "viewport": [recording.viewport.x.round() as u32, recording.viewport.y.round() as u32],
-        "camera": {
-            "eye": c.eye.to_array(),
-            "target": c.target.to_array(),
-            "up": c.up.to_array(),
-            "fov_y_deg": c.fov_y_deg,
-        },
-        "cut": {"kind": recording.init.kind.as_str(), "spacing": recording.init.spacing, "smooth": recording.init.smooth},
-        "events": events,
-    })
+impl Recording {
+    /// The recording as a gesture (the format `cutaway extrude` replays).
+    pub fn gesture(&self) -> crate::gesture::Gesture {
+        crate::gesture::Gesture {
+            viewport: self.viewport,
+            camera: self.camera,
+            cut: crate::gesture::CutSettings {
+                kind: super::bridge::editor_kind(self.init.kind),
+                spacing: self.init.spacing,
+                smooth: self.init.smooth,
+            },
+            events: self.events.clone(),
+        }
+    }
 }
 
 /// Wheel notches of this frame (positive = wheel up, away from the user), and whether Ctrl/Cmd
@@ -288,51 +268,76 @@ pub fn pick(scene: &crate::scene::Scene, ray: &cutter::Ray) -> Option<(usize, f6
 
 fn edit_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, to_px: impl Fn(egui::Pos2) -> DVec2) {
     let (shift, ctrl) = ui.input(|i| (i.modifiers.shift, i.modifiers.command || i.modifiers.ctrl));
-    let pointer = ui.input(|i| i.pointer.latest_pos());
-    let target = app.selected_model;
-    let mut changed = false;
-    let pressed = ui.input(|i| i.pointer.primary_pressed());
+    let Some(pos) = ui.input(|i| i.pointer.latest_pos()) else { return };
+    let px = to_px(pos);
+    let inside = response.rect.contains(pos);
+    let pressed = ui.input(|i| i.pointer.primary_pressed()) && inside && response.hovered();
     let released = ui.input(|i| i.pointer.primary_released());
-    if let Some(pos) = pointer {
-        let px = to_px(pos);
-        let inside = response.rect.contains(pos);
-        if pressed && inside && response.hovered() {
-            app.viewport.drag = Some(Drag::Editor);
-            app.viewport.last_pointer = Some(px);
-            changed |= app.viewport.editor_event(&mut app.scene, target, EditorEvent::Press { x: px.x, y: px.y, shift, ctrl });
-        } else if app.viewport.last_pointer != Some(px) && (inside || app.viewport.drag == Some(Drag::Editor)) {
-            app.viewport.last_pointer = Some(px);
-            changed |= app.viewport.editor_event(&mut app.scene, target, EditorEvent::Move { x: px.x, y: px.y, shift, ctrl });
-        }
-        if released && app.viewport.drag == Some(Drag::Editor) {
-            app.viewport.drag = None;
-            changed |= app.viewport.editor_event(&mut app.scene, target, EditorEvent::Release { x: px.x, y: px.y, shift, ctrl });
-        }
-        if response.hovered() {
-            let (notches, wheel_ctrl) = wheel_notches(ui);
-            if notches != 0.0 {
-                changed |= app
-                    .viewport
-                    .editor_event(&mut app.scene, target, EditorEvent::Wheel { x: px.x, y: px.y, delta: notches, ctrl: wheel_ctrl });
-            }
-            let keys: Vec<Key> = ui.input(|i| {
-                let mut keys = Vec::new();
-                if i.key_pressed(egui::Key::Delete) || i.key_pressed(egui::Key::Backspace) {
-                    keys.push(Key::Delete);
-                }
-                if i.key_pressed(egui::Key::Escape) {
-                    keys.push(Key::Escape);
-                }
-                keys
-            });
-            for key in keys {
-                changed |= app.viewport.editor_event(&mut app.scene, target, EditorEvent::Key { key, x: px.x, y: px.y });
-            }
+    let mut changed = false;
+
+    if pressed && !app.viewport.editor.is_active() {
+        // The first press decides the target: the selected model, else the one under the pointer.
+        let target = app.selected_model.or_else(|| {
+            let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, px);
+            pick(&app.scene, &ray).map(|(i, _)| i)
+        });
+        let Some(target) = target else {
+            app.say("Press on a model to start a cutter (or double-click one in Camera mode to make it the target)");
+            return;
+        };
+        app.selected_model = Some(target);
+        if app.viewport.editor.ensure(&app.scene, target, app.viewport.size_px, &app.cutter_init).is_err() {
+            app.start_index_job(ui.ctx(), target);
+            return;
         }
     }
+    if !app.viewport.editor.is_active() {
+        return;
+    }
+    if pressed {
+        app.viewport.drag = Some(Drag::Editor);
+        app.viewport.last_pointer = Some(px);
+        changed |= app.viewport.editor_event(&mut app.scene, EditorEvent::Press { x: px.x, y: px.y, shift, ctrl });
+    } else if app.viewport.last_pointer != Some(px) && (inside || app.viewport.drag == Some(Drag::Editor)) {
+        app.viewport.last_pointer = Some(px);
+        changed |= app.viewport.editor_event(&mut app.scene, EditorEvent::Move { x: px.x, y: px.y, shift, ctrl });
+    }
+    if released && app.viewport.drag == Some(Drag::Editor) {
+        app.viewport.drag = None;
+        changed |= app.viewport.editor_event(&mut app.scene, EditorEvent::Release { x: px.x, y: px.y, shift, ctrl });
+    }
+    if response.hovered() {
+        let (notches, wheel_ctrl) = wheel_notches(ui);
+        if notches != 0.0 {
+            changed |= app
+                .viewport
+                .editor_event(&mut app.scene, EditorEvent::Wheel { x: px.x, y: px.y, delta: notches, ctrl: wheel_ctrl });
+        }
+        let keys: Vec<Key> = ui.input(|i| {
+            let mut keys = Vec::new();
+            if i.key_pressed(egui::Key::Delete) || i.key_pressed(egui::Key::Backspace) {
+                keys.push(Key::Delete);
+            }
+            if i.key_pressed(egui::Key::Escape) {
+                keys.push(Key::Escape);
+            }
+            keys
+        });
+        for key in keys {
+            changed |= app.viewport.editor_event(&mut app.scene, EditorEvent::Key { key, x: px.x, y: px.y });
+        }
+        let icon = match app.viewport.editor.cursor {
+            cutter::CursorHint::Default => egui::CursorIcon::Default,
+            cutter::CursorHint::Crosshair => egui::CursorIcon::Crosshair,
+            cutter::CursorHint::Grab => egui::CursorIcon::Grab,
+            cutter::CursorHint::Grabbing => egui::CursorIcon::Grabbing,
+            cutter::CursorHint::Move => egui::CursorIcon::Move,
+            cutter::CursorHint::PointingHand => egui::CursorIcon::PointingHand,
+        };
+        ui.ctx().set_cursor_icon(icon);
+    }
     if changed {
-        app.history.push_editor("cutter edit");
-        app.recovery.mark_dirty();
+        app.cutters_changed();
     }
 }
 
@@ -355,6 +360,9 @@ pub fn context_menu_ui(ui: &mut egui::Ui, app: &CutawayApp) -> Vec<Action> {
     let label = if app.cutters_hidden { "Show Current Cutters" } else { "Hide Current Cutters" };
     if ui.button(label).clicked() {
         actions.push(Action::ToggleCutters);
+    }
+    if ui.button("New Cutter").on_hover_text("Keep the current cutter; the next drag starts another").clicked() {
+        actions.push(Action::NewCutter);
     }
     ui.separator();
     if ui.button("Reset Camera").clicked() {
@@ -380,7 +388,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn gesture_json_follows_the_contract() {
+    fn a_recorded_gesture_reads_back_as_the_same_gesture() {
         let recording = Recording {
             camera: Camera {
                 eye: DVec3::new(0.0, -300.0, 0.0),
@@ -398,18 +406,16 @@ mod tests {
                 EditorEvent::key(Key::Delete, 640.0, 320.0),
             ],
         };
-        let v = gesture_json(&recording);
-        assert_eq!(v["format"], "cutaway-gesture/1");
-        assert_eq!(v["viewport"], serde_json::json!([1280, 800]));
-        assert_eq!(v["camera"]["eye"], serde_json::json!([0.0, -300.0, 0.0]));
-        assert_eq!(v["cut"]["kind"], "curving");
-        let events = v["events"].as_array().unwrap();
-        assert_eq!(events.len(), 5);
-        assert_eq!(events[0]["type"], "press");
-        assert_eq!(events[1]["shift"], true);
-        assert_eq!(events[3]["delta"], 3.0);
-        assert_eq!(events[3]["ctrl"], true);
-        assert_eq!(events[4]["key"], "Delete");
+        let mut state = ViewportState::new(None);
+        state.recording = Some(recording.clone());
+        let path = std::env::temp_dir().join(format!("cutaway-gesture-{}.json", std::process::id()));
+        assert_eq!(state.save_recording(&path).unwrap(), 5);
+        assert!(state.recording.is_none());
+        let back = crate::gesture::read_gesture(&path).unwrap();
+        assert_eq!(back, recording.gesture());
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(text.contains("cutaway-gesture/1"));
+        let _ = std::fs::remove_file(&path);
     }
 
     #[test]

@@ -217,7 +217,7 @@ fn explain_mismatch(format: Format, bytes: &[u8], error: anyhow::Error) -> anyho
 
 /// Validates, welds and compacts raw parts; drops parts without triangles; merges parts that
 /// share a name (tobj splits an object at each `usemtl`).
-fn finish_parts(raw: Vec<RawPart>, default_name: &str) -> anyhow::Result<Vec<Part>> {
+pub(crate) fn finish_parts(raw: Vec<RawPart>, default_name: &str) -> anyhow::Result<Vec<Part>> {
     let named = raw.iter().filter(|r| !r.triangles.is_empty()).count() > 1;
     let mut merged: Vec<(String, Mesh)> = Vec::new();
     for (index, part) in raw.into_iter().enumerate() {

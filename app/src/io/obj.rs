@@ -18,6 +18,13 @@ use super::RawPart;
 const TOBJ_UNNAMED: &str = "unnamed_object";
 
 pub(crate) fn parse(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
+    match parse_plain(bytes) {
+        Some(parts) => Ok(parts),
+        None => parse_with_tobj(bytes),
+    }
+}
+
+fn parse_with_tobj(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
     let options = tobj::LoadOptions {
         single_index: true,
         triangulate: true,
@@ -58,6 +65,112 @@ pub(crate) fn parse(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
             })
         })
         .collect()
+}
+
+/// The fast path for plain triangle OBJ (what our writer and most mesh tools produce): ASCII text
+/// whose geometry is only `v x y z`, `f a b c` with plain (possibly negative) position indices
+/// that refer to vertices already read, and `o`/`g` names. Anything else (texture or normal
+/// references, polygons, `w` or colours, lines, points, an index that is out of range,
+/// malformed numbers) returns `None` and the whole file goes to tobj, which also words the
+/// errors. On the files it accepts the result equals tobj's after welding and compaction.
+///
+/// Why: tobj allocates a `String` per line and hashes every corner; on a 2M-triangle OBJ that
+/// alone took most of `cutaway info`'s 2 s budget (see `app/benches/load.rs`).
+fn parse_plain(bytes: &[u8]) -> Option<Vec<RawPart>> {
+    if !bytes.is_ascii() {
+        return None;
+    }
+    let text = std::str::from_utf8(bytes).ok()?;
+    let mut positions: Vec<DVec3> = Vec::new();
+    // (name, triangles in file-wide position indices)
+    let mut parts: Vec<(Option<String>, Vec<[u32; 3]>)> = vec![(None, Vec::new())];
+    for line in text.lines() {
+        let mut words = line.split_ascii_whitespace();
+        let Some(keyword) = words.next() else {
+            continue;
+        };
+        match keyword {
+            "v" => {
+                let mut xyz = [0.0; 3];
+                for value in &mut xyz {
+                    *value = words.next()?.parse().ok()?;
+                }
+                if words.next().is_some() {
+                    return None;
+                }
+                positions.push(DVec3::from_array(xyz));
+            }
+            "f" => {
+                let count = positions.len() as i64;
+                let mut tri = [0u32; 3];
+                for corner in &mut tri {
+                    let index: i64 = words.next()?.parse().ok()?;
+                    let resolved = if index < 0 { count + index } else { index - 1 };
+                    if !(0..count).contains(&resolved) {
+                        return None;
+                    }
+                    *corner = u32::try_from(resolved).ok()?;
+                }
+                if words.next().is_some() {
+                    return None;
+                }
+                parts.last_mut()?.1.push(tri);
+            }
+            "o" | "g" => {
+                if !line.starts_with(keyword) {
+                    return None; // indented: tobj names it differently; let tobj decide
+                }
+                let name = line[1..].trim();
+                let name = (!name.is_empty()).then(|| name.to_owned());
+                match parts.last_mut() {
+                    Some(last) if last.1.is_empty() => last.0 = name,
+                    _ => parts.push((name, Vec::new())),
+                }
+            }
+            "vt" | "vn" | "l" | "p" => return None,
+            _ => {} // comments, `s`, `usemtl`, `mtllib`, …: no geometry (tobj ignores them too)
+        }
+    }
+    let parts: Vec<_> = parts.into_iter().filter(|(_, t)| !t.is_empty()).collect();
+    if parts.len() == 1 {
+        let (name, triangles) = parts.into_iter().next()?;
+        return Some(vec![RawPart {
+            name,
+            positions,
+            triangles,
+        }]);
+    }
+    // Several parts: give each only the positions it uses (in order of first use).
+    let mut local = vec![u32::MAX; positions.len()];
+    let mut owner = vec![usize::MAX; positions.len()];
+    Some(
+        parts
+            .into_iter()
+            .enumerate()
+            .map(|(p, (name, triangles))| {
+                let mut part_positions = Vec::new();
+                let triangles = triangles
+                    .into_iter()
+                    .map(|tri| {
+                        tri.map(|i| {
+                            let i = i as usize;
+                            if owner[i] != p {
+                                owner[i] = p;
+                                local[i] = part_positions.len() as u32;
+                                part_positions.push(positions[i]);
+                            }
+                            local[i]
+                        })
+                    })
+                    .collect();
+                RawPart {
+                    name,
+                    positions: part_positions,
+                    triangles,
+                }
+            })
+            .collect(),
+    )
 }
 
 fn write_vertices(w: &mut dyn Write, positions: &[DVec3]) -> std::io::Result<()> {
@@ -182,6 +295,43 @@ o first\ng first\nf 1 2 3 4\no second\nf 1 2 5\n";
     #[test]
     fn out_of_range_face_index_is_an_error() {
         assert!(parse(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n").is_err());
+    }
+
+    /// The fast path and tobj agree, after the common welding and compaction, on plain files.
+    #[test]
+    fn fast_path_matches_tobj_on_plain_files() {
+        let files: [&[u8]; 4] = [
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+            b"# unused vertex and negative indices\nv 9 9 9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\ns off\nusemtl x\nv 0 0 0.5\nf 2 3 -1\n",
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\no a\ng a\nf 1 2 3\no b\nf 4 2 1\nf 4 3 2\no a\nf 1 3 4\n",
+            b"v 0.1 -0.0 1e-300\r\nv 1e17 3.141592653589793 0\r\nv 0 1 0\r\nf 1 2 3\r\n",
+        ];
+        for bytes in files {
+            let fast = parse_plain(bytes).expect("plain file takes the fast path");
+            let slow = parse_with_tobj(bytes).unwrap();
+            let fast = crate::io::finish_parts(fast, "x").unwrap();
+            let slow = crate::io::finish_parts(slow, "x").unwrap();
+            assert_eq!(fast.len(), slow.len());
+            for (f, s) in fast.iter().zip(&slow) {
+                assert_eq!(f.name, s.name);
+                assert_eq!(f.mesh, s.mesh, "{}", String::from_utf8_lossy(bytes));
+            }
+        }
+    }
+
+    #[test]
+    fn anything_unusual_goes_to_tobj() {
+        for bytes in [
+            &b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3 4\n"[..],
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n",
+            b"v 0 0 0 2\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+            b"f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n",
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n",
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nf 1 2 3\n",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\no caf\u{e9}\nf 1 2 3\n".as_bytes(),
+        ] {
+            assert!(parse_plain(bytes).is_none(), "{}", String::from_utf8_lossy(bytes));
+        }
     }
 
     #[test]
