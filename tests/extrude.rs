@@ -72,11 +72,19 @@ fn check_contract(run: &Run, kind: &str) -> (u64, f64) {
         .obj
         .lines()
         .filter(|l| l.starts_with("f "))
-        .map(|l| l.split_whitespace().skip(1).map(|t| t.parse().expect("index")).collect())
+        .map(|l| {
+            l.split_whitespace()
+                .skip(1)
+                .map(|t| t.parse().expect("index"))
+                .collect()
+        })
         .collect();
     assert!(!faces.is_empty());
     for f in &faces {
-        assert!(f.len() == 4 || (kind == "wedge" && f.len() == 3), "face {f:?}");
+        assert!(
+            f.len() == 4 || (kind == "wedge" && f.len() == 3),
+            "face {f:?}"
+        );
         assert!(f.iter().all(|&i| i >= 1 && i <= vertices));
     }
     if kind != "wedge" && j["smooth"] != true {
@@ -95,7 +103,10 @@ fn s_path_on_sphere_through_the_cli() {
     // δ: the distance framing the sphere's bounding box with the gesture's 30° field of view / 2000.
     let bbox = csg::testkit::icosphere(5, 50.0).bbox();
     let expected = Camera::framing_distance(&bbox, 30.0) / 2000.0;
-    assert!((delta - expected).abs() < 1e-12 * expected, "{delta} vs {expected}");
+    assert!(
+        (delta - expected).abs() < 1e-12 * expected,
+        "{delta} vs {expected}"
+    );
     let gap = run.json["max_surface_gap"].as_f64().unwrap();
     assert!(gap <= 3.0 * delta, "max_surface_gap {gap} > 3δ ({delta})");
 }
@@ -110,7 +121,10 @@ fn cli_and_library_replay_agree() {
     let gesture = read_gesture(&file).unwrap();
     let r = replay(&mesh, &gesture).unwrap();
     r.cutter.sanity_check().unwrap();
-    assert_eq!(run.json["planes"].as_u64().unwrap() as usize, r.cutter.planes.len());
+    assert_eq!(
+        run.json["planes"].as_u64().unwrap() as usize,
+        r.cutter.planes.len()
+    );
     assert!((run.json["max_surface_gap"].as_f64().unwrap() - r.max_surface_gap).abs() < 1e-12);
     // The edits happened: deeper than the initial 5δ.
     assert!(r.cutter.planes[0].depth() > 10.0 * r.delta);
@@ -131,11 +145,20 @@ fn wedge_rounded_and_straight_fixtures() {
     // Straight: the library replay's path midpoints lie in one plane through the sphere's
     // centre (a great circle: straight on the sphere).
     let mesh = cutaway::io::read_mesh(&target).unwrap();
-    let r = replay(&mesh, &read_gesture(&gestures().join("sphere_straight.json")).unwrap()).unwrap();
+    let r = replay(
+        &mesh,
+        &read_gesture(&gestures().join("sphere_straight.json")).unwrap(),
+    )
+    .unwrap();
     let path = r.cutter.path();
-    let n = (path[1] - path[0]).cross(path[path.len() - 1] - path[0]).normalize();
+    let n = (path[1] - path[0])
+        .cross(path[path.len() - 1] - path[0])
+        .normalize();
     for p in &path {
-        assert!(((*p - path[0]).dot(n)).abs() < 0.5 * r.delta, "{p} off the path plane");
+        assert!(
+            ((*p - path[0]).dot(n)).abs() < 0.5 * r.delta,
+            "{p} off the path plane"
+        );
     }
 }
 
@@ -145,8 +168,14 @@ fn bad_gesture_files_fail_with_one_line_naming_the_file() {
     let target = sphere_obj(&dir);
     let cases = [
         ("broken.json", "{\"format\": "),
-        ("wrong_format.json", "{\"format\": \"cutaway-gesture/2\", \"viewport\": [10, 10], \"camera\": {\"eye\": [0,-3,0], \"target\": [0,0,0], \"up\": [0,0,1], \"fov_y_deg\": 30}, \"events\": []}"),
-        ("no_cutter.json", "{\"format\": \"cutaway-gesture/1\", \"viewport\": [1280, 800], \"camera\": {\"eye\": [0,-300,0], \"target\": [0,0,0], \"up\": [0,0,1], \"fov_y_deg\": 30}, \"events\": [{\"type\": \"press\", \"x\": 1, \"y\": 1}]}"),
+        (
+            "wrong_format.json",
+            "{\"format\": \"cutaway-gesture/2\", \"viewport\": [10, 10], \"camera\": {\"eye\": [0,-3,0], \"target\": [0,0,0], \"up\": [0,0,1], \"fov_y_deg\": 30}, \"events\": []}",
+        ),
+        (
+            "no_cutter.json",
+            "{\"format\": \"cutaway-gesture/1\", \"viewport\": [1280, 800], \"camera\": {\"eye\": [0,-300,0], \"target\": [0,0,0], \"up\": [0,0,1], \"fov_y_deg\": 30}, \"events\": [{\"type\": \"press\", \"x\": 1, \"y\": 1}]}",
+        ),
     ];
     for (name, text) in cases {
         let path = dir.join(name);
@@ -164,8 +193,15 @@ fn bad_gesture_files_fail_with_one_line_naming_the_file() {
         assert!(!output.status.success(), "{name} must fail");
         let stderr = String::from_utf8_lossy(&output.stderr);
         assert!(stderr.starts_with("error: "), "{name}: {stderr}");
-        assert!(stderr.contains(name), "{name}: error must name the file: {stderr}");
-        assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: one line: {stderr}");
+        assert!(
+            stderr.contains(name),
+            "{name}: error must name the file: {stderr}"
+        );
+        assert_eq!(
+            stderr.trim_end().lines().count(),
+            1,
+            "{name}: one line: {stderr}"
+        );
         assert!(!stderr.contains("panicked"));
     }
 }
@@ -189,7 +225,9 @@ fn the_region_under_the_press_is_painted() {
         fov_y_deg: 30.0,
     };
     let viewport = DVec2::new(1280.0, 800.0);
-    let centre = camera.project(viewport, DVec3::new(40.0, -20.0, 0.0)).unwrap();
+    let centre = camera
+        .project(viewport, DVec3::new(40.0, -20.0, 0.0))
+        .unwrap();
     let mut events = vec![EditorEvent::press(centre.x, centre.y + 25.0)];
     events.push(EditorEvent::move_to(centre.x, centre.y - 25.0));
     events.push(EditorEvent::release(centre.x, centre.y - 25.0));
@@ -206,7 +244,9 @@ fn the_region_under_the_press_is_painted() {
     let whole = EditorSettings::delta_for_scene(&two.bbox(), 30.0);
     assert_eq!(r.delta, whole);
     // And the library parse of the contract example works (same parser as the CLI).
-    assert!(parse_gesture(&std::fs::read_to_string(gestures().join("sphere_s.json")).unwrap()).is_ok());
+    assert!(
+        parse_gesture(&std::fs::read_to_string(gestures().join("sphere_s.json")).unwrap()).is_ok()
+    );
     assert_eq!(gesture.cut.kind, CutKind::Curving);
 }
 
@@ -231,22 +271,33 @@ fn gesture_for(mesh: &Mesh, kind: CutKind) -> Gesture {
     'search: for r in 0..20 {
         for k in 0..16 {
             let ang = k as f64 * std::f64::consts::TAU / 16.0;
-            let px = DVec2::new(640.0, 420.0) + DVec2::new(ang.cos(), ang.sin()) * (r as f64 * 10.0);
+            let px =
+                DVec2::new(640.0, 420.0) + DVec2::new(ang.cos(), ang.sin()) * (r as f64 * 10.0);
             let ray = camera.ray_through_pixel(viewport, px);
-            if index.ray_cast(mesh, ray.origin, ray.direction, f64::INFINITY).is_some() {
+            if index
+                .ray_cast(mesh, ray.origin, ray.direction, f64::INFINITY)
+                .is_some()
+            {
                 a = px;
                 break 'search;
             }
         }
     }
     let b = a - DVec2::new(0.0, 30.0);
-    let mut events = vec![EditorEvent::press(a.x, a.y), EditorEvent::move_to(b.x, b.y), EditorEvent::release(b.x, b.y)];
+    let mut events = vec![
+        EditorEvent::press(a.x, a.y),
+        EditorEvent::move_to(b.x, b.y),
+        EditorEvent::release(b.x, b.y),
+    ];
     // Press on the handle (roughly the middle of the leading plane, a few px right of the drag).
     let h = (a + b) * 0.5 + DVec2::new(4.0, 0.0);
     events.push(EditorEvent::press(h.x, h.y));
     for k in 1..=40 {
         let t = k as f64 / 40.0;
-        events.push(EditorEvent::move_to(h.x + 60.0 * t, h.y - 10.0 * (t * 6.0).sin()));
+        events.push(EditorEvent::move_to(
+            h.x + 60.0 * t,
+            h.y - 10.0 * (t * 6.0).sin(),
+        ));
     }
     events.push(EditorEvent::release(h.x + 60.0, h.y));
     events.push(EditorEvent::wheel(5.0, 5.0, 3.0, false));
@@ -269,9 +320,18 @@ fn gestures_on_real_anatomy() {
         return;
     };
     for (file, kind) in [
-        ("knee_vhf_left_denver/VHF_Left_Bone_Tibia_smooth.stl", CutKind::Curving),
-        ("knee_vhf_left_denver/VHF_Left_Bone_Patella_smooth.stl", CutKind::Wedge),
-        ("spine_lumbar_vhm_remus/lumbar_spine_L1-S1_with_discs.obj", CutKind::Curving),
+        (
+            "knee_vhf_left_denver/VHF_Left_Bone_Tibia_smooth.stl",
+            CutKind::Curving,
+        ),
+        (
+            "knee_vhf_left_denver/VHF_Left_Bone_Patella_smooth.stl",
+            CutKind::Wedge,
+        ),
+        (
+            "spine_lumbar_vhm_remus/lumbar_spine_L1-S1_with_discs.obj",
+            CutKind::Curving,
+        ),
     ] {
         let path = dir.join(file);
         if !path.exists() {
@@ -281,7 +341,9 @@ fn gestures_on_real_anatomy() {
         let mesh = cutaway::io::read_mesh(&path).expect("anatomy loads");
         let gesture = gesture_for(&mesh, kind);
         let r = replay(&mesh, &gesture).unwrap_or_else(|e| panic!("{file}: {e:#}"));
-        r.cutter.sanity_check().unwrap_or_else(|e| panic!("{file}: {e}"));
+        r.cutter
+            .sanity_check()
+            .unwrap_or_else(|e| panic!("{file}: {e}"));
         let q = r.cutter.quad_mesh();
         q.check_closed().unwrap();
         assert!(q.volume() > 0.0);

@@ -13,10 +13,13 @@ use egui_kittest::kittest::{NodeT, Queryable};
 
 /// `Some(reason)` when there is no adapter to run the window on.
 fn no_adapter() -> Option<String> {
-    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let instance =
+        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default())) {
         Ok(_) => None,
-        Err(e) => Some(format!("no wgpu adapter ({e}); install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan")),
+        Err(e) => Some(format!(
+            "no wgpu adapter ({e}); install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan"
+        )),
     }
 }
 
@@ -28,7 +31,11 @@ fn temp_dir(name: &str) -> PathBuf {
     dir
 }
 
-fn harness(state_dir: &Path, paths: Vec<PathBuf>, offer_recovery: bool) -> Harness<'static, CutawayApp> {
+fn harness(
+    state_dir: &Path,
+    paths: Vec<PathBuf>,
+    offer_recovery: bool,
+) -> Harness<'static, CutawayApp> {
     let start = StartOptions {
         paths,
         state_dir: state_dir.to_path_buf(),
@@ -45,7 +52,10 @@ fn harness(state_dir: &Path, paths: Vec<PathBuf>, offer_recovery: bool) -> Harne
 fn settle(h: &mut Harness<'_, CutawayApp>) {
     let deadline = Instant::now() + Duration::from_secs(120);
     while h.state().busy() {
-        assert!(Instant::now() < deadline, "background jobs did not finish within 120 s");
+        assert!(
+            Instant::now() < deadline,
+            "background jobs did not finish within 120 s"
+        );
         h.step();
         std::thread::sleep(Duration::from_millis(5));
     }
@@ -73,10 +83,22 @@ fn window_loads_the_default_scene_switches_modes_and_saves_a_session() {
 
     // The default scene is loaded, framed, and shown.
     let app = h.state();
-    assert!(!app.scene.models.is_empty(), "default scene not loaded: {}", app.status.message);
+    assert!(
+        !app.scene.models.is_empty(),
+        "default scene not loaded: {}",
+        app.status.message
+    );
     assert!(!app.status.is_error, "status: {}", app.status.message);
-    let triangles: usize = app.scene.models.iter().map(|m| m.mesh.triangle_count()).sum();
-    assert!(triangles > 1000, "default scene has only {triangles} triangles");
+    let triangles: usize = app
+        .scene
+        .models
+        .iter()
+        .map(|m| m.mesh.triangle_count())
+        .sum();
+    assert!(
+        triangles > 1000,
+        "default scene has only {triangles} triangles"
+    );
     assert_eq!(app.mode, Mode::Camera);
 
     // Camera mode: a drag in the viewport orbits the camera.
@@ -88,7 +110,10 @@ fn window_loads_the_default_scene_switches_modes_and_saves_a_session() {
     h.drop_at(egui::pos2(900.0, 430.0));
     h.run_steps(2);
     let eye_after = h.state().scene.camera.eye;
-    assert!((eye_after - eye_before).length() > 1e-6, "drag did not orbit the camera");
+    assert!(
+        (eye_after - eye_before).length() > 1e-6,
+        "drag did not orbit the camera"
+    );
     let distance_before = h.state().scene.camera.distance();
 
     // The modes switch through their buttons.
@@ -99,15 +124,23 @@ fn window_loads_the_default_scene_switches_modes_and_saves_a_session() {
     assert_eq!(h.state().mode, Mode::Preview);
     click_mode(&mut h, "Camera");
     assert_eq!(h.state().mode, Mode::Camera);
-    assert!((h.state().scene.camera.distance() - distance_before).abs() < 1e-9, "mode switches moved the camera");
+    assert!(
+        (h.state().scene.camera.distance() - distance_before).abs() < 1e-9,
+        "mode switches moved the camera"
+    );
 
     // The rendered frame is not blank: the 3D view drew something other than the background.
     let image = h.render().expect("render the window");
     let shot = dir.join("gui-smoke.png");
     image.save(&shot).expect("save screenshot");
-    let centre = image.get_pixel(image.width() * 6 / 10, image.height() / 2).0;
+    let centre = image
+        .get_pixel(image.width() * 6 / 10, image.height() / 2)
+        .0;
     let corner = image.get_pixel(image.width() - 5, image.height() - 40).0;
-    println!("screenshot: {} (centre {centre:?}, corner {corner:?})", shot.display());
+    println!(
+        "screenshot: {} (centre {centre:?}, corner {corner:?})",
+        shot.display()
+    );
 
     // Save Session through the File menu writes a cutaway-session/1 file.
     let session = dir.join("smoke-session.json");
@@ -116,8 +149,13 @@ fn window_loads_the_default_scene_switches_modes_and_saves_a_session() {
     h.run_steps(2);
     h.get_by_label("Save Session").click();
     h.run_steps(2);
-    let text = std::fs::read_to_string(&session)
-        .unwrap_or_else(|e| panic!("{}: {e} (status: {})", session.display(), h.state().status.message));
+    let text = std::fs::read_to_string(&session).unwrap_or_else(|e| {
+        panic!(
+            "{}: {e} (status: {})",
+            session.display(),
+            h.state().status.message
+        )
+    });
     let json: serde_json::Value = serde_json::from_str(&text).expect("session is JSON");
     assert_eq!(json["format"], "cutaway-session/1");
     assert_eq!(
@@ -137,7 +175,11 @@ fn hiding_a_model_is_undone_and_redone_with_the_keyboard() {
     let dir = temp_dir("undo");
     let mut h = harness(&dir, Vec::new(), false);
     settle(&mut h);
-    assert!(!h.state().scene.models.is_empty(), "default scene not loaded: {}", h.state().status.message);
+    assert!(
+        !h.state().scene.models.is_empty(),
+        "default scene not loaded: {}",
+        h.state().status.message
+    );
     let name = h.state().scene.models[0].name.clone();
 
     // Select the first model in the Models list, then untick Visible in its properties.
@@ -146,14 +188,26 @@ fn hiding_a_model_is_undone_and_redone_with_the_keyboard() {
     assert_eq!(h.state().selected_model, Some(0));
     h.get_by_label("Visible").click();
     h.run_steps(3);
-    assert!(!h.state().scene.models[0].visible, "Visible checkbox did not hide the model");
+    assert!(
+        !h.state().scene.models[0].visible,
+        "Visible checkbox did not hide the model"
+    );
 
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
     h.run_steps(2);
-    assert!(h.state().scene.models[0].visible, "Ctrl+Z did not undo the hide");
-    h.key_press_modifiers(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::Z);
+    assert!(
+        h.state().scene.models[0].visible,
+        "Ctrl+Z did not undo the hide"
+    );
+    h.key_press_modifiers(
+        egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
+        egui::Key::Z,
+    );
     h.run_steps(2);
-    assert!(!h.state().scene.models[0].visible, "Ctrl+Shift+Z did not redo the hide");
+    assert!(
+        !h.state().scene.models[0].visible,
+        "Ctrl+Shift+Z did not redo the hide"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -171,7 +225,10 @@ fn a_crash_autosave_is_offered_and_can_be_discarded() {
     h.get_by_label("Discard").click();
     h.run_steps(2);
     assert!(h.state().pending_recovery.is_none());
-    assert!(!dir.join("recovery-session.json").exists(), "discard keeps the autosave");
+    assert!(
+        !dir.join("recovery-session.json").exists(),
+        "discard keeps the autosave"
+    );
     settle(&mut h);
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -185,5 +242,8 @@ fn a_missing_file_is_one_line_error_before_any_window() {
     assert!(!out.status.success());
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    assert!(stderr.starts_with("error: /nonexistent/knee.obj"), "{stderr}");
+    assert!(
+        stderr.starts_with("error: /nonexistent/knee.obj"),
+        "{stderr}"
+    );
 }

@@ -9,7 +9,8 @@ fn cutaway() -> Command {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("scalpel-{name}-{}", std::process::id()));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("scalpel-{name}-{}", std::process::id()));
     std::fs::remove_dir_all(&dir).ok();
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -75,7 +76,10 @@ fn assert_one_error_line(out: &Output, file: &Path, needle: &str) {
     assert!(!out.status.success());
     let stderr = String::from_utf8(out.stderr.clone()).unwrap();
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    assert!(stderr.starts_with(&format!("error: {}: ", file.display())), "{stderr}");
+    assert!(
+        stderr.starts_with(&format!("error: {}: ", file.display())),
+        "{stderr}"
+    );
     assert!(stderr.contains(needle), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
@@ -83,9 +87,15 @@ fn assert_one_error_line(out: &Output, file: &Path, needle: &str) {
 #[test]
 fn slit_on_a_sheet_reports_the_contract_json() {
     let dir = scratch("slit");
-    let (target, path, out) = (dir.join("sheet.obj"), dir.join("p.json"), dir.join("out.obj"));
+    let (target, path, out) = (
+        dir.join("sheet.obj"),
+        dir.join("p.json"),
+        dir.join("out.obj"),
+    );
     write_sheet(&target, 20);
-    let points: Vec<[f64; 3]> = (0..=30).map(|i| [3.3 + 0.4 * i as f64, 5.4 + 0.1 * i as f64, 0.0]).collect();
+    let points: Vec<[f64; 3]> = (0..=30)
+        .map(|i| [3.3 + 0.4 * i as f64, 5.4 + 0.1 * i as f64, 0.0])
+        .collect();
     let json = serde_json::json!({"format": "cutaway-path/1", "depth": 0.0, "tool": "scalpel", "points": points});
     std::fs::write(&path, json.to_string()).unwrap();
     let v = run_json(&target, &path, &out);
@@ -99,7 +109,15 @@ fn slit_on_a_sheet_reports_the_contract_json() {
     assert!(v["step_us_p50"].as_f64().unwrap() > 0.0);
     assert!(v["step_us_max"].as_f64().unwrap() >= v["step_us_p50"].as_f64().unwrap());
     assert_eq!(face_count(&out), 800 + created as usize);
-    for key in ["steps", "triangles_cut", "triangles_created", "step_us_p50", "step_us_max", "closed", "manifold"] {
+    for key in [
+        "steps",
+        "triangles_cut",
+        "triangles_created",
+        "step_us_p50",
+        "step_us_max",
+        "closed",
+        "manifold",
+    ] {
         assert!(v.get(key).is_some(), "missing {key}");
     }
     assert_eq!(v.as_object().unwrap().len(), 7);
@@ -108,7 +126,11 @@ fn slit_on_a_sheet_reports_the_contract_json() {
 #[test]
 fn groove_on_a_sphere_stays_closed_and_opens() {
     let dir = scratch("groove");
-    let (target, path, out) = (dir.join("sphere.obj"), dir.join("p.json"), dir.join("out.obj"));
+    let (target, path, out) = (
+        dir.join("sphere.obj"),
+        dir.join("p.json"),
+        dir.join("out.obj"),
+    );
     write_sphere(&target);
     let points: Vec<[f64; 3]> = (0..=30)
         .map(|i| {
@@ -128,10 +150,18 @@ fn groove_on_a_sphere_stays_closed_and_opens() {
 #[test]
 fn strokes_cross_and_loop_detaches() {
     let dir = scratch("strokes");
-    let (target, path, out) = (dir.join("sheet.obj"), dir.join("p.json"), dir.join("out.obj"));
+    let (target, path, out) = (
+        dir.join("sheet.obj"),
+        dir.join("p.json"),
+        dir.join("out.obj"),
+    );
     write_sheet(&target, 20);
-    let a: Vec<[f64; 3]> = (0..=20).map(|i| [4.3 + 0.6 * i as f64, 10.5, 0.0]).collect();
-    let b: Vec<[f64; 3]> = (0..=20).map(|i| [10.1, 4.3 + 0.6 * i as f64, 0.0]).collect();
+    let a: Vec<[f64; 3]> = (0..=20)
+        .map(|i| [4.3 + 0.6 * i as f64, 10.5, 0.0])
+        .collect();
+    let b: Vec<[f64; 3]> = (0..=20)
+        .map(|i| [10.1, 4.3 + 0.6 * i as f64, 0.0])
+        .collect();
     let json = serde_json::json!({"format": "cutaway-path/1", "strokes": [a, b]});
     std::fs::write(&path, json.to_string()).unwrap();
     let v = run_json(&target, &path, &out);
@@ -154,7 +184,11 @@ fn strokes_cross_and_loop_detaches() {
 #[test]
 fn bad_path_files_and_off_mesh_points_are_one_line_errors() {
     let dir = scratch("errors");
-    let (target, path, out) = (dir.join("sheet.obj"), dir.join("p.json"), dir.join("out.obj"));
+    let (target, path, out) = (
+        dir.join("sheet.obj"),
+        dir.join("p.json"),
+        dir.join("out.obj"),
+    );
     write_sheet(&target, 6);
     let run = || {
         cutaway()
@@ -172,7 +206,11 @@ fn bad_path_files_and_off_mesh_points_are_one_line_errors() {
     assert_one_error_line(&run(), &path, "cutaway-path/1");
     std::fs::write(&path, "not json").unwrap();
     assert_one_error_line(&run(), &path, "cutaway-path/1");
-    std::fs::write(&path, r#"{"format":"cutaway-path/1","points":[[1,1,0],[100,100,0]]}"#).unwrap();
+    std::fs::write(
+        &path,
+        r#"{"format":"cutaway-path/1","points":[[1,1,0],[100,100,0]]}"#,
+    )
+    .unwrap();
     assert_one_error_line(&run(), &path, "off the mesh");
     assert!(!out.exists(), "nothing written on error");
 }

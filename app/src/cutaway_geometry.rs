@@ -4,24 +4,24 @@
 //! This is the adapter between the scene and the boolean. It speaks only in plain meshes
 //! ([`CutParts`]), so the renderer does not care which boolean produced them.
 //!
-//! TODO(boolean): `csg` has no boolean yet. Until it lands, [`cut`] uses a stand-in that is exact
-//! only for what it claims: every box between two consecutive planes is treated as a convex
-//! hexahedron (its four side quads replaced by their best-fit planes), target triangles are split
-//! by those planes (Sutherland–Hodgman) into kept and removed pieces, and walls are produced only
-//! when the target is convex (the cutter faces clipped by the target's face planes). The contour is
-//! the boundary of the removed piece. Swap the body of [`cut`] for `csg`'s boolean when it exists;
-//! nothing else changes.
+//! The cuts use `csg`'s exact local boolean ([`csg::subtract`], [`csg::subtract_many`]) on the
+//! cutter surface of the `cutter` crate (smooth cutters subdivided), and the ribbon/slice
+//! sub-cutters of [`cutter::subcutters::at_intervals`] (thin boxes at regular arc-length intervals,
+//! height and depth interpolated from the planes on either side, thesis 3.4.2).
 //!
-//! TODO(cutter): ribbon/slice sub-cutters come from the `cutter` crate once it has them; until
-//! then [`sub_cutter_planes`] places `count` thin boxes at regular intervals along the path with
-//! height and depth interpolated between the planes on either side (thesis 3.4.2).
+//! When the boolean refuses a cutter (it must be closed, oriented and free of
+//! self-intersections; an edited cutter can briefly be none of these), [`cut_approx`] stands in so
+//! that Preview still shows something, and the reason is kept in [`PreviewGeometry::notes`] for the
+//! status line. The stand-in treats every box between two consecutive planes as a convex
+//! hexahedron, splits target triangles by its planes (Sutherland–Hodgman) into kept and removed
+//! pieces, and has walls only for convex targets; its contour is the boundary of the removed piece.
 
 use std::collections::HashMap;
 
-use csg::Mesh;
+use csg::{Mesh, TargetIndex};
 use glam::DVec3;
 
-use crate::scene::{CutterPlane, Scene};
+use crate::scene::{CutterPlane, Scene, SceneCutter};
 
 /// The three surfaces and the contour of one cut of a target by a closed cutter.
 #[derive(Clone, Debug, Default)]
@@ -74,6 +74,8 @@ pub struct PreviewGeometry {
     pub parts: Vec<PreviewPart>,
     /// Thick contour lines: (model index, polyline). Only for cutters with the normal-cut view.
     pub contours: Vec<(usize, Vec<DVec3>)>,
+    /// Why a cut fell back to the approximate stand-in (one line each, for the status line).
+    pub notes: Vec<String>,
 }
 
 impl PreviewGeometry {
@@ -102,7 +104,21 @@ pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
         for c in cutters {
             let cutter = &scene.cutters[c];
             let views = cutter.views;
-            let parts = cut(&current, &cutter.planes, views.cut);
+            let index = match TargetIndex::build(current.clone()) {
+                Ok(index) => Some(index),
+                Err(e) => {
+                    out.notes.push(format!("model {}: {e}", model.name));
+                    None
+                }
+            };
+            let parts = match index.as_ref().map(|i| cut_exact(i, cutter)) {
+                Some(Ok(parts)) => parts,
+                Some(Err(e)) => {
+                    out.notes.push(format!("cutter {c}: {e}; showing an approximate cut"));
+                    cut_approx(&current, &cutter.planes, views.cut)
+                }
+                None => cut_approx(&current, &cutter.planes, views.cut),
+            };
             if views.cut {
                 push_part(&mut out, model_index, c, PartKind::Wall, 1.0, parts.walls);
                 for line in parts.contour {
@@ -114,13 +130,26 @@ pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
             }
             for (view, with_walls) in [(views.ribbons, false), (views.slices, true)] {
                 let Some(view) = view else { continue };
-                for sub in sub_cutter_planes(&cutter.planes, view.count, view.width) {
-                    let piece = cut(&current, &sub, with_walls);
-                    push_part(&mut out, model_index, c, PartKind::Ribbon, 1.0, piece.removed);
-                    if with_walls {
-                        // The slice is closed by the sub-cutter's walls facing out of the slice.
-                        push_part(&mut out, model_index, c, PartKind::SliceWall, 1.0, piece.walls.reversed());
+                let (ribbons, walls) = match index.as_ref().map(|i| sub_cuts_exact(i, cutter, view.count, view.width)) {
+                    Some(Ok(pieces)) => pieces,
+                    other => {
+                        if let Some(Err(e)) = other {
+                            out.notes.push(format!("cutter {c} sub-cutters: {e}; showing approximate ones"));
+                        }
+                        let mut ribbons = Mesh::default();
+                        let mut walls = Mesh::default();
+                        for sub in sub_cutter_planes(&cutter.planes, view.count, view.width) {
+                            let piece = cut_approx(&current, &sub, with_walls);
+                            ribbons.append(&piece.removed);
+                            walls.append(&piece.walls);
+                        }
+                        (ribbons, walls)
                     }
+                };
+                push_part(&mut out, model_index, c, PartKind::Ribbon, 1.0, ribbons);
+                if with_walls {
+                    // The slice is closed by the sub-cutters' walls, turned to face out of it.
+                    push_part(&mut out, model_index, c, PartKind::SliceWall, 1.0, walls.reversed());
                 }
             }
             current = parts.kept;
@@ -128,6 +157,74 @@ pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
         push_part(&mut out, model_index, usize::MAX, PartKind::Kept, 1.0, current);
     }
     out
+}
+
+/// The `cutter` crate's cutter for a scene cutter.
+pub fn to_cutter(cutter: &SceneCutter) -> cutter::Cutter {
+    cutter::Cutter {
+        kind: cutter::CutKind::from_name(cutter.kind.as_str()).unwrap_or(cutter::CutKind::Curving),
+        smooth: cutter.smooth,
+        planes: cutter.planes.iter().map(|p| cutter::BoundedPlane::from_corners(*p)).collect(),
+    }
+}
+
+/// The closed surface the boolean cuts with (subdivided when the cutter is smooth).
+pub fn cutter_mesh(cutter: &SceneCutter) -> Mesh {
+    if cutter.planes.len() < 2 {
+        return Mesh::default();
+    }
+    to_cutter(cutter).triangle_mesh()
+}
+
+/// The exact cut of `cutter` out of the indexed target.
+pub fn cut_exact(target: &TargetIndex, cutter: &SceneCutter) -> Result<CutParts, csg::CutError> {
+    let mesh = cutter_mesh(cutter);
+    if mesh.is_empty() {
+        return Ok(CutParts {
+            kept: target.mesh().clone(),
+            ..CutParts::default()
+        });
+    }
+    let result = csg::subtract(target, &mesh)?;
+    Ok(CutParts {
+        kept: result.materialize(target.mesh()),
+        walls: result.walls.mesh,
+        removed: result.removed.mesh,
+        contour: result
+            .contours
+            .into_iter()
+            .map(|c| {
+                let mut points = c.points;
+                if c.closed && let Some(&first) = points.first() {
+                    points.push(first);
+                }
+                points
+            })
+            .collect(),
+    })
+}
+
+/// Ribbons (the removed surface inside `count` thin sub-cutters of `width`) and the walls of
+/// those sub-cutters inside the target (facing out of the kept part), by the exact boolean.
+pub fn sub_cuts_exact(
+    target: &TargetIndex,
+    cutter: &SceneCutter,
+    count: u32,
+    width: f64,
+) -> Result<(Mesh, Mesh), csg::CutError> {
+    if cutter.planes.len() < 2 {
+        return Ok((Mesh::default(), Mesh::default()));
+    }
+    let subs: Vec<Mesh> = cutter::subcutters::at_intervals(&to_cutter(cutter), count as usize, width)
+        .iter()
+        .map(|c| c.triangle_mesh())
+        .collect();
+    if subs.is_empty() {
+        return Ok((Mesh::default(), Mesh::default()));
+    }
+    let refs: Vec<&Mesh> = subs.iter().collect();
+    let result = csg::subtract_many(target, &refs)?;
+    Ok((result.removed.mesh, result.walls.mesh))
 }
 
 fn push_part(out: &mut PreviewGeometry, model: usize, cutter: usize, kind: PartKind, opacity: f32, mesh: Mesh) {
@@ -143,9 +240,9 @@ fn push_part(out: &mut PreviewGeometry, model: usize, cutter: usize, kind: PartK
     });
 }
 
-/// Cuts the closed cutter bounded by `planes` out of `target` (see the module doc for what the
-/// stand-in guarantees). `with_walls: false` skips the walls (ribbons need none).
-pub fn cut(target: &Mesh, planes: &[CutterPlane], with_walls: bool) -> CutParts {
+/// The approximate stand-in for the boolean (see the module doc for what it guarantees).
+/// `with_walls: false` skips the walls (ribbons need none).
+pub fn cut_approx(target: &Mesh, planes: &[CutterPlane], with_walls: bool) -> CutParts {
     let boxes = convex_boxes(planes);
     if boxes.is_empty() {
         return CutParts {
@@ -593,7 +690,7 @@ pub(crate) mod tests {
     fn cutting_a_cube_corner_conserves_area_and_closes() {
         let target = cube(DVec3::ZERO, DVec3::splat(2.0));
         let planes = box_cutter(1.0, 3.0, -1.0, 1.0, 1.0, 3.0);
-        let parts = cut(&target, &planes, true);
+        let parts = cut_approx(&target, &planes, true);
         let area = |m: &Mesh| m.area();
         assert!((area(&parts.kept) + area(&parts.removed) - area(&target)).abs() < 1e-9);
         // The removed corner: three unit squares of the cube surface.
@@ -612,11 +709,68 @@ pub(crate) mod tests {
         assert!((length - 6.0).abs() < 1e-9, "{length}");
     }
 
+    fn scene_with_cube_cut(views: crate::scene::CutterViews) -> Scene {
+        let mut scene = Scene::default();
+        scene.models.push(crate::scene::SceneModel::new(
+            "cube",
+            "cube.obj",
+            std::sync::Arc::new(cube(DVec3::ZERO, DVec3::splat(2.0))),
+            [0.8, 0.6, 0.5],
+        ));
+        scene.cutters.push(SceneCutter {
+            target: 0,
+            kind: crate::scene::CutKind::Straight,
+            smooth: false,
+            planes: box_cutter(1.0, 3.0, -1.0, 1.0, 1.0, 3.0),
+            views,
+        });
+        scene
+    }
+
+    #[test]
+    fn exact_cut_of_a_cube_corner_agrees_with_the_stand_in() {
+        let scene = scene_with_cube_cut(crate::scene::CutterViews::default());
+        let index = TargetIndex::build(cube(DVec3::ZERO, DVec3::splat(2.0))).unwrap();
+        let parts = cut_exact(&index, &scene.cutters[0]).unwrap();
+        assert!((parts.removed.area() - 3.0).abs() < 1e-9, "{}", parts.removed.area());
+        assert!((parts.walls.area() - 3.0).abs() < 1e-9, "{}", parts.walls.area());
+        let mut closed = parts.kept.clone();
+        closed.append(&parts.walls);
+        assert!((closed.volume() - 7.0).abs() < 1e-9, "{}", closed.volume());
+        assert_eq!(parts.contour.len(), 1);
+        assert_eq!(parts.contour[0].first(), parts.contour[0].last());
+    }
+
+    #[test]
+    fn preview_has_every_requested_view() {
+        let views = crate::scene::CutterViews {
+            cut: true,
+            transparency: Some(0.3),
+            ribbons: Some(crate::scene::SubCutterView { count: 2, width: 0.2 }),
+            slices: Some(crate::scene::SubCutterView { count: 2, width: 0.2 }),
+        };
+        let preview = preview_geometry(&scene_with_cube_cut(views));
+        assert!(preview.notes.is_empty(), "{:?}", preview.notes);
+        assert_eq!(preview.replaced, vec![true]);
+        for kind in [PartKind::Kept, PartKind::Wall, PartKind::Removed, PartKind::Ribbon, PartKind::SliceWall] {
+            assert!(preview.parts.iter().any(|p| p.kind == kind), "{kind:?} missing");
+        }
+        assert_eq!(preview.contours.len(), 1);
+        // A cutter with no view leaves the model alone.
+        let none = crate::scene::CutterViews {
+            cut: false,
+            ..crate::scene::CutterViews::default()
+        };
+        let preview = preview_geometry(&scene_with_cube_cut(none));
+        assert_eq!(preview.replaced, vec![false]);
+        assert!(preview.parts.is_empty());
+    }
+
     #[test]
     fn cutter_outside_the_target_removes_nothing() {
         let target = cube(DVec3::ZERO, DVec3::ONE);
         let planes = box_cutter(5.0, 6.0, 5.0, 6.0, 5.0, 6.0);
-        let parts = cut(&target, &planes, true);
+        let parts = cut_approx(&target, &planes, true);
         assert!(parts.removed.is_empty() && parts.walls.is_empty() && parts.contour.is_empty());
         assert_eq!(parts.kept.triangle_count(), 12);
     }

@@ -127,13 +127,15 @@ enum EventJson {
 
 /// Reads and validates a gesture file.
 pub fn read_gesture(path: &Path) -> anyhow::Result<Gesture> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("{}: cannot read", path.display()))?;
     parse_gesture(&text).with_context(|| path.display().to_string())
 }
 
 /// Parses and validates gesture JSON text.
 pub fn parse_gesture(text: &str) -> anyhow::Result<Gesture> {
-    let file: FileJson = serde_json::from_str(text).context("not a valid cutaway-gesture/1 JSON document")?;
+    let file: FileJson =
+        serde_json::from_str(text).context("not a valid cutaway-gesture/1 JSON document")?;
     if file.format != FORMAT {
         bail!("format is {:?}, expected {FORMAT:?}", file.format);
     }
@@ -155,16 +157,26 @@ pub fn parse_gesture(text: &str) -> anyhow::Result<Gesture> {
         bail!("camera eye and target are the same point");
     }
     if !(camera.fov_y_deg > 0.0 && camera.fov_y_deg < 180.0) {
-        bail!("camera fov_y_deg {} must be between 0 and 180", camera.fov_y_deg);
+        bail!(
+            "camera fov_y_deg {} must be between 0 and 180",
+            camera.fov_y_deg
+        );
     }
-    if (camera.target - camera.eye).cross(camera.up).length_squared() == 0.0 {
+    if (camera.target - camera.eye)
+        .cross(camera.up)
+        .length_squared()
+        == 0.0
+    {
         bail!("camera up is parallel to the viewing direction");
     }
     let cut = match &file.cut {
         None => CutSettings::default(),
         Some(cut) => {
             let Some(kind) = CutKind::from_name(&cut.kind) else {
-                bail!("cut kind {:?} is not one of curving, straight, wedge", cut.kind);
+                bail!(
+                    "cut kind {:?} is not one of curving, straight, wedge",
+                    cut.kind
+                );
             };
             if !(cut.spacing.is_finite() && cut.spacing > 0.0) {
                 bail!("cut spacing {} must be positive", cut.spacing);
@@ -245,7 +257,8 @@ pub fn gesture_to_json(g: &Gesture) -> String {
 
 /// Writes a gesture file.
 pub fn write_gesture(path: &Path, g: &Gesture) -> anyhow::Result<()> {
-    std::fs::write(path, gesture_to_json(g)).with_context(|| format!("{}: cannot write", path.display()))
+    std::fs::write(path, gesture_to_json(g))
+        .with_context(|| format!("{}: cannot write", path.display()))
 }
 
 #[cfg(test)]

@@ -61,7 +61,8 @@ fn default_window() -> f64 {
 
 /// Parses the text of a path file (errors without the file name; see [`read_path_file`]).
 pub fn parse_path_file(text: &str) -> Result<PathFile, String> {
-    let raw: RawPathFile = serde_json::from_str(text).map_err(|e| format!("not a {FORMAT} file: {e}"))?;
+    let raw: RawPathFile =
+        serde_json::from_str(text).map_err(|e| format!("not a {FORMAT} file: {e}"))?;
     if raw.format != FORMAT {
         return Err(format!("format is {:?}, expected {FORMAT:?}", raw.format));
     }
@@ -87,7 +88,11 @@ pub fn parse_path_file(text: &str) -> Result<PathFile, String> {
         if stroke.is_empty() {
             return Err(format!("stroke {s} has no points"));
         }
-        if let Some((k, p)) = stroke.iter().enumerate().find(|(_, p)| !p.iter().all(|c| c.is_finite())) {
+        if let Some((k, p)) = stroke
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !p.iter().all(|c| c.is_finite()))
+        {
             return Err(format!("stroke {s} point {k} {p:?} is not finite"));
         }
         out.push(stroke.iter().map(|&p| DVec3::from_array(p)).collect());
@@ -131,7 +136,8 @@ mod tests {
 
     #[test]
     fn parses_points_and_defaults() {
-        let f = parse_path_file(r#"{"format":"cutaway-path/1","points":[[0,0,0],[1,2,3]]}"#).unwrap();
+        let f =
+            parse_path_file(r#"{"format":"cutaway-path/1","points":[[0,0,0],[1,2,3]]}"#).unwrap();
         assert_eq!(f.depth, 0.0);
         assert_eq!(f.tool, Tool::Scalpel);
         assert_eq!(f.strokes, vec![vec![DVec3::ZERO, DVec3::new(1., 2., 3.)]]);
@@ -147,20 +153,44 @@ mod tests {
         assert_eq!(f.depth, 4.0);
         assert_eq!(f.tool, Tool::Loop);
         assert_eq!(f.strokes.len(), 2);
-        assert_eq!(f.open, Some(OpenOptions { width: 1.5, window: 0.25 }));
+        assert_eq!(
+            f.open,
+            Some(OpenOptions {
+                width: 1.5,
+                window: 0.25
+            })
+        );
     }
 
     #[test]
     fn rejects_bad_files_with_a_reason() {
         for (text, needle) in [
-            (r#"{"format":"cutaway-path/2","points":[[0,0,0]]}"#, "expected"),
+            (
+                r#"{"format":"cutaway-path/2","points":[[0,0,0]]}"#,
+                "expected",
+            ),
             (r#"{"format":"cutaway-path/1"}"#, "no \"points\""),
-            (r#"{"format":"cutaway-path/1","points":[[0,0,0]],"strokes":[[[0,0,0]]]}"#, "not both"),
-            (r#"{"format":"cutaway-path/1","points":[[0,0,0]],"tool":"saw"}"#, "tool"),
-            (r#"{"format":"cutaway-path/1","points":[[0,0,0]],"depth":-1}"#, "depth"),
+            (
+                r#"{"format":"cutaway-path/1","points":[[0,0,0]],"strokes":[[[0,0,0]]]}"#,
+                "not both",
+            ),
+            (
+                r#"{"format":"cutaway-path/1","points":[[0,0,0]],"tool":"saw"}"#,
+                "tool",
+            ),
+            (
+                r#"{"format":"cutaway-path/1","points":[[0,0,0]],"depth":-1}"#,
+                "depth",
+            ),
             (r#"{"format":"cutaway-path/1","points":[]}"#, "no points"),
-            (r#"{"format":"cutaway-path/1","points":[[0,0]]}"#, "not a cutaway-path/1"),
-            (r#"{"format":"cutaway-path/1","points":[[0,0,0]],"open":{"width":-2}}"#, "width"),
+            (
+                r#"{"format":"cutaway-path/1","points":[[0,0]]}"#,
+                "not a cutaway-path/1",
+            ),
+            (
+                r#"{"format":"cutaway-path/1","points":[[0,0,0]],"open":{"width":-2}}"#,
+                "width",
+            ),
         ] {
             let e = parse_path_file(text).unwrap_err();
             assert!(e.contains(needle), "{text}: {e}");

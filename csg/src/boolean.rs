@@ -191,25 +191,22 @@ pub(crate) fn prepare_cutter(
     // Edges: every undirected edge in exactly two faces, traversed in opposite directions.
     let mut edge_map: FxMap<(u32, u32), u32> = Default::default();
     let mut edges: Vec<[u32; 2]> = Vec::new();
-    let mut edge_faces: Vec<[u32; 2]> = Vec::new();
     let mut edge_dirs: Vec<[bool; 2]> = Vec::new();
     let mut edge_count: Vec<usize> = Vec::new();
     let mut tri_edges = Vec::with_capacity(triangles.len());
-    for (f, t) in triangles.iter().enumerate() {
+    for t in triangles.iter() {
         let mut te = [0u32; 3];
         for k in 0..3 {
             let (a, b) = (t[k], t[(k + 1) % 3]);
             let key = (a.min(b), a.max(b));
             let id = *edge_map.entry(key).or_insert_with(|| {
                 edges.push([key.0, key.1]);
-                edge_faces.push([u32::MAX; 2]);
                 edge_dirs.push([false; 2]);
                 edge_count.push(0);
                 (edges.len() - 1) as u32
             });
             let c = edge_count[id as usize];
             if c < 2 {
-                edge_faces[id as usize][c] = f as u32;
                 edge_dirs[id as usize][c] = a < b;
             }
             edge_count[id as usize] += 1;
@@ -250,7 +247,6 @@ pub(crate) fn prepare_cutter(
         triangles,
         edges,
         tri_edges,
-        edge_faces,
         face_component,
         components: cutters.len() as u32,
         face_boxes,
@@ -655,17 +651,6 @@ pub(crate) fn run(
         })
         .collect();
     let new_pos = &result.new_positions;
-    if std::env::var("CSG_DEBUG").is_ok() {
-        for (i, k) in isect.keys.iter().enumerate() {
-            eprintln!("X{i} {:?} {:?}", k, new_pos[i]);
-        }
-        for (t, pieces) in &target_pieces {
-            eprintln!("t{t} {:?}", mesh.triangles[*t as usize].map(|v| mesh.positions[v as usize]));
-            for (fi, p) in pieces.iter().enumerate() {
-                eprintln!("   piece {fi} {:?} {:?}", p.status, p.triangles);
-            }
-        }
-    }
     let merge = options.merge_coincident;
     let mut removed = PartBuilder::new(merge);
     // Kept ids: a new vertex whose rounded position equals (bit for bit) a corner of a touched

@@ -63,8 +63,6 @@ pub(crate) struct PreparedCutter {
     pub edges: Vec<[u32; 2]>,
     /// Per triangle: edge id of corner `k → k+1`.
     pub tri_edges: Vec<[u32; 3]>,
-    /// Per edge: its two faces (the cutter is closed and edge-manifold).
-    pub edge_faces: Vec<[u32; 2]>,
     /// Per face: sub-cutter id.
     pub face_component: Vec<u32>,
     /// Number of sub-cutters.
@@ -106,7 +104,6 @@ pub(crate) struct Crossing {
 /// One piece of contour: `t ∩ f` from point `a` to point `b` (unordered).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Segment {
-    pub t: u32,
     pub f: u32,
     pub a: u32,
     pub b: u32,
@@ -207,7 +204,6 @@ pub(crate) fn intersect(
                 2 => {
                     let id = out.segments.len() as u32;
                     out.segments.push(Segment {
-                        t,
                         f,
                         a: ends[0],
                         b: ends[1],

@@ -25,7 +25,7 @@
 use std::fmt;
 use std::time::Duration;
 
-use glam::{DVec3, Vec3, Vec3A};
+use glam::{DVec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::bvh2::Bvh2;
 use obvhs::bvh2::node::Bvh2Node;
@@ -59,21 +59,21 @@ pub struct ClosestPoint {
     pub distance: f64,
 }
 
-/// Build settings: `obvhs`'s "very fast" preset (a little reinsertion, leaves of up to 8
-/// triangles). Measured in `benches/index.rs`; see the crate README for the figures.
-const BUILD_PARAMS: BvhBuildParams = BvhBuildParams::very_fast_build();
+/// Build settings: `obvhs`'s fastest preset (PLOC with the minimum search distance, no
+/// reinsertion, no leaf collapse), so every leaf holds exactly one face and its box is that face's
+/// box. Measured on a 1M-triangle sphere (`benches/index.rs`): about half the build time of the
+/// "very fast" preset (eight faces per leaf) at the same ray and closest-point query cost, for
+/// about twice the node memory (48 bytes per node, `2n - 1` nodes).
+const BUILD_PARAMS: BvhBuildParams = BvhBuildParams::fastest_build();
 
 /// A BVH over the triangles of one mesh.
 #[derive(Clone)]
 pub struct SpatialIndex {
-    /// The tree. Leaves index `bvh.primitive_indices`, whose entries are mesh face ids; every face
-    /// appears exactly once. Empty (no node) for a mesh without triangles. Node boxes contain the
-    /// `f64` triangles exactly (boxes rounded outward).
+    /// The tree. Every leaf holds exactly one face: `bvh.primitive_indices[leaf.first_index]`, a
+    /// mesh face id; every face is in exactly one leaf, and a leaf's box is its face's box. Empty
+    /// (no node) for a mesh without triangles. Boxes contain the `f64` triangles exactly (rounded
+    /// outward to `f32`).
     bvh: Bvh2,
-    /// The `f32` box of each primitive slot, outward-rounded, as `[min, max]`: entry `i` bounds
-    /// face `bvh.primitive_indices[i]`. Same length as `bvh.primitive_indices`. Leaves hold up to
-    /// eight faces, so these let queries skip a face without touching the mesh.
-    face_boxes: Vec<[Vec3; 2]>,
     /// Number of triangles of the mesh the index was built from.
     triangle_count: usize,
     /// Absolute widening of node boxes during traversal, covering the rounding of `f64`
@@ -146,17 +146,8 @@ impl SpatialIndex {
         } else {
             obvhs::bvh2::builder::build_bvh2(&boxes, BUILD_PARAMS, &mut Duration::default())
         };
-        let face_boxes = bvh
-            .primitive_indices
-            .iter()
-            .map(|&f| {
-                let b = &boxes[f as usize];
-                [Vec3::from(b.min), Vec3::from(b.max)]
-            })
-            .collect();
         SpatialIndex {
             bvh,
-            face_boxes,
             triangle_count: mesh.triangles.len(),
             slack: 16.0 * f64::EPSILON * max_abs,
         }
@@ -167,14 +158,10 @@ impl SpatialIndex {
         self.triangle_count
     }
 
-    /// Faces of leaf `node` with their boxes.
+    /// The face of leaf `node` (each leaf holds exactly one).
     #[inline(always)]
-    fn leaf_faces_and_boxes(&self, node: &Bvh2Node) -> impl Iterator<Item = (u32, &[Vec3; 2])> {
-        let range = node.first_index as usize..(node.first_index + node.prim_count) as usize;
-        self.bvh.primitive_indices[range.clone()]
-            .iter()
-            .copied()
-            .zip(&self.face_boxes[range])
+    fn leaf_face(&self, node: &Bvh2Node) -> u32 {
+        self.bvh.primitive_indices[node.first_index as usize]
     }
 
     /// First hit of the ray `origin + t * direction`, `0 <= t <= t_max` (both faces of a triangle hit).
@@ -201,13 +188,15 @@ impl SpatialIndex {
         let inv = DVec3::ONE / direction;
         // Relative widening of slab parameters: two roundings each, compared across axes.
         let widen = 1.0 + 4.0 * f64::EPSILON;
-        let enter_box = |(min, max): (DVec3, DVec3)| -> f64 {
+        // Entry parameter of the ray into a box, None when it misses the box or the box lies
+        // behind the origin.
+        let enter_box = |(min, max): (DVec3, DVec3)| -> Option<f64> {
             let mut near = 0.0f64;
             let mut far = f64::INFINITY;
             for axis in 0..3 {
                 if direction[axis] == 0.0 {
                     if origin[axis] < min[axis] || origin[axis] > max[axis] {
-                        return f64::INFINITY;
+                        return None;
                     }
                     continue;
                 }
@@ -216,60 +205,54 @@ impl SpatialIndex {
                 near = near.max(t0.min(t1));
                 far = far.min(t0.max(t1));
             }
-            if near <= far * widen {
-                near
-            } else {
-                f64::INFINITY
-            }
+            (near <= far * widen).then_some(near)
         };
         let enter = |node: &Bvh2Node| enter_box(node_box(node, self.slack));
 
         let mut best: Option<RayHit> = None;
         let mut best_t = t_max;
-        let mut stack: Vec<u32> = Vec::with_capacity(64);
-        let root = &self.bvh.nodes[0];
-        if enter(root) <= best_t * widen {
-            stack.push(0);
+        // (node, entry parameter); entries are re-checked when popped, as `best_t` shrinks.
+        let mut stack: Vec<(u32, f64)> = Vec::with_capacity(64);
+        if let Some(t) = enter(&self.bvh.nodes[0]) {
+            stack.push((0, t));
         }
-        while let Some(index) = stack.pop() {
+        while let Some((index, t_enter)) = stack.pop() {
+            if t_enter > best_t * widen {
+                continue;
+            }
             let node = &self.bvh.nodes[index as usize];
             if node.is_leaf() {
-                for (face, [min, max]) in self.leaf_faces_and_boxes(node) {
-                    let slack = DVec3::splat(self.slack);
-                    if enter_box((min.as_dvec3() - slack, max.as_dvec3() + slack)) > best_t * widen
-                    {
-                        continue;
-                    }
-                    // Tested against `t_max`, not `best_t`, so that ties are decided by face
-                    // index on the computed `t` whatever order the tree visits them in.
-                    if let Some(hit) = ray.intersect(mesh, face, t_max) {
-                        let better = match best {
-                            None => true,
-                            Some(b) => hit.t < b.t || (hit.t == b.t && face < b.face),
-                        };
-                        if better {
-                            best_t = hit.t;
-                            best = Some(hit);
-                        }
+                // Tested against `t_max`, not `best_t`, so that ties are decided by face index
+                // on the computed `t` whatever order the tree visits them in.
+                let face = self.leaf_face(node);
+                if let Some(hit) = ray.intersect(mesh, face, t_max) {
+                    let better = match best {
+                        None => true,
+                        Some(b) => hit.t < b.t || (hit.t == b.t && face < b.face),
+                    };
+                    if better {
+                        best_t = hit.t;
+                        best = Some(hit);
                     }
                 }
                 continue;
             }
-            let (l, r) = (node.first_index, node.first_index + 1);
-            let tl = enter(&self.bvh.nodes[l as usize]);
-            let tr = enter(&self.bvh.nodes[r as usize]);
             let limit = best_t * widen;
+            let (l, r) = (node.first_index, node.first_index + 1);
+            let hits = [l, r].map(|child| {
+                enter(&self.bvh.nodes[child as usize])
+                    .filter(|&t| t <= limit)
+                    .map(|t| (child, t))
+            });
             // Push the farther child first so the nearer one is visited first.
-            let (first, t_first, second, t_second) = if tl <= tr {
-                (l, tl, r, tr)
-            } else {
-                (r, tr, l, tl)
-            };
-            if t_second <= limit {
-                stack.push(second);
-            }
-            if t_first <= limit {
-                stack.push(first);
+            match hits {
+                [Some(a), Some(b)] => {
+                    let (near, far) = if a.1 <= b.1 { (a, b) } else { (b, a) };
+                    stack.push(far);
+                    stack.push(near);
+                }
+                [Some(only), None] | [None, Some(only)] => stack.push(only),
+                [None, None] => {}
             }
         }
         best
@@ -296,12 +279,7 @@ impl SpatialIndex {
         while let Some(index) = stack.pop() {
             let node = &self.bvh.nodes[index as usize];
             if node.is_leaf() {
-                for (face, [min, max]) in self.leaf_faces_and_boxes(node) {
-                    if min.as_dvec3().cmple(aabb.max).all() && aabb.min.cmple(max.as_dvec3()).all()
-                    {
-                        out.push(face);
-                    }
-                }
+                out.push(self.leaf_face(node));
                 continue;
             }
             for child in [node.first_index, node.first_index + 1] {
@@ -355,25 +333,17 @@ impl SpatialIndex {
             }
             let node = &self.bvh.nodes[index as usize];
             if node.is_leaf() {
-                for (face, [min, max]) in self.leaf_faces_and_boxes(node) {
-                    let widened = (
-                        min.as_dvec3() - DVec3::splat(self.slack),
-                        max.as_dvec3() + DVec3::splat(self.slack),
-                    );
-                    if box_distance_squared(p, widened) > best_d2 * widen {
-                        continue;
-                    }
-                    let [a, b, c] = mesh.corners(face as usize);
-                    let (q, bary) = closest_on_triangle(p, a, b, c);
-                    let e2 = (p - q).length_squared();
-                    let better = match best {
-                        None => e2 <= best_d2,
-                        Some((f, _, _)) => e2 < best_d2 || (e2 == best_d2 && face < f),
-                    };
-                    if better {
-                        best_d2 = e2;
-                        best = Some((face, q, bary));
-                    }
+                let face = self.leaf_face(node);
+                let [a, b, c] = mesh.corners(face as usize);
+                let (q, bary) = closest_on_triangle(p, a, b, c);
+                let e2 = (p - q).length_squared();
+                let better = match best {
+                    None => e2 <= best_d2,
+                    Some((f, _, _)) => e2 < best_d2 || (e2 == best_d2 && face < f),
+                };
+                if better {
+                    best_d2 = e2;
+                    best = Some((face, q, bary));
                 }
                 continue;
             }
@@ -402,21 +372,14 @@ impl SpatialIndex {
     }
 
     /// Checks the index against `mesh`: built for its triangle count, every face in exactly one
-    /// leaf, and every node box containing its children's boxes and its triangles' `f64` corners.
+    /// leaf and alone there, and every node box containing its children's boxes and its face's
+    /// `f64` corners.
     pub fn sanity_check(&self, mesh: &Mesh) -> Result<(), String> {
         let SpatialIndex {
             bvh,
-            face_boxes,
             triangle_count,
             slack,
         } = self;
-        if face_boxes.len() != bvh.primitive_indices.len() {
-            return Err(format!(
-                "{} face boxes for {} primitive slots",
-                face_boxes.len(),
-                bvh.primitive_indices.len()
-            ));
-        }
         if *triangle_count != mesh.triangles.len() {
             return Err(format!(
                 "index built for {triangle_count} triangles, mesh has {}",
@@ -445,31 +408,25 @@ impl SpatialIndex {
                 .get(index as usize)
                 .ok_or_else(|| format!("node {index} out of range"))?;
             if node.is_leaf() {
-                let first = node.first_index as usize;
-                let faces = bvh
+                if node.prim_count != 1 {
+                    return Err(format!("leaf {index} holds {} faces", node.prim_count));
+                }
+                let face = *bvh
                     .primitive_indices
-                    .get(first..first + node.prim_count as usize)
-                    .ok_or_else(|| format!("leaf {index} primitives out of range"))?;
-                for (slot_index, &face) in faces.iter().enumerate() {
-                    let [min, max] = face_boxes[first + slot_index];
-                    let in_face_box =
-                        |p: DVec3| min.as_dvec3().cmple(p).all() && p.cmple(max.as_dvec3()).all();
-                    if !mesh.corners(face as usize).iter().all(|&c| in_face_box(c)) {
-                        return Err(format!("face box of face {face} does not contain it"));
-                    }
-                    let slot = seen
-                        .get_mut(face as usize)
-                        .ok_or_else(|| format!("leaf {index} names face {face}"))?;
-                    if std::mem::replace(slot, true) {
-                        return Err(format!("face {face} is in two leaves"));
-                    }
-                    if !mesh
-                        .corners(face as usize)
-                        .iter()
-                        .all(|&c| contains(node, c))
-                    {
-                        return Err(format!("leaf {index} box does not contain face {face}"));
-                    }
+                    .get(node.first_index as usize)
+                    .ok_or_else(|| format!("leaf {index} primitive out of range"))?;
+                let slot = seen
+                    .get_mut(face as usize)
+                    .ok_or_else(|| format!("leaf {index} names face {face}"))?;
+                if std::mem::replace(slot, true) {
+                    return Err(format!("face {face} is in two leaves"));
+                }
+                if !mesh
+                    .corners(face as usize)
+                    .iter()
+                    .all(|&c| contains(node, c))
+                {
+                    return Err(format!("leaf {index} box does not contain face {face}"));
                 }
                 continue;
             }

@@ -464,10 +464,6 @@ fn triangulate(
         }
         if !done {
             // Topology-only fallback: splice at the first vertices.
-            if std::env::var("CSG_DEBUG").is_ok() {
-                eprintln!("bridge fallback: outer {:?}", poly.iter().map(|&n| hp(n).limit()).collect::<Vec<_>>());
-                eprintln!("  hole {:?}", hole.iter().map(|&n| hp(n).limit()).collect::<Vec<_>>());
-            }
             fallback = true;
             let mut merged = poly.clone();
             merged.extend_from_slice(&hole);
@@ -513,9 +509,6 @@ fn triangulate(
         }
         if !is_ear && since_last > 2 * n {
             // No ear in a whole pass: topology-only fallback (clip anyway).
-            if std::env::var("CSG_DEBUG").is_ok() {
-                eprintln!("ear fallback: {:?}", poly.iter().map(|&n| hp(n).limit()).collect::<Vec<_>>());
-            }
             fallback = true;
             is_ear = true;
         }

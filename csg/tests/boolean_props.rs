@@ -98,3 +98,28 @@ fn random_cutter_transforms() {
         check_cut_welded(&target, &r).unwrap();
     }
 }
+
+/// Shrunk proptest case: a box whose bottom face is tangent to the torus bottom along a target
+/// edge (a cutter edge crosses both faces of that edge at the same limit point).
+#[test]
+fn regression_box_tangent_to_torus_bottom() {
+    let target = snapped(&torus(6.0, 2.0, 24, 12), 1.0 / 32.0);
+    let index = TargetIndex::build(target.clone()).unwrap();
+    let cutter = csg::testkit::cube(DVec3::new(0.0, 1.5, -2.0), DVec3::new(5.5, 2.5, -1.5));
+    cut_checked(&index, &target, &cutter).unwrap();
+}
+
+/// Shrunk proptest case: a strip whose top face crosses target faces lying in one plane, so a
+/// cutter-face piece is flat in every perturbed configuration (flat ears).
+#[test]
+fn regression_strip_over_coplanar_target_faces() {
+    let target = target_sphere();
+    let index = TargetIndex::build(target.clone()).unwrap();
+    let mut pts = vec![(-3, 25, 10)];
+    for s in [(0, 0, -2), (0, 2, 0), (1, 2, 0), (0, -1, 0)] {
+        let l = *pts.last().unwrap();
+        pts.push((l.0 + s.0, l.1 + s.1, l.2 + s.2));
+    }
+    let cutter = strip_from(&pts, 0.25, 8.0 * 0.25, 27.0 * 0.25);
+    cut_checked(&index, &target, &cutter).unwrap();
+}

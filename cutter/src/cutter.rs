@@ -57,7 +57,11 @@ pub enum CutterError {
     NonFinite { plane: usize },
     /// Zero-length front edge or zero depth.
     #[error("plane {plane} is degenerate (front edge {front_length}, depth {depth})")]
-    Degenerate { plane: usize, front_length: f64, depth: f64 },
+    Degenerate {
+        plane: usize,
+        front_length: f64,
+        depth: f64,
+    },
     /// The four corners are not in one plane (relative error given).
     #[error("plane {plane} is not planar (relative error {error:e})")]
     NotPlanar { plane: usize, error: f64 },
@@ -288,7 +292,11 @@ impl Cutter {
         let mesh = self.quad_mesh();
         mesh.check_closed()
             .map_err(|(a, b)| CutterError::NotClosed { a, b })?;
-        let orientation = if self.box_faces_orientation_flipped(&mesh) { -1.0 } else { 1.0 };
+        let orientation = if self.box_faces_orientation_flipped(&mesh) {
+            -1.0
+        } else {
+            1.0
+        };
         for i in 0..planes.len() - 1 {
             let volume = self.box_volume(i, orientation);
             if volume <= 0.0 {

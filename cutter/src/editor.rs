@@ -151,9 +151,19 @@ enum Pick {
 #[derive(Clone, Debug)]
 enum Drag {
     None,
-    Init { a: DVec2, b: DVec2 },
-    Extrude { offset: DVec2, before: Cutter },
-    Vertex { plane: usize, top: bool, before: Cutter },
+    Init {
+        a: DVec2,
+        b: DVec2,
+    },
+    Extrude {
+        offset: DVec2,
+        before: Cutter,
+    },
+    Vertex {
+        plane: usize,
+        top: bool,
+        before: Cutter,
+    },
 }
 
 /// The editor of one cutter on one target. See the module docs.
@@ -310,9 +320,13 @@ impl Editor {
             return None;
         };
         let f = self.camera.forward();
-        let z = (self.target.bbox().center() - self.camera.eye).dot(f).max(1e-9);
-        let px = 2.0 * z * (self.camera.fov_y_deg.to_radians() * 0.5).tan() / self.viewport.y.max(1.0);
-        let corners = extrude::strip_pixels(a, b, extrude::INITIAL_WIDTH * self.settings.delta / px);
+        let z = (self.target.bbox().center() - self.camera.eye)
+            .dot(f)
+            .max(1e-9);
+        let px =
+            2.0 * z * (self.camera.fov_y_deg.to_radians() * 0.5).tan() / self.viewport.y.max(1.0);
+        let corners =
+            extrude::strip_pixels(a, b, extrude::INITIAL_WIDTH * self.settings.delta / px);
         Some(corners.map(|c| {
             let ray = self.camera.ray_through_pixel(self.viewport, c);
             ray.at(z / ray.direction.dot(f).max(1e-12))
@@ -403,7 +417,9 @@ impl Editor {
 
     fn cancel_drag(&mut self) {
         match std::mem::replace(&mut self.drag, Drag::None) {
-            Drag::Extrude { before, .. } | Drag::Vertex { before, .. } => self.cutter = Some(before),
+            Drag::Extrude { before, .. } | Drag::Vertex { before, .. } => {
+                self.cutter = Some(before)
+            }
             Drag::Init { .. } | Drag::None => {}
         }
     }
@@ -430,7 +446,10 @@ impl Editor {
             return Pick::Nothing;
         };
         let lead = cutter.leading();
-        if let (Some(a), Some(d)) = (self.project(lead.front_top), self.project(lead.front_bottom)) {
+        if let (Some(a), Some(d)) = (
+            self.project(lead.front_top),
+            self.project(lead.front_bottom),
+        ) {
             let s0 = a + (d - a) / 3.0;
             let s1 = a + (d - a) * (2.0 / 3.0);
             if segment_distance(px, s0, s1) <= HANDLE_PX {
@@ -695,7 +714,10 @@ impl Editor {
     /// Ends a drag that started from `before`: a valid, different result is one undo step; an
     /// invalid one (it should not happen, every move is checked) falls back to `before`.
     fn finish_drag(&mut self, before: Cutter) {
-        let valid = self.cutter.as_ref().is_some_and(|c| c.sanity_check().is_ok());
+        let valid = self
+            .cutter
+            .as_ref()
+            .is_some_and(|c| c.sanity_check().is_ok());
         if !valid {
             // Drop boxes from the end until valid, else restore.
             if let Some(c) = &mut self.cutter {
@@ -703,7 +725,7 @@ impl Editor {
                     c.planes.pop();
                 }
             }
-            if !self.cutter.as_ref().is_some_and(|c| c.sanity_check().is_ok()) {
+            if self.cutter.as_ref().is_none_or(|c| c.sanity_check().is_err()) {
                 self.cutter = Some(before.clone());
             }
         }

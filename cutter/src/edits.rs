@@ -31,7 +31,12 @@ pub enum DepthTarget {
 /// Changes depth by `notches · DEPTH_STEP · δ` (negative = shallower), one notch at a time with
 /// self-intersection resolution after each (thesis: "after every incremental increase in depth").
 /// Wedge cutters always change as a whole (their planes share the back axis point).
-pub fn change_depth(cutter: &Cutter, target: DepthTarget, notches: f64, delta: f64) -> Option<Cutter> {
+pub fn change_depth(
+    cutter: &Cutter,
+    target: DepthTarget,
+    notches: f64,
+    delta: f64,
+) -> Option<Cutter> {
     if notches == 0.0 || !notches.is_finite() {
         return None;
     }
@@ -41,7 +46,8 @@ pub fn change_depth(cutter: &Cutter, target: DepthTarget, notches: f64, delta: f
     for _ in 0..count {
         if c.kind == CutKind::Wedge {
             let axis = (c.planes[0].back_top - c.planes[0].front_top).try_normalize()?;
-            let depth = ((c.planes[0].back_top - c.planes[0].front_top).length() + per).max(MIN_DEPTH * delta);
+            let depth = ((c.planes[0].back_top - c.planes[0].front_top).length() + per)
+                .max(MIN_DEPTH * delta);
             let bt = c.planes[0].front_top + axis * depth;
             for p in &mut c.planes {
                 p.back_top = bt;
@@ -70,7 +76,10 @@ pub fn change_depth(cutter: &Cutter, target: DepthTarget, notches: f64, delta: f
 pub fn intersecting_groups(planes: &[BoundedPlane]) -> Vec<(usize, usize)> {
     let n = planes.len();
     let quads: Vec<[DVec3; 4]> = planes.iter().map(|p| p.corners()).collect();
-    let boxes: Vec<csg::Aabb> = quads.iter().map(|q| csg::Aabb::from_points(q.iter())).collect();
+    let boxes: Vec<csg::Aabb> = quads
+        .iter()
+        .map(|q| csg::Aabb::from_points(q.iter()))
+        .collect();
     let mut ranges: Vec<(usize, usize)> = Vec::new();
     for i in 0..n {
         for j in i + 1..n {
@@ -109,7 +118,8 @@ pub fn resolve_self_intersections(planes: &mut [BoundedPlane], delta: f64) -> bo
                 }
                 let along = path_direction(&path, i);
                 let p = planes[i];
-                let angle = (delta / p.depth().max(1e-300)).clamp(0.2f64.to_radians(), 5f64.to_radians());
+                let angle =
+                    (delta / p.depth().max(1e-300)).clamp(0.2f64.to_radians(), 5f64.to_radians());
                 // Pick the rotation sense that moves the back edge the wanted way along the path.
                 let plus = p.rotated_about_front_edge(angle);
                 let moves_forward = (plus.back_mid() - p.back_mid()).dot(along) > 0.0;
@@ -144,7 +154,11 @@ pub fn rotate_plane(cutter: &Cutter, index: usize, notches: f64) -> Option<Cutte
     let angle = (notches * ROTATE_STEP_DEG).to_radians();
     let plus = p.rotated_about_front_edge(angle);
     let forward = (plus.back_mid() - p.back_mid()).dot(along) > 0.0;
-    let rotated = if forward { plus } else { p.rotated_about_front_edge(-angle) };
+    let rotated = if forward {
+        plus
+    } else {
+        p.rotated_about_front_edge(-angle)
+    };
     let mut c = cutter.clone();
     c.planes[index] = rotated;
     c.sanity_check().ok()?;

@@ -41,15 +41,35 @@ impl Key {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum EditorEvent {
     /// Primary button pressed at pixel (`x`, `y`).
-    Press { x: f64, y: f64, shift: bool, ctrl: bool },
+    Press {
+        x: f64,
+        y: f64,
+        shift: bool,
+        ctrl: bool,
+    },
     /// Pointer moved (button held or not) to pixel (`x`, `y`). `shift` held during an extrusion
     /// enforces the straight-path constraint.
-    Move { x: f64, y: f64, shift: bool, ctrl: bool },
+    Move {
+        x: f64,
+        y: f64,
+        shift: bool,
+        ctrl: bool,
+    },
     /// Primary button released at pixel (`x`, `y`).
-    Release { x: f64, y: f64, shift: bool, ctrl: bool },
+    Release {
+        x: f64,
+        y: f64,
+        shift: bool,
+        ctrl: bool,
+    },
     /// Scroll wheel at pixel (`x`, `y`): `delta` notches, positive = up (deeper / clockwise).
     /// With `ctrl` it rotates the selected plane instead of changing depth.
-    Wheel { x: f64, y: f64, delta: f64, ctrl: bool },
+    Wheel {
+        x: f64,
+        y: f64,
+        delta: f64,
+        ctrl: bool,
+    },
     /// A key pressed with the pointer at pixel (`x`, `y`).
     Key { key: Key, x: f64, y: f64 },
 }
@@ -68,22 +88,42 @@ impl EditorEvent {
 
     /// Shorthand for a press without modifiers.
     pub fn press(x: f64, y: f64) -> EditorEvent {
-        EditorEvent::Press { x, y, shift: false, ctrl: false }
+        EditorEvent::Press {
+            x,
+            y,
+            shift: false,
+            ctrl: false,
+        }
     }
 
     /// Shorthand for a move without modifiers.
     pub fn move_to(x: f64, y: f64) -> EditorEvent {
-        EditorEvent::Move { x, y, shift: false, ctrl: false }
+        EditorEvent::Move {
+            x,
+            y,
+            shift: false,
+            ctrl: false,
+        }
     }
 
     /// Shorthand for a move with Shift held (straight path).
     pub fn move_shift(x: f64, y: f64) -> EditorEvent {
-        EditorEvent::Move { x, y, shift: true, ctrl: false }
+        EditorEvent::Move {
+            x,
+            y,
+            shift: true,
+            ctrl: false,
+        }
     }
 
     /// Shorthand for a release without modifiers.
     pub fn release(x: f64, y: f64) -> EditorEvent {
-        EditorEvent::Release { x, y, shift: false, ctrl: false }
+        EditorEvent::Release {
+            x,
+            y,
+            shift: false,
+            ctrl: false,
+        }
     }
 
     /// Shorthand for a wheel event.

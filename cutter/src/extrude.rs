@@ -48,7 +48,10 @@ const MAX_INWARD_DEG: f64 = 60.0;
 pub const REST_GAP: f64 = 1.0;
 
 /// Largest number of boxes one mouse move may lock (a far jump of the mouse).
-const MAX_BOXES_PER_MOVE: usize = 64;
+const MAX_BOXES_PER_MOVE: usize = 16;
+/// Below this |cos| between the mouse ray and the front plane's normal (about 75°), the front
+/// plane counts as seen edge-on.
+const GRAZING: f64 = 0.25;
 
 /// The strip dragged from `a` to `b` (pixels) as the four pixel corners A, D, H, E: the box
 /// extends `width_px` to the screen-right of A→B (toward screen-right when A is below B).
@@ -73,7 +76,12 @@ fn point_at_depth(camera: &Camera, viewport: DVec2, px: DVec2, z: f64) -> DVec3 
 /// View depth of the surface point nearest to the view plane among those seen through the pixel
 /// polygon `corners` (the thesis's "deep box" behind the strip, figure 22). None when the polygon
 /// sees no surface.
-fn min_depth_behind(surface: &Surface, camera: &Camera, viewport: DVec2, corners: &[DVec2; 4]) -> Option<f64> {
+fn min_depth_behind(
+    surface: &Surface,
+    camera: &Camera,
+    viewport: DVec2,
+    corners: &[DVec2; 4],
+) -> Option<f64> {
     let f = camera.forward();
     let eye = camera.eye;
     let bbox = surface.bbox();
@@ -202,7 +210,7 @@ pub fn initialize(
     // Rest the strip REST_GAP·δ in front of the contact, as every extruded face rests (our
     // addition: a strip exactly touching the surface is a degenerate case for the boolean).
     let z = z - REST_GAP * delta;
-    if !(z > 0.0) {
+    if z.is_nan() || z <= 0.0 {
         return None;
     }
     let s = b - a;
@@ -242,7 +250,12 @@ pub struct RollSettings {
 /// Moves the leading plane toward the mouse ray (one extrusion move), locking boxes and starting
 /// new ones as they reach ω·δ. Returns true when the cutter changed. The cutter stays valid: a
 /// move that would fold the leading box onto the previous one is ignored.
-pub fn extrude_move(cutter: &mut Cutter, surface: &Surface, ray: &Ray, settings: &RollSettings) -> bool {
+pub fn extrude_move(
+    cutter: &mut Cutter,
+    surface: &Surface,
+    ray: &Ray,
+    settings: &RollSettings,
+) -> bool {
     if cutter.planes.len() < 2 {
         return false;
     }
@@ -276,7 +289,9 @@ pub fn extrude_move(cutter: &mut Cutter, surface: &Surface, ray: &Ray, settings:
             };
             cutter.planes[n - 1] = locked;
             let dir = (locked.front_mid() - prev.front_mid()).normalize_or_zero();
-            cutter.planes.push(locked.translated(dir * MIN_WIDTH * settings.delta));
+            cutter
+                .planes
+                .push(locked.translated(dir * MIN_WIDTH * settings.delta));
             if cutter.sanity_check().is_err() {
                 cutter.planes.pop();
                 cutter.planes[n - 1] = lead;
@@ -348,9 +363,18 @@ impl FrontFrame {
         })
     }
 
-    /// M: the mouse ray meets the front plane (None when parallel or behind the eye).
+    /// M: the mouse ray meets the front plane (None when behind the eye). When the front plane
+    /// is seen nearly edge-on (the roller went over the object's silhouette), that intersection
+    /// runs off to infinity with the smallest mouse motion, so M is taken on the plane through Q
+    /// facing the ray instead (the thesis's view-plane construction) and later flattened onto
+    /// the front plane.
     fn project(&self, ray: &Ray) -> Option<DVec3> {
-        let t = geom::line_plane(ray.origin, ray.direction, self.a, self.normal)?;
+        let facing = ray.direction.dot(self.normal).abs() / ray.direction.length();
+        let t = if facing < GRAZING {
+            geom::line_plane(ray.origin, ray.direction, self.q, ray.direction)?
+        } else {
+            geom::line_plane(ray.origin, ray.direction, self.a, self.normal)?
+        };
         (t > 0.0).then(|| ray.at(t))
     }
 
@@ -381,7 +405,12 @@ fn roll(
     scratch: &mut Vec<u32>,
 ) -> Option<BoundedPlane> {
     let FrontFrame {
-        a, d, q, up, normal, ..
+        a,
+        d,
+        q,
+        up,
+        normal,
+        ..
     } = *frame;
     let half = (a - d).length() * 0.5;
     let v = m - q;
@@ -440,7 +469,11 @@ fn roll(
     let settle = radius > ROTATION_STEP * settings.delta;
     let rotate = |p: DVec3, angle: f64| d + DQuat::from_axis_angle(axis, angle) * (p - d);
     // Sign of an outward (away from the object) rotation.
-    let outward = if (rotate(e, step) - e).dot(normal) >= 0.0 { 1.0 } else { -1.0 };
+    let outward = if (rotate(e, step) - e).dot(normal) >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    };
     let (e0, h0) = (e, h);
     // Angles are measured outward from the corrected position.
     // The band of the face next to AD is not tested: AD was settled by the previous box, and a
@@ -564,7 +597,11 @@ fn level(
     let (e2, h2) = turn(-alpha);
     // Pick the sense that brings E toward the surface when it is the higher end.
     let better = |x: DVec3, y: DVec3| (surface.distance(x) - surface.distance(y)).abs();
-    let (e3, h3) = if better(e1, h1) <= better(e2, h2) { (e1, h1) } else { (e2, h2) };
+    let (e3, h3) = if better(e1, h1) <= better(e2, h2) {
+        (e1, h1)
+    } else {
+        (e2, h2)
+    };
     if surface.quad_intersects(&[a, e3, h3, d], scratch) {
         (e, h)
     } else {
@@ -628,7 +665,10 @@ fn wedge_move(cutter: &mut Cutter, surface: &Surface, ray: &Ray, settings: &Roll
         let mut pushes = 0;
         while pushes < 50 {
             let l = cutter.planes[n - 1];
-            if !surface.triangle_intersects(&[l.front_top, prev_front_bottom(cutter, n), l.front_bottom], &mut scratch) {
+            if !surface.triangle_intersects(
+                &[l.front_top, prev_front_bottom(cutter, n), l.front_bottom],
+                &mut scratch,
+            ) {
                 break;
             }
             for p in &mut cutter.planes {

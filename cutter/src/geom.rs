@@ -46,7 +46,10 @@ pub fn tri_tri_intersect(a: &[DVec3; 3], b: &[DVec3; 3]) -> bool {
 }
 
 fn tri_scale(t: &[DVec3; 3]) -> f64 {
-    (t[1] - t[0]).length().max((t[2] - t[0]).length()).max((t[2] - t[1]).length())
+    (t[1] - t[0])
+        .length()
+        .max((t[2] - t[0]).length())
+        .max((t[2] - t[1]).length())
 }
 
 fn snap(d: f64, eps: f64) -> f64 {
@@ -91,7 +94,8 @@ pub fn quad_quad_intersect(a: &[DVec3; 4], b: &[DVec3; 4]) -> bool {
     if !ba.overlaps(&bb) {
         return false;
     }
-    ta.iter().any(|x| tb.iter().any(|y| tri_tri_intersect(x, y)))
+    ta.iter()
+        .any(|x| tb.iter().any(|y| tri_tri_intersect(x, y)))
 }
 
 /// The two triangles of a quad split along its first diagonal (0-2).
@@ -182,6 +186,9 @@ mod tests {
         let a = t([0., 0., 0.], [2., 0., 0.], [0., 2., 0.]);
         let hit = ray_triangle(DVec3::new(0.5, 0.5, 3.0), DVec3::NEG_Z, &a);
         assert_eq!(hit, Some(3.0));
-        assert_eq!(ray_triangle(DVec3::new(3.0, 3.0, 3.0), DVec3::NEG_Z, &a), None);
+        assert_eq!(
+            ray_triangle(DVec3::new(3.0, 3.0, 3.0), DVec3::NEG_Z, &a),
+            None
+        );
     }
 }

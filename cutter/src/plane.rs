@@ -36,7 +36,12 @@ impl BoundedPlane {
 
     /// The four corners in storage order (A, B, C, D).
     pub fn corners(&self) -> [DVec3; 4] {
-        [self.front_top, self.back_top, self.back_bottom, self.front_bottom]
+        [
+            self.front_top,
+            self.back_top,
+            self.back_bottom,
+            self.front_bottom,
+        ]
     }
 
     /// Builds a plane from corners in storage order.
@@ -98,8 +103,14 @@ impl BoundedPlane {
             return 0.0;
         };
         let centre = self.center();
-        let size = (c[2] - c[0]).length().max((c[3] - c[1]).length()).max(1e-300);
-        c.iter().map(|p| (p - centre).dot(n).abs()).fold(0.0, f64::max) / size
+        let size = (c[2] - c[0])
+            .length()
+            .max((c[3] - c[1]).length())
+            .max(1e-300);
+        c.iter()
+            .map(|p| (p - centre).dot(n).abs())
+            .fold(0.0, f64::max)
+            / size
     }
 
     /// The same plane with both back vertices at `depth` from their front vertices along the

@@ -37,9 +37,16 @@ pub fn at_intervals(cutter: &Cutter, count: usize, width: f64) -> Vec<Cutter> {
     (0..count)
         .filter_map(|k| {
             let s = total * (k as f64 + 0.5) / count as f64;
-            let i = cumulative.partition_point(|&c| c <= s).clamp(1, path.len() - 1) - 1;
+            let i = cumulative
+                .partition_point(|&c| c <= s)
+                .clamp(1, path.len() - 1)
+                - 1;
             let seg = cumulative[i + 1] - cumulative[i];
-            let t = if seg > 0.0 { (s - cumulative[i]) / seg } else { 0.0 };
+            let t = if seg > 0.0 {
+                (s - cumulative[i]) / seg
+            } else {
+                0.0
+            };
             let plane = cutter.planes[i].lerp(&cutter.planes[i + 1], t);
             let dir = (path[i + 1] - path[i]).normalize_or_zero();
             thin_box(&plane, dir, width)

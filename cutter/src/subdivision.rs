@@ -56,10 +56,12 @@ fn subdivide_once(mesh: &QuadMesh) -> QuadMesh {
         let ns = &neighbours[v as usize];
         if ns.len() == 4 {
             let faces = edge_faces.get(&key(v, w)).map(Vec::as_slice).unwrap_or(&[]);
-            let shares_face = |x: u32| {
-                faces.iter().any(|&fi| mesh.faces[fi].contains(&x))
-            };
-            let opposite: Vec<u32> = ns.iter().copied().filter(|&x| x != w && !shares_face(x)).collect();
+            let shares_face = |x: u32| faces.iter().any(|&fi| mesh.faces[fi].contains(&x));
+            let opposite: Vec<u32> = ns
+                .iter()
+                .copied()
+                .filter(|&x| x != w && !shares_face(x))
+                .collect();
             if let [o] = opposite[..] {
                 return p[o as usize];
             }
@@ -78,7 +80,9 @@ fn subdivide_once(mesh: &QuadMesh) -> QuadMesh {
     let mut faces = Vec::with_capacity(mesh.faces.len() * 4);
     for f in &mesh.faces {
         let n = f.len();
-        let e: Vec<u32> = (0..n).map(|k| edge_point[&key(f[k], f[(k + 1) % n])]).collect();
+        let e: Vec<u32> = (0..n)
+            .map(|k| edge_point[&key(f[k], f[(k + 1) % n])])
+            .collect();
         let sum_e: DVec3 = e.iter().map(|&i| positions[i as usize]).sum();
         let sum_v: DVec3 = f.iter().map(|&i| p[i as usize]).sum();
         let centre = sum_e * (2.0 / n as f64) - sum_v / n as f64;
@@ -144,7 +148,10 @@ mod tests {
         let s = subdivide(&c.quad_mesh(), 1);
         s.check_closed().unwrap();
         for p in &s.positions {
-            assert!(p.cmpge(DVec3::splat(-0.2)).all() && p.cmple(DVec3::splat(1.2)).all(), "{p}");
+            assert!(
+                p.cmpge(DVec3::splat(-0.2)).all() && p.cmple(DVec3::splat(1.2)).all(),
+                "{p}"
+            );
         }
     }
 }

@@ -19,15 +19,25 @@ fn init(editor: &mut Editor, at: DVec2) {
 /// Largest front-edge-midpoint gap to the surface, in units of δ.
 fn max_gap_in_delta(scene: &Scene, editor: &Editor) -> f64 {
     let c = editor.cutter().unwrap();
-    c.planes.iter().map(|p| scene.distance(p.front_mid())).fold(0.0, f64::max) / editor.delta()
+    c.planes
+        .iter()
+        .map(|p| scene.distance(p.front_mid()))
+        .fold(0.0, f64::max)
+        / editor.delta()
 }
 
 /// A pixel on plane `i`'s projected front edge, 30% of the way from front-top (away from the
 /// vertex pick radius and from the leading plane's handle).
 fn on_plane(editor: &Editor, i: usize) -> DVec2 {
     let p = editor.cutter().unwrap().planes[i];
-    let a = editor.camera().project(editor.viewport(), p.front_top).unwrap();
-    let d = editor.camera().project(editor.viewport(), p.front_bottom).unwrap();
+    let a = editor
+        .camera()
+        .project(editor.viewport(), p.front_top)
+        .unwrap();
+    let d = editor
+        .camera()
+        .project(editor.viewport(), p.front_bottom)
+        .unwrap();
     a.lerp(d, 0.3)
 }
 
@@ -44,21 +54,40 @@ fn s_path_on_sphere_sticks_to_surface() {
     let scene = Scene::sphere();
     let editor = painted_sphere(&scene);
     let c = editor.cutter().unwrap();
-    assert!(c.planes.len() >= 8, "a 220-pixel drag with ω = 20 makes many boxes: {}", c.planes.len());
+    assert!(
+        c.planes.len() >= 8,
+        "a 220-pixel drag with ω = 20 makes many boxes: {}",
+        c.planes.len()
+    );
     let gap = max_gap_in_delta(&scene, &editor);
-    assert!(gap <= 3.0, "front edges must stay within 3δ of the sphere, got {gap}δ");
+    assert!(
+        gap <= 3.0,
+        "front edges must stay within 3δ of the sphere, got {gap}δ"
+    );
     // No front edge midpoint is buried inside the sphere.
     for p in &c.planes {
-        assert!(p.front_mid().length() > 50.0 - editor.delta(), "{}", p.front_mid().length());
+        assert!(
+            p.front_mid().length() > 50.0 - editor.delta(),
+            "{}",
+            p.front_mid().length()
+        );
     }
     // The path really swings: midpoints move both up and down in z.
     let zs: Vec<f64> = c.path().iter().map(|p| p.z).collect();
-    let (lo, hi) = zs.iter().fold((f64::MAX, f64::MIN), |(a, b), &z| (a.min(z), b.max(z)));
+    let (lo, hi) = zs
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &z| (a.min(z), b.max(z)));
     assert!(hi - lo > 5.0, "S swing {lo}..{hi}");
     // The leading plane ends under the pointer (the roller follows the mouse).
-    let end = editor.camera().project(editor.viewport(), c.leading().front_mid()).unwrap();
+    let end = editor
+        .camera()
+        .project(editor.viewport(), c.leading().front_mid())
+        .unwrap();
     let mouse = DVec2::new(620.0, 400.0) + DVec2::new(220.0, 0.0);
-    assert!((end - mouse).length() < 25.0, "roller at {end}, mouse at {mouse}");
+    assert!(
+        (end - mouse).length() < 25.0,
+        "roller at {end}, mouse at {mouse}"
+    );
 }
 
 #[test]
@@ -70,11 +99,19 @@ fn s_path_on_bumpy_surface_sticks_over_hills_and_valleys() {
     let c = editor.cutter().unwrap();
     assert!(c.planes.len() >= 10, "{} planes", c.planes.len());
     let gap = max_gap_in_delta(&scene, &editor);
-    assert!(gap <= 3.0, "front edges must stay within 3δ of the bumpy top, got {gap}δ");
+    assert!(
+        gap <= 3.0,
+        "front edges must stay within 3δ of the bumpy top, got {gap}δ"
+    );
     // Heights follow the hills: the path's z range spans most of the surface's relief.
     let zs: Vec<f64> = c.path().iter().map(|p| p.z).collect();
-    let (lo, hi) = zs.iter().fold((f64::MAX, f64::MIN), |(a, b), &z| (a.min(z), b.max(z)));
-    assert!(hi - lo > 3.0, "path heights {lo}..{hi} do not follow the relief");
+    let (lo, hi) = zs
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &z| (a.min(z), b.max(z)));
+    assert!(
+        hi - lo > 3.0,
+        "path heights {lo}..{hi} do not follow the relief"
+    );
 }
 
 #[test]
@@ -93,7 +130,11 @@ fn shift_gives_a_straight_path() {
     let dir = (pts[pts.len() - 1] - pts[0]).normalize();
     for p in &pts {
         let off = (*p - pts[0]) - dir * (*p - pts[0]).dot(dir);
-        assert!(off.length() < 0.02 * editor.delta(), "midpoint {p} off the line by {}", off.length());
+        assert!(
+            off.length() < 0.02 * editor.delta(),
+            "midpoint {p} off the line by {}",
+            off.length()
+        );
     }
     // Without Shift the same wiggle bends the path.
     let mut free = scene.editor(scene.settings(CutKind::Curving));
@@ -149,7 +190,10 @@ fn wedge_planes_share_the_axis() {
     let sweep = c.wedge_sweep().to_degrees();
     assert!(sweep > 60.0, "wedge swept only {sweep} degrees");
     let q = c.quad_mesh();
-    assert!(q.faces.iter().any(|f| f.len() == 3), "prism fan has triangular front faces");
+    assert!(
+        q.faces.iter().any(|f| f.len() == 3),
+        "prism fan has triangular front faces"
+    );
 }
 
 #[test]
@@ -166,7 +210,10 @@ fn rounded_cutter_interpolates_original_vertices() {
     assert!(smooth.volume() > 0.0);
     assert!(smooth.faces.len() == boxes.faces.len() * 16);
     for p in &boxes.positions {
-        assert!(smooth.positions.contains(p), "original vertex {p} not interpolated");
+        assert!(
+            smooth.positions.contains(p),
+            "original vertex {p} not interpolated"
+        );
     }
     // It follows edits: deepen everything, the smooth mesh still holds the new vertices.
     feed(&mut editor, [EditorEvent::wheel(40.0, 40.0, 2.0, false)]);
@@ -195,11 +242,20 @@ fn depth_increase_on_a_tight_curve_resolves_plane_collisions() {
         .iter()
         .map(|p| p.with_depth(p.depth() + notches * 2.0 * editor.delta()))
         .collect();
-    assert!(!intersecting_groups(&naive).is_empty(), "the test must force collisions");
-    feed(&mut editor, [EditorEvent::wheel(20.0, 20.0, notches, false)]);
+    assert!(
+        !intersecting_groups(&naive).is_empty(),
+        "the test must force collisions"
+    );
+    feed(
+        &mut editor,
+        [EditorEvent::wheel(20.0, 20.0, notches, false)],
+    );
     let c = editor.cutter().unwrap().clone();
     assert_ne!(c, before, "the depth edit must be applied");
-    assert!(intersecting_groups(&c.planes).is_empty(), "planes still intersect");
+    assert!(
+        intersecting_groups(&c.planes).is_empty(),
+        "planes still intersect"
+    );
     for p in &c.planes {
         assert!(p.depth() > 50.0, "depth {}", p.depth());
     }
@@ -219,7 +275,13 @@ fn wheel_over_a_selected_plane_changes_only_its_depth() {
     let mut editor = painted_sphere(&scene);
     let before = editor.cutter().unwrap().clone();
     let px = on_plane(&editor, 3);
-    feed(&mut editor, [EditorEvent::press(px.x, px.y), EditorEvent::release(px.x, px.y)]);
+    feed(
+        &mut editor,
+        [
+            EditorEvent::press(px.x, px.y),
+            EditorEvent::release(px.x, px.y),
+        ],
+    );
     assert_eq!(editor.selected_plane(), Some(3));
     feed(&mut editor, [EditorEvent::wheel(px.x, px.y, 3.0, false)]);
     let c = editor.cutter().unwrap();
@@ -238,13 +300,22 @@ fn ctrl_wheel_rotates_the_selected_plane_about_its_front_edge() {
     let mut editor = painted_sphere(&scene);
     let before = editor.cutter().unwrap().clone();
     let px = on_plane(&editor, 4);
-    feed(&mut editor, [EditorEvent::press(px.x, px.y), EditorEvent::release(px.x, px.y)]);
+    feed(
+        &mut editor,
+        [
+            EditorEvent::press(px.x, px.y),
+            EditorEvent::release(px.x, px.y),
+        ],
+    );
     feed(&mut editor, [EditorEvent::wheel(px.x, px.y, 2.0, true)]);
     let c = editor.cutter().unwrap();
     let (a, b) = (c.planes[4], before.planes[4]);
     assert_eq!(a.front_top, b.front_top);
     assert_eq!(a.front_bottom, b.front_bottom);
-    let angle = a.back_direction().angle_between(b.back_direction()).to_degrees();
+    let angle = a
+        .back_direction()
+        .angle_between(b.back_direction())
+        .to_degrees();
     assert!((angle - 10.0).abs() < 1e-6, "rotated {angle} degrees");
     assert!(a.planarity_error() < 1e-9);
     for i in (0..c.planes.len()).filter(|&i| i != 4) {
@@ -258,14 +329,24 @@ fn dragging_a_front_vertex_moves_its_edge_in_the_plane_normal_to_it() {
     let mut editor = painted_sphere(&scene);
     let before = editor.cutter().unwrap().clone();
     let p = before.planes[2];
-    let v = editor.camera().project(editor.viewport(), p.front_top).unwrap();
+    let v = editor
+        .camera()
+        .project(editor.viewport(), p.front_top)
+        .unwrap();
     feed(&mut editor, drag(v, v + DVec2::new(6.0, 8.0), 4));
     let c = editor.cutter().unwrap();
     let q = c.planes[2];
     let moved = q.front_top - p.front_top;
-    assert!(moved.length() > 0.5, "the vertex must move, moved {}", moved.length());
+    assert!(
+        moved.length() > 0.5,
+        "the vertex must move, moved {}",
+        moved.length()
+    );
     let edge = (p.front_top - p.back_top).normalize();
-    assert!(moved.dot(edge).abs() < 1e-9, "the move leaves the plane normal to the edge");
+    assert!(
+        moved.dot(edge).abs() < 1e-9,
+        "the move leaves the plane normal to the edge"
+    );
     assert!(((q.back_top - q.front_top) - (p.back_top - p.front_top)).length() < 1e-9);
     assert_eq!(q.front_bottom, p.front_bottom);
     assert!(q.planarity_error() < 1e-9);
@@ -282,7 +363,10 @@ fn delete_removes_the_last_box_down_to_one() {
     for k in 1..n + 3 {
         let px = on_plane(&editor, 0);
         feed(&mut editor, [EditorEvent::key(Key::Delete, px.x, px.y)]);
-        assert_eq!(editor.cutter().unwrap().planes.len(), n.saturating_sub(k).max(2));
+        assert_eq!(
+            editor.cutter().unwrap().planes.len(),
+            n.saturating_sub(k).max(2)
+        );
     }
 }
 
@@ -333,11 +417,16 @@ fn init_off_the_object_surrounds_it() {
     let mut editor = scene.editor(scene.settings(CutKind::Curving));
     let a = DVec2::new(640.0, 60.0);
     feed(&mut editor, drag(a, DVec2::new(640.0, 200.0), 5));
-    let c = editor.cutter().expect("a cutter even though A is off the object");
+    let c = editor
+        .cutter()
+        .expect("a cutter even though A is off the object");
     validate(c);
     // Pushed onto the closest point seen through the strip: the front is near the sphere's front.
     let depth_front = c.planes[0].front_mid().y;
-    assert!(depth_front < 0.0 && depth_front > -55.0, "front at y = {depth_front}");
+    assert!(
+        depth_front < 0.0 && depth_front > -55.0,
+        "front at y = {depth_front}"
+    );
 }
 
 #[test]
@@ -345,7 +434,10 @@ fn handle_press_snaps_the_cursor_and_short_drags_do_nothing() {
     let scene = Scene::sphere();
     let mut editor = scene.editor(scene.settings(CutKind::Curving));
     // A 1-pixel drag makes no cutter.
-    feed(&mut editor, drag(DVec2::new(500.0, 400.0), DVec2::new(501.0, 400.0), 1));
+    feed(
+        &mut editor,
+        drag(DVec2::new(500.0, 400.0), DVec2::new(501.0, 400.0), 1),
+    );
     assert!(editor.cutter().is_none());
     init(&mut editor, DVec2::new(620.0, 430.0));
     let h = handle_px(&editor);

@@ -8,9 +8,12 @@ use proptest::prelude::*;
 use cutter::{CutKind, EditorEvent, Key};
 use editor_support::*;
 
+/// Pointer steps of a handle drag: (dx, dy, shift held), in pixels.
+type Walk = Vec<(f64, f64, bool)>;
+
 /// A random gesture: an initial drag, then a handle drag along a random walk, then a few random
-/// edits. Steps are in pixels.
-fn gesture() -> impl Strategy<Value = (DVec2, DVec2, Vec<(f64, f64, bool)>, Vec<u8>)> {
+/// edits (codes 0..6, see `run`).
+fn gesture() -> impl Strategy<Value = (DVec2, DVec2, Walk, Vec<u8>)> {
     (
         (540.0..740.0f64, 340.0..460.0f64),
         (-80.0..80.0f64, -80.0..80.0f64),
@@ -18,7 +21,12 @@ fn gesture() -> impl Strategy<Value = (DVec2, DVec2, Vec<(f64, f64, bool)>, Vec<
         prop::collection::vec(0u8..6, 0..6),
     )
         .prop_map(|((ax, ay), (bx, by), walk, edits)| {
-            (DVec2::new(ax, ay), DVec2::new(ax + bx, ay + by), walk, edits)
+            (
+                DVec2::new(ax, ay),
+                DVec2::new(ax + bx, ay + by),
+                walk,
+                edits,
+            )
         })
 }
 
@@ -36,7 +44,12 @@ fn run(scene: &Scene, kind: CutKind, a: DVec2, b: DVec2, walk: &[(f64, f64, bool
     let mut events = vec![EditorEvent::press(h.x, h.y)];
     for &(dx, dy, shift) in walk {
         p += DVec2::new(dx, dy);
-        events.push(EditorEvent::Move { x: p.x, y: p.y, shift, ctrl: false });
+        events.push(EditorEvent::Move {
+            x: p.x,
+            y: p.y,
+            shift,
+            ctrl: false,
+        });
     }
     events.push(EditorEvent::release(p.x, p.y));
     feed(&mut editor, events);
@@ -46,7 +59,10 @@ fn run(scene: &Scene, kind: CutKind, a: DVec2, b: DVec2, walk: &[(f64, f64, bool
         let i = (e as usize * 7) % c.planes.len();
         let px = editor
             .camera()
-            .project(editor.viewport(), c.planes[i].front_top.lerp(c.planes[i].front_bottom, 0.3))
+            .project(
+                editor.viewport(),
+                c.planes[i].front_top.lerp(c.planes[i].front_bottom, 0.3),
+            )
             .unwrap();
         let event = match e {
             0 => EditorEvent::wheel(10.0, 10.0, 4.0, false),

@@ -5,7 +5,7 @@
 
 use csg::{DVec3, Mesh};
 use cutter::scalpel::invariants::{min_angle_deg, t_junction_near, validate};
-use cutter::scalpel::{Scalpel, ScalpelOptions, TopologyReport, Tool};
+use cutter::scalpel::{Scalpel, ScalpelOptions, Tool, TopologyReport};
 
 /// An `n × n` grid of unit squares on z = 0 from (0, 0), each split on the (0,0)-(1,1) diagonal
 /// (right-isosceles triangles; longest edge h = √2).
@@ -47,23 +47,39 @@ fn area(s: &Scalpel) -> f64 {
 /// Checks after a step: valid structure, no sliver among the triangles created since
 /// `triangles_before` (unless `min_angle` is 0), no geometric T-junction at new vertices, and
 /// area conserved when `conserve_area`.
-fn check_step(s: &Scalpel, triangles_before: usize, vertices_before: usize, area0: f64, conserve_area: bool, min_angle: f64) {
+fn check_step(
+    s: &Scalpel,
+    triangles_before: usize,
+    vertices_before: usize,
+    area0: f64,
+    conserve_area: bool,
+    min_angle: f64,
+) {
     let t = topo(s);
     assert!(t.manifold, "not manifold after a step: {t:?}");
     if conserve_area {
         let a = area(s);
-        assert!((a - area0).abs() <= 1e-9 * area0, "area changed: {area0} -> {a}");
+        assert!(
+            (a - area0).abs() <= 1e-9 * area0,
+            "area changed: {area0} -> {a}"
+        );
     }
     let m = s.dyn_mesh();
     for tri in triangles_before..m.triangle_count() {
         let ang = min_angle_deg(m, tri as u32);
-        assert!(ang >= min_angle, "sliver: triangle {tri} has a {ang}° angle");
+        assert!(
+            ang >= min_angle,
+            "sliver: triangle {tri} has a {ang}° angle"
+        );
     }
     // Geometric T-junctions in the rest pose (slits only: a groove's two lips coincide in the
     // rest pose while being separate sheets joined by the walls).
     if conserve_area {
         for v in vertices_before..m.vertex_count() {
-            assert!(!t_junction_near(m, v as u32), "T-junction at new vertex {v}");
+            assert!(
+                !t_junction_near(m, v as u32),
+                "T-junction at new vertex {v}"
+            );
         }
     }
 }
@@ -99,7 +115,10 @@ fn sheet_delta(strokes: &[Vec<DVec3>]) -> ((i64, i64, i64), Scalpel) {
     let mesh = sheet(20);
     let mut s = Scalpel::new(&mesh, ScalpelOptions::default()).unwrap();
     let before = topo(&s);
-    assert_eq!((before.components, before.boundary_loops, before.euler), (1, 1, 1));
+    assert_eq!(
+        (before.components, before.boundary_loops, before.euler),
+        (1, 1, 1)
+    );
     cut_strokes(&mut s, strokes, true, 1.0);
     (delta(&before, &topo(&s)), s)
 }
@@ -112,7 +131,10 @@ fn s01_straight_interior_slit() {
     let created = s.dyn_mesh().triangle_count() - 800;
     let t = topo(&s);
     assert!(t.boundary_edges > 4);
-    assert!(created <= 2 * 40 + 6, "too many triangles created: {created}");
+    assert!(
+        created <= 2 * 40 + 6,
+        "too many triangles created: {created}"
+    );
 }
 
 #[test]
@@ -193,7 +215,11 @@ fn s08_t_cut_onto_an_existing_slit() {
         let mut s2 = s.clone();
         let before = topo(&s2);
         // 90° and 45° approaches ending on the lip.
-        let start = if end_x == 9.7 { p(9.7, 4.1) } else { p(6.0, 4.2) };
+        let start = if end_x == 9.7 {
+            p(9.7, 4.1)
+        } else {
+            p(6.0, 4.2)
+        };
         cut_strokes(&mut s2, &[line(start, p(end_x, 10.2), 0.5)], true, 0.0);
         assert_eq!(delta(&before, &topo(&s2)), (0, 0, 0), "T-cut to x={end_x}");
     }
@@ -218,7 +244,12 @@ fn x_cut(angle_deg: f64) -> ((i64, i64, i64), TopologyReport, Scalpel) {
     let a = angle_deg.to_radians();
     let dir = DVec3::new(a.cos(), a.sin(), 0.0);
     let c = p(10.1, 10.2);
-    cut_strokes(&mut s, &[line(c - dir * 5.0, c + dir * 5.0, 0.5)], true, 0.0);
+    cut_strokes(
+        &mut s,
+        &[line(c - dir * 5.0, c + dir * 5.0, 0.5)],
+        true,
+        0.0,
+    );
     let after = topo(&s);
     (delta(&before, &after), after, s)
 }
@@ -230,7 +261,10 @@ fn s10_x_cut_at_90_degrees_crosses() {
     assert_eq!((after.boundary_loops, after.euler), (2, 0));
     // The junction point has 4 copies.
     let m = s.dyn_mesh();
-    let max_copies = (0..m.vertex_count() as u32).map(|v| m.copies(v).len() + 1).max().unwrap_or(1);
+    let max_copies = (0..m.vertex_count() as u32)
+        .map(|v| m.copies(v).len() + 1)
+        .max()
+        .unwrap_or(1);
     assert_eq!(max_copies, 4);
 }
 
@@ -242,8 +276,14 @@ fn s11_cross_at_20_degrees_merge_at_10() {
     // (T-junction) and opens no new hole of its own on the far side within the lip's reach.
     let (_, after, s) = x_cut(10.0);
     let m = s.dyn_mesh();
-    let max_copies = (0..m.vertex_count() as u32).map(|v| m.copies(v).len() + 1).max().unwrap_or(1);
-    assert!(max_copies < 4, "10° must not cross (found a {max_copies}-copy junction)");
+    let max_copies = (0..m.vertex_count() as u32)
+        .map(|v| m.copies(v).len() + 1)
+        .max()
+        .unwrap_or(1);
+    assert!(
+        max_copies < 4,
+        "10° must not cross (found a {max_copies}-copy junction)"
+    );
     assert!(after.manifold);
 }
 
@@ -286,7 +326,11 @@ fn s13_loop_tool_detaches_on_sheet_and_sphere() {
     assert_eq!(report.detached.len(), 1);
     let piece = &report.detached[0];
     let expected = std::f64::consts::PI * 4.1 * 4.1;
-    assert!((piece.area() - expected).abs() < 0.1 * expected, "piece area {}", piece.area());
+    assert!(
+        (piece.area() - expected).abs() < 0.1 * expected,
+        "piece area {}",
+        piece.area()
+    );
 
     let sphere = csg::testkit::icosphere(4, 10.0);
     let mut s = Scalpel::new(&sphere, ScalpelOptions::default().with_tool(Tool::Loop)).unwrap();
@@ -341,7 +385,10 @@ fn s17_trembling_matches_the_monotone_path() {
     let (d1, s1) = sheet_delta(&[line(a, b, 0.4)]);
     let (d2, s2) = sheet_delta(&[tremble]);
     assert_eq!(d1, d2);
-    let (f1, f2) = (s1.dyn_mesh().triangle_count() as i64, s2.dyn_mesh().triangle_count() as i64);
+    let (f1, f2) = (
+        s1.dyn_mesh().triangle_count() as i64,
+        s2.dyn_mesh().triangle_count() as i64,
+    );
     assert!((f1 - f2).abs() <= 2, "{f1} vs {f2} triangles");
 }
 
@@ -412,7 +459,10 @@ fn s22_opening_reaches_its_width_and_leaves_the_rest_alone() {
     use cutter::scalpel::dffd::open_positions;
     let (_, mut s) = sheet_delta(&[line(p(3.3, 10.5), p(16.7, 10.5), 0.5)]);
     s.advance_clock(1.0);
-    let open = OpenOptions { width: 0.6, window: 0.5 };
+    let open = OpenOptions {
+        width: 0.6,
+        window: 0.5,
+    };
     let shown = open_positions(&s, &open, s.clock());
     let m = s.dyn_mesh();
     // Lip copies at x = 10 (mid-slit) are 0.6 apart; far vertices did not move (bitwise).
@@ -425,7 +475,11 @@ fn s22_opening_reaches_its_width_and_leaves_the_rest_alone() {
     for v in 0..m.vertex_count() {
         let d = (m.pos(v as u32).y - 10.5).abs();
         if d > 3.0 * 0.6 + 1e-9 {
-            assert_eq!(shown[v], m.pos(v as u32), "vertex {v} outside the support moved");
+            assert_eq!(
+                shown[v],
+                m.pos(v as u32),
+                "vertex {v} outside the support moved"
+            );
         }
     }
     // Just after the cut the newest part is still closed (trailing window).
@@ -496,7 +550,12 @@ fn element_budget_straight_cut() {
     let r = s.end_stroke().unwrap();
     assert!(r.triangles_cut > 30);
     let per = r.triangles_created as f64 / r.triangles_cut as f64;
-    assert!(per <= 2.0 + 6.0 / r.triangles_cut as f64, "{} new per {} crossed", r.triangles_created, r.triangles_cut);
+    assert!(
+        per <= 2.0 + 6.0 / r.triangles_cut as f64,
+        "{} new per {} crossed",
+        r.triangles_created,
+        r.triangles_cut
+    );
 }
 
 /// Reads a binary STL and welds bit-identical corners (test-local, no app dependency).
@@ -549,7 +608,9 @@ fn strokes_on_real_anatomy() {
     };
     // A stroke along the muscle's long axis on its surface, as a groove and as a slit.
     let bb = mesh.bbox();
-    let axis = (0..3).max_by(|&a, &b| bb.size()[a].total_cmp(&bb.size()[b])).unwrap();
+    let axis = (0..3)
+        .max_by(|&a, &b| bb.size()[a].total_cmp(&bb.size()[b]))
+        .unwrap();
     let c = bb.center();
     for depth in [0.0, 1.5] {
         let mut s = Scalpel::new(&mesh, ScalpelOptions::default().with_depth(depth)).unwrap();

@@ -69,7 +69,9 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
         editor.handle(event);
     }
     let Some(cutter) = editor.cutter().cloned() else {
-        bail!("the gesture made no cutter (the first press-drag-release must be at least 3 pixels long)");
+        bail!(
+            "the gesture made no cutter (the first press-drag-release must be at least 3 pixels long)"
+        );
     };
     let max_surface_gap = editor.max_surface_gap().unwrap_or(f64::INFINITY);
     Ok(Replay {
@@ -110,7 +112,9 @@ fn painted_region(target: &Mesh, gesture: &Gesture) -> usize {
         }
     }
     let ray = gesture.camera.ray_through_pixel(gesture.viewport, a);
-    let depth = (target.bbox().center() - ray.origin).dot(ray.direction).max(0.0);
+    let depth = (target.bbox().center() - ray.origin)
+        .dot(ray.direction)
+        .max(0.0);
     index
         .closest_point(target, ray.at(depth))
         .map_or(0, |c| region_of(c.face))

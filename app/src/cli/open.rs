@@ -17,9 +17,16 @@ pub fn run(args: &OpenArgs) -> anyhow::Result<()> {
             anyhow::bail!("{}: no such file or directory", path.display());
         }
     }
-    let sessions = args.paths.iter().filter(|p| crate::gui::app::is_session_path(p)).count();
+    let sessions = args
+        .paths
+        .iter()
+        .filter(|p| crate::gui::app::is_session_path(p))
+        .count();
     if sessions > 0 && args.paths.len() > 1 {
-        anyhow::bail!("{}: a session file must be opened on its own", args.paths[0].display());
+        anyhow::bail!(
+            "{}: a session file must be opened on its own",
+            args.paths[0].display()
+        );
     }
     crate::gui::run(&args.paths)
 }

@@ -138,13 +138,25 @@ pub enum Action {
 /// Result of a background job.
 pub enum JobOutput {
     /// A file dialog closed; `paths` is empty when it was cancelled.
-    Picked { purpose: Purpose, paths: Vec<PathBuf>, took: std::time::Duration },
+    Picked {
+        purpose: Purpose,
+        paths: Vec<PathBuf>,
+        took: std::time::Duration,
+    },
     /// Models were read.
-    Models { models: Vec<crate::io::Model>, replace: bool, sources: Vec<PathBuf> },
+    Models {
+        models: Vec<crate::io::Model>,
+        replace: bool,
+        sources: Vec<PathBuf>,
+    },
     /// A session was read (models included).
     Session { path: PathBuf, scene: Scene },
     /// A target's spatial index was built.
-    Index { model: usize, mesh: std::sync::Weak<csg::Mesh>, index: Arc<csg::SpatialIndex> },
+    Index {
+        model: usize,
+        mesh: std::sync::Weak<csg::Mesh>,
+        index: Arc<csg::SpatialIndex>,
+    },
     /// Preview cut parts for the scene state `key`, and the wall time of the cut in ms.
     Preview {
         geometry: Arc<crate::cutaway_geometry::PreviewGeometry>,
@@ -152,7 +164,10 @@ pub enum JobOutput {
         ms: f64,
     },
     /// "Remove All Cut Geometry": new meshes for the cut models, for the scene state `key`.
-    CutsApplied { meshes: Vec<(usize, Arc<csg::Mesh>)>, key: super::bridge::PreviewKey },
+    CutsApplied {
+        meshes: Vec<(usize, Arc<csg::Mesh>)>,
+        key: super::bridge::PreviewKey,
+    },
     /// Something finished that only needs a message.
     Done(String),
 }
@@ -227,7 +242,11 @@ impl CutawayApp {
     pub fn new(cc: &eframe::CreationContext<'_>, start: StartOptions) -> CutawayApp {
         super::menus::apply_style(&cc.egui_ctx);
         let recovery = Recovery::new(start.state_dir.clone());
-        let pending_recovery = if start.offer_recovery { recovery.pending() } else { None };
+        let pending_recovery = if start.offer_recovery {
+            recovery.pending()
+        } else {
+            None
+        };
         let mut app = CutawayApp {
             scene: new_scene(),
             mode: Mode::Camera,
@@ -289,7 +308,8 @@ impl CutawayApp {
         work: impl FnOnce(&Progress) -> anyhow::Result<JobOutput> + Send + 'static,
     ) {
         let ctx = ctx.clone();
-        self.jobs.push(Job::spawn(label, move || ctx.request_repaint(), work));
+        self.jobs
+            .push(Job::spawn(label, move || ctx.request_repaint(), work));
     }
 
     fn load_default_scene(&mut self, ctx: &egui::Context) {
@@ -307,7 +327,8 @@ impl CutawayApp {
     /// Records a scene change for undo (call with the state from before the change).
     pub fn record(&mut self, label: &str, before: Scene) {
         if let Some((pending_label, pending_before)) = self.pending_edit.take() {
-            self.history.push_scene(pending_label, pending_before, before.clone());
+            self.history
+                .push_scene(pending_label, pending_before, before.clone());
         }
         self.history.push_scene(label, before, self.scene.clone());
         self.last_committed = self.scene.clone();
@@ -365,7 +386,11 @@ impl CutawayApp {
             Action::RemoveAllCutGeometry => self.remove_all_cut_geometry(ctx),
             Action::ToggleCutters => {
                 self.cutters_hidden = !self.cutters_hidden;
-                self.say(if self.cutters_hidden { "Cutters hidden" } else { "Cutters shown" });
+                self.say(if self.cutters_hidden {
+                    "Cutters hidden"
+                } else {
+                    "Cutters shown"
+                });
             }
             Action::ResetCamera => {
                 self.scene.camera = self.scene.framing_camera();
@@ -403,7 +428,9 @@ impl CutawayApp {
                     self.record(&format!("remove {}", removed.name), before);
                 }
             }
-            Action::StartGesture => self.viewport.start_recording(&self.scene.camera, &self.cutter_init),
+            Action::StartGesture => self
+                .viewport
+                .start_recording(&self.scene.camera, &self.cutter_init),
             Action::StopGesture => {
                 if self.viewport.recording.is_some() {
                     self.open_dialog(ctx, Purpose::SaveGesture);
@@ -414,7 +441,12 @@ impl CutawayApp {
                 self.say("The next drag on the target starts a new cutter");
             }
             Action::EditCutter(i) => {
-                if self.viewport.editor.edit_existing(&self.scene, i, self.viewport.size_px, &self.cutter_init) {
+                if self.viewport.editor.edit_existing(
+                    &self.scene,
+                    i,
+                    self.viewport.size_px,
+                    &self.cutter_init,
+                ) {
                     self.selected_model = self.viewport.editor.target();
                     self.selected_cutter = i;
                     self.set_mode(Mode::Edit);
@@ -504,7 +536,10 @@ impl CutawayApp {
     }
 
     fn fix_selection(&mut self) {
-        if self.selected_model.is_some_and(|i| i >= self.scene.models.len()) {
+        if self
+            .selected_model
+            .is_some_and(|i| i >= self.scene.models.len())
+        {
             self.selected_model = None;
         }
     }
@@ -524,7 +559,9 @@ impl CutawayApp {
 
     /// Starts building the spatial index of model `target` in the background (big targets).
     pub fn start_index_job(&mut self, ctx: &egui::Context, target: usize) {
-        let Some(model) = self.scene.models.get(target) else { return };
+        let Some(model) = self.scene.models.get(target) else {
+            return;
+        };
         if self.jobs.iter().any(|j| j.label.starts_with("Indexing")) {
             return;
         }
@@ -533,7 +570,11 @@ impl CutawayApp {
         self.say(format!("Indexing {name} for editing…"));
         self.spawn(ctx, format!("Indexing {name}"), move |progress| {
             let (weak, index) = super::bridge::build_index(&mesh, progress)?;
-            Ok(JobOutput::Index { model: target, mesh: weak, index })
+            Ok(JobOutput::Index {
+                model: target,
+                mesh: weak,
+                index,
+            })
         });
     }
 
@@ -550,7 +591,11 @@ impl CutawayApp {
     /// The Initialization tab changed: the active cutter follows (smoothing is an edit).
     pub fn cutter_settings_changed(&mut self) {
         let before = self.scene.clone();
-        if self.viewport.editor.apply_settings(&mut self.scene, &self.cutter_init) {
+        if self
+            .viewport
+            .editor
+            .apply_settings(&mut self.scene, &self.cutter_init)
+        {
             self.record("smoothing change", before);
         }
     }
@@ -564,7 +609,12 @@ impl CutawayApp {
             .session_path
             .as_ref()
             .and_then(|p| p.parent().map(Path::to_path_buf))
-            .or_else(|| self.recent.paths.first().and_then(|p| p.parent().map(Path::to_path_buf)));
+            .or_else(|| {
+                self.recent
+                    .paths
+                    .first()
+                    .and_then(|p| p.parent().map(Path::to_path_buf))
+            });
         self.spawn(ctx, purpose.title(), move |_| {
             let started = Instant::now();
             let mut dialog = rfd::AsyncFileDialog::new().set_title(purpose.title());
@@ -581,9 +631,11 @@ impl CutawayApp {
                         .await
                         .map(|files| files.iter().map(|f| f.path().to_path_buf()).collect())
                         .unwrap_or_default(),
-                    Purpose::LoadDirectory | Purpose::ExportMeshes => {
-                        dialog.pick_folder().await.map(|f| vec![f.path().to_path_buf()]).unwrap_or_default()
-                    }
+                    Purpose::LoadDirectory | Purpose::ExportMeshes => dialog
+                        .pick_folder()
+                        .await
+                        .map(|f| vec![f.path().to_path_buf()])
+                        .unwrap_or_default(),
                     Purpose::OpenSession => dialog
                         .add_filter("Cutaway session", &["json"])
                         .pick_file()
@@ -630,8 +682,12 @@ impl CutawayApp {
             Purpose::LoadModel | Purpose::LoadDirectory => self.apply(ctx, Action::Open(paths)),
             Purpose::AddModel => self.apply(ctx, Action::Add(paths)),
             Purpose::OpenSession => self.apply(ctx, Action::Open(vec![first])),
-            Purpose::SaveSessionAs => self.apply(ctx, Action::SaveSessionTo(with_extension(first, "json"))),
-            Purpose::ExportImage => self.apply(ctx, Action::ExportImageTo(with_extension(first, "png"))),
+            Purpose::SaveSessionAs => {
+                self.apply(ctx, Action::SaveSessionTo(with_extension(first, "json")))
+            }
+            Purpose::ExportImage => {
+                self.apply(ctx, Action::ExportImageTo(with_extension(first, "png")))
+            }
             Purpose::ExportMeshes => self.apply(ctx, Action::ExportMeshesTo(first)),
             Purpose::SaveGesture => {
                 let path = with_extension(first, "json");
@@ -663,13 +719,21 @@ impl CutawayApp {
         let sources = paths.clone();
         self.spawn(ctx, label, move |progress| {
             let models = load_paths(&paths, progress)?;
-            Ok(JobOutput::Models { models, replace, sources })
+            Ok(JobOutput::Models {
+                models,
+                replace,
+                sources,
+            })
         });
     }
 
     fn finish_job(&mut self, ctx: &egui::Context, output: JobOutput) {
         match output {
-            JobOutput::Picked { purpose, paths, took } => {
+            JobOutput::Picked {
+                purpose,
+                paths,
+                took,
+            } => {
                 // A dialog that "closes" within a blink never opened: no portal and no zenity.
                 if paths.is_empty() && took < std::time::Duration::from_millis(150) {
                     self.manual_path = Some((purpose, String::new()));
@@ -677,17 +741,25 @@ impl CutawayApp {
                     self.picked(ctx, purpose, paths);
                 }
             }
-            JobOutput::Models { models, replace, sources } => self.add_models(models, replace, &sources),
+            JobOutput::Models {
+                models,
+                replace,
+                sources,
+            } => self.add_models(models, replace, &sources),
             JobOutput::Session { path, scene } => {
                 self.scene = scene;
-                self.session_path = Some(path.clone());
+                // A restored autosave has no file of its own: Save asks where to put it.
+                let restored = path == self.recovery.session_path();
+                self.session_path = (!restored).then(|| path.clone());
                 self.selected_model = None;
                 self.selected_cutter = 0;
                 self.history.clear();
                 self.viewport.reset_editor();
                 self.last_committed = self.scene.clone();
                 self.recovery.mark_dirty();
-                self.recent.add(&path);
+                if !restored {
+                    self.recent.add(&path);
+                }
                 self.say(format!(
                     "Opened {}: {} models, {} cutters",
                     path.display(),
@@ -699,7 +771,11 @@ impl CutawayApp {
                 self.viewport.editor.store_index(mesh, index);
                 self.say(format!(
                     "{} is ready: drag on it to start a cutter",
-                    self.scene.models.get(model).map(|m| m.name.as_str()).unwrap_or("the target")
+                    self.scene
+                        .models
+                        .get(model)
+                        .map(|m| m.name.as_str())
+                        .unwrap_or("the target")
                 ));
             }
             JobOutput::Preview { geometry, key, ms } => {
@@ -727,7 +803,9 @@ impl CutawayApp {
                 self.viewport.preview = None;
                 self.viewport.preview_key = None;
                 self.record("remove all cut geometry", before);
-                self.say(format!("Applied the cuts to {count} models; new cuts reach the structures behind"));
+                self.say(format!(
+                    "Applied the cuts to {count} models; new cuts reach the structures behind"
+                ));
             }
             JobOutput::Done(message) => self.say(message),
         }
@@ -782,20 +860,30 @@ impl CutawayApp {
 
     fn load_session(&mut self, ctx: &egui::Context, path: &Path) {
         let path = path.to_path_buf();
-        self.spawn(ctx, format!("Opening {}", file_label(&path)), move |progress| {
-            let scene = super::bridge::load_session(&path, progress)?;
-            Ok(JobOutput::Session { path, scene })
-        });
+        self.spawn(
+            ctx,
+            format!("Opening {}", file_label(&path)),
+            move |progress| {
+                let scene = super::bridge::load_session(&path, progress)?;
+                Ok(JobOutput::Session { path, scene })
+            },
+        );
     }
 
     fn export_image_to(&mut self, ctx: &egui::Context, path: PathBuf) {
         let scene = self.scene.clone();
         let preview = self.mode == Mode::Preview;
         let settings = self.export_image.clone();
-        self.spawn(ctx, format!("Exporting {}×{} image", settings.width, settings.height), move |progress| {
-            progress.set_message(file_label(&path));
-            Ok(JobOutput::Done(super::bridge::export_image(&scene, preview, &settings, &path)?))
-        });
+        self.spawn(
+            ctx,
+            format!("Exporting {}×{} image", settings.width, settings.height),
+            move |progress| {
+                progress.set_message(file_label(&path));
+                Ok(JobOutput::Done(super::bridge::export_image(
+                    &scene, preview, &settings, &path,
+                )?))
+            },
+        );
     }
 
     fn export_meshes_to(&mut self, ctx: &egui::Context, dir: PathBuf) {
@@ -803,7 +891,11 @@ impl CutawayApp {
         let settings = self.export_meshes.clone();
         self.spawn(ctx, "Exporting cut meshes", move |progress| {
             let files = super::bridge::export_meshes(&scene, &settings, &dir, progress)?;
-            Ok(JobOutput::Done(format!("Exported {} meshes to {}", files.len(), dir.display())))
+            Ok(JobOutput::Done(format!(
+                "Exported {} meshes to {}",
+                files.len(),
+                dir.display()
+            )))
         });
     }
 
@@ -813,7 +905,9 @@ impl CutawayApp {
             return;
         }
         let key = super::bridge::PreviewKey::of(&self.scene);
-        if self.viewport.preview_key.as_ref() == Some(&key) || self.jobs.iter().any(|j| j.label == PREVIEW_JOB) {
+        if self.viewport.preview_key.as_ref() == Some(&key)
+            || self.jobs.iter().any(|j| j.label == PREVIEW_JOB)
+        {
             return;
         }
         let scene = self.scene.clone();
@@ -865,7 +959,11 @@ impl CutawayApp {
             if i.consume_shortcut(&open) {
                 actions.push(Action::Dialog(Purpose::LoadModel));
             }
-            for (key, mode) in [(Key::F1, Mode::Camera), (Key::F2, Mode::Edit), (Key::F3, Mode::Preview)] {
+            for (key, mode) in [
+                (Key::F1, Mode::Camera),
+                (Key::F2, Mode::Edit),
+                (Key::F3, Mode::Preview),
+            ] {
                 if i.consume_key(Modifiers::NONE, key) {
                     actions.push(Action::SetMode(mode));
                 }
@@ -875,7 +973,13 @@ impl CutawayApp {
     }
 
     fn dropped_files(&mut self, ctx: &egui::Context) -> Vec<Action> {
-        let dropped: Vec<PathBuf> = ctx.input(|i| i.raw.dropped_files.iter().filter_map(|f| f.path.clone()).collect());
+        let dropped: Vec<PathBuf> = ctx.input(|i| {
+            i.raw
+                .dropped_files
+                .iter()
+                .filter_map(|f| f.path.clone())
+                .collect()
+        });
         if dropped.is_empty() {
             return Vec::new();
         }
@@ -893,7 +997,11 @@ impl CutawayApp {
             egui::Modal::new(egui::Id::new("cutaway-recovery")).show(ctx, |ui| {
                 ui.heading("Restore the previous session?");
                 ui.label("Cutaway did not exit cleanly last time. An autosaved session was found:");
-                ui.label(egui::RichText::new(path.display().to_string()).monospace().small());
+                ui.label(
+                    egui::RichText::new(path.display().to_string())
+                        .monospace()
+                        .small(),
+                );
                 ui.add_space(8.0);
                 ui.horizontal(|ui| {
                     if ui.button("Restore").clicked() {
@@ -967,12 +1075,16 @@ impl eframe::App for CutawayApp {
                     actions.extend(super::cutter_panel::cutter_panel_ui(ui, self));
                 });
             });
-        egui::CentralPanel::default().frame(egui::Frame::NONE).show(ui, |ui| {
-            egui::Frame::NONE.inner_margin(egui::Margin::symmetric(8, 4)).show(ui, |ui| {
-                super::key_reference::key_reference_ui(ui, self.mode);
+        egui::CentralPanel::default()
+            .frame(egui::Frame::NONE)
+            .show(ui, |ui| {
+                egui::Frame::NONE
+                    .inner_margin(egui::Margin::symmetric(8, 4))
+                    .show(ui, |ui| {
+                        super::key_reference::key_reference_ui(ui, self.mode);
+                    });
+                actions.extend(super::viewport::viewport_ui(ui, self));
             });
-            actions.extend(super::viewport::viewport_ui(ui, self));
-        });
 
         actions.extend(self.dialogs_ui(&ctx));
         if let Some((purpose, path)) = self.pending_manual.take() {
@@ -990,7 +1102,10 @@ impl eframe::App for CutawayApp {
         self.update_preview(&ctx);
 
         if !self.exiting && self.recovery.due() {
-            let result = self.recovery.begin_save().and_then(|path| super::bridge::save_session(self, &path));
+            let result = self
+                .recovery
+                .begin_save()
+                .and_then(|path| super::bridge::save_session(self, &path));
             if let Err(e) = result {
                 self.complain(&e.context("autosave"));
             }
@@ -1020,7 +1135,10 @@ impl CutawayApp {
         if self.mode != Mode::Preview {
             self.status.cut_triangles = 0;
         }
-        self.status.selected = self.selected_model.and_then(|i| self.scene.models.get(i)).map(|m| m.name.clone());
+        self.status.selected = self
+            .selected_model
+            .and_then(|i| self.scene.models.get(i))
+            .map(|m| m.name.clone());
     }
 }
 
@@ -1037,15 +1155,22 @@ const PREVIEW_JOB: &str = "Cutting (Preview)";
 
 /// True for `.json` files (sessions); everything else is a mesh or a directory.
 pub fn is_session_path(path: &Path) -> bool {
-    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"))
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
 }
 
 fn with_extension(path: PathBuf, ext: &str) -> PathBuf {
-    if path.extension().is_some() { path } else { path.with_extension(ext) }
+    if path.extension().is_some() {
+        path
+    } else {
+        path.with_extension(ext)
+    }
 }
 
 fn file_label(path: &Path) -> String {
-    path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| path.display().to_string())
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| path.display().to_string())
 }
 
 /// Mesh extensions the loaders understand.
@@ -1062,13 +1187,17 @@ pub fn load_paths(paths: &[PathBuf], progress: &Progress) -> anyhow::Result<Vec<
                 .filter_map(|e| e.ok().map(|e| e.path()))
                 .filter(|p| {
                     p.is_file()
-                        && p.extension()
-                            .is_some_and(|e| MESH_EXTENSIONS.iter().any(|m| e.eq_ignore_ascii_case(m)))
+                        && p.extension().is_some_and(|e| {
+                            MESH_EXTENSIONS.iter().any(|m| e.eq_ignore_ascii_case(m))
+                        })
                 })
                 .collect();
             entries.sort();
             if entries.is_empty() {
-                anyhow::bail!("{}: no .obj, .stl, .ply or .vtk files in this folder", path.display());
+                anyhow::bail!(
+                    "{}: no .obj, .stl, .ply or .vtk files in this folder",
+                    path.display()
+                );
             }
             files.extend(entries);
         } else {
@@ -1106,7 +1235,9 @@ pub fn model_colour(name: &str, index: usize) -> [f32; 3] {
             return colour;
         }
     }
-    let bones = ["bone", "femur", "tibia", "fibula", "patella", "skull", "vertebra", "mandible", "pelvis"];
+    let bones = [
+        "bone", "femur", "tibia", "fibula", "patella", "skull", "vertebra", "mandible", "pelvis",
+    ];
     if bones.iter().any(|b| lower.contains(b)) {
         // Ivory with a slight variation so adjacent bones stay distinguishable.
         let t = (index as f32 * 0.618_034).fract() * 0.08;
@@ -1135,7 +1266,11 @@ fn hsv_to_rgb(h: f32, s: f32, v: f32) -> [f32; 3] {
 /// A small mesh for tests of the window's state handling: a closed box.
 pub fn box_mesh(min: DVec3, max: DVec3) -> Mesh {
     let p = |x: bool, y: bool, z: bool| {
-        DVec3::new(if x { max.x } else { min.x }, if y { max.y } else { min.y }, if z { max.z } else { min.z })
+        DVec3::new(
+            if x { max.x } else { min.x },
+            if y { max.y } else { min.y },
+            if z { max.z } else { min.z },
+        )
     };
     let positions = vec![
         p(false, false, false),
@@ -1161,7 +1296,10 @@ pub fn box_mesh(min: DVec3, max: DVec3) -> Mesh {
         [3, 0, 4],
         [3, 4, 7],
     ];
-    Mesh { positions, triangles }
+    Mesh {
+        positions,
+        triangles,
+    }
 }
 
 #[cfg(test)]
@@ -1174,7 +1312,12 @@ mod tests {
         for i in 0..colours.len() {
             for j in (i + 1)..colours.len() {
                 let d: f32 = (0..3).map(|k| (colours[i][k] - colours[j][k]).abs()).sum();
-                assert!(d > 0.05, "{i} and {j} look alike: {:?} {:?}", colours[i], colours[j]);
+                assert!(
+                    d > 0.05,
+                    "{i} and {j} look alike: {:?} {:?}",
+                    colours[i],
+                    colours[j]
+                );
             }
         }
         assert_eq!(model_colour("knee_skin 1", 3), [0.93, 0.74, 0.62]);

@@ -106,7 +106,13 @@ impl EditorSlot {
 
     /// Makes an editor for `target` ready when its index exists. Returns `Err(())` when the index
     /// must first be built in the background (the caller starts that job).
-    pub fn ensure(&mut self, scene: &Scene, target: usize, viewport: DVec2, init: &super::app::CutterInit) -> Result<(), ()> {
+    pub fn ensure(
+        &mut self,
+        scene: &Scene,
+        target: usize,
+        viewport: DVec2,
+        init: &super::app::CutterInit,
+    ) -> Result<(), ()> {
         if self.active.as_ref().is_some_and(|a| a.target == target) {
             return Ok(());
         }
@@ -136,8 +142,16 @@ impl EditorSlot {
     }
 
     /// Opens scene cutter `index` for editing (its target's index must exist or be cheap).
-    pub fn edit_existing(&mut self, scene: &Scene, index: usize, viewport: DVec2, init: &super::app::CutterInit) -> bool {
-        let Some(c) = scene.cutters.get(index) else { return false };
+    pub fn edit_existing(
+        &mut self,
+        scene: &Scene,
+        index: usize,
+        viewport: DVec2,
+        init: &super::app::CutterInit,
+    ) -> bool {
+        let Some(c) = scene.cutters.get(index) else {
+            return false;
+        };
         self.active = None;
         if self.ensure(scene, c.target, viewport, init).is_err() {
             return false;
@@ -145,9 +159,15 @@ impl EditorSlot {
         let cutter = Cutter {
             kind: editor_kind(c.kind),
             smooth: c.smooth,
-            planes: c.planes.iter().map(|p| BoundedPlane::from_corners(*p)).collect(),
+            planes: c
+                .planes
+                .iter()
+                .map(|p| BoundedPlane::from_corners(*p))
+                .collect(),
         };
-        let Some(active) = &mut self.active else { return false };
+        let Some(active) = &mut self.active else {
+            return false;
+        };
         if !active.editor.set_cutter(Some(cutter)) {
             self.active = None;
             return false;
@@ -158,7 +178,9 @@ impl EditorSlot {
 
     /// Feeds one event to the active editor. Returns true when the scene's cutters changed.
     pub fn handle(&mut self, scene: &mut Scene, viewport: DVec2, event: EditorEvent) -> bool {
-        let Some(active) = &mut self.active else { return false };
+        let Some(active) = &mut self.active else {
+            return false;
+        };
         if !active.editor.is_dragging() {
             active.editor.set_view(scene.camera, viewport);
         }
@@ -173,7 +195,9 @@ impl EditorSlot {
 
     /// Applies Initialization-tab settings to the active editor; true when the cutter changed.
     pub fn apply_settings(&mut self, scene: &mut Scene, init: &super::app::CutterInit) -> bool {
-        let Some(active) = &mut self.active else { return false };
+        let Some(active) = &mut self.active else {
+            return false;
+        };
         active.editor.set_kind(editor_kind(init.kind));
         active.editor.set_spacing(init.spacing);
         if active.editor.set_smooth(init.smooth) {
@@ -185,7 +209,9 @@ impl EditorSlot {
 
     /// Copies the editor's cutter into `scene.cutters` (adding, updating or removing the entry).
     fn mirror_into(&mut self, scene: &mut Scene) {
-        let Some(active) = &mut self.active else { return };
+        let Some(active) = &mut self.active else {
+            return;
+        };
         match (active.editor.cutter(), active.cutter) {
             (Some(c), Some(i)) if i < scene.cutters.len() => {
                 let entry = &mut scene.cutters[i];
@@ -213,19 +239,35 @@ impl EditorSlot {
 
     /// After an undo/redo replaced the scene: make the editor show what the scene now holds.
     pub fn sync_from_scene(&mut self, scene: &Scene) {
-        let Some(active) = &mut self.active else { return };
-        if scene.models.get(active.target).is_none_or(|m| !std::ptr::eq(Arc::as_ptr(&m.mesh), active.editor.target())) {
+        let Some(active) = &mut self.active else {
+            return;
+        };
+        if scene
+            .models
+            .get(active.target)
+            .is_none_or(|m| !std::ptr::eq(Arc::as_ptr(&m.mesh), active.editor.target()))
+        {
             self.active = None;
             return;
         }
-        let wanted = active.cutter.and_then(|i| scene.cutters.get(i)).filter(|c| c.target == active.target);
-        let current: Option<Vec<[glam::DVec3; 4]>> = active.editor.cutter().map(|c| c.planes.iter().map(BoundedPlane::corners).collect());
+        let wanted = active
+            .cutter
+            .and_then(|i| scene.cutters.get(i))
+            .filter(|c| c.target == active.target);
+        let current: Option<Vec<[glam::DVec3; 4]>> = active
+            .editor
+            .cutter()
+            .map(|c| c.planes.iter().map(BoundedPlane::corners).collect());
         match wanted {
             Some(c) if current.as_ref() != Some(&c.planes) => {
                 let cutter = Cutter {
                     kind: editor_kind(c.kind),
                     smooth: c.smooth,
-                    planes: c.planes.iter().map(|p| BoundedPlane::from_corners(*p)).collect(),
+                    planes: c
+                        .planes
+                        .iter()
+                        .map(|p| BoundedPlane::from_corners(*p))
+                        .collect(),
                 };
                 if !active.editor.set_cutter(Some(cutter)) {
                     self.active = None;
@@ -252,8 +294,14 @@ impl EditorSlot {
 }
 
 /// Builds the spatial index of a target mesh in a worker.
-pub fn build_index(mesh: &Arc<Mesh>, progress: &Progress) -> anyhow::Result<(Weak<Mesh>, Arc<SpatialIndex>)> {
-    progress.set_message(format!("{} triangles", super::status_bar::grouped(mesh.triangle_count())));
+pub fn build_index(
+    mesh: &Arc<Mesh>,
+    progress: &Progress,
+) -> anyhow::Result<(Weak<Mesh>, Arc<SpatialIndex>)> {
+    progress.set_message(format!(
+        "{} triangles",
+        super::status_bar::grouped(mesh.triangle_count())
+    ));
     let index = Arc::new(SpatialIndex::build(mesh));
     progress.check()?;
     Ok((Arc::downgrade(mesh), index))
@@ -287,7 +335,12 @@ impl egui_wgpu::CallbackTrait for ViewCallback {
         Vec::new()
     }
 
-    fn paint(&self, _info: egui::PaintCallbackInfo, pass: &mut wgpu::RenderPass<'static>, resources: &egui_wgpu::CallbackResources) {
+    fn paint(
+        &self,
+        _info: egui::PaintCallbackInfo,
+        pass: &mut wgpu::RenderPass<'static>,
+        resources: &egui_wgpu::CallbackResources,
+    ) {
         if let Some(renderer) = resources.get::<Renderer>() {
             renderer.paint(pass);
         }
@@ -316,7 +369,11 @@ pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
             .map(|(i, c)| CutterOverlay {
                 planes: c.planes.clone(),
                 surface: None,
-                highlighted_plane: if Some(i) == active { app.viewport.editor.highlighted_plane() } else { None },
+                highlighted_plane: if Some(i) == active {
+                    app.viewport.editor.highlighted_plane()
+                } else {
+                    None
+                },
                 active: Some(i) == active,
             })
             .collect();
@@ -335,9 +392,15 @@ pub fn paint_scene(ui: &mut egui::Ui, rect: egui::Rect, app: &CutawayApp) -> boo
         ((rect.height() * ppp).round() as u32).max(1),
     ];
     let inputs = frame_inputs(app, size);
-    ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ViewCallback { inputs }));
+    ui.painter().add(egui_wgpu::Callback::new_paint_callback(
+        rect,
+        ViewCallback { inputs },
+    ));
     if let Some(strip) = app.viewport.editor.init_strip() {
-        let viewport = DVec2::new(rect.width() as f64 * ppp as f64, rect.height() as f64 * ppp as f64);
+        let viewport = DVec2::new(
+            rect.width() as f64 * ppp as f64,
+            rect.height() as f64 * ppp as f64,
+        );
         let pts: Vec<egui::Pos2> = strip
             .iter()
             .filter_map(|p| app.scene.camera.project(viewport, *p))
@@ -360,7 +423,10 @@ pub fn default_scene_models(progress: &Progress) -> anyhow::Result<Vec<crate::io
     // knee is read from the source tree's `assets/knee` folder.
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/knee");
     if !dir.is_dir() {
-        anyhow::bail!("{}: the default scene is missing from this build; use File ▸ Load Model", dir.display());
+        anyhow::bail!(
+            "{}: the default scene is missing from this build; use File ▸ Load Model",
+            dir.display()
+        );
     }
     super::app::load_paths(&[dir], progress)
 }
@@ -372,37 +438,70 @@ pub fn save_session(app: &CutawayApp, path: &Path) -> anyhow::Result<()> {
 
 /// Reads a session (models included) in a worker.
 pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
-    progress.set_message(path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default());
+    progress.set_message(
+        path.file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default(),
+    );
     let mut files = 0u64;
     let scene = crate::session::load_with(path, |file| {
         progress.check()?;
         files += 1;
-        progress.set_message(file.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default());
+        progress.set_message(
+            file.file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+        );
         crate::io::load_models(file)
     })?;
-    scene.sanity_check().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    scene
+        .sanity_check()
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     Ok(scene)
 }
 
 /// Renders `scene` headless into a PNG at `path` (worker thread).
-pub fn export_image(scene: &Scene, preview: bool, settings: &super::menus::ExportImageSettings, path: &Path) -> anyhow::Result<String> {
+pub fn export_image(
+    scene: &Scene,
+    preview: bool,
+    settings: &super::menus::ExportImageSettings,
+    path: &Path,
+) -> anyhow::Result<String> {
     let mut options = crate::render::RenderPngOptions::new(settings.width, settings.height);
     options.transparent_background = settings.transparent;
-    options.mode = Some(if preview { ViewMode::Preview } else { ViewMode::Camera });
-    let image = crate::render::render_png(scene, &options).map_err(|e| anyhow::anyhow!("{}: {e:#}", path.display()))?;
+    options.mode = Some(if preview {
+        ViewMode::Preview
+    } else {
+        ViewMode::Camera
+    });
+    let image = crate::render::render_png(scene, &options)
+        .map_err(|e| anyhow::anyhow!("{}: {e:#}", path.display()))?;
     let tmp = path.with_extension("png.tmp");
     image
         .save_with_format(&tmp, image::ImageFormat::Png)
         .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     std::fs::rename(&tmp, path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    Ok(format!("Exported {}×{} image to {}", settings.width, settings.height, path.display()))
+    Ok(format!(
+        "Exported {}×{} image to {}",
+        settings.width,
+        settings.height,
+        path.display()
+    ))
 }
 
 /// Cuts every cutter out of its target (cutters on one model one after another, as Preview does)
 /// and writes the chosen parts into `dir`; returns the files written.
-pub fn export_meshes(scene: &Scene, settings: &super::menus::ExportMeshSettings, dir: &Path, progress: &Progress) -> anyhow::Result<Vec<PathBuf>> {
+pub fn export_meshes(
+    scene: &Scene,
+    settings: &super::menus::ExportMeshSettings,
+    dir: &Path,
+    progress: &Progress,
+) -> anyhow::Result<Vec<PathBuf>> {
     if scene.cutters.is_empty() {
-        anyhow::bail!("{}: there are no cutters to export (make one in Edit mode first)", dir.display());
+        anyhow::bail!(
+            "{}: there are no cutters to export (make one in Edit mode first)",
+            dir.display()
+        );
     }
     std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))?;
     let ext = settings.format.extension();
@@ -411,11 +510,19 @@ pub fn export_meshes(scene: &Scene, settings: &super::menus::ExportMeshSettings,
     for (i, cutter) in scene.cutters.iter().enumerate() {
         progress.check()?;
         progress.set(i as u64, scene.cutters.len() as u64);
-        let Some(model) = scene.models.get(cutter.target) else { continue };
-        let target = current[cutter.target].take().unwrap_or_else(|| (*model.mesh).clone());
+        let Some(model) = scene.models.get(cutter.target) else {
+            continue;
+        };
+        let target = current[cutter.target]
+            .take()
+            .unwrap_or_else(|| (*model.mesh).clone());
         let parts = cutaway_geometry::cut(&target, &cutter.planes, true);
         let stem = sanitize(&format!("cutter{}_{}", i + 1, model.name));
-        for (wanted, part, mesh) in [(settings.kept, "kept", &parts.kept), (settings.walls, "walls", &parts.walls), (settings.removed, "removed", &parts.removed)] {
+        for (wanted, part, mesh) in [
+            (settings.kept, "kept", &parts.kept),
+            (settings.walls, "walls", &parts.walls),
+            (settings.removed, "removed", &parts.removed),
+        ] {
             if wanted && !mesh.triangles.is_empty() {
                 let path = dir.join(format!("{stem}_{part}.{ext}"));
                 crate::io::write_mesh(&path, mesh)?;
@@ -429,7 +536,15 @@ pub fn export_meshes(scene: &Scene, settings: &super::menus::ExportMeshSettings,
 
 /// File-name-safe version of a model name.
 fn sanitize(name: &str) -> String {
-    name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' }).collect()
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
 }
 
 /// The cut parts Preview shows, computed in a worker; returns them with the wall time in ms.
@@ -441,19 +556,30 @@ pub fn compute_preview(scene: &Scene) -> (Arc<PreviewGeometry>, f64) {
 
 /// "Remove All Cut Geometry": each cut model replaced by its kept part closed by the walls, so
 /// later cuts reach the structures behind. Returns (model index, new mesh) pairs.
-pub fn apply_all_cuts(scene: &Scene, progress: &Progress) -> anyhow::Result<Vec<(usize, Arc<Mesh>)>> {
+pub fn apply_all_cuts(
+    scene: &Scene,
+    progress: &Progress,
+) -> anyhow::Result<Vec<(usize, Arc<Mesh>)>> {
     let mut current: Vec<Option<Mesh>> = vec![None; scene.models.len()];
     for (i, cutter) in scene.cutters.iter().enumerate() {
         progress.check()?;
         progress.set(i as u64, scene.cutters.len() as u64);
-        let Some(model) = scene.models.get(cutter.target) else { continue };
-        let target = current[cutter.target].take().unwrap_or_else(|| (*model.mesh).clone());
+        let Some(model) = scene.models.get(cutter.target) else {
+            continue;
+        };
+        let target = current[cutter.target]
+            .take()
+            .unwrap_or_else(|| (*model.mesh).clone());
         let parts = cutaway_geometry::cut(&target, &cutter.planes, true);
         let mut closed = parts.kept;
         closed.append(&parts.walls);
         current[cutter.target] = Some(closed);
     }
-    Ok(current.into_iter().enumerate().filter_map(|(i, m)| m.map(|m| (i, Arc::new(m)))).collect())
+    Ok(current
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, m)| m.map(|m| (i, Arc::new(m))))
+        .collect())
 }
 
 /// Preview's dependency on the scene: the cutters and their targets' meshes. When this changes,
@@ -468,7 +594,12 @@ impl PreviewKey {
     pub fn of(scene: &Scene) -> PreviewKey {
         PreviewKey {
             cutters: scene.cutters.clone(),
-            targets: scene.cutters.iter().filter_map(|c| scene.models.get(c.target)).map(|m| Arc::as_ptr(&m.mesh) as usize).collect(),
+            targets: scene
+                .cutters
+                .iter()
+                .filter_map(|c| scene.models.get(c.target))
+                .map(|m| Arc::as_ptr(&m.mesh) as usize)
+                .collect(),
         }
     }
 }

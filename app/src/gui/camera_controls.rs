@@ -162,8 +162,14 @@ mod tests {
         let mut c = camera();
         orbit(&mut c, DVec2::new(120.0, -40.0));
         assert!((c.distance() - 300.0).abs() < 1e-9);
-        assert!(c.forward().dot(DVec3::Y) < 0.99, "the view must have turned");
-        assert!(c.up.dot(c.forward()).abs() < 1e-9, "up stays orthogonal to the view");
+        assert!(
+            c.forward().dot(DVec3::Y) < 0.99,
+            "the view must have turned"
+        );
+        assert!(
+            c.up.dot(c.forward()).abs() < 1e-9,
+            "up stays orthogonal to the view"
+        );
         // Dragging back undoes a pure horizontal orbit.
         let mut d = camera();
         orbit(&mut d, DVec2::new(50.0, 0.0));
@@ -178,7 +184,10 @@ mod tests {
         let before = c.project(vp, DVec3::ZERO).unwrap();
         pan(&mut c, DVec2::new(30.0, -12.0), vp);
         let after = c.project(vp, DVec3::ZERO).unwrap();
-        assert!((after - before - DVec2::new(30.0, -12.0)).length() < 1e-6, "{before} -> {after}");
+        assert!(
+            (after - before - DVec2::new(30.0, -12.0)).length() < 1e-6,
+            "{before} -> {after}"
+        );
     }
 
     #[test]

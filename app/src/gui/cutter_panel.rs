@@ -18,7 +18,10 @@ pub fn cutter_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     ui.heading("Cutter");
     ui.separator();
     ui.horizontal(|ui| {
-        for (tab, label) in [(CutterTab::Initialization, "Initialization"), (CutterTab::Visualization, "Visualization")] {
+        for (tab, label) in [
+            (CutterTab::Initialization, "Initialization"),
+            (CutterTab::Visualization, "Visualization"),
+        ] {
             if ui.selectable_label(app.cutter_tab == tab, label).clicked() {
                 app.cutter_tab = tab;
             }
@@ -34,44 +37,74 @@ pub fn cutter_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
 
 fn initialization_ui(ui: &mut egui::Ui, app: &mut CutawayApp, actions: &mut Vec<Action>) {
     let before = app.cutter_init.clone();
-    egui::Grid::new("cutter-init").num_columns(2).spacing([10.0, 6.0]).show(ui, |ui| {
-        ui.label("Segment spacing ω").on_hover_text("A new box starts every ω·δ of extrusion (δ = scene size / 2000)");
-        ui.add(egui::Slider::new(&mut app.cutter_init.spacing, 2.0..=200.0).logarithmic(true).fixed_decimals(0));
-        ui.end_row();
-        ui.label("Type");
-        ui.horizontal(|ui| {
-            let kind = &mut app.cutter_init.kind;
-            let freeform = *kind != CutKind::Wedge;
-            if ui.selectable_label(freeform, "Freeform").on_hover_text("Paint-roller path; hold Shift for a straight path").clicked() {
-                *kind = CutKind::Curving;
-            }
-            if ui.selectable_label(!freeform, "Wedge").on_hover_text("All planes share one top edge").clicked() {
-                *kind = CutKind::Wedge;
-            }
+    egui::Grid::new("cutter-init")
+        .num_columns(2)
+        .spacing([10.0, 6.0])
+        .show(ui, |ui| {
+            ui.label("Segment spacing ω")
+                .on_hover_text("A new box starts every ω·δ of extrusion (δ = scene size / 2000)");
+            ui.add(
+                egui::Slider::new(&mut app.cutter_init.spacing, 2.0..=200.0)
+                    .logarithmic(true)
+                    .fixed_decimals(0),
+            );
+            ui.end_row();
+            ui.label("Type");
+            ui.horizontal(|ui| {
+                let kind = &mut app.cutter_init.kind;
+                let freeform = *kind != CutKind::Wedge;
+                if ui
+                    .selectable_label(freeform, "Freeform")
+                    .on_hover_text("Paint-roller path; hold Shift for a straight path")
+                    .clicked()
+                {
+                    *kind = CutKind::Curving;
+                }
+                if ui
+                    .selectable_label(!freeform, "Wedge")
+                    .on_hover_text("All planes share one top edge")
+                    .clicked()
+                {
+                    *kind = CutKind::Wedge;
+                }
+            });
+            ui.end_row();
+            ui.label("Smoothing");
+            ui.checkbox(&mut app.cutter_init.smooth, "Rounded (subdivided) cutter");
+            ui.end_row();
         });
-        ui.end_row();
-        ui.label("Smoothing");
-        ui.checkbox(&mut app.cutter_init.smooth, "Rounded (subdivided) cutter");
-        ui.end_row();
-    });
     if app.cutter_init != before {
         app.cutter_settings_changed();
     }
     ui.add_space(4.0);
-    if ui.button("New Cutter").on_hover_text("Keep the current cutter; the next drag in Edit mode starts another").clicked() {
+    if ui
+        .button("New Cutter")
+        .on_hover_text("Keep the current cutter; the next drag in Edit mode starts another")
+        .clicked()
+    {
         actions.push(Action::NewCutter);
     }
-    let target = app.selected_model.and_then(|i| app.scene.models.get(i)).map(|m| m.name.clone());
+    let target = app
+        .selected_model
+        .and_then(|i| app.scene.models.get(i))
+        .map(|m| m.name.clone());
     let hint = match target {
         Some(name) => format!("Target: {name}. In Edit mode, drag on it to start a cutter."),
-        None => "Double-click a model to make it the target, then drag on it in Edit mode.".to_string(),
+        None => {
+            "Double-click a model to make it the target, then drag on it in Edit mode.".to_string()
+        }
     };
     ui.label(egui::RichText::new(hint).weak().small());
 }
 
 fn visualization_ui(ui: &mut egui::Ui, app: &mut CutawayApp, actions: &mut Vec<Action>) {
     if app.scene.cutters.is_empty() {
-        ui.label(egui::RichText::new("No cutters yet. Switch to Edit mode and drag on the target model.").weak());
+        ui.label(
+            egui::RichText::new(
+                "No cutters yet. Switch to Edit mode and drag on the target model.",
+            )
+            .weak(),
+        );
         return;
     }
     if app.selected_cutter >= app.scene.cutters.len() {
@@ -79,20 +112,36 @@ fn visualization_ui(ui: &mut egui::Ui, app: &mut CutawayApp, actions: &mut Vec<A
     }
     ui.horizontal_wrapped(|ui| {
         for i in 0..app.scene.cutters.len() {
-            if ui.selectable_label(app.selected_cutter == i, format!("Cutter {}", i + 1)).clicked() {
+            if ui
+                .selectable_label(app.selected_cutter == i, format!("Cutter {}", i + 1))
+                .clicked()
+            {
                 app.selected_cutter = i;
             }
         }
     });
     let i = app.selected_cutter;
-    let target_name = app.scene.models.get(app.scene.cutters[i].target).map(|m| m.name.clone()).unwrap_or_default();
+    let target_name = app
+        .scene
+        .models
+        .get(app.scene.cutters[i].target)
+        .map(|m| m.name.clone())
+        .unwrap_or_default();
     ui.horizontal(|ui| {
-        ui.label(egui::RichText::new(format!("cuts {target_name}")).weak().small());
+        ui.label(
+            egui::RichText::new(format!("cuts {target_name}"))
+                .weak()
+                .small(),
+        );
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
             if ui.small_button("Delete").clicked() {
                 actions.push(Action::RemoveCutter(i));
             }
-            if ui.small_button("Edit Cutter").on_hover_text("Open this cutter in the editor").clicked() {
+            if ui
+                .small_button("Edit Cutter")
+                .on_hover_text("Open this cutter in the editor")
+                .clicked()
+            {
                 actions.push(Action::EditCutter(i));
             }
         });
@@ -105,7 +154,12 @@ fn visualization_ui(ui: &mut egui::Ui, app: &mut CutawayApp, actions: &mut Vec<A
     ui.horizontal(|ui| {
         ui.checkbox(&mut transparency, "Transparency");
         let mut opacity = views.transparency.unwrap_or(0.25);
-        ui.add_enabled(transparency, egui::Slider::new(&mut opacity, 0.0..=1.0).text("opacity").fixed_decimals(2));
+        ui.add_enabled(
+            transparency,
+            egui::Slider::new(&mut opacity, 0.0..=1.0)
+                .text("opacity")
+                .fixed_decimals(2),
+        );
         views.transparency = transparency.then_some(opacity);
     });
 
@@ -121,12 +175,24 @@ fn visualization_ui(ui: &mut egui::Ui, app: &mut CutawayApp, actions: &mut Vec<A
 /// A checkbox with count and width for ribbons or slices.
 fn sub_cutter_ui(ui: &mut egui::Ui, label: &str, value: &mut Option<SubCutterView>) {
     let mut on = value.is_some();
-    let mut v = value.unwrap_or(SubCutterView { count: 5, width: 2.0 });
+    let mut v = value.unwrap_or(SubCutterView {
+        count: 5,
+        width: 2.0,
+    });
     ui.horizontal(|ui| {
         ui.checkbox(&mut on, label);
         ui.add_enabled_ui(on, |ui| {
-            ui.add(egui::DragValue::new(&mut v.count).range(1..=50).prefix("count "));
-            ui.add(egui::DragValue::new(&mut v.width).range(0.01..=1000.0).speed(0.05).prefix("width "));
+            ui.add(
+                egui::DragValue::new(&mut v.count)
+                    .range(1..=50)
+                    .prefix("count "),
+            );
+            ui.add(
+                egui::DragValue::new(&mut v.width)
+                    .range(0.01..=1000.0)
+                    .speed(0.05)
+                    .prefix("width "),
+            );
         });
     });
     *value = on.then_some(v);

@@ -30,7 +30,10 @@ impl Progress {
     /// Records `done` of `total` units.
     pub fn set(&self, done: u64, total: u64) {
         self.total.store(total, Ordering::Relaxed);
-        self.done.store(if total > 0 { done.min(total) } else { done }, Ordering::Relaxed);
+        self.done.store(
+            if total > 0 { done.min(total) } else { done },
+            Ordering::Relaxed,
+        );
     }
 
     /// Sets the line shown under the bar.
@@ -48,7 +51,8 @@ impl Progress {
     /// Fraction done in 0..=1, or `None` when the total is unknown.
     pub fn fraction(&self) -> Option<f32> {
         let total = self.total.load(Ordering::Relaxed);
-        (total > 0).then(|| (self.done.load(Ordering::Relaxed) as f64 / total as f64).min(1.0) as f32)
+        (total > 0)
+            .then(|| (self.done.load(Ordering::Relaxed) as f64 / total as f64).min(1.0) as f32)
     }
 
     /// Asks the worker to stop at its next check.
@@ -107,12 +111,14 @@ impl<T: Send + 'static> Job<T> {
         let worker_progress = progress.clone();
         let label = label.into();
         let thread_name = format!("cutaway job: {label}");
-        let spawned = std::thread::Builder::new().name(thread_name).spawn(move || {
-            let result = work(&worker_progress);
-            // The receiver is gone when the UI dropped the job (cancel or exit): nothing to do.
-            let _ = tx.send(result);
-            repaint();
-        });
+        let spawned = std::thread::Builder::new()
+            .name(thread_name)
+            .spawn(move || {
+                let result = work(&worker_progress);
+                // The receiver is gone when the UI dropped the job (cancel or exit): nothing to do.
+                let _ = tx.send(result);
+                repaint();
+            });
         if let Err(e) = spawned {
             let (tx, rx2) = channel();
             let _ = tx.send(Err(anyhow::anyhow!("could not start a worker thread: {e}")));
@@ -146,7 +152,10 @@ impl<T: Send + 'static> Job<T> {
             Err(TryRecvError::Empty) => None,
             Err(TryRecvError::Disconnected) => {
                 self.running = false;
-                Some(Err(anyhow::anyhow!("{}: the worker stopped unexpectedly", self.label)))
+                Some(Err(anyhow::anyhow!(
+                    "{}: the worker stopped unexpectedly",
+                    self.label
+                )))
             }
         }
     }
@@ -177,7 +186,9 @@ impl<T: Send + 'static> Job<T> {
 /// of jobs whose Cancel button was pressed.
 pub fn progress_window_ui<T: Send + 'static>(ctx: &egui::Context, jobs: &[Job<T>]) -> Vec<usize> {
     let mut cancel = Vec::new();
-    let shown: Vec<usize> = (0..jobs.len()).filter(|&i| jobs[i].wants_progress_window()).collect();
+    let shown: Vec<usize> = (0..jobs.len())
+        .filter(|&i| jobs[i].wants_progress_window())
+        .collect();
     if shown.is_empty() {
         return cancel;
     }
@@ -198,7 +209,13 @@ pub fn progress_window_ui<T: Send + 'static>(ctx: &egui::Context, jobs: &[Job<T>
                 ui.add(bar.desired_width(300.0));
                 ui.horizontal(|ui| {
                     let message = job.progress.message();
-                    ui.label(egui::RichText::new(format!("{message}  ({:.1} s)", job.started.elapsed().as_secs_f32())).weak());
+                    ui.label(
+                        egui::RichText::new(format!(
+                            "{message}  ({:.1} s)",
+                            job.started.elapsed().as_secs_f32()
+                        ))
+                        .weak(),
+                    );
                     ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
                         if job.progress.is_cancelled() {
                             ui.label("cancelling…");
@@ -221,11 +238,15 @@ mod tests {
 
     #[test]
     fn a_job_delivers_its_result_and_progress() {
-        let mut job = Job::spawn("sum", || {}, |p| {
-            p.set(1, 2);
-            p.set_message("half");
-            Ok(21 * 2)
-        });
+        let mut job = Job::spawn(
+            "sum",
+            || {},
+            |p| {
+                p.set(1, 2);
+                p.set_message("half");
+                Ok(21 * 2)
+            },
+        );
         let deadline = Instant::now() + Duration::from_secs(10);
         let result = loop {
             if let Some(r) = job.poll() {
@@ -243,15 +264,19 @@ mod tests {
     #[test]
     fn cancel_stops_a_worker_between_steps() {
         let (go_tx, go_rx) = channel::<()>();
-        let job = Job::spawn("steps", || {}, move |p| {
-            let _ = go_rx.recv();
-            for i in 0..1000u64 {
-                p.check()?;
-                p.set(i, 1000);
-                std::thread::sleep(Duration::from_millis(1));
-            }
-            Ok(())
-        });
+        let job = Job::spawn(
+            "steps",
+            || {},
+            move |p| {
+                let _ = go_rx.recv();
+                for i in 0..1000u64 {
+                    p.check()?;
+                    p.set(i, 1000);
+                    std::thread::sleep(Duration::from_millis(1));
+                }
+                Ok(())
+            },
+        );
         job.progress.cancel();
         go_tx.send(()).unwrap();
         let err = job.wait(Duration::from_secs(10)).unwrap_err();
@@ -260,7 +285,11 @@ mod tests {
 
     #[test]
     fn a_panicking_worker_reports_an_error() {
-        let job: Job<()> = Job::spawn("boom", || {}, |_| panic!("worker panic (expected in this test)"));
+        let job: Job<()> = Job::spawn(
+            "boom",
+            || {},
+            |_| panic!("worker panic (expected in this test)"),
+        );
         let mut job = job;
         let deadline = Instant::now() + Duration::from_secs(10);
         loop {

@@ -38,7 +38,13 @@ pub fn key_reference_ui(ui: &mut egui::Ui, mode: Mode) {
         ui.label(egui::RichText::new(format!("{} mode", mode.label())).strong());
         ui.add_space(8.0);
         for (keys, action) in commands(mode) {
-            ui.label(egui::RichText::new(*keys).monospace().small().background_color(ui.visuals().faint_bg_color).strong());
+            ui.label(
+                egui::RichText::new(*keys)
+                    .monospace()
+                    .small()
+                    .background_color(ui.visuals().faint_bg_color)
+                    .strong(),
+            );
             ui.label(egui::RichText::new(*action).small().weak());
             ui.add_space(10.0);
         }

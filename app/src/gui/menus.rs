@@ -133,8 +133,15 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
                     ui.label(egui::RichText::new("(none)").weak());
                 }
                 for path in app.recent.paths.clone() {
-                    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-                    if ui.button(name).on_hover_text(path.display().to_string()).clicked() {
+                    let name = path
+                        .file_name()
+                        .map(|n| n.to_string_lossy().into_owned())
+                        .unwrap_or_default();
+                    if ui
+                        .button(name)
+                        .on_hover_text(path.display().to_string())
+                        .clicked()
+                    {
                         actions.push(Action::Open(vec![path]));
                     }
                 }
@@ -145,25 +152,52 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
             }
         });
         ui.menu_button("Edit", |ui| {
-            let undo = app.history.undo_label().map(|l| format!("Undo {l}")).unwrap_or_else(|| "Undo".into());
-            if ui.add_enabled(app.history.undo_label().is_some(), egui::Button::new(undo).shortcut_text("Ctrl+Z")).clicked() {
+            let undo = app
+                .history
+                .undo_label()
+                .map(|l| format!("Undo {l}"))
+                .unwrap_or_else(|| "Undo".into());
+            if ui
+                .add_enabled(
+                    app.history.undo_label().is_some(),
+                    egui::Button::new(undo).shortcut_text("Ctrl+Z"),
+                )
+                .clicked()
+            {
                 actions.push(Action::Undo);
             }
-            let redo = app.history.redo_label().map(|l| format!("Redo {l}")).unwrap_or_else(|| "Redo".into());
+            let redo = app
+                .history
+                .redo_label()
+                .map(|l| format!("Redo {l}"))
+                .unwrap_or_else(|| "Redo".into());
             if ui
-                .add_enabled(app.history.redo_label().is_some(), egui::Button::new(redo).shortcut_text("Ctrl+Shift+Z"))
+                .add_enabled(
+                    app.history.redo_label().is_some(),
+                    egui::Button::new(redo).shortcut_text("Ctrl+Shift+Z"),
+                )
                 .clicked()
             {
                 actions.push(Action::Redo);
             }
         });
         ui.menu_button("Rendering", |ui| {
-            if ui.checkbox(&mut app.scene.render.antialias, "Anti-aliasing").changed() {
+            if ui
+                .checkbox(&mut app.scene.render.antialias, "Anti-aliasing")
+                .changed()
+            {
                 app.recovery.mark_dirty();
             }
             let mut stereo = app.scene.render.stereo == Stereo::Anaglyph;
-            if ui.checkbox(&mut stereo, "Red/Blue Stereoscopic 3D").changed() {
-                app.scene.render.stereo = if stereo { Stereo::Anaglyph } else { Stereo::None };
+            if ui
+                .checkbox(&mut stereo, "Red/Blue Stereoscopic 3D")
+                .changed()
+            {
+                app.scene.render.stereo = if stereo {
+                    Stereo::Anaglyph
+                } else {
+                    Stereo::None
+                };
                 app.recovery.mark_dirty();
             }
             ui.separator();
@@ -179,7 +213,12 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
                 }
             });
             ui.horizontal(|ui| {
-                for (name, rgb) in [("White", [1.0, 1.0, 1.0]), ("Grey", [0.80, 0.83, 0.87]), ("Dark", [0.12, 0.13, 0.15]), ("Black", [0.0, 0.0, 0.0])] {
+                for (name, rgb) in [
+                    ("White", [1.0, 1.0, 1.0]),
+                    ("Grey", [0.80, 0.83, 0.87]),
+                    ("Dark", [0.12, 0.13, 0.15]),
+                    ("Black", [0.0, 0.0, 0.0]),
+                ] {
                     if ui.small_button(name).clicked() {
                         app.scene.render.background = [rgb[0], rgb[1], rgb[2], 1.0];
                         app.recovery.mark_dirty();
@@ -191,7 +230,11 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
             if ui.button("Reset Camera").clicked() {
                 actions.push(Action::ResetCamera);
             }
-            let label = if app.cutters_hidden { "Show Current Cutters" } else { "Hide Current Cutters" };
+            let label = if app.cutters_hidden {
+                "Show Current Cutters"
+            } else {
+                "Hide Current Cutters"
+            };
             if ui.button(label).clicked() {
                 actions.push(Action::ToggleCutters);
             }
@@ -201,7 +244,11 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         });
         ui.menu_button("Debug", |ui| {
             if app.viewport.recording.is_none() {
-                if ui.button("Record Gesture").on_hover_text("Record Edit-mode input as a cutaway-gesture/1 file").clicked() {
+                if ui
+                    .button("Record Gesture")
+                    .on_hover_text("Record Edit-mode input as a cutaway-gesture/1 file")
+                    .clicked()
+                {
                     actions.push(Action::StartGesture);
                 }
             } else if ui.button("Stop Recording and Save Gesture…").clicked() {
@@ -228,25 +275,60 @@ pub fn toolbar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
             (Mode::Edit, "Paint and edit cutters on the target (F2)"),
             (Mode::Preview, "Execute the cuts and show the cutaway (F3)"),
         ] {
-            let button = egui::Button::selectable(app.mode == mode, egui::RichText::new(mode.label()).strong()).min_size(egui::vec2(78.0, 24.0));
+            let button = egui::Button::selectable(
+                app.mode == mode,
+                egui::RichText::new(mode.label()).strong(),
+            )
+            .min_size(egui::vec2(78.0, 24.0));
             if ui.add(button).on_hover_text(tip).clicked() {
                 actions.push(Action::SetMode(mode));
             }
         }
-        let scalpel = egui::Button::selectable(app.mode == Mode::Scalpel, egui::RichText::new("Scalpel").strong()).min_size(egui::vec2(78.0, 24.0));
-        let tip = if super::bridge::SCALPEL_AVAILABLE { "Progressive scalpel cut along a path" } else { "The scalpel is not part of this build" };
-        if ui.add_enabled(super::bridge::SCALPEL_AVAILABLE, scalpel).on_hover_text(tip).on_disabled_hover_text(tip).clicked() {
+        let scalpel = egui::Button::selectable(
+            app.mode == Mode::Scalpel,
+            egui::RichText::new("Scalpel").strong(),
+        )
+        .min_size(egui::vec2(78.0, 24.0));
+        let tip = if super::bridge::SCALPEL_AVAILABLE {
+            "Progressive scalpel cut along a path"
+        } else {
+            "The scalpel is not part of this build"
+        };
+        if ui
+            .add_enabled(super::bridge::SCALPEL_AVAILABLE, scalpel)
+            .on_hover_text(tip)
+            .on_disabled_hover_text(tip)
+            .clicked()
+        {
             actions.push(Action::SetMode(Mode::Scalpel));
         }
         ui.separator();
-        if ui.add_enabled(app.history.undo_label().is_some(), egui::Button::new("⟲ Undo")).on_hover_text("Ctrl+Z").clicked() {
+        if ui
+            .add_enabled(
+                app.history.undo_label().is_some(),
+                egui::Button::new("⟲ Undo"),
+            )
+            .on_hover_text("Ctrl+Z")
+            .clicked()
+        {
             actions.push(Action::Undo);
         }
-        if ui.add_enabled(app.history.redo_label().is_some(), egui::Button::new("⟳ Redo")).on_hover_text("Ctrl+Shift+Z").clicked() {
+        if ui
+            .add_enabled(
+                app.history.redo_label().is_some(),
+                egui::Button::new("⟳ Redo"),
+            )
+            .on_hover_text("Ctrl+Shift+Z")
+            .clicked()
+        {
             actions.push(Action::Redo);
         }
         ui.separator();
-        if ui.button("Frame All").on_hover_text("Reset the camera to show every visible model").clicked() {
+        if ui
+            .button("Frame All")
+            .on_hover_text("Reset the camera to show every visible model")
+            .clicked()
+        {
             actions.push(Action::ResetCamera);
         }
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
@@ -274,14 +356,24 @@ fn export_image_window_ui(ctx: &egui::Context, app: &mut CutawayApp) -> Vec<Acti
         .resizable(false)
         .show(ctx, |ui| {
             let s = &mut app.export_image;
-            egui::Grid::new("export-image-grid").num_columns(2).show(ui, |ui| {
-                ui.label("Width");
-                ui.add(egui::DragValue::new(&mut s.width).range(1..=MAX_EXPORT_SIDE).suffix(" px"));
-                ui.end_row();
-                ui.label("Height");
-                ui.add(egui::DragValue::new(&mut s.height).range(1..=MAX_EXPORT_SIDE).suffix(" px"));
-                ui.end_row();
-            });
+            egui::Grid::new("export-image-grid")
+                .num_columns(2)
+                .show(ui, |ui| {
+                    ui.label("Width");
+                    ui.add(
+                        egui::DragValue::new(&mut s.width)
+                            .range(1..=MAX_EXPORT_SIDE)
+                            .suffix(" px"),
+                    );
+                    ui.end_row();
+                    ui.label("Height");
+                    ui.add(
+                        egui::DragValue::new(&mut s.height)
+                            .range(1..=MAX_EXPORT_SIDE)
+                            .suffix(" px"),
+                    );
+                    ui.end_row();
+                });
             ui.horizontal_wrapped(|ui| {
                 let (vw, vh) = (view.x.max(1.0) as u32, view.y.max(1.0) as u32);
                 for (name, w, h) in [
@@ -335,7 +427,13 @@ fn export_meshes_window_ui(ctx: &egui::Context, app: &mut CutawayApp) -> Vec<Act
                 }
             });
             ui.add_space(6.0);
-            if ui.add_enabled(s.kept || s.walls || s.removed, egui::Button::new("Choose Folder…")).clicked() {
+            if ui
+                .add_enabled(
+                    s.kept || s.walls || s.removed,
+                    egui::Button::new("Choose Folder…"),
+                )
+                .clicked()
+            {
                 actions.push(Action::Dialog(Purpose::ExportMeshes));
                 s.open = false;
             }

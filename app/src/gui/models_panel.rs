@@ -25,7 +25,10 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     });
     ui.separator();
     if app.scene.models.is_empty() {
-        ui.label(egui::RichText::new("No models. File ▸ Load Model, or drop files on the window.").weak());
+        ui.label(
+            egui::RichText::new("No models. File ▸ Load Model, or drop files on the window.")
+                .weak(),
+        );
         return actions;
     }
     egui::ScrollArea::vertical()
@@ -43,12 +46,24 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
                         app.begin_edit(if v { "show model" } else { "hide model" });
                         app.scene.models[index].visible = v;
                     }
-                    let (rect, _) = ui.allocate_exact_size(egui::vec2(14.0, 14.0), egui::Sense::hover());
+                    let (rect, _) =
+                        ui.allocate_exact_size(egui::vec2(14.0, 14.0), egui::Sense::hover());
                     ui.painter().rect_filled(rect, 3.0, colour32(colour));
-                    let text = if visible { egui::RichText::new(&name) } else { egui::RichText::new(&name).weak() };
-                    let row = ui.add(egui::Button::selectable(selected, text).min_size(egui::vec2(ui.available_width(), 0.0)));
+                    let text = if visible {
+                        egui::RichText::new(&name)
+                    } else {
+                        egui::RichText::new(&name).weak()
+                    };
+                    let row = ui.add(
+                        egui::Button::selectable(selected, text)
+                            .min_size(egui::vec2(ui.available_width(), 0.0)),
+                    );
                     if row.clicked() {
-                        actions.push(Action::SelectModel(if selected { None } else { Some(index) }));
+                        actions.push(Action::SelectModel(if selected {
+                            None
+                        } else {
+                            Some(index)
+                        }));
                     }
                     if row.double_clicked() {
                         actions.push(Action::FocusModel(index));
@@ -66,52 +81,79 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         });
     ui.separator();
     let Some(index) = app.selected_model.filter(|&i| i < app.scene.models.len()) else {
-        ui.label(egui::RichText::new("Select a model (or double-click it in the view) to edit it.").weak());
+        ui.label(
+            egui::RichText::new("Select a model (or double-click it in the view) to edit it.")
+                .weak(),
+        );
         return actions;
     };
     let name = app.scene.models[index].name.clone();
     ui.label(egui::RichText::new(&name).strong());
     let triangles = app.scene.models[index].mesh.triangle_count();
-    ui.label(egui::RichText::new(format!("{} triangles", super::status_bar::grouped(triangles))).weak().small());
-    egui::Grid::new("model-properties").num_columns(2).spacing([10.0, 6.0]).show(ui, |ui| {
-        ui.label("Colour");
-        let mut srgb = srgb_u8(app.scene.models[index].color);
-        if ui.color_edit_button_srgb(&mut srgb).changed() {
-            app.begin_edit("colour change");
-            app.scene.models[index].color = srgb.map(|c| c as f32 / 255.0);
-        }
-        ui.end_row();
-
-        ui.label("Render");
-        ui.horizontal(|ui| {
-            let style = app.scene.models[index].style;
-            for (s, label) in [(ModelStyle::Solid, "Solid"), (ModelStyle::Wireframe, "Wireframe")] {
-                if ui.selectable_label(style == s, label).clicked() && style != s {
-                    app.begin_edit(if s == ModelStyle::Solid { "solid style" } else { "wireframe style" });
-                    app.scene.models[index].style = s;
-                }
+    ui.label(
+        egui::RichText::new(format!(
+            "{} triangles",
+            super::status_bar::grouped(triangles)
+        ))
+        .weak()
+        .small(),
+    );
+    egui::Grid::new("model-properties")
+        .num_columns(2)
+        .spacing([10.0, 6.0])
+        .show(ui, |ui| {
+            ui.label("Colour");
+            let mut srgb = srgb_u8(app.scene.models[index].color);
+            if ui.color_edit_button_srgb(&mut srgb).changed() {
+                app.begin_edit("colour change");
+                app.scene.models[index].color = srgb.map(|c| c as f32 / 255.0);
             }
+            ui.end_row();
+
+            ui.label("Render");
+            ui.horizontal(|ui| {
+                let style = app.scene.models[index].style;
+                for (s, label) in [
+                    (ModelStyle::Solid, "Solid"),
+                    (ModelStyle::Wireframe, "Wireframe"),
+                ] {
+                    if ui.selectable_label(style == s, label).clicked() && style != s {
+                        app.begin_edit(if s == ModelStyle::Solid {
+                            "solid style"
+                        } else {
+                            "wireframe style"
+                        });
+                        app.scene.models[index].style = s;
+                    }
+                }
+            });
+            ui.end_row();
+
+            ui.label("Opacity");
+            let mut opacity = app.scene.models[index].opacity;
+            if ui
+                .add(egui::Slider::new(&mut opacity, 0.0..=1.0).fixed_decimals(2))
+                .changed()
+            {
+                app.begin_edit("opacity change");
+                app.scene.models[index].opacity = opacity;
+            }
+            ui.end_row();
+
+            ui.label("Visible");
+            let mut visible = app.scene.models[index].visible;
+            if ui.checkbox(&mut visible, "").changed() {
+                app.begin_edit(if visible { "show model" } else { "hide model" });
+                app.scene.models[index].visible = visible;
+            }
+            ui.end_row();
         });
-        ui.end_row();
-
-        ui.label("Opacity");
-        let mut opacity = app.scene.models[index].opacity;
-        if ui.add(egui::Slider::new(&mut opacity, 0.0..=1.0).fixed_decimals(2)).changed() {
-            app.begin_edit("opacity change");
-            app.scene.models[index].opacity = opacity;
-        }
-        ui.end_row();
-
-        ui.label("Visible");
-        let mut visible = app.scene.models[index].visible;
-        if ui.checkbox(&mut visible, "").changed() {
-            app.begin_edit(if visible { "show model" } else { "hide model" });
-            app.scene.models[index].visible = visible;
-        }
-        ui.end_row();
-    });
     ui.horizontal(|ui| {
-        if ui.button("Centre").on_hover_text("Centre the camera on this model").clicked() {
+        if ui
+            .button("Centre")
+            .on_hover_text("Centre the camera on this model")
+            .clicked()
+        {
             actions.push(Action::FocusModel(index));
         }
         if ui.button("Remove").clicked() {

@@ -166,7 +166,8 @@ mod tests {
     use super::*;
 
     fn temp_dir(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("cutaway-recovery-{name}-{}", std::process::id()));
+        let dir =
+            std::env::temp_dir().join(format!("cutaway-recovery-{name}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         dir
     }
@@ -209,7 +210,10 @@ mod tests {
         list.add(Path::new("/data/m5.obj"));
         assert_eq!(list.paths.len(), RECENT_LIMIT);
         assert_eq!(list.paths[0], PathBuf::from("/data/m5.obj"));
-        assert_eq!(list.paths.iter().filter(|p| p.ends_with("m5.obj")).count(), 1);
+        assert_eq!(
+            list.paths.iter().filter(|p| p.ends_with("m5.obj")).count(),
+            1
+        );
         let again = RecentFiles::load(&dir);
         assert_eq!(again.paths, list.paths);
         let _ = std::fs::remove_dir_all(&dir);

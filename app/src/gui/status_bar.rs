@@ -45,7 +45,11 @@ pub fn status_bar_ui(ui: &mut egui::Ui, info: &StatusInfo) {
         if info.visible_triangles == info.triangles {
             ui.label(format!("{} triangles", grouped(info.triangles)));
         } else {
-            ui.label(format!("{} of {} triangles shown", grouped(info.visible_triangles), grouped(info.triangles)));
+            ui.label(format!(
+                "{} of {} triangles shown",
+                grouped(info.visible_triangles),
+                grouped(info.triangles)
+            ));
         }
         ui.separator();
         ui.label(format!("{} cutters", info.cutters));
@@ -63,7 +67,11 @@ pub fn status_bar_ui(ui: &mut egui::Ui, info: &StatusInfo) {
             ui.label(format!("target: {name}"));
         }
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-            ui.label(egui::RichText::new(format!("{:.0} ms/frame", info.frame_ms)).weak().small());
+            ui.label(
+                egui::RichText::new(format!("{:.0} ms/frame", info.frame_ms))
+                    .weak()
+                    .small(),
+            );
             ui.separator();
             let text = egui::RichText::new(&info.message);
             if info.is_error {

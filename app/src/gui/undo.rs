@@ -71,7 +71,9 @@ impl<S> History<S> {
 
     /// Records that the editor made an undoable edit.
     pub fn push_editor(&mut self, label: impl Into<String>) {
-        self.push(Step::Editor { label: label.into() });
+        self.push(Step::Editor {
+            label: label.into(),
+        });
     }
 
     fn push(&mut self, step: Step<S>) {

@@ -134,7 +134,13 @@ fn wheel_notches(ui: &egui::Ui) -> (f64, bool) {
         let mut notches = 0.0;
         let mut ctrl = false;
         for event in &i.events {
-            if let egui::Event::MouseWheel { unit, delta, modifiers, .. } = event {
+            if let egui::Event::MouseWheel {
+                unit,
+                delta,
+                modifiers,
+                ..
+            } = event
+            {
                 let d = delta.y as f64;
                 notches += match unit {
                     egui::MouseWheelUnit::Point => d / 50.0,
@@ -156,12 +162,22 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     let ppp = ui.ctx().pixels_per_point() as f64;
     // Allocate.
     let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click_and_drag());
-    app.viewport.size_px = DVec2::new((rect.width() as f64 * ppp).round(), (rect.height() as f64 * ppp).round());
-    let to_px = |p: egui::Pos2| DVec2::new((p.x - rect.left()) as f64 * ppp, (p.y - rect.top()) as f64 * ppp);
+    app.viewport.size_px = DVec2::new(
+        (rect.width() as f64 * ppp).round(),
+        (rect.height() as f64 * ppp).round(),
+    );
+    let to_px = |p: egui::Pos2| {
+        DVec2::new(
+            (p.x - rect.left()) as f64 * ppp,
+            (p.y - rect.top()) as f64 * ppp,
+        )
+    };
 
     // Interact.
     match app.mode {
-        Mode::Camera | Mode::Preview | Mode::Scalpel => camera_input(ui, &response, app, ppp, to_px, &mut actions),
+        Mode::Camera | Mode::Preview | Mode::Scalpel => {
+            camera_input(ui, &response, app, ppp, to_px, &mut actions)
+        }
         Mode::Edit => edit_input(ui, &response, app, to_px),
     }
     response.context_menu(|ui| {
@@ -224,7 +240,9 @@ fn camera_input(
         let delta_px = DVec2::new(delta.x as f64 * ppp, delta.y as f64 * ppp);
         match app.viewport.drag {
             Some(Drag::Orbit) => camera_controls::orbit(&mut app.scene.camera, delta_px),
-            Some(Drag::Pan) => camera_controls::pan(&mut app.scene.camera, delta_px, app.viewport.size_px),
+            Some(Drag::Pan) => {
+                camera_controls::pan(&mut app.scene.camera, delta_px, app.viewport.size_px)
+            }
             _ => {}
         }
     }
@@ -242,7 +260,10 @@ fn camera_input(
         && let Some(pos) = response.interact_pointer_pos()
     {
         let pixel = to_px(pos);
-        let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, pixel);
+        let ray = app
+            .scene
+            .camera
+            .ray_through_pixel(app.viewport.size_px, pixel);
         match pick(&app.scene, &ray) {
             Some((index, _t)) => actions.push(Action::FocusModel(index)),
             None => actions.push(Action::SelectModel(None)),
@@ -266,9 +287,16 @@ pub fn pick(scene: &crate::scene::Scene, ray: &cutter::Ray) -> Option<(usize, f6
     best
 }
 
-fn edit_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, to_px: impl Fn(egui::Pos2) -> DVec2) {
+fn edit_input(
+    ui: &egui::Ui,
+    response: &egui::Response,
+    app: &mut CutawayApp,
+    to_px: impl Fn(egui::Pos2) -> DVec2,
+) {
     let (shift, ctrl) = ui.input(|i| (i.modifiers.shift, i.modifiers.command || i.modifiers.ctrl));
-    let Some(pos) = ui.input(|i| i.pointer.latest_pos()) else { return };
+    let Some(pos) = ui.input(|i| i.pointer.latest_pos()) else {
+        return;
+    };
     let px = to_px(pos);
     let inside = response.rect.contains(pos);
     let pressed = ui.input(|i| i.pointer.primary_pressed()) && inside && response.hovered();
@@ -286,7 +314,12 @@ fn edit_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, to
             return;
         };
         app.selected_model = Some(target);
-        if app.viewport.editor.ensure(&app.scene, target, app.viewport.size_px, &app.cutter_init).is_err() {
+        if app
+            .viewport
+            .editor
+            .ensure(&app.scene, target, app.viewport.size_px, &app.cutter_init)
+            .is_err()
+        {
             app.start_index_job(ui.ctx(), target);
             return;
         }
@@ -297,21 +330,53 @@ fn edit_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, to
     if pressed {
         app.viewport.drag = Some(Drag::Editor);
         app.viewport.last_pointer = Some(px);
-        changed |= app.viewport.editor_event(&mut app.scene, EditorEvent::Press { x: px.x, y: px.y, shift, ctrl });
-    } else if app.viewport.last_pointer != Some(px) && (inside || app.viewport.drag == Some(Drag::Editor)) {
+        changed |= app.viewport.editor_event(
+            &mut app.scene,
+            EditorEvent::Press {
+                x: px.x,
+                y: px.y,
+                shift,
+                ctrl,
+            },
+        );
+    } else if app.viewport.last_pointer != Some(px)
+        && (inside || app.viewport.drag == Some(Drag::Editor))
+    {
         app.viewport.last_pointer = Some(px);
-        changed |= app.viewport.editor_event(&mut app.scene, EditorEvent::Move { x: px.x, y: px.y, shift, ctrl });
+        changed |= app.viewport.editor_event(
+            &mut app.scene,
+            EditorEvent::Move {
+                x: px.x,
+                y: px.y,
+                shift,
+                ctrl,
+            },
+        );
     }
     if released && app.viewport.drag == Some(Drag::Editor) {
         app.viewport.drag = None;
-        changed |= app.viewport.editor_event(&mut app.scene, EditorEvent::Release { x: px.x, y: px.y, shift, ctrl });
+        changed |= app.viewport.editor_event(
+            &mut app.scene,
+            EditorEvent::Release {
+                x: px.x,
+                y: px.y,
+                shift,
+                ctrl,
+            },
+        );
     }
     if response.hovered() {
         let (notches, wheel_ctrl) = wheel_notches(ui);
         if notches != 0.0 {
-            changed |= app
-                .viewport
-                .editor_event(&mut app.scene, EditorEvent::Wheel { x: px.x, y: px.y, delta: notches, ctrl: wheel_ctrl });
+            changed |= app.viewport.editor_event(
+                &mut app.scene,
+                EditorEvent::Wheel {
+                    x: px.x,
+                    y: px.y,
+                    delta: notches,
+                    ctrl: wheel_ctrl,
+                },
+            );
         }
         let keys: Vec<Key> = ui.input(|i| {
             let mut keys = Vec::new();
@@ -324,7 +389,14 @@ fn edit_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, to
             keys
         });
         for key in keys {
-            changed |= app.viewport.editor_event(&mut app.scene, EditorEvent::Key { key, x: px.x, y: px.y });
+            changed |= app.viewport.editor_event(
+                &mut app.scene,
+                EditorEvent::Key {
+                    key,
+                    x: px.x,
+                    y: px.y,
+                },
+            );
         }
         let icon = match app.viewport.editor.cursor {
             cutter::CursorHint::Default => egui::CursorIcon::Default,
@@ -357,11 +429,19 @@ pub fn context_menu_ui(ui: &mut egui::Ui, app: &CutawayApp) -> Vec<Action> {
     if ui.button("Remove All Cut Geometry").clicked() {
         actions.push(Action::RemoveAllCutGeometry);
     }
-    let label = if app.cutters_hidden { "Show Current Cutters" } else { "Hide Current Cutters" };
+    let label = if app.cutters_hidden {
+        "Show Current Cutters"
+    } else {
+        "Hide Current Cutters"
+    };
     if ui.button(label).clicked() {
         actions.push(Action::ToggleCutters);
     }
-    if ui.button("New Cutter").on_hover_text("Keep the current cutter; the next drag starts another").clicked() {
+    if ui
+        .button("New Cutter")
+        .on_hover_text("Keep the current cutter; the next drag starts another")
+        .clicked()
+    {
         actions.push(Action::NewCutter);
     }
     ui.separator();
@@ -408,7 +488,8 @@ mod tests {
         };
         let mut state = ViewportState::new(None);
         state.recording = Some(recording.clone());
-        let path = std::env::temp_dir().join(format!("cutaway-gesture-{}.json", std::process::id()));
+        let path =
+            std::env::temp_dir().join(format!("cutaway-gesture-{}.json", std::process::id()));
         assert_eq!(state.save_recording(&path).unwrap(), 5);
         assert!(state.recording.is_none());
         let back = crate::gesture::read_gesture(&path).unwrap();
@@ -422,10 +503,22 @@ mod tests {
     fn pick_finds_the_front_model() {
         use std::sync::Arc;
         let mut scene = crate::scene::Scene::default();
-        let near = super::super::app::box_mesh(DVec3::new(-1.0, -1.0, -1.0), DVec3::new(1.0, 1.0, 1.0));
-        let far = super::super::app::box_mesh(DVec3::new(-1.0, 5.0, -1.0), DVec3::new(1.0, 7.0, 1.0));
-        scene.models.push(crate::scene::SceneModel::new("far", "far.obj", Arc::new(far), [1.0; 3]));
-        scene.models.push(crate::scene::SceneModel::new("near", "near.obj", Arc::new(near), [1.0; 3]));
+        let near =
+            super::super::app::box_mesh(DVec3::new(-1.0, -1.0, -1.0), DVec3::new(1.0, 1.0, 1.0));
+        let far =
+            super::super::app::box_mesh(DVec3::new(-1.0, 5.0, -1.0), DVec3::new(1.0, 7.0, 1.0));
+        scene.models.push(crate::scene::SceneModel::new(
+            "far",
+            "far.obj",
+            Arc::new(far),
+            [1.0; 3],
+        ));
+        scene.models.push(crate::scene::SceneModel::new(
+            "near",
+            "near.obj",
+            Arc::new(near),
+            [1.0; 3],
+        ));
         let ray = cutter::Ray {
             origin: DVec3::new(0.1, -10.0, 0.2),
             direction: DVec3::Y,

@@ -172,7 +172,7 @@ fn read_parts_inner(path: &Path) -> anyhow::Result<Vec<Part>> {
     })?;
     let metadata = std::fs::metadata(path)?;
     if metadata.is_dir() {
-        anyhow::bail!("is a directory, not a {} file", format.name());
+        anyhow::bail!("is a directory, not a mesh file");
     }
     let bytes = std::fs::read(path)?;
     let stem = file_stem(path);

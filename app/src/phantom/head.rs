@@ -53,7 +53,7 @@ pub fn skull(p: DVec3) -> f64 {
 pub fn brain(p: DVec3) -> f64 {
     let cerebrum = ellipsoid(p, v(0.0, 5.0, 25.0), v(57.0, 76.0, 63.0));
     let fissure = ellipsoid(p, v(0.0, 2.0, 82.0), v(2.5, 84.0, 44.0));
-    let cerebellum = ellipsoid(p, v(0.0, 36.0, -22.0), v(40.0, 24.0, 18.0));
+    let cerebellum = ellipsoid(p, v(0.0, 34.0, -16.0), v(36.0, 22.0, 15.0));
     let stem = tapered_capsule(p, v(0.0, 18.0, -10.0), v(0.0, 20.0, -105.0), 12.0, 10.0);
     let mut f = ssub(cerebrum, fissure, 2.0);
     f = smin(f, cerebellum, 8.0);
@@ -82,10 +82,10 @@ pub fn scene() -> SceneSpec {
     SceneSpec {
         name: "head",
         parts: vec![
-            part("skin", None, skin, [-86.0, -112.0, -190.0], [86.0, 102.0, 108.0], 2.0),
-            part("skull", Some("skin"), skull, [-70.0, -85.0, -66.0], [70.0, 95.0, 102.0], 1.4),
-            part("brain", Some("skin"), brain, [-60.0, -75.0, -118.0], [60.0, 83.0, 90.0], 1.6),
-            part("ventricles", Some("brain"), ventricles, [-30.0, -40.0, -15.0], [30.0, 45.0, 45.0], 0.9),
+            part("skin", None, skin, [-86.0, -112.0, -190.0], [86.0, 102.0, 108.0], 4.2),
+            part("skull", Some("skin"), skull, [-70.0, -85.0, -66.0], [70.0, 95.0, 102.0], 2.6),
+            part("brain", Some("skin"), brain, [-60.0, -75.0, -118.0], [60.0, 83.0, 90.0], 2.6),
+            part("ventricles", Some("brain"), ventricles, [-30.0, -40.0, -15.0], [30.0, 45.0, 45.0], 1.5),
         ],
     }
 }

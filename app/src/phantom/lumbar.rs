@@ -84,9 +84,9 @@ pub fn scene() -> SceneSpec {
     SceneSpec {
         name: "lumbar",
         parts: vec![
-            part("vertebra_l4", vertebra_l4, [-46.0, -20.0, L4 - 28.0], [46.0, 70.0, L4 + 25.0], 0.8),
-            part("disc_l4_l5", disc_l4_l5, [-27.0, -20.0, 13.0], [27.0, 20.0, 27.0], 0.7),
-            part("vertebra_l5", vertebra_l5, [-46.0, -20.0, L5 - 28.0], [46.0, 70.0, L5 + 25.0], 0.8),
+            part("vertebra_l4", vertebra_l4, [-46.0, -20.0, L4 - 28.0], [46.0, 70.0, L4 + 25.0], 1.3),
+            part("disc_l4_l5", disc_l4_l5, [-27.0, -20.0, 13.0], [27.0, 20.0, 27.0], 1.3),
+            part("vertebra_l5", vertebra_l5, [-46.0, -20.0, L5 - 28.0], [46.0, 70.0, L5 + 25.0], 1.3),
         ],
     }
 }

@@ -268,6 +268,9 @@ pub fn render_with(
             .iter()
             .map(|c| super::CutterOverlay {
                 planes: c.planes.clone(),
+                surface: c
+                    .smooth
+                    .then(|| Arc::new(crate::cutaway_geometry::cutter_mesh(c))),
                 ..Default::default()
             })
             .collect();

@@ -47,15 +47,19 @@ pub fn side(a: DVec3, b: DVec3, c: DVec3, x: DVec3) -> i8 {
 pub fn classify(mesh: &DynMesh, t: u32, bary: DVec3, tau: f64) -> CutPoint {
     let tri = mesh.triangles[t as usize];
     let w = [bary.x, bary.y, bary.z];
-    let (kmax, wmax) = (0..3)
-        .map(|k| (k, w[k]))
-        .fold((0, f64::NEG_INFINITY), |acc, x| if x.1 > acc.1 { x } else { acc });
+    let (kmax, wmax) =
+        (0..3).map(|k| (k, w[k])).fold(
+            (0, f64::NEG_INFINITY),
+            |acc, x| if x.1 > acc.1 { x } else { acc },
+        );
     if wmax >= 1.0 - tau {
         return CutPoint::Vertex(tri[kmax]);
     }
-    let (kmin, wmin) = (0..3)
-        .map(|k| (k, w[k]))
-        .fold((0, f64::INFINITY), |acc, x| if x.1 < acc.1 { x } else { acc });
+    let (kmin, wmin) =
+        (0..3).map(|k| (k, w[k])).fold(
+            (0, f64::INFINITY),
+            |acc, x| if x.1 < acc.1 { x } else { acc },
+        );
     let p = mesh.pos(tri[0]) * w[0] + mesh.pos(tri[1]) * w[1] + mesh.pos(tri[2]) * w[2];
     if wmin < tau * 0.5 {
         // On the edge opposite corner kmin: half-edge from corner kmin+1 to kmin+2.
@@ -152,7 +156,10 @@ mod tests {
     #[test]
     fn vertex_before_edge() {
         let m = tri_mesh();
-        assert_eq!(classify(&m, 0, DVec3::new(0.9, 0.05, 0.05), 0.25), CutPoint::Vertex(0));
+        assert_eq!(
+            classify(&m, 0, DVec3::new(0.9, 0.05, 0.05), 0.25),
+            CutPoint::Vertex(0)
+        );
         match classify(&m, 0, DVec3::new(0.5, 0.48, 0.02), 0.25) {
             CutPoint::Edge { h, point } => {
                 assert_eq!(h, 0);
@@ -180,7 +187,10 @@ mod tests {
     #[test]
     fn closest_point_regions() {
         let (a, b, c) = (DVec3::ZERO, DVec3::X, DVec3::Y);
-        assert_eq!(closest_on_triangle(DVec3::new(-1., -1., 0.), a, b, c), DVec3::X);
+        assert_eq!(
+            closest_on_triangle(DVec3::new(-1., -1., 0.), a, b, c),
+            DVec3::X
+        );
         let w = closest_on_triangle(DVec3::new(0.25, 0.25, 5.0), a, b, c);
         assert!((w - DVec3::new(0.5, 0.25, 0.25)).length() < 1e-12);
     }

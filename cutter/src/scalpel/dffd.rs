@@ -42,13 +42,24 @@ impl Default for OpenOptions {
 /// Support radius as a multiple of the width.
 const SUPPORT: f64 = 3.0;
 
-/// Display positions of `scalpel`'s mesh opened at tool time `now` (seconds).
+/// Display positions of `scalpel`'s mesh opened at tool time `now` (seconds): the rest
+/// positions with [`open_displacements`] applied.
 pub fn open_positions(scalpel: &Scalpel, options: &OpenOptions, now: f64) -> Vec<DVec3> {
+    let mut out = scalpel.dyn_mesh().positions().to_vec();
+    for (v, p) in open_displacements(scalpel, options, now) {
+        out[v as usize] = p;
+    }
+    out
+}
+
+/// The vertices the opening moves at tool time `now`, with their display positions (sparse:
+/// only vertices inside the support; cost proportional to them, not to the mesh).
+pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) -> Vec<(u32, DVec3)> {
     let mesh = scalpel.dyn_mesh();
-    let mut out = mesh.positions().to_vec();
+    let mut out = Vec::new();
     let w = options.width;
     let segments = scalpel.segments();
-    if !(w > 0.0) || segments.is_empty() {
+    if w.is_nan() || w <= 0.0 || segments.is_empty() {
         return out;
     }
     let r = SUPPORT * w;
@@ -92,7 +103,11 @@ pub fn open_positions(scalpel: &Scalpel, options: &OpenOptions, now: f64) -> Vec
                         let s = &segments[i];
                         let ab = s.pb - s.pa;
                         let l2 = ab.length_squared();
-                        let u = if l2 > 0.0 { ((p - s.pa).dot(ab) / l2).clamp(0.0, 1.0) } else { 0.0 };
+                        let u = if l2 > 0.0 {
+                            ((p - s.pa).dot(ab) / l2).clamp(0.0, 1.0)
+                        } else {
+                            0.0
+                        };
                         let c = s.pa + ab * u;
                         let d = c.distance(p);
                         if best.is_none_or(|b| d < b.0) {
@@ -121,7 +136,9 @@ pub fn open_positions(scalpel: &Scalpel, options: &OpenOptions, now: f64) -> Vec
     let mut fan = Vec::new();
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
-        let Some((dist, c, s)) = nearest(p) else { continue };
+        let Some((dist, c, s)) = nearest(p) else {
+            continue;
+        };
         if dist >= r {
             continue;
         }
@@ -158,7 +175,10 @@ pub fn open_positions(scalpel: &Scalpel, options: &OpenOptions, now: f64) -> Vec
             } else {
                 1.0
             };
-            let tip_dist = tips.iter().map(|t| t.distance(c)).fold(f64::INFINITY, f64::min);
+            let tip_dist = tips
+                .iter()
+                .map(|t| t.distance(c))
+                .fold(f64::INFINITY, f64::min);
             let x = (tip_dist / w).min(1.0);
             let taper = x * x * (3.0 - 2.0 * x);
             let falloff = {
@@ -167,7 +187,7 @@ pub fn open_positions(scalpel: &Scalpel, options: &OpenOptions, now: f64) -> Vec
             };
             let amount = sigma * 0.5 * w * ramp * taper * falloff;
             if amount != 0.0 {
-                out[v as usize] = p + lateral * amount;
+                out.push((v, p + lateral * amount));
             }
         }
         for n in neighbours {

@@ -35,7 +35,7 @@ pub fn next(h: u32) -> u32 {
 /// The previous half-edge of the same triangle.
 #[inline]
 pub fn prev(h: u32) -> u32 {
-    if h % 3 == 0 { h + 2 } else { h - 1 }
+    if h.is_multiple_of(3) { h + 2 } else { h - 1 }
 }
 
 /// One undoable write.
@@ -564,13 +564,26 @@ mod tests {
     #[test]
     fn split_and_rollback_restore_everything() {
         let mut m = DynMesh::from_mesh(&quad());
-        let before = (m.positions.clone(), m.triangles.clone(), m.twin.clone(), m.vert_he.clone());
+        let before = (
+            m.positions.clone(),
+            m.triangles.clone(),
+            m.twin.clone(),
+            m.vert_he.clone(),
+        );
         let mark = m.mark();
         m.split_edge(2, DVec3::new(0.5, 0.5, 0.));
         m.split_face(0, DVec3::new(0.4, 0.2, 0.));
         assert_eq!(m.triangles.len(), 6);
         m.rollback(mark);
-        assert_eq!(before, (m.positions.clone(), m.triangles.clone(), m.twin.clone(), m.vert_he.clone()));
+        assert_eq!(
+            before,
+            (
+                m.positions.clone(),
+                m.triangles.clone(),
+                m.twin.clone(),
+                m.vert_he.clone()
+            )
+        );
     }
 
     #[test]

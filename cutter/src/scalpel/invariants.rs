@@ -64,10 +64,7 @@ pub fn validate(mesh: &DynMesh) -> Result<TopologyReport, ValidationError> {
     } = mesh;
     let nv = positions.len();
     let nt = triangles.len();
-    if twin.len() != 3 * nt
-        || vert_he.len() != nv
-        || next_copy.len() != nv
-        || singular.len() != nv
+    if twin.len() != 3 * nt || vert_he.len() != nv || next_copy.len() != nv || singular.len() != nv
     {
         return Err(ValidationError::Lengths(format!(
             "{nv} positions, {nt} triangles, {} twins, {} vertex half-edges, {} copy links",
@@ -134,7 +131,11 @@ pub fn validate(mesh: &DynMesh) -> Result<TopologyReport, ValidationError> {
         }
         mesh.fan_from(h, &mut fan);
         if fan.len() != corners[v as usize] as usize {
-            if singular[v as usize] || fan.iter().any(|&x| twin[x as usize] == NONMANIFOLD || twin[prev(x) as usize] == NONMANIFOLD) {
+            if singular[v as usize]
+                || fan.iter().any(|&x| {
+                    twin[x as usize] == NONMANIFOLD || twin[prev(x) as usize] == NONMANIFOLD
+                })
+            {
                 nonmanifold_vertices += 1;
             } else {
                 return Err(ValidationError::BowTie(v));
@@ -198,7 +199,9 @@ pub fn validate(mesh: &DynMesh) -> Result<TopologyReport, ValidationError> {
             }
         }
     }
-    let components = (0..nt as u32).filter(|&t| find(&mut parent, t) == t).count();
+    let components = (0..nt as u32)
+        .filter(|&t| find(&mut parent, t) == t)
+        .count();
     let edges = interior_half / 2 + boundary_edges + nonmanifold_edges;
     Ok(TopologyReport {
         vertices: used,

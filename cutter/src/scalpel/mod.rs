@@ -110,7 +110,9 @@ impl ScalpelOptions {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ScalpelError {
     /// The sample is too far from the surface. Move the tool onto the mesh.
-    #[error("tool sample {point:?} is {distance} from the surface (more than {tolerance}): off the mesh")]
+    #[error(
+        "tool sample {point:?} is {distance} from the surface (more than {tolerance}): off the mesh"
+    )]
     OffMesh {
         point: [f64; 3],
         distance: f64,
@@ -120,7 +122,9 @@ pub enum ScalpelError {
     #[error("the mesh has no triangles")]
     EmptyMesh,
     /// The cut reached an edge with more than two faces or a bow-tie vertex.
-    #[error("non-manifold region at the cut near {point:?}: the scalpel cuts only manifold surfaces")]
+    #[error(
+        "non-manifold region at the cut near {point:?}: the scalpel cuts only manifold surfaces"
+    )]
     NonManifold { point: [f64; 3] },
     /// A sample coordinate is NaN or infinite.
     #[error("tool sample {point:?} is not finite")]

@@ -89,9 +89,16 @@ enum Exit {
     Blocked,
     Degenerate,
     /// Along the edge of half-edge `e` (between `v` and `b`).
-    Vertex { e: u32, b: u32 },
+    Vertex {
+        e: u32,
+        b: u32,
+    },
     /// Across the edge `next(h0)` of the triangle of outgoing half-edge `h0`, at `t` from `dest(h0)`.
-    Edge { h0: u32, t: f64, y: DVec3 },
+    Edge {
+        h0: u32,
+        t: f64,
+        y: DVec3,
+    },
 }
 
 #[derive(Clone, Debug)]
@@ -125,7 +132,7 @@ pub struct Scalpel {
     tolerance: f64,
     stroke: Option<Stroke>,
     /// Mesh state before each committed stroke, for undo.
-    undo: Vec<(Mark, usize, usize)>,
+    undo: Vec<Mark>,
     /// Every cut segment so far (rest pose), in cutting order.
     pub(crate) segments: Vec<CutSegment>,
     /// Vertices the opening must not move (groove bottoms).
@@ -138,11 +145,19 @@ impl Scalpel {
     /// Starts cutting `mesh`.
     pub fn new(mesh: &csg::Mesh, options: ScalpelOptions) -> Result<Scalpel, ScalpelError> {
         if !(options.depth >= 0.0 && options.depth.is_finite()) {
-            return Err(ScalpelError::BadOptions(format!("depth {} must be >= 0", options.depth)));
+            return Err(ScalpelError::BadOptions(format!(
+                "depth {} must be >= 0",
+                options.depth
+            )));
         }
-        for (name, v) in [("snap_edge", options.snap_edge), ("snap_end", options.snap_end)] {
+        for (name, v) in [
+            ("snap_edge", options.snap_edge),
+            ("snap_end", options.snap_end),
+        ] {
             if !(0.0..0.5).contains(&v) {
-                return Err(ScalpelError::BadOptions(format!("{name} {v} must be in [0, 0.5)")));
+                return Err(ScalpelError::BadOptions(format!(
+                    "{name} {v} must be in [0, 0.5)"
+                )));
             }
         }
         if mesh.triangles.is_empty() {
@@ -243,7 +258,9 @@ impl Scalpel {
     /// Moves the tool to `q`: cuts from the last cut point toward it. Atomic.
     pub fn step(&mut self, q: DVec3) -> Result<StepReport, ScalpelError> {
         if !q.is_finite() {
-            return Err(ScalpelError::NonFinite { point: q.to_array() });
+            return Err(ScalpelError::NonFinite {
+                point: q.to_array(),
+            });
         }
         let mut stroke = self.stroke.take().ok_or(ScalpelError::NoStroke)?;
         self.clock += SAMPLE_PERIOD;
@@ -293,7 +310,10 @@ impl Scalpel {
         } else if let Some(tip) = stroke.tip.take() {
             stroke.crossed += tip.crossed;
         }
-        self.undo.push((stroke.mark, self.segments_len_before(&stroke), 0));
+        if let Some(g) = stroke.cut.as_ref().and_then(|c| c.groove.as_ref()) {
+            self.fixed.extend_from_slice(&g.bottom_vertices);
+        }
+        self.undo.push(stroke.mark);
         Ok(StrokeReport {
             triangles_cut: stroke.crossed,
             triangles_created: self
@@ -302,10 +322,6 @@ impl Scalpel {
                 .saturating_sub(stroke.triangles_before),
             detached,
         })
-    }
-
-    fn segments_len_before(&self, _stroke: &Stroke) -> usize {
-        self.segments.len()
     }
 
     /// Undoes the last committed stroke (or the one in progress). Returns false when there is
@@ -317,7 +333,7 @@ impl Scalpel {
             return true;
         }
         match self.undo.pop() {
-            Some((mark, _, _)) => {
+            Some(mark) => {
                 self.mesh.rollback(mark);
                 self.truncate_records();
                 true
@@ -479,7 +495,9 @@ impl Scalpel {
     pub(crate) fn split_edge_with_mate(&mut self, h: u32, p: DVec3) -> Result<u32, ScalpelError> {
         let g = self.mesh.twin(h);
         if g == NONMANIFOLD {
-            return Err(ScalpelError::NonManifold { point: p.to_array() });
+            return Err(ScalpelError::NonManifold {
+                point: p.to_array(),
+            });
         }
         let mate = if g == NO_TWIN {
             super::cross::find_mate(&self.mesh, h, &mut self.scratch)
@@ -496,12 +514,12 @@ impl Scalpel {
 
     /// Opens the edge between `v` and `x` (a slit) unless it is open already.
     fn open_between(&mut self, v: u32, x: u32) -> Result<(), ScalpelError> {
-        let h = self
-            .mesh
-            .edge_between(v, x, &mut self.scratch)
-            .ok_or(ScalpelError::WalkFailed {
-                point: self.mesh.pos(x).to_array(),
-            })?;
+        let h =
+            self.mesh
+                .edge_between(v, x, &mut self.scratch)
+                .ok_or(ScalpelError::WalkFailed {
+                    point: self.mesh.pos(x).to_array(),
+                })?;
         let g = self.mesh.twin(h);
         if g == NONMANIFOLD {
             return Err(self.nonmanifold(v));
@@ -642,7 +660,11 @@ impl Scalpel {
                 Exit::Degenerate => return Ok(WalkEnd::Reached(End::AtVertex)),
                 Exit::Blocked => {
                     let back = cut.path[cut.path.len().saturating_sub(5)];
-                    let dir = if back == v { q - pv } else { q - self.mesh.pos(back) };
+                    let dir = if back == v {
+                        q - pv
+                    } else {
+                        q - self.mesh.pos(back)
+                    };
                     if cut.groove.is_none()
                         && let Some(m) = super::cross::crossing_mate(self, v, q, dir)
                     {
@@ -718,7 +740,9 @@ impl Scalpel {
                 }
             }
         }
-        Err(ScalpelError::WalkFailed { point: q.to_array() })
+        Err(ScalpelError::WalkFailed {
+            point: q.to_array(),
+        })
     }
 
     /// Places the temporary tip at `end` (relative to the anchor) and closes the groove to it.
@@ -748,7 +772,7 @@ impl Scalpel {
             if x != v {
                 if k >= 1 {
                     let pv = self.mesh.pos(v);
-                g.make_bottom(&mut self.mesh, k, pv, n);
+                    g.make_bottom(&mut self.mesh, k, pv, n);
                 }
                 path.push(x);
             }
@@ -813,17 +837,16 @@ impl Scalpel {
         self.stroke.as_ref()?.cut.as_ref().map(|c| c.start)
     }
 
-    pub(crate) fn tolerance(&self) -> f64 {
-        self.tolerance
-    }
-
     pub(crate) fn merge_angle_deg(&self) -> f64 {
         self.options.merge_angle_deg
     }
 
     pub(crate) fn exit_exists(&mut self, v: u32, q: DVec3) -> bool {
         let n = self.mesh.vertex_normal(v, &mut self.scratch);
-        matches!(self.find_exit(v, q, n), Exit::Edge { .. } | Exit::Vertex { .. })
+        matches!(
+            self.find_exit(v, q, n),
+            Exit::Edge { .. } | Exit::Vertex { .. }
+        )
     }
 }
 

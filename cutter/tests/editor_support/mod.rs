@@ -53,12 +53,20 @@ impl Scene {
     }
 
     pub fn editor(&self, settings: EditorSettings) -> Editor {
-        Editor::new(self.mesh.clone(), self.index.clone(), self.camera, VIEWPORT, settings)
+        Editor::new(
+            self.mesh.clone(),
+            self.index.clone(),
+            self.camera,
+            VIEWPORT,
+            settings,
+        )
     }
 
     /// Distance from `p` to the surface.
     pub fn distance(&self, p: DVec3) -> f64 {
-        self.index.closest_point(&self.mesh, p).map_or(f64::INFINITY, |c| c.distance)
+        self.index
+            .closest_point(&self.mesh, p)
+            .map_or(f64::INFINITY, |c| c.distance)
     }
 }
 
@@ -109,7 +117,12 @@ pub fn height_field(f: impl Fn(f64, f64) -> f64, n: usize) -> Mesh {
         for j in 0..n {
             // x along i, y along j: counter-clockwise seen from +z.
             quad(top(i, j), top(i + 1, j), top(i + 1, j + 1), top(i, j + 1));
-            quad(bottom(i, j), bottom(i, j + 1), bottom(i + 1, j + 1), bottom(i + 1, j));
+            quad(
+                bottom(i, j),
+                bottom(i, j + 1),
+                bottom(i + 1, j + 1),
+                bottom(i + 1, j),
+            );
         }
     }
     for k in 0..n {
@@ -128,7 +141,8 @@ pub fn height_field(f: impl Fn(f64, f64) -> f64, n: usize) -> Mesh {
 /// planes not crossing, closed outward mesh, no self-intersection (all in `sanity_check`), plus
 /// the mesh facts checked independently here.
 pub fn validate(c: &Cutter) {
-    c.sanity_check().unwrap_or_else(|e| panic!("invalid cutter: {e}\n{c:?}"));
+    c.sanity_check()
+        .unwrap_or_else(|e| panic!("invalid cutter: {e}\n{c:?}"));
     assert!(c.planes.len() >= 2);
     let q = c.quad_mesh();
     q.check_closed().expect("closed and consistently oriented");
@@ -174,10 +188,20 @@ pub fn extrude(editor: &mut Editor, path: &[DVec2], shift: bool) {
     let mut events = vec![EditorEvent::press(h.x, h.y)];
     for p in path {
         let q = h + *p;
-        events.push(EditorEvent::Move { x: q.x, y: q.y, shift, ctrl: false });
+        events.push(EditorEvent::Move {
+            x: q.x,
+            y: q.y,
+            shift,
+            ctrl: false,
+        });
     }
     let last = h + path.last().copied().unwrap_or(DVec2::ZERO);
-    events.push(EditorEvent::Release { x: last.x, y: last.y, shift, ctrl: false });
+    events.push(EditorEvent::Release {
+        x: last.x,
+        y: last.y,
+        shift,
+        ctrl: false,
+    });
     feed(editor, events);
 }
 
