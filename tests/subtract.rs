@@ -48,10 +48,11 @@ fn weld(m: &Mesh) -> Mesh {
         .positions
         .iter()
         .map(|p| {
-            *map.entry(p.to_array().map(f64::to_bits)).or_insert_with(|| {
-                positions.push(*p);
-                (positions.len() - 1) as u32
-            })
+            *map.entry(p.to_array().map(f64::to_bits))
+                .or_insert_with(|| {
+                    positions.push(*p);
+                    (positions.len() - 1) as u32
+                })
         })
         .collect();
     Mesh {
@@ -84,7 +85,11 @@ fn subtract_writes_the_four_files_and_the_json() {
     let target = dir.join("sphere.obj");
     cutaway::io::write_mesh(&target, &csg::testkit::icosphere(3, 10.0)).unwrap();
     let cutter = dir.join("box.obj");
-    write_quad_box(&cutter, DVec3::new(-3.0, -3.0, 4.0), DVec3::new(3.0, 3.0, 20.0));
+    write_quad_box(
+        &cutter,
+        DVec3::new(-3.0, -3.0, 4.0),
+        DVec3::new(3.0, 3.0, 20.0),
+    );
     let out_dir = dir.join("out");
     let out = cutaway()
         .args(["subtract"])
@@ -95,7 +100,11 @@ fn subtract_writes_the_four_files_and_the_json() {
         .arg("--json")
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for key in [
         "target_triangles",
@@ -142,8 +151,11 @@ fn open_cutter_is_one_error_line_naming_the_file() {
     let target = dir.join("sphere.obj");
     cutaway::io::write_mesh(&target, &csg::testkit::icosphere(2, 1.0)).unwrap();
     let cutter = dir.join("open.obj");
-    std::fs::write(&cutter, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n")
-        .unwrap();
+    std::fs::write(
+        &cutter,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n",
+    )
+    .unwrap();
     let out = cutaway()
         .args(["subtract"])
         .arg(&target)
@@ -157,7 +169,10 @@ fn open_cutter_is_one_error_line_naming_the_file() {
     let stderr = String::from_utf8(out.stderr).unwrap();
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.starts_with("error: "), "{stderr}");
-    assert!(stderr.contains("open.obj") && stderr.contains("not closed"), "{stderr}");
+    assert!(
+        stderr.contains("open.obj") && stderr.contains("not closed"),
+        "{stderr}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -186,7 +201,10 @@ fn mesh_files(dir: &Path, out: &mut Vec<PathBuf>) {
         if p.is_dir() {
             mesh_files(&p, out);
         } else if matches!(
-            p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref(),
+            p.extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase)
+                .as_deref(),
             Some("obj" | "stl" | "ply" | "vtk")
         ) {
             out.push(p);
@@ -221,13 +239,15 @@ fn cuts_every_anatomy_mesh() {
         let boxes = [
             csg::testkit::cube(c - s / 6.0, c + s / 6.0),
             csg::testkit::cube(
-                bbox.min - s * 0.1 + DVec3::new(0.0, s.y * 0.1 + c.y - bbox.min.y - s.y * 0.01, 0.0),
-                bbox.max + s * 0.1 - DVec3::new(0.0, s.y * 0.1 + bbox.max.y - c.y - s.y * 0.013, 0.0),
+                bbox.min - s * 0.1
+                    + DVec3::new(0.0, s.y * 0.1 + c.y - bbox.min.y - s.y * 0.01, 0.0),
+                bbox.max + s * 0.1
+                    - DVec3::new(0.0, s.y * 0.1 + bbox.max.y - c.y - s.y * 0.013, 0.0),
             ),
         ];
         for cutter in &boxes {
-            let r = csg::subtract(&index, cutter)
-                .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+            let r =
+                csg::subtract(&index, cutter).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
             let kept = r.materialize(&mesh).area();
             let removed = r.removed.mesh.area();
             assert!(

@@ -25,7 +25,10 @@ pub struct Scene {
 /// `(part, bytes)` of `assets/<scene>/<part>.ply`.
 macro_rules! part {
     ($scene:literal, $part:literal) => {
-        ($part, include_bytes!(concat!("../../assets/", $scene, "/", $part, ".ply")) as &[u8])
+        (
+            $part,
+            include_bytes!(concat!("../../assets/", $scene, "/", $part, ".ply")) as &[u8],
+        )
     };
 }
 
@@ -85,7 +88,8 @@ pub fn load_scene(scene: &Scene) -> anyhow::Result<Vec<Model>> {
     let mut models = Vec::new();
     for &(name, bytes) in scene.parts {
         let path = scene.part_path(name);
-        let mesh = crate::phantom::ply::decode(bytes).with_context(|| path.display().to_string())?;
+        let mesh =
+            crate::phantom::ply::decode(bytes).with_context(|| path.display().to_string())?;
         let part = Part {
             name: name.to_string(),
             mesh: csg::weld::weld_exact(&mesh),
@@ -118,7 +122,9 @@ pub fn default_color(part_name: &str) -> [f32; 3] {
         [0.72, 0.20, 0.18]
     } else if has(&["brain", "cerebr", "cortex"]) {
         [0.93, 0.63, 0.66]
-    } else if has(&["bone", "femur", "tibia", "patella", "fibula", "skull", "vertebra", "spine"]) {
+    } else if has(&[
+        "bone", "femur", "tibia", "patella", "fibula", "skull", "vertebra", "spine",
+    ]) {
         [0.95, 0.92, 0.80]
     } else {
         [0.70, 0.70, 0.70]
@@ -128,6 +134,8 @@ pub fn default_color(part_name: &str) -> [f32; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use csg::Mesh;
+    use glam::DVec3;
 
     #[test]
     fn knee_is_the_default_and_every_scene_has_parts() {
@@ -156,11 +164,20 @@ mod tests {
     #[test]
     fn embedded_patella_is_what_the_generator_makes_now() {
         // Guards against shape edits committed without regenerating the assets.
-        let spec = crate::phantom::knee::scene().parts.into_iter().find(|p| p.name == "patella").expect("patella");
+        let spec = crate::phantom::knee::scene()
+            .parts
+            .into_iter()
+            .find(|p| p.name == "patella")
+            .expect("patella");
         let mesh = crate::phantom::generate_part(&spec).expect("generates");
         let bytes = crate::phantom::ply::encode(&mesh, crate::phantom::PLY_COMMENT);
-        let embedded = scene("knee").and_then(|s| s.parts.iter().find(|p| p.0 == "patella")).expect("embedded");
-        assert!(bytes == embedded.1, "assets/knee/patella.ply is stale: run `cargo run --release -- phantom --out assets`");
+        let embedded = scene("knee")
+            .and_then(|s| s.parts.iter().find(|p| p.0 == "patella"))
+            .expect("embedded");
+        assert!(
+            bytes == embedded.1,
+            "assets/knee/patella.ply is stale: run `cargo run --release -- phantom --out assets`"
+        );
     }
 
     #[test]
@@ -175,7 +192,241 @@ mod tests {
         assert!(muscle[0] > 2.0 * muscle[1], "muscle is red");
         for s in scenes() {
             for (part, _) in s.parts {
-                assert_ne!(default_color(part), [0.70, 0.70, 0.70], "{part} has an anatomical colour");
+                assert_ne!(
+                    default_color(part),
+                    [0.70, 0.70, 0.70],
+                    "{part} has an anatomical colour"
+                );
+            }
+        }
+    }
+
+    /// Every part of every embedded scene, loaded like the GUI loads it: (scene, model).
+    fn all_models() -> Vec<(&'static str, Model)> {
+        let mut out = Vec::new();
+        for scene in scenes() {
+            for model in load_scene(scene).unwrap_or_else(|e| panic!("{}: {e:#}", scene.name)) {
+                out.push((scene.name, model));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn every_embedded_part_is_one_closed_outward_region_within_budget() {
+        let models = all_models();
+        let expected: usize = scenes().iter().map(|s| s.parts.len()).sum();
+        assert_eq!(models.len(), expected, "one region per part");
+        for (scene, model) in &models {
+            let report = model.mesh.report();
+            let what = format!("{scene}/{}", model.name);
+            assert!(report.closed && report.manifold, "{what}: {report:?}");
+            assert_eq!(report.degenerate_triangles, 0, "{what}");
+            assert_eq!(report.regions, 1, "{what}");
+            assert!(
+                model.mesh.volume() > 0.0,
+                "{what}: outward orientation gives a positive volume"
+            );
+            assert!(
+                model.mesh.triangle_count() <= crate::phantom::MAX_TRIANGLES,
+                "{what}"
+            );
+            assert!(
+                model.mesh.triangle_count() >= 5_000,
+                "{what}: smooth enough"
+            );
+            assert!(model.name.ends_with(" 1"), "{what}");
+            let stem = model
+                .source
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or_default();
+            assert_eq!(format!("{stem} 1"), model.name);
+        }
+        // Realistic size of the default scene: ~400 mm long, ~130 mm wide.
+        let skin = &models
+            .iter()
+            .find(|(s, m)| *s == "knee" && m.name == "skin 1")
+            .expect("knee skin")
+            .1;
+        let size = skin.mesh.bbox().max - skin.mesh.bbox().min;
+        assert!(
+            (380.0..420.0).contains(&size.z) && (110.0..160.0).contains(&size.x),
+            "{size:?}"
+        );
+    }
+
+    /// Orientation of `d` relative to the plane through `a, b, c` (sign of the signed volume).
+    fn orient(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
+        (b - a).cross(c - a).dot(d - a)
+    }
+
+    /// True when the segment `p q` crosses the triangle `t` (general position; the phantom's
+    /// clearances keep every configuration far from degenerate, so f64 signs are reliable here).
+    fn segment_crosses(p: DVec3, q: DVec3, t: [DVec3; 3]) -> bool {
+        let [a, b, c] = t;
+        let (sp, sq) = (orient(a, b, c, p), orient(a, b, c, q));
+        if (sp > 0.0) == (sq > 0.0) {
+            return false;
+        }
+        let s = [orient(p, q, a, b), orient(p, q, b, c), orient(p, q, c, a)];
+        s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0)
+    }
+
+    /// Number of edges of `a` that cross a triangle of `b`, with a uniform grid over `b`.
+    fn crossing_edges(a: &Mesh, b: &Mesh) -> usize {
+        let (bmin, bmax) = (b.bbox().min, b.bbox().max);
+        let cell = 6.0;
+        let dims = ((bmax - bmin) / cell).floor().as_ivec3() + 1;
+        let cell_of = |p: DVec3| {
+            ((p - bmin) / cell)
+                .floor()
+                .as_ivec3()
+                .clamp(glam::IVec3::ZERO, dims - 1)
+        };
+        let index = |c: glam::IVec3| (c.x + dims.x * (c.y + dims.y * c.z)) as usize;
+        let mut grid: Vec<Vec<u32>> = vec![Vec::new(); (dims.x * dims.y * dims.z) as usize];
+        for t in 0..b.triangles.len() {
+            let [p, q, r] = b.corners(t);
+            let (lo, hi) = (cell_of(p.min(q).min(r)), cell_of(p.max(q).max(r)));
+            for z in lo.z..=hi.z {
+                for y in lo.y..=hi.y {
+                    for x in lo.x..=hi.x {
+                        grid[index(glam::IVec3::new(x, y, z))].push(t as u32);
+                    }
+                }
+            }
+        }
+        let mut crossings = 0;
+        let mut seen = vec![usize::MAX; b.triangles.len()];
+        let mut edge_id = 0;
+        for tri in &a.triangles {
+            for e in 0..3 {
+                let (i, j) = (tri[e], tri[(e + 1) % 3]);
+                if i > j {
+                    continue; // Each edge once (closed mesh: the reverse half-edge exists).
+                }
+                edge_id += 1;
+                let (p, q) = (a.positions[i as usize], a.positions[j as usize]);
+                let (emin, emax) = (p.min(q), p.max(q));
+                if emax.cmplt(bmin).any() || emin.cmpgt(bmax).any() {
+                    continue;
+                }
+                let (lo, hi) = (cell_of(emin), cell_of(emax));
+                for z in lo.z..=hi.z {
+                    for y in lo.y..=hi.y {
+                        for x in lo.x..=hi.x {
+                            for &t in &grid[index(glam::IVec3::new(x, y, z))] {
+                                if seen[t as usize] == edge_id {
+                                    continue;
+                                }
+                                seen[t as usize] = edge_id;
+                                if segment_crosses(p, q, b.corners(t as usize)) {
+                                    crossings += 1;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        crossings
+    }
+
+    /// Inside test by ray parity along a fixed, axis-skew direction.
+    fn contains(mesh: &Mesh, p: DVec3) -> bool {
+        let far = p + DVec3::new(0.5377, 0.3134, 0.7831).normalize() * 1e4;
+        (0..mesh.triangles.len())
+            .filter(|&t| segment_crosses(p, far, mesh.corners(t)))
+            .count()
+            % 2
+            == 1
+    }
+
+    #[test]
+    fn segment_test_and_parity_work_on_a_cube() {
+        // A closed cube from the phantom's own extractor, so the helpers above are checked too.
+        let cube = |p: DVec3| (p.abs() - DVec3::splat(5.0)).max_element();
+        let lattice = crate::phantom::lattice([-5.0; 3], [5.0; 3], 0.7);
+        let mesh = crate::phantom::extract::extract(&cube, &lattice).expect("cube");
+        assert!(contains(&mesh, DVec3::new(1.0, 2.0, -3.0)));
+        assert!(!contains(&mesh, DVec3::new(7.0, 2.0, -3.0)));
+        let shifted = Mesh {
+            positions: mesh
+                .positions
+                .iter()
+                .map(|&p| p + DVec3::new(3.0, 0.0, 0.0))
+                .collect(),
+            triangles: mesh.triangles.clone(),
+        };
+        assert!(
+            crossing_edges(&mesh, &shifted) > 0,
+            "overlapping cubes cross"
+        );
+        let far = Mesh {
+            positions: mesh
+                .positions
+                .iter()
+                .map(|&p| p + DVec3::new(12.0, 0.0, 0.0))
+                .collect(),
+            triangles: mesh.triangles.clone(),
+        };
+        assert_eq!(crossing_edges(&mesh, &far), 0);
+    }
+
+    #[test]
+    fn parts_never_cross_and_nest_as_documented() {
+        let models = all_models();
+        for scene in scenes() {
+            let parts: Vec<&Model> = models
+                .iter()
+                .filter(|(s, _)| *s == scene.name)
+                .map(|(_, m)| m)
+                .collect();
+            let parent_of = |name: &str| {
+                crate::phantom::NESTING
+                    .iter()
+                    .find(|(s, p, _)| *s == scene.name && format!("{p} 1") == name)
+                    .map(|(_, _, parent)| parent.map(|q| format!("{q} 1")))
+                    .unwrap_or_else(|| panic!("{name} is not in NESTING"))
+            };
+            // Ancestors of a part, nearest first.
+            let ancestors = |name: &str| {
+                let mut chain = Vec::new();
+                let mut at = parent_of(name);
+                while let Some(p) = at {
+                    at = parent_of(&p);
+                    chain.push(p);
+                }
+                chain
+            };
+            for (i, a) in parts.iter().enumerate() {
+                for b in parts.iter().skip(i + 1) {
+                    let what = format!("{}: {} / {}", scene.name, a.name, b.name);
+                    assert_eq!(
+                        crossing_edges(&a.mesh, &b.mesh),
+                        0,
+                        "{what}: edges of the first cross the second"
+                    );
+                    assert_eq!(
+                        crossing_edges(&b.mesh, &a.mesh),
+                        0,
+                        "{what}: edges of the second cross the first"
+                    );
+                    // Surfaces do not cross, so one vertex decides containment for the whole part.
+                    let a_in_b = contains(&b.mesh, a.mesh.positions[0]);
+                    let b_in_a = contains(&a.mesh, b.mesh.positions[0]);
+                    assert_eq!(
+                        a_in_b,
+                        ancestors(&a.name).contains(&b.name),
+                        "{what}: first inside second"
+                    );
+                    assert_eq!(
+                        b_in_a,
+                        ancestors(&b.name).contains(&a.name),
+                        "{what}: second inside first"
+                    );
+                }
             }
         }
     }
@@ -187,6 +438,9 @@ mod tests {
             parts: &[("bad", b"ply\nformat ascii 1.0\nend_header\n")],
         };
         let err = load_scene(&scene).expect_err("must fail");
-        assert!(format!("{err:#}").contains("assets/broken/bad.ply"), "{err:#}");
+        assert!(
+            format!("{err:#}").contains("assets/broken/bad.ply"),
+            "{err:#}"
+        );
     }
 }

@@ -159,6 +159,31 @@ pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
     out
 }
 
+/// Cuts `cutter` out of `target` with the exact boolean (honouring the cutter's kind and
+/// smoothing), or with the approximate stand-in when the boolean refuses; the second value then
+/// says why. `with_walls: false` lets the stand-in skip the walls.
+pub fn cut_cutter(target: &Mesh, cutter: &SceneCutter, with_walls: bool) -> (CutParts, Option<String>) {
+    let exact = TargetIndex::build(target.clone())
+        .map_err(|e| e.to_string())
+        .and_then(|index| cut_exact(&index, cutter).map_err(|e| e.to_string()));
+    match exact {
+        Ok(parts) => (parts, None),
+        Err(why) => (cut_approx(target, &cutter.planes, with_walls), Some(why)),
+    }
+}
+
+/// [`cut_cutter`] for a plain (curving, not smooth) cutter with these planes.
+pub fn cut(target: &Mesh, planes: &[CutterPlane], with_walls: bool) -> CutParts {
+    let cutter = SceneCutter {
+        target: 0,
+        kind: crate::scene::CutKind::Curving,
+        smooth: false,
+        planes: planes.to_vec(),
+        views: crate::scene::CutterViews::default(),
+    };
+    cut_cutter(target, &cutter, with_walls).0
+}
+
 /// The `cutter` crate's cutter for a scene cutter.
 pub fn to_cutter(cutter: &SceneCutter) -> cutter::Cutter {
     cutter::Cutter {

@@ -3,6 +3,7 @@
 //! The CLI (clap), file formats, the scene and session, the egui UI and the wgpu renderer. The
 //! mesh core (`csg`) and the tools (`cutter`) never see any of these.
 
+pub mod assets;
 pub mod cli;
 pub mod cutaway_geometry;
 pub mod gesture;

@@ -69,7 +69,17 @@ fn quick() -> bool {
 fn bench_boolean(c: &mut Criterion) {
     let frequency = if quick() { 71 } else { 316 };
     let target = csg::testkit::geodesic_sphere(frequency, 50.0);
-    let strip = sphere_strip(50.0, DVec3::X, DVec3::new(0.0, 0.6, 0.8), -0.5, 0.5, 20, 8.0, 2.5, 7.5);
+    let strip = sphere_strip(
+        50.0,
+        DVec3::X,
+        DVec3::new(0.0, 0.6, 0.8),
+        -0.5,
+        0.5,
+        20,
+        8.0,
+        2.5,
+        7.5,
+    );
     let t0 = Instant::now();
     let index = TargetIndex::build(target.clone()).expect("index");
     let build_ms = t0.elapsed().as_secs_f64() * 1e3;
@@ -91,16 +101,20 @@ fn bench_boolean(c: &mut Criterion) {
 
     let mut group = c.benchmark_group("boolean");
     group.sample_size(20);
-    group.bench_function(format!("warm sphere {}k − strip", target.triangles.len() / 1000), |b| {
-        b.iter(|| csg::subtract(black_box(&index), black_box(&strip)).expect("cut"))
-    });
+    group.bench_function(
+        format!("warm sphere {}k − strip", target.triangles.len() / 1000),
+        |b| b.iter(|| csg::subtract(black_box(&index), black_box(&strip)).expect("cut")),
+    );
     group.sample_size(10);
-    group.bench_function(format!("cold sphere {}k − strip", target.triangles.len() / 1000), |b| {
-        b.iter(|| {
-            let index = TargetIndex::build(black_box(target.clone())).expect("index");
-            csg::subtract(&index, black_box(&strip)).expect("cut")
-        })
-    });
+    group.bench_function(
+        format!("cold sphere {}k − strip", target.triangles.len() / 1000),
+        |b| {
+            b.iter(|| {
+                let index = TargetIndex::build(black_box(target.clone())).expect("index");
+                csg::subtract(&index, black_box(&strip)).expect("cut")
+            })
+        },
+    );
 
     // Ribbons: 10 thin disjoint sub-cutters across the strip's path on a 500k sphere.
     let frequency = if quick() { 71 } else { 158 };
@@ -109,13 +123,26 @@ fn bench_boolean(c: &mut Criterion) {
     let ribbons: Vec<Mesh> = (0..10)
         .map(|k| {
             let a = -0.5 + 0.1 * k as f64;
-            sphere_strip(50.0, DVec3::X, DVec3::new(0.0, 0.6, 0.8), a, a + 0.02, 1, 8.0, 2.5, 7.5)
+            sphere_strip(
+                50.0,
+                DVec3::X,
+                DVec3::new(0.0, 0.6, 0.8),
+                a,
+                a + 0.02,
+                1,
+                8.0,
+                2.5,
+                7.5,
+            )
         })
         .collect();
     let refs: Vec<&Mesh> = ribbons.iter().collect();
     group.sample_size(20);
     group.bench_function(
-        format!("ribbons 10 sub-cutters on sphere {}k", target.triangles.len() / 1000),
+        format!(
+            "ribbons 10 sub-cutters on sphere {}k",
+            target.triangles.len() / 1000
+        ),
         |b| b.iter(|| csg::subtract_many(black_box(&index), black_box(&refs)).expect("cut")),
     );
     group.finish();

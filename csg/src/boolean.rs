@@ -62,9 +62,8 @@ use crate::exact::{self, HPoint, LPoint};
 use crate::intersect::{self, FxMap, PointKey, PreparedCutter};
 use crate::mesh::{Mesh, MeshError};
 use crate::output::{CutOptions, CutResult, CutStats, Part, Provenance, VertexSource};
-use crate::split::{self, FaceInput, Piece, PieceStatus, Vx, OUT, UNKNOWN};
+use crate::split::{self, FaceInput, OUT, Piece, PieceStatus, UNKNOWN, Vx};
 use crate::target::{IBox, TargetIndex};
-
 
 /// Why a cut was refused. Each variant names the sub-cutter and what to fix.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -660,7 +659,9 @@ pub(crate) fn run(
     let bits = |p: DVec3| p.to_array().map(|c| (c + 0.0).to_bits());
     for &t in &isect.target_order {
         for v in mesh.triangles[t as usize] {
-            kept_ids.entry(bits(mesh.positions[v as usize])).or_insert(v);
+            kept_ids
+                .entry(bits(mesh.positions[v as usize]))
+                .or_insert(v);
         }
     }
     for (fi, (t, pieces)) in target_pieces.iter().enumerate() {
@@ -681,7 +682,8 @@ pub(crate) fn run(
                     result.kept_new_faces.push(ids);
                     result.kept_new_provenance.push(*t);
                 } else {
-                    let ids = tri.map(|v| removed.vertex(v, &mesh.positions, &cutter.positions, new_pos));
+                    let ids =
+                        tri.map(|v| removed.vertex(v, &mesh.positions, &cutter.positions, new_pos));
                     removed.push(ids, Provenance::Target(*t), s - 1);
                 }
             }
@@ -698,7 +700,11 @@ pub(crate) fn run(
         // Reversed: walls face out of kept (into the cutter).
         let ids = [tri[0], tri[2], tri[1]]
             .map(|v| walls.vertex(v, &mesh.positions, &cutter.positions, new_pos));
-        walls.push(ids, Provenance::Cutter(*f), cutter.face_component[*f as usize]);
+        walls.push(
+            ids,
+            Provenance::Cutter(*f),
+            cutter.face_component[*f as usize],
+        );
     }
     let mut removed_faces: Vec<u32> = isect.target_order.clone();
     removed_faces.extend(flood_order.iter().map(|&(t, _)| t));

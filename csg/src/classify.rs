@@ -23,7 +23,11 @@ pub(crate) fn target_point_status(cutter: &PreparedCutter, p: &LPoint) -> u32 {
     let mut parity = vec![false; cutter.components as usize];
     for f in 0..cutter.triangles.len() as u32 {
         let b = &cutter.face_boxes[f as usize];
-        if b.max[0] < p[0] || b.min[1] > p[1] || b.max[1] < p[1] || b.min[2] > p[2] || b.max[2] < p[2]
+        if b.max[0] < p[0]
+            || b.min[1] > p[1]
+            || b.max[1] < p[1]
+            || b.min[2] > p[2]
+            || b.max[2] < p[2]
         {
             continue;
         }

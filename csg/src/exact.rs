@@ -111,7 +111,10 @@ pub fn orient3d_sos(pts: [&LPoint; 4], cutter: [bool; 4]) -> Sign {
         return sign_i128(d0);
     }
     let poly = orient3d_poly(pts, cutter);
-    poly.iter().map(|&c| sign_i128(c)).find(|&s| s != 0).unwrap_or(0)
+    poly.iter()
+        .map(|&c| sign_i128(c))
+        .find(|&s| s != 0)
+        .unwrap_or(0)
 }
 
 /// Side of target point `p` relative to the perturbed plane of cutter face `abc`: +1 above
@@ -243,12 +246,14 @@ pub fn segment_meets_triangle(p: &LPoint, q: &LPoint, a: &LPoint, b: &LPoint, c:
             let o2 = orient2d_int(p2, q2, v).signum();
             let o3 = orient2d_int(u, v, p2).signum();
             let o4 = orient2d_int(u, v, q2).signum();
-            o1 * o2 <= 0 && o3 * o4 <= 0 && !(o1 == 0 && o2 == 0 && o3 == 0 && o4 == 0 && {
-                // Collinear: overlap along the line?
-                let k = if u[0] != v[0] { 0 } else { 1 };
-                let (lo, hi) = (u[k].min(v[k]), u[k].max(v[k]));
-                p2[k].max(q2[k]) < lo || p2[k].min(q2[k]) > hi
-            })
+            o1 * o2 <= 0
+                && o3 * o4 <= 0
+                && !(o1 == 0 && o2 == 0 && o3 == 0 && o4 == 0 && {
+                    // Collinear: overlap along the line?
+                    let k = if u[0] != v[0] { 0 } else { 1 };
+                    let (lo, hi) = (u[k].min(v[k]), u[k].max(v[k]));
+                    p2[k].max(q2[k]) < lo || p2[k].min(q2[k]) > hi
+                })
         });
     }
     let s1 = sign_i128(orient3d(p, q, a, b));
@@ -275,7 +280,10 @@ pub struct HPoint {
 }
 
 fn poly_sign(p: &[i128]) -> Sign {
-    p.iter().map(|&c| sign_i128(c)).find(|&s| s != 0).unwrap_or(0)
+    p.iter()
+        .map(|&c| sign_i128(c))
+        .find(|&s| s != 0)
+        .unwrap_or(0)
 }
 
 impl HPoint {
@@ -599,7 +607,13 @@ mod tests {
         let (a, b, c) = ([0, 0, 10], [10, 0, 10], [0, 10, 10]);
         let h = HPoint::edge_face(&[1, 1, 0], &[1, 1, 20], &a, &b, &c);
         assert_eq!(h.limit(), [1.0, 1.0, 10.0]);
-        let h = HPoint::face_edge(&[2, 3, -5], &[2, 3, 5], &[0, 0, 0], &[10, 0, 0], &[0, 10, 0]);
+        let h = HPoint::face_edge(
+            &[2, 3, -5],
+            &[2, 3, 5],
+            &[0, 0, 0],
+            &[10, 0, 0],
+            &[0, 10, 0],
+        );
         assert_eq!(h.limit(), [2.0, 3.0, 0.0]);
     }
 

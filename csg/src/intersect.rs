@@ -230,10 +230,7 @@ pub(crate) fn intersect(
     for (&e, list) in out.target_edges.iter_mut() {
         if list.len() > 1 {
             let [lo, hi] = target.adjacency.edges[e as usize];
-            let (p, q) = (
-                &target.lpoints[lo as usize],
-                &target.lpoints[hi as usize],
-            );
+            let (p, q) = (&target.lpoints[lo as usize], &target.lpoints[hi as usize]);
             let dir = [
                 (q[0] - p[0]) as i128,
                 (q[1] - p[1]) as i128,
@@ -247,10 +244,7 @@ pub(crate) fn intersect(
     for (g, list) in out.cutter_edges.iter_mut().enumerate() {
         if list.len() > 1 {
             let [lo, hi] = cutter.edges[g];
-            let (p, q) = (
-                &cutter.lpoints[lo as usize],
-                &cutter.lpoints[hi as usize],
-            );
+            let (p, q) = (&cutter.lpoints[lo as usize], &cutter.lpoints[hi as usize]);
             let dir = [
                 (q[0] - p[0]) as i128,
                 (q[1] - p[1]) as i128,

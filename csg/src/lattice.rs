@@ -57,7 +57,7 @@ impl Lattice {
     pub fn quantize(&self, p: DVec3) -> Option<LPoint> {
         let q = ((p - self.origin) * self.scale).round();
         let ok = q.is_finite() && q.abs().max_element() <= LATTICE_MAX as f64;
-        ok.then(|| [q.x as i64, q.y as i64, q.z as i64])
+        ok.then_some([q.x as i64, q.y as i64, q.z as i64])
     }
 
     /// Maps lattice coordinates (possibly fractional) back to world.

@@ -141,7 +141,7 @@ pub(crate) fn split_face(input: &FaceInput) -> Result<FaceSplit, String> {
             (h + 1) % nb
         } else {
             let s = (h - nb) / 2;
-            if (h - nb) % 2 == 0 {
+            if (h - nb).is_multiple_of(2) {
                 seg_nodes[s].1
             } else {
                 seg_nodes[s].0
@@ -153,7 +153,7 @@ pub(crate) fn split_face(input: &FaceInput) -> Result<FaceSplit, String> {
             h
         } else {
             let s = (h - nb) / 2;
-            if (h - nb) % 2 == 0 {
+            if (h - nb).is_multiple_of(2) {
                 seg_nodes[s].0
             } else {
                 seg_nodes[s].1
@@ -181,7 +181,11 @@ pub(crate) fn split_face(input: &FaceInput) -> Result<FaceSplit, String> {
             n
         } else {
             let s_in = ((h - nb) / 2) as u32;
-            let other = if inc[n][0] == s_in { inc[n][1] } else { inc[n][0] };
+            let other = if inc[n][0] == s_in {
+                inc[n][1]
+            } else {
+                inc[n][0]
+            };
             leave(n, other)
         }
     };
@@ -377,7 +381,12 @@ fn polygon_orientation(pts: &[HPoint], axis: usize) -> Sign {
         }
     }
     let n = pts.len();
-    exact::orient2d(&pts[(best + n - 1) % n], &pts[best], &pts[(best + 1) % n], axis)
+    exact::orient2d(
+        &pts[(best + n - 1) % n],
+        &pts[best],
+        &pts[(best + 1) % n],
+        axis,
+    )
 }
 
 /// Crossing-number point-in-polygon in the projection (exact; half-open rule on the second axis).
@@ -434,15 +443,16 @@ fn triangulate(
                 {
                     continue;
                 }
-                let blocked = |ring: &[usize], orient: &mut dyn FnMut(usize, usize, usize) -> Sign| {
-                    (0..ring.len()).any(|k| {
-                        let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
-                        if a == h || a == o || b == h || b == o {
-                            return false;
-                        }
-                        segments_cross(orient, h, o, a, b)
-                    })
-                };
+                let blocked =
+                    |ring: &[usize], orient: &mut dyn FnMut(usize, usize, usize) -> Sign| {
+                        (0..ring.len()).any(|k| {
+                            let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
+                            if a == h || a == o || b == h || b == o {
+                                return false;
+                            }
+                            segments_cross(orient, h, o, a, b)
+                        })
+                    };
                 if blocked(&poly, &mut orient)
                     || blocked(&hole, &mut orient)
                     || pending.iter().any(|r| blocked(r, &mut orient))

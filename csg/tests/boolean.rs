@@ -22,7 +22,10 @@ fn box_through_sphere_makes_a_tunnel() {
     // The removed piece is close to the analytic volume of the box ∩ ball.
     let rw = concat(&r.removed.mesh, &r.walls.mesh.reversed());
     let vol = volume(&rw);
-    assert!(vol > 6.0 * 6.0 * 15.0 && vol < 6.0 * 6.0 * 20.0, "removed volume {vol}");
+    assert!(
+        vol > 6.0 * 6.0 * 15.0 && vol < 6.0 * 6.0 * 20.0,
+        "removed volume {vol}"
+    );
 }
 
 #[test]
@@ -37,7 +40,7 @@ fn strip_groove_on_sphere() {
     let cutter = strip(&path, v(0.0, 1.0, 0.3), 8.0, 10.0);
     let r = cut_and_check(&target, &cutter);
     check_cut_welded(&target, &r).unwrap();
-    assert!(r.contours.len() >= 1);
+    assert!(!r.contours.is_empty());
     assert!(r.removed.mesh.triangle_count() > 0);
 }
 
@@ -85,9 +88,9 @@ fn coplanar_faces() {
     // face plane, and both cubes overlap in that plane.
     let target = cube(v(0.0, 0.0, 0.0), v(2.0, 2.0, 2.0));
     for cutter in [
-        cube(v(0.5, 0.5, 2.0), v(1.5, 1.5, 3.0)),  // touching from outside, face on face
-        cube(v(0.5, 0.5, 1.0), v(1.5, 1.5, 2.0)),  // inside, top face flush with the target's
-        cube(v(0.5, 0.5, 1.0), v(2.0, 2.0, 3.0)),  // flush on two sides, crossing the top
+        cube(v(0.5, 0.5, 2.0), v(1.5, 1.5, 3.0)), // touching from outside, face on face
+        cube(v(0.5, 0.5, 1.0), v(1.5, 1.5, 2.0)), // inside, top face flush with the target's
+        cube(v(0.5, 0.5, 1.0), v(2.0, 2.0, 3.0)), // flush on two sides, crossing the top
         cube(v(-1.0, 0.0, 1.0), v(3.0, 2.0, 3.0)), // shares the y faces
     ]
     .iter()
@@ -117,7 +120,12 @@ fn cutter_vertex_on_target_vertex() {
     // A tetrahedral cutter whose apex is a sphere vertex.
     let sphere = icosphere(2, 1.0);
     let apex = sphere.positions[0];
-    let tet = tetra(apex, apex * 0.5 + v(0.3, 0.0, 0.0), apex * 0.5 + v(-0.2, 0.3, 0.0), apex * 0.5 + v(0.0, -0.2, 0.3));
+    let tet = tetra(
+        apex,
+        apex * 0.5 + v(0.3, 0.0, 0.0),
+        apex * 0.5 + v(-0.2, 0.3, 0.0),
+        apex * 0.5 + v(0.0, -0.2, 0.3),
+    );
     cut_and_check(&sphere, &tet);
 }
 
@@ -135,12 +143,22 @@ fn cutter_vertex_on_target_face() {
     // A tetrahedron with one vertex on the top face, the others above.
     cut_and_check(
         &target,
-        &tetra(v(0.7, 0.6, 2.0), v(0.2, 0.2, 3.0), v(1.5, 0.3, 3.0), v(0.8, 1.6, 3.0)),
+        &tetra(
+            v(0.7, 0.6, 2.0),
+            v(0.2, 0.2, 3.0),
+            v(1.5, 0.3, 3.0),
+            v(0.8, 1.6, 3.0),
+        ),
     );
     // ... and the others below.
     cut_and_check(
         &target,
-        &tetra(v(0.7, 0.6, 2.0), v(0.2, 0.2, 1.0), v(1.5, 0.3, 1.0), v(0.8, 1.6, 1.0)),
+        &tetra(
+            v(0.7, 0.6, 2.0),
+            v(0.2, 0.2, 1.0),
+            v(1.5, 0.3, 1.0),
+            v(0.8, 1.6, 1.0),
+        ),
     );
 }
 
@@ -151,7 +169,12 @@ fn cutter_edge_along_target_edge() {
     // face's triangulation.
     cut_and_check(&target, &cube(v(0.5, -1.0, 2.0), v(1.5, 0.0, 3.0)));
     cut_and_check(&target, &cube(v(0.5, 0.0, 1.0), v(1.5, 1.0, 2.0)));
-    let diag = tetra(v(0.0, 0.0, 2.0), v(2.0, 2.0, 2.0), v(1.0, 0.2, 2.8), v(0.9, 0.5, 1.5));
+    let diag = tetra(
+        v(0.0, 0.0, 2.0),
+        v(2.0, 2.0, 2.0),
+        v(1.0, 0.2, 2.8),
+        v(0.9, 0.5, 1.5),
+    );
     cut_and_check(&target, &diag);
 }
 
@@ -160,10 +183,10 @@ fn zero_area_target_triangle() {
     let flat = flat_sliver_cube();
     check_closed_oriented(&flat).unwrap();
     for cutter in [
-        cube(v(0.7, -1.0, 1.5), v(1.2, 1.0, 3.0)),  // crosses the sliver's edges
+        cube(v(0.7, -1.0, 1.5), v(1.2, 1.0, 3.0)), // crosses the sliver's edges
         cube(v(1.2, -1.0, 1.0), v(1.7, 1.0, 3.0)),
-        cube(v(0.5, -0.5, 1.9), v(1.5, 0.5, 2.5)),  // contains part of the sliver
-        cube(v(1.0, -1.0, 1.0), v(2.0, 1.0, 3.0)),  // cutter face through the sliver's middle vertex
+        cube(v(0.5, -0.5, 1.9), v(1.5, 0.5, 2.5)), // contains part of the sliver
+        cube(v(1.0, -1.0, 1.0), v(2.0, 1.0, 3.0)), // cutter face through the sliver's middle vertex
     ] {
         cut_and_check(&flat, &cutter);
     }
@@ -191,7 +214,12 @@ fn flat_sliver_cube() -> Mesh {
 fn cutter_touching_vertex_only() {
     let target = cube(v(0.0, 0.0, 0.0), v(2.0, 2.0, 2.0));
     // The cutter touches the target at one corner only (from outside).
-    let tet = tetra(v(2.0, 2.0, 2.0), v(3.0, 2.5, 2.5), v(2.5, 3.0, 2.5), v(2.5, 2.5, 3.0));
+    let tet = tetra(
+        v(2.0, 2.0, 2.0),
+        v(3.0, 2.5, 2.5),
+        v(2.5, 3.0, 2.5),
+        v(2.5, 2.5, 3.0),
+    );
     let r = cut_and_check(&target, &tet);
     // Whatever the tie-break decides, it is a tiny or empty change.
     let removed = concat(&r.removed.mesh, &r.walls.mesh.reversed());
@@ -199,7 +227,12 @@ fn cutter_touching_vertex_only() {
     // Sphere vertex touched by a cutter vertex from outside.
     let sphere = icosphere(2, 1.0);
     let p = sphere.positions[5];
-    let tet = tetra(p, p * 1.5 + v(0.1, 0.0, 0.0), p * 1.5 + v(0.0, 0.1, 0.0), p * 1.5 + v(0.0, 0.0, 0.1));
+    let tet = tetra(
+        p,
+        p * 1.5 + v(0.1, 0.0, 0.0),
+        p * 1.5 + v(0.0, 0.1, 0.0),
+        p * 1.5 + v(0.0, 0.0, 0.1),
+    );
     let r = cut_and_check(&sphere, &tet);
     let removed = concat(&r.removed.mesh, &r.walls.mesh.reversed());
     assert!(volume(&removed).abs() < 1e-12);
@@ -233,7 +266,10 @@ fn many_sub_cutters_at_once() {
         // Each matches the single cut.
         let single = csg::subtract(&index, &cutters[k as usize]).unwrap();
         let v_single = volume(&concat(&single.removed.mesh, &single.walls.mesh.reversed()));
-        assert!((volume(&closed) - v_single).abs() < 1e-9 * v_single.abs(), "sub-cutter {k}");
+        assert!(
+            (volume(&closed) - v_single).abs() < 1e-9 * v_single.abs(),
+            "sub-cutter {k}"
+        );
         assert!(v_single > 0.0);
     }
     // Overlapping sub-cutters are refused.
@@ -252,10 +288,17 @@ fn invalid_cutters_are_typed_errors() {
     // Open.
     let mut open = good.clone();
     open.triangles.pop();
-    assert!(matches!(csg::subtract(&index, &open), Err(CutError::NotClosed { .. })));
+    assert!(matches!(
+        csg::subtract(&index, &open),
+        Err(CutError::NotClosed { .. })
+    ));
     // Inconsistent orientation.
     let mut flipped = good.clone();
-    flipped.triangles[0] = [flipped.triangles[0][0], flipped.triangles[0][2], flipped.triangles[0][1]];
+    flipped.triangles[0] = [
+        flipped.triangles[0][0],
+        flipped.triangles[0][2],
+        flipped.triangles[0][1],
+    ];
     assert!(matches!(
         csg::subtract(&index, &flipped),
         Err(CutError::NotClosed { .. } | CutError::NotOriented { .. })
@@ -268,10 +311,16 @@ fn invalid_cutters_are_typed_errors() {
     // Non-finite.
     let mut nan = good.clone();
     nan.positions[3].x = f64::NAN;
-    assert!(matches!(csg::subtract(&index, &nan), Err(CutError::InvalidMesh { .. })));
+    assert!(matches!(
+        csg::subtract(&index, &nan),
+        Err(CutError::InvalidMesh { .. })
+    ));
     // Far away.
     let far = cube(v(1e6, 0.0, 0.0), v(1e6 + 1.0, 1.0, 1.0));
-    assert!(matches!(csg::subtract(&index, &far), Err(CutError::OutOfRange { .. })));
+    assert!(matches!(
+        csg::subtract(&index, &far),
+        Err(CutError::OutOfRange { .. })
+    ));
     // Self-intersecting: two overlapping cubes in one mesh.
     let mut two = cube(v(0.0, 0.0, 0.0), v(1.0, 1.0, 1.0));
     two.append(&cube(v(0.5, 0.5, 0.5), v(1.5, 1.5, 1.5)));

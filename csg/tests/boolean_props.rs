@@ -16,7 +16,9 @@ fn target_sphere() -> Mesh {
 
 fn cut_prop(target: &Mesh, index: &TargetIndex, cutter: &Mesh) -> Result<(), TestCaseError> {
     match csg::subtract(index, cutter) {
-        Ok(_) => cut_checked(index, target, cutter).map(|_| ()).map_err(TestCaseError::fail),
+        Ok(_) => cut_checked(index, target, cutter)
+            .map(|_| ())
+            .map_err(TestCaseError::fail),
         // Snapping can make a random strip self-intersect: not this test's subject.
         Err(CutError::SelfIntersecting { .. } | CutError::NotPositive { .. }) => {
             Err(TestCaseError::reject("invalid cutter"))
@@ -89,7 +91,8 @@ fn random_cutter_transforms() {
         let axis = DVec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize_or(DVec3::Z);
         let rot = glam::DQuat::from_axis_angle(axis, rnd() * 6.3);
         let shift = DVec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 20.0;
-        let mut cutter = csg::testkit::cube(DVec3::new(-2.0, -3.0, -12.0), DVec3::new(2.0, 3.0, 1.0));
+        let mut cutter =
+            csg::testkit::cube(DVec3::new(-2.0, -3.0, -12.0), DVec3::new(2.0, 3.0, 1.0));
         for p in &mut cutter.positions {
             *p = rot * *p + shift;
         }

@@ -521,7 +521,7 @@ fn roll(
         Some((mut clear, mut hit)) => {
             // Refine the contact (our addition), then rest the face REST_GAP·δ outside it: the
             // thesis's final 2δ step leaves it anywhere 0–2δ above; this is the middle of that.
-            for _ in 0..8 {
+            for _ in 0..6 {
                 let mid = 0.5 * (clear + hit);
                 if hits_at(mid, scratch) {
                     hit = mid;

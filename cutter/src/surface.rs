@@ -32,14 +32,26 @@ impl<'a> Surface<'a> {
     }
 
     /// True when the quad `q` (split along its first diagonal) crosses the surface.
+    ///
+    /// Most candidate triangles from the box query lie entirely on one side of the quad's plane
+    /// (the face rests above the surface); a sign test of their corners against each half of the
+    /// quad rejects them before the full triangle/triangle test.
     pub fn quad_intersects(&self, q: &[DVec3; 4], scratch: &mut Vec<u32>) -> bool {
         let b = Aabb::from_points(q.iter());
         scratch.clear();
         self.index.faces_in_box(&b, scratch);
-        let [t0, t1] = geom::quad_triangles(q);
+        let halves = geom::quad_triangles(q);
+        let planes = halves.map(|t| {
+            let n = (t[1] - t[0]).cross(t[2] - t[0]);
+            (n, n.dot(t[0]))
+        });
         scratch.iter().any(|&f| {
             let c = self.mesh.corners(f as usize);
-            geom::tri_tri_intersect(&t0, &c) || geom::tri_tri_intersect(&t1, &c)
+            halves.iter().zip(&planes).any(|(t, &(n, d))| {
+                let s = c.map(|p| n.dot(p) - d);
+                let one_side = (s[0] > 0.0 && s[1] > 0.0 && s[2] > 0.0) || (s[0] < 0.0 && s[1] < 0.0 && s[2] < 0.0);
+                !one_side && geom::tri_tri_intersect(t, &c)
+            })
         })
     }
 

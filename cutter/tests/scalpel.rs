@@ -454,6 +454,53 @@ fn s21_grooves_keep_a_sphere_closed() {
 }
 
 #[test]
+fn multi_layer_blade_grooves_every_surface_it_reaches() {
+    use cutter::scalpel::layers::layer_strokes;
+    // "Skin" (radius 10) over "muscle" (radius 9): one file, two closed regions.
+    let mut mesh = csg::testkit::icosphere(4, 10.0);
+    mesh.append(&csg::testkit::icosphere(4, 9.0));
+    let index = csg::SpatialIndex::build(&mesh);
+    let regions = csg::regions::Regions::build(&mesh, &csg::EdgeAdjacency::build(&mesh));
+    assert_eq!(regions.count, 2);
+    let pts: Vec<DVec3> = (0..=30)
+        .map(|i| {
+            let a = 0.1 + 1.0 * i as f64 / 30.0;
+            DVec3::new(a.cos(), a.sin(), 0.05).normalize() * 10.0
+        })
+        .collect();
+    let depth = 1.6;
+    let layers = layer_strokes(&mesh, &index, &regions, &pts, depth);
+    assert_eq!(layers.len(), 1, "{layers:?}");
+    assert_eq!(layers[0].region, 1);
+    assert!(
+        (layers[0].depth - 0.6).abs() < 0.05,
+        "depth left {}",
+        layers[0].depth
+    );
+    // A shallow blade does not reach the muscle.
+    assert!(layer_strokes(&mesh, &index, &regions, &pts, 0.8).is_empty());
+
+    let mut s = Scalpel::new(&mesh, ScalpelOptions::default().with_depth(depth)).unwrap();
+    let inner_vertices_before = s.dyn_mesh().vertex_count();
+    cut_strokes(&mut s, &[pts], false, 0.0);
+    let after_top = s.dyn_mesh().vertex_count();
+    s.set_options(ScalpelOptions::default().with_depth(layers[0].depth));
+    cut_strokes(&mut s, &[layers[0].samples.clone()], false, 0.0);
+    let t = topo(&s);
+    assert!(t.closed && t.manifold && t.components == 2, "{t:?}");
+    // The second stroke cut the inner sphere: its new vertices lie near radius 9.
+    let m = s.dyn_mesh();
+    assert!(after_top > inner_vertices_before);
+    let near_inner = (after_top..m.vertex_count())
+        .filter(|&v| (m.pos(v as u32).length() - 9.0).abs() < 0.05)
+        .count();
+    assert!(
+        near_inner > 10,
+        "{near_inner} new vertices on the inner surface"
+    );
+}
+
+#[test]
 fn s22_opening_reaches_its_width_and_leaves_the_rest_alone() {
     use cutter::scalpel::OpenOptions;
     use cutter::scalpel::dffd::open_positions;

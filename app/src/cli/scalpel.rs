@@ -1,8 +1,10 @@
 //! `cutaway scalpel TARGET --path P.json --out OUT.obj --json`. OWNER: scalpel helper.
 //!
 //! Replays a `cutaway-path/1` file through the same [`cutter::scalpel::Scalpel`] the GUI's
-//! Scalpel mode drives: one step per sample, strokes one after another, then the opening (if the
-//! file asks for one) evaluated after its whole time window. Any failed step is an error naming
+//! Scalpel mode drives: one step per sample, strokes one after another; with a depth, each
+//! stroke is then repeated on every stacked surface the blade reaches (multi-layer, see
+//! `cutter::scalpel::layers`); then the opening (if the file asks for one) is evaluated after its
+//! whole time window. `steps` and the step times count the path file's samples only. Any failed step is an error naming
 //! the path file, the stroke and the point; nothing is written then.
 
 use std::path::PathBuf;
@@ -11,7 +13,8 @@ use std::time::Instant;
 use anyhow::anyhow;
 use cutter::scalpel::dffd::open_positions;
 use cutter::scalpel::invariants::validate;
-use cutter::scalpel::{Scalpel, ScalpelOptions};
+use cutter::scalpel::layers::{LayerStroke, layer_strokes};
+use cutter::scalpel::{Scalpel, ScalpelOptions, Tool};
 
 #[derive(Debug, clap::Args)]
 pub struct ScalpelArgs {
@@ -37,6 +40,19 @@ pub fn run(args: &ScalpelArgs) -> anyhow::Result<()> {
         .with_tool(path_file.tool);
     let mut scalpel = Scalpel::new(&mesh, options).map_err(|e| anyhow!("{target}: {e}"))?;
     let triangles_before = scalpel.dyn_mesh().triangle_count();
+    // Multi-layer: what the blade meets below each stroke, found on the uncut input.
+    let layers: Vec<Vec<LayerStroke>> = if path_file.depth > 0.0 && path_file.tool == Tool::Scalpel
+    {
+        let index = csg::SpatialIndex::build(&mesh);
+        let regions = csg::regions::Regions::build(&mesh, &csg::EdgeAdjacency::build(&mesh));
+        path_file
+            .strokes
+            .iter()
+            .map(|stroke| layer_strokes(&mesh, &index, &regions, stroke, path_file.depth))
+            .collect()
+    } else {
+        vec![Vec::new(); path_file.strokes.len()]
+    };
     let mut step_us: Vec<f64> = Vec::new();
     let mut triangles_cut = 0usize;
     let file = args.path.display();
@@ -55,6 +71,19 @@ pub fn run(args: &ScalpelArgs) -> anyhow::Result<()> {
             .end_stroke()
             .map_err(|e| anyhow!("{file}: stroke {s}: {e}"))?;
         triangles_cut += report.triangles_cut;
+        // The same stroke on every surface below, with the depth left there.
+        for (l, layer) in layers[s].iter().enumerate() {
+            scalpel.set_options(options.with_depth(layer.depth));
+            let mut r = scalpel.begin_stroke(layer.samples[0]);
+            for &q in &layer.samples[1..] {
+                r = r.and_then(|_| scalpel.step(q));
+            }
+            let report = r
+                .and_then(|_| scalpel.end_stroke())
+                .map_err(|e| anyhow!("{file}: stroke {s}, layer {l} below it: {e}"))?;
+            triangles_cut += report.triangles_cut;
+            scalpel.set_options(options);
+        }
     }
     let topology = validate(scalpel.dyn_mesh())
         .map_err(|e| anyhow!("{target}: internal error after cutting: {e}"))?;

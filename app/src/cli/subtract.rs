@@ -39,8 +39,8 @@ pub fn run(args: &SubtractArgs) -> anyhow::Result<()> {
     let target = crate::io::read_mesh(&args.target)?;
     let cutter = crate::io::read_mesh(&args.cutter)?;
     let target_triangles = target.triangles.len();
-    let index = csg::TargetIndex::build(target)
-        .with_context(|| args.target.display().to_string())?;
+    let index =
+        csg::TargetIndex::build(target).with_context(|| args.target.display().to_string())?;
 
     let clock = Instant::now();
     let result =
@@ -58,7 +58,9 @@ pub fn run(args: &SubtractArgs) -> anyhow::Result<()> {
         .iter()
         .map(|c| {
             let mut p = c.points.clone();
-            if c.closed && let Some(&first) = p.first() {
+            if c.closed
+                && let Some(&first) = p.first()
+            {
                 p.push(first); // written as a closed `l` record
             }
             p

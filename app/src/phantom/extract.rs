@@ -87,7 +87,14 @@ type CaseTable = Vec<Vec<Vec<[CubeEdge; 3]>>>;
 /// Corner offsets of the six Kuhn tetrahedra: a monotone path from (0,0,0) to (1,1,1).
 fn kuhn_tetrahedra() -> [[IVec3; 4]; 6] {
     let axes = [IVec3::X, IVec3::Y, IVec3::Z];
-    let orders = [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]];
+    let orders = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ];
     orders.map(|o| {
         let a = IVec3::ZERO;
         let b = a + axes[o[0]];
@@ -98,7 +105,11 @@ fn kuhn_tetrahedra() -> [[IVec3; 4]; 6] {
 }
 
 fn cube_edge(p: IVec3, q: IVec3) -> CubeEdge {
-    let (lower, upper) = if (q - p).min_element() >= 0 { (p, q) } else { (q, p) };
+    let (lower, upper) = if (q - p).min_element() >= 0 {
+        (p, q)
+    } else {
+        (q, p)
+    };
     let d = upper - lower;
     debug_assert!(d.min_element() >= 0 && d.max_element() <= 1 && d != IVec3::ZERO);
     CubeEdge {
@@ -142,10 +153,17 @@ fn case_table() -> &'static CaseTable {
                                 // Exact orientation on the doubled lattice: midpoint of edge (p, q) is p + q.
                                 let m = tri.map(|(p, q)| (p + q).as_i64vec3());
                                 let n = (m[1] - m[0]).cross(m[2] - m[0]);
-                                let o = out_corner.expect("a crossed tetrahedron has an outside corner").as_i64vec3() * 2;
+                                let o = out_corner
+                                    .expect("a crossed tetrahedron has an outside corner")
+                                    .as_i64vec3()
+                                    * 2;
                                 let side = n.dot(o - m[0]);
                                 debug_assert!(side != 0, "midpoint plane separates the corners");
-                                let tri = if side > 0 { tri } else { [tri[0], tri[2], tri[1]] };
+                                let tri = if side > 0 {
+                                    tri
+                                } else {
+                                    [tri[0], tri[2], tri[1]]
+                                };
                                 tri.map(|(p, q)| cube_edge(p, q))
                             })
                             .collect()
@@ -165,7 +183,10 @@ struct BlockMesh {
 }
 
 /// Extracts the closed surface `field = 0` (negative inside) sampled on `lattice`.
-pub fn extract(field: &(dyn Fn(DVec3) -> f64 + Sync), lattice: &Lattice) -> Result<Mesh, ExtractError> {
+pub fn extract(
+    field: &(dyn Fn(DVec3) -> f64 + Sync),
+    lattice: &Lattice,
+) -> Result<Mesh, ExtractError> {
     let h = lattice.h;
     let cells = ((lattice.max - lattice.min) / h).ceil().as_uvec3();
     let n = [cells.x as usize, cells.y as usize, cells.z as usize];
@@ -177,7 +198,9 @@ pub fn extract(field: &(dyn Fn(DVec3) -> f64 + Sync), lattice: &Lattice) -> Resu
     let stride = [1u64, n[0] as u64 + 1, (n[0] as u64 + 1) * (n[1] as u64 + 1)];
     let blocks = n.map(|c| c.div_ceil(BLOCK));
     let block_ids: Vec<[usize; 3]> = (0..blocks[2])
-        .flat_map(|bz| (0..blocks[1]).flat_map(move |by| (0..blocks[0]).map(move |bx| [bx, by, bz])))
+        .flat_map(|bz| {
+            (0..blocks[1]).flat_map(move |by| (0..blocks[0]).map(move |bx| [bx, by, bz]))
+        })
         .collect();
     let table = case_table();
     let tets = kuhn_tetrahedra();
@@ -199,12 +222,16 @@ pub fn extract(field: &(dyn Fn(DVec3) -> f64 + Sync), lattice: &Lattice) -> Resu
                     lo[1] as f64 + 0.5 * size[1] as f64,
                     lo[2] as f64 + 0.5 * size[2] as f64,
                 ) * h;
-            let half_diagonal = 0.5 * h * ((size[0] * size[0] + size[1] * size[1] + size[2] * size[2]) as f64).sqrt();
+            let half_diagonal = 0.5
+                * h
+                * ((size[0] * size[0] + size[1] * size[1] + size[2] * size[2]) as f64).sqrt();
             let at_centre = field(centre);
             if at_centre.abs() > SKIP_SAFETY * half_diagonal {
                 let touches_boundary = (0..3).any(|a| lo[a] == 0 || hi[a] == n[a]);
                 if touches_boundary && at_centre < 0.0 {
-                    return Err(ExtractError::TouchesBoundary { at: centre.to_array() });
+                    return Err(ExtractError::TouchesBoundary {
+                        at: centre.to_array(),
+                    });
                 }
                 return Ok(None);
             }
@@ -218,7 +245,9 @@ pub fn extract(field: &(dyn Fn(DVec3) -> f64 + Sync), lattice: &Lattice) -> Resu
                         let v = value(g);
                         let on_boundary = (0..3).any(|a| g[a] == 0 || g[a] == n[a]);
                         if on_boundary && v < 0.0 {
-                            return Err(ExtractError::TouchesBoundary { at: point(g).to_array() });
+                            return Err(ExtractError::TouchesBoundary {
+                                at: point(g).to_array(),
+                            });
                         }
                         values.push(v);
                     }
@@ -244,14 +273,30 @@ pub fn extract(field: &(dyn Fn(DVec3) -> f64 + Sync), lattice: &Lattice) -> Resu
                             for tri in &table[t][case] {
                                 let corners = tri.map(|edge| {
                                     let p = cell + edge.lower;
-                                    let d = IVec3::new((edge.dir & 1) as i32, (edge.dir >> 1 & 1) as i32, (edge.dir >> 2 & 1) as i32);
-                                    let g = [lo[0] + p.x as usize, lo[1] + p.y as usize, lo[2] + p.z as usize];
-                                    let key = (g[0] as u64 * stride[0] + g[1] as u64 * stride[1] + g[2] as u64 * stride[2]) * 8 + edge.dir as u64;
+                                    let d = IVec3::new(
+                                        (edge.dir & 1) as i32,
+                                        (edge.dir >> 1 & 1) as i32,
+                                        (edge.dir >> 2 & 1) as i32,
+                                    );
+                                    let g = [
+                                        lo[0] + p.x as usize,
+                                        lo[1] + p.y as usize,
+                                        lo[2] + p.z as usize,
+                                    ];
+                                    let key = (g[0] as u64 * stride[0]
+                                        + g[1] as u64 * stride[1]
+                                        + g[2] as u64 * stride[2])
+                                        * 8
+                                        + edge.dir as u64;
                                     *index_of.entry(key).or_insert_with(|| {
                                         let (va, vb) = (values[local(p)], values[local(p + d)]);
                                         let s = (va / (va - vb)).clamp(T_MIN, 1.0 - T_MIN);
                                         let pa = point(g);
-                                        let pb = point([g[0] + d.x as usize, g[1] + d.y as usize, g[2] + d.z as usize]);
+                                        let pb = point([
+                                            g[0] + d.x as usize,
+                                            g[1] + d.y as usize,
+                                            g[2] + d.z as usize,
+                                        ]);
                                         mesh.vertices.push((key, pa + (pb - pa) * s));
                                         (mesh.vertices.len() - 1) as u32
                                     })
@@ -286,7 +331,10 @@ pub fn extract(field: &(dyn Fn(DVec3) -> f64 + Sync), lattice: &Lattice) -> Resu
     if triangles.is_empty() {
         return Err(ExtractError::Empty);
     }
-    Ok(Mesh { positions, triangles })
+    Ok(Mesh {
+        positions,
+        triangles,
+    })
 }
 
 /// Checks that every directed edge appears exactly once and its reverse exactly once: the mesh is
@@ -338,10 +386,15 @@ mod tests {
         let v = mesh.volume();
         let exact = 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
         assert!((v - exact).abs() / exact < 0.02, "volume {v} vs {exact}");
-        let worst = mesh.positions.iter().map(|p| (p.length() - r).abs()).fold(0.0, f64::max);
+        let worst = mesh
+            .positions
+            .iter()
+            .map(|p| (p.length() - r).abs())
+            .fold(0.0, f64::max);
         assert!(worst < 0.9 * 0.5, "vertex off the sphere by {worst}");
         // Euler characteristic of a sphere: V - E + F = 2 with E = 3F/2.
-        let euler = mesh.positions.len() as i64 - (mesh.triangles.len() as i64 * 3 / 2) + mesh.triangles.len() as i64;
+        let euler = mesh.positions.len() as i64 - (mesh.triangles.len() as i64 * 3 / 2)
+            + mesh.triangles.len() as i64;
         assert_eq!(euler, 2);
     }
 
@@ -353,7 +406,10 @@ mod tests {
             max: DVec3::splat(13.0),
             h: 1.0,
         };
-        assert!(matches!(extract(&f, &lattice), Err(ExtractError::TouchesBoundary { .. })));
+        assert!(matches!(
+            extract(&f, &lattice),
+            Err(ExtractError::TouchesBoundary { .. })
+        ));
     }
 
     #[test]
@@ -366,7 +422,8 @@ mod tests {
         };
         let mesh = extract(&torus, &lattice).expect("torus extracts");
         assert_eq!(directed_edge_defects(&mesh), 0);
-        let euler = mesh.positions.len() as i64 - (mesh.triangles.len() as i64 * 3 / 2) + mesh.triangles.len() as i64;
+        let euler = mesh.positions.len() as i64 - (mesh.triangles.len() as i64 * 3 / 2)
+            + mesh.triangles.len() as i64;
         assert_eq!(euler, 0);
         assert!(mesh.volume() > 0.0);
     }

@@ -63,7 +63,13 @@ pub fn brain(p: DVec3) -> f64 {
 pub fn ventricles(p: DVec3) -> f64 {
     let mut f = ellipsoid(p, v(0.0, 2.0, 14.0), v(3.0, 16.0, 11.0));
     for s in [-1.0, 1.0] {
-        let c_shape = [v(s * 12.0, -32.0, 28.0), v(s * 14.0, -5.0, 36.0), v(s * 14.0, 25.0, 30.0), v(s * 17.0, 38.0, 12.0), v(s * 21.0, 22.0, -6.0)];
+        let c_shape = [
+            v(s * 12.0, -32.0, 28.0),
+            v(s * 14.0, -5.0, 36.0),
+            v(s * 14.0, 25.0, 30.0),
+            v(s * 17.0, 38.0, 12.0),
+            v(s * 21.0, 22.0, -6.0),
+        ];
         f = smin(f, tube(p, &c_shape, 4.5, 5.0), 3.0);
         let foramen = capsule(p, v(s * 12.0, -12.0, 30.0), v(0.0, -8.0, 18.0), 3.0);
         f = smin(f, foramen, 3.0);
@@ -82,10 +88,38 @@ pub fn scene() -> SceneSpec {
     SceneSpec {
         name: "head",
         parts: vec![
-            part("skin", None, skin, [-86.0, -112.0, -190.0], [86.0, 102.0, 108.0], 4.2),
-            part("skull", Some("skin"), skull, [-70.0, -85.0, -66.0], [70.0, 95.0, 102.0], 2.6),
-            part("brain", Some("skin"), brain, [-60.0, -75.0, -118.0], [60.0, 83.0, 90.0], 2.6),
-            part("ventricles", Some("brain"), ventricles, [-30.0, -40.0, -15.0], [30.0, 45.0, 45.0], 1.5),
+            part(
+                "skin",
+                None,
+                skin,
+                [-86.0, -112.0, -190.0],
+                [86.0, 102.0, 108.0],
+                5.0,
+            ),
+            part(
+                "skull",
+                Some("skin"),
+                skull,
+                [-70.0, -85.0, -66.0],
+                [70.0, 95.0, 102.0],
+                3.4,
+            ),
+            part(
+                "brain",
+                Some("skin"),
+                brain,
+                [-60.0, -75.0, -118.0],
+                [60.0, 83.0, 90.0],
+                3.6,
+            ),
+            part(
+                "ventricles",
+                Some("brain"),
+                ventricles,
+                [-30.0, -40.0, -15.0],
+                [30.0, 45.0, 45.0],
+                1.8,
+            ),
         ],
     }
 }

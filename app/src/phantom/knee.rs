@@ -29,8 +29,26 @@ fn v(x: f64, y: f64, z: f64) -> DVec3 {
 /// Outer body surface.
 pub fn skin(p: DVec3) -> f64 {
     let column = elliptic_column(p, -90.0, 310.0, 40.0, |z| {
-        let rx = profile(z, &[(-90.0, 50.0), (-20.0, 52.0), (20.0, 54.0), (120.0, 64.0), (310.0, 72.0)]);
-        let ry = profile(z, &[(-90.0, 50.0), (-20.0, 53.0), (20.0, 54.0), (120.0, 60.0), (310.0, 66.0)]);
+        let rx = profile(
+            z,
+            &[
+                (-90.0, 50.0),
+                (-20.0, 52.0),
+                (20.0, 54.0),
+                (120.0, 64.0),
+                (310.0, 72.0),
+            ],
+        );
+        let ry = profile(
+            z,
+            &[
+                (-90.0, 50.0),
+                (-20.0, 53.0),
+                (20.0, 54.0),
+                (120.0, 60.0),
+                (310.0, 66.0),
+            ],
+        );
         let cy = profile(z, &[(-90.0, 4.0), (0.0, 3.0), (120.0, 0.0)]);
         (DVec2::new(0.0, cy), DVec2::new(rx, ry))
     });
@@ -108,14 +126,70 @@ pub fn scene() -> SceneSpec {
     SceneSpec {
         name: "knee",
         parts: vec![
-            part("skin", None, skin, [-78.0, -75.0, -95.0], [78.0, 75.0, 315.0], 4.6),
-            part("fat", Some("skin"), fat, [-78.0, -75.0, -95.0], [78.0, 75.0, 315.0], 4.6),
-            part("quadriceps", Some("fat"), quadriceps, [-70.0, -70.0, 40.0], [70.0, 40.0, 310.0], 3.2),
-            part("femur", Some("fat"), femur, [-45.0, -40.0, -5.0], [45.0, 40.0, 302.0], 2.4),
-            part("femur_marrow", Some("femur"), femur_marrow, [-15.0, -15.0, 80.0], [15.0, 15.0, 270.0], 2.2),
-            part("patella", Some("fat"), patella, [-25.0, -50.0, 5.0], [25.0, -25.0, 60.0], 1.5),
-            part("tibia", Some("fat"), tibia, [-42.0, -32.0, -82.0], [42.0, 35.0, 0.0], 2.2),
-            part("popliteal_vessel", Some("fat"), popliteal_vessel, [-12.0, 20.0, -80.0], [22.0, 52.0, 288.0], 1.6),
+            part(
+                "skin",
+                None,
+                skin,
+                [-78.0, -75.0, -95.0],
+                [78.0, 75.0, 315.0],
+                5.0,
+            ),
+            part(
+                "fat",
+                Some("skin"),
+                fat,
+                [-78.0, -75.0, -95.0],
+                [78.0, 75.0, 315.0],
+                5.0,
+            ),
+            part(
+                "quadriceps",
+                Some("fat"),
+                quadriceps,
+                [-70.0, -70.0, 40.0],
+                [70.0, 40.0, 310.0],
+                3.6,
+            ),
+            part(
+                "femur",
+                Some("fat"),
+                femur,
+                [-45.0, -40.0, -5.0],
+                [45.0, 40.0, 302.0],
+                2.7,
+            ),
+            part(
+                "femur_marrow",
+                Some("femur"),
+                femur_marrow,
+                [-15.0, -15.0, 80.0],
+                [15.0, 15.0, 270.0],
+                2.2,
+            ),
+            part(
+                "patella",
+                Some("fat"),
+                patella,
+                [-25.0, -50.0, 5.0],
+                [25.0, -25.0, 60.0],
+                1.5,
+            ),
+            part(
+                "tibia",
+                Some("fat"),
+                tibia,
+                [-42.0, -32.0, -82.0],
+                [42.0, 35.0, 0.0],
+                2.2,
+            ),
+            part(
+                "popliteal_vessel",
+                Some("fat"),
+                popliteal_vessel,
+                [-12.0, 20.0, -80.0],
+                [22.0, 52.0, 288.0],
+                1.9,
+            ),
         ],
     }
 }

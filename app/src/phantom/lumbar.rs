@@ -38,11 +38,31 @@ pub fn vertebra(p: DVec3, zc: f64) -> f64 {
     });
     let mut f = body;
     for s in [-1.0, 1.0] {
-        let pedicle = capsule(p, v(s * 13.0, 12.0, zc + 4.0), v(s * 13.0, 25.0, zc + 4.0), 5.0);
+        let pedicle = capsule(
+            p,
+            v(s * 13.0, 12.0, zc + 4.0),
+            v(s * 13.0, 25.0, zc + 4.0),
+            5.0,
+        );
         let lamina = capsule(p, v(s * 13.0, 27.0, zc + 2.0), v(0.0, 37.0, zc), 4.5);
-        let transverse = capsule(p, v(s * 14.0, 23.0, zc + 4.0), v(s * 40.0, 27.0, zc + 7.0), 4.0);
-        let superior = capsule(p, v(s * 17.0, 27.0, zc + 6.0), v(s * 21.0, 31.0, zc + 15.0), 4.0);
-        let inferior = capsule(p, v(s * 10.0, 33.0, zc - 3.0), v(s * 8.0, 35.0, zc - 16.0), 3.8);
+        let transverse = capsule(
+            p,
+            v(s * 14.0, 23.0, zc + 4.0),
+            v(s * 40.0, 27.0, zc + 7.0),
+            4.0,
+        );
+        let superior = capsule(
+            p,
+            v(s * 17.0, 27.0, zc + 6.0),
+            v(s * 21.0, 31.0, zc + 15.0),
+            4.0,
+        );
+        let inferior = capsule(
+            p,
+            v(s * 10.0, 33.0, zc - 3.0),
+            v(s * 8.0, 35.0, zc - 16.0),
+            3.8,
+        );
         f = smin(f, pedicle, 5.0);
         f = smin(f, lamina, 4.0);
         f = smin(f, transverse, 4.0);
@@ -84,9 +104,27 @@ pub fn scene() -> SceneSpec {
     SceneSpec {
         name: "lumbar",
         parts: vec![
-            part("vertebra_l4", vertebra_l4, [-46.0, -20.0, L4 - 28.0], [46.0, 70.0, L4 + 25.0], 1.3),
-            part("disc_l4_l5", disc_l4_l5, [-27.0, -20.0, 13.0], [27.0, 20.0, 27.0], 1.3),
-            part("vertebra_l5", vertebra_l5, [-46.0, -20.0, L5 - 28.0], [46.0, 70.0, L5 + 25.0], 1.3),
+            part(
+                "vertebra_l4",
+                vertebra_l4,
+                [-46.0, -20.0, L4 - 28.0],
+                [46.0, 70.0, L4 + 25.0],
+                1.3,
+            ),
+            part(
+                "disc_l4_l5",
+                disc_l4_l5,
+                [-27.0, -20.0, 13.0],
+                [27.0, 20.0, 27.0],
+                1.3,
+            ),
+            part(
+                "vertebra_l5",
+                vertebra_l5,
+                [-46.0, -20.0, L5 - 28.0],
+                [46.0, 70.0, L5 + 25.0],
+                1.3,
+            ),
         ],
     }
 }

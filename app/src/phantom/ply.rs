@@ -52,8 +52,10 @@ pub fn encode(mesh: &Mesh, comment: &str) -> Vec<u8> {
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     let tmp = path.with_extension("ply.tmp");
     let mut file = std::fs::File::create(&tmp).with_context(|| format!("{}", tmp.display()))?;
-    file.write_all(bytes).with_context(|| format!("{}", tmp.display()))?;
-    file.sync_all().with_context(|| format!("{}", tmp.display()))?;
+    file.write_all(bytes)
+        .with_context(|| format!("{}", tmp.display()))?;
+    file.sync_all()
+        .with_context(|| format!("{}", tmp.display()))?;
     drop(file);
     std::fs::rename(&tmp, path).with_context(|| format!("{}", path.display()))?;
     Ok(())
@@ -70,7 +72,10 @@ pub fn decode(bytes: &[u8]) -> anyhow::Result<Mesh> {
     let mut lines = text.lines().filter(|l| !l.starts_with("comment"));
     let mut expect = |want: &str| -> anyhow::Result<String> {
         let line = lines.next().unwrap_or_default().trim_end().to_string();
-        anyhow::ensure!(line.starts_with(want), "PLY header line {line:?} where {want:?} was expected");
+        anyhow::ensure!(
+            line.starts_with(want),
+            "PLY header line {line:?} where {want:?} was expected"
+        );
         Ok(line)
     };
     expect("ply")?;
@@ -89,14 +94,26 @@ pub fn decode(bytes: &[u8]) -> anyhow::Result<Mesh> {
         body.len()
     );
     let (vertex_bytes, face_bytes) = body.split_at(vertices * 12);
-    let f32_at = |chunk: &[u8], i: usize| f32::from_le_bytes([chunk[i], chunk[i + 1], chunk[i + 2], chunk[i + 3]]);
+    let f32_at = |chunk: &[u8], i: usize| {
+        f32::from_le_bytes([chunk[i], chunk[i + 1], chunk[i + 2], chunk[i + 3]])
+    };
     let positions: Vec<DVec3> = vertex_bytes
         .chunks_exact(12)
-        .map(|c| DVec3::new(f32_at(c, 0) as f64, f32_at(c, 4) as f64, f32_at(c, 8) as f64))
+        .map(|c| {
+            DVec3::new(
+                f32_at(c, 0) as f64,
+                f32_at(c, 4) as f64,
+                f32_at(c, 8) as f64,
+            )
+        })
         .collect();
     let mut tris = Vec::with_capacity(triangles);
     for (t, c) in face_bytes.chunks_exact(13).enumerate() {
-        anyhow::ensure!(c[0] == 3, "face {t} has {} corners; only triangles are stored", c[0]);
+        anyhow::ensure!(
+            c[0] == 3,
+            "face {t} has {} corners; only triangles are stored",
+            c[0]
+        );
         let u = |i: usize| u32::from_le_bytes([c[i], c[i + 1], c[i + 2], c[i + 3]]);
         tris.push([u(1), u(5), u(9)]);
     }
@@ -105,7 +122,8 @@ pub fn decode(bytes: &[u8]) -> anyhow::Result<Mesh> {
 
 fn count(line: &str) -> anyhow::Result<usize> {
     let word = line.split_whitespace().nth(2).unwrap_or_default();
-    word.parse::<usize>().with_context(|| format!("bad element count in PLY header line {line:?}"))
+    word.parse::<usize>()
+        .with_context(|| format!("bad element count in PLY header line {line:?}"))
 }
 
 #[cfg(test)]
@@ -137,8 +155,16 @@ mod tests {
         for cut in [0, 10, bytes.len() / 2, bytes.len() - 1] {
             assert!(decode(&bytes[..cut]).is_err(), "cut at {cut}");
         }
-        let huge = String::from_utf8_lossy(&bytes).replace("element vertex 4", "element vertex 4000000000");
-        let huge = [huge.split("end_header\n").next().unwrap_or_default().as_bytes(), b"end_header\n"].concat();
+        let huge = String::from_utf8_lossy(&bytes)
+            .replace("element vertex 4", "element vertex 4000000000");
+        let huge = [
+            huge.split("end_header\n")
+                .next()
+                .unwrap_or_default()
+                .as_bytes(),
+            b"end_header\n",
+        ]
+        .concat();
         let err = decode(&huge).expect_err("absurd count");
         assert!(err.to_string().contains("need"), "{err}");
         let mut bad_index = bytes.clone();

@@ -60,7 +60,13 @@ pub fn tube(p: DVec3, points: &[DVec3], r: f64, k: f64) -> f64 {
 /// the cross-section ellipse at height `p.z` (scaled like [`ellipsoid`]), limited to
 /// `z0 <= z <= z1` by a smooth intersection of blend width `k` (which rounds the ends).
 /// `section(z)` returns (centre in xy, semi-axes in xy).
-pub fn elliptic_column(p: DVec3, z0: f64, z1: f64, k: f64, section: impl Fn(f64) -> (DVec2, DVec2)) -> f64 {
+pub fn elliptic_column(
+    p: DVec3,
+    z0: f64,
+    z1: f64,
+    k: f64,
+    section: impl Fn(f64) -> (DVec2, DVec2),
+) -> f64 {
     let (c, r) = section(p.z.clamp(z0, z1));
     let q = (p.truncate() - c) / r;
     let radial = (q.length() - 1.0) * r.min_element();

@@ -795,7 +795,7 @@ fn frame_uniform(frame: &FrameInputs, camera: &cutter::Camera, size: [u32; 2], n
         clip_from_world = tile_from_full * clip_from_world;
     }
     let (right, up, forward) = camera.basis();
-    let light = (-forward + up * 0.55 - right * 0.35).normalize();
+    let light = (-forward + up * 0.5 - right * 0.25).normalize();
     FrameUniform {
         clip_from_world: clip_from_world.as_mat4().to_cols_array_2d(),
         eye_in_world: camera.eye.as_vec3().extend(1.0).to_array(),

@@ -91,7 +91,9 @@ pub fn check_measures(target: &Mesh, result: &CutResult) -> Result<(), String> {
     let rw = concat(removed, &walls.reversed());
     let (vt, vk, vr) = (volume(target), volume(&kw), volume(&rw));
     if rel(vk + vr, vt) > 1e-9 {
-        return Err(format!("volume: kept+walls {vk} + removed+walls {vr} != target {vt}"));
+        return Err(format!(
+            "volume: kept+walls {vk} + removed+walls {vr} != target {vt}"
+        ));
     }
     for (i, p) in target.positions.iter().enumerate() {
         if kept.positions[i].to_array().map(f64::to_bits) != p.to_array().map(f64::to_bits) {
@@ -147,8 +149,7 @@ pub fn check_cut(target: &Mesh, result: &CutResult) -> Result<(), String> {
             VertexSource::New(i - n)
         }
     };
-    let kept_faces: Vec<[VertexSource; 3]> =
-        kept.triangles.iter().map(|t| t.map(src)).collect();
+    let kept_faces: Vec<[VertexSource; 3]> = kept.triangles.iter().map(|t| t.map(src)).collect();
     let mut kw = kept_faces.clone();
     kw.extend(part_faces(&result.walls, false));
     check_closed_by_source(&kw).map_err(|e| format!("kept + walls: {e}"))?;

@@ -26,6 +26,7 @@
 //!   ([`loop_tool`]).
 //! - [`dffd`] opens the incision by a displacement that is discontinuous across the cut, over a
 //!   trailing time window; vertices outside its support are never written.
+//! - [`layers`] turns a stroke into strokes on every stacked surface the blade reaches.
 //! - [`invariants`] validates the whole structure (used after every step in tests).
 //!
 //! ## Robustness contract
@@ -40,6 +41,7 @@ pub mod dffd;
 pub mod dyn_mesh;
 pub mod groove;
 pub mod invariants;
+pub mod layers;
 pub mod loop_tool;
 pub mod step;
 

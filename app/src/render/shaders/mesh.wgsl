@@ -77,7 +77,7 @@ fn shade(in: VertexOut, front_facing: bool, flat_normal: vec3<f32>) -> vec3<f32>
     let fill = max(dot(n, to_eye), 0.0);
     let h = normalize(l + to_eye);
     let specular = pow(max(dot(n, h), 0.0), 40.0) * 0.18;
-    let lit = base * (0.16 + 0.62 * diffuse + 0.22 * fill) * brightness + vec3<f32>(specular * brightness);
+    let lit = base * (0.18 + 0.6 * diffuse + 0.24 * fill) * brightness + vec3<f32>(specular * brightness);
     return lit;
 }
 
