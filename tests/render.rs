@@ -14,7 +14,8 @@ use csg::Mesh;
 use cutaway::render::headless::{HeadlessRenderer, render_with};
 use cutaway::render::{RenderPngOptions, ViewMode};
 use cutaway::scene::{
-    CutKind, CutterPlane, CutterViews, ModelStyle, Scene, SceneCutter, SceneModel, Stereo, SubCutterView,
+    CutKind, CutterPlane, CutterViews, ModelStyle, Scene, SceneCutter, SceneModel, Stereo,
+    SubCutterView,
 };
 use cutter::Camera;
 use glam::DVec3;
@@ -51,18 +52,35 @@ fn compare_to_golden(name: &str, actual: &image::RgbaImage, software: bool) {
         return;
     }
     if !software {
-        println!("{name}: hardware adapter, golden comparison skipped (written to {})", actual_path.display());
+        println!(
+            "{name}: hardware adapter, golden comparison skipped (written to {})",
+            actual_path.display()
+        );
         return;
     }
     let expected = image::open(&path)
-        .unwrap_or_else(|e| panic!("{}: {e} (run with UPDATE_GOLDEN=1 to create it)", path.display()))
+        .unwrap_or_else(|e| {
+            panic!(
+                "{}: {e} (run with UPDATE_GOLDEN=1 to create it)",
+                path.display()
+            )
+        })
         .to_rgba8();
-    assert_eq!(expected.dimensions(), actual.dimensions(), "{name}: size differs");
+    assert_eq!(
+        expected.dimensions(),
+        actual.dimensions(),
+        "{name}: size differs"
+    );
     let mut differing = 0usize;
     let mut sum = 0u64;
     for (a, e) in actual.pixels().zip(expected.pixels()) {
-        let d = (0..4).map(|k| (a[k] as i32 - e[k] as i32).abs()).max().unwrap_or(0);
-        sum += (0..4).map(|k| (a[k] as i32 - e[k] as i32).unsigned_abs() as u64).sum::<u64>();
+        let d = (0..4)
+            .map(|k| (a[k] as i32 - e[k] as i32).abs())
+            .max()
+            .unwrap_or(0);
+        sum += (0..4)
+            .map(|k| (a[k] as i32 - e[k] as i32).unsigned_abs() as u64)
+            .sum::<u64>();
         if d > CHANNEL_TOLERANCE {
             differing += 1;
         }
@@ -139,7 +157,8 @@ fn icosphere(centre: DVec3, radius: f64, levels: u32) -> Mesh {
         for [a, b, c] in triangles {
             let mut m = |i: u32, j: u32| {
                 *mid.entry((i.min(j), i.max(j))).or_insert_with(|| {
-                    positions.push(((positions[i as usize] + positions[j as usize]) * 0.5).normalize());
+                    positions
+                        .push(((positions[i as usize] + positions[j as usize]) * 0.5).normalize());
                     (positions.len() - 1) as u32
                 })
             };
@@ -184,12 +203,16 @@ fn corner_planes() -> Vec<CutterPlane> {
 /// Skin-like outer sphere around a red inner sphere, as in an anatomy cutaway.
 fn layered_scene() -> Scene {
     let mut scene = Scene::default();
-    scene
-        .models
-        .push(model("skin", icosphere(DVec3::ZERO, 1.0, 3), [0.93, 0.76, 0.62]));
-    scene
-        .models
-        .push(model("organ", icosphere(DVec3::new(0.15, 0.0, 0.2), 0.5, 3), [0.8, 0.22, 0.2]));
+    scene.models.push(model(
+        "skin",
+        icosphere(DVec3::ZERO, 1.0, 3),
+        [0.93, 0.76, 0.62],
+    ));
+    scene.models.push(model(
+        "organ",
+        icosphere(DVec3::new(0.15, 0.0, 0.2), 0.5, 3),
+        [0.8, 0.22, 0.2],
+    ));
     scene.camera = camera();
     scene.render.antialias = true;
     scene
@@ -241,7 +264,10 @@ fn golden_plain_scene() {
     let c = coverage(&image, [255, 255, 255]);
     assert!(c > 0.15 && c < 0.8, "coverage {c}");
     let centre = pixel(&image, WIDTH / 2, HEIGHT / 2);
-    assert!(centre[0] > centre[2], "skin colour expected at the centre, got {centre:?}");
+    assert!(
+        centre[0] > centre[2],
+        "skin colour expected at the centre, got {centre:?}"
+    );
     compare_to_golden("plain", &image, r.is_software());
 }
 
@@ -257,9 +283,17 @@ fn golden_normal_cut_with_walls_and_contour() {
             .filter(|p| p[0] as i32 > p[1] as i32 + 80 && p[0] as i32 > p[2] as i32 + 80)
             .count()
     };
-    assert!(red(&image) > red(&uncut) + 100, "{} vs {}", red(&image), red(&uncut));
+    assert!(
+        red(&image) > red(&uncut) + 100,
+        "{} vs {}",
+        red(&image),
+        red(&uncut)
+    );
     // A dark contour line exists.
-    let dark = image.pixels().filter(|p| p[0] < 60 && p[1] < 60 && p[2] < 60).count();
+    let dark = image
+        .pixels()
+        .filter(|p| p[0] < 60 && p[1] < 60 && p[2] < 60)
+        .count();
     assert!(dark > 40, "contour pixels: {dark}");
     compare_to_golden("normal_cut", &image, r.is_software());
 }
@@ -273,11 +307,19 @@ fn golden_transparency_over_two_layers() {
     };
     let mut scene = with_cutter(layered_scene(), views);
     // A second transparent layer in front of part of the removed piece.
-    let mut veil = model("veil", icosphere(DVec3::new(0.75, -1.6, 0.55), 0.45, 2), [0.25, 0.5, 0.95]);
+    let mut veil = model(
+        "veil",
+        icosphere(DVec3::new(0.75, -1.6, 0.55), 0.45, 2),
+        [0.25, 0.5, 0.95],
+    );
     veil.opacity = 0.45;
     scene.models.push(veil);
     let image = render(&mut r, &scene, None);
-    let opaque_cut = render(&mut r, &with_cutter(layered_scene(), CutterViews::default()), None);
+    let opaque_cut = render(
+        &mut r,
+        &with_cutter(layered_scene(), CutterViews::default()),
+        None,
+    );
     // The removed piece shows as a tint over the hole: the image differs from the plain cut in
     // many pixels, and blue appears where the veil is.
     let changed = image
@@ -286,7 +328,10 @@ fn golden_transparency_over_two_layers() {
         .filter(|(a, b)| (0..3).any(|k| (a[k] as i32 - b[k] as i32).abs() > 10))
         .count();
     assert!(changed > 300, "{changed} pixels changed");
-    let blue = image.pixels().filter(|p| p[2] as i32 > p[0] as i32 + 20).count();
+    let blue = image
+        .pixels()
+        .filter(|p| p[2] as i32 > p[0] as i32 + 20)
+        .count();
     assert!(blue > 30, "{blue} bluish pixels");
     compare_to_golden("transparency", &image, r.is_software());
 }
@@ -296,13 +341,24 @@ fn golden_ribbons() {
     let Some(mut r) = renderer() else { return };
     let views = CutterViews {
         cut: true,
-        ribbons: Some(SubCutterView { count: 3, width: 0.12 }),
+        ribbons: Some(SubCutterView {
+            count: 3,
+            width: 0.12,
+        }),
         ..CutterViews::default()
     };
     let scene = with_cutter(layered_scene(), views);
     let image = render(&mut r, &scene, None);
-    let plain_cut = render(&mut r, &with_cutter(layered_scene(), CutterViews::default()), None);
-    let changed = image.pixels().zip(plain_cut.pixels()).filter(|(a, b)| a != b).count();
+    let plain_cut = render(
+        &mut r,
+        &with_cutter(layered_scene(), CutterViews::default()),
+        None,
+    );
+    let changed = image
+        .pixels()
+        .zip(plain_cut.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
     assert!(changed > 60, "ribbons changed only {changed} pixels");
     compare_to_golden("ribbons", &image, r.is_software());
 }
@@ -312,20 +368,33 @@ fn golden_slices() {
     let Some(mut r) = renderer() else { return };
     let views = CutterViews {
         cut: true,
-        slices: Some(SubCutterView { count: 3, width: 0.12 }),
+        slices: Some(SubCutterView {
+            count: 3,
+            width: 0.12,
+        }),
         ..CutterViews::default()
     };
     let scene = with_cutter(layered_scene(), views);
     let image = render(&mut r, &scene, None);
     let ribbons = CutterViews {
         cut: true,
-        ribbons: Some(SubCutterView { count: 3, width: 0.12 }),
+        ribbons: Some(SubCutterView {
+            count: 3,
+            width: 0.12,
+        }),
         ..CutterViews::default()
     };
     let ribbon_image = render(&mut r, &with_cutter(layered_scene(), ribbons), None);
     // Slices add walls to the ribbons.
-    let changed = image.pixels().zip(ribbon_image.pixels()).filter(|(a, b)| a != b).count();
-    assert!(changed > 30, "slices look like ribbons ({changed} pixels differ)");
+    let changed = image
+        .pixels()
+        .zip(ribbon_image.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        changed > 30,
+        "slices look like ribbons ({changed} pixels differ)"
+    );
     compare_to_golden("slices", &image, r.is_software());
 }
 
@@ -344,9 +413,18 @@ fn golden_anaglyph() {
     // Red/blue only: no green anywhere, and both eyes' images present (red-only and blue-only
     // fringes at the silhouette).
     assert!(image.pixels().all(|p| p[1] == 0), "green in an anaglyph");
-    let red_only = image.pixels().filter(|p| p[0] as i32 > p[2] as i32 + 60).count();
-    let blue_only = image.pixels().filter(|p| p[2] as i32 > p[0] as i32 + 60).count();
-    assert!(red_only > 10 && blue_only > 10, "fringes: red {red_only}, blue {blue_only}");
+    let red_only = image
+        .pixels()
+        .filter(|p| p[0] as i32 > p[2] as i32 + 60)
+        .count();
+    let blue_only = image
+        .pixels()
+        .filter(|p| p[2] as i32 > p[0] as i32 + 60)
+        .count();
+    assert!(
+        red_only > 10 && blue_only > 10,
+        "fringes: red {red_only}, blue {blue_only}"
+    );
     compare_to_golden("anaglyph", &image, r.is_software());
 }
 
@@ -356,8 +434,15 @@ fn golden_edit_mode_cutter_overlay() {
     let scene = with_cutter(layered_scene(), CutterViews::default());
     let image = render(&mut r, &scene, Some(ViewMode::Edit));
     let camera_mode = render(&mut r, &scene, Some(ViewMode::Camera));
-    let changed = image.pixels().zip(camera_mode.pixels()).filter(|(a, b)| a != b).count();
-    assert!(changed > 200, "the cutter overlay changed only {changed} pixels");
+    let changed = image
+        .pixels()
+        .zip(camera_mode.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        changed > 200,
+        "the cutter overlay changed only {changed} pixels"
+    );
     compare_to_golden("edit_mode", &image, r.is_software());
 }
 
@@ -370,7 +455,11 @@ fn transparent_background_and_tiled_export() {
     options.transparent_background = true;
     let image = render_with(&mut r, &scene, &options).unwrap();
     assert_eq!(pixel(&image, 0, 0)[3], 0, "corner should be transparent");
-    assert_eq!(pixel(&image, WIDTH / 2, HEIGHT / 2)[3], 255, "model should be opaque");
+    assert_eq!(
+        pixel(&image, WIDTH / 2, HEIGHT / 2)[3],
+        255,
+        "model should be opaque"
+    );
     // A 2600×40 strip needs two tiles across; the seam must not show.
     let mut options = RenderPngOptions::new(2600, 40);
     options.deterministic = true;
@@ -378,7 +467,10 @@ fn transparent_background_and_tiled_export() {
     assert_eq!(wide.dimensions(), (2600, 40));
     for y in 0..40 {
         let (a, b) = (pixel(&wide, 2047, y), pixel(&wide, 2048, y));
-        let d = (0..3).map(|k| (a[k] as i32 - b[k] as i32).abs()).max().unwrap_or(0);
+        let d = (0..3)
+            .map(|k| (a[k] as i32 - b[k] as i32).abs())
+            .max()
+            .unwrap_or(0);
         assert!(d < 40, "seam at row {y}: {a:?} vs {b:?}");
     }
 }
@@ -389,12 +481,29 @@ fn transparent_background_and_tiled_export() {
 #[ignore]
 fn sample_renders_for_people() {
     let Some(mut r) = renderer() else { return };
-    let sub = Some(SubCutterView { count: 4, width: 0.1 });
+    let sub = Some(SubCutterView {
+        count: 4,
+        width: 0.1,
+    });
     let views = [
         ("sample_plain", None),
         ("sample_cut", Some(CutterViews::default())),
-        ("sample_transparency_ribbons", Some(CutterViews { transparency: Some(0.3), ribbons: sub, ..CutterViews::default() })),
-        ("sample_slices", Some(CutterViews { transparency: Some(0.25), slices: sub, ..CutterViews::default() })),
+        (
+            "sample_transparency_ribbons",
+            Some(CutterViews {
+                transparency: Some(0.3),
+                ribbons: sub,
+                ..CutterViews::default()
+            }),
+        ),
+        (
+            "sample_slices",
+            Some(CutterViews {
+                transparency: Some(0.25),
+                slices: sub,
+                ..CutterViews::default()
+            }),
+        ),
     ];
     for (name, v) in views {
         let scene = match v {
@@ -413,7 +522,8 @@ mod sessions {
     use cutaway::session;
 
     fn temp_dir(name: &str) -> PathBuf {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("session-{name}-{}", std::process::id()));
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join(format!("session-{name}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         dir
@@ -431,8 +541,17 @@ mod sessions {
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
         write_two_region_obj(&path);
         let mut scene = Scene::default();
-        for (region, m) in cutaway::io::load_models(&path).unwrap().into_iter().enumerate() {
-            let mut sm = SceneModel::new(m.name, m.source, Arc::new(m.mesh), [0.1 * region as f32, 0.5, 0.9]);
+        for (region, m) in cutaway::io::load_models(&path)
+            .unwrap()
+            .into_iter()
+            .enumerate()
+        {
+            let mut sm = SceneModel::new(
+                m.name,
+                m.source,
+                Arc::new(m.mesh),
+                [0.1 * region as f32, 0.5, 0.9],
+            );
             sm.region = region;
             scene.models.push(sm);
         }
@@ -447,7 +566,10 @@ mod sessions {
             views: CutterViews {
                 cut: false,
                 transparency: Some(0.25),
-                ribbons: Some(SubCutterView { count: 5, width: 2.0 }),
+                ribbons: Some(SubCutterView {
+                    count: 5,
+                    width: 2.0,
+                }),
                 slices: None,
             },
         });
@@ -466,11 +588,17 @@ mod sessions {
         session::save(&file, &scene).unwrap();
         let text = std::fs::read_to_string(&file).unwrap();
         assert!(text.contains("\"cutaway-session/1\""));
-        assert!(text.contains("models/pair.obj"), "paths must be relative: {text}");
+        assert!(
+            text.contains("models/pair.obj"),
+            "paths must be relative: {text}"
+        );
         let back = session::load(&file).unwrap();
         assert_eq!(back.models.len(), 2);
         for (a, b) in scene.models.iter().zip(&back.models) {
-            assert_eq!((a.color, a.opacity, a.style, a.visible, a.region), (b.color, b.opacity, b.style, b.visible, b.region));
+            assert_eq!(
+                (a.color, a.opacity, a.style, a.visible, a.region),
+                (b.color, b.opacity, b.style, b.visible, b.region)
+            );
             assert_eq!(a.mesh.triangles, b.mesh.triangles);
         }
         assert_eq!(scene.cutters, back.cutters);
@@ -479,7 +607,10 @@ mod sessions {
         // Saving again gives the same bytes, and leaves no temporary file behind.
         session::save(&file, &back).unwrap();
         assert_eq!(std::fs::read_to_string(&file).unwrap(), text);
-        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
         assert_eq!(names.len(), 2, "{names:?}");
     }
 
@@ -546,7 +677,10 @@ mod sessions {
             .arg("--out")
             .arg(&out)
             .args(["--width", "96", "--height", "64"])
-            .env("WGPU_BACKEND", std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()))
+            .env(
+                "WGPU_BACKEND",
+                std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
+            )
             .output()
             .unwrap();
         let stderr = String::from_utf8_lossy(&run.stderr);
@@ -569,6 +703,9 @@ mod sessions {
         let stderr = String::from_utf8_lossy(&run.stderr);
         assert!(!run.status.success());
         assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
-        assert!(stderr.starts_with("error: ") && stderr.contains("s.json"), "{stderr}");
+        assert!(
+            stderr.starts_with("error: ") && stderr.contains("s.json"),
+            "{stderr}"
+        );
     }
 }

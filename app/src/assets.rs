@@ -201,15 +201,19 @@ mod tests {
         }
     }
 
-    /// Every part of every embedded scene, loaded like the GUI loads it: (scene, model).
-    fn all_models() -> Vec<(&'static str, Model)> {
-        let mut out = Vec::new();
-        for scene in scenes() {
-            for model in load_scene(scene).unwrap_or_else(|e| panic!("{}: {e:#}", scene.name)) {
-                out.push((scene.name, model));
+    /// Every part of every embedded scene, loaded like the GUI loads it: (scene, model). Loaded
+    /// once for all tests of this module.
+    fn all_models() -> &'static [(&'static str, Model)] {
+        static MODELS: std::sync::OnceLock<Vec<(&'static str, Model)>> = std::sync::OnceLock::new();
+        MODELS.get_or_init(|| {
+            let mut out = Vec::new();
+            for scene in scenes() {
+                for model in load_scene(scene).unwrap_or_else(|e| panic!("{}: {e:#}", scene.name)) {
+                    out.push((scene.name, model));
+                }
             }
-        }
-        out
+            out
+        })
     }
 
     #[test]
@@ -217,7 +221,7 @@ mod tests {
         let models = all_models();
         let expected: usize = scenes().iter().map(|s| s.parts.len()).sum();
         assert_eq!(models.len(), expected, "one region per part");
-        for (scene, model) in &models {
+        for (scene, model) in models {
             let report = model.mesh.report();
             let what = format!("{scene}/{}", model.name);
             assert!(report.closed && report.manifold, "{what}: {report:?}");
@@ -355,7 +359,7 @@ mod tests {
             positions: mesh
                 .positions
                 .iter()
-                .map(|&p| p + DVec3::new(3.0, 0.0, 0.0))
+                .map(|&p| p + DVec3::new(3.0, 1.3, 0.7))
                 .collect(),
             triangles: mesh.triangles.clone(),
         };

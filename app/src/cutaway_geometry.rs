@@ -114,7 +114,8 @@ pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
             let parts = match index.as_ref().map(|i| cut_exact(i, cutter)) {
                 Some(Ok(parts)) => parts,
                 Some(Err(e)) => {
-                    out.notes.push(format!("cutter {c}: {e}; showing an approximate cut"));
+                    out.notes
+                        .push(format!("cutter {c}: {e}; showing an approximate cut"));
                     cut_approx(&current, &cutter.planes, views.cut)
                 }
                 None => cut_approx(&current, &cutter.planes, views.cut),
@@ -126,15 +127,27 @@ pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
                 }
             }
             if let Some(opacity) = views.transparency {
-                push_part(&mut out, model_index, c, PartKind::Removed, opacity, parts.removed);
+                push_part(
+                    &mut out,
+                    model_index,
+                    c,
+                    PartKind::Removed,
+                    opacity,
+                    parts.removed,
+                );
             }
             for (view, with_walls) in [(views.ribbons, false), (views.slices, true)] {
                 let Some(view) = view else { continue };
-                let (ribbons, walls) = match index.as_ref().map(|i| sub_cuts_exact(i, cutter, view.count, view.width)) {
+                let (ribbons, walls) = match index
+                    .as_ref()
+                    .map(|i| sub_cuts_exact(i, cutter, view.count, view.width))
+                {
                     Some(Ok(pieces)) => pieces,
                     other => {
                         if let Some(Err(e)) = other {
-                            out.notes.push(format!("cutter {c} sub-cutters: {e}; showing approximate ones"));
+                            out.notes.push(format!(
+                                "cutter {c} sub-cutters: {e}; showing approximate ones"
+                            ));
                         }
                         let mut ribbons = Mesh::default();
                         let mut walls = Mesh::default();
@@ -149,12 +162,26 @@ pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
                 push_part(&mut out, model_index, c, PartKind::Ribbon, 1.0, ribbons);
                 if with_walls {
                     // The slice is closed by the sub-cutters' walls, turned to face out of it.
-                    push_part(&mut out, model_index, c, PartKind::SliceWall, 1.0, walls.reversed());
+                    push_part(
+                        &mut out,
+                        model_index,
+                        c,
+                        PartKind::SliceWall,
+                        1.0,
+                        walls.reversed(),
+                    );
                 }
             }
             current = parts.kept;
         }
-        push_part(&mut out, model_index, usize::MAX, PartKind::Kept, 1.0, current);
+        push_part(
+            &mut out,
+            model_index,
+            usize::MAX,
+            PartKind::Kept,
+            1.0,
+            current,
+        );
     }
     out
 }
@@ -162,7 +189,11 @@ pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
 /// Cuts `cutter` out of `target` with the exact boolean (honouring the cutter's kind and
 /// smoothing), or with the approximate stand-in when the boolean refuses; the second value then
 /// says why. `with_walls: false` lets the stand-in skip the walls.
-pub fn cut_cutter(target: &Mesh, cutter: &SceneCutter, with_walls: bool) -> (CutParts, Option<String>) {
+pub fn cut_cutter(
+    target: &Mesh,
+    cutter: &SceneCutter,
+    with_walls: bool,
+) -> (CutParts, Option<String>) {
     let exact = TargetIndex::build(target.clone())
         .map_err(|e| e.to_string())
         .and_then(|index| cut_exact(&index, cutter).map_err(|e| e.to_string()));
@@ -189,7 +220,11 @@ pub fn to_cutter(cutter: &SceneCutter) -> cutter::Cutter {
     cutter::Cutter {
         kind: cutter::CutKind::from_name(cutter.kind.as_str()).unwrap_or(cutter::CutKind::Curving),
         smooth: cutter.smooth,
-        planes: cutter.planes.iter().map(|p| cutter::BoundedPlane::from_corners(*p)).collect(),
+        planes: cutter
+            .planes
+            .iter()
+            .map(|p| cutter::BoundedPlane::from_corners(*p))
+            .collect(),
     }
 }
 
@@ -220,7 +255,9 @@ pub fn cut_exact(target: &TargetIndex, cutter: &SceneCutter) -> Result<CutParts,
             .into_iter()
             .map(|c| {
                 let mut points = c.points;
-                if c.closed && let Some(&first) = points.first() {
+                if c.closed
+                    && let Some(&first) = points.first()
+                {
                     points.push(first);
                 }
                 points
@@ -240,10 +277,11 @@ pub fn sub_cuts_exact(
     if cutter.planes.len() < 2 {
         return Ok((Mesh::default(), Mesh::default()));
     }
-    let subs: Vec<Mesh> = cutter::subcutters::at_intervals(&to_cutter(cutter), count as usize, width)
-        .iter()
-        .map(|c| c.triangle_mesh())
-        .collect();
+    let subs: Vec<Mesh> =
+        cutter::subcutters::at_intervals(&to_cutter(cutter), count as usize, width)
+            .iter()
+            .map(|c| c.triangle_mesh())
+            .collect();
     if subs.is_empty() {
         return Ok((Mesh::default(), Mesh::default()));
     }
@@ -252,7 +290,14 @@ pub fn sub_cuts_exact(
     Ok((result.removed.mesh, result.walls.mesh))
 }
 
-fn push_part(out: &mut PreviewGeometry, model: usize, cutter: usize, kind: PartKind, opacity: f32, mesh: Mesh) {
+fn push_part(
+    out: &mut PreviewGeometry,
+    model: usize,
+    cutter: usize,
+    kind: PartKind,
+    opacity: f32,
+    mesh: Mesh,
+) {
     if mesh.is_empty() {
         return;
     }
@@ -370,12 +415,27 @@ fn cutter_faces(planes: &[CutterPlane]) -> Vec<[DVec3; 4]> {
     for (k, quad) in quads.iter_mut().enumerate() {
         let local_centre = if k < 4 * (n - 1) {
             let i = k / 4;
-            (planes[i].iter().chain(planes[i + 1].iter()).copied().sum::<DVec3>()) / 8.0
+            (planes[i]
+                .iter()
+                .chain(planes[i + 1].iter())
+                .copied()
+                .sum::<DVec3>())
+                / 8.0
         } else if k == 4 * (n - 1) {
             let i = 0;
-            (planes[i].iter().chain(planes[i + 1].iter()).copied().sum::<DVec3>()) / 8.0
+            (planes[i]
+                .iter()
+                .chain(planes[i + 1].iter())
+                .copied()
+                .sum::<DVec3>())
+                / 8.0
         } else {
-            (planes[n - 2].iter().chain(planes[n - 1].iter()).copied().sum::<DVec3>()) / 8.0
+            (planes[n - 2]
+                .iter()
+                .chain(planes[n - 1].iter())
+                .copied()
+                .sum::<DVec3>())
+                / 8.0
         };
         let normal = newell_normal(quad);
         let mid = quad.iter().copied().sum::<DVec3>() / 4.0;
@@ -467,7 +527,11 @@ impl Halfspace {
 }
 
 fn edge_point(p: DVec3, dp: f64, q: DVec3, dq: f64) -> DVec3 {
-    let (a, da, b, db) = if p.to_array() < q.to_array() { (p, dp, q, dq) } else { (q, dq, p, dp) };
+    let (a, da, b, db) = if p.to_array() < q.to_array() {
+        (p, dp, q, dq)
+    } else {
+        (q, dq, p, dp)
+    };
     let t = da / (da - db);
     a + (b - a) * t
 }
@@ -476,7 +540,11 @@ fn newell_normal(poly: &[DVec3]) -> DVec3 {
     let mut n = DVec3::ZERO;
     for i in 0..poly.len() {
         let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-        n += DVec3::new((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+        n += DVec3::new(
+            (a.y - b.y) * (a.z + b.z),
+            (a.z - b.z) * (a.x + b.x),
+            (a.x - b.x) * (a.y + b.y),
+        );
     }
     n
 }
@@ -513,9 +581,20 @@ fn convex_boxes(planes: &[CutterPlane]) -> Vec<ConvexBox> {
             normal,
             offset: normal.dot(mid),
         };
-        Some(if h.distance(inside_point) > 0.0 { h.flipped() } else { h })
+        Some(if h.distance(inside_point) > 0.0 {
+            h.flipped()
+        } else {
+            h
+        })
     };
-    let box_centre = |i: usize| planes[i].iter().chain(planes[i + 1].iter()).copied().sum::<DVec3>() / 8.0;
+    let box_centre = |i: usize| {
+        planes[i]
+            .iter()
+            .chain(planes[i + 1].iter())
+            .copied()
+            .sum::<DVec3>()
+            / 8.0
+    };
     // Cap plane k, oriented so that box k (after it) is inside; the last one (k = n - 1) so
     // that box n - 2 (before it) is inside.
     let caps: Vec<Option<Halfspace>> = (0..n)
@@ -543,7 +622,11 @@ fn convex_boxes(planes: &[CutterPlane]) -> Vec<ConvexBox> {
             min = min.min(v);
             max = max.max(v);
         }
-        boxes.push(ConvexBox { halfspaces, min, max });
+        boxes.push(ConvexBox {
+            halfspaces,
+            min,
+            max,
+        });
     }
     boxes
 }
@@ -558,16 +641,21 @@ fn convex_walls(target: &Mesh, planes: &[CutterPlane]) -> Mesh {
     let mut halfspaces = Vec::new();
     for t in 0..target.triangle_count() {
         let [a, b, c] = target.corners(t);
-        let Some(normal) = (b - a).cross(c - a).try_normalize() else { continue };
+        let Some(normal) = (b - a).cross(c - a).try_normalize() else {
+            continue;
+        };
         halfspaces.push(Halfspace {
             normal,
             offset: normal.dot(a),
         });
     }
     let scale = target.bbox().diagonal().max(1e-300);
-    let convex = halfspaces
-        .iter()
-        .all(|h| target.positions.iter().all(|&p| h.distance(p) <= 1e-9 * scale));
+    let convex = halfspaces.iter().all(|h| {
+        target
+            .positions
+            .iter()
+            .all(|&p| h.distance(p) <= 1e-9 * scale)
+    });
     if !convex {
         return Mesh::default();
     }
@@ -634,7 +722,11 @@ pub fn boundary_polylines(mesh: &Mesh) -> Vec<Vec<DVec3>> {
         }
     }
     let mut next: HashMap<u32, Vec<u32>> = HashMap::new();
-    let mut edges: Vec<(u32, u32)> = count.into_iter().filter(|&(_, c)| c == 1).map(|(e, _)| e).collect();
+    let mut edges: Vec<(u32, u32)> = count
+        .into_iter()
+        .filter(|&(_, c)| c == 1)
+        .map(|(e, _)| e)
+        .collect();
     edges.sort_unstable();
     for &(a, b) in &edges {
         next.entry(a).or_default().push(b);
@@ -662,7 +754,11 @@ pub fn boundary_polylines(mesh: &Mesh) -> Vec<Vec<DVec3>> {
                 break;
             }
         }
-        lines.push(line.into_iter().map(|i| mesh.positions[i as usize]).collect());
+        lines.push(
+            line.into_iter()
+                .map(|i| mesh.positions[i as usize])
+                .collect(),
+        );
     }
     lines
 }
@@ -680,7 +776,9 @@ pub(crate) mod tests {
                 if z == 0 { min.z } else { max.z },
             )
         };
-        let positions: Vec<DVec3> = (0..8).map(|i| p(i & 1, (i >> 1) & 1, (i >> 2) & 1)).collect();
+        let positions: Vec<DVec3> = (0..8)
+            .map(|i| p(i & 1, (i >> 1) & 1, (i >> 2) & 1))
+            .collect();
         let quads = [
             [0, 2, 3, 1], // z min
             [4, 5, 7, 6], // z max
@@ -694,7 +792,10 @@ pub(crate) mod tests {
             triangles.push([q[0], q[1], q[2]]);
             triangles.push([q[0], q[2], q[3]]);
         }
-        Mesh { positions, triangles }
+        Mesh {
+            positions,
+            triangles,
+        }
     }
 
     /// A straight two-plane cutter spanning x in [x0, x1], y in [y0, y1] (front at y0), z in
@@ -719,9 +820,17 @@ pub(crate) mod tests {
         let area = |m: &Mesh| m.area();
         assert!((area(&parts.kept) + area(&parts.removed) - area(&target)).abs() < 1e-9);
         // The removed corner: three unit squares of the cube surface.
-        assert!((area(&parts.removed) - 3.0).abs() < 1e-9, "{}", area(&parts.removed));
+        assert!(
+            (area(&parts.removed) - 3.0).abs() < 1e-9,
+            "{}",
+            area(&parts.removed)
+        );
         // Walls: three unit squares of the cutter inside the cube.
-        assert!((area(&parts.walls) - 3.0).abs() < 1e-9, "{}", area(&parts.walls));
+        assert!(
+            (area(&parts.walls) - 3.0).abs() < 1e-9,
+            "{}",
+            area(&parts.walls)
+        );
         // kept + walls is closed: the volume is the cube minus the unit corner.
         let mut closed = parts.kept.clone();
         closed.append(&parts.walls);
@@ -757,8 +866,16 @@ pub(crate) mod tests {
         let scene = scene_with_cube_cut(crate::scene::CutterViews::default());
         let index = TargetIndex::build(cube(DVec3::ZERO, DVec3::splat(2.0))).unwrap();
         let parts = cut_exact(&index, &scene.cutters[0]).unwrap();
-        assert!((parts.removed.area() - 3.0).abs() < 1e-9, "{}", parts.removed.area());
-        assert!((parts.walls.area() - 3.0).abs() < 1e-9, "{}", parts.walls.area());
+        assert!(
+            (parts.removed.area() - 3.0).abs() < 1e-9,
+            "{}",
+            parts.removed.area()
+        );
+        assert!(
+            (parts.walls.area() - 3.0).abs() < 1e-9,
+            "{}",
+            parts.walls.area()
+        );
         let mut closed = parts.kept.clone();
         closed.append(&parts.walls);
         assert!((closed.volume() - 7.0).abs() < 1e-9, "{}", closed.volume());
@@ -771,14 +888,29 @@ pub(crate) mod tests {
         let views = crate::scene::CutterViews {
             cut: true,
             transparency: Some(0.3),
-            ribbons: Some(crate::scene::SubCutterView { count: 2, width: 0.2 }),
-            slices: Some(crate::scene::SubCutterView { count: 2, width: 0.2 }),
+            ribbons: Some(crate::scene::SubCutterView {
+                count: 2,
+                width: 0.2,
+            }),
+            slices: Some(crate::scene::SubCutterView {
+                count: 2,
+                width: 0.2,
+            }),
         };
         let preview = preview_geometry(&scene_with_cube_cut(views));
         assert!(preview.notes.is_empty(), "{:?}", preview.notes);
         assert_eq!(preview.replaced, vec![true]);
-        for kind in [PartKind::Kept, PartKind::Wall, PartKind::Removed, PartKind::Ribbon, PartKind::SliceWall] {
-            assert!(preview.parts.iter().any(|p| p.kind == kind), "{kind:?} missing");
+        for kind in [
+            PartKind::Kept,
+            PartKind::Wall,
+            PartKind::Removed,
+            PartKind::Ribbon,
+            PartKind::SliceWall,
+        ] {
+            assert!(
+                preview.parts.iter().any(|p| p.kind == kind),
+                "{kind:?} missing"
+            );
         }
         assert_eq!(preview.contours.len(), 1);
         // A cutter with no view leaves the model alone.
@@ -804,7 +936,11 @@ pub(crate) mod tests {
     fn cutter_surface_is_closed_and_outward() {
         let planes = box_cutter(0.0, 2.0, 0.0, 1.0, 0.0, 1.0);
         let surface = cutter_surface(&planes);
-        assert!((surface.volume() - 2.0).abs() < 1e-9, "{}", surface.volume());
+        assert!(
+            (surface.volume() - 2.0).abs() < 1e-9,
+            "{}",
+            surface.volume()
+        );
     }
 
     #[test]
@@ -814,7 +950,9 @@ pub(crate) mod tests {
         assert_eq!(subs.len(), 4);
         for (k, sub) in subs.iter().enumerate() {
             let x = (k as f64 + 0.5) / 4.0 * 4.0;
-            assert!((sub[0][0].x - (x - 0.1)).abs() < 1e-12 && (sub[1][0].x - (x + 0.1)).abs() < 1e-12);
+            assert!(
+                (sub[0][0].x - (x - 0.1)).abs() < 1e-12 && (sub[1][0].x - (x + 0.1)).abs() < 1e-12
+            );
         }
     }
 }

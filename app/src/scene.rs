@@ -54,7 +54,12 @@ pub struct SceneModel {
 
 impl SceneModel {
     /// A visible, opaque, solid model with the given colour.
-    pub fn new(name: impl Into<String>, source: impl Into<PathBuf>, mesh: Arc<Mesh>, color: [f32; 3]) -> SceneModel {
+    pub fn new(
+        name: impl Into<String>,
+        source: impl Into<PathBuf>,
+        mesh: Arc<Mesh>,
+        color: [f32; 3],
+    ) -> SceneModel {
         SceneModel {
             name: name.into(),
             source: source.into(),
@@ -269,7 +274,10 @@ impl Scene {
         } = self;
         for (i, m) in models.iter().enumerate() {
             if !(0.0..=1.0).contains(&m.opacity) {
-                return Err(format!("model {i} ({}): opacity {} is outside 0..1", m.name, m.opacity));
+                return Err(format!(
+                    "model {i} ({}): opacity {} is outside 0..1",
+                    m.name, m.opacity
+                ));
             }
             if m.color.iter().any(|c| !c.is_finite()) {
                 return Err(format!("model {i} ({}): colour is not finite", m.name));
@@ -312,7 +320,10 @@ impl Scene {
             return Err("camera: eye and target are the same point".to_string());
         }
         if !(camera.fov_y_deg > 0.0 && camera.fov_y_deg < 180.0) {
-            return Err(format!("camera: fov_y_deg {} is outside (0, 180)", camera.fov_y_deg));
+            return Err(format!(
+                "camera: fov_y_deg {} is outside (0, 180)",
+                camera.fov_y_deg
+            ));
         }
         if render.background.iter().any(|c| !(0.0..=1.0).contains(c)) {
             return Err("render: background components must lie in 0..1".to_string());
@@ -361,7 +372,9 @@ mod tests {
     #[test]
     fn sanity_check_rejects_bad_cutter_target() {
         let mut scene = Scene::default();
-        scene.models.push(SceneModel::new("a", "a.obj", triangle(), [1.0, 0.0, 0.0]));
+        scene
+            .models
+            .push(SceneModel::new("a", "a.obj", triangle(), [1.0, 0.0, 0.0]));
         scene.cutters.push(SceneCutter {
             target: 0,
             kind: CutKind::Curving,
@@ -381,7 +394,12 @@ mod tests {
         for i in 0..6 {
             for j in 0..i {
                 let d: f32 = (0..3).map(|k| (colors[i][k] - colors[j][k]).abs()).sum();
-                assert!(d > 0.1, "{i} and {j} look alike: {:?} {:?}", colors[i], colors[j]);
+                assert!(
+                    d > 0.1,
+                    "{i} and {j} look alike: {:?} {:?}",
+                    colors[i],
+                    colors[j]
+                );
             }
         }
     }

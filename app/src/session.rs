@@ -22,8 +22,8 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::scene::{
-    CutKind, CutterViews, ModelStyle, RenderSettings, Scene, SceneCutter, SceneModel, Stereo, SubCutterView,
-    distinct_colors,
+    CutKind, CutterViews, ModelStyle, RenderSettings, Scene, SceneCutter, SceneModel, Stereo,
+    SubCutterView, distinct_colors,
 };
 
 /// The `format` value of this version.
@@ -143,7 +143,8 @@ fn white() -> [f32; 4] {
 
 /// Parses a session's text (no file access). Errors say what is wrong and where (line, column).
 pub fn parse(text: &str) -> anyhow::Result<SessionFile> {
-    let file: SessionFile = serde_json::from_str(text).map_err(|e| anyhow::anyhow!("not a valid session: {e}"))?;
+    let file: SessionFile =
+        serde_json::from_str(text).map_err(|e| anyhow::anyhow!("not a valid session: {e}"))?;
     if file.format != FORMAT {
         anyhow::bail!("format is {:?}, expected {FORMAT:?}", file.format);
     }
@@ -164,7 +165,8 @@ pub fn load_with(
     let text = std::fs::read_to_string(path).with_context(|| format!("{}", path.display()))?;
     let file = parse(&text).with_context(|| format!("{}", path.display()))?;
     let folder = path.parent().unwrap_or(Path::new(""));
-    let scene = scene_from_file(&file, folder, &mut load_models).with_context(|| format!("{}", path.display()))?;
+    let scene = scene_from_file(&file, folder, &mut load_models)
+        .with_context(|| format!("{}", path.display()))?;
     Ok(scene)
 }
 
@@ -191,7 +193,9 @@ pub fn scene_from_file(
         let style = match entry.style.as_str() {
             "solid" => ModelStyle::Solid,
             "wireframe" => ModelStyle::Wireframe,
-            other => anyhow::bail!("model {i}: style {other:?} is neither \"solid\" nor \"wireframe\""),
+            other => {
+                anyhow::bail!("model {i}: style {other:?} is neither \"solid\" nor \"wireframe\"")
+            }
         };
         let picked: Vec<(usize, &crate::io::Model)> = match entry.region {
             Some(r) => match regions.get(r) {
@@ -221,8 +225,12 @@ pub fn scene_from_file(
         }
     }
     for (i, c) in file.cutters.iter().enumerate() {
-        let kind = CutKind::parse(&c.kind)
-            .ok_or_else(|| anyhow::anyhow!("cutter {i}: kind {:?} is not curving, straight or wedge", c.kind))?;
+        let kind = CutKind::parse(&c.kind).ok_or_else(|| {
+            anyhow::anyhow!(
+                "cutter {i}: kind {:?} is not curving, straight or wedge",
+                c.kind
+            )
+        })?;
         let sub = |v: Option<SubCutterEntry>| {
             v.map(|v| SubCutterView {
                 count: v.count,
@@ -255,8 +263,12 @@ pub fn scene_from_file(
         scene.render = RenderSettings {
             background: r.background,
             antialias: r.antialias,
-            stereo: Stereo::parse(&r.stereo)
-                .ok_or_else(|| anyhow::anyhow!("render: stereo {:?} is neither \"none\" nor \"anaglyph\"", r.stereo))?,
+            stereo: Stereo::parse(&r.stereo).ok_or_else(|| {
+                anyhow::anyhow!(
+                    "render: stereo {:?} is neither \"none\" nor \"anaglyph\"",
+                    r.stereo
+                )
+            })?,
         };
     }
     scene.sanity_check().map_err(anyhow::Error::msg)?;
@@ -329,7 +341,8 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
 pub fn save(path: &Path, scene: &Scene) -> anyhow::Result<()> {
     let folder = path.parent().unwrap_or(Path::new(""));
     let file = file_from_scene(scene, folder);
-    let mut text = serde_json::to_string_pretty(&file).with_context(|| format!("{}", path.display()))?;
+    let mut text =
+        serde_json::to_string_pretty(&file).with_context(|| format!("{}", path.display()))?;
     text.push('\n');
     write_atomic(path, text.as_bytes())
 }
@@ -354,7 +367,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
 /// `path` relative to `folder` when both can be made absolute and share a root; else `path` made
 /// absolute (or as given).
 pub fn relative_path(path: &Path, folder: &Path) -> PathBuf {
-    let (Ok(path_abs), Ok(folder_abs)) = (std::path::absolute(path), std::path::absolute(folder)) else {
+    let (Ok(path_abs), Ok(folder_abs)) = (std::path::absolute(path), std::path::absolute(folder))
+    else {
         return path.to_path_buf();
     };
     let p: Vec<Component> = normalized(&path_abs);
@@ -394,9 +408,18 @@ mod tests {
 
     #[test]
     fn relative_paths() {
-        assert_eq!(relative_path(Path::new("/a/b/c.obj"), Path::new("/a/d")), PathBuf::from("../b/c.obj"));
-        assert_eq!(relative_path(Path::new("/a/b/c.obj"), Path::new("/a/b")), PathBuf::from("c.obj"));
-        assert_eq!(relative_path(Path::new("/a/./b/../c.obj"), Path::new("/a")), PathBuf::from("c.obj"));
+        assert_eq!(
+            relative_path(Path::new("/a/b/c.obj"), Path::new("/a/d")),
+            PathBuf::from("../b/c.obj")
+        );
+        assert_eq!(
+            relative_path(Path::new("/a/b/c.obj"), Path::new("/a/b")),
+            PathBuf::from("c.obj")
+        );
+        assert_eq!(
+            relative_path(Path::new("/a/./b/../c.obj"), Path::new("/a")),
+            PathBuf::from("c.obj")
+        );
     }
 
     #[test]
@@ -413,7 +436,13 @@ mod tests {
         }"#;
         let file = parse(text).unwrap();
         assert_eq!(file.models[0].region, None);
-        assert_eq!(file.cutters[0].views.ribbons, Some(SubCutterEntry { count: 5, width: 2.0 }));
+        assert_eq!(
+            file.cutters[0].views.ribbons,
+            Some(SubCutterEntry {
+                count: 5,
+                width: 2.0
+            })
+        );
         assert_eq!(file.cutters[0].views.transparency, Some(0.25));
         let err = parse(&text.replace("cutaway-session/1", "cutaway-session/9")).unwrap_err();
         assert!(format!("{err}").contains("cutaway-session/9"));

@@ -143,9 +143,9 @@ fn query_benches(c: &mut Criterion) {
                 (origin, target - origin)
             })
             .collect();
-        // Query points at a random direction and radius: near the surface (within ±10% of the
-        // radius, as picking and the scalpel ask), and deep inside (half the radius), where many
-        // triangles are almost equally far and the box bounds prune little.
+        // Query points at a random direction and radius: within ±10% of the radius; just outside
+        // the surface (1.001 r, as picking and the scalpel ask); and deep inside (half the
+        // radius), where many triangles are almost equally far and the box bounds prune little.
         let mut at_radius = |lo: f64, hi: f64| -> Vec<DVec3> {
             (0..4096)
                 .map(|_| {
@@ -173,6 +173,7 @@ fn query_benches(c: &mut Criterion) {
         for (name, set) in [
             ("closest_point", &points),
             ("closest_point_deep_inside", &deep_points),
+            ("closest_point_near_surface", &near_points),
         ] {
             let all = || {
                 set.iter()

@@ -557,9 +557,19 @@ pub(crate) fn run(
         }
     }
 
-    // Stage 5: flood fill of untouched target faces inside the cutter.
-    let touched: FxMap<u32, ()> = isect.target_order.iter().map(|&t| (t, ())).collect();
-    let mut flooded: FxMap<u32, u32> = Default::default();
+    // Stage 5: flood fill of untouched target faces inside the cutter (epoch-stamped scratch:
+    // a face is marked TOUCHED or with its flood status).
+    const TOUCHED: u32 = u32::MAX;
+    let mut local_scratch = None;
+    let mut guard = target.scratch.0.try_lock();
+    let scratch: &mut crate::target::Scratch = match guard.as_deref_mut() {
+        Ok(s) => s,
+        Err(_) => local_scratch.insert(crate::target::Scratch::default()),
+    };
+    scratch.begin(mesh.triangles.len(), mesh.positions.len());
+    for &t in &isect.target_order {
+        scratch.set_face(t, TOUCHED);
+    }
     let mut stack: Vec<(u32, u32)> = Vec::new();
     for &t in &isect.target_order {
         let tri = mesh.triangles[t as usize];
@@ -573,8 +583,8 @@ pub(crate) fn run(
                 continue;
             }
             for &t2 in target.adjacency.faces_of_edge(e) {
-                if !touched.contains_key(&t2) && !flooded.contains_key(&t2) {
-                    flooded.insert(t2, s);
+                if scratch.face(t2).is_none() {
+                    scratch.set_face(t2, s);
                     stack.push((t2, s));
                 }
             }
@@ -592,14 +602,14 @@ pub(crate) fn run(
             continue;
         }
         let t0 = target.region_first_face[r];
-        if t0 == u32::MAX || flooded.contains_key(&t0) {
+        if t0 == u32::MAX || scratch.face(t0).is_some() {
             continue;
         }
         stats.inside_tests += 1;
         let v0 = mesh.triangles[t0 as usize][0];
         let s = classify::target_point_status(cutter, &target.lpoints[v0 as usize]);
         if s != OUT {
-            flooded.insert(t0, s);
+            scratch.set_face(t0, s);
             stack.push((t0, s));
         }
     }
@@ -611,8 +621,8 @@ pub(crate) fn run(
                 continue;
             }
             for &t2 in target.adjacency.faces_of_edge(e) {
-                if !touched.contains_key(&t2) && !flooded.contains_key(&t2) {
-                    flooded.insert(t2, s);
+                if scratch.face(t2).is_none() {
+                    scratch.set_face(t2, s);
                     stack.push((t2, s));
                 }
             }
@@ -690,9 +700,18 @@ pub(crate) fn run(
         }
     }
     flood_order.sort_unstable();
+    // Flooded faces are away from the contour: their vertices are plain target vertices, looked
+    // up in the scratch (no hashing). A vertex that is also a corner of a touched face was
+    // registered by the pieces above.
     for &(t, s) in &flood_order {
-        let tri = mesh.triangles[t as usize].map(Vx::T);
-        let ids = tri.map(|v| removed.vertex(v, &mesh.positions, &cutter.positions, new_pos));
+        let ids = mesh.triangles[t as usize].map(|v| {
+            if let Some(id) = scratch.vertex(v) {
+                return id;
+            }
+            let id = removed.vertex(Vx::T(v), &mesh.positions, &cutter.positions, new_pos);
+            scratch.set_vertex(v, id);
+            id
+        });
         removed.push(ids, Provenance::Target(t), s - 1);
     }
     let mut walls = PartBuilder::new(merge);

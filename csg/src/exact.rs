@@ -137,6 +137,36 @@ pub fn target_edge_vs_cutter_edge(p: &LPoint, q: &LPoint, a: &LPoint, b: &LPoint
     orient3d_sos([p, q, a, b], [false, false, true, true])
 }
 
+/// The plane of a cutter face, precomputed for the broad phase: `value(p) = n · (p − a)`, which
+/// is exactly `orient3d(a, b, c, p)` (unperturbed).
+#[derive(Clone, Copy, Debug)]
+pub struct CutterPlane {
+    n: [i128; 3],
+    d: i128,
+}
+
+impl CutterPlane {
+    /// The plane of cutter face `abc`.
+    pub fn new(a: &LPoint, b: &LPoint, c: &LPoint) -> CutterPlane {
+        let n = normal(a, b, c);
+        let d = n[0] * a[0] as i128 + n[1] * a[1] as i128 + n[2] * a[2] as i128;
+        CutterPlane { n, d }
+    }
+
+    /// Side of target point `p` under the tie-break rule: the same sign as
+    /// [`target_point_vs_cutter_plane`], cheaper when the point is off the plane.
+    #[inline]
+    pub fn side(&self, a: &LPoint, b: &LPoint, c: &LPoint, p: &LPoint) -> Sign {
+        let v = self.n[0] * p[0] as i128 + self.n[1] * p[1] as i128 + self.n[2] * p[2] as i128
+            - self.d;
+        if v != 0 {
+            sign_i128(v)
+        } else {
+            target_point_vs_cutter_plane(a, b, c, p)
+        }
+    }
+}
+
 /// Does target segment `pq` cross the interior of perturbed cutter triangle `abc`? Returns the
 /// side of `p` (+1 above, −1 below the cutter face) when it does.
 pub fn target_edge_crosses_cutter_face(
@@ -353,6 +383,14 @@ impl HPoint {
         self
     }
 
+    /// The unperturbed homogeneous coordinates `(x_i, x_j, w)` of the projection dropping `axis`,
+    /// rounded to `f64` (input of [`orient2d_filter`]).
+    #[inline]
+    pub fn approx(&self, axis: usize) -> [f64; 3] {
+        let (i, j) = plane_axes(axis);
+        [self.x[i][0] as f64, self.x[j][0] as f64, self.w[0] as f64]
+    }
+
     /// The unperturbed point (ε → 0) when it is exactly a lattice point (a contact at an input
     /// vertex in a degenerate configuration), else `None`.
     pub fn limit_lattice_point(&self) -> Option<LPoint> {
@@ -466,12 +504,20 @@ const FILTER_EPS: f64 = 1e-12;
 /// `det[[x_i, x_j, w] per point]` with `(i, j) = plane_axes(axis)`, under the tie-break rule.
 /// Positive means counter-clockwise in the projection (multiply by the face's projection sign).
 pub fn orient2d(p: &HPoint, q: &HPoint, r: &HPoint, axis: usize) -> Sign {
-    let (i, j) = plane_axes(axis);
     // Stage 1: floating-point filter on the unperturbed values.
-    let f = |h: &HPoint| (h.x[i][0] as f64, h.x[j][0] as f64, h.w[0] as f64);
-    let (x1, y1, w1) = f(p);
-    let (x2, y2, w2) = f(q);
-    let (x3, y3, w3) = f(r);
+    if let Some(s) = orient2d_filter(&p.approx(axis), &q.approx(axis), &r.approx(axis)) {
+        return s;
+    }
+    orient2d_exact(p, q, r, axis)
+}
+
+/// The floating-point filter of [`orient2d`] on [`HPoint::approx`] values: the sign when it is
+/// certain, `None` when the exact evaluation is needed.
+#[inline]
+pub fn orient2d_filter(p: &[f64; 3], q: &[f64; 3], r: &[f64; 3]) -> Option<Sign> {
+    let [x1, y1, w1] = *p;
+    let [x2, y2, w2] = *q;
+    let [x3, y3, w3] = *r;
     let t1 = x1 * (y2 * w3 - y3 * w2);
     let t2 = x2 * (y1 * w3 - y3 * w1);
     let t3 = x3 * (y1 * w2 - y2 * w1);
@@ -480,8 +526,15 @@ pub fn orient2d(p: &HPoint, q: &HPoint, r: &HPoint, axis: usize) -> Sign {
         + x2.abs() * ((y1 * w3).abs() + (y3 * w1).abs())
         + x3.abs() * ((y1 * w2).abs() + (y2 * w1).abs());
     if det.abs() > perm * FILTER_EPS {
-        return if det > 0.0 { 1 } else { -1 };
+        Some(if det > 0.0 { 1 } else { -1 })
+    } else {
+        None
     }
+}
+
+/// [`orient2d`] without the filter (the exact stages only).
+pub fn orient2d_exact(p: &HPoint, q: &HPoint, r: &HPoint, axis: usize) -> Sign {
+    let (i, j) = plane_axes(axis);
     // Stage 2: exact unperturbed determinant.
     let c = |v: i128| wide(v);
     let d0 = c(p.x[i][0]) * (c(q.x[j][0]) * c(r.w[0]) - c(r.x[j][0]) * c(q.w[0]))

@@ -155,6 +155,7 @@ pub(crate) fn intersect(
             .query(&cutter.face_boxes[f as usize], |t| candidates.push(t));
         candidates.sort_unstable();
         let [a, b, c] = cutter.face_points(f);
+        let plane = exact::CutterPlane::new(a, b, c);
         for &t in &candidates {
             out.candidate_pairs += 1;
             let tri = tris[t as usize];
@@ -164,7 +165,7 @@ pub(crate) fn intersect(
             let [u, v, w] = target.face_points(t);
             // Early-out: the target face strictly on one side of the cutter plane, or the
             // cutter face strictly on one side of the target plane.
-            let s = [u, v, w].map(|p| exact::target_point_vs_cutter_plane(a, b, c, p));
+            let s = [u, v, w].map(|p| plane.side(a, b, c, p));
             if s[0] != 0 && s[0] == s[1] && s[1] == s[2] {
                 continue;
             }

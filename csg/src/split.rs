@@ -236,12 +236,14 @@ pub(crate) fn split_face(input: &FaceInput) -> Result<FaceSplit, String> {
     }
     // Stage 2: orientation of loops, then containment.
     let proj = input.projection;
-    let hp = |n: usize| -> HPoint {
-        match nodes[n] {
+    let all_pts: Vec<HPoint> = nodes
+        .iter()
+        .map(|&v| match v {
             Vx::X(p) => input.points[p as usize],
             v => (input.corner_point)(v),
-        }
-    };
+        })
+        .collect();
+    let hp = |n: usize| -> HPoint { all_pts[n] };
     let mut pieces_cycles: Vec<usize> = Vec::new(); // outer cycles
     let mut holes: Vec<usize> = Vec::new();
     for (i, c) in cycles.iter().enumerate() {
@@ -348,7 +350,7 @@ pub(crate) fn split_face(input: &FaceInput) -> Result<FaceSplit, String> {
             .collect();
         let tris = match proj {
             Some((axis, sgn)) => {
-                let (t, fb) = triangulate(&outer, &hole_nodes, &hp, axis, sgn);
+                let (t, fb) = triangulate(&outer, &hole_nodes, &all_pts, axis, sgn);
                 fallbacks += fb as usize;
                 t
             }
@@ -415,19 +417,18 @@ fn point_in_polygon(p: &HPoint, poly: &[HPoint], axis: usize) -> bool {
 fn triangulate(
     outer: &[usize],
     holes: &[Vec<usize>],
-    hp: &dyn Fn(usize) -> HPoint,
+    pts: &[HPoint],
     axis: usize,
     sgn: Sign,
 ) -> (Vec<[usize; 3]>, bool) {
     if holes.is_empty() && outer.len() == 3 {
         return (vec![[outer[0], outer[1], outer[2]]], false);
     }
-    let mut cache: crate::intersect::FxMap<usize, HPoint> = Default::default();
-    let mut pt = |n: usize| -> HPoint { *cache.entry(n).or_insert_with(|| hp(n)) };
-    // Orientation seen from the face normal.
+    let approx: Vec<[f64; 3]> = pts.iter().map(|p| p.approx(axis)).collect();
+    // Orientation seen from the face normal: filter first, exact when it cannot decide.
     let mut orient = |a: usize, b: usize, c: usize| -> Sign {
-        let (pa, pb, pc) = (pt(a), pt(b), pt(c));
-        exact::orient2d(&pa, &pb, &pc, axis) * sgn
+        sgn * exact::orient2d_filter(&approx[a], &approx[b], &approx[c])
+            .unwrap_or_else(|| exact::orient2d_exact(&pts[a], &pts[b], &pts[c], axis))
     };
     let mut poly: Vec<usize> = outer.to_vec();
     let mut fallback = false;

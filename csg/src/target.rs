@@ -171,6 +171,72 @@ impl Bvh {
     }
 }
 
+/// Per-cut scratch indexed by face and by vertex. Entries are valid only when their stamp equals
+/// the current epoch, so a cut never clears (or allocates) anything of the target's size.
+#[derive(Debug, Default)]
+pub(crate) struct Scratch {
+    epoch: u32,
+    face_stamp: Vec<u32>,
+    face_value: Vec<u32>,
+    vertex_stamp: Vec<u32>,
+    vertex_value: Vec<u32>,
+}
+
+impl Scratch {
+    /// Starts a cut on a target of `faces` faces and `vertices` vertices.
+    pub fn begin(&mut self, faces: usize, vertices: usize) {
+        if self.face_stamp.len() != faces || self.vertex_stamp.len() != vertices {
+            *self = Scratch {
+                epoch: 0,
+                face_stamp: vec![0; faces],
+                face_value: vec![0; faces],
+                vertex_stamp: vec![0; vertices],
+                vertex_value: vec![0; vertices],
+            };
+        }
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            // Once every 2^32 cuts.
+            self.face_stamp.fill(0);
+            self.vertex_stamp.fill(0);
+            self.epoch = 1;
+        }
+    }
+
+    #[inline]
+    pub fn face(&self, t: u32) -> Option<u32> {
+        (self.face_stamp[t as usize] == self.epoch).then(|| self.face_value[t as usize])
+    }
+
+    #[inline]
+    pub fn set_face(&mut self, t: u32, value: u32) {
+        self.face_stamp[t as usize] = self.epoch;
+        self.face_value[t as usize] = value;
+    }
+
+    #[inline]
+    pub fn vertex(&self, v: u32) -> Option<u32> {
+        (self.vertex_stamp[v as usize] == self.epoch).then(|| self.vertex_value[v as usize])
+    }
+
+    #[inline]
+    pub fn set_vertex(&mut self, v: u32, value: u32) {
+        self.vertex_stamp[v as usize] = self.epoch;
+        self.vertex_value[v as usize] = value;
+    }
+}
+
+/// The scratch of a [`TargetIndex`]: one per index, used by one cut at a time (a concurrent cut
+/// on the same index uses its own). Cloning an index gives the clone a fresh scratch.
+#[derive(Debug, Default)]
+pub(crate) struct ScratchCell(pub std::sync::Mutex<Scratch>);
+
+impl Clone for ScratchCell {
+    fn clone(&self) -> Self {
+        ScratchCell::default()
+    }
+}
+
 /// The cached, cutter-independent part of a target (see the module doc).
 #[derive(Clone, Debug)]
 pub struct TargetIndex {
@@ -196,6 +262,8 @@ pub struct TargetIndex {
     pub bvh: Bvh,
     /// Per face: its lattice box (the BVH leaves' contents). Same length as `mesh.triangles`.
     pub face_boxes: Vec<IBox>,
+    /// Reusable per-cut scratch (epoch-stamped).
+    pub(crate) scratch: ScratchCell,
 }
 
 impl TargetIndex {
@@ -262,6 +330,7 @@ impl TargetIndex {
             bounds,
             bvh,
             face_boxes,
+            scratch: ScratchCell::default(),
         })
     }
 

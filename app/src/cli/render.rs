@@ -34,10 +34,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let scene = crate::session::load(&args.session)?;
     let mut options = RenderPngOptions::new(args.width, args.height);
     options.transparent_background = args.transparent;
-    let image = render_png(&scene, &options).with_context(|| format!("{}", args.session.display()))?;
+    let image =
+        render_png(&scene, &options).with_context(|| format!("{}", args.session.display()))?;
     let mut bytes = Vec::new();
     image
-        .write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png)
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
         .with_context(|| format!("{}: could not encode the PNG", args.out.display()))?;
     crate::session::write_atomic(&args.out, &bytes)
 }

@@ -191,7 +191,7 @@ pub fn extract(
     let cells = ((lattice.max - lattice.min) / h).ceil().as_uvec3();
     let n = [cells.x as usize, cells.y as usize, cells.z as usize];
     let points = (n[0] as u128 + 1) * (n[1] as u128 + 1) * (n[2] as u128 + 1);
-    if points > (1u128 << 40) || n.iter().any(|&c| c == 0) {
+    if points > (1u128 << 40) || n.contains(&0) {
         return Err(ExtractError::TooLarge { points });
     }
     // Stride of the global lattice index of a point.

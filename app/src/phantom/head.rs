@@ -52,7 +52,10 @@ pub fn skull(p: DVec3) -> f64 {
 
 pub fn brain(p: DVec3) -> f64 {
     let cerebrum = ellipsoid(p, v(0.0, 5.0, 25.0), v(57.0, 76.0, 63.0));
-    let fissure = ellipsoid(p, v(0.0, 2.0, 82.0), v(2.5, 84.0, 44.0));
+    // A 5 mm slab with an elliptic outline in the mid-sagittal plane: an honest distance bound,
+    // unlike a thin ellipsoid whose scaled field would underestimate distances far below it.
+    let outline = glam::DVec2::new((p.y - 2.0) / 84.0, (p.z - 82.0) / 44.0);
+    let fissure = (p.x.abs() - 2.5).max((outline.length() - 1.0) * 44.0);
     let cerebellum = ellipsoid(p, v(0.0, 34.0, -16.0), v(36.0, 22.0, 15.0));
     let stem = tapered_capsule(p, v(0.0, 18.0, -10.0), v(0.0, 20.0, -105.0), 12.0, 10.0);
     let mut f = ssub(cerebrum, fissure, 2.0);

@@ -27,7 +27,11 @@ pub fn mesh_vertices(mesh: &Mesh) -> Vec<Vertex> {
         .zip(&normals)
         .map(|(p, n)| Vertex {
             position_in_world: p.as_vec3().to_array(),
-            normal_in_world: n.try_normalize().unwrap_or(DVec3::ZERO).as_vec3().to_array(),
+            normal_in_world: n
+                .try_normalize()
+                .unwrap_or(DVec3::ZERO)
+                .as_vec3()
+                .to_array(),
         })
         .collect()
 }
@@ -40,7 +44,10 @@ pub fn mesh_edges(mesh: &Mesh) -> Vec<Segment> {
         for k in 0..3 {
             let (a, b) = (t[k], t[(k + 1) % 3]);
             if seen.insert((a.min(b), a.max(b))) {
-                out.push(segment(mesh.positions[a as usize], mesh.positions[b as usize]));
+                out.push(segment(
+                    mesh.positions[a as usize],
+                    mesh.positions[b as usize],
+                ));
             }
         }
     }

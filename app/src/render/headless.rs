@@ -69,7 +69,11 @@ impl HeadlessRenderer {
             compatible_surface: None,
             ..Default::default()
         }))
-        .map_err(|e| anyhow::anyhow!("no GPU adapter (install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan): {e}"))?;
+        .map_err(|e| {
+            anyhow::anyhow!(
+                "no GPU adapter (install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan): {e}"
+            )
+        })?;
         let limits = adapter.limits();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("cutaway headless device"),
@@ -106,8 +110,13 @@ impl HeadlessRenderer {
         if width == 0 || height == 0 || width > 16384 || height > 16384 {
             anyhow::bail!("image size {width}x{height} is outside 1..16384");
         }
-        let supersample = if frame.scene.render.antialias && !frame.deterministic { 2 } else { 1 };
-        let max_tile = (self.device.limits().max_texture_dimension_2d / supersample).clamp(64, MAX_TILE);
+        let supersample = if frame.scene.render.antialias && !frame.deterministic {
+            2
+        } else {
+            1
+        };
+        let max_tile =
+            (self.device.limits().max_texture_dimension_2d / supersample).clamp(64, MAX_TILE);
         let mut image = image::RgbaImage::new(width, height);
         let mut y = 0;
         while y < height {
@@ -128,7 +137,12 @@ impl HeadlessRenderer {
                         image.put_pixel(
                             x + col,
                             y + row,
-                            image::Rgba([pixels[at], pixels[at + 1], pixels[at + 2], pixels[at + 3]]),
+                            image::Rgba([
+                                pixels[at],
+                                pixels[at + 1],
+                                pixels[at + 2],
+                                pixels[at + 3],
+                            ]),
                         );
                     }
                 }
@@ -158,17 +172,21 @@ impl HeadlessRenderer {
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        let padded_row = (width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let padded_row = (width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let readback = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("cutaway export readback"),
             size: padded_row as u64 * height as u64,
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
-        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("cutaway export"),
-        });
-        self.renderer.prepare(&self.device, &self.queue, &mut encoder, frame);
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("cutaway export"),
+            });
+        self.renderer
+            .prepare(&self.device, &self.queue, &mut encoder, frame);
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("cutaway export blit"),
@@ -222,7 +240,9 @@ impl HeadlessRenderer {
             .recv()
             .context("GPU readback was dropped")?
             .context("GPU readback failed")?;
-        let mapped = slice.get_mapped_range().context("GPU readback could not be read")?;
+        let mapped = slice
+            .get_mapped_range()
+            .context("GPU readback could not be read")?;
         let mut pixels = Vec::with_capacity((width * height * 4) as usize);
         for row in 0..height as usize {
             let start = row * padded_row as usize;

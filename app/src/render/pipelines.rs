@@ -110,11 +110,12 @@ impl Pipelines {
             bind_group_layouts: &[Some(&frame_layout), Some(&draw_layout)],
             immediate_size: 0,
         });
-        let composite_pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("cutaway composite pipeline layout"),
-            bind_group_layouts: &[Some(&composite_layout)],
-            immediate_size: 0,
-        });
+        let composite_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("cutaway composite pipeline layout"),
+                bind_group_layouts: &[Some(&composite_layout)],
+                immediate_size: 0,
+            });
         let blit_pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("cutaway blit pipeline layout"),
             bind_group_layouts: &[Some(&blit_layout)],
@@ -214,7 +215,9 @@ impl Pipelines {
             depth_state(false, wgpu::CompareFunction::Less),
         );
 
-        let lines_pipeline = |label: &str, blend: Option<wgpu::BlendState>, depth: Option<wgpu::DepthStencilState>| {
+        let lines_pipeline = |label: &str,
+                              blend: Option<wgpu::BlendState>,
+                              depth: Option<wgpu::DepthStencilState>| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
                 layout: Some(&scene_layout),
@@ -302,7 +305,11 @@ impl Pipelines {
             wgpu::ColorTargetState {
                 format: output.format,
                 // Straight-alpha output replaces; premultiplied output composites over egui.
-                blend: if output.straight_alpha { None } else { Some(PREMULTIPLIED_OVER) },
+                blend: if output.straight_alpha {
+                    None
+                } else {
+                    Some(PREMULTIPLIED_OVER)
+                },
                 write_mask: wgpu::ColorWrites::ALL,
             },
             output.depth_format.map(|format| wgpu::DepthStencilState {

@@ -162,13 +162,21 @@ impl Renderer {
         frame: &FrameInputs,
     ) {
         self.frame_index += 1;
-        let supersample = if frame.scene.render.antialias && !frame.deterministic { 2 } else { 1 };
+        let supersample = if frame.scene.render.antialias && !frame.deterministic {
+            2
+        } else {
+            1
+        };
         let max_dim = device.limits().max_texture_dimension_2d;
         let size = [
             (frame.size[0].max(1) * supersample).min(max_dim),
             (frame.size[1].max(1) * supersample).min(max_dim),
         ];
-        let eyes = if frame.scene.render.stereo == Stereo::Anaglyph { 2 } else { 1 };
+        let eyes = if frame.scene.render.stereo == Stereo::Anaglyph {
+            2
+        } else {
+            1
+        };
         if self
             .targets
             .as_ref()
@@ -325,7 +333,11 @@ impl Renderer {
     }
 
     /// Uploads what is missing and lists the draws of the frame with their uniforms.
-    fn upload_and_list(&mut self, device: &wgpu::Device, frame: &FrameInputs) -> (DrawList, Vec<DrawUniform>) {
+    fn upload_and_list(
+        &mut self,
+        device: &wgpu::Device,
+        frame: &FrameInputs,
+    ) -> (DrawList, Vec<DrawUniform>) {
         let scene = &frame.scene;
         let mut list = DrawList::default();
         let mut uniforms: Vec<DrawUniform> = Vec::new();
@@ -345,7 +357,11 @@ impl Renderer {
         let contour_bias = (radius * 0.004) as f32;
 
         // Preview parts.
-        let preview = if frame.mode == ViewMode::Preview { frame.preview.clone() } else { None };
+        let preview = if frame.mode == ViewMode::Preview {
+            frame.preview.clone()
+        } else {
+            None
+        };
         if let Some(p) = &preview {
             let stale = self
                 .preview
@@ -355,7 +371,11 @@ impl Renderer {
                 self.preview = Some(upload_preview(device, p));
             }
         }
-        let replaced = |m: usize| preview.as_ref().is_some_and(|p| p.replaced.get(m).copied().unwrap_or(false));
+        let replaced = |m: usize| {
+            preview
+                .as_ref()
+                .is_some_and(|p| p.replaced.get(m).copied().unwrap_or(false))
+        };
 
         // Models (uncut, or the kept parts of cut ones).
         for (index, model) in scene.models.iter().enumerate() {
@@ -363,10 +383,11 @@ impl Renderer {
                 continue;
             }
             let key = Arc::as_ptr(&model.mesh) as usize;
-            let fresh = self
-                .models
-                .get(&key)
-                .is_some_and(|c| c.mesh.upgrade().is_some_and(|m| Arc::ptr_eq(&m, &model.mesh)));
+            let fresh = self.models.get(&key).is_some_and(|c| {
+                c.mesh
+                    .upgrade()
+                    .is_some_and(|m| Arc::ptr_eq(&m, &model.mesh))
+            });
             if !fresh {
                 self.models.insert(
                     key,
@@ -377,9 +398,13 @@ impl Renderer {
                     },
                 );
             }
-            let Some(cached) = self.models.get_mut(&key) else { continue };
+            let Some(cached) = self.models.get_mut(&key) else {
+                continue;
+            };
             cached.last_used = self.frame_index;
-            let Some(gpu) = cached.gpu.as_mut() else { continue };
+            let Some(gpu) = cached.gpu.as_mut() else {
+                continue;
+            };
             match model.style {
                 ModelStyle::Solid => {
                     let u = push_uniform(model.color, model.opacity, true, 0.0, 0.0);
@@ -399,11 +424,15 @@ impl Renderer {
 
         if let (Some(p), Some(cache)) = (&preview, self.preview.as_mut()) {
             for (i, part) in p.parts.iter().enumerate() {
-                let Some(model) = scene.models.get(part.model) else { continue };
+                let Some(model) = scene.models.get(part.model) else {
+                    continue;
+                };
                 if !model.visible {
                     continue;
                 }
-                let Some(gpu) = cache.parts.get_mut(i).and_then(|g| g.as_mut()) else { continue };
+                let Some(gpu) = cache.parts.get_mut(i).and_then(|g| g.as_mut()) else {
+                    continue;
+                };
                 let wall = mix(model.color, WALL_TINT, WALL_MIX);
                 match part.kind {
                     PartKind::Kept => match model.style {
@@ -453,12 +482,17 @@ impl Renderer {
             for (k, overlay) in frame.overlays.iter().enumerate() {
                 let surface = match &overlay.surface {
                     Some(mesh) => GpuMesh::upload(device, "cutter overlay surface", mesh),
-                    None => GpuMesh::upload(device, "cutter overlay surface", &cutter_surface(&overlay.planes)),
+                    None => GpuMesh::upload(
+                        device,
+                        "cutter overlay surface",
+                        &cutter_surface(&overlay.planes),
+                    ),
                 };
                 if surface.is_some() {
                     let opacity = if overlay.active { 0.35 } else { 0.22 };
                     let u = push_uniform(CUTTER_FILL, opacity, true, 0.0, 0.0);
-                    list.transparent.push(Draw::Mesh(Source::Overlay(self.overlay_meshes.len()), u));
+                    list.transparent
+                        .push(Draw::Mesh(Source::Overlay(self.overlay_meshes.len()), u));
                     self.overlay_meshes.push(surface);
                 }
                 let outline = GpuSegments::upload(
@@ -472,14 +506,19 @@ impl Renderer {
                     list.overlay.push(Draw::Lines(self.overlay_lines.len(), u));
                     self.overlay_lines.push(outline);
                 }
-                if let Some(plane) = overlay.highlighted_plane.and_then(|i| overlay.planes.get(i)) {
+                if let Some(plane) = overlay
+                    .highlighted_plane
+                    .and_then(|i| overlay.planes.get(i))
+                {
                     let quad = Mesh {
                         positions: plane.to_vec(),
                         triangles: vec![[0, 1, 2], [0, 2, 3]],
                     };
                     let u = push_uniform(HIGHLIGHT, 0.55, false, 0.0, 0.0);
-                    list.transparent.push(Draw::Mesh(Source::Overlay(self.overlay_meshes.len()), u));
-                    self.overlay_meshes.push(GpuMesh::upload(device, "highlighted plane", &quad));
+                    list.transparent
+                        .push(Draw::Mesh(Source::Overlay(self.overlay_meshes.len()), u));
+                    self.overlay_meshes
+                        .push(GpuMesh::upload(device, "highlighted plane", &quad));
                     let u = push_uniform(HIGHLIGHT, 1.0, false, 3.0, 0.0);
                     list.overlay.push(Draw::Lines(self.overlay_lines.len(), u));
                     self.overlay_lines.push(GpuSegments::upload(
@@ -510,7 +549,13 @@ impl Renderer {
         }
     }
 
-    fn encode_eye(&self, encoder: &mut wgpu::CommandEncoder, eye: usize, clear: wgpu::Color, draws: &DrawList) {
+    fn encode_eye(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        eye: usize,
+        clear: wgpu::Color,
+        draws: &DrawList,
+    ) {
         let Some(targets) = &self.targets else { return };
         let frame_offset = (eye as u64 * DRAW_UNIFORM_STRIDE) as u32;
         let color_view = &targets.color_views[eye];
@@ -621,25 +666,37 @@ impl Renderer {
         for &draw in draws {
             match draw {
                 Draw::Mesh(source, u) => {
-                    let Some(mesh) = self.mesh(source) else { continue };
+                    let Some(mesh) = self.mesh(source) else {
+                        continue;
+                    };
                     pass.set_pipeline(if transparent {
                         &self.pipelines.mesh_oit
                     } else {
                         &self.pipelines.mesh_opaque
                     });
-                    pass.set_bind_group(1, &self.draw_bind_group, &[u * DRAW_UNIFORM_STRIDE as u32]);
+                    pass.set_bind_group(
+                        1,
+                        &self.draw_bind_group,
+                        &[u * DRAW_UNIFORM_STRIDE as u32],
+                    );
                     pass.set_vertex_buffer(0, mesh.vertex_buffer.slice(..));
                     pass.set_index_buffer(mesh.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
                     pass.draw_indexed(0..mesh.index_count, 0, 0..1);
                 }
                 Draw::Edges(_, u) | Draw::Contour(_, u) | Draw::Lines(_, u) => {
-                    let Some(segments) = self.segments(draw) else { continue };
+                    let Some(segments) = self.segments(draw) else {
+                        continue;
+                    };
                     pass.set_pipeline(if matches!(draw, Draw::Lines(..)) {
                         &self.pipelines.lines_overlay
                     } else {
                         &self.pipelines.lines_opaque
                     });
-                    pass.set_bind_group(1, &self.draw_bind_group, &[u * DRAW_UNIFORM_STRIDE as u32]);
+                    pass.set_bind_group(
+                        1,
+                        &self.draw_bind_group,
+                        &[u * DRAW_UNIFORM_STRIDE as u32],
+                    );
                     pass.set_vertex_buffer(0, segments.buffer.slice(..));
                     pass.draw(0..6, 0..segments.count);
                 }
@@ -650,8 +707,9 @@ impl Renderer {
     /// Drops uploads of meshes that no longer exist or were not drawn for a while.
     fn evict(&mut self) {
         let now = self.frame_index;
-        self.models
-            .retain(|_, c| c.mesh.strong_count() > 0 && now.saturating_sub(c.last_used) <= CACHE_FRAMES);
+        self.models.retain(|_, c| {
+            c.mesh.strong_count() > 0 && now.saturating_sub(c.last_used) <= CACHE_FRAMES
+        });
     }
 }
 
@@ -667,7 +725,13 @@ fn upload_preview(device: &wgpu::Device, preview: &Arc<PreviewGeometry>) -> Cach
     let parts = preview
         .parts
         .iter()
-        .map(|p| GpuMesh::upload(device, &format!("preview part {:?} of model {}", p.kind, p.model), &p.mesh))
+        .map(|p| {
+            GpuMesh::upload(
+                device,
+                &format!("preview part {:?} of model {}", p.kind, p.model),
+                &p.mesh,
+            )
+        })
         .collect();
     let mut by_model: HashMap<usize, Vec<&[DVec3]>> = HashMap::new();
     for (model, line) in &preview.contours {
@@ -677,7 +741,8 @@ fn upload_preview(device: &wgpu::Device, preview: &Arc<PreviewGeometry>) -> Cach
         .into_iter()
         .filter_map(|(model, lines)| {
             let segments = polyline_segments(lines);
-            GpuSegments::upload(device, &format!("contour of model {model}"), &segments).map(|s| (model, s))
+            GpuSegments::upload(device, &format!("contour of model {model}"), &segments)
+                .map(|s| (model, s))
         })
         .collect();
     CachedPreview {
@@ -708,7 +773,11 @@ fn uniform_bind_group(
     })
 }
 
-fn draw_buffer(device: &wgpu::Device, pipelines: &Pipelines, capacity: u64) -> (wgpu::Buffer, wgpu::BindGroup) {
+fn draw_buffer(
+    device: &wgpu::Device,
+    pipelines: &Pipelines,
+    capacity: u64,
+) -> (wgpu::Buffer, wgpu::BindGroup) {
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("cutaway draw uniforms"),
         size: capacity * DRAW_UNIFORM_STRIDE,
@@ -749,7 +818,8 @@ fn depth_range(frame: &FrameInputs) -> (f64, f64, f64) {
     }
     let radius = (0.5 * bbox.diagonal()).max(1e-6);
     // The anaglyph eyes sit a little off the camera.
-    let distance = (bbox.center() - frame.camera.eye).length() + EYE_SEPARATION * frame.camera.distance();
+    let distance =
+        (bbox.center() - frame.camera.eye).length() + EYE_SEPARATION * frame.camera.distance();
     let far = distance + radius * 1.05;
     let near = (distance - radius * 1.05).max(far * 1e-4);
     (near, far, radius)
@@ -775,7 +845,13 @@ fn eye_cameras(frame: &FrameInputs) -> Vec<cutter::Camera> {
     ]
 }
 
-fn frame_uniform(frame: &FrameInputs, camera: &cutter::Camera, size: [u32; 2], near: f64, far: f64) -> FrameUniform {
+fn frame_uniform(
+    frame: &FrameInputs,
+    camera: &cutter::Camera,
+    size: [u32; 2],
+    near: f64,
+    far: f64,
+) -> FrameUniform {
     let full = full_size(frame);
     let viewport = DVec2::new(full[0] as f64, full[1] as f64);
     let mut clip_from_world = camera.clip_from_world(viewport, near, far);

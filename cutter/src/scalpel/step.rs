@@ -112,6 +112,8 @@ struct Tip {
 #[derive(Clone, Debug)]
 struct Stroke {
     mark: Mark,
+    /// `segments.len()` and `fixed.len()` before the stroke.
+    records: (usize, usize),
     triangles_before: usize,
     cut: Option<Cut>,
     tip: Option<Tip>,
@@ -131,8 +133,8 @@ pub struct Scalpel {
     options: ScalpelOptions,
     tolerance: f64,
     stroke: Option<Stroke>,
-    /// Mesh state before each committed stroke, for undo.
-    undo: Vec<Mark>,
+    /// Mesh state, segment count and fixed-vertex count before each committed stroke (undo).
+    undo: Vec<(Mark, usize, usize)>,
     /// Every cut segment so far (rest pose), in cutting order.
     pub(crate) segments: Vec<CutSegment>,
     /// Vertices the opening must not move (groove bottoms).
@@ -231,6 +233,7 @@ impl Scalpel {
         }
         self.stroke = Some(Stroke {
             mark: self.mesh.mark(),
+            records: (self.segments.len(), self.fixed.len()),
             triangles_before: self.mesh.triangle_count(),
             cut: None,
             tip: None,
@@ -313,7 +316,8 @@ impl Scalpel {
         if let Some(g) = stroke.cut.as_ref().and_then(|c| c.groove.as_ref()) {
             self.fixed.extend_from_slice(&g.bottom_vertices);
         }
-        self.undo.push(stroke.mark);
+        self.undo
+            .push((stroke.mark, stroke.records.0, stroke.records.1));
         Ok(StrokeReport {
             triangles_cut: stroke.crossed,
             triangles_created: self
@@ -327,26 +331,17 @@ impl Scalpel {
     /// Undoes the last committed stroke (or the one in progress). Returns false when there is
     /// nothing to undo.
     pub fn undo_stroke(&mut self) -> bool {
-        if let Some(s) = self.stroke.take() {
-            self.mesh.rollback(s.mark);
-            self.truncate_records();
-            return true;
-        }
-        match self.undo.pop() {
-            Some(mark) => {
-                self.mesh.rollback(mark);
-                self.truncate_records();
-                true
-            }
-            None => false,
-        }
-    }
-
-    /// Drops opening records that name vertices no longer in the mesh.
-    fn truncate_records(&mut self) {
-        let nv = self.mesh.vertex_count() as u32;
-        self.segments.retain(|s| s.a < nv && s.b < nv);
-        self.fixed.retain(|&v| v < nv);
+        let (mark, segments, fixed) = match self.stroke.take() {
+            Some(s) => (s.mark, s.records.0, s.records.1),
+            None => match self.undo.pop() {
+                Some(u) => u,
+                None => return false,
+            },
+        };
+        self.mesh.rollback(mark);
+        self.segments.truncate(segments);
+        self.fixed.truncate(fixed);
+        true
     }
 
     fn undo_tip(&mut self, stroke: &mut Stroke) {
