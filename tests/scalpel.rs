@@ -208,7 +208,13 @@ fn bad_path_files_and_off_mesh_points_are_one_line_errors() {
     assert_one_error_line(&run(), &path, "cutaway-path/1");
     std::fs::write(
         &path,
-        r#"{"format":"cutaway-path/1","points":[[1,1,0],[100,100,0]]}"#,
+        r#"{"format":"cutaway-path/1","points":[[100,100,0],[1,1,0]]}"#,
+    )
+    .unwrap();
+    assert_one_error_line(&run(), &path, "off the mesh");
+    std::fs::write(
+        &path,
+        r#"{"format":"cutaway-path/1","points":[[1,1,0],[2,2,30]]}"#,
     )
     .unwrap();
     assert_one_error_line(&run(), &path, "off the mesh");

@@ -83,11 +83,84 @@ fn timed<R>(n: usize, mut f: impl FnMut() -> R) -> (f64, f64) {
     )
 }
 
+/// Minimal OBJ reader for the peerbench files (`v` and `f` records, polygons fanned); the bench
+/// cannot use the app's readers (csg sees no file formats), and these files are plain.
+fn read_obj(path: &str) -> Mesh {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let mut m = Mesh::default();
+    for line in text.lines() {
+        let mut it = line.split_whitespace();
+        match it.next() {
+            Some("v") => {
+                let c: Vec<f64> = it.take(3).map(|x| x.parse().expect("coordinate")).collect();
+                m.positions.push(DVec3::new(c[0], c[1], c[2]));
+            }
+            Some("f") => {
+                let idx: Vec<u32> = it
+                    .map(|x| {
+                        x.split('/')
+                            .next()
+                            .unwrap_or("")
+                            .parse::<u32>()
+                            .expect("index")
+                            - 1
+                    })
+                    .collect();
+                for k in 1..idx.len() - 1 {
+                    m.triangles.push([idx[0], idx[k], idx[k + 1]]);
+                }
+            }
+            _ => {}
+        }
+    }
+    m
+}
+
+/// With `CUTAWAY_BENCH_TARGET` and `CUTAWAY_BENCH_CUTTER` (OBJ files, e.g. peerbench's
+/// `meshes/sphere_2m.obj` and `meshes/cut_sphere_strip_quads.obj`), times the cut of those files:
+/// the same inputs as `peers.py`, for the side-by-side ratio.
+fn bench_files() {
+    let (Ok(t), Ok(c)) = (
+        std::env::var("CUTAWAY_BENCH_TARGET"),
+        std::env::var("CUTAWAY_BENCH_CUTTER"),
+    ) else {
+        return;
+    };
+    let (target, cutter) = (read_obj(&t), read_obj(&c));
+    let (wall_b, cpu_b) = timed(1, || TargetIndex::build(target.clone()).expect("index"));
+    let index = TargetIndex::build(target.clone()).expect("index");
+    let r = csg::subtract(&index, &cutter).expect("cut");
+    let (wall, cpu) = timed(20, || csg::subtract(&index, &cutter).expect("cut"));
+    let kept = r.materialize(&target);
+    println!(
+        "files {t} − {c}: {} − {} triangles; index build {wall_b:.1} ms wall ({cpu_b:.1} ms CPU on this thread); \
+         warm cut {wall:.2} ms wall, {cpu:.2} ms CPU (mean of 20); kept {} walls {} removed {} contours {}; \
+         vol(kept+walls) {:.6} vol(removed+walls) {:.6}",
+        target.triangles.len(),
+        cutter.triangles.len(),
+        kept.triangles.len(),
+        r.walls.mesh.triangles.len(),
+        r.removed.mesh.triangles.len(),
+        r.contours.len(),
+        {
+            let mut m = kept.clone();
+            m.append(&r.walls.mesh);
+            m.volume()
+        },
+        {
+            let mut m = r.removed.mesh.clone();
+            m.append(&r.walls.mesh.reversed());
+            m.volume()
+        },
+    );
+}
+
 fn quick() -> bool {
     std::env::var("CUTAWAY_BENCH_QUICK").is_ok()
 }
 
 fn bench_boolean(c: &mut Criterion) {
+    bench_files();
     let frequency = if quick() { 71 } else { 316 };
     let target = csg::testkit::geodesic_sphere(frequency, 50.0);
     let strip = sphere_strip(

@@ -280,7 +280,7 @@ fn check_self_intersections(cutter: &PreparedCutter) -> Result<(), CutError> {
             break;
         }
         let t1 = cutter.triangles[f1];
-        bvh.query(&cutter.face_boxes[f1], |f2| {
+        bvh.query(&cutter.face_boxes[f1], &cutter.face_boxes, |f2| {
             let f2 = f2 as usize;
             if f2 <= f1 || found.is_some() {
                 return;

@@ -63,7 +63,7 @@ pub(crate) fn cutter_point_inside_target(
     };
     let mut odd = false;
     let tris = &target.mesh.triangles;
-    target.bvh.query(&query, |t| {
+    target.faces_in_box(&query, |t| {
         let tri = tris[t as usize];
         if tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0] {
             return;

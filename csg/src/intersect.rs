@@ -150,9 +150,7 @@ pub(crate) fn intersect(
     let mut candidates = Vec::new();
     for f in 0..cutter.triangles.len() as u32 {
         candidates.clear();
-        target
-            .bvh
-            .query(&cutter.face_boxes[f as usize], |t| candidates.push(t));
+        target.faces_in_box(&cutter.face_boxes[f as usize], |t| candidates.push(t));
         candidates.sort_unstable();
         let [a, b, c] = cutter.face_points(f);
         let plane = exact::CutterPlane::new(a, b, c);

@@ -6,9 +6,10 @@
 //! lattice coordinates of every vertex (see [`crate::lattice`]) and a bounding-volume hierarchy
 //! over the triangles in lattice coordinates.
 //!
-//! The BVH is our own small binary tree over integer boxes rather than the core's `obvhs` index:
-//! integer boxes of integer points are exact, so the broad phase can never miss a pair because
-//! of `f32` rounding, and the boolean does not depend on the index's remapping details.
+//! The broad phase queries the core's [`SpatialIndex`] (`obvhs`, conservative `f32` boxes) with
+//! the query box widened by two lattice steps, then keeps only the faces whose exact integer box
+//! overlaps the query: no pair can be missed by rounding, and no extra pair survives. The small
+//! integer [`Bvh`] here serves the cutter (its self-intersection check).
 
 use std::sync::Arc;
 
@@ -18,6 +19,7 @@ use crate::exact::LPoint;
 use crate::lattice::Lattice;
 use crate::mesh::{Mesh, MeshError};
 use crate::regions::Regions;
+use crate::spatial::SpatialIndex;
 
 /// An integer box `[min, max]` (inclusive) in lattice coordinates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -144,8 +146,9 @@ impl Bvh {
         Bvh { nodes, items }
     }
 
-    /// Calls `visit` for every face whose box overlaps `query` (inclusive).
-    pub fn query(&self, query: &IBox, mut visit: impl FnMut(u32)) {
+    /// Calls `visit` for every face whose box (`boxes`, the boxes the tree was built from)
+    /// overlaps `query` (inclusive).
+    pub fn query(&self, query: &IBox, boxes: &[IBox], mut visit: impl FnMut(u32)) {
         if self.nodes.is_empty() {
             return;
         }
@@ -160,7 +163,9 @@ impl Bvh {
             if node.count > 0 {
                 let s = node.start as usize;
                 for &f in &self.items[s..s + node.count as usize] {
-                    visit(f);
+                    if boxes[f as usize].overlaps(query) {
+                        visit(f);
+                    }
                 }
             } else if top + 2 <= stack.len() {
                 stack[top] = node.start;
@@ -258,8 +263,8 @@ pub struct TargetIndex {
     pub lpoints: Vec<LPoint>,
     /// Lattice box of the whole target.
     pub bounds: IBox,
-    /// BVH over the faces' lattice boxes.
-    pub bvh: Bvh,
+    /// Spatial index over the faces (world coordinates, conservative).
+    pub spatial: SpatialIndex,
     /// Per face: its lattice box (the BVH leaves' contents). Same length as `mesh.triangles`.
     pub face_boxes: Vec<IBox>,
     /// Reusable per-cut scratch (epoch-stamped).
@@ -279,24 +284,29 @@ impl TargetIndex {
             .iter()
             .map(|&p| lattice.quantize(p).unwrap_or([0, 0, 0]))
             .collect();
-        let (adjacency, face_boxes) = rayon::join(
-            || EdgeAdjacency::build(&mesh),
+        let ((adjacency, regions), (face_boxes, spatial)) = rayon::join(
             || {
-                mesh.triangles
-                    .iter()
-                    .map(|t| {
-                        IBox::of_triangle([
-                            &lpoints[t[0] as usize],
-                            &lpoints[t[1] as usize],
-                            &lpoints[t[2] as usize],
-                        ])
-                    })
-                    .collect::<Vec<_>>()
+                let adjacency = EdgeAdjacency::build(&mesh);
+                let regions = Regions::build(&mesh, &adjacency);
+                (adjacency, regions)
             },
-        );
-        let (regions, bvh) = rayon::join(
-            || Regions::build(&mesh, &adjacency),
-            || Bvh::build(&face_boxes),
+            || {
+                rayon::join(
+                    || {
+                        mesh.triangles
+                            .iter()
+                            .map(|t| {
+                                IBox::of_triangle([
+                                    &lpoints[t[0] as usize],
+                                    &lpoints[t[1] as usize],
+                                    &lpoints[t[2] as usize],
+                                ])
+                            })
+                            .collect::<Vec<_>>()
+                    },
+                    || SpatialIndex::build(&mesh),
+                )
+            },
         );
         let mut region_closed = vec![true; regions.count];
         for e in 0..adjacency.edge_count() as u32 {
@@ -328,7 +338,7 @@ impl TargetIndex {
             lattice,
             lpoints,
             bounds,
-            bvh,
+            spatial,
             face_boxes,
             scratch: ScratchCell::default(),
         })
@@ -337,6 +347,22 @@ impl TargetIndex {
     /// The target mesh.
     pub fn mesh(&self) -> &Mesh {
         &self.mesh
+    }
+
+    /// Calls `visit` for every face whose exact lattice box overlaps `query` (inclusive).
+    pub fn faces_in_box(&self, query: &IBox, mut visit: impl FnMut(u32)) {
+        let widen = |p: &LPoint, d: i64| [(p[0] + d) as f64, (p[1] + d) as f64, (p[2] + d) as f64];
+        let aabb = Aabb {
+            min: self.lattice.to_world(widen(&query.min, -2)),
+            max: self.lattice.to_world(widen(&query.max, 2)),
+        };
+        let mut found = Vec::new();
+        self.spatial.faces_in_box(&aabb, &mut found);
+        for f in found {
+            if self.face_boxes[f as usize].overlaps(query) {
+                visit(f);
+            }
+        }
     }
 
     /// True when every region is closed (every edge has exactly two faces).
@@ -370,7 +396,7 @@ mod tests {
             max: [1 << 23, 1 << 24, 1 << 25],
         };
         let mut got = Vec::new();
-        index.bvh.query(&q, |f| got.push(f));
+        index.faces_in_box(&q, |f| got.push(f));
         got.sort_unstable();
         let want: Vec<u32> = (0..index.face_boxes.len() as u32)
             .filter(|&f| index.face_boxes[f as usize].overlaps(&q))

@@ -83,6 +83,16 @@ fn bench_scalpel(c: &mut Criterion) {
             let mut sorted = f.times.clone();
             sorted.sort();
             let p50 = percentile(&sorted, 0.5);
+            // Which steps were slowest (a size-independent spike is the machine, not the step).
+            let mut slowest: Vec<(usize, f64)> = f
+                .times
+                .iter()
+                .enumerate()
+                .map(|(i, t)| (i, t.as_secs_f64() * 1e3))
+                .collect();
+            slowest.sort_by(|a, b| b.1.total_cmp(&a.1));
+            slowest.truncate(3);
+            eprintln!("  slowest steps (index, ms): {slowest:.3?}");
             eprintln!(
                 "scalpel spiral depth {depth}: {:>9} triangles, {} steps: p50 {:.4} ms, p99 {:.4} ms, max {:.4} ms; {} triangles crossed, {} created ({:.2} new per crossed)",
                 f.triangles,

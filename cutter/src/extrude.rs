@@ -31,7 +31,7 @@ use crate::camera::{Camera, Ray};
 use crate::cutter::{CutKind, Cutter};
 use crate::geom;
 use crate::plane::BoundedPlane;
-use crate::surface::Surface;
+use crate::surface::{LocalSurface, Surface};
 
 /// Initial strip width as a multiple of δ (thesis 3.3.1).
 pub const INITIAL_WIDTH: f64 = 10.0;
@@ -480,10 +480,13 @@ fn roll(
     // contact there (AD itself resting on the surface, possibly a little twisted) would stop the
     // rotation long before the leading edge reaches the surface. A leading edge that slipped
     // under the surface entirely counts as intersecting too (no crossing is left to see).
-    let hits_at = |angle: f64, scratch: &mut Vec<u32>| {
+    // Every face tested below lies within `radius` of the axis segment DA.
+    let region = csg::Aabb::from_points([a, d].iter()).expanded(radius * 1.01);
+    let local = surface.local(&region);
+    let hits_at = |angle: f64, _: &mut Vec<u32>| {
         let (e1, h1) = (rotate(e0, outward * angle), rotate(h0, outward * angle));
         let q = [a.lerp(e1, 0.2), e1, h1, d.lerp(h1, 0.2)];
-        surface.quad_intersects(&q, scratch) || surface.is_inside((e1 + h1) * 0.5)
+        local.quad_intersects(&q) || surface.is_inside((e1 + h1) * 0.5)
     };
     // Bracket the contact in 2δ steps: `clear` is an angle where the face floats, `hit` one where
     // it crosses the surface.
@@ -540,7 +543,7 @@ fn roll(
     let place = |angle: f64, levelled: bool, scratch: &mut Vec<u32>| -> Option<BoundedPlane> {
         let (mut e, mut h) = (rotate(e0, outward * angle), rotate(h0, outward * angle));
         if levelled {
-            (e, h) = level(a, d, e, h, surface, settings.delta, scratch);
+            (e, h) = level(a, d, e, h, surface, &local, settings.delta);
         }
         let path = ((e + h) * 0.5 - q).try_normalize()?;
         let mut n = (e - h).cross(path).try_normalize()?;
@@ -572,8 +575,8 @@ fn level(
     e: DVec3,
     h: DVec3,
     surface: &Surface,
+    local: &LocalSurface,
     delta: f64,
-    scratch: &mut Vec<u32>,
 ) -> (DVec3, DVec3) {
     let m = (e + h) * 0.5;
     let q = (a + d) * 0.5;
@@ -602,7 +605,7 @@ fn level(
     } else {
         (e2, h2)
     };
-    if surface.quad_intersects(&[a, e3, h3, d], scratch) {
+    if local.quad_intersects(&[a, e3, h3, d]) {
         (e, h)
     } else {
         (e3, h3)

@@ -55,6 +55,15 @@ impl<'a> Surface<'a> {
         })
     }
 
+    /// The triangles whose boxes overlap `region`, copied out for repeated local queries (the
+    /// rotation search tests the same neighbourhood a dozen times per mouse move).
+    pub fn local(&self, region: &Aabb) -> LocalSurface {
+        let mut faces = Vec::new();
+        self.index.faces_in_box(region, &mut faces);
+        let tris = faces.iter().map(|&f| self.mesh.corners(f as usize)).collect();
+        LocalSurface { tris }
+    }
+
     /// Distance from `p` to the surface (infinite for an empty mesh).
     pub fn distance(&self, p: DVec3) -> f64 {
         self.index
@@ -88,5 +97,37 @@ impl<'a> Surface<'a> {
     /// Bounding box of the target.
     pub fn bbox(&self) -> Aabb {
         self.mesh.bbox()
+    }
+}
+
+/// A copy of the surface triangles in one neighbourhood (see [`Surface::local`]).
+#[derive(Clone, Debug, Default)]
+pub struct LocalSurface {
+    pub tris: Vec<[DVec3; 3]>,
+}
+
+impl LocalSurface {
+    /// True when the quad `q` crosses one of these triangles (same test as
+    /// [`Surface::quad_intersects`], valid for quads inside the neighbourhood).
+    pub fn quad_intersects(&self, q: &[DVec3; 4]) -> bool {
+        let b = Aabb::from_points(q.iter());
+        let halves = geom::quad_triangles(q);
+        let planes = halves.map(|t| {
+            let n = (t[1] - t[0]).cross(t[2] - t[0]);
+            (n, n.dot(t[0]))
+        });
+        self.tris.iter().any(|c| {
+            let lo = c[0].min(c[1]).min(c[2]);
+            let hi = c[0].max(c[1]).max(c[2]);
+            if lo.cmpgt(b.max).any() || hi.cmplt(b.min).any() {
+                return false;
+            }
+            halves.iter().zip(&planes).any(|(t, &(n, d))| {
+                let s = c.map(|p| n.dot(p) - d);
+                let one_side = (s[0] > 0.0 && s[1] > 0.0 && s[2] > 0.0)
+                    || (s[0] < 0.0 && s[1] < 0.0 && s[2] < 0.0);
+                !one_side && geom::tri_tri_intersect(t, c)
+            })
+        })
     }
 }

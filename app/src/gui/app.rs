@@ -10,7 +10,7 @@ use std::time::Instant;
 
 use glam::DVec3;
 
-use csg::{Aabb, Mesh};
+use csg::Mesh;
 
 use crate::scene::{CutKind, Scene, SceneModel};
 
@@ -977,7 +977,7 @@ impl CutawayApp {
             i.raw
                 .dropped_files
                 .iter()
-                .filter_map(|f| f.path.clone())
+                .map(|f| f.path().to_path_buf())
                 .collect()
         });
         if dropped.is_empty() {
@@ -994,7 +994,7 @@ impl CutawayApp {
     fn dialogs_ui(&mut self, ctx: &egui::Context) -> Vec<Action> {
         let mut actions = Vec::new();
         if let Some(path) = self.pending_recovery.clone() {
-            egui::Modal::new(egui::Id::new("cutaway-recovery")).show(ctx, |ui| {
+            egui::Modal::new(egui::Id::unique("cutaway-recovery")).show(ctx, |ui| {
                 ui.heading("Restore the previous session?");
                 ui.label("Cutaway did not exit cleanly last time. An autosaved session was found:");
                 ui.label(
@@ -1016,7 +1016,7 @@ impl CutawayApp {
         if let Some((purpose, mut text)) = self.manual_path.take() {
             let mut keep = true;
             egui::Window::new(purpose.title())
-                .id(egui::Id::new("cutaway-manual-path"))
+                .id(egui::Id::unique("cutaway-manual-path"))
                 .collapsible(false)
                 .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
                 .show(ctx, |ui| {

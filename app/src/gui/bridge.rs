@@ -603,3 +603,73 @@ impl PreviewKey {
         }
     }
 }
+
+/// At most this many triangles are drawn by the CPU fallback.
+const FALLBACK_TRIANGLES: usize = 40_000;
+
+/// A CPU preview of the scene for when no GPU renderer is available (a window on a non-wgpu
+/// backend): a subsample of the visible triangles, flat-shaded with a headlight and sorted back
+/// to front.
+pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &CutawayApp) {
+    let bg = app.scene.render.background;
+    let to_u8 = |c: f32| (c.clamp(0.0, 1.0) * 255.0) as u8;
+    painter.rect_filled(rect, 0.0, egui::Color32::from_rgb(to_u8(bg[0]), to_u8(bg[1]), to_u8(bg[2])));
+    let camera = &app.scene.camera;
+    let viewport = DVec2::new(rect.width() as f64, rect.height() as f64);
+    let visible: Vec<&crate::scene::SceneModel> =
+        app.scene.models.iter().filter(|m| m.visible && m.opacity > 0.0).collect();
+    let total: usize = visible.iter().map(|m| m.mesh.triangle_count()).sum();
+    if total == 0 {
+        return;
+    }
+    let stride = total.div_ceil(FALLBACK_TRIANGLES).max(1);
+    let forward = camera.forward();
+    let mut tris: Vec<(f64, [egui::Pos2; 3], egui::Color32)> = Vec::new();
+    for model in visible {
+        let alpha = to_u8(model.opacity);
+        for t in (0..model.mesh.triangle_count()).step_by(stride) {
+            let corners = model.mesh.corners(t);
+            let Some(n) = (corners[1] - corners[0]).cross(corners[2] - corners[0]).try_normalize() else {
+                continue;
+            };
+            let projected: Vec<egui::Pos2> = corners
+                .iter()
+                .filter_map(|c| camera.project(viewport, *c))
+                .map(|p| rect.min + egui::vec2(p.x as f32, p.y as f32))
+                .collect();
+            let [a, b, c] = projected[..] else { continue };
+            let light = (0.25 + 0.75 * n.dot(-forward).abs()) as f32;
+            let colour = egui::Color32::from_rgba_unmultiplied(
+                to_u8(model.color[0] * light),
+                to_u8(model.color[1] * light),
+                to_u8(model.color[2] * light),
+                alpha,
+            );
+            let depth = ((corners[0] + corners[1] + corners[2]) / 3.0 - camera.eye).dot(forward);
+            if model.style == crate::scene::ModelStyle::Wireframe {
+                painter.add(egui::Shape::closed_line(vec![a, b, c], egui::Stroke::new(0.5, colour)));
+            } else {
+                tris.push((depth, [a, b, c], colour));
+            }
+        }
+    }
+    tris.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut mesh = egui::Mesh::default();
+    for (_, pts, colour) in tris {
+        let base = mesh.vertices.len() as u32;
+        for p in pts {
+            mesh.colored_vertex(p, colour);
+        }
+        mesh.add_triangle(base, base + 1, base + 2);
+    }
+    painter.add(egui::Shape::mesh(mesh));
+    if stride > 1 {
+        painter.text(
+            rect.right_bottom() - egui::vec2(10.0, 10.0),
+            egui::Align2::RIGHT_BOTTOM,
+            format!("CPU preview: 1 of every {stride} triangles"),
+            egui::FontId::proportional(12.0),
+            egui::Color32::from_gray(60),
+        );
+    }
+}

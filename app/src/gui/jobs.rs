@@ -193,7 +193,7 @@ pub fn progress_window_ui<T: Send + 'static>(ctx: &egui::Context, jobs: &[Job<T>
         return cancel;
     }
     egui::Window::new("Working…")
-        .id(egui::Id::new("cutaway-progress"))
+        .id(egui::Id::unique("cutaway-progress"))
         .collapsible(false)
         .resizable(false)
         .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
