@@ -8,22 +8,34 @@ fn cutaway() -> Command {
 }
 
 fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../tests/data")
+        .join(name)
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-{name}-{}", std::process::id()));
+    let dir =
+        Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-{name}-{}", std::process::id()));
     std::fs::remove_dir_all(&dir).ok();
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
 
 fn info_json(path: &Path) -> serde_json::Value {
-    let out = cutaway().arg("info").arg(path).arg("--json").output().unwrap();
+    let out = cutaway()
+        .arg("info")
+        .arg(path)
+        .arg("--json")
+        .output()
+        .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{}: {stderr}", path.display());
     let stdout = String::from_utf8(out.stdout).unwrap();
-    assert_eq!(stdout.lines().count(), 1, "one JSON object on one line: {stdout}");
+    assert_eq!(
+        stdout.lines().count(),
+        1,
+        "one JSON object on one line: {stdout}"
+    );
     serde_json::from_str(&stdout).unwrap()
 }
 
@@ -33,7 +45,10 @@ fn assert_one_error_line(out: &Output, file: &Path) -> String {
     assert!(!out.status.success());
     let stderr = String::from_utf8(out.stderr.clone()).unwrap();
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    assert!(stderr.starts_with(&format!("error: {}: ", file.display())), "{stderr}");
+    assert!(
+        stderr.starts_with(&format!("error: {}: ", file.display())),
+        "{stderr}"
+    );
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(out.stdout.is_empty());
     stderr
@@ -55,9 +70,21 @@ fn missing_file_is_one_error_line() {
 #[test]
 fn info_json_has_exactly_the_contract_fields() {
     let value = info_json(&data("cube_ascii.ply"));
-    let keys: Vec<&str> = value.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+    let keys: Vec<&str> = value
+        .as_object()
+        .unwrap()
+        .keys()
+        .map(|k| k.as_str())
+        .collect();
     let mut expected = [
-        "vertices", "triangles", "regions", "closed", "manifold", "bbox_min", "bbox_max", "volume",
+        "vertices",
+        "triangles",
+        "regions",
+        "closed",
+        "manifold",
+        "bbox_min",
+        "bbox_max",
+        "volume",
     ];
     let mut sorted_keys = keys.clone();
     sorted_keys.sort_unstable();
@@ -76,11 +103,17 @@ fn info_json_has_exactly_the_contract_fields() {
 #[test]
 fn info_counts_regions_of_every_part_and_every_format() {
     let obj = info_json(&data("two_cubes.obj"));
-    assert_eq!((obj["vertices"].as_u64(), obj["triangles"].as_u64()), (Some(16), Some(24)));
+    assert_eq!(
+        (obj["vertices"].as_u64(), obj["triangles"].as_u64()),
+        (Some(16), Some(24))
+    );
     assert_eq!(obj["regions"], 2);
     assert_eq!(obj["volume"], 2.0);
     let stl = info_json(&data("tetra_ascii.stl"));
-    assert_eq!((stl["vertices"].as_u64(), stl["triangles"].as_u64()), (Some(4), Some(4)));
+    assert_eq!(
+        (stl["vertices"].as_u64(), stl["triangles"].as_u64()),
+        (Some(4), Some(4))
+    );
     assert!((stl["volume"].as_f64().unwrap() - 1.0 / 6.0).abs() < 1e-15);
     let vtk = info_json(&data("cube_strips.vtk"));
     assert_eq!(vtk["closed"], true);
@@ -90,8 +123,7 @@ fn info_counts_regions_of_every_part_and_every_format() {
     // An open mesh: one triangle removed from the cube.
     let dir = scratch("open");
     let text = std::fs::read_to_string(data("cube_ascii.ply")).unwrap();
-    let open = text
-        .replace("4 3 0 4 7\n", "3 3 0 4\n");
+    let open = text.replace("4 3 0 4 7\n", "3 3 0 4\n");
     std::fs::write(dir.join("open.ply"), open).unwrap();
     let value = info_json(&dir.join("open.ply"));
     assert_eq!(value["triangles"], 11);
@@ -100,11 +132,23 @@ fn info_counts_regions_of_every_part_and_every_format() {
 
 #[test]
 fn info_without_json_prints_a_readable_table() {
-    let out = cutaway().arg("info").arg(data("two_cubes.obj")).output().unwrap();
+    let out = cutaway()
+        .arg("info")
+        .arg(data("two_cubes.obj"))
+        .output()
+        .unwrap();
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
-    for expected in ["triangles  24", "regions    2", "closed     yes", "volume     2"] {
-        assert!(text.lines().any(|l| l.starts_with(expected)), "{expected:?} in\n{text}");
+    for expected in [
+        "triangles  24",
+        "regions    2",
+        "closed     yes",
+        "volume     2",
+    ] {
+        assert!(
+            text.lines().any(|l| l.starts_with(expected)),
+            "{expected:?} in\n{text}"
+        );
     }
 }
 
@@ -113,7 +157,9 @@ fn bad_inputs_fail_with_one_line_naming_the_file() {
     let dir = scratch("bad");
     let mut absurd_stl = vec![0u8; 84 + 50];
     absurd_stl[80..84].copy_from_slice(&4_000_000_000u32.to_le_bytes());
-    let garbage: Vec<u8> = (0..5000u32).map(|i| (i.wrapping_mul(2654435761) >> 11) as u8).collect();
+    let garbage: Vec<u8> = (0..5000u32)
+        .map(|i| (i.wrapping_mul(2654435761) >> 11) as u8)
+        .collect();
     let ply = std::fs::read(data("cube_ascii.ply")).unwrap();
     let cases: Vec<(&str, Vec<u8>, &str)> = vec![
         ("empty.stl", Vec::new(), "empty"),
@@ -139,7 +185,12 @@ fn bad_inputs_fail_with_one_line_naming_the_file() {
     for (name, bytes, needle) in cases {
         let path = dir.join(name);
         std::fs::write(&path, bytes).unwrap();
-        let out = cutaway().arg("info").arg(&path).arg("--json").output().unwrap();
+        let out = cutaway()
+            .arg("info")
+            .arg(&path)
+            .arg("--json")
+            .output()
+            .unwrap();
         let line = assert_one_error_line(&out, &path);
         assert!(line.contains(needle), "{name}: {line}");
     }

@@ -9,12 +9,15 @@ use cutaway::io::{self, Format};
 use proptest::prelude::*;
 
 fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../tests/data")
+        .join(name)
 }
 
 /// A fresh empty directory under cargo's per-target scratch space.
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("formats-{name}-{}", std::process::id()));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("formats-{name}-{}", std::process::id()));
     std::fs::remove_dir_all(&dir).ok();
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -37,7 +40,11 @@ fn corner_bits(mesh: &Mesh) -> Vec<[[u64; 3]; 3]> {
 fn assert_closed_volume(mesh: &Mesh, volume: f64) {
     let report = mesh.report();
     assert!(report.closed && report.manifold, "{report:?}");
-    assert!((mesh.volume() - volume).abs() < 1e-12, "volume {}", mesh.volume());
+    assert!(
+        (mesh.volume() - volume).abs() < 1e-12,
+        "volume {}",
+        mesh.volume()
+    );
 }
 
 /// A closed mesh with coordinates that decimal and f32 formats would not keep exactly.
@@ -111,10 +118,17 @@ fn binary_stl_round_trips_f32_values_and_survives_a_solid_header() {
     let path = dir.join("t.stl");
     io::write_mesh(&path, &mesh).unwrap();
     let rounded = Mesh {
-        positions: mesh.positions.iter().map(|p| p.as_vec3().as_dvec3()).collect(),
+        positions: mesh
+            .positions
+            .iter()
+            .map(|p| p.as_vec3().as_dvec3())
+            .collect(),
         triangles: mesh.triangles.clone(),
     };
-    assert_eq!(corner_bits(&io::read_mesh(&path).unwrap()), corner_bits(&rounded));
+    assert_eq!(
+        corner_bits(&io::read_mesh(&path).unwrap()),
+        corner_bits(&rounded)
+    );
     // Many exporters start the binary header with "solid": it must still read as binary.
     let mut bytes = std::fs::read(&path).unwrap();
     bytes[..12].copy_from_slice(b"solid binary");
@@ -126,11 +140,17 @@ fn binary_stl_round_trips_f32_values_and_survives_a_solid_header() {
 /// property before and after the coordinates.
 #[test]
 fn binary_little_endian_float_ply_from_another_writer() {
-    let mut bytes = b"ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty uchar flag\n\
+    let mut bytes =
+        b"ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty uchar flag\n\
 property float x\nproperty float y\nproperty float z\nproperty float confidence\n\
 element face 1\nproperty list uint8 uint32 vertex_indices\nend_header\n"
-        .to_vec();
-    let corners = [[0.1f32, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+            .to_vec();
+    let corners = [
+        [0.1f32, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ];
     for c in corners {
         bytes.push(7);
         for v in c {
@@ -150,7 +170,9 @@ element face 1\nproperty list uint8 uint32 vertex_indices\nend_header\n"
 
 /// Legacy binary VTK (big endian) with `TRIANGLE_STRIPS` and point normals, as in the SPL atlas.
 fn binary_vtk_cube() -> Vec<u8> {
-    let mut bytes = b"# vtk DataFile Version 4.0\nbinary cube\nBINARY\nDATASET POLYDATA\nPOINTS 8 float\n".to_vec();
+    let mut bytes =
+        b"# vtk DataFile Version 4.0\nbinary cube\nBINARY\nDATASET POLYDATA\nPOINTS 8 float\n"
+            .to_vec();
     let points = [
         [0.0f32, 0.0, 0.0],
         [1.0, 0.0, 0.0],
@@ -212,7 +234,14 @@ fn load_models_names_regions_by_stem_and_number_in_sorted_file_order() {
     let names: Vec<&str> = models.iter().map(|m| m.name.as_str()).collect();
     assert_eq!(
         names,
-        ["a_cube 1", "b_cubes#left 1", "b_cubes#right 2", "d_pair 1", "d_pair 2", "c_tetra 1"],
+        [
+            "a_cube 1",
+            "b_cubes#left 1",
+            "b_cubes#right 2",
+            "d_pair 1",
+            "d_pair 2",
+            "c_tetra 1"
+        ],
     );
     assert_eq!(models[5].source, dir.join("sub/c_tetra.STL"));
     assert!(models.iter().all(|m| m.mesh.report().closed));
@@ -227,7 +256,10 @@ fn load_models_names_regions_by_stem_and_number_in_sorted_file_order() {
 #[test]
 fn obj_polygon_and_polyline_writers() {
     let dir = scratch("polys");
-    let cube = io::read_parts(&data("two_cubes.obj")).unwrap().remove(0).mesh;
+    let cube = io::read_parts(&data("two_cubes.obj"))
+        .unwrap()
+        .remove(0)
+        .mesh;
     // Quads of the cube written as polygons read back as the same closed cube.
     let quads: Vec<Vec<u32>> = cube
         .triangles
@@ -241,7 +273,12 @@ fn obj_polygon_and_polyline_writers() {
     let back = io::read_mesh(&path).unwrap();
     assert_closed_volume(&back, 1.0);
 
-    let loop_points = vec![DVec3::new(0.1, 0.2, 0.3), DVec3::X, DVec3::Y, DVec3::new(0.1, 0.2, 0.3)];
+    let loop_points = vec![
+        DVec3::new(0.1, 0.2, 0.3),
+        DVec3::X,
+        DVec3::Y,
+        DVec3::new(0.1, 0.2, 0.3),
+    ];
     let path = dir.join("contour.obj");
     io::write_obj_polylines(&path, &[loop_points.clone(), vec![DVec3::Z, DVec3::ONE]]).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
@@ -270,18 +307,27 @@ fn missing_unknown_empty_and_directory_inputs_are_one_line_errors() {
     let dir = scratch("bad");
     let missing = dir.join("knee.stl");
     let line = error_of(io::read_parts(&missing));
-    assert!(line.contains("knee.stl") && line.contains("No such file"), "{line}");
+    assert!(
+        line.contains("knee.stl") && line.contains("No such file"),
+        "{line}"
+    );
 
     let unknown = dir.join("notes.txt");
     std::fs::write(&unknown, "v 0 0 0").unwrap();
     let line = error_of(io::read_parts(&unknown));
-    assert!(line.contains("notes.txt") && line.contains("unknown mesh format"), "{line}");
+    assert!(
+        line.contains("notes.txt") && line.contains("unknown mesh format"),
+        "{line}"
+    );
 
     for ext in ["obj", "stl", "ply", "vtk"] {
         let empty = dir.join(format!("empty.{ext}"));
         std::fs::write(&empty, b"").unwrap();
         let line = error_of(io::read_parts(&empty));
-        assert!(line.contains(&format!("empty.{ext}: the file is empty")), "{line}");
+        assert!(
+            line.contains(&format!("empty.{ext}: the file is empty")),
+            "{line}"
+        );
     }
 
     let folder = dir.join("folder.obj");
@@ -364,7 +410,9 @@ fn bad_values_and_indices_are_errors_naming_the_problem() {
 POLYGONS 1 4\n3 0 1 7\n";
     let line = error_of(io::parse_bytes(Format::Vtk, vtk, "x"));
     assert!(line.contains("uses vertex 7"), "{line}");
-    let garbage: Vec<u8> = (0..1000u32).map(|i| (i.wrapping_mul(2654435761) >> 13) as u8).collect();
+    let garbage: Vec<u8> = (0..1000u32)
+        .map(|i| (i.wrapping_mul(2654435761) >> 13) as u8)
+        .collect();
     for format in Format::ALL {
         error_of(io::parse_bytes(format, &garbage, "x"));
     }
@@ -389,7 +437,11 @@ fn build_valid_files() -> Vec<(Format, Vec<u8>)> {
         (Format::Vtk, std::fs::read(data("cube_strips.vtk")).unwrap()),
         (Format::Vtk, binary_vtk_cube()),
     ];
-    for (format, name) in [(Format::Stl, "t.stl"), (Format::Ply, "t.ply"), (Format::Obj, "t.obj")] {
+    for (format, name) in [
+        (Format::Stl, "t.stl"),
+        (Format::Ply, "t.ply"),
+        (Format::Obj, "t.obj"),
+    ] {
         io::write_mesh(&dir.join(name), &mesh).unwrap();
         files.push((format, std::fs::read(dir.join(name)).unwrap()));
     }
@@ -399,7 +451,10 @@ fn build_valid_files() -> Vec<(Format, Vec<u8>)> {
 #[test]
 fn every_truncation_of_every_valid_file_is_handled() {
     for &(format, ref bytes) in valid_files() {
-        assert!(io::parse_bytes(format, bytes, "x").is_ok(), "{format:?} fixture must parse");
+        assert!(
+            io::parse_bytes(format, bytes, "x").is_ok(),
+            "{format:?} fixture must parse"
+        );
         for len in 0..bytes.len() {
             // Ok (a shorter file can still be a valid mesh) or an error; never a panic.
             let _ = io::parse_bytes(format, &bytes[..len], "x");

@@ -42,8 +42,12 @@ fn load_benches(c: &mut Criterion) {
     assert_eq!(load(&obj), 1_003_520);
 
     let mut group = c.benchmark_group("load");
-    group.sample_size(10).measurement_time(Duration::from_secs(10));
-    group.bench_function("binary STL 1M triangles", |b| b.iter(|| black_box(load(&stl))));
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(10));
+    group.bench_function("binary STL 1M triangles", |b| {
+        b.iter(|| black_box(load(&stl)))
+    });
     group.bench_function("OBJ 1M triangles", |b| b.iter(|| black_box(load(&obj))));
     group.bench_function("info OBJ 2M triangles", |b| {
         b.iter(|| black_box(cutaway::cli::info::info(&obj2).expect("info")))

@@ -450,7 +450,7 @@ fn cutter_faces(planes: &[CutterPlane]) -> Vec<[DVec3; 4]> {
 /// `planes`, each as two bounded planes (a one-box cutter).
 pub fn sub_cutter_planes(planes: &[CutterPlane], count: u32, width: f64) -> Vec<Vec<CutterPlane>> {
     let n = planes.len();
-    if n < 2 || count == 0 || !(width > 0.0) {
+    if n < 2 || count == 0 || width.is_nan() || width <= 0.0 {
         return Vec::new();
     }
     let centre = |p: &CutterPlane| p.iter().copied().sum::<DVec3>() / 4.0;

@@ -656,7 +656,42 @@ pub(crate) fn run(
                     return cutter.positions[v as usize];
                 }
             }
-            target.lattice.to_world(h.limit())
+            // Otherwise place it on the target's original geometry: on the original target edge
+            // (EF) or inside the original target face (FE), with the parameters computed on the
+            // lattice. Kept and removed then tile each target face up to f64 rounding.
+            let l = h.limit();
+            match *key {
+                PointKey::Ef { edge, .. } => {
+                    let [p, q] = target.adjacency.edges[edge as usize];
+                    let (lp, lq) = (&target.lpoints[p as usize], &target.lpoints[q as usize]);
+                    let d: [f64; 3] = std::array::from_fn(|k| (lq[k] - lp[k]) as f64);
+                    let num: f64 = (0..3).map(|k| (l[k] - lp[k] as f64) * d[k]).sum();
+                    let den: f64 = (0..3).map(|k| d[k] * d[k]).sum();
+                    let t = if den > 0.0 { (num / den).clamp(0.0, 1.0) } else { 0.0 };
+                    let (wp, wq) = (mesh.positions[p as usize], mesh.positions[q as usize]);
+                    wp + (wq - wp) * t
+                }
+                PointKey::Fe { face, .. } => {
+                    let tri = mesh.triangles[face as usize];
+                    let [u, v, w] = tri.map(|i| &target.lpoints[i as usize]);
+                    match exact::projection(&exact::normal(u, v, w)) {
+                        Some((axis, _)) => {
+                            let (i, j) = exact::plane_axes(axis);
+                            let area = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+                                (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+                            };
+                            let pr = |p: &LPoint| [p[i] as f64, p[j] as f64];
+                            let x = [l[i], l[j]];
+                            let whole = area(pr(u), pr(v), pr(w));
+                            let beta = area(pr(u), x, pr(w)) / whole;
+                            let gamma = area(pr(u), pr(v), x) / whole;
+                            let [wu, wv, ww] = tri.map(|i| mesh.positions[i as usize]);
+                            wu + (wv - wu) * beta + (ww - wu) * gamma
+                        }
+                        None => target.lattice.to_world(l),
+                    }
+                }
+            }
         })
         .collect();
     let new_pos = &result.new_positions;

@@ -53,7 +53,7 @@ fn bench_extrude(c: &mut Criterion) {
                 // Alternate between two pointer positions 6 px apart: every step re-places the
                 // leading plane with the full rotation search; no box is locked.
                 k += 1;
-                let dx = if k % 2 == 0 { 3.0 } else { 9.0 };
+                let dx = if k.is_multiple_of(2) { 3.0 } else { 9.0 };
                 let r = editor.handle(EditorEvent::move_to(base.x + dx, base.y - dx * 0.5));
                 std::hint::black_box(r)
             })

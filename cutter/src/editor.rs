@@ -725,7 +725,11 @@ impl Editor {
                     c.planes.pop();
                 }
             }
-            if self.cutter.as_ref().is_none_or(|c| c.sanity_check().is_err()) {
+            if self
+                .cutter
+                .as_ref()
+                .is_none_or(|c| c.sanity_check().is_err())
+            {
                 self.cutter = Some(before.clone());
             }
         }

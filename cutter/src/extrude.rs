@@ -540,7 +540,7 @@ fn roll(
     // edge and to the path), at the previous depth. A box too narrow for the turn its face
     // needs would fold (its back face would cross the previous plane), so the turn is halved
     // until the box is well formed; turn 0 (the front plane itself) always is.
-    let place = |angle: f64, levelled: bool, scratch: &mut Vec<u32>| -> Option<BoundedPlane> {
+    let place = |angle: f64, levelled: bool| -> Option<BoundedPlane> {
         let (mut e, mut h) = (rotate(e0, outward * angle), rotate(h0, outward * angle));
         if levelled {
             (e, h) = level(a, d, e, h, surface, &local, settings.delta);
@@ -560,8 +560,8 @@ fn roll(
     };
     [1.0, 0.5, 0.25, 0.125]
         .iter()
-        .find_map(|&f| place(angle * f, settle, scratch))
-        .or_else(|| place(0.0, false, scratch))
+        .find_map(|&f| place(angle * f, settle))
+        .or_else(|| place(0.0, false))
 }
 
 /// Stage 4b (our addition): levels the leading edge E''H'' across the path. Rotating about DA

@@ -49,7 +49,8 @@ impl<'a> Surface<'a> {
             let c = self.mesh.corners(f as usize);
             halves.iter().zip(&planes).any(|(t, &(n, d))| {
                 let s = c.map(|p| n.dot(p) - d);
-                let one_side = (s[0] > 0.0 && s[1] > 0.0 && s[2] > 0.0) || (s[0] < 0.0 && s[1] < 0.0 && s[2] < 0.0);
+                let one_side = (s[0] > 0.0 && s[1] > 0.0 && s[2] > 0.0)
+                    || (s[0] < 0.0 && s[1] < 0.0 && s[2] < 0.0);
                 !one_side && geom::tri_tri_intersect(t, &c)
             })
         })
@@ -60,7 +61,10 @@ impl<'a> Surface<'a> {
     pub fn local(&self, region: &Aabb) -> LocalSurface {
         let mut faces = Vec::new();
         self.index.faces_in_box(region, &mut faces);
-        let tris = faces.iter().map(|&f| self.mesh.corners(f as usize)).collect();
+        let tris = faces
+            .iter()
+            .map(|&f| self.mesh.corners(f as usize))
+            .collect();
         LocalSurface { tris }
     }
 

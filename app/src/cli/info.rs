@@ -57,7 +57,9 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
     };
     // `print!` would panic on a closed pipe (`cutaway info … | head -0`); report it instead.
     let mut stdout = std::io::stdout().lock();
-    stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush())?;
+    stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())?;
     Ok(())
 }
 
@@ -83,7 +85,9 @@ fn table(path: &Path, info: &Info) -> String {
         ("bbox size", xyz(size)),
         ("volume", volume),
     ];
-    rows.iter().map(|(name, value)| format!("{name:<10} {value}\n")).collect()
+    rows.iter()
+        .map(|(name, value)| format!("{name:<10} {value}\n"))
+        .collect()
 }
 
 #[cfg(test)]

@@ -127,6 +127,8 @@ pub enum Action {
     StopGesture,
     /// Keep the current cutter; the next drag in Edit mode starts a new one.
     NewCutter,
+    /// Replace the scene with an embedded example scene.
+    OpenExample(String),
     /// Open scene cutter `i` in the editor.
     EditCutter(usize),
     /// Delete scene cutter `i`.
@@ -314,7 +316,6 @@ impl CutawayApp {
 
     fn load_default_scene(&mut self, ctx: &egui::Context) {
         self.spawn(ctx, "Loading the default scene", |progress| {
-            progress.set_message("knee");
             let models = super::bridge::default_scene_models(progress)?;
             Ok(JobOutput::Models {
                 models,
@@ -322,6 +323,21 @@ impl CutawayApp {
                 sources: Vec::new(),
             })
         });
+    }
+
+    fn load_example(&mut self, ctx: &egui::Context, name: String) {
+        self.spawn(
+            ctx,
+            format!("Loading the {name} example"),
+            move |progress| {
+                let models = super::bridge::example_scene_models(&name, progress)?;
+                Ok(JobOutput::Models {
+                    models,
+                    replace: true,
+                    sources: Vec::new(),
+                })
+            },
+        );
     }
 
     /// Records a scene change for undo (call with the state from before the change).
@@ -436,6 +452,7 @@ impl CutawayApp {
                     self.open_dialog(ctx, Purpose::SaveGesture);
                 }
             }
+            Action::OpenExample(name) => self.load_example(ctx, name),
             Action::NewCutter => {
                 self.viewport.editor.finish();
                 self.say("The next drag on the target starts a new cutter");
@@ -829,7 +846,11 @@ impl CutawayApp {
             *region_of_source.entry(model.source.clone()).or_default() += 1;
         }
         for (i, model) in models.into_iter().enumerate() {
-            let color = model_colour(&model.name, first_new + i);
+            let color = if sources.is_empty() {
+                crate::assets::default_color(&model.name)
+            } else {
+                model_colour(&model.name, first_new + i)
+            };
             let region = region_of_source.entry(model.source.clone()).or_default();
             let mut entry = SceneModel::new(model.name, model.source, Arc::new(model.mesh), color);
             entry.region = *region;
@@ -844,7 +865,7 @@ impl CutawayApp {
             self.record(&format!("add {count} models"), before);
         }
         let what = match sources {
-            [] => "the default scene".to_string(),
+            [] => "the example scene".to_string(),
             [one] => file_label(one),
             many => format!("{} items", many.len()),
         };

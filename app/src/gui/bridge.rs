@@ -419,16 +419,34 @@ pub fn paint_scene(ui: &mut egui::Ui, rect: egui::Rect, app: &CutawayApp) -> boo
 
 /// The embedded default scene (the knee).
 pub fn default_scene_models(progress: &Progress) -> anyhow::Result<Vec<crate::io::Model>> {
-    // TODO(assets): use `crate::assets::load_scene` once the embedded scenes land; until then the
-    // knee is read from the source tree's `assets/knee` folder.
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/knee");
-    if !dir.is_dir() {
-        anyhow::bail!(
-            "{}: the default scene is missing from this build; use File ▸ Load Model",
-            dir.display()
-        );
+    let name = crate::assets::scenes()
+        .first()
+        .map(|s| s.name)
+        .unwrap_or("knee");
+    example_scene_models(name, progress)
+}
+
+/// An embedded example scene by name. Models keep the virtual `assets/<scene>/<part>.ply`
+/// source unless the source tree's copy exists, whose absolute path is used instead so that a
+/// session saved from the example opens anywhere on this machine.
+pub fn example_scene_models(
+    name: &str,
+    progress: &Progress,
+) -> anyhow::Result<Vec<crate::io::Model>> {
+    let scene = crate::assets::scene(name)
+        .ok_or_else(|| anyhow::anyhow!("{name}: no such example scene"))?;
+    progress.set_message(name.to_string());
+    let mut models = crate::assets::load_scene(scene)?;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    for model in &mut models {
+        let on_disk = root.join(&model.source);
+        if on_disk.is_file()
+            && let Ok(absolute) = std::fs::canonicalize(&on_disk)
+        {
+            model.source = absolute;
+        }
     }
-    super::app::load_paths(&[dir], progress)
+    Ok(models)
 }
 
 /// Writes the window's scene as a session file (atomic).
@@ -613,11 +631,19 @@ const FALLBACK_TRIANGLES: usize = 40_000;
 pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &CutawayApp) {
     let bg = app.scene.render.background;
     let to_u8 = |c: f32| (c.clamp(0.0, 1.0) * 255.0) as u8;
-    painter.rect_filled(rect, 0.0, egui::Color32::from_rgb(to_u8(bg[0]), to_u8(bg[1]), to_u8(bg[2])));
+    painter.rect_filled(
+        rect,
+        0.0,
+        egui::Color32::from_rgb(to_u8(bg[0]), to_u8(bg[1]), to_u8(bg[2])),
+    );
     let camera = &app.scene.camera;
     let viewport = DVec2::new(rect.width() as f64, rect.height() as f64);
-    let visible: Vec<&crate::scene::SceneModel> =
-        app.scene.models.iter().filter(|m| m.visible && m.opacity > 0.0).collect();
+    let visible: Vec<&crate::scene::SceneModel> = app
+        .scene
+        .models
+        .iter()
+        .filter(|m| m.visible && m.opacity > 0.0)
+        .collect();
     let total: usize = visible.iter().map(|m| m.mesh.triangle_count()).sum();
     if total == 0 {
         return;
@@ -629,7 +655,10 @@ pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &CutawayAp
         let alpha = to_u8(model.opacity);
         for t in (0..model.mesh.triangle_count()).step_by(stride) {
             let corners = model.mesh.corners(t);
-            let Some(n) = (corners[1] - corners[0]).cross(corners[2] - corners[0]).try_normalize() else {
+            let Some(n) = (corners[1] - corners[0])
+                .cross(corners[2] - corners[0])
+                .try_normalize()
+            else {
                 continue;
             };
             let projected: Vec<egui::Pos2> = corners
@@ -647,7 +676,10 @@ pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &CutawayAp
             );
             let depth = ((corners[0] + corners[1] + corners[2]) / 3.0 - camera.eye).dot(forward);
             if model.style == crate::scene::ModelStyle::Wireframe {
-                painter.add(egui::Shape::closed_line(vec![a, b, c], egui::Stroke::new(0.5, colour)));
+                painter.add(egui::Shape::closed_line(
+                    vec![a, b, c],
+                    egui::Stroke::new(0.5, colour),
+                ));
             } else {
                 tris.push((depth, [a, b, c], colour));
             }

@@ -127,6 +127,13 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
             if item(ui, "Export Cut Meshes…", "") {
                 app.export_meshes.open = true;
             }
+            ui.menu_button("Open Example", |ui| {
+                for scene in crate::assets::scenes() {
+                    if ui.button(scene.name).clicked() {
+                        actions.push(Action::OpenExample(scene.name.to_string()));
+                    }
+                }
+            });
             ui.separator();
             ui.menu_button("Recent Files", |ui| {
                 if app.recent.paths.is_empty() {
@@ -306,7 +313,7 @@ pub fn toolbar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         if ui
             .add_enabled(
                 app.history.undo_label().is_some(),
-                egui::Button::new("⟲ Undo"),
+                egui::Button::new("Undo"),
             )
             .on_hover_text("Ctrl+Z")
             .clicked()
@@ -316,7 +323,7 @@ pub fn toolbar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         if ui
             .add_enabled(
                 app.history.redo_label().is_some(),
-                egui::Button::new("⟳ Redo"),
+                egui::Button::new("Redo"),
             )
             .on_hover_text("Ctrl+Shift+Z")
             .clicked()

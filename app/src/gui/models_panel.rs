@@ -26,7 +26,7 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     ui.separator();
     if app.scene.models.is_empty() {
         ui.label(
-            egui::RichText::new("No models. File ▸ Load Model, or drop files on the window.")
+            egui::RichText::new("No models. File > Load Model, or drop files on the window.")
                 .weak(),
         );
         return actions;
@@ -54,10 +54,7 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
                     } else {
                         egui::RichText::new(&name).weak()
                     };
-                    let row = ui.add(
-                        egui::Button::selectable(selected, text)
-                            .min_size(egui::vec2(ui.available_width(), 0.0)),
-                    );
+                    let row = ui.add(egui::Button::selectable(selected, text));
                     if row.clicked() {
                         actions.push(Action::SelectModel(if selected {
                             None

@@ -31,7 +31,7 @@ pub fn grouped(n: usize) -> String {
     let mut out = String::with_capacity(digits.len() + digits.len() / 3);
     for (i, c) in digits.chars().enumerate() {
         if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push('\u{202f}');
+            out.push(',');
         }
         out.push(c);
     }
@@ -91,7 +91,7 @@ mod tests {
     fn counts_are_grouped_by_thousands() {
         assert_eq!(grouped(0), "0");
         assert_eq!(grouped(999), "999");
-        assert_eq!(grouped(1000), "1\u{202f}000");
-        assert_eq!(grouped(2_000_000), "2\u{202f}000\u{202f}000");
+        assert_eq!(grouped(1000), "1,000");
+        assert_eq!(grouped(2_000_000), "2,000,000");
     }
 }

@@ -193,7 +193,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         painter.text(
             rect.center(),
             egui::Align2::CENTER_CENTER,
-            "Drop mesh files here, or use File ▸ Load Model",
+            "Drop mesh files here, or use File > Load Model",
             egui::FontId::proportional(18.0),
             egui::Color32::from_gray(90),
         );
@@ -202,7 +202,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         painter.text(
             rect.left_top() + egui::vec2(12.0, 12.0),
             egui::Align2::LEFT_TOP,
-            format!("● REC gesture ({} events)", r.events.len()),
+            format!("REC gesture ({} events)", r.events.len()),
             egui::FontId::proportional(14.0),
             egui::Color32::from_rgb(220, 40, 40),
         );

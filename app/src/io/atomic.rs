@@ -8,7 +8,10 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Writes `path` atomically with `fill`. Errors do not name `path` (the caller adds it).
-pub(crate) fn write(path: &Path, fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> anyhow::Result<()> {
+pub(crate) fn write(
+    path: &Path,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> anyhow::Result<()> {
     let temp = temp_path(path)?;
     let result = write_temp(&temp, fill).and_then(|()| std::fs::rename(&temp, path));
     if result.is_err() {
@@ -17,7 +20,10 @@ pub(crate) fn write(path: &Path, fill: impl FnOnce(&mut dyn Write) -> std::io::R
     result.map_err(anyhow::Error::from)
 }
 
-fn write_temp(temp: &Path, fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> std::io::Result<()> {
+fn write_temp(
+    temp: &Path,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
     let file = File::create(temp)?;
     let mut writer = BufWriter::with_capacity(1 << 20, file);
     fill(&mut writer)?;

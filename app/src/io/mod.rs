@@ -343,7 +343,8 @@ pub fn write_mesh(path: &Path, mesh: &Mesh) -> anyhow::Result<()> {
 }
 
 fn write_mesh_inner(path: &Path, mesh: &Mesh) -> anyhow::Result<()> {
-    mesh.sanity_check().context("refusing to write an invalid mesh")?;
+    mesh.sanity_check()
+        .context("refusing to write an invalid mesh")?;
     match Format::from_path(path) {
         Some(Format::Obj) => atomic::write(path, |w| obj::write_mesh(w, mesh)),
         Some(Format::Stl) => {
@@ -358,7 +359,11 @@ fn write_mesh_inner(path: &Path, mesh: &Mesh) -> anyhow::Result<()> {
 }
 
 /// Writes an OBJ of general polygons (`f a b c d` for quads), exact f64 round trip. Atomic.
-pub fn write_obj_polygons(path: &Path, positions: &[glam::DVec3], faces: &[Vec<u32>]) -> anyhow::Result<()> {
+pub fn write_obj_polygons(
+    path: &Path,
+    positions: &[glam::DVec3],
+    faces: &[Vec<u32>],
+) -> anyhow::Result<()> {
     obj::check_polygons(positions, faces)
         .and_then(|()| atomic::write(path, |w| obj::write_polygons(w, positions, faces)))
         .with_context(|| path.display().to_string())
@@ -391,7 +396,10 @@ mod tests {
     #[test]
     fn sniff_recognises_each_format() {
         assert_eq!(Format::sniff(b"ply\nformat ascii 1.0\n"), Some(Format::Ply));
-        assert_eq!(Format::sniff(b"# vtk DataFile Version 3.0\n"), Some(Format::Vtk));
+        assert_eq!(
+            Format::sniff(b"# vtk DataFile Version 3.0\n"),
+            Some(Format::Vtk)
+        );
         assert_eq!(Format::sniff(b"  solid x\nfacet"), Some(Format::Stl));
         assert_eq!(Format::sniff(b"# c\nv 1 2 3\nf 1 2 3\n"), Some(Format::Obj));
         assert_eq!(Format::sniff(&[0xff, 0xfe, 0, 1]), None);
@@ -401,7 +409,10 @@ mod tests {
     fn guarded_turns_a_panic_into_an_error() {
         let result: anyhow::Result<()> = guarded(Format::Obj, || panic!("boom"));
         let message = format!("{:#}", result.unwrap_err());
-        assert!(message.contains("boom") && message.contains("OBJ"), "{message}");
+        assert!(
+            message.contains("boom") && message.contains("OBJ"),
+            "{message}"
+        );
         // The flag is reset, so later panics elsewhere are reported normally.
         assert!(!IN_GUARDED_PARSER.get());
     }

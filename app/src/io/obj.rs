@@ -37,7 +37,9 @@ fn parse_with_tobj(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
         Err(tobj::LoadError::OpenFileFailed)
     })
     .map_err(|e| match e {
-        tobj::LoadError::ReadError => anyhow::anyhow!("not a text OBJ file (unreadable line or a non-UTF-8 byte)"),
+        tobj::LoadError::ReadError => {
+            anyhow::anyhow!("not a text OBJ file (unreadable line or a non-UTF-8 byte)")
+        }
         other => anyhow::anyhow!("malformed OBJ: {other}"),
     })?;
     models
@@ -45,7 +47,10 @@ fn parse_with_tobj(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
         .map(|model| {
             let mesh = model.mesh;
             if mesh.indices.len() % 3 != 0 {
-                anyhow::bail!("malformed OBJ: object '{}' has an incomplete triangle", model.name);
+                anyhow::bail!(
+                    "malformed OBJ: object '{}' has an incomplete triangle",
+                    model.name
+                );
             }
             let positions = mesh
                 .positions
@@ -182,7 +187,12 @@ fn write_vertices(w: &mut dyn Write, positions: &[DVec3]) -> std::io::Result<()>
 
 /// Writes `mesh` as `v` and `f` records (1-based indices).
 pub(crate) fn write_mesh(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
-    writeln!(w, "# written by cutaway: {} vertices, {} triangles", mesh.positions.len(), mesh.triangles.len())?;
+    writeln!(
+        w,
+        "# written by cutaway: {} vertices, {} triangles",
+        mesh.positions.len(),
+        mesh.triangles.len()
+    )?;
     write_vertices(w, &mesh.positions)?;
     for [a, b, c] in &mesh.triangles {
         writeln!(w, "f {} {} {}", a + 1, b + 1, c + 1)?;
@@ -197,18 +207,33 @@ pub(crate) fn check_polygons(positions: &[DVec3], faces: &[Vec<u32>]) -> anyhow:
     }
     for (f, face) in faces.iter().enumerate() {
         if face.len() < 3 {
-            anyhow::bail!("face {f} has {} corners; a polygon needs at least 3", face.len());
+            anyhow::bail!(
+                "face {f} has {} corners; a polygon needs at least 3",
+                face.len()
+            );
         }
         if let Some(&i) = face.iter().find(|&&i| i as usize >= positions.len()) {
-            anyhow::bail!("face {f} uses vertex {i}, but there are only {} vertices", positions.len());
+            anyhow::bail!(
+                "face {f} uses vertex {i}, but there are only {} vertices",
+                positions.len()
+            );
         }
     }
     Ok(())
 }
 
 /// Writes general polygons (`f a b c d …`).
-pub(crate) fn write_polygons(w: &mut dyn Write, positions: &[DVec3], faces: &[Vec<u32>]) -> std::io::Result<()> {
-    writeln!(w, "# written by cutaway: {} vertices, {} polygons", positions.len(), faces.len())?;
+pub(crate) fn write_polygons(
+    w: &mut dyn Write,
+    positions: &[DVec3],
+    faces: &[Vec<u32>],
+) -> std::io::Result<()> {
+    writeln!(
+        w,
+        "# written by cutaway: {} vertices, {} polygons",
+        positions.len(),
+        faces.len()
+    )?;
     write_vertices(w, positions)?;
     for face in faces {
         w.write_all(b"f")?;
@@ -224,7 +249,10 @@ pub(crate) fn write_polygons(w: &mut dyn Write, positions: &[DVec3], faces: &[Ve
 pub(crate) fn check_polylines(polylines: &[Vec<DVec3>]) -> anyhow::Result<()> {
     for (l, line) in polylines.iter().enumerate() {
         if line.len() < 2 {
-            anyhow::bail!("polyline {l} has {} points; a polyline needs at least 2", line.len());
+            anyhow::bail!(
+                "polyline {l} has {} points; a polyline needs at least 2",
+                line.len()
+            );
         }
         if let Some(p) = line.iter().find(|p| !p.is_finite()) {
             anyhow::bail!("polyline {l} has a non-finite point {p}");
@@ -235,14 +263,20 @@ pub(crate) fn check_polylines(polylines: &[Vec<DVec3>]) -> anyhow::Result<()> {
 
 /// True when a polyline ends where it starts (bit for bit): it is written as a closed loop.
 fn is_closed(line: &[DVec3]) -> bool {
-    line.len() > 2 && line.first().map(|p| p.to_array().map(f64::to_bits)) == line.last().map(|p| p.to_array().map(f64::to_bits))
+    line.len() > 2
+        && line.first().map(|p| p.to_array().map(f64::to_bits))
+            == line.last().map(|p| p.to_array().map(f64::to_bits))
 }
 
 /// Writes polylines: each point once as `v`, then one `l` record per polyline.
 pub(crate) fn write_polylines(w: &mut dyn Write, polylines: &[Vec<DVec3>]) -> std::io::Result<()> {
     writeln!(w, "# written by cutaway: {} polylines", polylines.len())?;
     for line in polylines {
-        let points = if is_closed(line) { &line[..line.len() - 1] } else { &line[..] };
+        let points = if is_closed(line) {
+            &line[..line.len() - 1]
+        } else {
+            &line[..]
+        };
         write_vertices(w, points)?;
     }
     let mut next = 1usize;
@@ -330,7 +364,11 @@ o first\ng first\nf 1 2 3 4\no second\nf 1 2 5\n";
             b"v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nf 1 2 3\n",
             "v 0 0 0\nv 1 0 0\nv 0 1 0\no caf\u{e9}\nf 1 2 3\n".as_bytes(),
         ] {
-            assert!(parse_plain(bytes).is_none(), "{}", String::from_utf8_lossy(bytes));
+            assert!(
+                parse_plain(bytes).is_none(),
+                "{}",
+                String::from_utf8_lossy(bytes)
+            );
         }
     }
 

@@ -32,15 +32,15 @@ pub(crate) fn parse(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
             let property = vertex
                 .get(key)
                 .ok_or_else(|| anyhow::anyhow!("PLY vertex {v} has no '{key}' property"))?;
-            *value = scalar(property)
-                .ok_or_else(|| anyhow::anyhow!("PLY vertex property '{key}' is a list, not a number"))?;
+            *value = scalar(property).ok_or_else(|| {
+                anyhow::anyhow!("PLY vertex property '{key}' is a list, not a number")
+            })?;
         }
         positions.push(DVec3::from_array(xyz));
     }
-    let faces = ply
-        .payload
-        .get("face")
-        .ok_or_else(|| anyhow::anyhow!("PLY without a 'face' element (a point cloud, not a surface)"))?;
+    let faces = ply.payload.get("face").ok_or_else(|| {
+        anyhow::anyhow!("PLY without a 'face' element (a point cloud, not a surface)")
+    })?;
     let mut triangles = Vec::with_capacity(faces.len());
     let mut corners = Vec::new();
     for (f, face) in faces.iter().enumerate() {
@@ -77,9 +77,15 @@ fn scalar(property: &Property) -> Option<f64> {
 
 /// Appends a face's vertex indices as `u32`; negative or fractional indices are errors.
 fn index_list(property: &Property, out: &mut Vec<u32>) -> Result<(), String> {
-    fn push<T: Copy + TryInto<u32> + std::fmt::Display>(values: &[T], out: &mut Vec<u32>) -> Result<(), String> {
+    fn push<T: Copy + TryInto<u32> + std::fmt::Display>(
+        values: &[T],
+        out: &mut Vec<u32>,
+    ) -> Result<(), String> {
         for &v in values {
-            out.push(v.try_into().map_err(|_| format!("vertex index {v} is negative"))?);
+            out.push(
+                v.try_into()
+                    .map_err(|_| format!("vertex index {v} is negative"))?,
+            );
         }
         Ok(())
     }
@@ -115,7 +121,8 @@ element face {}\nproperty list uchar int vertex_indices\nend_header\n",
         for (k, &i) in tri.iter().enumerate() {
             // `Mesh::sanity_check` bounds indices by the vertex count, which PLY's `int` holds
             // for every mesh up to 2^31 vertices.
-            let i = i32::try_from(i).map_err(|_| std::io::Error::other("vertex index beyond PLY int range"))?;
+            let i = i32::try_from(i)
+                .map_err(|_| std::io::Error::other("vertex index beyond PLY int range"))?;
             record[1 + 4 * k..5 + 4 * k].copy_from_slice(&i.to_le_bytes());
         }
         w.write_all(&record)?;

@@ -87,8 +87,12 @@ fn parse_binary(bytes: &[u8]) -> RawPart {
 /// Reads ASCII STL: `solid [name]`, then `facet normal nx ny nz`, `outer loop`, `vertex x y z`…,
 /// `endloop`, `endfacet`, …, `endsolid [name]`; several solids may follow each other.
 fn parse_ascii(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
-    let text = std::str::from_utf8(bytes)
-        .map_err(|e| anyhow::anyhow!("ASCII STL with a non-text byte at offset {}", e.valid_up_to()))?;
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        anyhow::anyhow!(
+            "ASCII STL with a non-text byte at offset {}",
+            e.valid_up_to()
+        )
+    })?;
     let mut parts = Vec::new();
     let mut current: Option<RawPart> = None;
     let mut loop_corners: Vec<DVec3> = Vec::new();
@@ -115,7 +119,11 @@ fn parse_ascii(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
                 if in_loop {
                     return Err(at("'endsolid' inside a facet loop"));
                 }
-                parts.push(current.take().ok_or_else(|| at("'endsolid' without 'solid'"))?);
+                parts.push(
+                    current
+                        .take()
+                        .ok_or_else(|| at("'endsolid' without 'solid'"))?,
+                );
             }
             "facet" | "endfacet" => {
                 if current.is_none() {
@@ -135,7 +143,9 @@ fn parse_ascii(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
                 }
                 let mut xyz = [0.0; 3];
                 for value in &mut xyz {
-                    let word = words.next().ok_or_else(|| at("vertex needs three coordinates"))?;
+                    let word = words
+                        .next()
+                        .ok_or_else(|| at("vertex needs three coordinates"))?;
                     *value = word
                         .parse::<f64>()
                         .map_err(|_| at(&format!("'{word}' is not a number")))?;
@@ -153,7 +163,9 @@ fn parse_ascii(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
                         loop_corners.len()
                     )));
                 }
-                let part = current.as_mut().ok_or_else(|| at("facet outside a solid"))?;
+                let part = current
+                    .as_mut()
+                    .ok_or_else(|| at("facet outside a solid"))?;
                 let first = part.positions.len() as u32;
                 part.positions.extend_from_slice(&loop_corners);
                 for k in 1..loop_corners.len() as u32 - 1 {

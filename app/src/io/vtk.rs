@@ -15,13 +15,16 @@ pub(crate) fn parse(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
     if !bytes.starts_with(b"# vtk DataFile") {
         anyhow::bail!("not a legacy VTK file (it must start with '# vtk DataFile')");
     }
-    let vtk = vtkio::Vtk::parse_legacy_be(bytes).map_err(|e| anyhow::anyhow!("malformed VTK: {e}"))?;
+    let vtk =
+        vtkio::Vtk::parse_legacy_be(bytes).map_err(|e| anyhow::anyhow!("malformed VTK: {e}"))?;
     let pieces = match vtk.data {
         DataSet::PolyData { pieces, .. } => pieces,
         DataSet::ImageData { .. } => anyhow::bail!("VTK STRUCTURED_POINTS data, not POLYDATA"),
         DataSet::StructuredGrid { .. } => anyhow::bail!("VTK STRUCTURED_GRID data, not POLYDATA"),
         DataSet::RectilinearGrid { .. } => anyhow::bail!("VTK RECTILINEAR_GRID data, not POLYDATA"),
-        DataSet::UnstructuredGrid { .. } => anyhow::bail!("VTK UNSTRUCTURED_GRID data, not POLYDATA"),
+        DataSet::UnstructuredGrid { .. } => {
+            anyhow::bail!("VTK UNSTRUCTURED_GRID data, not POLYDATA")
+        }
         DataSet::Field { .. } => anyhow::bail!("VTK FIELD data, not POLYDATA"),
     };
     let mut part = RawPart::default();
@@ -29,20 +32,28 @@ pub(crate) fn parse(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
         let Piece::Inline(piece) = piece else {
             anyhow::bail!("VTK piece stored outside the file (not supported)");
         };
-        let base = u32::try_from(part.positions.len()).map_err(|_| anyhow::anyhow!("too many VTK points"))?;
+        let base = u32::try_from(part.positions.len())
+            .map_err(|_| anyhow::anyhow!("too many VTK points"))?;
         let coordinates: Vec<f64> = piece
             .points
             .cast_into::<f64>()
             .ok_or_else(|| anyhow::anyhow!("VTK POINTS of a type that is not a number"))?;
         if coordinates.len() % 3 != 0 {
-            anyhow::bail!("VTK POINTS holds {} numbers, not a multiple of 3", coordinates.len());
+            anyhow::bail!(
+                "VTK POINTS holds {} numbers, not a multiple of 3",
+                coordinates.len()
+            );
         }
-        part.positions
-            .extend(coordinates.chunks_exact(3).map(|p| DVec3::new(p[0], p[1], p[2])));
+        part.positions.extend(
+            coordinates
+                .chunks_exact(3)
+                .map(|p| DVec3::new(p[0], p[1], p[2])),
+        );
         if let Some(polys) = &piece.polys {
             for_each_cell(polys, "POLYGONS", |cell| {
                 for k in 1..cell.len().saturating_sub(1) {
-                    part.triangles.push(offset([cell[0], cell[k], cell[k + 1]], base)?);
+                    part.triangles
+                        .push(offset([cell[0], cell[k], cell[k + 1]], base)?);
                 }
                 Ok(())
             })?;
@@ -84,23 +95,30 @@ fn for_each_cell(
 ) -> anyhow::Result<()> {
     let mut cell = Vec::new();
     match cells {
-        VertexNumbers::Legacy { num_cells, vertices } => {
+        VertexNumbers::Legacy {
+            num_cells,
+            vertices,
+        } => {
             let mut at = 0usize;
             for c in 0..*num_cells {
-                let n = *vertices
-                    .get(at)
-                    .ok_or_else(|| anyhow::anyhow!("VTK {what}: cell {c} of {num_cells} is missing"))?
-                    as usize;
-                let corners = vertices
-                    .get(at + 1..at + 1 + n)
-                    .ok_or_else(|| anyhow::anyhow!("VTK {what}: cell {c} claims {n} points past the end of the list"))?;
+                let n = *vertices.get(at).ok_or_else(|| {
+                    anyhow::anyhow!("VTK {what}: cell {c} of {num_cells} is missing")
+                })? as usize;
+                let corners = vertices.get(at + 1..at + 1 + n).ok_or_else(|| {
+                    anyhow::anyhow!(
+                        "VTK {what}: cell {c} claims {n} points past the end of the list"
+                    )
+                })?;
                 cell.clear();
                 cell.extend(corners.iter().map(|&i| u64::from(i)));
                 f(&cell)?;
                 at += 1 + n;
             }
         }
-        VertexNumbers::XML { connectivity, offsets } => {
+        VertexNumbers::XML {
+            connectivity,
+            offsets,
+        } => {
             let mut start = 0u64;
             for (c, &end) in offsets.iter().enumerate() {
                 if end == 0 && c == 0 {
