@@ -133,6 +133,8 @@ pub struct CutStats {
     pub inside_tests: usize,
     /// Polygons whose ear clipping needed the topology-only fallback (0 when all is well).
     pub triangulation_fallbacks: usize,
+    /// Face pieces whose status needed the safety net of `resolve_loops` (0 when all is well).
+    pub status_fallbacks: usize,
 }
 
 /// The result of cutting a cutter out of a cached target.

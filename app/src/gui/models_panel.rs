@@ -137,9 +137,9 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
             }
             ui.end_row();
 
-            ui.label("Visible");
+            ui.label("");
             let mut visible = app.scene.models[index].visible;
-            if ui.checkbox(&mut visible, "").changed() {
+            if ui.checkbox(&mut visible, "Visible").changed() {
                 app.begin_edit(if visible { "show model" } else { "hide model" });
                 app.scene.models[index].visible = visible;
             }

@@ -167,6 +167,9 @@ pub fn check_cut(target: &Mesh, result: &CutResult) -> Result<(), String> {
             return Err("open contour on a closed target".into());
         }
     }
+    if result.stats.status_fallbacks != 0 {
+        return Err(format!("{} status fallbacks", result.stats.status_fallbacks));
+    }
     if result.stats.triangulation_fallbacks != 0 {
         return Err(format!(
             "{} triangulation fallbacks",
