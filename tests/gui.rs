@@ -138,7 +138,7 @@ fn window_loads_the_default_scene_switches_modes_and_saves_a_session() {
     // The modes switch through their buttons.
     click_mode(&mut h, "Edit");
     assert_eq!(h.state().mode, Mode::Edit);
-    h.get_by_label("Edit mode");
+    h.get_by_label("extrude (Shift: straight)");
     click_mode(&mut h, "Preview");
     assert_eq!(h.state().mode, Mode::Preview);
     click_mode(&mut h, "Camera");
@@ -159,6 +159,10 @@ fn window_loads_the_default_scene_switches_modes_and_saves_a_session() {
     println!(
         "screenshot: {} (centre {centre:?}, corner {corner:?})",
         shot.display()
+    );
+    assert_ne!(
+        centre, corner,
+        "the viewport shows only background where the knee should be"
     );
 
     // Save Session through the File menu writes a cutaway-session/1 file.
@@ -204,7 +208,8 @@ fn hiding_a_model_is_undone_and_redone_with_the_keyboard() {
     h.get_by_label(&name).click();
     h.run_steps(2);
     assert_eq!(h.state().selected_model, Some(0));
-    h.get_by_label("Visible").click();
+    h.get_by_role_and_label(egui::accesskit::Role::CheckBox, "Visible")
+        .click();
     h.run_steps(3);
     assert!(
         !h.state().scene.models[0].visible,

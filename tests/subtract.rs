@@ -224,6 +224,7 @@ fn cuts_every_anatomy_mesh() {
     mesh_files(&dir, &mut files);
     assert!(!files.is_empty());
     let mut cuts = 0;
+    let (mut tri_fallbacks, mut status_fallbacks) = (0, 0);
     for file in &files {
         let Ok(mesh) = cutaway::io::read_mesh(file) else {
             continue; // unreadable files are the formats tests' business
@@ -255,9 +256,13 @@ fn cuts_every_anatomy_mesh() {
                 "{}: area {kept} + {removed} != {area}",
                 file.display()
             );
+            tri_fallbacks += r.stats.triangulation_fallbacks;
+            status_fallbacks += r.stats.status_fallbacks;
             cuts += 1;
         }
     }
-    eprintln!("{cuts} anatomy cuts");
+    eprintln!(
+        "{cuts} anatomy cuts; triangulation fallbacks {tri_fallbacks}, status fallbacks {status_fallbacks}"
+    );
     assert!(cuts > 0);
 }

@@ -42,7 +42,11 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
                 let (name, visible, colour) = (model.name.clone(), model.visible, model.color);
                 ui.horizontal(|ui| {
                     let mut v = visible;
-                    if ui.checkbox(&mut v, "").on_hover_text("Visible").changed() {
+                    if ui
+                        .checkbox(&mut v, "")
+                        .on_hover_text(format!("Show or hide {name}"))
+                        .changed()
+                    {
                         app.begin_edit(if v { "show model" } else { "hide model" });
                         app.scene.models[index].visible = v;
                     }
