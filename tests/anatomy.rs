@@ -135,6 +135,9 @@ fn reference_table(sources: &str) -> BTreeMap<String, Expected> {
     table
 }
 
+/// One loaded file: each part's name and figures, and how many models it gives.
+type FileFigures = (Vec<(String, Measured)>, usize);
+
 fn measure(mesh: &csg::Mesh) -> Measured {
     let report = mesh.report();
     Measured {
@@ -201,7 +204,7 @@ fn every_anatomy_file_matches_the_independent_reader() {
     );
 
     let files = cutaway::io::mesh_files(&dir).unwrap();
-    let results: Vec<(String, anyhow::Result<(Vec<(String, Measured)>, usize)>)> = files
+    let results: Vec<(String, anyhow::Result<FileFigures>)> = files
         .par_iter()
         .map(|file| {
             let key = file

@@ -157,8 +157,8 @@ impl CutterPlane {
     /// [`target_point_vs_cutter_plane`], cheaper when the point is off the plane.
     #[inline]
     pub fn side(&self, a: &LPoint, b: &LPoint, c: &LPoint, p: &LPoint) -> Sign {
-        let v = self.n[0] * p[0] as i128 + self.n[1] * p[1] as i128 + self.n[2] * p[2] as i128
-            - self.d;
+        let v =
+            self.n[0] * p[0] as i128 + self.n[1] * p[1] as i128 + self.n[2] * p[2] as i128 - self.d;
         if v != 0 {
             sign_i128(v)
         } else {

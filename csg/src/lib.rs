@@ -6,8 +6,8 @@
 //!
 //! This crate never sees a file format, egui or wgpu (see `ARCHITECTURE.md`).
 
-pub mod adjacency;
 pub mod aabb;
+pub mod adjacency;
 pub mod boolean;
 pub(crate) mod classify;
 pub(crate) mod contour;
@@ -25,11 +25,11 @@ pub mod validate;
 pub mod weld;
 
 pub use aabb::Aabb;
-pub use boolean::{CutError, subtract, subtract_many, subtract_with};
-pub use output::{Contour, CutOptions, CutResult, Part, Provenance, VertexSource};
-pub use target::TargetIndex;
 pub use adjacency::EdgeAdjacency;
+pub use boolean::{CutError, subtract, subtract_many, subtract_with};
 pub use glam::DVec3;
 pub use mesh::{Mesh, MeshError};
+pub use output::{Contour, CutOptions, CutResult, Part, Provenance, VertexSource};
 pub use spatial::{ClosestPoint, RayHit, SpatialIndex};
+pub use target::TargetIndex;
 pub use validate::MeshReport;

@@ -25,6 +25,9 @@ pub(crate) fn parse(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
 }
 
 fn parse_with_tobj(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
+    // `LoadOptions` has more fields when tobj's optional features (`merging`, `reordering`) are
+    // on, so the update is needed in such builds although it is not in ours.
+    #[allow(clippy::needless_update)]
     let options = tobj::LoadOptions {
         single_index: true,
         triangulate: true,
@@ -46,7 +49,7 @@ fn parse_with_tobj(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
         .into_iter()
         .map(|model| {
             let mesh = model.mesh;
-            if mesh.indices.len() % 3 != 0 {
+            if !mesh.indices.len().is_multiple_of(3) {
                 anyhow::bail!(
                     "malformed OBJ: object '{}' has an incomplete triangle",
                     model.name

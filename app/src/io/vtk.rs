@@ -38,7 +38,7 @@ pub(crate) fn parse(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
             .points
             .cast_into::<f64>()
             .ok_or_else(|| anyhow::anyhow!("VTK POINTS of a type that is not a number"))?;
-        if coordinates.len() % 3 != 0 {
+        if !coordinates.len().is_multiple_of(3) {
             anyhow::bail!(
                 "VTK POINTS holds {} numbers, not a multiple of 3",
                 coordinates.len()

@@ -168,7 +168,10 @@ pub fn check_cut(target: &Mesh, result: &CutResult) -> Result<(), String> {
         }
     }
     if result.stats.status_fallbacks != 0 {
-        return Err(format!("{} status fallbacks", result.stats.status_fallbacks));
+        return Err(format!(
+            "{} status fallbacks",
+            result.stats.status_fallbacks
+        ));
     }
     if result.stats.triangulation_fallbacks != 0 {
         return Err(format!(
