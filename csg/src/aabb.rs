@@ -81,6 +81,10 @@ impl Aabb {
 
     /// Length of the diagonal, 0 for an empty box.
     pub fn diagonal(&self) -> f64 {
-        if self.is_empty() { 0.0 } else { self.size().length() }
+        if self.is_empty() {
+            0.0
+        } else {
+            self.size().length()
+        }
     }
 }

@@ -13,7 +13,9 @@ use crate::aabb::Aabb;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MeshError {
     /// A triangle names a vertex that does not exist. Fix the file's face indices.
-    #[error("triangle {triangle} uses vertex {index}, but the mesh has only {vertex_count} vertices")]
+    #[error(
+        "triangle {triangle} uses vertex {index}, but the mesh has only {vertex_count} vertices"
+    )]
     IndexOutOfRange {
         triangle: usize,
         index: u32,

@@ -66,7 +66,9 @@ impl Camera {
 
     /// Unit viewing direction (from eye toward target).
     pub fn forward(&self) -> DVec3 {
-        (self.target - self.eye).try_normalize().unwrap_or(DVec3::NEG_Z)
+        (self.target - self.eye)
+            .try_normalize()
+            .unwrap_or(DVec3::NEG_Z)
     }
 
     /// Orthonormal (right, true up, forward) basis of the camera in world space.
@@ -169,7 +171,11 @@ mod tests {
     fn project_inverts_ray_through_pixel() {
         let c = camera();
         let vp = DVec2::new(1280.0, 800.0);
-        for px in [DVec2::new(10.0, 20.0), DVec2::new(1000.0, 700.0), DVec2::new(640.0, 0.0)] {
+        for px in [
+            DVec2::new(10.0, 20.0),
+            DVec2::new(1000.0, 700.0),
+            DVec2::new(640.0, 0.0),
+        ] {
             let p = c.ray_through_pixel(vp, px).at(250.0);
             let back = c.project(vp, p).unwrap();
             assert!((back - px).length() < 1e-9, "{px} -> {back}");

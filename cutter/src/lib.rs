@@ -7,8 +7,8 @@
 
 pub mod camera;
 pub mod cutter;
-pub mod edits;
 pub mod editor;
+pub mod edits;
 pub mod events;
 pub mod extrude;
 mod geom;

@@ -63,7 +63,9 @@ where
         }
     };
     match cli.command {
-        None => open::run(&open::OpenArgs { paths: Vec::<PathBuf>::new() }),
+        None => open::run(&open::OpenArgs {
+            paths: Vec::<PathBuf>::new(),
+        }),
         Some(Command::Open(a)) => open::run(&a),
         Some(Command::Info(a)) => info::run(&a),
         Some(Command::Subtract(a)) => subtract::run(&a),
@@ -78,5 +80,8 @@ where
 /// any newline inside a message folded to a space so that the report stays on one line.
 pub fn error_line(error: &anyhow::Error) -> String {
     let text = format!("{error:#}");
-    format!("error: {}", text.split_whitespace().collect::<Vec<_>>().join(" "))
+    format!(
+        "error: {}",
+        text.split_whitespace().collect::<Vec<_>>().join(" ")
+    )
 }

@@ -361,10 +361,11 @@ impl CutawayApp {
 
     /// Commits the pending property edit once no pointer button is held (one step per drag).
     fn commit_edit_if_idle(&mut self, ctx: &egui::Context) {
-        if self.pending_edit.is_some() && !ctx.input(|i| i.pointer.any_down()) {
-            if let Some((label, before)) = self.pending_edit.take() {
-                self.history.push_scene(label, before, self.scene.clone());
-            }
+        if self.pending_edit.is_some()
+            && !ctx.input(|i| i.pointer.any_down())
+            && let Some((label, before)) = self.pending_edit.take()
+        {
+            self.history.push_scene(label, before, self.scene.clone());
         }
         if self.pending_edit.is_none() {
             self.last_committed = self.scene.clone();
@@ -1348,7 +1349,7 @@ mod tests {
     fn load_paths_names_an_empty_folder() {
         let dir = std::env::temp_dir().join(format!("cutaway-empty-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        let err = load_paths(&[dir.clone()], &Progress::default()).unwrap_err();
+        let err = load_paths(std::slice::from_ref(&dir), &Progress::default()).unwrap_err();
         assert!(format!("{err:#}").contains(&dir.display().to_string()));
         let _ = std::fs::remove_dir_all(&dir);
     }

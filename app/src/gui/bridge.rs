@@ -104,20 +104,21 @@ impl EditorSlot {
         self.active = None;
     }
 
-    /// Makes an editor for `target` ready when its index exists. Returns `Err(())` when the index
-    /// must first be built in the background (the caller starts that job).
+    /// Makes an editor for `target` ready when its index exists. Returns `false` when it is not
+    /// ready: the model does not exist, or its index must first be built in the background (the
+    /// caller starts that job).
     pub fn ensure(
         &mut self,
         scene: &Scene,
         target: usize,
         viewport: DVec2,
         init: &super::app::CutterInit,
-    ) -> Result<(), ()> {
+    ) -> bool {
         if self.active.as_ref().is_some_and(|a| a.target == target) {
-            return Ok(());
+            return true;
         }
         let Some(model) = scene.models.get(target) else {
-            return Err(());
+            return false;
         };
         let index = match self.index_for(&model.mesh) {
             Some(index) => index,
@@ -126,7 +127,7 @@ impl EditorSlot {
                 self.store_index(Arc::downgrade(&model.mesh), index.clone());
                 index
             }
-            None => return Err(()),
+            None => return false,
         };
         let settings = EditorSettings::for_scene(&scene.bbox(), scene.camera.fov_y_deg)
             .with_kind(editor_kind(init.kind))
@@ -138,7 +139,7 @@ impl EditorSlot {
             target,
             cutter: None,
         });
-        Ok(())
+        true
     }
 
     /// Opens scene cutter `index` for editing (its target's index must exist or be cheap).
@@ -153,7 +154,7 @@ impl EditorSlot {
             return false;
         };
         self.active = None;
-        if self.ensure(scene, c.target, viewport, init).is_err() {
+        if !self.ensure(scene, c.target, viewport, init) {
             return false;
         }
         let cutter = Cutter {

@@ -314,11 +314,10 @@ fn edit_input(
             return;
         };
         app.selected_model = Some(target);
-        if app
+        if !app
             .viewport
             .editor
             .ensure(&app.scene, target, app.viewport.size_px, &app.cutter_init)
-            .is_err()
         {
             app.start_index_job(ui.ctx(), target);
             return;
