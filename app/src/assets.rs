@@ -7,7 +7,7 @@
 //! rules: the mesh is welded and split into regions, one [`Model`] per region named `<part> <n>`,
 //! with the part name as the file stem of [`Model::source`] (`assets/<scene>/<part>.ply`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 
@@ -99,6 +99,42 @@ pub fn load_scene(scene: &Scene) -> anyhow::Result<Vec<Model>> {
     Ok(models)
 }
 
+/// The embedded part a path names, when the path does not exist on disk and ends in
+/// `assets/<scene>/<part>.ply` (as sessions saved from the built-in examples do): its models, as
+/// [`load_scene`] makes them. `None` for any other path, so callers fall back to the file loader.
+pub fn load_embedded_part(path: &Path) -> Option<anyhow::Result<Vec<Model>>> {
+    if path.exists() {
+        return None;
+    }
+    let components: Vec<&str> = path.iter().filter_map(|c| c.to_str()).collect();
+    let [.., assets, scene_name, file] = components.as_slice() else {
+        return None;
+    };
+    if *assets != "assets" {
+        return None;
+    }
+    let part_name = file.strip_suffix(".ply")?;
+    let scene = scene(scene_name)?;
+    let &(name, bytes) = scene.parts.iter().find(|(name, _)| *name == part_name)?;
+    let virtual_path = scene.part_path(name);
+    let result = crate::phantom::ply::decode(bytes)
+        .with_context(|| virtual_path.display().to_string())
+        .map(|mesh| {
+            let part = Part {
+                name: name.to_string(),
+                mesh: csg::weld::weld_exact(&mesh),
+            };
+            crate::io::models_of_parts(&virtual_path, &[part])
+        });
+    Some(result)
+}
+
+/// Loads a model file like [`crate::io::load_models`], except that a missing
+/// `…/assets/<scene>/<part>.ply` is served from the embedded scenes (see [`load_embedded_part`]).
+pub fn load_models_or_embedded(path: &Path) -> anyhow::Result<Vec<Model>> {
+    load_embedded_part(path).unwrap_or_else(|| crate::io::load_models(path))
+}
+
 /// The display colour (linear-ish sRGB in `0..=1`) of a part, by anatomical class: skin beige,
 /// fat yellow, muscle red, bone ivory, marrow ochre, vessel dark red, brain pink, ventricles
 /// (CSF) light blue, disc blue-grey. Accepts a part name or a model name (`"femur 1"`); unknown
@@ -136,6 +172,25 @@ mod tests {
     use super::*;
     use csg::Mesh;
     use glam::DVec3;
+
+    #[test]
+    fn missing_example_paths_are_served_from_the_embedded_scenes() {
+        let missing = Path::new("/nonexistent/session-folder/assets/knee/patella.ply");
+        let models = load_models_or_embedded(missing).unwrap();
+        let direct: Vec<Model> = load_scene(scene("knee").unwrap())
+            .unwrap()
+            .into_iter()
+            .filter(|m| m.name.starts_with("patella "))
+            .collect();
+        assert_eq!(models.len(), direct.len());
+        assert_eq!(models[0].name, direct[0].name);
+        assert_eq!(models[0].mesh, direct[0].mesh);
+        // Unknown parts, other folders and real files go to the file loader (which errors here).
+        assert!(load_embedded_part(Path::new("/nonexistent/assets/knee/kidney.ply")).is_none());
+        assert!(load_embedded_part(Path::new("/nonexistent/other/knee/patella.ply")).is_none());
+        let err = load_models_or_embedded(Path::new("/nonexistent/assets/knee/kidney.ply"));
+        assert!(format!("{:#}", err.unwrap_err()).contains("kidney.ply"));
+    }
 
     #[test]
     fn knee_is_the_default_and_every_scene_has_parts() {

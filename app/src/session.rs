@@ -151,9 +151,11 @@ pub fn parse(text: &str) -> anyhow::Result<SessionFile> {
     Ok(file)
 }
 
-/// Reads the session at `path` and loads its models with [`crate::io::load_models`].
+/// Reads the session at `path` and loads its models with [`crate::io::load_models`]; model paths
+/// of the built-in example scenes (`…/assets/<scene>/<part>.ply`) that do not exist on disk are
+/// served from the embedded phantoms, so sessions saved from the examples open anywhere.
 pub fn load(path: &Path) -> anyhow::Result<Scene> {
-    load_with(path, crate::io::load_models)
+    load_with(path, crate::assets::load_models_or_embedded)
 }
 
 /// Reads the session at `path`, loading each model file with `load_models` (a file or folder →
