@@ -511,46 +511,36 @@ impl CutawayApp {
         if let Some((label, before)) = self.pending_edit.take() {
             self.history.push_scene(label, before, self.scene.clone());
         }
-        let applied = match self.history.undo() {
-            Some(Apply::Scene(state)) => {
-                let camera = self.scene.camera;
-                self.scene = state.clone();
-                self.scene.camera = camera;
-                true
-            }
+        let state = match self.history.undo() {
+            Some(Apply::Scene(state)) => Some(state.clone()),
             // Cutter edits are recorded as scene snapshots; the editor follows the scene.
-            Some(Apply::Editor) => false,
-            None => false,
+            Some(Apply::Editor) | None => None,
         };
-        if applied {
-            self.fix_selection();
-            self.viewport.editor.sync_from_scene(&self.scene);
-            self.recovery.mark_dirty();
-            self.say("Undone");
-        } else {
-            self.say("Nothing to undo");
-        }
+        self.apply_history_step(state, "Undone", "Nothing to undo");
     }
 
     fn redo(&mut self) {
-        let applied = match self.history.redo() {
-            Some(Apply::Scene(state)) => {
-                let camera = self.scene.camera;
-                self.scene = state.clone();
-                self.scene.camera = camera;
-                true
-            }
-            Some(Apply::Editor) => false,
-            None => false,
+        let state = match self.history.redo() {
+            Some(Apply::Scene(state)) => Some(state.clone()),
+            Some(Apply::Editor) | None => None,
         };
-        if applied {
-            self.fix_selection();
-            self.viewport.editor.sync_from_scene(&self.scene);
-            self.recovery.mark_dirty();
-            self.say("Redone");
-        } else {
-            self.say("Nothing to redo");
-        }
+        self.apply_history_step(state, "Redone", "Nothing to redo");
+    }
+
+    /// Puts the scene state of an undo/redo step into effect (the editor follows the scene); the
+    /// camera is a view, not an edit, and stays where it is.
+    fn apply_history_step(&mut self, state: Option<Scene>, done: &str, nothing: &str) {
+        let Some(state) = state else {
+            self.say(nothing);
+            return;
+        };
+        let camera = self.scene.camera;
+        self.scene = state;
+        self.scene.camera = camera;
+        self.fix_selection();
+        self.viewport.editor.sync_from_scene(&self.scene);
+        self.recovery.mark_dirty();
+        self.say(done);
     }
 
     fn fix_selection(&mut self) {
