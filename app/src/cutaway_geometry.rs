@@ -843,7 +843,7 @@ pub(crate) mod tests {
         assert!((length - 6.0).abs() < 1e-9, "{length}");
     }
 
-    fn scene_with_cube_cut(views: crate::scene::CutterViews) -> Scene {
+    pub(crate) fn scene_with_cube_cut(views: crate::scene::CutterViews) -> Scene {
         let mut scene = Scene::default();
         scene.models.push(crate::scene::SceneModel::new(
             "cube",

@@ -13,9 +13,9 @@ use cutter::{BoundedPlane, Cutter, Editor, EditorEvent, EditorSettings};
 
 use super::app::CutawayApp;
 use super::jobs::Progress;
-use crate::cutaway_geometry::{self, PreviewGeometry};
+use crate::cutaway_geometry::{self, CutParts, PreviewGeometry};
 use crate::render::{CutterOverlay, FrameInputs, OutputTarget, Renderer, ViewMode};
-use crate::scene::{CutKind, Scene, SceneCutter};
+use crate::scene::{CutKind, Scene, SceneCutter, SceneModel};
 
 /// Whether the scalpel mode exists in this build (its button is disabled otherwise).
 pub const SCALPEL_AVAILABLE: bool = false;
@@ -525,17 +525,7 @@ pub fn export_meshes(
     std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))?;
     let ext = settings.format.extension();
     let mut written = Vec::new();
-    let mut current: Vec<Option<Mesh>> = vec![None; scene.models.len()];
-    for (i, cutter) in scene.cutters.iter().enumerate() {
-        progress.check()?;
-        progress.set(i as u64, scene.cutters.len() as u64);
-        let Some(model) = scene.models.get(cutter.target) else {
-            continue;
-        };
-        let target = current[cutter.target]
-            .take()
-            .unwrap_or_else(|| (*model.mesh).clone());
-        let parts = cutaway_geometry::cut(&target, &cutter.planes, true);
+    cut_each_in_turn(scene, progress, |i, model, parts| {
         let stem = sanitize(&format!("cutter{}_{}", i + 1, model.name));
         for (wanted, part, mesh) in [
             (settings.kept, "kept", &parts.kept),
@@ -548,9 +538,34 @@ pub fn export_meshes(
                 written.push(path);
             }
         }
-        current[cutter.target] = Some(parts.kept);
-    }
+        Ok(parts.kept)
+    })?;
     Ok(written)
+}
+
+/// Cuts every scene cutter out of its target in scene order; a model cut twice is cut the second
+/// time in what `visit` returned for the first cut. `visit(cutter index, target model, parts)`
+/// returns the model's mesh for later cutters. Returns, per model, its last such mesh (None if
+/// no cutter targets it). Each cutter's kind and smoothing are honoured (`cut_cutter`).
+fn cut_each_in_turn(
+    scene: &Scene,
+    progress: &Progress,
+    mut visit: impl FnMut(usize, &SceneModel, CutParts) -> anyhow::Result<Mesh>,
+) -> anyhow::Result<Vec<Option<Mesh>>> {
+    let mut current: Vec<Option<Mesh>> = vec![None; scene.models.len()];
+    for (i, cutter) in scene.cutters.iter().enumerate() {
+        progress.check()?;
+        progress.set(i as u64, scene.cutters.len() as u64);
+        let Some(model) = scene.models.get(cutter.target) else {
+            continue;
+        };
+        let target = current[cutter.target]
+            .take()
+            .unwrap_or_else(|| (*model.mesh).clone());
+        let (parts, _approximation) = cutaway_geometry::cut_cutter(&target, cutter, true);
+        current[cutter.target] = Some(visit(i, model, parts)?);
+    }
+    Ok(current)
 }
 
 /// File-name-safe version of a model name.
@@ -579,21 +594,12 @@ pub fn apply_all_cuts(
     scene: &Scene,
     progress: &Progress,
 ) -> anyhow::Result<Vec<(usize, Arc<Mesh>)>> {
-    let mut current: Vec<Option<Mesh>> = vec![None; scene.models.len()];
-    for (i, cutter) in scene.cutters.iter().enumerate() {
-        progress.check()?;
-        progress.set(i as u64, scene.cutters.len() as u64);
-        let Some(model) = scene.models.get(cutter.target) else {
-            continue;
-        };
-        let target = current[cutter.target]
-            .take()
-            .unwrap_or_else(|| (*model.mesh).clone());
-        let parts = cutaway_geometry::cut(&target, &cutter.planes, true);
+    let current = cut_each_in_turn(scene, progress, |_, _, parts| {
         let mut closed = parts.kept;
         closed.append(&parts.walls);
-        current[cutter.target] = Some(closed);
-    }
+        // Walls share the contour's positions bit for bit: welding closes the seam.
+        Ok(csg::weld::weld_exact(&closed).compacted())
+    })?;
     Ok(current
         .into_iter()
         .enumerate()
@@ -704,5 +710,55 @@ pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &CutawayAp
             egui::FontId::proportional(12.0),
             egui::Color32::from_gray(60),
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cutaway_geometry::tests::scene_with_cube_cut;
+    use crate::scene::CutterViews;
+
+    #[test]
+    fn remove_all_cut_geometry_leaves_the_closed_kept_part() {
+        // A 2-unit cube with a 1-unit corner cut away.
+        let scene = scene_with_cube_cut(CutterViews::default());
+        let applied = apply_all_cuts(&scene, &Progress::default()).unwrap();
+        assert_eq!(applied.len(), 1);
+        let (model, mesh) = &applied[0];
+        assert_eq!(*model, 0);
+        let report = mesh.report();
+        assert!(report.closed, "{report:?}");
+        assert!((mesh.volume() - 7.0).abs() < 1e-9, "{}", mesh.volume());
+    }
+
+    #[test]
+    fn export_cut_meshes_writes_the_chosen_parts() {
+        let scene = scene_with_cube_cut(CutterViews::default());
+        let dir = std::env::temp_dir().join(format!("cutaway-export-{}", std::process::id()));
+        let settings = super::super::menus::ExportMeshSettings {
+            removed: true,
+            ..Default::default()
+        };
+        let written = export_meshes(&scene, &settings, &dir, &Progress::default()).unwrap();
+        let names: Vec<String> = written
+            .iter()
+            .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+            .collect();
+        assert!(
+            names.iter().any(|n| n.ends_with("_removed.obj")),
+            "{names:?}"
+        );
+        let removed = written
+            .iter()
+            .find(|p| p.to_string_lossy().ends_with("_removed.obj"));
+        let mesh = crate::io::read_mesh(removed.unwrap()).unwrap();
+        assert!((mesh.area() - 3.0).abs() < 1e-9, "{}", mesh.area());
+        let _ = std::fs::remove_dir_all(&dir);
+        // No cutters: a clear error naming the folder.
+        let mut empty = scene.clone();
+        empty.cutters.clear();
+        let err = export_meshes(&empty, &settings, &dir, &Progress::default()).unwrap_err();
+        assert!(format!("{err:#}").contains(&dir.display().to_string()));
     }
 }
