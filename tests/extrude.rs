@@ -260,46 +260,107 @@ fn anatomy() -> Option<PathBuf> {
     p.is_dir().then_some(p)
 }
 
-/// A gesture framed on `mesh`: a vertical drag at the centre of the view, then a rightward S.
+/// True when the view ray through pixel `px` hits `mesh`.
+fn sees_surface(
+    mesh: &Mesh,
+    index: &csg::SpatialIndex,
+    camera: &Camera,
+    viewport: DVec2,
+    px: DVec2,
+) -> bool {
+    let ray = camera.ray_through_pixel(viewport, px);
+    index
+        .ray_cast(mesh, ray.origin, ray.direction, f64::INFINITY)
+        .is_some()
+}
+
+/// Pixels of the extrusion path of [`gesture_for`]: from the handle `h` along `dir` for `length`
+/// pixels, with an S-shaped sideways wiggle.
+fn s_path(h: DVec2, dir: DVec2, length: f64) -> Vec<DVec2> {
+    let side = DVec2::new(-dir.y, dir.x);
+    (1..=40)
+        .map(|k| {
+            let t = k as f64 / 40.0;
+            h + dir * (length * t) + side * (10.0 * (t * 6.0).sin())
+        })
+        .collect()
+}
+
+/// A gesture framed on `mesh` that stays over the structure: an initial drag near the centre of
+/// the view, then an S-shaped extrusion along the screen direction in which every pixel of the
+/// path (with a margin on both sides) sees the surface, so the roller always has surface under
+/// it (a narrow bone seen from the front is followed along its length, not off its edge).
 fn gesture_for(mesh: &Mesh, kind: CutKind) -> Gesture {
     let bbox = mesh.bbox();
     let camera = Camera::framing(&bbox, DVec3::NEG_Y, DVec3::Z, 30.0);
     let viewport = DVec2::new(1280.0, 800.0);
-    // Press where the view ray hits the bone nearest the centre.
     let index = csg::SpatialIndex::build(mesh);
+    let regions = csg::regions::Regions::build(mesh, &csg::EdgeAdjacency::build(mesh));
+    // The region the view ray through `px` meets first.
+    let region_at = |px: DVec2| {
+        let ray = camera.ray_through_pixel(viewport, px);
+        index
+            .ray_cast(mesh, ray.origin, ray.direction, f64::INFINITY)
+            .map(|hit| regions.region_of_triangle[hit.face as usize])
+    };
+    let sees = |px: DVec2| region_at(px).is_some();
+    // The press: where the view ray hits the structure nearest the centre.
     let mut a = DVec2::new(640.0, 440.0);
     'search: for r in 0..20 {
         for k in 0..16 {
             let ang = k as f64 * std::f64::consts::TAU / 16.0;
             let px =
                 DVec2::new(640.0, 420.0) + DVec2::new(ang.cos(), ang.sin()) * (r as f64 * 10.0);
-            let ray = camera.ray_through_pixel(viewport, px);
-            if index
-                .ray_cast(mesh, ray.origin, ray.direction, f64::INFINITY)
-                .is_some()
-            {
+            if sees(px) {
                 a = px;
                 break 'search;
             }
         }
     }
-    let b = a - DVec2::new(0.0, 30.0);
+    // The path direction and length: the longest path (of a few) that stays over the surface.
+    let mut best: Option<(DVec2, f64)> = None;
+    for length in [90.0, 70.0, 50.0, 35.0] {
+        for k in 0..16 {
+            let ang = k as f64 * std::f64::consts::TAU / 16.0;
+            let dir = DVec2::new(ang.cos(), ang.sin());
+            let side = DVec2::new(-dir.y, dir.x);
+            let s = DVec2::new(dir.y, -dir.x) * 30.0;
+            let h = a + s * 0.5 + dir * 4.0;
+            // Over the painted region (the one under the press) all along.
+            let painted = region_at(a);
+            let all = std::iter::once(a + s * 0.5)
+                .chain(s_path(h, dir, length))
+                .all(|p| {
+                    [-6.0, 0.0, 6.0]
+                        .iter()
+                        .all(|&o| region_at(p + side * o) == painted)
+                });
+            if all {
+                best = Some((dir, length));
+                break;
+            }
+        }
+        if best.is_some() {
+            break;
+        }
+    }
+    let (dir, length) = best.unwrap_or((DVec2::X, 35.0));
+    // A→B so that the strip (built to the screen-right of A→B) extends along `dir`.
+    let b = a + DVec2::new(dir.y, -dir.x) * 30.0;
     let mut events = vec![
         EditorEvent::press(a.x, a.y),
         EditorEvent::move_to(b.x, b.y),
         EditorEvent::release(b.x, b.y),
     ];
-    // Press on the handle (roughly the middle of the leading plane, a few px right of the drag).
-    let h = (a + b) * 0.5 + DVec2::new(4.0, 0.0);
+    // Press on the handle (the middle of the leading plane, a few pixels along the path).
+    let h = (a + b) * 0.5 + dir * 4.0;
     events.push(EditorEvent::press(h.x, h.y));
-    for k in 1..=40 {
-        let t = k as f64 / 40.0;
-        events.push(EditorEvent::move_to(
-            h.x + 60.0 * t,
-            h.y - 10.0 * (t * 6.0).sin(),
-        ));
+    let path = s_path(h, dir, length);
+    for p in &path {
+        events.push(EditorEvent::move_to(p.x, p.y));
     }
-    events.push(EditorEvent::release(h.x + 60.0, h.y));
+    let end = path[path.len() - 1];
+    events.push(EditorEvent::release(end.x, end.y));
     events.push(EditorEvent::wheel(5.0, 5.0, 3.0, false));
     Gesture {
         viewport,
@@ -319,18 +380,22 @@ fn gestures_on_real_anatomy() {
         eprintln!("skipped: no anatomy folder (set CUTAWAY_ANATOMY)");
         return;
     };
-    for (file, kind) in [
+    // (file, kind, largest front-face gap allowed over the surface in δ: issue 4 asks for 3δ).
+    for (file, kind, bound) in [
         (
             "knee_vhf_left_denver/VHF_Left_Bone_Tibia_smooth.stl",
             CutKind::Curving,
+            3.0,
         ),
         (
             "knee_vhf_left_denver/VHF_Left_Bone_Patella_smooth.stl",
             CutKind::Wedge,
+            f64::INFINITY,
         ),
         (
             "spine_lumbar_vhm_remus/lumbar_spine_L1-S1_with_discs.obj",
             CutKind::Curving,
+            3.0,
         ),
     ] {
         let path = dir.join(file);
@@ -354,6 +419,60 @@ fn gestures_on_real_anatomy() {
             r.region
         );
         assert!(r.cutter.planes.len() >= 3, "{file}: the roller moved");
+        // The front faces stick to the surface (issue 4: within 3δ, see `bound`) wherever the surface is
+        // under the path. A box's front face AE''H''D rests on the surface (thesis 3.3.2.1: it is
+        // turned about DA until it touches, then lifted 2δ), so its distance to the painted
+        // region's surface, the closest of a grid of points on it, is the gap. "Under the path":
+        // the camera sees the region through the face's centre. The path was chosen over the
+        // structure, so most boxes are checked. Wedge planes share their top on the axis: no
+        // roller there (unbounded).
+        if bound.is_finite() {
+            let region = csg::regions::split_regions(&mesh).swap_remove(r.region);
+            let index = csg::SpatialIndex::build(&region);
+            let planes = &r.cutter.planes;
+            let mut checked = 0;
+            let mut worst = 0.0f64;
+            // The last box is the one being painted when the button was released: it may be
+            // thinner than one rotation step, and such a box is not turned (extrude.rs).
+            for i in 1..planes.len() - 1 {
+                let face = [
+                    planes[i - 1].front_top,
+                    planes[i].front_top,
+                    planes[i].front_bottom,
+                    planes[i - 1].front_bottom,
+                ];
+                let centre = face.iter().copied().sum::<DVec3>() / 4.0;
+                let Some(px) = gesture.camera.project(gesture.viewport, centre) else {
+                    continue;
+                };
+                if !sees_surface(&region, &index, &gesture.camera, gesture.viewport, px) {
+                    continue;
+                }
+                let mut gap = f64::INFINITY;
+                for u in 0..=4 {
+                    for v in 0..=4 {
+                        let (u, v) = (u as f64 / 4.0, v as f64 / 4.0);
+                        let p = face[0].lerp(face[1], u).lerp(face[3].lerp(face[2], u), v);
+                        gap = gap.min(index.closest_point(&region, p).unwrap().distance);
+                    }
+                }
+                worst = worst.max(gap / r.delta);
+                assert!(
+                    gap <= bound * r.delta,
+                    "{file}: box {i}'s front face is {:.2}δ from the surface",
+                    gap / r.delta
+                );
+                checked += 1;
+            }
+            assert!(
+                checked >= 2 && checked * 4 >= (planes.len() - 2) * 3,
+                "{file}: only {checked} of {} boxes over the surface",
+                planes.len() - 2
+            );
+            eprintln!(
+                "{file}: largest front-face gap over the surface {worst:.2}δ ({checked} boxes)"
+            );
+        }
         // Through the CLI too (writes the OBJ).
         let scratch = scratch("anatomy");
         let g = scratch.join("g.json");
@@ -361,4 +480,88 @@ fn gestures_on_real_anatomy() {
         let run = run_cli(&path, &g, &scratch);
         check_contract(&run, kind.name());
     }
+}
+
+#[test]
+fn every_contract_field_is_present_and_means_what_the_contract_says() {
+    // CONTRACT.md: `{"planes":N,"boxes":N,"kind":"…","closed":bool,"max_surface_gap":f,
+    // "delta":f}`, `max_surface_gap` the largest distance from a plane's front edge midpoint
+    // to the target surface, `delta` the camera distance / 2000, CUTTER.obj the closed cutter
+    // as quads. Each field is recomputed here independently of the code that wrote it.
+    let dir = scratch("contract");
+    let target = sphere_obj(&dir);
+    let file = gestures().join("sphere_s.json");
+    let run = run_cli(&target, &file, &dir);
+    let j = run.json.as_object().expect("a JSON object");
+    for key in [
+        "planes",
+        "boxes",
+        "kind",
+        "closed",
+        "max_surface_gap",
+        "delta",
+    ] {
+        assert!(j.contains_key(key), "missing {key}: {j:?}");
+    }
+    let mesh = cutaway::io::read_mesh(&target).unwrap();
+    let gesture = read_gesture(&file).unwrap();
+    let r = replay(&mesh, &gesture).unwrap();
+    // planes / boxes / kind: the replayed cutter's.
+    assert_eq!(j["planes"].as_u64(), Some(r.cutter.planes.len() as u64));
+    assert_eq!(j["boxes"].as_u64(), Some(r.cutter.planes.len() as u64 - 1));
+    assert_eq!(j["kind"].as_str(), Some(gesture.cut.kind.name()));
+    // closed: in the written OBJ every edge is shared by exactly two faces, used once in each
+    // direction (closed and consistently oriented).
+    let faces: Vec<Vec<usize>> = run
+        .obj
+        .lines()
+        .filter(|l| l.starts_with("f "))
+        .map(|l| {
+            l.split_whitespace()
+                .skip(1)
+                .map(|t| t.parse().unwrap())
+                .collect()
+        })
+        .collect();
+    assert!(faces.iter().all(|f| f.len() == 4), "quads only");
+    let mut directed = std::collections::HashMap::new();
+    for f in &faces {
+        for k in 0..f.len() {
+            *directed.entry((f[k], f[(k + 1) % f.len()])).or_insert(0) += 1;
+        }
+    }
+    let closed = directed
+        .iter()
+        .all(|(&(a, b), &n)| n == 1 && directed.get(&(b, a)) == Some(&1));
+    assert!(closed);
+    assert_eq!(j["closed"].as_bool(), Some(closed));
+    // max_surface_gap: brute force over every target triangle.
+    let brute = r
+        .cutter
+        .planes
+        .iter()
+        .map(|p| {
+            let m = p.front_mid();
+            (0..mesh.triangle_count())
+                .map(|t| {
+                    let [a, b, c] = mesh.corners(t);
+                    (csg::spatial::closest_on_triangle(m, a, b, c).0 - m).length()
+                })
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(0.0, f64::max);
+    let gap = j["max_surface_gap"].as_f64().unwrap();
+    assert!(
+        (gap - brute).abs() <= 1e-9 * (1.0 + brute),
+        "{gap} vs {brute}"
+    );
+    assert!(gap > 0.0, "front edges rest above the surface");
+    // delta: the framing camera distance of the target's bounding box / 2000.
+    let delta = j["delta"].as_f64().unwrap();
+    let expected = Camera::framing_distance(&mesh.bbox(), gesture.camera.fov_y_deg) / 2000.0;
+    assert!(
+        (delta - expected).abs() <= 1e-12 * expected,
+        "{delta} vs {expected}"
+    );
+    assert!(gap <= 3.0 * delta);
 }

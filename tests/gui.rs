@@ -270,3 +270,330 @@ fn a_missing_file_is_one_line_error_before_any_window() {
         "{stderr}"
     );
 }
+
+/// Steps until `done()` or the deadline; returns the frames stepped.
+fn step_until(
+    h: &mut Harness<'_, CutawayApp>,
+    what: &str,
+    mut done: impl FnMut(&Harness<'_, CutawayApp>) -> bool,
+) -> usize {
+    let deadline = Instant::now() + Duration::from_secs(120);
+    let mut frames = 0;
+    while !done(h) {
+        assert!(Instant::now() < deadline, "{what}: not within 120 s");
+        h.step();
+        frames += 1;
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    frames
+}
+
+#[test]
+fn painting_in_edit_mode_shows_the_live_cut() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("live");
+    let mut h = harness(&dir, Vec::new(), false);
+    settle(&mut h);
+    assert!(h.state().viewport.live.enabled, "Live cut is on by default");
+    click_mode(&mut h, "Edit");
+    // Press, drag and release on the knee: the editor initialises a cutter on the model under
+    // the pointer.
+    let rect = h.state().viewport.rect;
+    let (a, b) = (
+        rect.center() + egui::vec2(-40.0, 0.0),
+        rect.center() + egui::vec2(30.0, 10.0),
+    );
+    h.drag_at(a);
+    h.step();
+    for k in 1..=5 {
+        h.hover_at(a + (b - a) * (k as f32 / 5.0));
+        h.step();
+    }
+    h.drop_at(b);
+    h.run_steps(2);
+    assert_eq!(
+        h.state().scene.cutters.len(),
+        1,
+        "no cutter was made (status: {})",
+        h.state().status.message
+    );
+    // Grab the handle (middle of the leading plane's front edge) and paint down the leg: every
+    // move extrudes and asks for a new live cut.
+    let app = h.state();
+    let lead = *app.scene.cutters[0].planes.last().unwrap();
+    let handle_px = app
+        .scene
+        .camera
+        .project(app.viewport.size_px, (lead[0] + lead[3]) * 0.5)
+        .expect("handle in view");
+    let ppp = h.ctx.pixels_per_point();
+    let handle = rect.min + egui::vec2(handle_px.x as f32 / ppp, handle_px.y as f32 / ppp);
+    let planes_before = app.scene.cutters[0].planes.len();
+    h.drag_at(handle);
+    h.step();
+    for k in 1..=12 {
+        h.hover_at(handle + egui::vec2(2.0 * k as f32, 12.0 * k as f32));
+        h.step();
+    }
+    h.drop_at(handle + egui::vec2(24.0, 144.0));
+    h.run_steps(2);
+    assert!(
+        h.state().scene.cutters[0].planes.len() > planes_before,
+        "the handle drag did not extrude"
+    );
+    // The live cut arrives in the background and is drawn in Edit mode.
+    step_until(&mut h, "live cut", |h| {
+        let live = &h.state().viewport.live;
+        live.shown().is_some() && !live.pending()
+    });
+    let app = h.state();
+    let shown = app.viewport.live.shown().unwrap();
+    let target = app.scene.cutters[0].target;
+    assert!(shown.geometry.replaced[target], "the target is not cut");
+    assert!(
+        shown
+            .geometry
+            .parts
+            .iter()
+            .any(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall),
+        "the live cut has no walls: {:?}",
+        shown.geometry.notes
+    );
+    assert!(!shown.geometry.contours.is_empty(), "no contour");
+    let live_walls: usize = shown
+        .geometry
+        .parts
+        .iter()
+        .filter(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall)
+        .map(|p| p.mesh.triangle_count())
+        .sum();
+    assert_eq!(app.status.last_cut_ms, Some(shown.ms));
+    assert!(
+        app.viewport.live.finished >= 1,
+        "no live cut finished while painting"
+    );
+    println!(
+        "live cut of {} in {:.1} ms",
+        app.scene.models[target].name, shown.ms
+    );
+    let image = h.render().expect("render the window");
+    image.save(dir.join("live-cut.png")).unwrap();
+    let _ = image.save(Path::new(env!("CARGO_TARGET_TMPDIR")).join("gui-live-cut.png"));
+
+    // Preview cuts the same cutter the same way (kept part and walls alike).
+    click_mode(&mut h, "Preview");
+    settle(&mut h);
+    let preview = h
+        .state()
+        .viewport
+        .preview
+        .clone()
+        .expect("preview geometry");
+    let live = h.state().viewport.live.shown().map(|r| r.geometry.clone());
+    assert!(live.is_none(), "the live cut is kept outside Edit mode");
+    let walls = |g: &cutaway::cutaway_geometry::PreviewGeometry| -> usize {
+        g.parts
+            .iter()
+            .filter(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall)
+            .map(|p| p.mesh.triangle_count())
+            .sum()
+    };
+    assert_eq!(
+        walls(&preview),
+        live_walls,
+        "Preview and the live cut differ"
+    );
+    click_mode(&mut h, "Edit");
+    // Turning Live cut off draws the uncut model again (no live geometry handed to the renderer).
+    h.get_by_label("Live cut").click();
+    h.run_steps(2);
+    assert!(!h.state().viewport.live.enabled);
+    let inputs = cutaway::gui::bridge::frame_inputs(h.state(), [64, 48]);
+    assert!(inputs.preview.is_none());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[path = "image_compare.rs"]
+mod image_compare;
+
+#[test]
+fn export_image_writes_the_viewport_picture_at_any_size() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("export");
+    let mut h = harness(&dir, Vec::new(), false);
+    settle(&mut h);
+    let ctx = h.ctx.clone();
+    let size = h.state().viewport.size_px;
+    let (w, h1) = (size.x as u32, size.y as u32);
+
+    // 1× the viewport: the same pixels as the 3D view of the window.
+    let one = dir.join("one.png");
+    h.state_mut().export_image.width = w;
+    h.state_mut().export_image.height = h1;
+    h.state_mut().export_image.transparent = false;
+    h.state_mut()
+        .apply(&ctx, cutaway::gui::app::Action::ExportImageTo(one.clone()));
+    settle(&mut h);
+    assert!(!h.state().status.is_error, "{}", h.state().status.message);
+    let exported = image::open(&one).expect("exported PNG").to_rgba8();
+    assert_eq!(exported.dimensions(), (w, h1));
+    let window = h.render().expect("render the window");
+    let rect = h.state().viewport.rect;
+    let ppp = h.ctx.pixels_per_point();
+    let view = image::imageops::crop_imm(
+        &window,
+        (rect.min.x * ppp).round() as u32,
+        (rect.min.y * ppp).round() as u32,
+        w,
+        h1,
+    )
+    .to_image();
+    view.save(dir.join("view.png")).unwrap();
+    let d = image_compare::difference(&exported, &view);
+    println!("export vs viewport: {d}");
+    assert!(
+        d.within_tolerance(),
+        "export differs from the viewport: {d} ({})",
+        dir.display()
+    );
+
+    // 2× the viewport, transparent background: the picture `cutaway render` makes of the saved
+    // session, with the background cleared.
+    let session = dir.join("session.json");
+    h.state_mut().apply(
+        &ctx,
+        cutaway::gui::app::Action::SaveSessionTo(session.clone()),
+    );
+    let two = dir.join("two.png");
+    h.state_mut().export_image.width = 2 * w;
+    h.state_mut().export_image.height = 2 * h1;
+    h.state_mut().export_image.transparent = true;
+    h.state_mut()
+        .apply(&ctx, cutaway::gui::app::Action::ExportImageTo(two.clone()));
+    settle(&mut h);
+    let exported = image::open(&two).expect("exported PNG").to_rgba8();
+    assert_eq!(exported.dimensions(), (2 * w, 2 * h1));
+    assert_eq!(
+        exported.get_pixel(2, 2)[3],
+        0,
+        "background is not transparent"
+    );
+    let reference = dir.join("cli.png");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
+        .arg("render")
+        .arg(&session)
+        .arg("--out")
+        .arg(&reference)
+        .args(["--width", &(2 * w).to_string()])
+        .args(["--height", &(2 * h1).to_string()])
+        .output()
+        .expect("run cutaway render");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mut reference = image::open(&reference).unwrap().to_rgba8();
+    // The CLI draws the scene background; composite the export over it to compare.
+    let bg = h.state().scene.render.background;
+    let bg = [bg[0], bg[1], bg[2]].map(|c| (c * 255.0).round());
+    let mut composited = exported.clone();
+    for p in composited.pixels_mut() {
+        let a = p[3] as f32 / 255.0;
+        for k in 0..3 {
+            p[k] = (p[k] as f32 * a + bg[k] * (1.0 - a)).round() as u8;
+        }
+        p[3] = 255;
+    }
+    for p in reference.pixels_mut() {
+        p[3] = 255;
+    }
+    let d = image_compare::difference(&composited, &reference);
+    println!("2x transparent export vs cutaway render: {d}");
+    assert!(
+        d.within_tolerance(),
+        "export differs from `cutaway render`: {d} ({})",
+        dir.display()
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_two_million_triangle_load_and_index_never_block_the_window() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("big");
+    // 1,997,120 triangles, written as binary PLY.
+    let big = std::sync::Arc::new(csg::testkit::geodesic_sphere(316, 40.0));
+    assert!(big.triangle_count() > 1_990_000);
+    let file = dir.join("big_sphere.ply");
+    cutaway::io::write_mesh(&file, &big).expect("write the big mesh");
+
+    let small = dir.join("small.obj");
+    cutaway::io::write_mesh(&small, &csg::testkit::icosphere(2, 10.0)).unwrap();
+    let mut h = harness(&dir, vec![small], false);
+    settle(&mut h);
+    let ctx = h.ctx.clone();
+    let models_before = h.state().scene.models.len();
+    assert_eq!(models_before, 1);
+
+    // The load: `apply` returns at once with the job pending, and frames keep coming; the
+    // progress window (shown only to frames drawn while the job runs) offers Cancel.
+    h.state_mut()
+        .apply(&ctx, cutaway::gui::app::Action::Add(vec![file.clone()]));
+    assert!(h.state().busy(), "the load did not start a background job");
+    assert_eq!(h.state().scene.models.len(), models_before);
+    let frames = step_until(&mut h, "progress window", |h| {
+        h.query_by_label("Cancel").is_some()
+    });
+    assert!(
+        h.state().busy(),
+        "the job ended before Cancel could be pressed"
+    );
+    println!("{frames} frames drawn while the 2M-triangle load ran");
+    h.get_by_label("Cancel").click();
+    h.run_steps(3);
+    assert!(!h.state().busy(), "Cancel left the job running");
+    assert_eq!(
+        h.state().scene.models.len(),
+        models_before,
+        "cancel changed the scene"
+    );
+    assert!(
+        h.state().status.message.contains("cancelled"),
+        "{}",
+        h.state().status.message
+    );
+
+    // The index build of a 2M-triangle target: same story.
+    let mut model = cutaway::scene::SceneModel::new("big", &file, big.clone(), [0.7, 0.7, 0.7]);
+    model.visible = false;
+    h.state_mut().scene.models.push(model);
+    h.state_mut().start_index_job(&ctx, 1);
+    assert!(
+        h.state().busy(),
+        "the index build did not start a background job"
+    );
+    let scene_before = h.state().scene.models.len();
+    step_until(&mut h, "progress window", |h| {
+        h.query_by_label("Cancel").is_some()
+    });
+    assert!(h.state().busy());
+    h.get_by_label("Cancel").click();
+    h.run_steps(3);
+    assert!(!h.state().busy());
+    assert_eq!(h.state().scene.models.len(), scene_before);
+    assert!(
+        h.state().viewport.editor.index_for(&big).is_none(),
+        "a cancelled index was stored"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

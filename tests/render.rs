@@ -3,7 +3,7 @@
 //! Golden images: small (160×120), deterministic mode (no supersampling), rendered on the software
 //! adapter with `WGPU_BACKEND=vulkan` (lavapipe; Vulkan is used when the variable is unset).
 //! `UPDATE_GOLDEN=1 cargo test --test render` rewrites `tests/golden/*.png`. The tolerances live
-//! in [`compare_to_golden`] only. On a machine with no adapter the GPU tests print
+//! in `image_compare.rs` only. On a machine with no adapter the GPU tests print
 //! "skipped: <why>" and pass; on a hardware GPU the pictures are checked for content but not
 //! compared (rasterizers differ).
 
@@ -20,6 +20,9 @@ use cutaway::scene::{
 use cutter::Camera;
 use glam::DVec3;
 
+#[path = "image_compare.rs"]
+mod image_compare;
+
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 120;
 
@@ -34,14 +37,8 @@ fn actual_dir() -> PathBuf {
     dir
 }
 
-/// The one place the golden tolerances are set: a pixel differs when any channel is off by more
-/// than `CHANNEL_TOLERANCE`; at most `MAX_DIFFERING` of the pixels may differ, and the mean
-/// absolute channel difference must stay under `MAX_MEAN`. (Software rasterizers of different
-/// LLVM versions move a few edge pixels; a real change moves hundreds.)
+/// Compares `actual` with the golden image `name` (tolerances: [`image_compare`]).
 fn compare_to_golden(name: &str, actual: &image::RgbaImage, software: bool) {
-    const CHANNEL_TOLERANCE: i32 = 24;
-    const MAX_DIFFERING: f64 = 0.01;
-    const MAX_MEAN: f64 = 1.5;
     let path = golden_dir().join(format!("{name}.png"));
     let actual_path = actual_dir().join(format!("{name}.png"));
     actual.save(&actual_path).unwrap();
@@ -71,25 +68,10 @@ fn compare_to_golden(name: &str, actual: &image::RgbaImage, software: bool) {
         actual.dimensions(),
         "{name}: size differs"
     );
-    let mut differing = 0usize;
-    let mut sum = 0u64;
-    for (a, e) in actual.pixels().zip(expected.pixels()) {
-        let d = (0..4)
-            .map(|k| (a[k] as i32 - e[k] as i32).abs())
-            .max()
-            .unwrap_or(0);
-        sum += (0..4)
-            .map(|k| (a[k] as i32 - e[k] as i32).unsigned_abs() as u64)
-            .sum::<u64>();
-        if d > CHANNEL_TOLERANCE {
-            differing += 1;
-        }
-    }
-    let n = (actual.width() * actual.height()) as f64;
-    let mean = sum as f64 / (4.0 * n);
+    let difference = image_compare::difference(actual, &expected);
     assert!(
-        differing as f64 <= MAX_DIFFERING * n && mean <= MAX_MEAN,
-        "{name}: {differing} of {n} pixels differ, mean channel difference {mean:.2}; actual image at {}",
+        difference.within_tolerance(),
+        "{name}: {difference}; actual image at {}",
         actual_path.display()
     );
 }
@@ -109,68 +91,14 @@ fn renderer() -> Option<HeadlessRenderer> {
     }
 }
 
-/// A unit icosphere subdivided `levels` times, scaled and moved; outward-facing, closed, convex.
+/// An icosphere of `csg::testkit` with `levels` subdivisions, scaled and moved; outward-facing,
+/// closed, convex.
 fn icosphere(centre: DVec3, radius: f64, levels: u32) -> Mesh {
-    let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let mut positions: Vec<DVec3> = [
-        [-1.0, t, 0.0],
-        [1.0, t, 0.0],
-        [-1.0, -t, 0.0],
-        [1.0, -t, 0.0],
-        [0.0, -1.0, t],
-        [0.0, 1.0, t],
-        [0.0, -1.0, -t],
-        [0.0, 1.0, -t],
-        [t, 0.0, -1.0],
-        [t, 0.0, 1.0],
-        [-t, 0.0, -1.0],
-        [-t, 0.0, 1.0],
-    ]
-    .iter()
-    .map(|p| DVec3::from_array(*p).normalize())
-    .collect();
-    let mut triangles: Vec<[u32; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    for _ in 0..levels {
-        let mut mid = std::collections::HashMap::new();
-        let mut next = Vec::new();
-        for [a, b, c] in triangles {
-            let mut m = |i: u32, j: u32| {
-                *mid.entry((i.min(j), i.max(j))).or_insert_with(|| {
-                    positions
-                        .push(((positions[i as usize] + positions[j as usize]) * 0.5).normalize());
-                    (positions.len() - 1) as u32
-                })
-            };
-            let (ab, bc, ca) = (m(a, b), m(b, c), m(c, a));
-            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
-        }
-        triangles = next;
+    let mut mesh = csg::testkit::icosphere(levels, radius);
+    for p in &mut mesh.positions {
+        *p += centre;
     }
-    Mesh {
-        positions: positions.into_iter().map(|p| centre + p * radius).collect(),
-        triangles,
-    }
+    mesh
 }
 
 fn model(name: &str, mesh: Mesh, color: [f32; 3]) -> SceneModel {
@@ -706,6 +634,59 @@ mod sessions {
         assert!(
             stderr.starts_with("error: ") && stderr.contains("s.json"),
             "{stderr}"
+        );
+    }
+
+    /// A model edited since it was loaded (here: its mesh replaced by a sphere elsewhere) is
+    /// saved next to the session, so `cutaway render` shows the edited mesh even after the file
+    /// it was loaded from is gone.
+    #[test]
+    fn cli_render_shows_an_edited_mesh_saved_with_the_session() {
+        let dir = temp_dir("edited");
+        let source = dir.join("small.ply");
+        cutaway::io::write_mesh(&source, &icosphere(DVec3::new(0.0, 0.0, 3.0), 0.1, 1)).unwrap();
+        let loaded = cutaway::io::load_models(&source).unwrap().remove(0);
+        let mut model = SceneModel::new(
+            loaded.name,
+            loaded.source,
+            Arc::new(loaded.mesh),
+            [0.8, 0.2, 0.2],
+        );
+        model.replace_mesh(Arc::new(icosphere(DVec3::ZERO, 1.0, 2)));
+        let mut scene = Scene::default();
+        scene.models.push(model);
+        scene.camera = camera();
+        scene.render.antialias = false;
+        let file = dir.join("edited.json");
+        session::save(&file, &scene).unwrap();
+        std::fs::remove_file(&source).unwrap();
+        let out = dir.join("edited.png");
+        let run = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
+            .args(["render"])
+            .arg(&file)
+            .arg("--out")
+            .arg(&out)
+            .args(["--width", "64", "--height", "48"])
+            .env(
+                "WGPU_BACKEND",
+                std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
+            )
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        if !run.status.success() && stderr.contains("no GPU adapter") {
+            println!("skipped: {stderr}");
+            return;
+        }
+        assert!(run.status.success(), "{stderr}");
+        let image = image::open(&out).unwrap().to_rgba8();
+        // The unit sphere at the origin fills the middle of the view (the loaded sphere was
+        // small and above it).
+        assert!(coverage(&image, [255, 255, 255]) > 0.05);
+        let [r, g, b, _] = pixel(&image, 32, 24);
+        assert!(
+            r > g && r > b,
+            "centre pixel {r} {g} {b} is not the model's red"
         );
     }
 }

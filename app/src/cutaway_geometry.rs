@@ -9,6 +9,16 @@
 //! sub-cutters of [`cutter::subcutters::at_intervals`] (thin boxes at regular arc-length intervals,
 //! height and depth interpolated from the planes on either side, thesis 3.4.2).
 //!
+//! Several cutters on one model ([`cut_in_turn`]): each cuts the *closed* result of the ones
+//! before it (their kept part welded to their walls), not just the kept surface, so the walls of
+//! an earlier cutter that lie inside a later one are removed and a later cutter gets no walls where
+//! an earlier one already took the material away. The result is T ∖ (K1 ∪ … ∪ Kn) for overlapping
+//! cutters too (which `subtract_many` refuses). A tag per triangle (model surface, or the cutter
+//! whose wall it is) survives every step, so the walls keep their colour and the contour is read
+//! off the final mesh where the surface meets the walls. [`CutCache`] keeps the exact index of
+//! each model and the closed results of earlier cutters, so re-cutting while one cutter is edited
+//! (the live cut of Edit mode) costs one boolean.
+//!
 //! When the boolean refuses a cutter (it must be closed, oriented and free of
 //! self-intersections; an edited cutter can briefly be none of these), [`cut_approx`] stands in so
 //! that Preview still shows something, and the reason is kept in [`PreviewGeometry::notes`] for the
@@ -17,6 +27,7 @@
 //! pieces, and has walls only for convex targets; its contour is the boundary of the removed piece.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use csg::{Mesh, TargetIndex};
 use glam::DVec3;
@@ -85,47 +96,412 @@ impl PreviewGeometry {
     }
 }
 
-/// Executes every cutter of `scene` whose views show anything. Cutters on the same model apply
-/// one after another (the second cuts the kept part of the first).
+/// Tag of a triangle of a cut model that belongs to the model's own surface; any other tag is the
+/// scene index of the cutter whose wall the triangle is (see [`cut_in_turn`]).
+pub const SURFACE: u32 = u32::MAX;
+
+/// What one cutter of a sequence did (see [`cut_in_turn`]); borrowed by the step callback.
+pub struct Step<'a> {
+    /// Scene index of the cutter.
+    pub cutter: usize,
+    /// The surface this cutter cut: the model closed by the walls of the cutters before it
+    /// (`None` when no exact index could be built; the approximate cut was used).
+    pub before: Option<&'a TargetIndex>,
+    /// The mesh of `before` (also set when `before` is `None`).
+    pub before_mesh: &'a Mesh,
+    /// Tag of every triangle of `before_mesh` ([`SURFACE`] or a cutter index).
+    pub before_tags: &'a [u32],
+    /// The model's surface inside this cutter that the cutters before had not removed (walls of
+    /// earlier cutters left out), with the model's orientation. Empty for cutters the caller of
+    /// [`cut_in_turn`] said it may skip.
+    pub removed: &'a Mesh,
+    /// The closed result after this cutter, T ∖ (K1 ∪ … ∪ Ki), welded: kept surface and walls.
+    pub after: &'a Mesh,
+    /// Tag of every triangle of `after`.
+    pub after_tags: &'a [u32],
+}
+
+/// A model cut by several cutters in turn.
+#[derive(Clone, Debug)]
+pub struct SequenceResult {
+    /// T ∖ (K1 ∪ … ∪ Kn): the kept surface closed by the walls, welded (closed and manifold when
+    /// the model is and every cut was exact).
+    pub closed: Arc<Mesh>,
+    /// Tag of every triangle of `closed`: [`SURFACE`], or the cutter whose wall it is.
+    pub tags: Arc<Vec<u32>>,
+    /// Why a step fell back to the approximate cut (one line each).
+    pub notes: Vec<String>,
+    /// Contours of approximate steps (their walls do not weld onto the kept part, so the contour
+    /// cannot be read off the tags).
+    pub approx_contours: Vec<Vec<DVec3>>,
+}
+
+/// The state between two steps of [`cut_in_turn`]: a closed mesh, its tags and (when it could be
+/// built) its exact index.
+#[derive(Clone)]
+struct Stage {
+    mesh: Arc<Mesh>,
+    tags: Arc<Vec<u32>>,
+    index: Option<Arc<TargetIndex>>,
+}
+
+/// The geometry of the cutters cutting a model, as a cache key (views left out).
+type PrefixKey = (
+    usize,
+    Vec<(usize, crate::scene::CutKind, bool, Vec<CutterPlane>)>,
+);
+
+/// One model's preview, as a cache key: the mesh and its cutters with their views.
+type ModelKey = (usize, Vec<(usize, SceneCutter)>);
+
+/// The cached output of one model in [`preview_geometry_with`].
+#[derive(Clone, Default)]
+struct ModelPreview {
+    parts: Vec<PreviewPart>,
+    contours: Vec<(usize, Vec<DVec3>)>,
+    notes: Vec<String>,
+}
+
+/// Caches that make re-cutting while the user edits one cutter cheap: the exact index of every
+/// model mesh (built once per mesh), the closed intermediate results of cutter prefixes (so
+/// earlier cutters of a model are not re-cut when only the last one moves), and whole-model
+/// previews (so models whose cutters did not change are not cut again). Entries hold only weak
+/// references to the model meshes' identity through their address plus a `Weak`, so a replaced
+/// mesh never matches a stale entry.
+#[derive(Default)]
+pub struct CutCache {
+    indexes: Vec<(std::sync::Weak<Mesh>, Arc<TargetIndex>)>,
+    prefixes: std::collections::VecDeque<(PrefixKey, std::sync::Weak<Mesh>, Stage)>,
+    models: std::collections::VecDeque<(ModelKey, std::sync::Weak<Mesh>, ModelPreview)>,
+}
+
+/// Entries kept of each of [`CutCache`]'s bounded lists (each may hold a model-sized mesh).
+const CACHE_ENTRIES: usize = 4;
+
+impl CutCache {
+    /// The exact index of `mesh`, built on first use.
+    pub fn index(&mut self, mesh: &Arc<Mesh>) -> Result<Arc<TargetIndex>, csg::MeshError> {
+        self.indexes.retain(|(w, _)| w.strong_count() > 0);
+        if let Some((_, index)) = self
+            .indexes
+            .iter()
+            .find(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+        {
+            return Ok(index.clone());
+        }
+        let index = Arc::new(TargetIndex::build(mesh.clone())?);
+        self.indexes.push((Arc::downgrade(mesh), index.clone()));
+        Ok(index)
+    }
+
+    /// True when the index of `mesh` is cached.
+    pub fn has_index(&self, mesh: &Arc<Mesh>) -> bool {
+        self.indexes
+            .iter()
+            .any(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+    }
+
+    fn prefix(&self, mesh: &Arc<Mesh>, key: &PrefixKey) -> Option<Stage> {
+        self.prefixes
+            .iter()
+            .find(|(k, w, _)| k == key && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+            .map(|(_, _, s)| s.clone())
+    }
+
+    fn store_prefix(&mut self, mesh: &Arc<Mesh>, key: PrefixKey, stage: Stage) {
+        self.prefixes
+            .retain(|(k, w, _)| w.strong_count() > 0 && *k != key);
+        if self.prefixes.len() >= CACHE_ENTRIES {
+            self.prefixes.pop_front();
+        }
+        self.prefixes.push_back((key, Arc::downgrade(mesh), stage));
+    }
+
+    fn model(&self, mesh: &Arc<Mesh>, key: &ModelKey) -> Option<ModelPreview> {
+        self.models
+            .iter()
+            .find(|(k, w, _)| k == key && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+            .map(|(_, _, p)| p.clone())
+    }
+
+    /// Keeps one preview per model mesh (the newest): older states of an edited model's cutters
+    /// are never asked for again, and a big model's parts are large.
+    fn store_model(&mut self, mesh: &Arc<Mesh>, key: ModelKey, preview: ModelPreview) {
+        self.models
+            .retain(|(k, w, _)| w.strong_count() > 0 && k.0 != key.0);
+        if self.models.len() >= CACHE_ENTRIES {
+            self.models.pop_front();
+        }
+        self.models.push_back((key, Arc::downgrade(mesh), preview));
+    }
+}
+
+fn prefix_key(mesh: &Arc<Mesh>, cutters: &[(usize, &SceneCutter)]) -> PrefixKey {
+    (
+        Arc::as_ptr(mesh) as usize,
+        cutters
+            .iter()
+            .map(|(i, c)| (*i, c.kind, c.smooth, c.planes.clone()))
+            .collect(),
+    )
+}
+
+/// Cuts `cutters` (scene index and cutter, in order) out of the model `mesh` one after another.
+/// Each cutter cuts the closed result of the ones before it (their kept part welded to their
+/// walls), so the walls of an earlier cutter that lie inside a later one are removed, and a later
+/// cutter has no walls where an earlier one already removed the material: the result is
+/// T ∖ (K1 ∪ … ∪ Kn) whether the cutters overlap or not. Every triangle carries a tag (the
+/// model's [`SURFACE`] or the cutter whose wall it is) through all the steps.
+///
+/// `on_step` sees every step. `may_skip(cutter)` says that nobody needs that cutter's step (only
+/// its effect on the result): a run of such cutters at the start whose closed result is cached
+/// is then not cut again.
+pub fn cut_in_turn(
+    cache: &mut CutCache,
+    mesh: &Arc<Mesh>,
+    cutters: &[(usize, &SceneCutter)],
+    may_skip: impl Fn(usize) -> bool,
+    mut on_step: impl FnMut(&Step),
+) -> SequenceResult {
+    let mut notes = Vec::new();
+    let mut approx_contours = Vec::new();
+    // The longest cached prefix of skippable cutters.
+    let mut start = 0;
+    let mut stage = None;
+    for k in (1..=cutters.len()).rev() {
+        if !cutters[..k].iter().all(|(i, _)| may_skip(*i)) {
+            continue;
+        }
+        if let Some(s) = cache.prefix(mesh, &prefix_key(mesh, &cutters[..k])) {
+            start = k;
+            stage = Some(s);
+            break;
+        }
+    }
+    let mut stage = match stage {
+        Some(s) => s,
+        None => {
+            let index = match cache.index(mesh) {
+                Ok(index) => Some(index),
+                Err(e) => {
+                    notes.push(format!("{e}; showing an approximate cut"));
+                    None
+                }
+            };
+            Stage {
+                mesh: mesh.clone(),
+                tags: Arc::new(vec![SURFACE; mesh.triangle_count()]),
+                index,
+            }
+        }
+    };
+    for k in start..cutters.len() {
+        let (c, cutter) = cutters[k];
+        let surface = cutter_mesh(cutter);
+        if surface.is_empty() {
+            continue;
+        }
+        let tag = c as u32;
+        let exact = match &stage.index {
+            Some(index) => csg::subtract(index, &surface).map_err(|e| e.to_string()),
+            None => Err("no exact index".to_string()),
+        };
+        let (after, after_tags, removed) = match exact {
+            Ok(result) => {
+                let (kept, provenance) = result.materialize_with_provenance(&stage.mesh);
+                let mut tags: Vec<u32> =
+                    provenance.iter().map(|&f| stage.tags[f as usize]).collect();
+                let mut closed = kept;
+                closed.append(&result.walls.mesh);
+                tags.resize(closed.triangle_count(), tag);
+                // The removed piece is built only when someone looks at this step.
+                let removed = if may_skip(c) {
+                    Mesh::default()
+                } else {
+                    let part = result.removed.part();
+                    select(&part.mesh, |t| {
+                        matches!(part.provenance[t],
+                            csg::Provenance::Target(f) if stage.tags[f as usize] == SURFACE)
+                    })
+                };
+                // Walls share the contour's vertices bit for bit: welding closes the seam.
+                (csg::weld::weld_exact(&closed).compacted(), tags, removed)
+            }
+            Err(why) => {
+                if stage.index.is_some() {
+                    notes.push(format!(
+                        "cutter {}: {why}; showing an approximate cut",
+                        c + 1
+                    ));
+                }
+                let parts = cut_approx(&stage.mesh, &cutter.planes, true);
+                let mut tags = vec![SURFACE; parts.kept.triangle_count()];
+                let mut closed = parts.kept;
+                closed.append(&parts.walls);
+                tags.resize(closed.triangle_count(), tag);
+                approx_contours.extend(parts.contour);
+                (
+                    csg::weld::weld_exact(&closed).compacted(),
+                    tags,
+                    parts.removed,
+                )
+            }
+        };
+        on_step(&Step {
+            cutter: c,
+            before: stage.index.as_deref(),
+            before_mesh: &stage.mesh,
+            before_tags: &stage.tags,
+            removed: &removed,
+            after: &after,
+            after_tags: &after_tags,
+        });
+        let after = Arc::new(after);
+        let index = if k + 1 < cutters.len() {
+            match TargetIndex::build(after.clone()) {
+                Ok(index) => Some(Arc::new(index)),
+                Err(e) => {
+                    notes.push(format!(
+                        "after cutter {}: {e}; showing approximate cuts",
+                        c + 1
+                    ));
+                    None
+                }
+            }
+        } else {
+            None
+        };
+        stage = Stage {
+            mesh: after,
+            tags: Arc::new(after_tags),
+            index,
+        };
+        if k + 1 < cutters.len() && stage.index.is_some() {
+            cache.store_prefix(mesh, prefix_key(mesh, &cutters[..=k]), stage.clone());
+        }
+    }
+    SequenceResult {
+        closed: stage.mesh,
+        tags: stage.tags,
+        notes,
+        approx_contours,
+    }
+}
+
+/// The triangles `keep(t)` accepts, compacted.
+pub fn select(mesh: &Mesh, keep: impl Fn(usize) -> bool) -> Mesh {
+    Mesh {
+        positions: mesh.positions.clone(),
+        triangles: (0..mesh.triangle_count())
+            .filter(|&t| keep(t))
+            .map(|t| mesh.triangles[t])
+            .collect(),
+    }
+    .compacted()
+}
+
+/// The contour of a cut read off a welded, tagged result: the edges where a [`SURFACE`] triangle
+/// meets a wall triangle whose tag `wall(tag)` accepts, chained into polylines (closed loops
+/// repeat their first point). The edges of the walls are gathered first, so the cost is one hash
+/// probe per surface edge.
+pub fn tag_contours(mesh: &Mesh, tags: &[u32], wall: impl Fn(u32) -> bool) -> Vec<Vec<DVec3>> {
+    let mut wall_edges: HashMap<(u32, u32), bool> = HashMap::new();
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if tags[t] != SURFACE && wall(tags[t]) {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                wall_edges.insert((a.min(b), a.max(b)), false);
+            }
+        }
+    }
+    if wall_edges.is_empty() {
+        return Vec::new();
+    }
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if tags[t] == SURFACE {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                if let Some(hit) = wall_edges.get_mut(&(a.min(b), a.max(b))) {
+                    *hit = true;
+                }
+            }
+        }
+    }
+    let edges: Vec<(u32, u32)> = wall_edges
+        .into_iter()
+        .filter(|&(_, hit)| hit)
+        .map(|(e, _)| e)
+        .collect();
+    chain_edges(mesh, edges)
+}
+
+/// Executes every cutter of `scene` whose views show anything (see [`preview_geometry_with`]).
 pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
+    preview_geometry_with(scene, &mut CutCache::default())
+}
+
+/// Executes every cutter of `scene` whose views show anything. The cutters of one model cut it
+/// in turn ([`cut_in_turn`]): the kept part and the walls are those of T ∖ (K1 ∪ … ∪ Kn), the
+/// contour is where the kept surface meets the walls, and each cutter's removed piece, ribbons
+/// and slices come from the surface it cut. `cache` makes repeated calls cheap while one cutter
+/// is edited.
+pub fn preview_geometry_with(scene: &Scene, cache: &mut CutCache) -> PreviewGeometry {
     let mut out = PreviewGeometry {
         replaced: vec![false; scene.models.len()],
         ..PreviewGeometry::default()
     };
     for (model_index, model) in scene.models.iter().enumerate() {
-        let cutters: Vec<usize> = (0..scene.cutters.len())
-            .filter(|&c| scene.cutters[c].target == model_index && scene.cutters[c].views.any())
+        let cutters: Vec<(usize, &SceneCutter)> = scene
+            .cutters
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.target == model_index && c.views.any())
             .collect();
         if cutters.is_empty() {
             continue;
         }
         out.replaced[model_index] = true;
-        let mut current: Mesh = (*model.mesh).clone();
-        for c in cutters {
+        let key: ModelKey = (
+            Arc::as_ptr(&model.mesh) as usize,
+            cutters.iter().map(|(i, c)| (*i, (*c).clone())).collect(),
+        );
+        let preview = match cache.model(&model.mesh, &key) {
+            Some(p) => p,
+            None => {
+                let p = model_preview(scene, model_index, &cutters, cache);
+                cache.store_model(&model.mesh, key, p.clone());
+                p
+            }
+        };
+        out.parts.extend(preview.parts);
+        out.contours.extend(preview.contours);
+        out.notes.extend(preview.notes);
+    }
+    out
+}
+
+/// The preview parts of one model cut by `cutters`.
+fn model_preview(
+    scene: &Scene,
+    model_index: usize,
+    cutters: &[(usize, &SceneCutter)],
+    cache: &mut CutCache,
+) -> ModelPreview {
+    let model = &scene.models[model_index];
+    let mut out = PreviewGeometry::default();
+    let needs_step = |c: usize| {
+        let v = &scene.cutters[c].views;
+        v.transparency.is_some() || v.ribbons.is_some() || v.slices.is_some()
+    };
+    let sequence = cut_in_turn(
+        cache,
+        &model.mesh,
+        cutters,
+        |c| !needs_step(c),
+        |step| {
+            let c = step.cutter;
             let cutter = &scene.cutters[c];
             let views = cutter.views;
-            let index = match TargetIndex::build(current.clone()) {
-                Ok(index) => Some(index),
-                Err(e) => {
-                    out.notes.push(format!("model {}: {e}", model.name));
-                    None
-                }
-            };
-            let parts = match index.as_ref().map(|i| cut_exact(i, cutter)) {
-                Some(Ok(parts)) => parts,
-                Some(Err(e)) => {
-                    out.notes
-                        .push(format!("cutter {c}: {e}; showing an approximate cut"));
-                    cut_approx(&current, &cutter.planes, views.cut)
-                }
-                None => cut_approx(&current, &cutter.planes, views.cut),
-            };
-            if views.cut {
-                push_part(&mut out, model_index, c, PartKind::Wall, 1.0, parts.walls);
-                for line in parts.contour {
-                    out.contours.push((model_index, line));
-                }
-            }
             if let Some(opacity) = views.transparency {
                 push_part(
                     &mut out,
@@ -133,26 +509,33 @@ pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
                     c,
                     PartKind::Removed,
                     opacity,
-                    parts.removed,
+                    step.removed.clone(),
                 );
             }
             for (view, with_walls) in [(views.ribbons, false), (views.slices, true)] {
                 let Some(view) = view else { continue };
-                let (ribbons, walls) = match index
-                    .as_ref()
-                    .map(|i| sub_cuts_exact(i, cutter, view.count, view.width))
-                {
+                let exact = step.before.map(|index| {
+                    sub_cuts_exact(
+                        index,
+                        cutter,
+                        view.count,
+                        view.width,
+                        Some(step.before_tags),
+                    )
+                });
+                let (ribbons, walls) = match exact {
                     Some(Ok(pieces)) => pieces,
                     other => {
                         if let Some(Err(e)) = other {
                             out.notes.push(format!(
-                                "cutter {c} sub-cutters: {e}; showing approximate ones"
+                                "cutter {} sub-cutters: {e}; showing approximate ones",
+                                c + 1
                             ));
                         }
                         let mut ribbons = Mesh::default();
                         let mut walls = Mesh::default();
                         for sub in sub_cutter_planes(&cutter.planes, view.count, view.width) {
-                            let piece = cut_approx(&current, &sub, with_walls);
+                            let piece = cut_approx(step.before_mesh, &sub, with_walls);
                             ribbons.append(&piece.removed);
                             walls.append(&piece.walls);
                         }
@@ -172,18 +555,33 @@ pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
                     );
                 }
             }
-            current = parts.kept;
+        },
+    );
+    let shows_walls = |tag: u32| scene.cutters.get(tag as usize).is_some_and(|c| c.views.cut);
+    let closed = &sequence.closed;
+    let tags = &sequence.tags;
+    for &(c, cutter) in cutters {
+        if cutter.views.cut {
+            let walls = select(closed, |t| tags[t] == c as u32);
+            push_part(&mut out, model_index, c, PartKind::Wall, 1.0, walls);
         }
-        push_part(
-            &mut out,
-            model_index,
-            usize::MAX,
-            PartKind::Kept,
-            1.0,
-            current,
-        );
     }
-    out
+    for line in tag_contours(closed, tags, shows_walls) {
+        out.contours.push((model_index, line));
+    }
+    if cutters.iter().any(|(_, c)| c.views.cut) {
+        for line in sequence.approx_contours {
+            out.contours.push((model_index, line));
+        }
+    }
+    let kept = select(closed, |t| tags[t] == SURFACE);
+    push_part(&mut out, model_index, usize::MAX, PartKind::Kept, 1.0, kept);
+    out.notes.extend(sequence.notes);
+    ModelPreview {
+        parts: out.parts,
+        contours: out.contours,
+        notes: out.notes,
+    }
 }
 
 /// Cuts `cutter` out of `target` with the exact boolean (honouring the cutter's kind and
@@ -249,7 +647,7 @@ pub fn cut_exact(target: &TargetIndex, cutter: &SceneCutter) -> Result<CutParts,
     Ok(CutParts {
         kept: result.materialize(target.mesh()),
         walls: result.walls.mesh,
-        removed: result.removed.mesh,
+        removed: result.removed.into_part().mesh,
         contour: result
             .contours
             .into_iter()
@@ -268,11 +666,14 @@ pub fn cut_exact(target: &TargetIndex, cutter: &SceneCutter) -> Result<CutParts,
 
 /// Ribbons (the removed surface inside `count` thin sub-cutters of `width`) and the walls of
 /// those sub-cutters inside the target (facing out of the kept part), by the exact boolean.
+/// With `tags` (one per target triangle, see [`cut_in_turn`]) the ribbons keep only the model's
+/// own surface, not the walls of earlier cutters.
 pub fn sub_cuts_exact(
     target: &TargetIndex,
     cutter: &SceneCutter,
     count: u32,
     width: f64,
+    tags: Option<&[u32]>,
 ) -> Result<(Mesh, Mesh), csg::CutError> {
     if cutter.planes.len() < 2 {
         return Ok((Mesh::default(), Mesh::default()));
@@ -287,7 +688,14 @@ pub fn sub_cuts_exact(
     }
     let refs: Vec<&Mesh> = subs.iter().collect();
     let result = csg::subtract_many(target, &refs)?;
-    Ok((result.removed.mesh, result.walls.mesh))
+    let ribbons = match tags {
+        Some(tags) => select(&result.removed.mesh, |t| {
+            matches!(result.removed.provenance[t],
+                csg::Provenance::Target(f) if tags.get(f as usize) == Some(&SURFACE))
+        }),
+        None => result.removed.into_part().mesh,
+    };
+    Ok((ribbons, result.walls.mesh))
 }
 
 fn push_part(
@@ -721,12 +1129,18 @@ pub fn boundary_polylines(mesh: &Mesh) -> Vec<Vec<DVec3>> {
             *count.entry((a.min(b), a.max(b))).or_default() += 1;
         }
     }
-    let mut next: HashMap<u32, Vec<u32>> = HashMap::new();
-    let mut edges: Vec<(u32, u32)> = count
+    let edges: Vec<(u32, u32)> = count
         .into_iter()
         .filter(|&(_, c)| c == 1)
         .map(|(e, _)| e)
         .collect();
+    chain_edges(mesh, edges)
+}
+
+/// Undirected edges (vertex pairs, smaller first) of `mesh` chained into polylines; closed loops
+/// repeat their first point at the end.
+fn chain_edges(mesh: &Mesh, mut edges: Vec<(u32, u32)>) -> Vec<Vec<DVec3>> {
+    let mut next: HashMap<u32, Vec<u32>> = HashMap::new();
     edges.sort_unstable();
     for &(a, b) in &edges {
         next.entry(a).or_default().push(b);
@@ -921,6 +1335,108 @@ pub(crate) mod tests {
         let preview = preview_geometry(&scene_with_cube_cut(none));
         assert_eq!(preview.replaced, vec![false]);
         assert!(preview.parts.is_empty());
+    }
+
+    /// A sphere with one cutter per box, each cutter straight and aimed at model 0.
+    fn sphere_scene(boxes: &[[f64; 6]]) -> Scene {
+        let mut scene = Scene::default();
+        scene.models.push(crate::scene::SceneModel::new(
+            "sphere",
+            "sphere.obj",
+            Arc::new(csg::testkit::icosphere(3, 1.0)),
+            [0.8, 0.6, 0.5],
+        ));
+        for b in boxes {
+            scene.cutters.push(SceneCutter {
+                target: 0,
+                kind: crate::scene::CutKind::Straight,
+                smooth: false,
+                planes: box_cutter(b[0], b[1], b[2], b[3], b[4], b[5]),
+                views: crate::scene::CutterViews::default(),
+            });
+        }
+        scene
+    }
+
+    /// Volume of the sphere minus one box, by a single exact cut (kept + walls).
+    fn volume_minus(b: [f64; 6]) -> f64 {
+        let scene = sphere_scene(&[b]);
+        let index = TargetIndex::build(scene.models[0].mesh.clone()).unwrap();
+        let parts = cut_exact(&index, &scene.cutters[0]).unwrap();
+        let mut closed = parts.kept;
+        closed.append(&parts.walls);
+        closed.volume()
+    }
+
+    #[test]
+    fn overlapping_cutters_remove_the_union_and_no_wall_survives_inside_the_other() {
+        let k1 = [0.0, 2.0, -2.0, 0.2, 0.0, 2.0];
+        let k2 = [-2.0, 0.4, -2.0, 2.0, 0.3, 2.0];
+        let k12 = [0.0, 0.4, -2.0, 0.2, 0.3, 2.0];
+        let scene = sphere_scene(&[k1, k2]);
+        let t = scene.models[0].mesh.volume();
+        // Inclusion–exclusion from single cuts: vol(T ∖ (K1 ∪ K2)).
+        let (v1, v2, v12) = (volume_minus(k1), volume_minus(k2), volume_minus(k12));
+        let expected = t - (t - v1) - (t - v2) + (t - v12);
+        let cutters: Vec<(usize, &SceneCutter)> = scene.cutters.iter().enumerate().collect();
+        let mut cache = CutCache::default();
+        let sequence = cut_in_turn(
+            &mut cache,
+            &scene.models[0].mesh,
+            &cutters,
+            |_| true,
+            |_| {},
+        );
+        assert!(sequence.notes.is_empty(), "{:?}", sequence.notes);
+        let report = sequence.closed.report();
+        assert!(report.closed && report.manifold, "{report:?}");
+        // New contour vertices are rounded once from the lattice (steps of ~1e-8 here).
+        assert!(
+            (sequence.closed.volume() - expected).abs() < 1e-6,
+            "{} vs {expected}",
+            sequence.closed.volume()
+        );
+        // No wall of cutter 1 is left inside cutter 2 (x < 0.4 and z > 0.3), and cutter 2 has
+        // walls only outside cutter 1.
+        let tags = &sequence.tags;
+        for (t, tri) in sequence.closed.triangles.iter().enumerate() {
+            let c = tri
+                .map(|i| sequence.closed.positions[i as usize])
+                .iter()
+                .sum::<DVec3>()
+                / 3.0;
+            let inside = |b: [f64; 6]| {
+                c.x > b[0] && c.x < b[1] && c.y > b[2] && c.y < b[3] && c.z > b[4] && c.z < b[5]
+            };
+            match tags[t] {
+                0 => assert!(!inside(k2), "wall of cutter 1 inside cutter 2 at {c}"),
+                1 => assert!(!inside(k1), "wall of cutter 2 inside cutter 1 at {c}"),
+                _ => {}
+            }
+        }
+        assert!(tags.contains(&0) && tags.contains(&1) && tags.contains(&SURFACE));
+        // Preview shows the same: kept + walls of both cutters is the closed result, and the
+        // contour is closed loops on the kept surface.
+        let preview = preview_geometry(&scene);
+        let mut shown = Mesh::default();
+        for p in &preview.parts {
+            shown.append(&p.mesh);
+        }
+        assert!(
+            (shown.volume() - expected).abs() < 1e-6,
+            "{}",
+            shown.volume()
+        );
+        assert!(!preview.contours.is_empty());
+        for (_, line) in &preview.contours {
+            assert_eq!(line.first(), line.last(), "open contour");
+        }
+        // A second preview of a moved second cutter reuses the first cutter's cached result.
+        let mut moved = scene.clone();
+        moved.cutters[1].planes = box_cutter(-2.0, 0.5, -2.0, 2.0, 0.3, 2.0);
+        let again = preview_geometry_with(&moved, &mut cache);
+        assert!(again.notes.is_empty(), "{:?}", again.notes);
+        assert_eq!(cache.prefixes.len(), 1);
     }
 
     #[test]

@@ -14,3 +14,4 @@ pub mod phantom;
 pub mod render;
 pub mod scene;
 pub mod session;
+pub mod session_meshes;

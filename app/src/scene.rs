@@ -44,6 +44,10 @@ pub struct SceneModel {
     pub region: usize,
     /// The welded, validated mesh of the region.
     pub mesh: Arc<Mesh>,
+    /// How `mesh` relates to `source`, which decides how a session stores it. Whoever replaces
+    /// `mesh` with other geometry sets [`MeshOrigin::Edited`] (see [`SceneModel::replace_mesh`]);
+    /// nobody compares meshes to find out.
+    pub origin: MeshOrigin,
     /// sRGB colour, each component in 0..=1.
     pub color: [f32; 3],
     /// 1 = opaque, 0 = invisible; below 1 the model is drawn with order-independent transparency.
@@ -65,11 +69,37 @@ impl SceneModel {
             source: source.into(),
             region: 0,
             mesh,
+            origin: MeshOrigin::Region,
             color,
             opacity: 1.0,
             style: ModelStyle::Solid,
             visible: true,
         }
+    }
+}
+
+/// Where a model's mesh came from (see `crate::session_meshes`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MeshOrigin {
+    /// Region `region` of `source`, as loading that file gives it: a session names the file and
+    /// the region.
+    #[default]
+    Region,
+    /// The whole of `source`, read verbatim (no welding, no region split): a mesh file a session
+    /// wrote. A session names the file with `"exact": true`.
+    Exact,
+    /// Changed since it was loaded (scalpel strokes, a detached piece, Remove All Cut Geometry):
+    /// `source` and `region` only say where it came from. Saving a session writes the mesh to a
+    /// file of its own next to the session.
+    Edited,
+}
+
+impl SceneModel {
+    /// Replaces the mesh with other geometry and marks the model edited, so that saving a
+    /// session writes the new mesh instead of naming the file it was loaded from.
+    pub fn replace_mesh(&mut self, mesh: Arc<Mesh>) {
+        self.mesh = mesh;
+        self.origin = MeshOrigin::Edited;
     }
 }
 

@@ -6,6 +6,9 @@
 //!   its file (each region becomes one model with the entry's colour, opacity, style and
 //!   visibility), which is what a hand-written session or another tool writes. Cutaway itself adds
 //!   `"region": k` (0-based) to every entry, so per-region colours survive a round trip.
+//! - A model edited since it was loaded (scalpel strokes, a detached piece, Remove All Cut
+//!   Geometry) is saved as a mesh file of its own next to the session, named with `"exact": true`
+//!   (read verbatim, one model); see [`crate::session_meshes`].
 //! - Unknown fields are ignored, never an error; missing optional fields take their defaults
 //!   (colour: distinct colours, opacity 1, solid, visible, no cutters, a framing camera, default
 //!   render settings).
@@ -22,8 +25,8 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::scene::{
-    CutKind, CutterViews, ModelStyle, RenderSettings, Scene, SceneCutter, SceneModel, Stereo,
-    SubCutterView, distinct_colors,
+    CutKind, CutterViews, MeshOrigin, ModelStyle, RenderSettings, Scene, SceneCutter, SceneModel,
+    Stereo, SubCutterView, distinct_colors,
 };
 
 /// The `format` value of this version.
@@ -59,6 +62,13 @@ pub struct ModelEntry {
     pub style: String,
     #[serde(default = "yes")]
     pub visible: bool,
+    /// The file is this one model exactly as stored (a mesh Cutaway wrote for an edited model,
+    /// see [`crate::session_meshes`]): read verbatim, no welding, no region split.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub exact: bool,
+    /// The model's display name (written for `exact` entries, whose file name is not the name).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -183,15 +193,26 @@ pub fn scene_from_file(
     let mut loaded: Vec<(PathBuf, Vec<crate::io::Model>)> = Vec::new();
     for (i, entry) in file.models.iter().enumerate() {
         let source = folder.join(&entry.path);
-        let slot = match loaded.iter().position(|(p, _)| *p == source) {
-            Some(k) => k,
-            None => {
-                let models = load_models(&source)?;
-                loaded.push((source.clone(), models));
-                loaded.len() - 1
-            }
+        let exact_model: Vec<crate::io::Model>;
+        let regions = if entry.exact {
+            let stem = entry.path.file_stem().unwrap_or_default().to_string_lossy();
+            exact_model = vec![crate::io::Model {
+                name: entry.name.clone().unwrap_or_else(|| stem.into_owned()),
+                source: source.clone(),
+                mesh: crate::io::read_mesh_verbatim(&source)?,
+            }];
+            &exact_model
+        } else {
+            let slot = match loaded.iter().position(|(p, _)| *p == source) {
+                Some(k) => k,
+                None => {
+                    let models = load_models(&source)?;
+                    loaded.push((source.clone(), models));
+                    loaded.len() - 1
+                }
+            };
+            &loaded[slot].1
         };
-        let regions = &loaded[slot].1;
         let style = match entry.style.as_str() {
             "solid" => ModelStyle::Solid,
             "wireframe" => ModelStyle::Wireframe,
@@ -219,6 +240,11 @@ pub fn scene_from_file(
                 source: model.source.clone(),
                 region,
                 mesh: Arc::new(model.mesh.clone()),
+                origin: if entry.exact {
+                    MeshOrigin::Exact
+                } else {
+                    MeshOrigin::Region
+                },
                 color,
                 opacity: entry.opacity,
                 style,
@@ -294,6 +320,8 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
             }
             .to_string(),
             visible: m.visible,
+            exact: false,
+            name: None,
         })
         .collect();
     let cutters = scene
@@ -339,14 +367,22 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
     }
 }
 
-/// Saves `scene` to `path` atomically (temporary file in the same folder, then rename).
+/// Saves `scene` to `path` atomically (temporary file in the same folder, then rename). Models
+/// whose mesh no file holds (edited since loaded) are written next to the session first, and the
+/// mesh files the new session no longer names are removed after it is in place
+/// ([`crate::session_meshes`]).
 pub fn save(path: &Path, scene: &Scene) -> anyhow::Result<()> {
     let folder = path.parent().unwrap_or(Path::new(""));
-    let file = file_from_scene(scene, folder);
+    let meshes = crate::session_meshes::write_meshes(path, scene)
+        .with_context(|| format!("{}", path.display()))?;
+    let mut file = file_from_scene(scene, folder);
+    crate::session_meshes::point_entries(&mut file, scene, &meshes, folder);
     let mut text =
         serde_json::to_string_pretty(&file).with_context(|| format!("{}", path.display()))?;
     text.push('\n');
-    write_atomic(path, text.as_bytes())
+    write_atomic(path, text.as_bytes())?;
+    crate::session_meshes::remove_stale(path, &meshes);
+    Ok(())
 }
 
 /// Writes `bytes` to `path` through a temporary file next to it and a rename.

@@ -13,7 +13,10 @@
 //! 2⁻²⁷ × the target's size, see [`crate::lattice`]); every topological decision is an exact
 //! integer predicate of [`crate::exact`], with one tie-break rule for all degeneracies: the
 //! cutter is symbolically translated by δ = (ε, ε², ε³) (Simulation of Simplicity). No epsilon
-//! enters anywhere.
+//! enters anywhere. So a target point exactly on a cutter face plane lies on the side −δ points
+//! to, and coplanar faces separate by the sign of their normal's first non-zero component (x,
+//! then y, then z); collinearities that survive the perturbation are handled exactly by the
+//! triangulation ([`crate::split`]).
 //!
 //! **Output** ([`CutResult`]):
 //! - **kept** (target outside the cutter, as a delta against the target: `removed_faces` plus
@@ -28,22 +31,39 @@
 //!   the target's area, and the volumes add up to the target's up to the rounding of the new
 //!   vertices); contours are closed loops. "Inside the target" uses the even-odd rule over all
 //!   regions, so nested regions (a bone inside skin) get walls only where the parity is odd.
+//! - Self-intersecting targets (regions that interpenetrate, a region crossing itself): kept and
+//!   removed are exact as above. Where the contour curves of two target sheets cross inside one
+//!   cutter face, the three-plane crossing point is not constructed: that face is split by the
+//!   topology-only fallback, its wall pieces may overlap or take the wrong side, and kept +
+//!   walls has T-junctions there. Such faces usually show in [`crate::output::CutStats`]
+//!   (`triangulation_fallbacks`, `status_fallbacks`; both 0 for every target that does not
+//!   intersect itself), and [`crate::cutcheck::crossing_cutter_faces`] names them exactly.
 //! - Open or non-manifold targets: kept and removed are exact as above (they are classified
 //!   relative to the closed cutter). Walls are split along the contour wherever it runs through
 //!   a cutter face as a simple path or loop; contour pieces that end or branch inside a cutter
 //!   face (target boundary or non-manifold edge) do not split it. The seed status of each cutter
 //!   component comes from the target's generalized winding number (≥ ½ is inside), which is a
-//!   classifier, not an exact test, and costs O(N) per cutter component.
+//!   classifier, not an exact test; a fast winding-number tree ([`crate::winding`], built with
+//!   the index of an open target) makes it about O(log N) per cutter component.
 //! - Target faces with a repeated vertex index have no area and no edges of their own: they are
 //!   never split; if one is crossed it is dropped from both kept and removed.
 //! - Geometry after rounding: new vertices move by at most half a lattice step plus one `f64`
 //!   rounding, so tiny inversions of slivers next to the contour are possible, never topological
-//!   defects.
+//!   defects. A new vertex is the exact intersection of the *quantized* inputs: it can differ
+//!   from the intersection of the `f64` inputs by about a lattice step (more where an edge
+//!   grazes a plane).
 //!
-//! **Cost.** Only faces whose boxes overlap cutter faces are examined; untouched faces are
-//! classified by flood fill from the contour (inside the cutter only, so output-sensitive) and at
-//! most one exact inside test per untouched region whose box overlaps the cutter. No per-cut
-//! allocation or clear is proportional to the target size.
+//! [`crate::cutcheck`] checks this contract on a result; the property, differential (against
+//! Manifold) and fuzz tests of `csg/tests/` run it on random and degenerate cuts.
+//!
+//! **Cost.** Only faces whose boxes overlap cutter faces, in BVH subtrees that straddle the
+//! cutter face's plane, are examined; untouched faces are classified by flood fill from the
+//! contour (inside the cutter only, so output-sensitive: the face-to-face neighbours and a
+//! per-face bitmap are cached with the index) and at most one exact inside test per untouched
+//! region whose box overlaps the cutter. No per-cut allocation, clear or first touch is
+//! proportional to the target size. The kept part and the removed piece are returned as deltas
+//! against the target (the removed piece is built into a mesh when first read, see
+//! [`Removed`]). The broad phase and the splitting of faces run in parallel (rayon).
 //!
 //! # Stages
 //! 1. Validate and quantize the cutter ([`prepare_cutter`]). Early-out: boxes disjoint.
@@ -54,6 +74,7 @@
 //! 6. Assemble the output and the contours ([`crate::contour`]).
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::adjacency::NO_EDGE;
 use crate::classify;
@@ -61,9 +82,13 @@ use crate::contour;
 use crate::exact::{self, HPoint, LPoint};
 use crate::intersect::{self, FxMap, PointKey, PreparedCutter};
 use crate::mesh::{Mesh, MeshError};
-use crate::output::{CutOptions, CutResult, CutStats, Part, Provenance, VertexSource};
+use crate::output::{CutOptions, CutResult, CutStats, PartBuilder, Provenance, Removed};
 use crate::split::{self, FaceInput, OUT, Piece, PieceStatus, UNKNOWN, Vx};
-use crate::target::{IBox, TargetIndex};
+use crate::target::{IBox, MANY_NEIGHBORS, TargetIndex};
+
+/// Below this many touched faces (or contour segments), the stages that could run in parallel
+/// run on the calling thread: a rayon hand-off costs more than splitting a few faces.
+const PARALLEL_MIN: usize = 64;
 
 /// Why a cut was refused. Each variant names the sub-cutter and what to fix.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -125,7 +150,10 @@ pub enum CutError {
     Internal(String),
 }
 
-/// Cuts `cutter` out of the target (see the robustness contract in the module doc).
+/// Cuts `cutter` out of the target (see the robustness contract in the module doc): exact
+/// topology for any sane target, closed and manifold kept + walls for closed targets that do not
+/// intersect themselves, degeneracies resolved by translating the cutter by δ = (ε, ε², ε³), a
+/// typed [`CutError`] for an invalid cutter, never a panic.
 pub fn subtract(target: &TargetIndex, cutter: &Mesh) -> Result<CutResult, CutError> {
     subtract_many(target, &[cutter])
 }
@@ -144,7 +172,10 @@ pub fn subtract_with(
     options: &CutOptions,
 ) -> Result<CutResult, CutError> {
     let cutter = prepare_cutter(target, cutters)?;
-    run(target, &cutter, options)
+    // On a rayon worker: the parallel stages inside then hand work to the other workers through
+    // their local queues, instead of each waking the pool from outside (which costs a scheduler
+    // round trip per stage on a busy machine).
+    rayon::scope(|_| run(target, &cutter, options))
 }
 
 /// Stage 1: validation and quantization of the cutter(s).
@@ -395,8 +426,7 @@ pub(crate) fn run(
         Vx::C(i) => HPoint::cutter_vertex(&cutter.lpoints[i as usize]),
         Vx::X(_) => unreachable_point(),
     };
-    let mut target_pieces: Vec<(u32, Vec<Piece>)> = Vec::with_capacity(isect.target_order.len());
-    for &t in &isect.target_order {
+    let split_target_face = |t: u32| -> Result<(u32, Vec<Piece>, usize), CutError> {
         let tri = mesh.triangles[t as usize];
         let mut boundary = Vec::with_capacity(8);
         let mut arc_status = Vec::with_capacity(8);
@@ -445,13 +475,32 @@ pub(crate) fn run(
         };
         let split = split::split_face(&input)
             .map_err(|e| CutError::Internal(format!("target face {t}: {e}")))?;
-        stats.triangulation_fallbacks += split.fallbacks;
-        target_pieces.push((t, split.pieces));
+        Ok((t, split.pieces, split.fallbacks))
+    };
+    // Faces split independently: in parallel when there are enough of them.
+    let split_target: Vec<(u32, Vec<Piece>, usize)> = if isect.target_order.len() >= PARALLEL_MIN {
+        isect
+            .target_order
+            .par_iter()
+            .map(|&t| split_target_face(t))
+            .collect::<Result<_, _>>()?
+    } else {
+        isect
+            .target_order
+            .iter()
+            .map(|&t| split_target_face(t))
+            .collect::<Result<_, _>>()?
+    };
+    let mut target_pieces: Vec<(u32, Vec<Piece>)> = Vec::with_capacity(split_target.len());
+    for (t, pieces, fallbacks) in split_target {
+        stats.triangulation_fallbacks += fallbacks;
+        target_pieces.push((t, pieces));
     }
     stats.touched_target_faces = target_pieces.len();
 
     // Stage 4b: statuses of the target pieces.
     let mut vertex_status: FxMap<u32, u32> = Default::default();
+    vertex_status.reserve(3 * target_pieces.len());
     let mut statuses: Vec<Vec<u32>> = Vec::with_capacity(target_pieces.len());
     for (_, pieces) in &target_pieces {
         let mut st = vec![UNKNOWN; pieces.len()];
@@ -494,17 +543,19 @@ pub(crate) fn run(
     }
 
     // Stage 4c: split the touched cutter faces.
-    let mut wall_tris: Vec<([Vx; 3], u32)> = Vec::new();
-    for f in 0..cutter.triangles.len() as u32 {
+    // Per cutter face: its wall triangles, whether the contour splits it, and the fallbacks of
+    // the triangulation and of the statuses.
+    type CutterFaceWalls = (Vec<([Vx; 3], u32)>, bool, usize, usize);
+    let split_cutter_face = |f: u32| -> Result<CutterFaceWalls, CutError> {
         let tri = cutter.triangles[f as usize];
         let seg_ids = &isect.cutter_faces[f as usize];
+        let mut wall_tris = Vec::new();
         if seg_ids.is_empty() {
             if cutter_in[tri[0] as usize] {
                 wall_tris.push(([Vx::C(tri[0]), Vx::C(tri[1]), Vx::C(tri[2])], f));
             }
-            continue;
+            return Ok((wall_tris, false, 0, 0));
         }
-        stats.touched_cutter_faces += 1;
         let mut boundary = Vec::with_capacity(16);
         let mut arc_status = Vec::with_capacity(16);
         let mut on_boundary: FxMap<u32, ()> = Default::default();
@@ -543,7 +594,6 @@ pub(crate) fn run(
         };
         let split = split::split_face(&input)
             .map_err(|e| CutError::Internal(format!("cutter face {f}: {e}")))?;
-        stats.triangulation_fallbacks += split.fallbacks;
         let mut st = vec![UNKNOWN; split.pieces.len()];
         for (i, p) in split.pieces.iter().enumerate() {
             match p.status {
@@ -552,7 +602,7 @@ pub(crate) fn run(
                 PieceStatus::LoopOf { .. } => {}
             }
         }
-        stats.status_fallbacks += resolve_loops(&split.pieces, &mut st, 1)?;
+        let status_fallbacks = resolve_loops(&split.pieces, &mut st, 1)?;
         for (p, &s) in split.pieces.iter().zip(&st) {
             if s != OUT {
                 for t in &p.triangles {
@@ -560,156 +610,209 @@ pub(crate) fn run(
                 }
             }
         }
-    }
-
-    // Stage 5: flood fill of untouched target faces inside the cutter (epoch-stamped scratch:
-    // a face is marked TOUCHED or with its flood status).
-    const TOUCHED: u32 = u32::MAX;
-    let mut local_scratch = None;
-    let mut guard = target.scratch.0.try_lock();
-    let scratch: &mut crate::target::Scratch = match guard.as_deref_mut() {
-        Ok(s) => s,
-        Err(_) => local_scratch.insert(crate::target::Scratch::default()),
+        Ok((wall_tris, true, split.fallbacks, status_fallbacks))
     };
-    scratch.begin(mesh.triangles.len(), mesh.positions.len());
-    for &t in &isect.target_order {
-        scratch.set_face(t, TOUCHED);
-    }
-    let mut stack: Vec<(u32, u32)> = Vec::new();
-    for &t in &isect.target_order {
-        let tri = mesh.triangles[t as usize];
-        for k in 0..3 {
-            let e = target.adjacency.triangle_edges[t as usize][k];
-            if e == NO_EDGE || isect.target_edges.contains_key(&e) {
-                continue;
+    let split_walls = || -> Result<Vec<CutterFaceWalls>, CutError> {
+        let cutter_faces = 0..cutter.triangles.len() as u32;
+        if isect.segments.len() >= PARALLEL_MIN {
+            cutter_faces
+                .into_par_iter()
+                .map(split_cutter_face)
+                .collect()
+        } else {
+            cutter_faces.map(split_cutter_face).collect()
+        }
+    };
+
+    // Stage 5 (on this thread while stage 4c runs on the others): flood fill of untouched
+    // target faces inside the cutter. The scratch marks every face of `removed_faces` (touched
+    // by the contour, or flooded) in a bitmap, which also gives them back in ascending order; a
+    // flooded face's status is recorded only when there are several sub-cutters (with one it is
+    // always 1).
+    let flood = || {
+        let mut inside_tests = 0;
+        let many = cutter.components > 1;
+        let mut local_scratch = None;
+        let mut guard = target.scratch.0.try_lock();
+        let scratch: &mut crate::target::Scratch = match guard.as_deref_mut() {
+            Ok(s) => s,
+            Err(_) => local_scratch.insert(crate::target::Scratch::for_faces(mesh.triangles.len())),
+        };
+        scratch.begin(mesh.triangles.len());
+        for &t in &isect.target_order {
+            scratch.mark_touched(t);
+        }
+        let mut stack: Vec<(u32, u32)> = Vec::new();
+        let visit = |scratch: &mut crate::target::Scratch, stack: &mut Vec<(u32, u32)>, t2, s| {
+            if !scratch.is_marked(t2) {
+                if many {
+                    scratch.mark_with(t2, s);
+                } else {
+                    scratch.mark(t2);
+                }
+                stack.push((t2, s));
             }
-            let s = vertex_status.get(&tri[k]).copied().unwrap_or(UNKNOWN);
-            if s == OUT || s == UNKNOWN {
-                continue;
-            }
-            for &t2 in target.adjacency.faces_of_edge(e) {
-                if scratch.face(t2).is_none() {
-                    scratch.set_face(t2, s);
-                    stack.push((t2, s));
+        };
+        for &t in &isect.target_order {
+            let tri = mesh.triangles[t as usize];
+            for k in 0..3 {
+                let e = target.adjacency.triangle_edges[t as usize][k];
+                if e == NO_EDGE || isect.target_edges.contains_key(&e) {
+                    continue;
+                }
+                let s = vertex_status.get(&tri[k]).copied().unwrap_or(UNKNOWN);
+                if s == OUT || s == UNKNOWN {
+                    continue;
+                }
+                for &t2 in target.adjacency.faces_of_edge(e) {
+                    visit(scratch, &mut stack, t2, s);
                 }
             }
         }
-    }
-    // Untouched regions whose box overlaps the cutter: one inside test each.
-    let mut touched_regions: FxMap<u32, ()> = Default::default();
-    for &t in &isect.target_order {
-        touched_regions.insert(target.regions.region_of_triangle[t as usize], ());
-    }
-    for r in 0..target.regions.count {
-        if touched_regions.contains_key(&(r as u32))
-            || !target.region_boxes[r].overlaps(&cutter.bounds)
-        {
-            continue;
+        // Untouched regions whose box overlaps the cutter: one inside test each.
+        let mut touched_regions: FxMap<u32, ()> = Default::default();
+        for &t in &isect.target_order {
+            touched_regions.insert(target.regions.region_of_triangle[t as usize], ());
         }
-        let t0 = target.region_first_face[r];
-        if t0 == u32::MAX || scratch.face(t0).is_some() {
-            continue;
-        }
-        stats.inside_tests += 1;
-        let v0 = mesh.triangles[t0 as usize][0];
-        let s = classify::target_point_status(cutter, &target.lpoints[v0 as usize]);
-        if s != OUT {
-            scratch.set_face(t0, s);
-            stack.push((t0, s));
-        }
-    }
-    let mut flood_order: Vec<(u32, u32)> = Vec::new();
-    while let Some((t, s)) = stack.pop() {
-        flood_order.push((t, s));
-        for &e in &target.adjacency.triangle_edges[t as usize] {
-            if e == NO_EDGE {
+        for r in 0..target.regions.count {
+            if touched_regions.contains_key(&(r as u32))
+                || !target.region_boxes[r].overlaps(&cutter.bounds)
+            {
                 continue;
             }
-            for &t2 in target.adjacency.faces_of_edge(e) {
-                if scratch.face(t2).is_none() {
-                    scratch.set_face(t2, s);
-                    stack.push((t2, s));
+            let t0 = target.region_first_face[r];
+            if t0 == u32::MAX || scratch.is_marked(t0) {
+                continue;
+            }
+            inside_tests += 1;
+            let v0 = mesh.triangles[t0 as usize][0];
+            let s = classify::target_point_status(cutter, &target.lpoints[v0 as usize]);
+            if s != OUT {
+                visit(scratch, &mut stack, t0, s);
+            }
+        }
+        while let Some((t, s)) = stack.pop() {
+            let neighbors = target.face_neighbors[t as usize];
+            for (k, &t2) in neighbors.iter().enumerate() {
+                if t2 < MANY_NEIGHBORS {
+                    visit(scratch, &mut stack, t2, s);
+                } else if t2 == MANY_NEIGHBORS {
+                    let e = target.adjacency.triangle_edges[t as usize][k];
+                    for &t2 in target.adjacency.faces_of_edge(e) {
+                        visit(scratch, &mut stack, t2, s);
+                    }
                 }
             }
         }
+        // Every marked face, ascending: the touched ones and the flooded (whole) ones.
+        let marked = scratch.marked_count();
+        let mut removed_faces: Vec<u32> = Vec::with_capacity(marked);
+        let mut whole_faces: Vec<u32> = Vec::with_capacity(marked);
+        let mut whole_sub_cutter: Vec<u32> = Vec::with_capacity(marked);
+        scratch.drain_marked(|t, touched, value| {
+            removed_faces.push(t);
+            if !touched {
+                whole_faces.push(t);
+                whole_sub_cutter.push(if many { value - 1 } else { 0 });
+            }
+        });
+        scratch.clear_touched(&isect.target_order);
+        drop(guard);
+        (removed_faces, whole_faces, whole_sub_cutter, inside_tests)
+    };
+    let ((removed_faces, whole_faces, whole_sub_cutter, inside_tests), split_cutter) =
+        rayon::join(flood, split_walls);
+    stats.inside_tests += inside_tests;
+    let mut wall_tris: Vec<([Vx; 3], u32)> = Vec::new();
+    for (tris, touched, fallbacks, status_fallbacks) in split_cutter? {
+        wall_tris.extend(tris);
+        stats.touched_cutter_faces += usize::from(touched);
+        stats.triangulation_fallbacks += fallbacks;
+        stats.status_fallbacks += status_fallbacks;
     }
 
     // Stage 6: output.
     // A new vertex whose exact limit is the lattice point of one of its defining input vertices
     // (degenerate contact at a vertex) takes that vertex's exact input position, so that it
     // welds with it; otherwise it is its exact value rounded once.
-    result.new_positions = isect
-        .points
-        .iter()
-        .zip(&isect.keys)
-        .map(|(h, key)| {
-            if let Some(l) = h.limit_lattice_point() {
-                let (tv, cv): (Vec<u32>, Vec<u32>) = match *key {
-                    PointKey::Ef { edge, face } => (
-                        target.adjacency.edges[edge as usize].to_vec(),
-                        cutter.triangles[face as usize].to_vec(),
-                    ),
-                    PointKey::Fe { edge, face } => (
-                        mesh.triangles[face as usize].to_vec(),
-                        cutter.edges[edge as usize].to_vec(),
-                    ),
+    let place = |(h, key): (&HPoint, &PointKey)| -> DVec3 {
+        if let Some(l) = h.limit_lattice_point() {
+            let (tv, cv): (Vec<u32>, Vec<u32>) = match *key {
+                PointKey::Ef { edge, face } => (
+                    target.adjacency.edges[edge as usize].to_vec(),
+                    cutter.triangles[face as usize].to_vec(),
+                ),
+                PointKey::Fe { edge, face } => (
+                    mesh.triangles[face as usize].to_vec(),
+                    cutter.edges[edge as usize].to_vec(),
+                ),
+            };
+            if let Some(&v) = tv.iter().find(|&&v| target.lpoints[v as usize] == l) {
+                return mesh.positions[v as usize];
+            }
+            if let Some(&v) = cv.iter().find(|&&v| cutter.lpoints[v as usize] == l) {
+                return cutter.positions[v as usize];
+            }
+        }
+        // Otherwise place it on the target's original geometry: on the original target edge
+        // (EF) or inside the original target face (FE), with the parameters computed on the
+        // lattice. Kept and removed then tile each target face up to f64 rounding.
+        let l = h.limit();
+        match *key {
+            PointKey::Ef { edge, .. } => {
+                let [p, q] = target.adjacency.edges[edge as usize];
+                let (lp, lq) = (&target.lpoints[p as usize], &target.lpoints[q as usize]);
+                let d: [f64; 3] = std::array::from_fn(|k| (lq[k] - lp[k]) as f64);
+                let num: f64 = (0..3).map(|k| (l[k] - lp[k] as f64) * d[k]).sum();
+                let den: f64 = (0..3).map(|k| d[k] * d[k]).sum();
+                let t = if den > 0.0 {
+                    (num / den).clamp(0.0, 1.0)
+                } else {
+                    0.0
                 };
-                if let Some(&v) = tv.iter().find(|&&v| target.lpoints[v as usize] == l) {
-                    return mesh.positions[v as usize];
-                }
-                if let Some(&v) = cv.iter().find(|&&v| cutter.lpoints[v as usize] == l) {
-                    return cutter.positions[v as usize];
-                }
+                let (wp, wq) = (mesh.positions[p as usize], mesh.positions[q as usize]);
+                wp + (wq - wp) * t
             }
-            // Otherwise place it on the target's original geometry: on the original target edge
-            // (EF) or inside the original target face (FE), with the parameters computed on the
-            // lattice. Kept and removed then tile each target face up to f64 rounding.
-            let l = h.limit();
-            match *key {
-                PointKey::Ef { edge, .. } => {
-                    let [p, q] = target.adjacency.edges[edge as usize];
-                    let (lp, lq) = (&target.lpoints[p as usize], &target.lpoints[q as usize]);
-                    let d: [f64; 3] = std::array::from_fn(|k| (lq[k] - lp[k]) as f64);
-                    let num: f64 = (0..3).map(|k| (l[k] - lp[k] as f64) * d[k]).sum();
-                    let den: f64 = (0..3).map(|k| d[k] * d[k]).sum();
-                    let t = if den > 0.0 {
-                        (num / den).clamp(0.0, 1.0)
-                    } else {
-                        0.0
-                    };
-                    let (wp, wq) = (mesh.positions[p as usize], mesh.positions[q as usize]);
-                    wp + (wq - wp) * t
-                }
-                PointKey::Fe { face, .. } => {
-                    let tri = mesh.triangles[face as usize];
-                    let [u, v, w] = tri.map(|i| &target.lpoints[i as usize]);
-                    match exact::projection(&exact::normal(u, v, w)) {
-                        Some((axis, _)) => {
-                            let (i, j) = exact::plane_axes(axis);
-                            let area = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
-                                (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-                            };
-                            let pr = |p: &LPoint| [p[i] as f64, p[j] as f64];
-                            let x = [l[i], l[j]];
-                            let whole = area(pr(u), pr(v), pr(w));
-                            let beta = area(pr(u), x, pr(w)) / whole;
-                            let gamma = area(pr(u), pr(v), x) / whole;
-                            let [wu, wv, ww] = tri.map(|i| mesh.positions[i as usize]);
-                            wu + (wv - wu) * beta + (ww - wu) * gamma
-                        }
-                        None => target.lattice.to_world(l),
+            PointKey::Fe { face, .. } => {
+                let tri = mesh.triangles[face as usize];
+                let [u, v, w] = tri.map(|i| &target.lpoints[i as usize]);
+                match exact::projection(&exact::normal(u, v, w)) {
+                    Some((axis, _)) => {
+                        let (i, j) = exact::plane_axes(axis);
+                        let area = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+                            (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+                        };
+                        let pr = |p: &LPoint| [p[i] as f64, p[j] as f64];
+                        let x = [l[i], l[j]];
+                        let whole = area(pr(u), pr(v), pr(w));
+                        let beta = area(pr(u), x, pr(w)) / whole;
+                        let gamma = area(pr(u), pr(v), x) / whole;
+                        let [wu, wv, ww] = tri.map(|i| mesh.positions[i as usize]);
+                        wu + (wv - wu) * beta + (ww - wu) * gamma
                     }
+                    None => target.lattice.to_world(l),
                 }
             }
-        })
-        .collect();
+        }
+    };
+    result.new_positions = if isect.points.len() >= PARALLEL_MIN {
+        isect
+            .points
+            .par_iter()
+            .zip(&isect.keys)
+            .map(place)
+            .collect()
+    } else {
+        isect.points.iter().zip(&isect.keys).map(place).collect()
+    };
     let new_pos = &result.new_positions;
     let merge = options.merge_coincident;
-    let mut removed = PartBuilder::new(merge);
+    let mut removed = Removed::new(target.mesh.clone(), new_pos.clone(), merge);
     // Kept ids: a new vertex whose rounded position equals (bit for bit) a corner of a touched
     // face or an earlier new vertex takes that id, and triangles that collapse are dropped
     // (they have no area; dropping them is an edge collapse, which keeps the surface closed).
     let mut kept_ids: FxMap<[u64; 3], u32> = Default::default();
+    kept_ids.reserve(3 * isect.target_order.len() + isect.points.len());
     let bits = |p: DVec3| p.to_array().map(|c| (c + 0.0).to_bits());
     for &t in &isect.target_order {
         for v in mesh.triangles[t as usize] {
@@ -736,28 +839,28 @@ pub(crate) fn run(
                     result.kept_new_faces.push(ids);
                     result.kept_new_provenance.push(*t);
                 } else {
-                    let ids =
-                        tri.map(|v| removed.vertex(v, &mesh.positions, &cutter.positions, new_pos));
-                    removed.push(ids, Provenance::Target(*t), s - 1);
+                    // Target pieces have target corners and contour points only.
+                    let mut ids = [0u32; 3];
+                    for (id, v) in ids.iter_mut().zip(tri) {
+                        *id = match *v {
+                            Vx::T(i) => i,
+                            Vx::X(x) => nt + x,
+                            Vx::C(c) => {
+                                return Err(CutError::Internal(format!(
+                                    "target face {t} has a piece with cutter vertex {c}"
+                                )));
+                            }
+                        };
+                    }
+                    removed.piece_faces.push(ids);
+                    removed.piece_provenance.push(*t);
+                    removed.piece_sub_cutter.push(s - 1);
                 }
             }
         }
     }
-    flood_order.sort_unstable();
-    // Flooded faces are away from the contour: their vertices are plain target vertices, looked
-    // up in the scratch (no hashing). A vertex that is also a corner of a touched face was
-    // registered by the pieces above.
-    for &(t, s) in &flood_order {
-        let ids = mesh.triangles[t as usize].map(|v| {
-            if let Some(id) = scratch.vertex(v) {
-                return id;
-            }
-            let id = removed.vertex(Vx::T(v), &mesh.positions, &cutter.positions, new_pos);
-            scratch.set_vertex(v, id);
-            id
-        });
-        removed.push(ids, Provenance::Target(t), s - 1);
-    }
+    removed.whole_faces = whole_faces;
+    removed.whole_sub_cutter = whole_sub_cutter;
     let mut walls = PartBuilder::new(merge);
     for (tri, f) in &wall_tris {
         // Reversed: walls face out of kept (into the cutter).
@@ -769,11 +872,8 @@ pub(crate) fn run(
             cutter.face_component[*f as usize],
         );
     }
-    let mut removed_faces: Vec<u32> = isect.target_order.clone();
-    removed_faces.extend(flood_order.iter().map(|&(t, _)| t));
-    removed_faces.sort_unstable();
     result.removed_faces = removed_faces;
-    result.removed = removed.finish();
+    result.removed = removed;
     result.walls = walls.finish();
     result.contours = contour::chain(&isect.segments, new_pos, |s| {
         cutter.face_component[isect.segments[s].f as usize]
@@ -842,83 +942,6 @@ fn prune_segments(segments: &mut Vec<(u32, u32, u32)>, on_boundary: &FxMap<u32, 
         segments.retain(|&(a, b, _)| !bad(a) && !bad(b));
         if segments.len() == before {
             break;
-        }
-    }
-}
-
-/// Accumulates a compacted output part.
-///
-/// With `merge`, vertices are identified by their rounded position (bit for bit), so that new
-/// vertices that coincide after rounding (degenerate configurations: the tie-break keeps them
-/// apart symbolically) become one vertex, and triangles that collapse are dropped. Without it,
-/// by their symbolic identity.
-struct PartBuilder {
-    merge: bool,
-    by_position: FxMap<[u64; 3], u32>,
-    by_source: FxMap<Vx, u32>,
-    positions: Vec<DVec3>,
-    vertex_source: Vec<VertexSource>,
-    triangles: Vec<[u32; 3]>,
-    provenance: Vec<Provenance>,
-    sub_cutter: Vec<u32>,
-}
-
-impl PartBuilder {
-    fn new(merge: bool) -> PartBuilder {
-        PartBuilder {
-            merge,
-            by_position: Default::default(),
-            by_source: Default::default(),
-            positions: Vec::new(),
-            vertex_source: Vec::new(),
-            triangles: Vec::new(),
-            provenance: Vec::new(),
-            sub_cutter: Vec::new(),
-        }
-    }
-
-    fn vertex(&mut self, v: Vx, target: &[DVec3], cutter: &[DVec3], new: &[DVec3]) -> u32 {
-        if let Some(&id) = self.by_source.get(&v) {
-            return id;
-        }
-        let (p, source) = match v {
-            Vx::T(i) => (target[i as usize], VertexSource::Target(i)),
-            Vx::C(i) => (cutter[i as usize], VertexSource::Cutter(i)),
-            Vx::X(i) => (new[i as usize], VertexSource::New(i)),
-        };
-        let next = self.positions.len() as u32;
-        let id = if self.merge {
-            let key = p.to_array().map(|c| (c + 0.0).to_bits());
-            *self.by_position.entry(key).or_insert(next)
-        } else {
-            next
-        };
-        if id == next {
-            self.positions.push(p);
-            self.vertex_source.push(source);
-        }
-        self.by_source.insert(v, id);
-        id
-    }
-
-    fn push(&mut self, tri: [u32; 3], provenance: Provenance, sub_cutter: u32) {
-        if tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0] {
-            return;
-        }
-        self.triangles.push(tri);
-        self.provenance.push(provenance);
-        self.sub_cutter.push(sub_cutter);
-    }
-
-    fn finish(self) -> Part {
-        Part {
-            mesh: Mesh {
-                positions: self.positions,
-                triangles: self.triangles,
-            },
-            provenance: self.provenance,
-            sub_cutter: self.sub_cutter,
-            vertex_source: self.vertex_source,
         }
     }
 }

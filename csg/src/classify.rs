@@ -44,14 +44,19 @@ pub(crate) fn target_point_status(cutter: &PreparedCutter, p: &LPoint) -> u32 {
 }
 
 /// Is perturbed cutter point `a'` inside the target? Ray parity for closed targets; for open
-/// targets the generalized winding number (≥ 1/2) at the point's rounded position.
+/// targets the generalized winding number (≥ 1/2) at the point's rounded position, from the
+/// target's fast winding-number tree ([`crate::winding`]).
 pub(crate) fn cutter_point_inside_target(
     target: &TargetIndex,
     a: &LPoint,
     a_world: glam::DVec3,
 ) -> bool {
     if !target.is_closed() {
-        return winding_number(target, a_world) >= 0.5;
+        let w = match &target.winding {
+            Some(tree) => tree.winding_number(&target.mesh, a_world),
+            None => crate::winding::winding_number_exact(&target.mesh, a_world),
+        };
+        return w >= 0.5;
     }
     if a[0] > target.bounds.max[0] {
         return false;
@@ -74,20 +79,4 @@ pub(crate) fn cutter_point_inside_target(
         }
     });
     odd
-}
-
-/// Generalized winding number of the whole target at `p` (Jacobson et al. 2013): the sum of the
-/// signed solid angles of its triangles over 4π. O(N); used only for open targets.
-pub(crate) fn winding_number(target: &TargetIndex, p: glam::DVec3) -> f64 {
-    let mesh = &target.mesh;
-    let mut sum = 0.0;
-    for t in 0..mesh.triangles.len() {
-        let [a, b, c] = mesh.corners(t);
-        let (a, b, c) = (a - p, b - p, c - p);
-        let (la, lb, lc) = (a.length(), b.length(), c.length());
-        let num = a.dot(b.cross(c));
-        let den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-        sum += 2.0 * num.atan2(den);
-    }
-    sum / (4.0 * std::f64::consts::PI)
 }

@@ -611,6 +611,21 @@ pub fn cmp_coord(p: &HPoint, q: &HPoint, axis: usize) -> Ordering {
     cmp_along(p, q, &dir)
 }
 
+/// Sign of `orient3d(a, b, c, d)` for floating-point points, exact (Shewchuk's adaptive
+/// predicate): `+1` when `d` lies on the side the normal of the counter-clockwise triangle `abc`
+/// points to. For decisions taken on `f64` positions outside the lattice (the scalpel).
+#[inline]
+pub fn orient3d_f64(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> Sign {
+    let p = |v: [f64; 3]| robust::Coord3D {
+        x: v[0],
+        y: v[1],
+        z: v[2],
+    };
+    // `robust` uses the opposite sign convention (positive below the plane).
+    let o = robust::orient3d(p(a), p(b), p(c), p(d));
+    -(o.partial_cmp(&0.0).map_or(0, |s| s as Sign))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -147,14 +147,16 @@ pub(crate) fn intersect(
         ..Default::default()
     };
     let tris = &target.mesh.triangles;
-    let mut candidates = Vec::new();
+    let broad = target.broad_phase(&cutter.face_boxes, |f| cutter.face_points(f));
+    // Room for the memos up front (growing them rehashed every entry several times).
+    let pairs: usize = broad.iter().map(Vec::len).sum();
+    out.ef.reserve(2 * pairs);
+    out.fe.reserve(2 * pairs);
     for f in 0..cutter.triangles.len() as u32 {
-        candidates.clear();
-        target.faces_in_box(&cutter.face_boxes[f as usize], |t| candidates.push(t));
-        candidates.sort_unstable();
+        let candidates = &broad[f as usize];
         let [a, b, c] = cutter.face_points(f);
         let plane = exact::CutterPlane::new(a, b, c);
-        for &t in &candidates {
+        for &t in candidates {
             out.candidate_pairs += 1;
             let tri = tris[t as usize];
             if tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0] {

@@ -1,9 +1,14 @@
 //! What a cut returns: the kept part as a delta against the cached target, the walls, the
 //! removed piece, the contour, and the provenance of every output face.
 
+use std::ops::Deref;
+use std::sync::{Arc, OnceLock};
+
 use glam::DVec3;
 
+use crate::intersect::FxMap;
 use crate::mesh::Mesh;
+use crate::split::Vx;
 
 /// Which input mesh and face an output triangle comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -120,6 +125,225 @@ impl Part {
     }
 }
 
+/// The removed piece (the target surface inside the cutter), computed as a delta against the
+/// cached target and built as a [`Part`] only when first read.
+///
+/// A cut does the classification (which target faces lie inside the cutter, and the inside
+/// pieces of the faces the contour splits) and stops there: for a strip across a 2M-triangle
+/// sphere the removed piece has ~65k triangles, and compacting them into a mesh would cost more
+/// than the rest of the cut. Reading it through `Deref` (`removed.mesh`, `removed.provenance`,
+/// `removed.of_sub_cutter(k)`, …) or [`Removed::part`] builds the part once (thread-safe) and
+/// caches it; [`Removed::into_part`] moves it out. The part is the same, vertex for vertex and
+/// triangle for triangle, whenever it is built: the pieces of split faces first (in the cut's
+/// order), then the whole faces in ascending order; vertices are numbered by first use and,
+/// with [`CutOptions::merge_coincident`], merged by bit-identical position.
+#[derive(Clone, Default)]
+pub struct Removed {
+    /// Target faces entirely inside the cutter (not split by the contour), ascending.
+    pub whole_faces: Vec<u32>,
+    /// Sub-cutter of each of `whole_faces` (same length).
+    pub whole_sub_cutter: Vec<u32>,
+    /// Inside pieces of split target faces, with vertex ids as in [`CutResult::kept_new_faces`]
+    /// (target vertex `i < n`, new vertex `n + k`).
+    pub piece_faces: Vec<[u32; 3]>,
+    /// Target face of each of `piece_faces` (same length).
+    pub piece_provenance: Vec<u32>,
+    /// Sub-cutter of each of `piece_faces` (same length).
+    pub piece_sub_cutter: Vec<u32>,
+    /// What building the part needs: the target (shared, not copied), the new vertices, and
+    /// whether to merge coincident vertices. `None` for an empty result.
+    source: Option<RemovedSource>,
+    /// The part, once built.
+    part: OnceLock<Part>,
+}
+
+#[derive(Clone)]
+struct RemovedSource {
+    target: Arc<Mesh>,
+    new_positions: Vec<DVec3>,
+    merge: bool,
+}
+
+impl std::fmt::Debug for Removed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Removed")
+            .field("whole_faces", &self.whole_faces.len())
+            .field("piece_faces", &self.piece_faces.len())
+            .field("built", &self.part.get().is_some())
+            .finish()
+    }
+}
+
+impl Removed {
+    /// A removed piece over `target` (whose vertices the ids index, then `new_positions`).
+    pub(crate) fn new(target: Arc<Mesh>, new_positions: Vec<DVec3>, merge: bool) -> Removed {
+        Removed {
+            source: Some(RemovedSource {
+                target,
+                new_positions,
+                merge,
+            }),
+            ..Default::default()
+        }
+    }
+
+    /// The removed piece as a mesh with provenance (built on first use, then cached).
+    pub fn part(&self) -> &Part {
+        self.part.get_or_init(|| self.build())
+    }
+
+    /// The removed piece as a mesh with provenance, moved out.
+    pub fn into_part(mut self) -> Part {
+        match self.part.take() {
+            Some(p) => p,
+            None => self.build(),
+        }
+    }
+
+    /// Number of triangles before building: whole faces plus pieces (the built part can have
+    /// fewer when merging coincident vertices collapses some).
+    pub fn triangle_count_upper_bound(&self) -> usize {
+        self.whole_faces.len() + self.piece_faces.len()
+    }
+
+    fn build(&self) -> Part {
+        let Some(src) = &self.source else {
+            return Part::default();
+        };
+        let n = src.target.positions.len() as u32;
+        let mut b = PartBuilder::new(src.merge);
+        b.reserve(self.triangle_count_upper_bound());
+        let (tp, np): (&[DVec3], &[DVec3]) = (&src.target.positions, &src.new_positions);
+        // Output id + 1 of each target vertex seen so far (0: not yet), so that the corners of
+        // the whole faces are looked up without hashing. Zeroed memory: only the pages of the
+        // vertices used are touched.
+        let mut target_id = vec![0u32; n as usize];
+        let mut vertex = |b: &mut PartBuilder, i: u32| {
+            if i >= n {
+                return b.vertex(Vx::X(i - n), tp, &[], np);
+            }
+            let seen = &mut target_id[i as usize];
+            if *seen == 0 {
+                *seen = b.vertex(Vx::T(i), tp, &[], np) + 1;
+            }
+            *seen - 1
+        };
+        for ((tri, &t), &k) in self
+            .piece_faces
+            .iter()
+            .zip(&self.piece_provenance)
+            .zip(&self.piece_sub_cutter)
+        {
+            let ids = tri.map(|i| vertex(&mut b, i));
+            b.push(ids, Provenance::Target(t), k);
+        }
+        for (&t, &k) in self.whole_faces.iter().zip(&self.whole_sub_cutter) {
+            let ids = src.target.triangles[t as usize].map(|i| vertex(&mut b, i));
+            b.push(ids, Provenance::Target(t), k);
+        }
+        b.finish()
+    }
+}
+
+impl Deref for Removed {
+    type Target = Part;
+    /// Builds the part on first use (see [`Removed`]).
+    fn deref(&self) -> &Part {
+        self.part()
+    }
+}
+
+/// Accumulates a compacted output part.
+///
+/// With `merge`, vertices are identified by their rounded position (bit for bit), so that new
+/// vertices that coincide after rounding (degenerate configurations: the tie-break keeps them
+/// apart symbolically) become one vertex, and triangles that collapse are dropped. Without it,
+/// by their symbolic identity.
+pub(crate) struct PartBuilder {
+    merge: bool,
+    by_position: FxMap<[u64; 3], u32>,
+    by_source: FxMap<Vx, u32>,
+    positions: Vec<DVec3>,
+    vertex_source: Vec<VertexSource>,
+    triangles: Vec<[u32; 3]>,
+    provenance: Vec<Provenance>,
+    sub_cutter: Vec<u32>,
+}
+
+impl PartBuilder {
+    pub fn new(merge: bool) -> PartBuilder {
+        PartBuilder {
+            merge,
+            by_position: Default::default(),
+            by_source: Default::default(),
+            positions: Vec::new(),
+            vertex_source: Vec::new(),
+            triangles: Vec::new(),
+            provenance: Vec::new(),
+            sub_cutter: Vec::new(),
+        }
+    }
+
+    /// Room for `triangles` triangles (and about half as many vertices).
+    pub fn reserve(&mut self, triangles: usize) {
+        let vertices = triangles / 2 + 16;
+        self.by_source.reserve(vertices);
+        if self.merge {
+            self.by_position.reserve(vertices);
+        }
+        self.positions.reserve(vertices);
+        self.vertex_source.reserve(vertices);
+        self.triangles.reserve(triangles);
+        self.provenance.reserve(triangles);
+        self.sub_cutter.reserve(triangles);
+    }
+
+    pub fn vertex(&mut self, v: Vx, target: &[DVec3], cutter: &[DVec3], new: &[DVec3]) -> u32 {
+        if let Some(&id) = self.by_source.get(&v) {
+            return id;
+        }
+        let (p, source) = match v {
+            Vx::T(i) => (target[i as usize], VertexSource::Target(i)),
+            Vx::C(i) => (cutter[i as usize], VertexSource::Cutter(i)),
+            Vx::X(i) => (new[i as usize], VertexSource::New(i)),
+        };
+        let next = self.positions.len() as u32;
+        let id = if self.merge {
+            let key = p.to_array().map(|c| (c + 0.0).to_bits());
+            *self.by_position.entry(key).or_insert(next)
+        } else {
+            next
+        };
+        if id == next {
+            self.positions.push(p);
+            self.vertex_source.push(source);
+        }
+        self.by_source.insert(v, id);
+        id
+    }
+
+    pub fn push(&mut self, tri: [u32; 3], provenance: Provenance, sub_cutter: u32) {
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0] {
+            return;
+        }
+        self.triangles.push(tri);
+        self.provenance.push(provenance);
+        self.sub_cutter.push(sub_cutter);
+    }
+
+    pub fn finish(self) -> Part {
+        Part {
+            mesh: Mesh {
+                positions: self.positions,
+                triangles: self.triangles,
+            },
+            provenance: self.provenance,
+            sub_cutter: self.sub_cutter,
+            vertex_source: self.vertex_source,
+        }
+    }
+}
+
 /// Statistics of one cut (for benchmarks and tests).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CutStats {
@@ -156,8 +380,9 @@ pub struct CutResult {
     pub kept_new_provenance: Vec<u32>,
     /// The cutter surface inside the target, oriented to face out of kept.
     pub walls: Part,
-    /// The target surface inside the cutter, with the target's orientation.
-    pub removed: Part,
+    /// The target surface inside the cutter, with the target's orientation: a delta against the
+    /// target, built into a [`Part`] on first read (see [`Removed`]).
+    pub removed: Removed,
     /// The intersection polylines.
     pub contours: Vec<Contour>,
     /// Counters of the work done.
@@ -210,5 +435,51 @@ impl CutResult {
     /// Kept, compacted (unused vertices dropped), for writing files.
     pub fn kept_mesh(&self, target: &Mesh) -> Mesh {
         self.materialize(target).compacted()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{TargetIndex, testkit};
+
+    /// The removed delta and the part built from it agree: every whole face and every piece is
+    /// in the part with its provenance, whole faces keep their exact corners, and building it
+    /// twice (lazily, or moved out) gives the same part.
+    #[test]
+    fn removed_part_is_built_from_the_delta() {
+        let target = testkit::icosphere(4, 10.0);
+        let index = TargetIndex::build(target.clone()).unwrap();
+        let cutter = testkit::cube(DVec3::new(-3.0, -4.0, 5.0), DVec3::new(4.0, 3.0, 12.0));
+        let r = crate::subtract(&index, &cutter).unwrap();
+        let removed = &r.removed;
+        assert!(!removed.whole_faces.is_empty() && !removed.piece_faces.is_empty());
+        assert!(removed.whole_faces.windows(2).all(|w| w[0] < w[1]));
+        // removed_faces = whole faces ∪ split faces.
+        let split: std::collections::BTreeSet<u32> = r
+            .kept_new_provenance
+            .iter()
+            .chain(&removed.piece_provenance)
+            .copied()
+            .collect();
+        let mut all: Vec<u32> = removed.whole_faces.iter().chain(&split).copied().collect();
+        all.sort_unstable();
+        assert_eq!(all, r.removed_faces);
+        assert!(removed.part.get().is_none(), "built before it was read");
+        let part = removed.part().clone();
+        assert_eq!(
+            part.mesh.triangles.len(),
+            removed.triangle_count_upper_bound()
+        );
+        let whole_start = removed.piece_faces.len();
+        for (k, &t) in removed.whole_faces.iter().enumerate() {
+            assert_eq!(part.provenance[whole_start + k], Provenance::Target(t));
+            let got = part.mesh.triangles[whole_start + k].map(|i| part.mesh.positions[i as usize]);
+            let want = target.triangles[t as usize].map(|i| target.positions[i as usize]);
+            assert_eq!(got, want);
+        }
+        assert_eq!(r.removed.clone().into_part(), part);
+        let fresh = crate::subtract(&index, &cutter).unwrap();
+        assert_eq!(fresh.removed.into_part(), part);
     }
 }

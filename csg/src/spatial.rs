@@ -290,6 +290,34 @@ impl SpatialIndex {
         }
     }
 
+    /// Appends to `out` the face of every leaf reached by descending only into nodes whose box
+    /// (`min`, `max`: the node's `f32` box converted exactly to `f64`, not widened) passes
+    /// `enter`. [`SpatialIndex::faces_in_box`] is this with a box-overlap test; the boolean
+    /// also prunes by the cutter face's plane. Order is the tree's.
+    pub fn faces_where(&self, mut enter: impl FnMut(DVec3, DVec3) -> bool, out: &mut Vec<u32>) {
+        let mut test = |node: &Bvh2Node| {
+            let b = node.aabb();
+            enter(b.min.as_dvec3(), b.max.as_dvec3())
+        };
+        if self.bvh.nodes.is_empty() || !test(&self.bvh.nodes[0]) {
+            return;
+        }
+        let mut stack: Vec<u32> = Vec::with_capacity(64);
+        stack.push(0);
+        while let Some(index) = stack.pop() {
+            let node = &self.bvh.nodes[index as usize];
+            if node.is_leaf() {
+                out.push(self.leaf_face(node));
+                continue;
+            }
+            for child in [node.first_index, node.first_index + 1] {
+                if test(&self.bvh.nodes[child as usize]) {
+                    stack.push(child);
+                }
+            }
+        }
+    }
+
     /// Closest surface point to `p` (None for an empty mesh).
     ///
     /// Of several faces at the same distance, the lowest face index wins.

@@ -430,6 +430,12 @@ fn triangulate(
         sgn * exact::orient2d_filter(&approx[a], &approx[b], &approx[c])
             .unwrap_or_else(|| exact::orient2d_exact(&pts[a], &pts[b], &pts[c], axis))
     };
+    // Order along a line of the projection (lexicographic on the two in-plane axes), exact.
+    let (ax_i, ax_j) = exact::plane_axes(axis);
+    let along = |u: usize, v: usize| {
+        exact::cmp_coord(&pts[u], &pts[v], ax_i)
+            .then_with(|| exact::cmp_coord(&pts[u], &pts[v], ax_j))
+    };
     let mut poly: Vec<usize> = outer.to_vec();
     let mut fallback = false;
     // Stage 3a: bridge holes, one at a time.
@@ -451,7 +457,7 @@ fn triangulate(
                             if a == h || a == o || b == h || b == o {
                                 return false;
                             }
-                            segments_cross(orient, h, o, a, b)
+                            segments_cross(orient, &along, h, o, a, b)
                         })
                     };
                 if blocked(&poly, &mut orient)
@@ -506,7 +512,11 @@ fn triangulate(
                 if p == a || p == b || p == c {
                     continue;
                 }
-                if orient(a, b, p) > 0 && orient(b, c, p) > 0 && orient(c, a, p) > 0 {
+                // The closed triangle: a reflex or flat vertex exactly on the diagonal `ca`
+                // (contour points on one cutter plane are collinear in a target face's
+                // projection, in every perturbed configuration) blocks the ear too, or the
+                // clipped polygon would touch itself there and a later ear come out inverted.
+                if orient(a, b, p) >= 0 && orient(b, c, p) >= 0 && orient(c, a, p) >= 0 {
                     is_ear = false;
                     break;
                 }
@@ -568,9 +578,11 @@ fn locally_inside(
 }
 
 /// Do segments `pq` and `ab` cross (or touch)? Exact; with the tie-break the only touching
-/// configurations are shared endpoints, which the caller excludes.
+/// configurations are shared endpoints, which the caller excludes. Collinear segments (flat
+/// contour chains) touch only when they overlap along their common line.
 fn segments_cross(
     orient: &mut dyn FnMut(usize, usize, usize) -> Sign,
+    along: &dyn Fn(usize, usize) -> std::cmp::Ordering,
     p: usize,
     q: usize,
     a: usize,
@@ -581,7 +593,107 @@ fn segments_cross(
     if o1 * o2 > 0 {
         return false;
     }
+    if o1 == 0 && o2 == 0 {
+        // All four on one line: overlap of the two intervals along it.
+        let (p, q) = if along(p, q).is_le() { (p, q) } else { (q, p) };
+        let (a, b) = if along(a, b).is_le() { (a, b) } else { (b, a) };
+        return along(a, q).is_le() && along(p, b).is_le();
+    }
     let o3 = orient(a, b, p);
     let o4 = orient(a, b, q);
     o3 * o4 <= 0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Twice the signed area of a triangle of integer points in the z = 0 plane.
+    fn area2(p: &[[i64; 3]], t: [usize; 3]) -> i64 {
+        let [a, b, c] = t.map(|i| p[i]);
+        (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    }
+
+    fn check_triangulation(coords: &[[i64; 3]], outer: &[usize], holes: &[Vec<usize>]) {
+        let pts: Vec<HPoint> = coords.iter().map(HPoint::target_vertex).collect();
+        let (tris, fallback) = triangulate(outer, holes, &pts, 2, 1);
+        assert!(!fallback, "fallback used");
+        let ring_area = |r: &[usize]| -> i64 {
+            (1..r.len() - 1)
+                .map(|k| area2(coords, [r[0], r[k], r[k + 1]]))
+                .sum()
+        };
+        let want = ring_area(outer) + holes.iter().map(|h| ring_area(h)).sum::<i64>();
+        let mut sum = 0;
+        for &t in &tris {
+            let a = area2(coords, t);
+            assert!(a >= 0, "inverted triangle {t:?}");
+            sum += a;
+        }
+        assert_eq!(sum, want, "triangles do not tile the polygon");
+    }
+
+    /// The root cause of the pole regression (`boolean_props.rs`): reflex vertex 4 lies exactly
+    /// on the diagonal 0–2 of the convex vertex 1. Clipping the ear (0, 1, 2) would leave a
+    /// polygon touching itself at 4 and an inverted triangle at the end.
+    #[test]
+    fn reflex_vertex_on_an_ear_diagonal_blocks_the_ear() {
+        let coords = [
+            [0, 0, 0],
+            [4, 0, 0],
+            [4, 4, 0],
+            [3, 4, 0],
+            [2, 2, 0],
+            [0, 3, 0],
+        ];
+        check_triangulation(&coords, &[0, 1, 2, 3, 4, 5], &[]);
+        // Every rotation of the ring (the clipper starts at a different vertex).
+        for r in 1..6 {
+            let ring: Vec<usize> = (0..6).map(|k| (k + r) % 6).collect();
+            check_triangulation(&coords, &ring, &[]);
+        }
+    }
+
+    /// Flat chains (several contour points on one line, flat vertices on the hole's lines):
+    /// no fallback, exact tiling.
+    #[test]
+    fn flat_chains_and_collinear_bridges() {
+        let coords = [
+            [0, 0, 0],
+            [2, 0, 0],
+            [4, 0, 0],
+            [6, 0, 0],
+            [6, 6, 0],
+            [0, 6, 0],
+            // hole (clockwise), on the line y = 2 with the outer's flat vertices' x
+            [2, 2, 0],
+            [2, 4, 0],
+            [4, 4, 0],
+            [4, 2, 0],
+        ];
+        check_triangulation(&coords, &[0, 1, 2, 3, 4, 5], &[vec![6, 7, 8, 9]]);
+    }
+
+    /// Collinear segments cross only when they overlap (a bridge along a line that also holds
+    /// a disjoint flat edge is not blocked by it).
+    #[test]
+    fn collinear_segments_cross_only_when_they_overlap() {
+        let coords = [
+            [0, 0, 0],
+            [2, 0, 0],
+            [3, 0, 0],
+            [5, 0, 0],
+            [1, 0, 0],
+            [0, 1, 0],
+        ];
+        let pts: Vec<HPoint> = coords.iter().map(HPoint::target_vertex).collect();
+        let mut orient =
+            |a: usize, b: usize, c: usize| exact::orient2d(&pts[a], &pts[b], &pts[c], 2);
+        let along = |u: usize, v: usize| exact::cmp_coord(&pts[u], &pts[v], 0);
+        assert!(!segments_cross(&mut orient, &along, 0, 1, 2, 3));
+        assert!(!segments_cross(&mut orient, &along, 1, 0, 3, 2));
+        assert!(segments_cross(&mut orient, &along, 0, 2, 4, 3));
+        assert!(segments_cross(&mut orient, &along, 4, 5, 0, 1));
+        assert!(!segments_cross(&mut orient, &along, 2, 5, 0, 4));
+    }
 }

@@ -13,13 +13,16 @@
 
 use std::sync::Arc;
 
+use glam::DVec3;
+
 use crate::aabb::Aabb;
-use crate::adjacency::EdgeAdjacency;
+use crate::adjacency::{EdgeAdjacency, NO_EDGE};
 use crate::exact::LPoint;
 use crate::lattice::Lattice;
 use crate::mesh::{Mesh, MeshError};
 use crate::regions::Regions;
 use crate::spatial::SpatialIndex;
+use crate::winding::WindingTree;
 
 /// An integer box `[min, max]` (inclusive) in lattice coordinates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,7 +59,10 @@ impl IBox {
     /// Inclusive overlap test.
     #[inline]
     pub fn overlaps(&self, o: &IBox) -> bool {
-        (0..3).all(|k| self.min[k] <= o.max[k] && o.min[k] <= self.max[k])
+        // Written out: `(0..3).all(..)` did not fully inline in the broad phase.
+        (self.min[0] <= o.max[0] && o.min[0] <= self.max[0])
+            & (self.min[1] <= o.max[1] && o.min[1] <= self.max[1])
+            & (self.min[2] <= o.max[2] && o.min[2] <= self.max[2])
     }
 
     /// The box of a triangle.
@@ -176,58 +182,123 @@ impl Bvh {
     }
 }
 
-/// Per-cut scratch indexed by face and by vertex. Entries are valid only when their stamp equals
-/// the current epoch, so a cut never clears (or allocates) anything of the target's size.
+/// Per-cut scratch indexed by face, allocated (and its pages written) when the index is built,
+/// so that a cut never allocates, clears or first-touches anything of the target's size.
+///
+/// - `bits` (one bit per face) and `summary` (one bit per word of `bits`): the faces marked during
+///   this cut (the faces the cut removes from kept), read back in ascending order by
+///   [`Scratch::drain_marked`] in time proportional to their number (plus one word per 4096
+///   faces), which clears them again. At 2M faces the bitmap is 250 KB, so the flood fill's
+///   "seen" test stays in cache. `touched` (same layout as `bits`) marks the faces the contour
+///   splits; the cut clears it through its list of those faces.
+/// - `values`: per marked face its status, written only by cuts with several sub-cutters (a
+///   single cutter's status is always 1), valid only for marked faces.
+/// - `dirty`: a cut stopped before draining (an error); the next `begin` clears everything.
 #[derive(Debug, Default)]
 pub(crate) struct Scratch {
-    epoch: u32,
-    face_stamp: Vec<u32>,
-    face_value: Vec<u32>,
-    vertex_stamp: Vec<u32>,
-    vertex_value: Vec<u32>,
+    bits: Vec<u64>,
+    summary: Vec<u64>,
+    touched: Vec<u64>,
+    values: Vec<u32>,
+    faces: usize,
+    /// Number of marked faces.
+    marked: usize,
+    dirty: bool,
 }
 
 impl Scratch {
-    /// Starts a cut on a target of `faces` faces and `vertices` vertices.
-    pub fn begin(&mut self, faces: usize, vertices: usize) {
-        if self.face_stamp.len() != faces || self.vertex_stamp.len() != vertices {
-            *self = Scratch {
-                epoch: 0,
-                face_stamp: vec![0; faces],
-                face_value: vec![0; faces],
-                vertex_stamp: vec![0; vertices],
-                vertex_value: vec![0; vertices],
-            };
-        }
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            // Once every 2^32 cuts.
-            self.face_stamp.fill(0);
-            self.vertex_stamp.fill(0);
-            self.epoch = 1;
+    /// Scratch for a target of `faces` faces, with every page written once.
+    pub fn for_faces(faces: usize) -> Scratch {
+        Scratch {
+            // Non-zero fills, so that the pages are written now rather than at the first cut;
+            // `begin` zeroes the bitmaps.
+            bits: vec![u64::MAX; faces.div_ceil(64)],
+            summary: vec![u64::MAX; faces.div_ceil(64 * 64)],
+            touched: vec![u64::MAX; faces.div_ceil(64)],
+            values: vec![u32::MAX; faces],
+            faces,
+            marked: 0,
+            dirty: true,
         }
     }
 
-    #[inline]
-    pub fn face(&self, t: u32) -> Option<u32> {
-        (self.face_stamp[t as usize] == self.epoch).then(|| self.face_value[t as usize])
+    /// Starts a cut on a target of `faces` faces.
+    pub fn begin(&mut self, faces: usize) {
+        if self.faces != faces {
+            *self = Scratch::for_faces(faces);
+        }
+        if self.dirty {
+            self.bits.fill(0);
+            self.summary.fill(0);
+            self.touched.fill(0);
+            self.dirty = false;
+        }
+        self.marked = 0;
     }
 
-    #[inline]
-    pub fn set_face(&mut self, t: u32, value: u32) {
-        self.face_stamp[t as usize] = self.epoch;
-        self.face_value[t as usize] = value;
+    /// Number of faces marked in this cut.
+    pub fn marked_count(&self) -> usize {
+        self.marked
     }
 
+    /// Whether face `t` is marked.
     #[inline]
-    pub fn vertex(&self, v: u32) -> Option<u32> {
-        (self.vertex_stamp[v as usize] == self.epoch).then(|| self.vertex_value[v as usize])
+    pub fn is_marked(&self, t: u32) -> bool {
+        self.bits[(t >> 6) as usize] & (1 << (t & 63)) != 0
     }
 
+    /// Marks face `t` (see [`Scratch::drain_marked`]).
     #[inline]
-    pub fn set_vertex(&mut self, v: u32, value: u32) {
-        self.vertex_stamp[v as usize] = self.epoch;
-        self.vertex_value[v as usize] = value;
+    pub fn mark(&mut self, t: u32) {
+        let w = (t >> 6) as usize;
+        self.bits[w] |= 1 << (t & 63);
+        self.summary[w >> 6] |= 1 << (w & 63);
+        self.marked += 1;
+        self.dirty = true;
+    }
+
+    /// Marks face `t` and records its value.
+    #[inline]
+    pub fn mark_with(&mut self, t: u32, value: u32) {
+        self.mark(t);
+        self.values[t as usize] = value;
+    }
+
+    /// Marks face `t` as touched by the contour (and as marked).
+    #[inline]
+    pub fn mark_touched(&mut self, t: u32) {
+        self.mark(t);
+        self.touched[(t >> 6) as usize] |= 1 << (t & 63);
+    }
+
+    /// Calls `visit(face, touched, value)` for every marked face in ascending order (`value`:
+    /// what [`Scratch::mark_with`] stored, meaningless otherwise), and unmarks them all. The
+    /// caller clears `touched` with [`Scratch::clear_touched`].
+    pub fn drain_marked(&mut self, mut visit: impl FnMut(u32, bool, u32)) {
+        for s in 0..self.summary.len() {
+            let mut words = std::mem::take(&mut self.summary[s]);
+            while words != 0 {
+                let w = (s << 6) | words.trailing_zeros() as usize;
+                words &= words - 1;
+                let mut bits = std::mem::take(&mut self.bits[w]);
+                let touched = self.touched[w];
+                while bits != 0 {
+                    let b = bits.trailing_zeros();
+                    let t = (w << 6) | b as usize;
+                    visit(t as u32, touched & (1 << b) != 0, self.values[t]);
+                    bits &= bits - 1;
+                }
+            }
+        }
+    }
+
+    /// Unmarks the touched faces `faces` (after [`Scratch::drain_marked`]); the scratch is then
+    /// clean for the next cut.
+    pub fn clear_touched(&mut self, faces: &[u32]) {
+        for &t in faces {
+            self.touched[(t >> 6) as usize] = 0;
+        }
+        self.dirty = false;
     }
 }
 
@@ -238,9 +309,17 @@ pub(crate) struct ScratchCell(pub std::sync::Mutex<Scratch>);
 
 impl Clone for ScratchCell {
     fn clone(&self) -> Self {
-        ScratchCell::default()
+        let faces = self.0.lock().map_or(0, |s| s.faces);
+        ScratchCell(std::sync::Mutex::new(Scratch::for_faces(faces)))
     }
 }
+
+/// Entry of [`TargetIndex::face_neighbors`]: no face across this side (a boundary edge, or a
+/// side whose corners are the same vertex).
+pub const NO_NEIGHBOR: u32 = u32::MAX;
+/// Entry of [`TargetIndex::face_neighbors`]: a non-manifold edge (three faces or more); its
+/// faces are in the adjacency.
+pub const MANY_NEIGHBORS: u32 = u32::MAX - 1;
 
 /// The cached, cutter-independent part of a target (see the module doc).
 #[derive(Clone, Debug)]
@@ -267,7 +346,15 @@ pub struct TargetIndex {
     pub spatial: SpatialIndex,
     /// Per face: its lattice box (the BVH leaves' contents). Same length as `mesh.triangles`.
     pub face_boxes: Vec<IBox>,
-    /// Reusable per-cut scratch (epoch-stamped).
+    /// Per face, per side `k` (the edge `adjacency.triangle_edges[t][k]`): the other face of
+    /// that edge when it has exactly two, else [`NO_NEIGHBOR`] or [`MANY_NEIGHBORS`]. The flood
+    /// fill of a cut reads this instead of the CSR adjacency: one load per face.
+    pub face_neighbors: Vec<[u32; 3]>,
+    /// Fast winding-number tree of the mesh, built only when some region is open (the walls of
+    /// open targets are classified by the generalized winding number; closed ones by exact ray
+    /// parity).
+    pub winding: Option<WindingTree>,
+    /// Reusable per-cut scratch (allocated here).
     pub(crate) scratch: ScratchCell,
 }
 
@@ -317,6 +404,41 @@ impl TargetIndex {
                 }
             }
         }
+        let open = region_closed.iter().any(|&closed| !closed);
+        let (face_neighbors, (scratch, winding)) = rayon::join(
+            || {
+                use rayon::prelude::*;
+                adjacency
+                    .triangle_edges
+                    .par_iter()
+                    .enumerate()
+                    .map(|(t, edges)| {
+                        edges.map(|e| {
+                            if e == NO_EDGE {
+                                return NO_NEIGHBOR;
+                            }
+                            match *adjacency.faces_of_edge(e) {
+                                [a, b] => {
+                                    if a as usize == t {
+                                        b
+                                    } else {
+                                        a
+                                    }
+                                }
+                                [_] => NO_NEIGHBOR,
+                                _ => MANY_NEIGHBORS,
+                            }
+                        })
+                    })
+                    .collect::<Vec<_>>()
+            },
+            || {
+                rayon::join(
+                    || Scratch::for_faces(mesh.triangles.len()),
+                    || open.then(|| WindingTree::build(&mesh)),
+                )
+            },
+        );
         let mut region_boxes = vec![IBox::EMPTY; regions.count];
         let mut region_first_face = vec![u32::MAX; regions.count];
         let mut bounds = IBox::EMPTY;
@@ -340,7 +462,9 @@ impl TargetIndex {
             bounds,
             spatial,
             face_boxes,
-            scratch: ScratchCell::default(),
+            face_neighbors,
+            winding,
+            scratch: ScratchCell(std::sync::Mutex::new(scratch)),
         })
     }
 
@@ -362,6 +486,82 @@ impl TargetIndex {
             if self.face_boxes[f as usize].overlaps(query) {
                 visit(f);
             }
+        }
+    }
+
+    /// [`TargetIndex::faces_in_box`] for the box `query` of the cutter triangle `tri` (lattice
+    /// points), also skipping every subtree whose box lies strictly on one side of the
+    /// triangle's plane by more than a lattice step. A skipped face has all its corners strictly
+    /// on one side of the plane, so the broad phase's first exact test would reject it anyway:
+    /// the pairs that matter are the same, with far fewer candidates for large slanted cutter
+    /// faces. The plane test is in `f64` with a margin that covers its rounding (see below).
+    pub fn faces_near_triangle(&self, query: &IBox, tri: [&LPoint; 3], mut visit: impl FnMut(u32)) {
+        let f = |p: &LPoint| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64);
+        let (a, b, c) = (f(tri[0]), f(tri[1]), f(tri[2]));
+        // Lattice coordinates are below 2^29 in magnitude, so `b - a` and `c - a` are exact
+        // (below 2^30) and each normal component is a difference of two products below 2^60,
+        // computed with an absolute error below 2^7 + 2^7 + 2^8 = 512 (`NORMAL_ERROR`).
+        const NORMAL_ERROR: f64 = 512.0;
+        let n = (b - a).cross(c - a);
+        let n_abs = n.abs();
+        let widen = |p: &LPoint, k: i64| [(p[0] + k) as f64, (p[1] + k) as f64, (p[2] + k) as f64];
+        let aabb = Aabb {
+            min: self.lattice.to_world(widen(&query.min, -2)),
+            max: self.lattice.to_world(widen(&query.max, 2)),
+        };
+        let (origin, scale) = (self.lattice.origin, self.lattice.scale);
+        let mut found = Vec::new();
+        self.spatial.faces_where(
+            |min, max| {
+                if !(min.cmple(aabb.max).all() && aabb.min.cmple(max).all()) {
+                    return false;
+                }
+                // The node box in lattice units, widened by two steps (a vertex's lattice point
+                // is its rounded position, half a step away at most; world → lattice rounds a
+                // little more).
+                let lo = (min - origin) * scale - DVec3::splat(2.0);
+                let hi = (max - origin) * scale + DVec3::splat(2.0);
+                let centre = (lo + hi) * 0.5;
+                let half = (hi - lo) * 0.5;
+                let rel = centre - a;
+                let s = n.dot(rel);
+                let r = n_abs.dot(half);
+                // Bound on |s − s*| + |r − r*| (s*, r* with the exact normal): the normal's error
+                // times the lever arms, plus the rounding of the products and sums (a few 2^-53
+                // of their magnitudes; 1e-12 is generous), plus one.
+                let err = NORMAL_ERROR * (rel.abs().element_sum() + half.element_sum())
+                    + 1e-12 * n_abs.dot(rel.abs() + half)
+                    + 1.0;
+                s.abs() <= r + err
+            },
+            &mut found,
+        );
+        for t in found {
+            if self.face_boxes[t as usize].overlaps(query) {
+                visit(t);
+            }
+        }
+    }
+
+    /// The broad phase of a cut: for every cutter face `f` (lattice box `boxes[f]`, corners
+    /// `corners(f)`), the target faces of [`TargetIndex::faces_near_triangle`], ascending. Runs
+    /// over the cutter faces in parallel when there are several.
+    pub(crate) fn broad_phase<'a>(
+        &self,
+        boxes: &[IBox],
+        corners: impl Fn(u32) -> [&'a LPoint; 3] + Sync,
+    ) -> Vec<Vec<u32>> {
+        use rayon::prelude::*;
+        let one = |f: usize| {
+            let mut found = Vec::new();
+            self.faces_near_triangle(&boxes[f], corners(f as u32), |t| found.push(t));
+            found.sort_unstable();
+            found
+        };
+        if boxes.len() >= 8 {
+            (0..boxes.len()).into_par_iter().map(one).collect()
+        } else {
+            (0..boxes.len()).map(one).collect()
         }
     }
 
@@ -405,5 +605,62 @@ mod tests {
         assert_eq!(got, want);
         assert!(index.is_closed());
         assert_eq!(index.regions.count, 1);
+        assert!(index.winding.is_none());
+    }
+
+    /// An open target: walls come from the winding-number tree (a cutter inside the sphere's
+    /// volume, away from the hole, is all wall; one outside changes nothing).
+    #[test]
+    fn open_target_walls_follow_the_winding_number() {
+        let mut mesh = testkit::icosphere(3, 10.0);
+        let positions = mesh.positions.clone();
+        mesh.triangles.retain(|t| positions[t[0] as usize].z < 8.0);
+        let index = TargetIndex::build(mesh).unwrap();
+        assert!(!index.is_closed());
+        let tree = index.winding.as_ref().expect("tree of an open target");
+        tree.sanity_check(&index.mesh).unwrap();
+        let inside = testkit::cube(DVec3::splat(-2.0), DVec3::splat(2.0));
+        let r = crate::subtract(&index, &inside).unwrap();
+        assert_eq!(r.walls.mesh.triangles.len(), inside.triangles.len());
+        assert!(r.removed_faces.is_empty() && r.removed.mesh.is_empty());
+        let outside = testkit::cube(DVec3::splat(20.0), DVec3::splat(22.0));
+        assert!(crate::subtract(&index, &outside).unwrap().is_empty());
+        // A cutter crossing the open surface away from the hole: walls, removed and kept.
+        let across = testkit::cube(DVec3::new(-3.0, -3.0, -12.0), DVec3::new(3.0, 3.0, -8.0));
+        let r = crate::subtract(&index, &across).unwrap();
+        assert!(!r.walls.mesh.is_empty() && !r.removed.mesh.is_empty());
+    }
+
+    #[test]
+    fn scratch_gives_marked_faces_in_order_and_cleans_up() {
+        let mut s = Scratch::for_faces(10_000);
+        for round in 0..3u32 {
+            s.begin(10_000);
+            let faces = [9_999u32, 5, 4_096, 64, 63, 4_000 + round];
+            s.mark_touched(faces[0]);
+            for &t in &faces[1..] {
+                s.mark_with(t, t + round);
+            }
+            assert_eq!(s.marked_count(), faces.len());
+            let mut got = Vec::new();
+            s.drain_marked(|t, touched, value| got.push((t, touched, value)));
+            // A touched face's value is meaningless: compare it as 0.
+            for g in got.iter_mut().filter(|g| g.1) {
+                g.2 = 0;
+            }
+            let mut want: Vec<(u32, bool, u32)> =
+                faces[1..].iter().map(|&t| (t, false, t + round)).collect();
+            want.push((9_999, true, 0));
+            want.sort_unstable_by_key(|w| w.0);
+            assert_eq!(got, want);
+            s.clear_touched(&faces[..1]);
+            assert!(
+                s.bits
+                    .iter()
+                    .chain(&s.summary)
+                    .chain(&s.touched)
+                    .all(|&w| w == 0)
+            );
+        }
     }
 }

@@ -346,3 +346,70 @@ pub fn tetra(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Mesh {
     }
     m
 }
+
+/// A closed cutter with a zero-area triangle (a box whose bottom edge 0–1 carries an extra
+/// midpoint vertex 8, fixed up with the sliver (1, 0, 8)): vertex 8 touches the neighbouring
+/// face (0, 1, 5) along its edge, and touching counts as self-intersecting, so such a cutter is
+/// a typed error (never a cut with a face whose plane is undefined).
+#[test]
+fn zero_area_cutter_triangle_is_refused() {
+    let target = icosphere(3, 10.0);
+    let index = TargetIndex::build(target).unwrap();
+    let mut cutter = cube(v(-3.0, -3.0, 9.5), v(3.0, 3.0, 14.0));
+    cutter.positions.push(v(0.0, -3.0, 9.5));
+    // -z face was (0, 2, 3), (0, 3, 1): route its edge 1 → 0 through 8.
+    let k = cutter
+        .triangles
+        .iter()
+        .position(|t| *t == [0, 3, 1])
+        .unwrap();
+    cutter.triangles[k] = [0, 3, 8];
+    cutter.triangles.push([8, 3, 1]);
+    cutter.triangles.push([1, 0, 8]);
+    assert!(matches!(
+        csg::subtract(&index, &cutter),
+        Err(CutError::SelfIntersecting { .. })
+    ));
+}
+
+/// A self-intersecting target: two interpenetrating spheres (two closed regions) cut by a slab
+/// whose top and bottom faces meet both spheres in circles that cross each other. Kept and
+/// removed still partition the target exactly; the crossings on the cutter faces (whose walls
+/// the boolean does not resolve, see the robustness contract) are named by the diagnostic, which
+/// finds none on a target that does not intersect itself.
+#[test]
+fn interpenetrating_regions_are_exact_on_the_target_and_reported_on_walls() {
+    let mut target = icosphere(3, 5.0);
+    for p in &mut target.positions {
+        p.x -= 3.0;
+    }
+    let mut other = icosphere(3, 5.0);
+    for p in &mut other.positions {
+        p.x += 3.0;
+    }
+    target.append(&other);
+    let index = TargetIndex::build(target.clone()).unwrap();
+    let cutter = cube(v(-8.5, -7.5, -1.0), v(8.5, 7.5, 1.0));
+    let r = csg::subtract(&index, &cutter).unwrap();
+    let kept = r.materialize(&target);
+    let (at, ak, ar) = (area(&target), area(&kept), area(&r.removed.mesh));
+    assert!(
+        (ak + ar - at).abs() <= 1e-9 * at,
+        "area {ak} + {ar} != {at}"
+    );
+    let crossings = csg::cutcheck::crossing_cutter_faces(&index, &[&cutter]).unwrap();
+    // Two circles cross twice on the top face and twice on the bottom face.
+    assert_eq!(
+        crossings.iter().map(|c| c.1).sum::<usize>(),
+        4,
+        "{crossings:?}"
+    );
+    // One sphere alone: no crossing anywhere.
+    let single = icosphere(3, 5.0);
+    let index = TargetIndex::build(single).unwrap();
+    assert!(
+        csg::cutcheck::crossing_cutter_faces(&index, &[&cutter])
+            .unwrap()
+            .is_empty()
+    );
+}

@@ -4,6 +4,8 @@
 //! north pole of geodesic spheres of ~10k, ~130k and ~1M triangles; every step is timed alone.
 //! Prints p50 / p99 / max per size, the 1M/10k median ratio and new triangles per crossed
 //! triangle; targets: p50 ≤ 0.5 ms, max ≤ 4 ms at 1M, ratio ≤ 1.5, ≤ 3 new per crossed.
+//! Then the refusal rate on random strokes (slits and grooves; a real muscle with
+//! `CUTAWAY_ANATOMY` set).
 //! Criterion then measures one step at 1M. Run: `cargo bench -p cutter --bench scalpel`.
 
 use std::time::{Duration, Instant};
@@ -11,7 +13,7 @@ use std::time::{Duration, Instant};
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::DVec3;
 
-use cutter::scalpel::{Scalpel, ScalpelOptions};
+use cutter::scalpel::{Scalpel, ScalpelOptions, survey};
 
 const RADIUS: f64 = 50.0;
 
@@ -121,6 +123,8 @@ fn bench_scalpel(c: &mut Criterion) {
         );
     }
 
+    refusal_figures();
+
     // Criterion: one step of the 1M slit spiral (the spiral restarts when used up).
     let mesh = csg::testkit::geodesic_sphere(224, RADIUS);
     let h = mean_edge(&mesh);
@@ -149,6 +153,76 @@ fn bench_scalpel(c: &mut Criterion) {
             total
         })
     });
+}
+
+/// Refused steps on random strokes (`cutter::scalpel::survey`): slits and grooves on spheres of
+/// ~10k and ~130k triangles and, with `CUTAWAY_ANATOMY` set, on a real muscle.
+fn refusal_figures() {
+    let mut meshes = vec![
+        (
+            "sphere 10k".to_string(),
+            csg::testkit::geodesic_sphere(23, RADIUS),
+        ),
+        (
+            "sphere 130k".to_string(),
+            csg::testkit::geodesic_sphere(81, RADIUS),
+        ),
+    ];
+    if let Ok(dir) = std::env::var("CUTAWAY_ANATOMY") {
+        let path = std::path::Path::new(&dir)
+            .join("knee_vhf_left_denver/VHF_Left_Muscle_Gracilis_smooth.stl");
+        match read_binary_stl(&path) {
+            Some(m) => meshes.push(("gracilis".to_string(), m)),
+            None => eprintln!("refusals: cannot read {}", path.display()),
+        }
+    }
+    for (name, mesh) in &meshes {
+        let strokes = survey::random_strokes(mesh, 40, 7);
+        let h = survey::mean_edge(mesh);
+        for depth in [0.0, 2.0 * h] {
+            let options = ScalpelOptions::default().with_depth(depth);
+            let Ok((r, _)) = survey::survey(mesh, options, &strokes) else {
+                continue;
+            };
+            eprintln!(
+                "scalpel refusals {name} depth {depth:.3}: {} strokes, {} steps, {} refused ({:.2}%), {} on-surface samples off the mesh; causes {:?}",
+                r.strokes,
+                r.steps,
+                r.refused,
+                100.0 * r.rate(),
+                r.off_mesh,
+                r.top_causes()
+            );
+        }
+    }
+}
+
+/// Binary STL, bit-identical corners welded (bench-local: the loaders live in the app).
+fn read_binary_stl(path: &std::path::Path) -> Option<csg::Mesh> {
+    let bytes = std::fs::read(path).ok()?;
+    let n = u32::from_le_bytes(bytes.get(80..84)?.try_into().ok()?) as usize;
+    let mut map = std::collections::HashMap::new();
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for t in 0..n {
+        let base = 84 + 50 * t + 12;
+        let mut tri = [0u32; 3];
+        for (k, corner) in tri.iter_mut().enumerate() {
+            let mut c = [0f32; 3];
+            for (a, x) in c.iter_mut().enumerate() {
+                let o = base + 12 * k + 4 * a;
+                *x = f32::from_le_bytes(bytes.get(o..o + 4)?.try_into().ok()?);
+            }
+            *corner = *map.entry(c.map(f32::to_bits)).or_insert_with(|| {
+                positions.push(DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64));
+                positions.len() as u32 - 1
+            });
+        }
+        if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
+            triangles.push(tri);
+        }
+    }
+    csg::Mesh::new(positions, triangles).ok()
 }
 
 criterion_group! {

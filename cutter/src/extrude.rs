@@ -18,8 +18,10 @@
 //!    the face anywhere 0–2δ above the surface; we refine the bracketed contact by bisection and
 //!    rest the leading edge [`REST_GAP`]·δ outside it, the middle of that range, so the gap does
 //!    not depend on where the 2δ grid happens to fall. Capped at 45 steps outward or 60° inward;
-//!    a face that never finds the surface (the roller left the object) keeps its unrotated
-//!    position;
+//!    a face that finds no contact within 60° turns by the 60° when surface is still within the
+//!    roller's reach (it falls away over an edge: the thesis keeps turning inward until contact,
+//!    the next boxes catch up), and keeps its unrotated position when there is none (the roller
+//!    left the object);
 //! 5. the back edge F'G' along the negative normal of the new front face, at the previous depth.
 //!
 //! When the leading box reaches ω·δ wide it is locked and a new, thin leading box starts (several
@@ -515,8 +517,16 @@ fn roll(
             }
             clear = next;
         }
-        // A face that never finds the surface (the roller left the object) stays unrotated.
-        Some(hit.map_or((0.0, 0.0), |h| (clear, h)))
+        match hit {
+            Some(h) => Some((clear, h)),
+            // No contact within the inward limit. The thesis keeps turning inward "until an
+            // intersection occurs": where the surface is still within the roller's reach (it
+            // falls away faster than the limit, e.g. over an edge), turn by the limit and let
+            // the next boxes catch up; a roller that left the object altogether (no surface
+            // within reach) stays unrotated instead of curling up in the air.
+            None if surface.distance((e0 + h0) * 0.5) <= 2.0 * radius => Some((clear, clear)),
+            None => Some((0.0, 0.0)),
+        }
     };
     let angle = match bracket {
         None => 45.0 * step,
@@ -588,6 +598,12 @@ fn level(
     }
     let (ge, gh) = (surface.distance(e), surface.distance(h));
     if !(ge.is_finite() && gh.is_finite()) || (ge - gh).abs() < 0.5 * delta {
+        return (e, h);
+    }
+    // An end farther from the surface than half the edge's length hangs over an edge of the
+    // object (the surface under it fell away), not over a twist: levelling would lift the face
+    // off the surface the other end rests on.
+    if ge.max(gh) > half {
         return (e, h);
     }
     // Lower the higher end by half the difference, raise the other by as much.

@@ -503,6 +503,9 @@ impl CutawayApp {
             return;
         }
         self.viewport.cancel_drag();
+        if self.mode == Mode::Scalpel {
+            super::scalpel_mode::finish_stroke(self);
+        }
         self.mode = mode;
         self.say(format!("{} mode", mode.label()));
     }
@@ -803,7 +806,7 @@ impl CutawayApp {
                 let count = meshes.len();
                 for (i, mesh) in meshes {
                     if let Some(m) = self.scene.models.get_mut(i) {
-                        m.mesh = mesh;
+                        m.replace_mesh(mesh);
                     }
                 }
                 self.scene.cutters.clear();
@@ -975,6 +978,7 @@ impl CutawayApp {
                 (Key::F1, Mode::Camera),
                 (Key::F2, Mode::Edit),
                 (Key::F3, Mode::Preview),
+                (Key::F4, Mode::Scalpel),
             ] {
                 if i.consume_key(Modifiers::NONE, key) {
                     actions.push(Action::SetMode(mode));
@@ -1085,6 +1089,10 @@ impl eframe::App for CutawayApp {
                     actions.extend(super::models_panel::models_panel_ui(ui, self));
                     ui.add_space(10.0);
                     actions.extend(super::cutter_panel::cutter_panel_ui(ui, self));
+                    if self.mode == Mode::Scalpel {
+                        ui.add_space(10.0);
+                        super::scalpel_mode::scalpel_panel_ui(ui, self);
+                    }
                 });
             });
         egui::CentralPanel::default()
@@ -1112,6 +1120,7 @@ impl eframe::App for CutawayApp {
         }
         self.commit_edit_if_idle(&ctx);
         self.update_preview(&ctx);
+        super::live_cut::update_live(self, &ctx);
 
         if !self.exiting && self.recovery.due() {
             let result = self

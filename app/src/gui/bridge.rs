@@ -13,12 +13,12 @@ use cutter::{BoundedPlane, Cutter, Editor, EditorEvent, EditorSettings};
 
 use super::app::CutawayApp;
 use super::jobs::Progress;
-use crate::cutaway_geometry::{self, CutParts, PreviewGeometry};
+use crate::cutaway_geometry::{self, PreviewGeometry};
 use crate::render::{CutterOverlay, FrameInputs, OutputTarget, Renderer, ViewMode};
 use crate::scene::{CutKind, Scene, SceneCutter, SceneModel};
 
 /// Whether the scalpel mode exists in this build (its button is disabled otherwise).
-pub const SCALPEL_AVAILABLE: bool = false;
+pub const SCALPEL_AVAILABLE: bool = true;
 
 /// Targets up to this many triangles get their spatial index built on the UI thread (a few
 /// milliseconds); bigger ones in a background job with progress.
@@ -61,6 +61,8 @@ pub struct EditorSlot {
     indexes: Vec<(Weak<Mesh>, Arc<SpatialIndex>)>,
     /// The cursor the editor asked for at the last event.
     pub cursor: cutter::CursorHint,
+    /// Where the editor asked the real cursor to be put at the last event (viewport pixels).
+    pub warp: Option<DVec2>,
 }
 
 impl EditorSlot {
@@ -187,6 +189,7 @@ impl EditorSlot {
         }
         let response = active.editor.handle(event);
         self.cursor = response.cursor;
+        self.warp = response.warp_cursor;
         if !response.changed {
             return false;
         }
@@ -360,6 +363,9 @@ pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
     if app.mode == Mode::Preview {
         inputs.preview = app.viewport.preview.clone();
     }
+    if app.mode == Mode::Edit && app.viewport.live.enabled && !app.scene.cutters.is_empty() {
+        inputs.preview = app.viewport.live.geometry();
+    }
     if app.mode == Mode::Edit && !app.cutters_hidden {
         let active = app.viewport.editor.active_cutter();
         inputs.overlays = app
@@ -525,47 +531,82 @@ pub fn export_meshes(
     std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))?;
     let ext = settings.format.extension();
     let mut written = Vec::new();
-    cut_each_in_turn(scene, progress, |i, model, parts| {
-        let stem = sanitize(&format!("cutter{}_{}", i + 1, model.name));
-        for (wanted, part, mesh) in [
-            (settings.kept, "kept", &parts.kept),
-            (settings.walls, "walls", &parts.walls),
-            (settings.removed, "removed", &parts.removed),
+    cut_each_in_turn(scene, progress, |step, model| {
+        use cutaway_geometry::{SURFACE, select};
+        let stem = sanitize(&format!("cutter{}_{}", step.cutter + 1, model.name));
+        let tags = step.after_tags;
+        for (wanted, part) in [
+            (settings.kept, "kept"),
+            (settings.walls, "walls"),
+            (settings.removed, "removed"),
         ] {
-            if wanted && !mesh.triangles.is_empty() {
+            if !wanted {
+                continue;
+            }
+            let mesh = match part {
+                "kept" => select(step.after, |t| tags[t] == SURFACE),
+                "walls" => select(step.after, |t| tags[t] != SURFACE),
+                _ => step.removed.clone(),
+            };
+            if !mesh.triangles.is_empty() {
                 let path = dir.join(format!("{stem}_{part}.{ext}"));
-                crate::io::write_mesh(&path, mesh)?;
+                crate::io::write_mesh(&path, &mesh)?;
                 written.push(path);
             }
         }
-        Ok(parts.kept)
+        Ok(())
     })?;
     Ok(written)
 }
 
-/// Cuts every scene cutter out of its target in scene order; a model cut twice is cut the second
-/// time in what `visit` returned for the first cut. `visit(cutter index, target model, parts)`
-/// returns the model's mesh for later cutters. Returns, per model, its last such mesh (None if
-/// no cutter targets it). Each cutter's kind and smoothing are honoured (`cut_cutter`).
+/// Cuts every model by its cutters in turn ([`cutaway_geometry::cut_in_turn`]: each cutter cuts
+/// the closed result of the ones before it, so overlapping cutters give T ∖ (K1 ∪ … ∪ Kn), with
+/// no wall of one cutter left inside another). `visit(step, model)` sees every cutter's step
+/// (its `after` is kept part and walls so far, closed). Returns per model the closed result (None
+/// when no cutter targets it). Each cutter's kind and smoothing are honoured.
 fn cut_each_in_turn(
     scene: &Scene,
     progress: &Progress,
-    mut visit: impl FnMut(usize, &SceneModel, CutParts) -> anyhow::Result<Mesh>,
-) -> anyhow::Result<Vec<Option<Mesh>>> {
-    let mut current: Vec<Option<Mesh>> = vec![None; scene.models.len()];
-    for (i, cutter) in scene.cutters.iter().enumerate() {
-        progress.check()?;
-        progress.set(i as u64, scene.cutters.len() as u64);
-        let Some(model) = scene.models.get(cutter.target) else {
+    mut visit: impl FnMut(&cutaway_geometry::Step, &SceneModel) -> anyhow::Result<()>,
+) -> anyhow::Result<Vec<Option<Arc<Mesh>>>> {
+    let mut out = vec![None; scene.models.len()];
+    let mut cache = cutaway_geometry::CutCache::default();
+    let total = scene.cutters.len() as u64;
+    let mut done = 0u64;
+    for (m, model) in scene.models.iter().enumerate() {
+        let cutters: Vec<(usize, &SceneCutter)> = scene
+            .cutters
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.target == m)
+            .collect();
+        if cutters.is_empty() {
             continue;
-        };
-        let target = current[cutter.target]
-            .take()
-            .unwrap_or_else(|| (*model.mesh).clone());
-        let (parts, _approximation) = cutaway_geometry::cut_cutter(&target, cutter, true);
-        current[cutter.target] = Some(visit(i, model, parts)?);
+        }
+        progress.check()?;
+        let mut failure = None;
+        let sequence = cutaway_geometry::cut_in_turn(
+            &mut cache,
+            &model.mesh,
+            &cutters,
+            |_| false,
+            |step| {
+                if failure.is_some() {
+                    return;
+                }
+                done += 1;
+                progress.set(done, total);
+                if let Err(e) = progress.check().and_then(|()| visit(step, model)) {
+                    failure = Some(e);
+                }
+            },
+        );
+        if let Some(e) = failure {
+            return Err(e);
+        }
+        out[m] = Some(sequence.closed);
     }
-    Ok(current)
+    Ok(out)
 }
 
 /// File-name-safe version of a model name.
@@ -594,16 +635,11 @@ pub fn apply_all_cuts(
     scene: &Scene,
     progress: &Progress,
 ) -> anyhow::Result<Vec<(usize, Arc<Mesh>)>> {
-    let current = cut_each_in_turn(scene, progress, |_, _, parts| {
-        let mut closed = parts.kept;
-        closed.append(&parts.walls);
-        // Walls share the contour's positions bit for bit: welding closes the seam.
-        Ok(csg::weld::weld_exact(&closed).compacted())
-    })?;
+    let current = cut_each_in_turn(scene, progress, |_, _| Ok(()))?;
     Ok(current
         .into_iter()
         .enumerate()
-        .filter_map(|(i, m)| m.map(|m| (i, Arc::new(m))))
+        .filter_map(|(i, m)| m.map(|m| (i, m)))
         .collect())
 }
 

@@ -29,16 +29,32 @@ pub fn orbit(camera: &mut Camera, delta_px: DVec2) {
     camera.up = (rotation * up).try_normalize().unwrap_or(up);
 }
 
-/// World-space length of one pixel at the target's depth, for a viewport `height_px` tall.
-pub fn world_per_pixel(camera: &Camera, height_px: f64) -> f64 {
-    let tan_half = (camera.fov_y_deg.to_radians() * 0.5).tan();
-    2.0 * camera.distance() * tan_half / height_px.max(1.0)
+/// World-space point under pixel `px` on the plane through the camera target facing the camera
+/// (for tools that need a 3D point where nothing is hit, and for panning). Uses the camera's own
+/// pixel rays, so it agrees with the renderer and the editor by construction.
+pub fn point_on_target_plane(camera: &Camera, viewport_px: DVec2, px: DVec2) -> DVec3 {
+    let ray = camera.ray_through_pixel(viewport_px, px);
+    let normal = camera.forward();
+    let denom = ray.direction.dot(normal);
+    if denom.abs() < 1e-12 {
+        return camera.target;
+    }
+    ray.at((camera.target - ray.origin).dot(normal) / denom)
+}
+
+/// World-space length of one pixel at the target's depth: the distance between the points under
+/// two vertically adjacent pixels at the viewport centre.
+pub fn world_per_pixel(camera: &Camera, viewport_px: DVec2) -> f64 {
+    let centre = viewport_px * 0.5;
+    let a = point_on_target_plane(camera, viewport_px, centre);
+    let b = point_on_target_plane(camera, viewport_px, centre + DVec2::Y);
+    a.distance(b)
 }
 
 /// Pans eye and target together so the scene follows a drag of `delta_px` pixels.
 pub fn pan(camera: &mut Camera, delta_px: DVec2, viewport_px: DVec2) {
     let (right, up, _) = camera.basis();
-    let scale = world_per_pixel(camera, viewport_px.y);
+    let scale = world_per_pixel(camera, viewport_px);
     let shift = (-right * delta_px.x + up * delta_px.y) * scale;
     camera.eye += shift;
     camera.target += shift;

@@ -1,6 +1,7 @@
 //! The cutter tabs (thesis 3.5 E): Initialization (segment spacing ω, type Freeform/Wedge,
 //! smoothing) for the next cutter, and Visualization per cutter (Normal Cut, Transparency with
-//! its opacity, Slices, Ribbons with count and width) for Preview mode.
+//! its opacity, Slices, Ribbons with count and width) for Preview mode, and the "Live cut" toggle
+//! (the cut shown while painting in Edit mode, see [`super::live_cut`]).
 
 use super::app::{Action, CutawayApp};
 use crate::scene::{CutKind, SubCutterView};
@@ -16,6 +17,8 @@ pub enum CutterTab {
 pub fn cutter_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     let mut actions = Vec::new();
     ui.heading("Cutter");
+    ui.checkbox(&mut app.viewport.live.enabled, "Live cut")
+        .on_hover_text("In Edit mode, show the cut (kept part, walls, contour) under the cutter while you paint it; the cut runs in the background");
     ui.separator();
     ui.horizontal(|ui| {
         for (tab, label) in [

@@ -25,8 +25,11 @@ pub fn commands(mode: Mode) -> &'static [(&'static str, &'static str)] {
         ],
         Mode::Scalpel => &[
             ("Drag on model", "cut along the path"),
+            ("Alt+Drag / Right-drag", "orbit"),
+            ("Shift+Drag / Middle-drag", "pan"),
             ("Wheel", "zoom"),
             ("Ctrl+Z", "undo"),
+            ("F4", "Scalpel mode"),
         ],
     }
 }

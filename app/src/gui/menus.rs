@@ -297,7 +297,7 @@ pub fn toolbar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         )
         .min_size(egui::vec2(78.0, 24.0));
         let tip = if super::bridge::SCALPEL_AVAILABLE {
-            "Progressive scalpel cut along a path"
+            "Progressive scalpel cut along a path (F4)"
         } else {
             "The scalpel is not part of this build"
         };

@@ -8,7 +8,9 @@
 //!
 //! The UI thread only draws and translates input. Loads, index builds, cuts, exports and native
 //! file dialogs run on worker threads ([`jobs`]) with a progress window and Cancel for anything
-//! longer than half a second, so a 2M-triangle model never freezes the window.
+//! longer than half a second, so a 2M-triangle model never freezes the window. While a cutter is
+//! painted in Edit mode, [`live_cut`] re-cuts it on its own worker (latest request wins) and the
+//! view shows the result under the translucent cutter.
 
 use std::path::PathBuf;
 
@@ -18,9 +20,11 @@ pub mod camera_controls;
 pub mod cutter_panel;
 pub mod jobs;
 pub mod key_reference;
+pub mod live_cut;
 pub mod menus;
 pub mod models_panel;
 pub mod recovery;
+pub mod scalpel_mode;
 pub mod status_bar;
 pub mod undo;
 pub mod viewport;

@@ -27,6 +27,40 @@ enum Drag {
     Editor,
 }
 
+/// The cursor warp of a handle press (thesis 3.3: the cursor snaps to the middle of the handle's
+/// front edge). The editor already treats the pointer as moved there for the whole drag (it adds
+/// the press-to-handle offset to every position), so once the real cursor has arrived at the
+/// handle the positions sent to it are shifted back by that offset; a platform that ignores the
+/// warp request (Wayland, test harnesses) never arrives and gets the plain positions.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CursorWarp {
+    /// (handle, press) in viewport pixels while waiting for the cursor to arrive.
+    pending: Option<(DVec2, DVec2)>,
+    /// Subtracted from the pointer position for the rest of the drag.
+    offset: DVec2,
+}
+
+impl CursorWarp {
+    /// The cursor was asked to move from `press` to `handle`.
+    pub fn requested(&mut self, handle: DVec2, press: DVec2) {
+        *self = CursorWarp {
+            pending: Some((handle, press)),
+            offset: DVec2::ZERO,
+        };
+    }
+
+    /// The position to send to the editor for the real pointer position `raw` during the drag.
+    pub fn observe(&mut self, raw: DVec2) -> DVec2 {
+        if let Some((handle, press)) = self.pending
+            && raw.distance(handle) <= 1.5
+        {
+            self.offset = handle - press;
+            self.pending = None;
+        }
+        raw - self.offset
+    }
+}
+
 /// A gesture being recorded (the "record gesture" debug action).
 #[derive(Clone, Debug)]
 pub struct Recording {
@@ -41,16 +75,24 @@ pub struct Recording {
 /// Viewport state that lives across frames.
 pub struct ViewportState {
     drag: Option<Drag>,
+    /// The cursor warp of the extrusion drag in progress.
+    warp: CursorWarp,
     /// Size of the viewport in physical pixels at the last frame.
     pub size_px: DVec2,
+    /// The viewport's rectangle in points at the last frame.
+    pub rect: egui::Rect,
     /// Pointer position of the last editor event (to send moves only when it changes).
     last_pointer: Option<DVec2>,
     pub recording: Option<Recording>,
     /// The cutter editor and its spatial-index cache.
     pub editor: super::bridge::EditorSlot,
+    /// Scalpel mode's blade settings, session and stroke.
+    pub scalpel: super::scalpel_mode::ScalpelSlot,
     /// Cut parts shown in Preview, with the scene state they were computed for.
     pub preview: Option<Arc<crate::cutaway_geometry::PreviewGeometry>>,
     pub preview_key: Option<super::bridge::PreviewKey>,
+    /// The live re-cut shown in Edit mode while the cutter is painted.
+    pub live: super::live_cut::LiveCut,
     /// The renderer is installed in egui's callback resources.
     pub gpu: bool,
 }
@@ -59,12 +101,16 @@ impl ViewportState {
     pub fn new(render_state: Option<&egui_wgpu::RenderState>) -> ViewportState {
         ViewportState {
             drag: None,
+            warp: CursorWarp::default(),
             size_px: DVec2::new(1280.0, 800.0),
+            rect: egui::Rect::NOTHING,
             last_pointer: None,
             recording: None,
             editor: super::bridge::EditorSlot::default(),
+            scalpel: Default::default(),
             preview: None,
             preview_key: None,
+            live: Default::default(),
             gpu: super::bridge::install_renderer(render_state),
         }
     }
@@ -75,9 +121,11 @@ impl ViewportState {
 
     pub fn reset_editor(&mut self) {
         self.editor = super::bridge::EditorSlot::default();
+        self.scalpel.reset();
         self.drag = None;
         self.preview = None;
         self.preview_key = None;
+        self.live.clear();
     }
 
     pub fn start_recording(&mut self, camera: &Camera, init: &CutterInit) {
@@ -162,6 +210,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     let ppp = ui.ctx().pixels_per_point() as f64;
     // Allocate.
     let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click_and_drag());
+    app.viewport.rect = rect;
     app.viewport.size_px = DVec2::new(
         (rect.width() as f64 * ppp).round(),
         (rect.height() as f64 * ppp).round(),
@@ -175,9 +224,8 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
 
     // Interact.
     match app.mode {
-        Mode::Camera | Mode::Preview | Mode::Scalpel => {
-            camera_input(ui, &response, app, ppp, to_px, &mut actions)
-        }
+        Mode::Camera | Mode::Preview => camera_input(ui, &response, app, ppp, to_px, &mut actions),
+        Mode::Scalpel => super::scalpel_mode::scalpel_input(ui, &response, app, ppp, to_px),
         Mode::Edit => edit_input(ui, &response, app, to_px),
     }
     response.context_menu(|ui| {
@@ -297,7 +345,12 @@ fn edit_input(
     let Some(pos) = ui.input(|i| i.pointer.latest_pos()) else {
         return;
     };
-    let px = to_px(pos);
+    let raw_px = to_px(pos);
+    let px = if app.viewport.drag == Some(Drag::Editor) {
+        app.viewport.warp.observe(raw_px)
+    } else {
+        raw_px
+    };
     let inside = response.rect.contains(pos);
     let pressed = ui.input(|i| i.pointer.primary_pressed()) && inside && response.hovered();
     let released = ui.input(|i| i.pointer.primary_released());
@@ -338,6 +391,14 @@ fn edit_input(
                 ctrl,
             },
         );
+        app.viewport.warp = CursorWarp::default();
+        if let Some(handle) = app.viewport.editor.warp.take() {
+            app.viewport.warp.requested(handle, px);
+            let ppp = ui.ctx().pixels_per_point();
+            let to = response.rect.min + egui::vec2(handle.x as f32 / ppp, handle.y as f32 / ppp);
+            ui.ctx()
+                .send_viewport_cmd(egui::ViewportCommand::CursorPosition(to));
+        }
     } else if app.viewport.last_pointer != Some(px)
         && (inside || app.viewport.drag == Some(Drag::Editor))
     {
@@ -354,6 +415,7 @@ fn edit_input(
     }
     if released && app.viewport.drag == Some(Drag::Editor) {
         app.viewport.drag = None;
+        app.viewport.warp = CursorWarp::default();
         changed |= app.viewport.editor_event(
             &mut app.scene,
             EditorEvent::Release {
@@ -451,15 +513,9 @@ pub fn context_menu_ui(ui: &mut egui::Ui, app: &CutawayApp) -> Vec<Action> {
 }
 
 /// World-space point under pixel `px` on the pick plane through the camera target (for tools
-/// that need a 3D point where nothing is hit).
+/// that need a 3D point where nothing is hit); see [`camera_controls::point_on_target_plane`].
 pub fn point_on_target_plane(camera: &Camera, viewport: DVec2, px: DVec2) -> DVec3 {
-    let ray = camera.ray_through_pixel(viewport, px);
-    let normal = camera.forward();
-    let denom = ray.direction.dot(normal);
-    if denom.abs() < 1e-12 {
-        return camera.target;
-    }
-    ray.at((camera.target - ray.origin).dot(normal) / denom)
+    camera_controls::point_on_target_plane(camera, viewport, px)
 }
 
 #[cfg(test)]
@@ -496,6 +552,24 @@ mod tests {
         let text = std::fs::read_to_string(&path).unwrap();
         assert!(text.contains("cutaway-gesture/1"));
         let _ = std::fs::remove_file(&path);
+    }
+
+    #[test]
+    fn a_warped_cursor_is_not_offset_twice() {
+        let (press, handle) = (DVec2::new(100.0, 200.0), DVec2::new(110.0, 195.0));
+        let editor_sees = |sent: DVec2| sent + (handle - press);
+        let mut warp = CursorWarp::default();
+        warp.requested(handle, press);
+        // Before the cursor arrives (or when the platform ignores the warp): plain positions.
+        assert_eq!(
+            warp.observe(DVec2::new(101.0, 200.0)),
+            DVec2::new(101.0, 200.0)
+        );
+        // The cursor arrived at the handle: the editor sees the real position from now on.
+        let sent = warp.observe(handle);
+        assert_eq!(editor_sees(sent), handle);
+        let later = DVec2::new(150.0, 180.0);
+        assert_eq!(editor_sees(warp.observe(later)), later);
     }
 
     #[test]

@@ -304,6 +304,44 @@ pub fn read_mesh(path: &Path) -> anyhow::Result<Mesh> {
     Ok(mesh)
 }
 
+/// Reads a mesh file exactly as stored, all parts concatenated: no welding, no dropping of unused
+/// vertices, no region split, so a mesh written by [`write_mesh`] as `.ply` reads back bit for
+/// bit (positions and triangles in the same order; OBJ goes through `tobj`, which may reorder). Indices are checked and coordinates
+/// must be finite; a file without triangles gives an empty mesh.
+pub fn read_mesh_verbatim(path: &Path) -> anyhow::Result<Mesh> {
+    read_mesh_verbatim_inner(path).with_context(|| path.display().to_string())
+}
+
+fn read_mesh_verbatim_inner(path: &Path) -> anyhow::Result<Mesh> {
+    let format = Format::from_path(path)
+        .ok_or_else(|| anyhow::anyhow!("unknown mesh format; expected .obj, .stl, .ply or .vtk"))?;
+    let bytes = std::fs::read(path)?;
+    if bytes.is_empty() {
+        anyhow::bail!("the file is empty");
+    }
+    let parsed = match format {
+        Format::Obj => guarded(format, || obj::parse(&bytes)),
+        Format::Stl => stl::parse(&bytes),
+        Format::Ply => guarded(format, || ply::parse(&bytes)),
+        Format::Vtk => guarded(format, || vtk::parse(&bytes)),
+    };
+    let raw = parsed.map_err(|e| explain_mismatch(format, &bytes, e))?;
+    let mut mesh = Mesh::default();
+    for part in raw {
+        let part = Mesh {
+            positions: part.positions,
+            triangles: part.triangles,
+        };
+        part.sanity_check().context("bad mesh data")?;
+        if mesh.positions.is_empty() && mesh.triangles.is_empty() {
+            mesh = part;
+        } else {
+            mesh.append(&part);
+        }
+    }
+    Ok(mesh)
+}
+
 /// Loads a file or every mesh file of a directory, split into regions, one [`Model`] per region,
 /// in file order (files of a directory sorted by name).
 ///

@@ -74,7 +74,8 @@ pub enum ViewMode {
     /// The models as they are; cutters hidden.
     #[default]
     Camera,
-    /// The models as they are and the cutters of [`FrameInputs::overlays`], semi-transparent.
+    /// The models as they are and the cutters of [`FrameInputs::overlays`], semi-transparent;
+    /// with [`FrameInputs::preview`] (the GUI's live cut) the cut models are drawn by its parts.
     Edit,
     /// Cuts executed: [`FrameInputs::preview`] replaces the cut models; cutters hidden.
     Preview,

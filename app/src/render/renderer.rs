@@ -357,7 +357,8 @@ impl Renderer {
         let contour_bias = (radius * 0.004) as f32;
 
         // Preview parts.
-        let preview = if frame.mode == ViewMode::Preview {
+        // Edit mode shows the live cut under the cutters when the GUI provides one.
+        let preview = if matches!(frame.mode, ViewMode::Preview | ViewMode::Edit) {
             frame.preview.clone()
         } else {
             None

@@ -5,12 +5,12 @@
 //! (vertex before edge, as SOFA's `computeIncisionPath`), so a point exactly on a vertex never
 //! becomes "on an edge at t = 1e-17" and no sliver triangle is created next to a vertex or edge.
 //!
-//! The exact predicate is `robust::orient3d` (Shewchuk). TODO(lead): unify with the csg exact
-//! predicates module once it exists.
+//! The exact predicate is `csg::exact::orient3d_f64` (Shewchuk's adaptive `orient3d`), the
+//! mesh core's one home for exact predicates.
 
 use glam::DVec3;
 
-use super::dyn_mesh::DynMesh;
+use super::dyn_mesh::{DynMesh, is_real};
 
 /// Where a cut point lies on the current mesh.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,22 +23,12 @@ pub enum CutPoint {
     Face { t: u32, point: DVec3 },
 }
 
-/// Side of `x` relative to the plane through `a`, `b`, `c`: `+1`, `-1` or `0` (exact).
+/// Side of `x` relative to the plane through `a`, `b`, `c`: `+1` on the side the normal of the
+/// counter-clockwise triangle points to, `-1` on the other, `0` on the plane (exact, via
+/// [`csg::exact::orient3d_f64`]).
 #[inline]
 pub fn side(a: DVec3, b: DVec3, c: DVec3, x: DVec3) -> i8 {
-    let p = |v: DVec3| robust::Coord3D {
-        x: v.x,
-        y: v.y,
-        z: v.z,
-    };
-    let o = robust::orient3d(p(a), p(b), p(c), p(x));
-    if o > 0.0 {
-        1
-    } else if o < 0.0 {
-        -1
-    } else {
-        0
-    }
+    csg::exact::orient3d_f64(a.to_array(), b.to_array(), c.to_array(), x.to_array())
 }
 
 /// Classifies the point with barycentric weights `bary` (corners 0, 1, 2 of triangle `t`) with
@@ -118,10 +108,15 @@ pub fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
 }
 
 /// The triangle of `mesh` closest to `p` with the closest point's barycentric weights and
-/// distance, by a linear scan. Used only where a stroke (re)starts, never inside a step.
+/// distance, by a linear scan. Used only where a stroke starts (`begin_stroke`), never inside a
+/// step (a cut restarting inside a stroke uses [`closest_face_near`]).
 pub fn closest_face(mesh: &DynMesh, p: DVec3) -> Option<(u32, DVec3, f64)> {
     let mut best: Option<(u32, DVec3, f64)> = None;
     for (t, tri) in mesh.triangles.iter().enumerate() {
+        if mesh.is_wall(t as u32) {
+            // Groove walls are below the surface: a stroke never starts on them.
+            continue;
+        }
         let (a, b, c) = (mesh.pos(tri[0]), mesh.pos(tri[1]), mesh.pos(tri[2]));
         // Cheap reject on the box distance.
         if let Some((_, _, d)) = best {
@@ -137,6 +132,62 @@ pub fn closest_face(mesh: &DynMesh, p: DVec3) -> Option<(u32, DVec3, f64)> {
         let d = q.distance(p);
         if best.is_none_or(|(_, _, bd)| d < bd) {
             best = Some((t as u32, w, d));
+        }
+    }
+    best
+}
+
+/// The surface triangle nearest `p` among those connected to vertex `v`, searched best-first
+/// outward from `v`'s triangles (by the distance from `p` to each triangle's bounding box, over
+/// twins, walls included as passages) and stopped once no unvisited triangle can be nearer or
+/// `limit` triangles were examined. Cost independent of the mesh size: used where a cut restarts
+/// inside a stroke (after merging into another cut), where the walk knows where it is.
+pub fn closest_face_near(
+    mesh: &DynMesh,
+    v: u32,
+    p: DVec3,
+    limit: usize,
+) -> Option<(u32, DVec3, f64)> {
+    use std::cmp::Reverse;
+    use std::collections::{BinaryHeap, HashSet};
+    let box_distance = |t: u32| {
+        let [a, b, c] = mesh.triangles[t as usize].map(|x| mesh.pos(x));
+        p.clamp(a.min(b).min(c), a.max(b).max(c)).distance(p)
+    };
+    let mut seen = HashSet::new();
+    let mut heap = BinaryHeap::new();
+    let mut fan = Vec::new();
+    let mut seeds = vec![v];
+    seeds.extend(mesh.copies(v));
+    for s in seeds {
+        mesh.fan_into(s, &mut fan);
+        for &h in &fan {
+            if seen.insert(h / 3) {
+                // Distances are >= 0, so their bit patterns order like the values.
+                heap.push(Reverse((box_distance(h / 3).to_bits(), h / 3)));
+            }
+        }
+    }
+    let mut best: Option<(u32, DVec3, f64)> = None;
+    let mut examined = 0;
+    while let Some(Reverse((bits, t))) = heap.pop() {
+        if best.is_some_and(|(_, _, d)| f64::from_bits(bits) >= d) || examined >= limit {
+            break;
+        }
+        examined += 1;
+        if !mesh.is_wall(t) {
+            let [a, b, c] = mesh.triangles[t as usize].map(|x| mesh.pos(x));
+            let w = closest_on_triangle(p, a, b, c);
+            let d = (a * w.x + b * w.y + c * w.z).distance(p);
+            if best.is_none_or(|(_, _, bd)| d < bd) {
+                best = Some((t, w, d));
+            }
+        }
+        for k in 0..3 {
+            let g = mesh.twin(3 * t + k);
+            if is_real(g) && seen.insert(g / 3) {
+                heap.push(Reverse((box_distance(g / 3).to_bits(), g / 3)));
+            }
         }
     }
     best
@@ -182,6 +233,9 @@ mod tests {
             side(a, b, c, DVec3::new(0.3, 1e-300, 0.7)),
             -side(a, b, c, DVec3::new(0.3, -1e-300, 0.7))
         );
+        // Positive on the side the counter-clockwise triangle's normal points to.
+        assert_eq!(side(DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z), 1);
+        assert_eq!(side(DVec3::ZERO, DVec3::X, DVec3::Y, -DVec3::Z), -1);
     }
 
     #[test]
@@ -193,5 +247,33 @@ mod tests {
         );
         let w = closest_on_triangle(DVec3::new(0.25, 0.25, 5.0), a, b, c);
         assert!((w - DVec3::new(0.5, 0.25, 0.25)).length() < 1e-12);
+    }
+
+    #[test]
+    fn local_search_finds_the_nearest_face_without_scanning() {
+        let m = DynMesh::from_mesh(&csg::testkit::icosphere(3, 10.0));
+        let mut seed = 12345u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for k in 0..200u32 {
+            let v = k * 3 % m.vertex_count() as u32;
+            let jitter = DVec3::new(rnd(), rnd(), rnd()) * 3.0;
+            let p = m.pos(v) + jitter;
+            let (_, _, global) = closest_face(&m, p).unwrap();
+            let (t, w, local) = closest_face_near(&m, v, p, 4096).unwrap();
+            assert!(
+                (global - local).abs() <= 1e-9 * (1.0 + global),
+                "{global} {local}"
+            );
+            let [a, b, c] = m.triangles[t as usize].map(|x| m.pos(x));
+            assert!(((a * w.x + b * w.y + c * w.z).distance(p) - local).abs() < 1e-9);
+        }
+        // The limit bounds the work: one triangle examined gives one of the vertex's own.
+        let (t, _, _) = closest_face_near(&m, 0, -m.pos(0), 1).unwrap();
+        assert!(m.triangles[t as usize].contains(&0));
     }
 }

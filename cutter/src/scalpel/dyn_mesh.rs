@@ -45,6 +45,7 @@ enum Change {
     Twin(u32, u32),
     VertHe(u32, u32),
     NextCopy(u32, u32),
+    Pos(u32, DVec3),
 }
 
 /// A point in the edit history to roll back to.
@@ -75,6 +76,13 @@ pub struct DynMesh {
     pub(crate) next_copy: Vec<u32>,
     /// Input vertices whose triangles form more than one fan (bow-ties): never cut through.
     pub(crate) singular: Vec<bool>,
+    /// Groove floor vertices (bottoms made by the blade, below the surface). A triangle with a
+    /// floor vertex is a groove wall: the surface walk never crosses it (the cross-cutting
+    /// paper's "groove triangle" flag). Length `positions.len()`.
+    pub(crate) floor: Vec<bool>,
+    /// Wall triangles (groove or through-cut walls, below the surface): the surface walk never
+    /// crosses them. Length `triangles.len()`; a triangle split keeps its flag in all parts.
+    pub(crate) wall_tri: Vec<bool>,
     /// Undo log: the old value of every write since the oldest live [`Mark`].
     journal: Vec<Change>,
 }
@@ -138,6 +146,8 @@ impl DynMesh {
             vert_he,
             next_copy: (0..nv as u32).collect(),
             singular: vec![false; nv],
+            floor: vec![false; nv],
+            wall_tri: vec![false; nt],
             journal: Vec::new(),
         };
         // A vertex whose fan does not reach all its corners is a bow-tie.
@@ -163,6 +173,8 @@ impl DynMesh {
         self.vert_he.reserve(triangles);
         self.next_copy.reserve(triangles);
         self.singular.reserve(triangles);
+        self.floor.reserve(triangles);
+        self.wall_tri.reserve(triangles);
     }
 
     /// The mesh as a [`csg::Mesh`] (rest pose).
@@ -344,6 +356,7 @@ impl DynMesh {
                 Some(Change::Twin(h, v)) => self.twin[h as usize] = v,
                 Some(Change::VertHe(x, v)) => self.vert_he[x as usize] = v,
                 Some(Change::NextCopy(x, v)) => self.next_copy[x as usize] = v,
+                Some(Change::Pos(x, p)) => self.positions[x as usize] = p,
                 None => break,
             }
         }
@@ -351,8 +364,92 @@ impl DynMesh {
         self.vert_he.truncate(mark.positions);
         self.next_copy.truncate(mark.positions);
         self.singular.truncate(mark.positions);
+        self.floor.truncate(mark.positions);
         self.triangles.truncate(mark.triangles);
+        self.wall_tri.truncate(mark.triangles);
         self.twin.truncate(3 * mark.triangles);
+    }
+
+    /// Triangles written or created since `mark` (sorted, unique): what a step touched.
+    pub(crate) fn touched_since(&self, mark: Mark) -> Vec<u32> {
+        let mut out: Vec<u32> = (mark.triangles as u32..self.triangles.len() as u32).collect();
+        for c in &self.journal[mark.journal.min(self.journal.len())..] {
+            match *c {
+                Change::Tri(t, _) => out.push(t),
+                Change::Twin(h, _) => out.push(h / 3),
+                _ => {}
+            }
+        }
+        out.retain(|&t| (t as usize) < self.triangles.len());
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// Local validation of triangles `tris` (what a step touched; cost proportional to them):
+    /// indices valid and distinct, twins mutual and reversed, no boundary edge when `closed`,
+    /// no directed edge used twice around a corner, and every corner's triangle in the fan its
+    /// vertex names (no bow-tie made). The step fails and rolls back when this finds a problem,
+    /// so a bug in a rare configuration costs the user one refused step, never a broken mesh.
+    pub(crate) fn local_problem(&self, tris: &[u32], closed: bool) -> Option<String> {
+        let nv = self.positions.len() as u32;
+        // (corner vertex, its outgoing half-edge) of every touched triangle, grouped by vertex
+        // so that each vertex's fan is walked once.
+        let mut corners: Vec<(u32, u32)> = Vec::with_capacity(3 * tris.len());
+        for &t in tris {
+            let tri = self.triangles[t as usize];
+            if tri.iter().any(|&v| v >= nv)
+                || tri[0] == tri[1]
+                || tri[1] == tri[2]
+                || tri[0] == tri[2]
+            {
+                return Some(format!("triangle {t} {tri:?} has a bad index"));
+            }
+            for k in 0..3 {
+                let h = 3 * t + k;
+                let g = self.twin[h as usize];
+                if is_real(g) {
+                    if g as usize >= self.twin.len()
+                        || self.twin[g as usize] != h
+                        || self.origin(g) != self.dest(h)
+                        || self.dest(g) != self.origin(h)
+                    {
+                        return Some(format!("half-edge {h} and its twin {g} disagree"));
+                    }
+                } else if g == NO_TWIN && closed {
+                    return Some(format!("half-edge {h} of triangle {t} {tri:?} is open"));
+                }
+                corners.push((tri[k as usize], h));
+            }
+        }
+        corners.sort_unstable();
+        let mut fan = Vec::new();
+        let mut dests = Vec::new();
+        for group in corners.chunk_by(|x, y| x.0 == y.0) {
+            let v = group[0].0;
+            let start = self.vert_he[v as usize];
+            if start == NO_TWIN || self.origin(start) != v {
+                return Some(format!("vertex {v} has no outgoing half-edge"));
+            }
+            self.fan_from(start, &mut fan);
+            if !self.singular[v as usize]
+                && let Some(&(_, h)) = group.iter().find(|(_, h)| !fan.contains(h))
+            {
+                return Some(format!("vertex {v}: triangle {} is outside its fan", h / 3));
+            }
+            dests.clear();
+            dests.extend(fan.iter().map(|&x| self.dest(x)));
+            dests.sort_unstable();
+            if let Some(w) = dests.windows(2).find(|w| w[0] == w[1]) {
+                return Some(format!("directed edge {v} -> {} is used twice", w[0]));
+            }
+        }
+        None
+    }
+
+    /// [`DynMesh::local_problem`] found nothing.
+    pub(crate) fn local_check(&self, tris: &[u32], closed: bool) -> bool {
+        self.local_problem(tris, closed).is_none()
     }
 
     /// Forgets the undo history (nothing before now can be rolled back any more).
@@ -388,6 +485,13 @@ impl DynMesh {
         self.next_copy[v as usize] = n;
     }
 
+    /// Moves vertex `v` (only groove floor vertices are ever moved: the deeper cut at a crossing).
+    pub(crate) fn set_pos(&mut self, v: u32, p: DVec3) {
+        let old = self.positions[v as usize];
+        self.journal.push(Change::Pos(v, old));
+        self.positions[v as usize] = p;
+    }
+
     /// Appends a vertex (its own single copy).
     pub(crate) fn push_vertex(&mut self, p: DVec3) -> u32 {
         let v = self.positions.len() as u32;
@@ -395,14 +499,86 @@ impl DynMesh {
         self.vert_he.push(NO_TWIN);
         self.next_copy.push(v);
         self.singular.push(false);
+        self.floor.push(false);
         v
+    }
+
+    /// Appends a groove floor vertex.
+    pub(crate) fn push_floor_vertex(&mut self, p: DVec3) -> u32 {
+        let v = self.push_vertex(p);
+        self.floor[v as usize] = true;
+        v
+    }
+
+    /// Whether `v` is a groove floor vertex.
+    #[inline]
+    pub fn is_floor(&self, v: u32) -> bool {
+        self.floor[v as usize]
+    }
+
+    /// Whether triangle `t` is a wall (of a groove or a through-cut).
+    #[inline]
+    pub fn is_wall(&self, t: u32) -> bool {
+        self.wall_tri[t as usize]
+    }
+
+    /// The surface (non-wall) part of `v`'s fan in counter-clockwise order, starting right after
+    /// a wall or boundary, so that its first and last edges are lip edges when `v` is on a lip.
+    /// Returns false when `v` has no surface triangle.
+    pub fn surface_fan_into(&self, v: u32, out: &mut Vec<u32>) -> bool {
+        let closed = self.fan_into(v, out);
+        if !out.iter().any(|&h| self.is_wall(h / 3)) {
+            return !out.is_empty();
+        }
+        let n = out.len();
+        // The first surface triangle that follows a wall (cyclically when the fan is closed).
+        let start = (0..n).find(|&i| {
+            !self.is_wall(out[i] / 3)
+                && if i == 0 {
+                    !closed || self.is_wall(out[n - 1] / 3)
+                } else {
+                    self.is_wall(out[i - 1] / 3)
+                }
+        });
+        let Some(start) = start else {
+            out.clear();
+            return false;
+        };
+        let mut run = Vec::with_capacity(n);
+        for i in 0..n {
+            let h = out[(start + i) % n];
+            if self.is_wall(h / 3) || (!closed && start + i >= n) {
+                break;
+            }
+            run.push(h);
+        }
+        *out = run;
+        !out.is_empty()
+    }
+
+    /// Area-weighted normal of `v`'s surface (non-wall) triangles.
+    pub fn surface_normal(&self, v: u32, scratch: &mut Vec<u32>) -> DVec3 {
+        self.surface_fan_into(v, scratch);
+        let mut n = DVec3::ZERO;
+        for &h in scratch.iter() {
+            n += self.face_normal_scaled(h / 3);
+        }
+        n.normalize_or_zero()
     }
 
     /// Appends a triangle with boundary twins; callers link them.
     pub(crate) fn push_tri(&mut self, tri: [u32; 3]) -> u32 {
         let t = self.triangles.len() as u32;
         self.triangles.push(tri);
+        self.wall_tri.push(false);
         self.twin.extend_from_slice(&[NO_TWIN; 3]);
+        t
+    }
+
+    /// Appends a wall triangle (see [`DynMesh::is_wall`]).
+    pub(crate) fn push_wall_tri(&mut self, tri: [u32; 3]) -> u32 {
+        let t = self.push_tri(tri);
+        self.wall_tri[t as usize] = true;
         t
     }
 
@@ -444,6 +620,7 @@ impl DynMesh {
         // t = [a, x, c]; t2 = [x, b, c].
         self.set_tri(t, [a, x, c]);
         let t2 = self.push_tri([x, b, c]);
+        self.wall_tri[t2 as usize] = self.wall_tri[t as usize];
         self.link(3 * t2 + 1, e_bc);
         self.link(3 * t + 2, e_ca);
         self.link(3 * t + 1, 3 * t2 + 2);
@@ -455,6 +632,7 @@ impl DynMesh {
             // u = [b, x, d]; u2 = [x, a, d].
             self.set_tri(u, [b, x, d]);
             let u2 = self.push_tri([x, a, d]);
+            self.wall_tri[u2 as usize] = self.wall_tri[u as usize];
             self.link(3 * u2 + 1, e_ad);
             self.link(3 * u + 2, e_db);
             self.link(3 * u + 1, 3 * u2 + 2);
@@ -480,6 +658,8 @@ impl DynMesh {
         self.set_tri(t, [a, b, x]);
         let t2 = self.push_tri([b, c, x]);
         let t3 = self.push_tri([c, a, x]);
+        self.wall_tri[t2 as usize] = self.wall_tri[t as usize];
+        self.wall_tri[t3 as usize] = self.wall_tri[t as usize];
         self.link(3 * t2, e1);
         self.link(3 * t3, e2);
         self.link(3 * t + 1, 3 * t2 + 2);
@@ -517,6 +697,7 @@ impl DynMesh {
         let mut other_fan = Vec::new();
         self.fan_from(other, &mut other_fan);
         let copy = self.push_vertex(self.positions[v as usize]);
+        self.floor[copy as usize] = self.floor[v as usize];
         for &h in &other_fan {
             let t = h / 3;
             let mut tri = self.triangles[t as usize];
@@ -584,6 +765,28 @@ mod tests {
                 m.vert_he.clone()
             )
         );
+    }
+
+    #[test]
+    fn local_check_sees_what_a_step_broke() {
+        let mut m = DynMesh::from_mesh(&quad());
+        let mark = m.mark();
+        m.split_edge(2, DVec3::new(0.5, 0.5, 0.));
+        let touched = m.touched_since(mark);
+        assert_eq!(touched, vec![0, 1, 2, 3]);
+        assert!(m.local_check(&touched, false));
+        // The quad has a boundary: not closed.
+        assert!(!m.local_check(&touched, true));
+        // A one-sided twin link is caught.
+        let g = m.twin[1];
+        m.twin[1] = NO_TWIN;
+        assert!(is_real(g));
+        assert!(m.local_problem(&touched, false).is_some());
+        m.twin[1] = g;
+        assert!(m.local_check(&touched, false));
+        // So is a directed edge used twice.
+        m.triangles[3] = m.triangles[0];
+        assert!(m.local_problem(&touched, false).is_some());
     }
 
     #[test]

@@ -60,11 +60,18 @@ pub fn validate(mesh: &DynMesh) -> Result<TopologyReport, ValidationError> {
         vert_he,
         next_copy,
         singular,
+        floor,
+        wall_tri,
         ..
     } = mesh;
     let nv = positions.len();
     let nt = triangles.len();
-    if twin.len() != 3 * nt || vert_he.len() != nv || next_copy.len() != nv || singular.len() != nv
+    if twin.len() != 3 * nt
+        || vert_he.len() != nv
+        || next_copy.len() != nv
+        || singular.len() != nv
+        || floor.len() != nv
+        || wall_tri.len() != nt
     {
         return Err(ValidationError::Lengths(format!(
             "{nv} positions, {nt} triangles, {} twins, {} vertex half-edges, {} copy links",

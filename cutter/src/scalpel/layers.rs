@@ -8,8 +8,9 @@
 //! the top one gives each stacked surface its own groove. Computed once, before any cut, so the
 //! rays never meet the new groove walls.
 //!
-//! Not handled: the blade leaving the touched structure through its far side (depth larger
-//! than the structure's thickness); those hits are ignored.
+//! The blade leaving the touched structure through its far side (depth larger than the
+//! structure's thickness) is not a layer: the stroke on the touched structure itself cuts
+//! through it ([`super::through`]); such hits are ignored here.
 
 use glam::DVec3;
 

@@ -19,20 +19,45 @@
 //!   the next step and redone further on (Mor–Kanade), so sampling density and trembling do not
 //!   leave permanent triangles.
 //! - Every step is a transaction over the mesh's journal: it commits a valid mesh or returns an
-//!   error with the mesh exactly as before. [`Scalpel::undo_stroke`] undoes a whole stroke.
+//!   error with the mesh exactly as before. Before committing, the triangles the step touched are
+//!   validated locally (twins, orientation, fans, closedness for grooves; cost proportional to
+//!   the step): a configuration the code does not handle costs one refused step, never a broken
+//!   mesh. [`Scalpel::undo_stroke`] undoes a whole stroke.
 //! - Crossing an existing slit ([`cross`]): at 15° or more between the cuts the new cut continues
 //!   on the other lip; under 15° it merges into the existing cut (ends there).
+//! - Crossing an existing groove (interactive cross cutting, Fig. 10): groove walls are marked
+//!   by their floor vertices and the surface walk never enters them. A groove reaching another
+//!   groove's lip opens into that trench (its walls end on the trench's floor vertex, between
+//!   the two halves of the old wall); at 15° or more it goes on from the far lip, opening into
+//!   the trench from that side too (an X: the crossing point gets 4 copies), under 15° it ends
+//!   there (merge). The deeper cut determines the floor at the crossing: a shallower trench's
+//!   floor vertex there is lowered to the new blade's depth. A groove whose first segment past
+//!   a crossing reaches a trench lip again gets a middle vertex (a floor of its own between the
+//!   two junctions); one that comes straight back into the trench it crossed, at the same floor
+//!   vertex, ends on the lip in a crack tip instead of opening into it.
+//! - Grooves share floor vertices along straight runs and snap to vertices a little more than
+//!   slits (`groove_snap_edge`), so a groove costs about 3 new triangles per crossed triangle,
+//!   walls included.
 //! - [`Tool::Loop`] closes the stroke back to its start and reports the pieces it detached
 //!   ([`loop_tool`]).
 //! - [`dffd`] opens the incision by a displacement that is discontinuous across the cut, over a
 //!   trailing time window; vertices outside its support are never written.
-//! - [`layers`] turns a stroke into strokes on every stacked surface the blade reaches.
-//! - [`invariants`] validates the whole structure (used after every step in tests).
+//! - [`layers`] turns a stroke into strokes on every stacked surface the blade reaches;
+//!   [`through`] cuts a slot through a structure thinner than the blade is deep.
+//! - [`invariants`] validates the whole structure (used after every step in tests);
+//!   [`survey`] counts refused steps on random strokes (tests, bench).
+//!
+//! ## Cost
+//! `begin_stroke` scans the mesh once (nearest face, whether the surface is closed, the
+//! through-cut ray). No step does: a cut restarting inside a stroke (after merging into another
+//! cut) searches for its start outward from where it merged, over a bounded number of triangles,
+//! and keeps the stroke's kind (groove, slit) and its surface's closedness.
 //!
 //! ## Robustness contract
 //! Input: any [`csg::Mesh`] that passes `sanity_check`. Non-manifold edges and bow-tie vertices
 //! are kept but never cut through (error, mesh unchanged). The only topological decision taken on
-//! coordinates, the side of the walking plane a vertex is on, uses the exact `robust::orient3d`;
+//! coordinates, the side of the walking plane a vertex is on, uses the exact
+//! `csg::exact::orient3d_f64`;
 //! snapping thresholds are relative to local edge lengths, never absolute.
 
 pub mod cross;
@@ -44,6 +69,8 @@ pub mod invariants;
 pub mod layers;
 pub mod loop_tool;
 pub mod step;
+pub mod survey;
+pub mod through;
 
 pub use cut_point::CutPoint;
 pub use dffd::OpenOptions;
@@ -72,6 +99,11 @@ pub struct ScalpelOptions {
     /// Edge crossings at edge parameter below this (or above `1 - snap_edge`) go through the
     /// vertex instead. Default `0.25` (worst new angle ≈ 0.2 × parent's: notes §2).
     pub snap_edge: f64,
+    /// `snap_edge` for grooves (depth > 0 on a closed surface). Coarser than a slit's: a
+    /// groove's lips meet in the trench, and going through a vertex instead of splitting an edge
+    /// keeps a groove within about 3 new triangles per crossed one (walls included). Default
+    /// `1/3` (worst new angle ≈ 11° on grid meshes, 19° on equilateral ones: notes §2).
+    pub groove_snap_edge: f64,
     /// End points within this fraction of the last segment from its ends snap to them; end
     /// points near an edge land on it. Default `0.25`.
     pub snap_end: f64,
@@ -89,6 +121,7 @@ impl Default for ScalpelOptions {
             depth: 0.0,
             tool: Tool::Scalpel,
             snap_edge: 0.25,
+            groove_snap_edge: 0.4,
             snap_end: 0.25,
             merge_angle_deg: 15.0,
             max_surface_distance: None,

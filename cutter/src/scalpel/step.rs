@@ -15,13 +15,20 @@
 
 use glam::DVec3;
 
-use super::cut_point::{CutPoint, classify, closest_face, side};
+use super::cut_point::{CutPoint, classify, closest_face, closest_face_near, side};
 use super::dyn_mesh::{DynMesh, Mark, NO_TWIN, NONMANIFOLD, is_real, next, prev};
-use super::groove::Groove;
+use super::groove::{Groove, GrooveBackup};
 use super::{ScalpelError, ScalpelOptions, Tool};
 
 /// Seconds between two tool samples (the tool clock the opening's time window runs on).
 pub const SAMPLE_PERIOD: f64 = 1.0 / 60.0;
+
+/// Tip snapping radius of both slits of a through-cut (see `Scalpel::end_snap`).
+const THROUGH_SNAP_END: f64 = 0.02;
+
+/// At most this many triangles examined when a cut restarts inside a stroke (see
+/// `Scalpel::start_cut`).
+pub const RESTART_SEARCH: usize = 4096;
 
 /// At most this many fan crossings in one step (a guard against a walk that cannot progress).
 const MAX_CROSSINGS: usize = 100_000;
@@ -68,6 +75,8 @@ pub(crate) struct Cut {
     /// Permanent path vertices (ids when reached; cuts may give them copies later).
     pub path: Vec<u32>,
     pub groove: Option<Groove>,
+    /// One side of a through-cut: never doubles back along its own open slit.
+    pub through: bool,
 }
 
 /// Where the walk toward a sample ends, relative to the anchor.
@@ -104,7 +113,7 @@ enum Exit {
 #[derive(Clone, Debug)]
 struct Tip {
     mark: Mark,
-    groove: Option<Groove>,
+    groove: Option<GrooveBackup>,
     segments: usize,
     crossed: usize,
 }
@@ -124,6 +133,18 @@ struct Stroke {
     crossed: usize,
     /// The stroke's first cut start (for closing a loop).
     first_start: Option<u32>,
+    /// The stroke cuts grooves into a closed surface: every step must leave it closed.
+    closed: bool,
+    /// Cutting through ([`super::through`]): the slit on the far side, under the current cut.
+    far: Option<Cut>,
+    /// Thickness of the structure where the through-cut started.
+    thickness: f64,
+    /// Where the stroke's last cut ended inside the stroke (a merge into another cut): a cut
+    /// restarting in this stroke searches for its start from there, not over the whole mesh.
+    last_end: Option<u32>,
+    /// Whether the surface where the stroke first touched the mesh is closed (the one global
+    /// scan of a stroke; a restart in the stroke is on the same surface and reuses it).
+    surface_closed: bool,
 }
 
 /// A scalpel working on one mesh.
@@ -141,6 +162,9 @@ pub struct Scalpel {
     pub(crate) fixed: Vec<u32>,
     clock: f64,
     scratch: Vec<u32>,
+    /// Why the last refused step was refused (a short phrase; statistics only, see
+    /// [`Scalpel::last_refusal`]). Set at the refusal sites, read after a step failed.
+    reason: &'static str,
 }
 
 impl Scalpel {
@@ -154,6 +178,7 @@ impl Scalpel {
         }
         for (name, v) in [
             ("snap_edge", options.snap_edge),
+            ("groove_snap_edge", options.groove_snap_edge),
             ("snap_end", options.snap_end),
         ] {
             if !(0.0..0.5).contains(&v) {
@@ -178,6 +203,7 @@ impl Scalpel {
             fixed: Vec::new(),
             clock: 0.0,
             scratch: Vec::new(),
+            reason: "",
         })
     }
 
@@ -242,6 +268,11 @@ impl Scalpel {
             merged: false,
             crossed: 0,
             first_start: None,
+            closed: false,
+            far: None,
+            thickness: 0.0,
+            last_end: None,
+            surface_closed: false,
         });
         let segments = self.segments.len();
         let fixed = self.fixed.len();
@@ -267,16 +298,35 @@ impl Scalpel {
         }
         let mut stroke = self.stroke.take().ok_or(ScalpelError::NoStroke)?;
         self.clock += SAMPLE_PERIOD;
+        self.reason = "";
         self.undo_tip(&mut stroke);
         let mark = self.mesh.mark();
         let saved = stroke.clone();
         let (segments, fixed) = (self.segments.len(), self.fixed.len());
-        match self.advance(&mut stroke, q) {
+        let result = self.advance(&mut stroke, q).and_then(|report| {
+            let touched = self.mesh.touched_since(mark);
+            if self.mesh.local_check(&touched, stroke.closed) {
+                Ok(report)
+            } else {
+                self.reason = "local check";
+                Err(ScalpelError::WalkFailed {
+                    point: q.to_array(),
+                })
+            }
+        });
+        match result {
             Ok(report) => {
                 self.stroke = Some(stroke);
                 Ok(report)
             }
             Err(e) => {
+                if self.reason.is_empty() {
+                    self.reason = match e {
+                        ScalpelError::OffMesh { .. } => "off the mesh",
+                        ScalpelError::NonManifold { .. } => "non-manifold",
+                        _ => "walk failed (other)",
+                    };
+                }
                 self.mesh.rollback(mark);
                 self.segments.truncate(segments);
                 self.fixed.truncate(fixed);
@@ -348,8 +398,10 @@ impl Scalpel {
         if let Some(tip) = stroke.tip.take() {
             self.mesh.rollback(tip.mark);
             self.segments.truncate(tip.segments);
-            if let Some(cut) = stroke.cut.as_mut() {
-                cut.groove = tip.groove;
+            if let Some(cut) = stroke.cut.as_mut()
+                && let (Some(g), Some(b)) = (cut.groove.as_mut(), tip.groove)
+            {
+                g.restore(b);
             }
         }
     }
@@ -362,13 +414,14 @@ impl Scalpel {
         let before = stroke.crossed;
         let end = {
             let mut cut = stroke.cut.take().ok_or(ScalpelError::NoStroke)?;
-            let r = self.walk(&mut cut, q, None, &mut stroke.crossed);
+            let snap = self.end_snap(stroke);
+            let r = self.walk(&mut cut, q, None, &mut stroke.crossed, snap);
             stroke.cut = Some(cut);
             r?
         };
         match end {
             WalkEnd::Reached(end) => {
-                let tip = self.insert_tip(stroke, end)?;
+                let tip = self.place_tips(stroke, end, q)?;
                 let d = self.mesh.pos(tip).distance(q);
                 if d > self.tolerance {
                     return Err(ScalpelError::OffMesh {
@@ -378,6 +431,14 @@ impl Scalpel {
                     });
                 }
                 stroke.tip_q = Some(q);
+            }
+            WalkEnd::Blocked { .. } if stroke.far.is_some() => {
+                // A slot cannot open into another cut or a boundary (its end there would not
+                // close): the step is refused, the slot keeps its last tip.
+                self.reason = "through-cut blocked by a cut or boundary";
+                return Err(ScalpelError::WalkFailed {
+                    point: q.to_array(),
+                });
             }
             WalkEnd::Blocked { merged } => {
                 self.finish_cut(stroke)?;
@@ -397,18 +458,35 @@ impl Scalpel {
         let Some(mut cut) = stroke.cut.take() else {
             return Ok(());
         };
-        let r = self.walk(&mut cut, q, None, &mut stroke.crossed);
+        let snap = self.end_snap(stroke);
+        let r = self.walk(&mut cut, q, None, &mut stroke.crossed, snap);
         stroke.cut = Some(cut);
         if let WalkEnd::Reached(end) = r? {
-            self.insert_tip(stroke, end)?;
+            self.place_tips(stroke, end, q)?;
             stroke.tip_q = Some(q);
         }
         Ok(())
     }
 
-    /// Starts a cut at the surface point nearest `q` (a global search: only where a cut starts).
+    /// Starts a cut at the surface point nearest `q`. Where the stroke starts this is a global
+    /// search (linear scans for the nearest face, whether the surface is closed and, for a
+    /// groove, the through-cut ray: `begin_stroke` costs O(mesh)); where a cut restarts inside
+    /// the stroke (after merging into another cut) the nearest face is searched outward from
+    /// where the last cut ended ([`closest_face_near`], at most [`RESTART_SEARCH`] triangles),
+    /// and the stroke keeps its surface's closedness and its kind (a groove restarts as a
+    /// groove): no step scans the mesh.
     fn start_cut(&mut self, stroke: &mut Stroke, q: DVec3) -> Result<StepReport, ScalpelError> {
-        let (t, bary, dist) = closest_face(&self.mesh, q).ok_or(ScalpelError::EmptyMesh)?;
+        let restart = stroke.touched.then_some(stroke.last_end).flatten();
+        let found = match restart {
+            Some(v) => closest_face_near(&self.mesh, v, q, RESTART_SEARCH),
+            None if stroke.touched => None,
+            None => closest_face(&self.mesh, q),
+        };
+        let (t, bary, dist) = match found {
+            Some(f) => f,
+            None if stroke.touched => return Ok(StepReport::default()),
+            None => return Err(ScalpelError::EmptyMesh),
+        };
         if dist > self.tolerance {
             if stroke.touched {
                 // The blade left the mesh earlier in this stroke: moving in the air.
@@ -436,17 +514,37 @@ impl Scalpel {
         if self.mesh.singular[v as usize] {
             return Err(self.nonmanifold(v));
         }
-        let groove = (self.options.depth > 0.0
-            && self.options.tool == Tool::Scalpel
-            && self.component_closed(v))
-        .then(|| Groove::new(self.options.depth, v));
+        if !stroke.touched {
+            stroke.surface_closed = self.component_closed(v);
+        }
+        let groove_mode =
+            self.options.depth > 0.0 && self.options.tool == Tool::Scalpel && stroke.surface_closed;
+        let mut groove = groove_mode.then(|| Groove::new(self.options.depth, v));
+        stroke.far = None;
+        if groove_mode
+            && !stroke.touched
+            && let Some((far, thickness)) = self.through_start(v)?
+        {
+            // Deeper than the structure is thick: a slot through it instead of a groove.
+            groove = None;
+            stroke.far = Some(Cut {
+                start: far,
+                anchor: far,
+                path: vec![far],
+                groove: None,
+                through: true,
+            });
+            stroke.thickness = thickness;
+        }
         stroke.cut = Some(Cut {
+            through: stroke.far.is_some(),
             start: v,
             anchor: v,
             path: vec![v],
             groove,
         });
         stroke.touched = true;
+        stroke.closed = groove_mode;
         stroke.first_start.get_or_insert(v);
         Ok(StepReport {
             triangles_crossed: 1,
@@ -496,6 +594,10 @@ impl Scalpel {
         }
         let mate = if g == NO_TWIN {
             super::cross::find_mate(&self.mesh, h, &mut self.scratch)
+        } else if against_wall(&self.mesh, h) {
+            // A groove's lip: split the coincident edge of the other lip too, so that a crossing
+            // finds its way on at the same point.
+            super::cross::find_groove_mate(&self.mesh, h, &mut self.scratch)
         } else {
             None
         };
@@ -518,6 +620,13 @@ impl Scalpel {
         let g = self.mesh.twin(h);
         if g == NONMANIFOLD {
             return Err(self.nonmanifold(v));
+        }
+        if is_real(g) && (self.mesh.is_wall(g / 3) || self.mesh.is_wall(h / 3)) {
+            // Opening a lip against its wall would tear the groove open.
+            self.reason = "lip against a groove wall";
+            return Err(ScalpelError::WalkFailed {
+                point: self.mesh.pos(x).to_array(),
+            });
         }
         if self.mesh.singular[v as usize] {
             return Err(self.nonmanifold(v));
@@ -545,12 +654,13 @@ impl Scalpel {
 
     /// Permanent move of the cut from the anchor `v` to its neighbour `x`.
     fn move_to(&mut self, cut: &mut Cut, v: u32, x: u32) -> Result<(), ScalpelError> {
-        let n = self.mesh.vertex_normal(v, &mut self.scratch);
+        let n = self.mesh.surface_normal(v, &mut self.scratch);
         if let Some(g) = cut.groove.as_mut() {
             let k = cut.path.len() - 1;
             if k >= 1 {
                 let pv = self.mesh.pos(v);
-                g.make_bottom(&mut self.mesh, k, pv, n);
+                let prev = self.mesh.pos(cut.path[k - 1]);
+                g.make_bottom(&mut self.mesh, k, pv, prev, n);
             }
         }
         self.open_between(v, x)?;
@@ -560,6 +670,7 @@ impl Scalpel {
         if let Some(g) = cut.groove.as_mut() {
             let upto = cut.path.len() - 2;
             if !g.build_walls(&mut self.mesh, &cut.path, upto) {
+                self.reason = "groove walls (permanent)";
                 return Err(ScalpelError::WalkFailed {
                     point: self.mesh.pos(x).to_array(),
                 });
@@ -569,7 +680,9 @@ impl Scalpel {
     }
 
     /// Exit of the cut from `v`'s fan toward `q` (see the module doc).
-    fn find_exit(&mut self, v: u32, q: DVec3, n: DVec3) -> Exit {
+    /// With `no_retrace`, never along a slit's lip (a groove's own cut must not double back
+    /// along its open slit).
+    fn find_exit(&mut self, v: u32, q: DVec3, n: DVec3, no_retrace: bool) -> Exit {
         let mesh = &self.mesh;
         let pv = mesh.pos(v);
         let d = q - pv;
@@ -582,7 +695,7 @@ impl Scalpel {
             return Exit::Degenerate;
         }
         let w = pv + n * dl;
-        mesh.fan_into(v, &mut self.scratch);
+        mesh.surface_fan_into(v, &mut self.scratch);
         if self.scratch.is_empty() {
             return Exit::Blocked;
         }
@@ -599,7 +712,8 @@ impl Scalpel {
             let sb = side(pv, q, w, pb);
             let sc = side(pv, q, w, pc);
             for (x, px, sx, e) in [(b, pb, sb, h0), (c, pc, sc, prev(h0))] {
-                if sx == 0 {
+                // Never along a groove's lip: its other side is the wall, not a slit.
+                if sx == 0 && !against_wall(mesh, e) && !(no_retrace && mesh.twin(e) == NO_TWIN) {
                     let cs = cos(px - pv);
                     if cs > best_cos {
                         best_cos = cs;
@@ -633,9 +747,13 @@ impl Scalpel {
         q: DVec3,
         close_to: Option<u32>,
         crossed: &mut usize,
+        tau_end: f64,
     ) -> Result<WalkEnd, ScalpelError> {
-        let tau = self.options.snap_edge;
-        let tau_end = self.options.snap_end;
+        let tau = if cut.groove.is_some() {
+            self.options.groove_snap_edge
+        } else {
+            self.options.snap_edge
+        };
         for _ in 0..MAX_CROSSINGS {
             let v = cut.anchor;
             if let Some(s) = close_to {
@@ -648,10 +766,10 @@ impl Scalpel {
                     return Ok(WalkEnd::Closed);
                 }
             }
-            let n = self.mesh.vertex_normal(v, &mut self.scratch);
+            let n = self.mesh.surface_normal(v, &mut self.scratch);
             let pv = self.mesh.pos(v);
             let forward = |p: DVec3| (p - pv).dot(q - pv) > 0.0;
-            match self.find_exit(v, q, n) {
+            match self.find_exit(v, q, n, cut.groove.is_some() || cut.through) {
                 Exit::Degenerate => return Ok(WalkEnd::Reached(End::AtVertex)),
                 Exit::Blocked => {
                     let back = cut.path[cut.path.len().saturating_sub(5)];
@@ -660,7 +778,38 @@ impl Scalpel {
                     } else {
                         q - self.mesh.pos(back)
                     };
+                    if cut.groove.is_some() && cut.path.len() >= 2 {
+                        let n = self.mesh.surface_normal(v, &mut self.scratch);
+                        // Only a finished trench (not this groove's own walls still to come).
+                        let unfinished = |f: u32| {
+                            cut.groove.as_ref().is_some_and(|g| {
+                                g.bottoms[g.walls_done.min(g.bottoms.len())..].contains(&f)
+                            })
+                        };
+                        if let Some(floor) = super::groove::floor_under(&self.mesh, v, n)
+                            && !unfinished(floor)
+                        {
+                            // A groove meeting a groove: open into its trench here, then go on
+                            // from the other lip (crossing) or end here (merging). When the
+                            // stroke crosses but the sample is not beyond the lip yet, the tip
+                            // waits on the lip.
+                            let mate = super::cross::crossing_mate(self, v, q, dir);
+                            if mate.is_none() {
+                                let angle = self.mesh.copies(v).first().map_or(0.0, |&c| {
+                                    super::cross::angle_to_lip(&self.mesh, c, dir, &mut Vec::new())
+                                });
+                                if angle >= self.options.merge_angle_deg {
+                                    return Ok(WalkEnd::Reached(End::AtVertex));
+                                }
+                            }
+                            match self.join_trench(cut, v, floor, mate)? {
+                                Some(_) => continue,
+                                None => return Ok(WalkEnd::Blocked { merged: true }),
+                            }
+                        }
+                    }
                     if cut.groove.is_none()
+                        && !cut.through
                         && let Some(m) = super::cross::crossing_mate(self, v, q, dir)
                     {
                         cut.anchor = m;
@@ -689,28 +838,39 @@ impl Scalpel {
                     self.move_to(cut, v, b)?;
                     *crossed += 1;
                 }
-                Exit::Edge { h0, t, y } => {
+                Exit::Edge { h0, t, .. } => {
                     let b = self.mesh.dest(h0);
                     let c = self.mesh.origin(prev(h0));
                     let (pb, pc) = (self.mesh.pos(b), self.mesh.pos(c));
+                    // Snapping to `b` (or `c`) cuts along the edge from `v`; never along a
+                    // groove's lip (its other side is the wall): then cross the edge away
+                    // from that end instead (no sliver either).
+                    let near_b = t < tau && !against_wall(&self.mesh, h0);
+                    let near_c = t > 1.0 - tau && !against_wall(&self.mesh, prev(h0));
+                    let t = if (t < tau && !near_b) || (t > 1.0 - tau && !near_c) {
+                        t.clamp(tau, 1.0 - tau)
+                    } else {
+                        t
+                    };
+                    let y = pb.lerp(pc, t);
                     let s = foot(pv, y, q);
                     if s <= 1.0 {
                         let end = if s < tau_end {
                             End::AtVertex
                         } else if s > 1.0 - tau_end {
-                            if t < tau {
+                            if near_b {
                                 End::OnVertex(b)
-                            } else if t > 1.0 - tau {
+                            } else if near_c {
                                 End::OnVertex(c)
                             } else {
                                 End::OnEdge { h: next(h0), p: y }
                             }
-                        } else if t < tau {
+                        } else if near_b {
                             End::OnEdge {
                                 h: h0,
                                 p: pv.lerp(pb, s),
                             }
-                        } else if t > 1.0 - tau {
+                        } else if near_c {
                             End::OnEdge {
                                 h: prev(h0),
                                 p: pv.lerp(pc, s),
@@ -723,9 +883,9 @@ impl Scalpel {
                         };
                         return Ok(WalkEnd::Reached(end));
                     }
-                    let x = if t < tau && forward(pb) {
+                    let x = if near_b && forward(pb) {
                         b
-                    } else if t > 1.0 - tau && forward(pc) {
+                    } else if near_c && forward(pc) {
                         c
                     } else {
                         self.split_edge_with_mate(next(h0), y)?
@@ -735,9 +895,270 @@ impl Scalpel {
                 }
             }
         }
+        self.reason = "walk did not converge";
         Err(ScalpelError::WalkFailed {
             point: q.to_array(),
         })
+    }
+
+    /// The groove of `cut` reached lip vertex `v` of an existing trench (floor vertex `floor`
+    /// under `v`): its walls are completed into that trench (interactive cross cutting, Fig. 10:
+    /// the grooves join at the floor; the deeper cut determines the floor at the crossing, so a
+    /// shallower floor is lowered to this blade's depth). Then, with the lip copy `mate` on the
+    /// far side (the stroke crosses: it meets the lip at the merge angle or more), the cut goes
+    /// on from there, opening into the trench from that side too, and the new anchor is
+    /// returned; without (the grooves merge) the cut ends (`None`).
+    fn join_trench(
+        &mut self,
+        cut: &mut Cut,
+        v: u32,
+        floor: u32,
+        mate: Option<u32>,
+    ) -> Result<Option<u32>, ScalpelError> {
+        let fail = |p: DVec3| ScalpelError::WalkFailed {
+            point: p.to_array(),
+        };
+        let pv = self.mesh.pos(v);
+        let n = self.mesh.surface_normal(v, &mut self.scratch);
+        let depth = self.options.depth;
+        let mut k = cut.path.len() - 1;
+        if k == 1
+            && cut
+                .groove
+                .as_ref()
+                .is_some_and(|g| g.junctions.contains(&0))
+        {
+            // One segment from trench to trench (the groove crossed a trench and its first
+            // segment reached the lip of another one, or of the same one where it bends): its
+            // walls would lie in the old walls. Split the segment in the middle so that the
+            // new vertex gets a floor of its own between the two junctions.
+            let a = cut.path[0];
+            let mid = self.split_lips(a, v)?;
+            let pm = self.mesh.pos(mid);
+            let nm = self.mesh.surface_normal(mid, &mut self.scratch);
+            let pa = self.mesh.pos(a);
+            cut.path.insert(1, mid);
+            if let Some(g) = cut.groove.as_mut() {
+                g.make_bottom(&mut self.mesh, 1, pm, pa, nm);
+            }
+            k = 2;
+        }
+        let Some(g) = cut.groove.as_mut() else {
+            self.reason = "joining a trench";
+            return Err(fail(pv));
+        };
+        if k >= 2 && g.bottoms.first() == Some(&floor) && g.bottoms[1] == g.bottoms[k - 1] {
+            // The groove crossed this trench and comes straight back into it at the same floor
+            // vertex, its own floor shared all along: the last segment's walls would repeat the
+            // first segment's floor edge. It ends on the lip instead (a crack tip there, its
+            // walls closing at the tip), merged, even where the stroke would cross again: it
+            // restarts past the trench (see `start_cut`).
+            g.make_tip(k, v);
+            if !g.build_walls(&mut self.mesh, &cut.path, k) || !g.is_closed() {
+                self.reason = "ending on a trench's lip";
+                return Err(fail(pv));
+            }
+            self.fixed.extend_from_slice(&g.bottom_vertices);
+            cut.groove = None;
+            return Ok(None);
+        }
+        if (pv - self.mesh.pos(floor)).dot(n) < depth && n != DVec3::ZERO {
+            self.mesh.set_pos(floor, pv - n * depth);
+        }
+        g.set_junction(k, floor);
+        if !g.build_walls(&mut self.mesh, &cut.path, k) {
+            self.reason = "joining a trench: walls";
+            return Err(fail(pv));
+        }
+        if !g.is_closed() {
+            self.reason = "joining a trench: not closed";
+            return Err(fail(pv));
+        }
+        self.fixed.extend_from_slice(&g.bottom_vertices);
+        self.fixed.push(floor);
+        let Some(m) = mate else {
+            cut.groove = None;
+            return Ok(None);
+        };
+        let nm = self.mesh.surface_normal(m, &mut self.scratch);
+        let far_floor = super::groove::floor_under(&self.mesh, m, nm).ok_or_else(|| fail(pv))?;
+        let mut groove = Groove::new(depth, m);
+        groove.set_junction(0, far_floor);
+        cut.groove = Some(groove);
+        cut.start = m;
+        cut.anchor = m;
+        cut.path = vec![m];
+        Ok(Some(m))
+    }
+
+    /// Places the temporary tip at `end`; when cutting through, first moves the far cut on
+    /// (permanently) under the sample `q`, then places its tip and the walls joining the two
+    /// slits (temporary, with the tip).
+    fn place_tips(&mut self, stroke: &mut Stroke, end: End, q: DVec3) -> Result<u32, ScalpelError> {
+        let Some(mut far) = stroke.far.take() else {
+            return self.insert_tip(stroke, end);
+        };
+        let fail = |p: DVec3| ScalpelError::WalkFailed {
+            point: p.to_array(),
+        };
+        let anchor = stroke.cut.as_ref().map_or(far.anchor, |c| c.anchor);
+        // The inward normal where the tip goes, interpolated from the vertex normals (not at the
+        // anchor, and not a face normal: on a curved structure the far side would move against
+        // the near one or jump with each face).
+        let n = match end {
+            End::InFace { t, p } => {
+                let tri = self.mesh.triangles[t as usize];
+                let [a, b, c] = tri.map(|v| self.mesh.pos(v));
+                let w = super::cut_point::closest_on_triangle(p, a, b, c);
+                let mut n = DVec3::ZERO;
+                for (k, v) in tri.into_iter().enumerate() {
+                    n += self.mesh.surface_normal(v, &mut self.scratch) * w[k];
+                }
+                n.normalize_or_zero()
+            }
+            End::OnEdge { h, p } => {
+                let (a, b) = (self.mesh.origin(h), self.mesh.dest(h));
+                let s = foot(self.mesh.pos(a), self.mesh.pos(b), p).clamp(0.0, 1.0);
+                let na = self.mesh.surface_normal(a, &mut self.scratch);
+                let nb = self.mesh.surface_normal(b, &mut self.scratch);
+                na.lerp(nb, s).normalize_or_zero()
+            }
+            End::OnVertex(b) => self.mesh.surface_normal(b, &mut self.scratch),
+            End::AtVertex => self.mesh.surface_normal(anchor, &mut self.scratch),
+        };
+        let q_far = q - n * stroke.thickness;
+        let mut crossed = 0;
+        let r = self.walk(&mut far, q_far, None, &mut crossed, THROUGH_SNAP_END);
+        let far_end = match r {
+            Ok(WalkEnd::Reached(e)) => e,
+            Ok(_) => {
+                stroke.far = Some(far);
+                self.reason = "far cut did not reach its sample";
+                return Err(fail(q_far));
+            }
+            Err(e) => {
+                stroke.far = Some(far);
+                return Err(e);
+            }
+        };
+        let x = match self.insert_tip(stroke, end) {
+            Ok(x) => x,
+            Err(e) => {
+                stroke.far = Some(far);
+                return Err(e);
+            }
+        };
+        let result = self.far_tip(stroke, &far, far_end, x);
+        stroke.far = Some(far);
+        result?;
+        Ok(x)
+    }
+
+    /// Snapping radius of the tip: the option's, except when cutting through, where both slits'
+    /// tips follow the samples closely so that they advance together (a slot needs a segment on
+    /// each side before its walls close).
+    fn end_snap(&self, stroke: &Stroke) -> f64 {
+        if stroke.far.is_some() {
+            THROUGH_SNAP_END
+        } else {
+            self.options.snap_end
+        }
+    }
+
+    /// The far cut's temporary tip and the walls of the whole slot (see [`super::through`]).
+    fn far_tip(
+        &mut self,
+        stroke: &Stroke,
+        far: &Cut,
+        end: End,
+        top_tip: u32,
+    ) -> Result<(), ScalpelError> {
+        let fv = far.anchor;
+        let nf = self.mesh.surface_normal(fv, &mut self.scratch);
+        let fx = match end {
+            End::AtVertex => fv,
+            End::OnVertex(b) => b,
+            End::OnEdge { h, p } => self.split_edge_with_mate(h, p)?,
+            End::InFace { t, p } => self.mesh.split_face(t, p),
+        };
+        if fx != fv {
+            self.open_between(fv, fx)?;
+            self.record_segment(fv, fx, nf);
+        }
+        let Some(cut) = stroke.cut.as_ref() else {
+            return Err(ScalpelError::NoStroke);
+        };
+        let mut near = cut.path.clone();
+        if top_tip != cut.anchor {
+            near.push(top_tip);
+        }
+        let mut far_path = far.path.clone();
+        if fx != fv {
+            far_path.push(fx);
+        }
+        if (near.len() < 2) != (far_path.len() < 2) {
+            // One side cut, the other not yet: no slot to close (the step is refused; the next
+            // sample, farther on, cuts both).
+            self.reason = "one side of the slot not cut yet";
+            return Err(ScalpelError::WalkFailed {
+                point: self.mesh.pos(fx).to_array(),
+            });
+        }
+        // A slit of one edge runs from crack tip to crack tip: both its lips join the same two
+        // vertices, so walls on both would use that edge four times. Split it in the middle.
+        for path in [&mut near, &mut far_path] {
+            if path.len() == 2 {
+                let mid = self.split_lips(path[0], path[1])?;
+                path.insert(1, mid);
+            }
+        }
+        if !super::through::build_walls(&mut self.mesh, &near, &far_path) {
+            self.reason = "slot walls";
+            return Err(ScalpelError::WalkFailed {
+                point: self.mesh.pos(fx).to_array(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Splits both lips of the open slit edge between `a` and `b` at its middle; returns one of
+    /// the two new (coincident) vertices.
+    fn split_lips(&mut self, a: u32, b: u32) -> Result<u32, ScalpelError> {
+        let p = self.mesh.pos(a).lerp(self.mesh.pos(b), 0.5);
+        let (ab, ba) =
+            super::groove::find_lips(&self.mesh, a, b).ok_or(ScalpelError::WalkFailed {
+                point: p.to_array(),
+            })?;
+        let x = self.mesh.split_edge(ab, p);
+        let y = self.mesh.split_edge(ba, p);
+        self.mesh.join_copies(x, y);
+        Ok(x)
+    }
+
+    /// Whether a cut starting at `v` goes through the structure: the far side's vertex (made
+    /// where the inward ray from `v` leaves it) and the thickness there, when that is less than
+    /// the blade's depth.
+    fn through_start(&mut self, v: u32) -> Result<Option<(u32, f64)>, ScalpelError> {
+        let n = self.mesh.surface_normal(v, &mut self.scratch);
+        if n == DVec3::ZERO {
+            return Ok(None);
+        }
+        let pv = self.mesh.pos(v);
+        let Some((t, bary, s)) = super::through::ray_first_hit(&self.mesh, pv, -n, v) else {
+            return Ok(None);
+        };
+        if s >= self.options.depth || self.mesh.face_normal_scaled(t).dot(n) >= 0.0 {
+            return Ok(None);
+        }
+        let far = match classify(&self.mesh, t, bary, self.options.snap_end) {
+            CutPoint::Vertex(f) => f,
+            CutPoint::Edge { h, point } => self.split_edge_with_mate(h, point)?,
+            CutPoint::Face { t, point } => self.mesh.split_face(t, point),
+        };
+        if self.mesh.singular[far as usize] {
+            return Err(self.nonmanifold(far));
+        }
+        Ok(Some((far, s)))
     }
 
     /// Places the temporary tip at `end` (relative to the anchor) and closes the groove to it.
@@ -747,9 +1168,9 @@ impl Scalpel {
         let Some(cut) = stroke.cut.as_mut() else {
             return Err(ScalpelError::NoStroke);
         };
-        let backup = cut.groove.clone();
+        let backup = cut.groove.as_ref().map(|g| g.backup(cut.path.len() - 1));
         let v = cut.anchor;
-        let n = self.mesh.vertex_normal(v, &mut self.scratch);
+        let n = self.mesh.surface_normal(v, &mut self.scratch);
         let x = match end {
             End::AtVertex => v,
             End::OnVertex(b) => b,
@@ -762,17 +1183,24 @@ impl Scalpel {
             self.record_segment(v, x, n);
         }
         if let Some(g) = cut.groove.as_mut() {
-            let mut path = cut.path.clone();
-            let k = path.len() - 1;
+            // The tip joins the path only for building the walls (popped again below).
+            let k = cut.path.len() - 1;
             if x != v {
                 if k >= 1 {
                     let pv = self.mesh.pos(v);
-                    g.make_bottom(&mut self.mesh, k, pv, n);
+                    let prev = self.mesh.pos(cut.path[k - 1]);
+                    g.make_bottom(&mut self.mesh, k, pv, prev, n);
                 }
-                path.push(x);
+                cut.path.push(x);
             }
-            g.make_tip(path.len() - 1, *path.last().unwrap_or(&v));
-            if !g.build_walls(&mut self.mesh, &path, path.len() - 1) {
+            let last = cut.path.len() - 1;
+            g.make_tip(last, cut.path[last]);
+            let closed = g.build_walls(&mut self.mesh, &cut.path, last) && g.is_closed();
+            if x != v {
+                cut.path.pop();
+            }
+            if !closed {
+                self.reason = "groove tip walls not closed";
                 return Err(ScalpelError::WalkFailed {
                     point: self.mesh.pos(x).to_array(),
                 });
@@ -789,12 +1217,25 @@ impl Scalpel {
 
     /// Ends the current cut where its anchor is (the blade left the surface): walls to the tip.
     fn finish_cut(&mut self, stroke: &mut Stroke) -> Result<(), ScalpelError> {
+        if let Some(far) = stroke.far.take()
+            && let Some(cut) = stroke.cut.take()
+            && !super::through::build_walls(&mut self.mesh, &cut.path, &far.path)
+        {
+            self.reason = "walls at the end of a slot";
+            return Err(ScalpelError::WalkFailed {
+                point: self.mesh.pos(cut.anchor).to_array(),
+            });
+        }
+        if let Some(cut) = stroke.cut.as_ref() {
+            stroke.last_end = Some(cut.anchor);
+        }
         if let Some(mut cut) = stroke.cut.take()
             && let Some(g) = cut.groove.as_mut()
         {
             let k = cut.path.len() - 1;
             g.make_tip(k, cut.anchor);
-            if !g.build_walls(&mut self.mesh, &cut.path, k) {
+            if !g.build_walls(&mut self.mesh, &cut.path, k) || !g.is_closed() {
+                self.reason = "walls at the end of a groove";
                 return Err(ScalpelError::WalkFailed {
                     point: self.mesh.pos(cut.anchor).to_array(),
                 });
@@ -810,7 +1251,8 @@ impl Scalpel {
             return Ok(Vec::new());
         };
         let target = self.mesh.pos(start);
-        let r = self.walk(&mut cut, target, Some(start), &mut stroke.crossed)?;
+        let snap = self.options.snap_end;
+        let r = self.walk(&mut cut, target, Some(start), &mut stroke.crossed, snap)?;
         let anchor = cut.anchor;
         if !matches!(r, WalkEnd::Closed) {
             return Err(ScalpelError::LoopNotClosed {
@@ -818,6 +1260,18 @@ impl Scalpel {
             });
         }
         Ok(super::loop_tool::detached_pieces(&self.mesh, start))
+    }
+
+    /// Why the last refused step was refused: a short phrase naming the refusal site (for
+    /// statistics such as [`super::survey`]; empty before any refusal). Not part of the error:
+    /// the error says what the user can do, this says which case the code does not handle.
+    #[doc(hidden)]
+    pub fn last_refusal(&self) -> &'static str {
+        if self.reason.is_empty() {
+            "unknown"
+        } else {
+            self.reason
+        }
     }
 
     /// Internal: the start vertex of the stroke's current cut (tests).
@@ -836,13 +1290,26 @@ impl Scalpel {
         self.options.merge_angle_deg
     }
 
-    pub(crate) fn exit_exists(&mut self, v: u32, q: DVec3) -> bool {
-        let n = self.mesh.vertex_normal(v, &mut self.scratch);
-        matches!(
-            self.find_exit(v, q, n),
-            Exit::Edge { .. } | Exit::Vertex { .. }
-        )
+    /// How straight the cut can leave `v` toward `q`: the cosine between `q - v` and the best
+    /// exit of `v`'s surface fan; `None` when there is no exit.
+    pub(crate) fn exit_cos(&mut self, v: u32, q: DVec3) -> Option<f64> {
+        let n = self.mesh.surface_normal(v, &mut self.scratch);
+        let pv = self.mesh.pos(v);
+        let d = q - pv;
+        let y = match self.find_exit(v, q, n, false) {
+            Exit::Edge { y, .. } => y,
+            Exit::Vertex { b, .. } => self.mesh.pos(b),
+            _ => return None,
+        };
+        let l = (y - pv).length() * d.length();
+        Some(if l > 0.0 { (y - pv).dot(d) / l } else { 0.0 })
     }
+}
+
+/// Whether surface half-edge `h` runs along a groove's lip (its twin is a wall triangle).
+fn against_wall(mesh: &DynMesh, h: u32) -> bool {
+    let g = mesh.twin(h);
+    is_real(g) && mesh.is_wall(g / 3) && !mesh.is_wall(h / 3)
 }
 
 /// Parameter of the point of segment `a b` closest to `q` (unclamped).
