@@ -35,7 +35,8 @@ fn volume(m: &Mesh) -> f64 {
         / 6.0
 }
 
-fn part_faces(p: &Part, reverse: bool) -> Vec<[VertexSource; 3]> {
+/// The faces of `p` as triples of symbolic vertex identities, reversed when `reverse`.
+pub fn part_faces(p: &Part, reverse: bool) -> Vec<[VertexSource; 3]> {
     p.mesh
         .triangles
         .iter()
@@ -48,7 +49,7 @@ fn part_faces(p: &Part, reverse: bool) -> Vec<[VertexSource; 3]> {
 
 /// `Err` naming the first problem unless every directed edge is used once and its reverse once
 /// (closed, edge-manifold, consistently oriented) and no triangle repeats a vertex.
-fn closed_by_identity(faces: &[[VertexSource; 3]]) -> Result<(), String> {
+pub fn closed_by_identity(faces: &[[VertexSource; 3]]) -> Result<(), String> {
     let mut directed: HashMap<(VertexSource, VertexSource), u32> = HashMap::new();
     for (f, t) in faces.iter().enumerate() {
         if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {

@@ -3,7 +3,7 @@
 
 use std::collections::HashMap;
 
-use csg::{CutOptions, CutResult, DVec3, Mesh, Part, TargetIndex, VertexSource};
+use csg::{CutOptions, CutResult, DVec3, Mesh, TargetIndex, VertexSource};
 
 /// Signed volume about the origin (Σ a·(b×c)/6).
 pub fn volume(m: &Mesh) -> f64 {
@@ -103,38 +103,8 @@ pub fn check_measures(target: &Mesh, result: &CutResult) -> Result<(), String> {
     Ok(())
 }
 
-/// Closed and consistently oriented by symbolic vertex identity (no welding by position).
-pub fn check_closed_by_source(faces: &[[VertexSource; 3]]) -> Result<(), String> {
-    let mut directed: HashMap<(VertexSource, VertexSource), u32> = HashMap::new();
-    for (f, t) in faces.iter().enumerate() {
-        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
-            return Err(format!("triangle {f} repeats a vertex: {t:?}"));
-        }
-        for k in 0..3 {
-            *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
-        }
-    }
-    for (&(a, b), &n) in &directed {
-        if n != 1 {
-            return Err(format!("directed edge ({a:?},{b:?}) used {n} times"));
-        }
-        if directed.get(&(b, a)) != Some(&1) {
-            return Err(format!("edge ({a:?},{b:?}) has no opposite"));
-        }
-    }
-    Ok(())
-}
-
-pub fn part_faces(p: &Part, reverse: bool) -> Vec<[VertexSource; 3]> {
-    p.mesh
-        .triangles
-        .iter()
-        .map(|t| {
-            let f = t.map(|i| p.vertex_source[i as usize]);
-            if reverse { [f[0], f[2], f[1]] } else { f }
-        })
-        .collect()
-}
+// The closedness-by-identity check and the face lists are the fuzz body's (one definition).
+pub use csg::cutcheck::{closed_by_identity as check_closed_by_source, part_faces};
 
 /// Checks every invariant of the robustness contract for a closed target on a result computed
 /// with `merge_coincident = false` (closedness by symbolic identity) and the measures.
