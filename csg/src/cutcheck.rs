@@ -49,8 +49,11 @@ pub fn part_faces(p: &Part, reverse: bool) -> Vec<[VertexSource; 3]> {
 
 /// `Err` naming the first problem unless every directed edge is used once and its reverse once
 /// (closed, edge-manifold, consistently oriented) and no triangle repeats a vertex.
-pub fn closed_by_identity(faces: &[[VertexSource; 3]]) -> Result<(), String> {
-    let mut directed: HashMap<(VertexSource, VertexSource), u32> = HashMap::new();
+pub fn closed_by_identity<K>(faces: &[[K; 3]]) -> Result<(), String>
+where
+    K: Copy + Eq + std::hash::Hash + std::fmt::Debug,
+{
+    let mut directed: HashMap<(K, K), u32> = HashMap::new();
     for (f, t) in faces.iter().enumerate() {
         if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
             return Err(format!("triangle {f} repeats a vertex: {t:?}"));

@@ -264,30 +264,13 @@ impl SpatialIndex {
     /// Conservative: every triangle whose exact `f64` box overlaps `aabb` is reported; a triangle
     /// whose box misses `aabb` by less than an `f32` ulp may be reported too. Order is the tree's.
     pub fn faces_in_box(&self, aabb: &Aabb, out: &mut Vec<u32>) {
-        if self.bvh.nodes.is_empty() || aabb.is_empty() {
+        if aabb.is_empty() {
             return;
         }
-        let overlaps = |node: &Bvh2Node| {
-            let b = node.aabb();
-            let (min, max) = (b.min.as_dvec3(), b.max.as_dvec3());
-            min.cmple(aabb.max).all() && aabb.min.cmple(max).all()
-        };
-        let mut stack: Vec<u32> = Vec::with_capacity(64);
-        if overlaps(&self.bvh.nodes[0]) {
-            stack.push(0);
-        }
-        while let Some(index) = stack.pop() {
-            let node = &self.bvh.nodes[index as usize];
-            if node.is_leaf() {
-                out.push(self.leaf_face(node));
-                continue;
-            }
-            for child in [node.first_index, node.first_index + 1] {
-                if overlaps(&self.bvh.nodes[child as usize]) {
-                    stack.push(child);
-                }
-            }
-        }
+        self.faces_where(
+            |min, max| min.cmple(aabb.max).all() && aabb.min.cmple(max).all(),
+            out,
+        );
     }
 
     /// Appends to `out` the face of every leaf reached by descending only into nodes whose box

@@ -295,6 +295,31 @@ pub fn uv_sphere(rings: u32, segments: u32, radius: f64) -> Mesh {
     }
 }
 
+/// Two flat fans of three triangles each in the z = 0 plane, sharing only vertex 0 at the origin
+/// (a bow-tie: the vertex is non-manifold), one fan at x < 0 and one at x > 0, both facing +z.
+pub fn bow_tie() -> Mesh {
+    let mut positions = vec![DVec3::ZERO];
+    let mut triangles = Vec::new();
+    for side in [-1.0, 1.0] {
+        let base = positions.len() as u32;
+        for i in 0..4 {
+            let a = i as f64 * 0.4 - 0.6;
+            positions.push(DVec3::new(side * 3.0, 3.0 * a, 0.0));
+        }
+        for i in 0..3 {
+            if side < 0.0 {
+                triangles.push([0, base + i + 1, base + i]);
+            } else {
+                triangles.push([0, base + i, base + i + 1]);
+            }
+        }
+    }
+    Mesh {
+        positions,
+        triangles,
+    }
+}
+
 /// The mesh as a triangle soup: three corners per triangle, as an STL file stores it.
 pub fn to_soup(mesh: &Mesh) -> Vec<DVec3> {
     mesh.triangles

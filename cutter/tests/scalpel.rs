@@ -645,23 +645,7 @@ fn s22_opening_reaches_its_width_and_leaves_the_rest_alone() {
 #[test]
 fn s23_hourglass_is_rejected_and_the_mesh_unchanged() {
     // Two fans sharing only vertex 0 (a bow-tie).
-    let mut positions = vec![DVec3::ZERO];
-    let mut triangles = Vec::new();
-    for side in [-1.0, 1.0] {
-        let base = positions.len() as u32;
-        for i in 0..4 {
-            let a = i as f64 * 0.4 - 0.6;
-            positions.push(DVec3::new(side * 3.0, 3.0 * a, 0.0));
-        }
-        for i in 0..3 {
-            if side < 0.0 {
-                triangles.push([0, base + i + 1, base + i]);
-            } else {
-                triangles.push([0, base + i, base + i + 1]);
-            }
-        }
-    }
-    let mesh = Mesh::new(positions, triangles).unwrap();
+    let mesh = csg::testkit::bow_tie();
     let mut s = Scalpel::new(&mesh, ScalpelOptions::default()).unwrap();
     let before = s.mesh();
     let r = s

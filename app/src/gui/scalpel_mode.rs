@@ -800,24 +800,8 @@ mod tests {
     #[test]
     fn a_refused_step_is_an_error_and_leaves_the_scene_alone() {
         // Two fans sharing only vertex 0 (a bow-tie): the scalpel never cuts through it.
-        let mut positions = vec![DVec3::ZERO];
-        let mut triangles = Vec::new();
-        for side in [-1.0, 1.0] {
-            let base = positions.len() as u32;
-            for i in 0..4 {
-                let a = i as f64 * 0.4 - 0.6;
-                positions.push(DVec3::new(side * 3.0, 3.0 * a, 0.0));
-            }
-            for i in 0..3 {
-                if side < 0.0 {
-                    triangles.push([0, base + i + 1, base + i]);
-                } else {
-                    triangles.push([0, base + i, base + i + 1]);
-                }
-            }
-        }
         let mut scene = super::super::app::new_scene();
-        let mesh = Arc::new(Mesh::new(positions, triangles).unwrap());
+        let mesh = Arc::new(csg::testkit::bow_tie());
         scene
             .models
             .push(SceneModel::new("bowtie", "bowtie.obj", mesh, [1.0; 3]));

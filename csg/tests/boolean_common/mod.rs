@@ -45,30 +45,9 @@ pub fn weld(m: &Mesh) -> Mesh {
 }
 
 /// `Err` naming the first problem unless every edge has exactly two faces traversing it in
-/// opposite directions and no triangle repeats an index.
+/// opposite directions and no triangle repeats an index (after welding by position).
 pub fn check_closed_oriented(m: &Mesh) -> Result<(), String> {
-    let m = weld(m);
-    let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
-    for (f, t) in m.triangles.iter().enumerate() {
-        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
-            return Err(format!("triangle {f} repeats a vertex: {t:?}"));
-        }
-        for k in 0..3 {
-            *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
-        }
-    }
-    for (&(a, b), &n) in &directed {
-        if n != 1 {
-            return Err(format!("directed edge ({a},{b}) used {n} times"));
-        }
-        if directed.get(&(b, a)) != Some(&1) {
-            return Err(format!(
-                "edge ({a},{b}) at {:?}–{:?} has no opposite",
-                m.positions[a as usize], m.positions[b as usize]
-            ));
-        }
-    }
-    Ok(())
+    check_closed_by_source(&weld(m).triangles)
 }
 
 pub fn concat(a: &Mesh, b: &Mesh) -> Mesh {
