@@ -16,7 +16,10 @@
 //! - `CUTAWAY_PEERS_CMD` runs `peers.py` (trueform and manifold3d, `--repeat 3`) first, so the
 //!   ratios compare figures of one run; `CUTAWAY_PEERS_JSON` reads an earlier `peers.py --json`
 //!   file instead (its age is printed). `CUTAWAY_BENCH_PROFILE=N` runs N warm cuts only (for
-//!   `perf record`).
+//!   `perf record`). `CUTAWAY_CUT_PHASES=1` makes every cut print its per-stage wall times to
+//!   stderr (broad phase, exact pair tests, ids, points, face splits, flood fill beside the
+//!   output assembly, ...); e.g. with `CUTAWAY_BENCH_PROFILE=60`, take the minimum and median
+//!   of each stage over the runs.
 //!
 //! Then, unless `CUTAWAY_BENCH_ONLY=files`, synthetic cases (criterion groups too):
 //! - a strip on a 2M geodesic sphere (100k with `CUTAWAY_BENCH_QUICK=1`), warm and cold;
@@ -333,8 +336,10 @@ fn bench_files() {
     // Cold: index build + first cut, from the mesh already in memory (reading is not timed).
     let mut copies: Vec<Mesh> = (0..3).map(|_| target.clone()).collect();
     let mut first_cuts = Vec::new();
+    let mut build_times = Vec::new();
     let cold = timing(3, || {
-        let index = TargetIndex::build(copies.pop().expect("copy")).expect("index");
+        let (index, times) = TargetIndex::build_timed(copies.pop().expect("copy")).expect("index");
+        build_times.push(times);
         let t0 = Instant::now();
         let r = csg::subtract(&index, &cutter).expect("cut");
         first_cuts.push(t0.elapsed().as_secs_f64() * 1e3);
@@ -381,6 +386,13 @@ fn bench_files() {
     println!("  kept mesh materialized (2M copy):   {kept_ms}");
     println!("  cold (index build + cut):           {cold}");
     println!("    of which the first cut after the build: {first_cut:.2} ms wall median");
+    // The index build's phases, from the cold run with the median build time.
+    build_times.sort_by(|a, b| a.total_ms.total_cmp(&b.total_ms));
+    if let Some(times) = build_times.get(build_times.len() / 2) {
+        for line in times.to_string().lines() {
+            println!("    {line}");
+        }
+    }
     if let Some(peers) = peers {
         for p in &peers {
             println!(

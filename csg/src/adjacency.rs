@@ -45,6 +45,14 @@ impl EdgeAdjacency {
     /// When the mesh has more than `u32::MAX / 3` triangles (half-edge ids are `u32`), or an index
     /// is out of range.
     pub fn build(mesh: &Mesh) -> EdgeAdjacency {
+        Self::build_visiting(mesh, |_| {})
+    }
+
+    /// [`EdgeAdjacency::build`], also calling `visit(half_edges)` once per edge, in edge order,
+    /// with the edge's half-edges (`3 * face + corner`, ascending; the edge goes from corner
+    /// `corner` of `face` to the next). The target index derives face neighbours, regions and
+    /// closedness in this one pass instead of re-reading the CSR arrays.
+    pub(crate) fn build_visiting(mesh: &Mesh, mut visit: impl FnMut(&[u32])) -> EdgeAdjacency {
         let triangles = &mesh.triangles;
         assert!(
             triangles.len() <= (u32::MAX / 3) as usize,
@@ -53,35 +61,40 @@ impl EdgeAdjacency {
         );
         let vertex_count = mesh.positions.len();
 
-        // Stage 1: count the half-edges by their lower vertex.
-        let mut bucket_start = vec![0u32; vertex_count + 1];
+        // Stage 1: count the half-edges by their lower vertex, then turn the counts into bucket
+        // starts (exclusive prefix sums).
+        let mut bucket_end = vec![0u32; vertex_count];
         for tri in triangles {
             for k in 0..3 {
                 let (a, b) = (tri[k], tri[(k + 1) % 3]);
                 if a != b {
-                    bucket_start[a.min(b) as usize + 1] += 1;
+                    bucket_end[a.min(b) as usize] += 1;
                 }
             }
         }
-        for v in 0..vertex_count {
-            bucket_start[v + 1] += bucket_start[v];
+        let mut half_edge_count = 0u32;
+        for c in bucket_end.iter_mut() {
+            let count = *c;
+            *c = half_edge_count;
+            half_edge_count += count;
         }
-        let half_edge_count = bucket_start[vertex_count] as usize;
+        let half_edge_count = half_edge_count as usize;
 
-        // Stage 2: scatter (upper vertex, half-edge id) into the buckets.
-        let mut cursor = bucket_start.clone();
-        let mut slots = vec![(0u32, 0u32); half_edge_count];
+        // Stage 2: scatter the half-edge ids into the buckets, advancing each bucket's start to
+        // its end (so bucket `v` is `bucket_end[v - 1]..bucket_end[v]` afterwards). Only the ids
+        // are stored (4 bytes each): on these machines first-touching memory costs more than
+        // reading a half-edge's upper vertex from its (nearby) triangle again in stage 3.
+        let mut slots = vec![0u32; half_edge_count];
         for (t, tri) in triangles.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (tri[k], tri[(k + 1) % 3]);
                 if a != b {
-                    let c = &mut cursor[a.min(b) as usize];
-                    slots[*c as usize] = (a.max(b), (3 * t + k) as u32);
+                    let c = &mut bucket_end[a.min(b) as usize];
+                    slots[*c as usize] = (3 * t + k) as u32;
                     *c += 1;
                 }
             }
         }
-        drop(cursor);
 
         // Stage 3: sort each bucket by (upper vertex, half-edge id) and cut it into edges. Buckets
         // are visited in vertex order, so edges come out sorted by (lo, hi); half-edge ids ascend
@@ -91,8 +104,17 @@ impl EdgeAdjacency {
         let mut edge_faces = Vec::with_capacity(half_edge_count);
         let mut triangle_edges = vec![[NO_EDGE; 3]; triangles.len()];
         edge_face_offsets.push(0u32);
-        for lo in 0..vertex_count {
-            let bucket = &mut slots[bucket_start[lo] as usize..bucket_start[lo + 1] as usize];
+        let mut bucket: Vec<(u32, u32)> = Vec::with_capacity(16);
+        let mut group: Vec<u32> = Vec::with_capacity(8);
+        let mut start = 0usize;
+        for (lo, &end) in bucket_end.iter().enumerate() {
+            bucket.clear();
+            bucket.extend(slots[start..end as usize].iter().map(|&h| {
+                let (t, k) = ((h / 3) as usize, (h % 3) as usize);
+                let tri = &triangles[t];
+                (tri[k].max(tri[(k + 1) % 3]), h)
+            }));
+            start = end as usize;
             if bucket.len() > 1 {
                 bucket.sort_unstable();
             }
@@ -101,15 +123,20 @@ impl EdgeAdjacency {
                 let hi = bucket[i].0;
                 let edge = edges.len() as u32;
                 edges.push([lo as u32, hi]);
+                group.clear();
                 while i < bucket.len() && bucket[i].0 == hi {
-                    let half_edge = bucket[i].1 as usize;
+                    let half_edge = bucket[i].1;
+                    group.push(half_edge);
+                    let half_edge = half_edge as usize;
                     edge_faces.push((half_edge / 3) as u32);
                     triangle_edges[half_edge / 3][half_edge % 3] = edge;
                     i += 1;
                 }
                 edge_face_offsets.push(edge_faces.len() as u32);
+                visit(&group);
             }
         }
+        drop(slots);
         EdgeAdjacency {
             edges,
             edge_face_offsets,

@@ -63,7 +63,10 @@
 //! region whose box overlaps the cutter. No per-cut allocation, clear or first touch is
 //! proportional to the target size. The kept part and the removed piece are returned as deltas
 //! against the target (the removed piece is built into a mesh when first read, see
-//! [`Removed`]). The broad phase and the splitting of faces run in parallel (rayon).
+//! [`Removed`]). The broad phase, the exact pair tests, the splitting of faces and the placing
+//! of new vertices run in parallel (rayon); the flood fill runs beside the assembly of the
+//! output. Everything a thread decides is a pure function of its inputs and results are merged
+//! in a fixed order, so a cut's output does not depend on the thread count or scheduling.
 //!
 //! # Stages
 //! 1. Validate and quantize the cutter ([`prepare_cutter`]). Early-out: boxes disjoint.
@@ -84,11 +87,82 @@ use crate::intersect::{self, FxMap, PointKey, PreparedCutter};
 use crate::mesh::{Mesh, MeshError};
 use crate::output::{CutOptions, CutResult, CutStats, PartBuilder, Provenance, Removed};
 use crate::split::{self, FaceInput, OUT, Piece, PieceStatus, UNKNOWN, Vx};
-use crate::target::{IBox, MANY_NEIGHBORS, TargetIndex};
+use crate::target::{IBox, MANY_NEIGHBORS, NO_NEIGHBOR, TargetIndex};
 
 /// Below this many touched faces (or contour segments), the stages that could run in parallel
 /// run on the calling thread: a rayon hand-off costs more than splitting a few faces.
 const PARALLEL_MIN: usize = 64;
+
+/// Per-stage wall times of one cut, printed to stderr when the environment variable
+/// `CUTAWAY_CUT_PHASES` is set (for profiling the benchmark; never in tests). Off, it costs a
+/// clock read per cut.
+pub(crate) struct Phases {
+    pub(crate) on: bool,
+    start: std::time::Instant,
+    last: std::time::Instant,
+    marks: Vec<(&'static str, f64)>,
+}
+
+impl Phases {
+    pub(crate) fn new() -> Phases {
+        static ON: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+        let on = *ON.get_or_init(|| std::env::var_os("CUTAWAY_CUT_PHASES").is_some());
+        let now = std::time::Instant::now();
+        Phases {
+            on,
+            start: now,
+            last: now,
+            marks: Vec::new(),
+        }
+    }
+
+    /// Ends the stage `name` (started at the previous mark).
+    pub(crate) fn mark(&mut self, name: &'static str) {
+        if self.on {
+            let now = std::time::Instant::now();
+            self.marks
+                .push((name, (now - self.last).as_secs_f64() * 1e3));
+            self.last = now;
+        }
+    }
+
+    /// Appends the stages of `other` (timed on another thread).
+    fn append(&mut self, other: &Phases) {
+        if self.on {
+            self.marks.extend_from_slice(&other.marks);
+        }
+    }
+
+    /// Records a duration measured elsewhere (a stage that ran beside another).
+    fn record(&mut self, name: &'static str, ms: f64) {
+        if self.on {
+            self.marks.push((name, ms));
+        }
+    }
+
+    fn print(&self) {
+        if self.on {
+            let total = self.start.elapsed().as_secs_f64() * 1e3;
+            let parts: Vec<String> = self
+                .marks
+                .iter()
+                .map(|(n, ms)| format!("{n} {ms:.3}"))
+                .collect();
+            eprintln!("cut phases ms: total {total:.3} | {}", parts.join(" | "));
+        }
+    }
+}
+
+/// Wall time of `f` in ms when `on`.
+fn timed<R>(on: bool, f: impl FnOnce() -> R) -> (R, f64) {
+    if on {
+        let t = std::time::Instant::now();
+        let r = f();
+        (r, t.elapsed().as_secs_f64() * 1e3)
+    } else {
+        (f(), 0.0)
+    }
+}
 
 /// Why a cut was refused. Each variant names the sub-cutter and what to fix.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -171,11 +245,15 @@ pub fn subtract_with(
     cutters: &[&Mesh],
     options: &CutOptions,
 ) -> Result<CutResult, CutError> {
+    let mut phases = Phases::new();
     let cutter = prepare_cutter(target, cutters)?;
+    phases.mark("prepare");
     // On a rayon worker: the parallel stages inside then hand work to the other workers through
     // their local queues, instead of each waking the pool from outside (which costs a scheduler
     // round trip per stage on a busy machine).
-    rayon::scope(|_| run(target, &cutter, options))
+    let r = rayon::scope(|_| run(target, &cutter, options, &mut phases));
+    phases.print();
+    r
 }
 
 /// Stage 1: validation and quantization of the cutter(s).
@@ -353,6 +431,7 @@ pub(crate) fn run(
     target: &TargetIndex,
     cutter: &PreparedCutter,
     options: &CutOptions,
+    phases: &mut Phases,
 ) -> Result<CutResult, CutError> {
     let mesh = &target.mesh;
     let nt = mesh.positions.len() as u32;
@@ -367,7 +446,7 @@ pub(crate) fn run(
         return Ok(result);
     }
     // Stage 2: intersections.
-    let isect = intersect::intersect(target, cutter).map_err(CutError::Internal)?;
+    let isect = intersect::intersect_timed(target, cutter, phases).map_err(CutError::Internal)?;
     stats.candidate_pairs = isect.candidate_pairs;
     let face_of_point = |p: u32| -> u32 {
         match isect.keys[p as usize] {
@@ -419,6 +498,7 @@ pub(crate) fn run(
         }
     }
     let cutter_in: Vec<bool> = cutter_in.into_iter().map(|s| s.unwrap_or(false)).collect();
+    phases.mark("cutter status");
 
     // Stage 4a: split the touched target faces.
     let target_corner = |v: Vx| match v {
@@ -426,10 +506,37 @@ pub(crate) fn run(
         Vx::C(i) => HPoint::cutter_vertex(&cutter.lpoints[i as usize]),
         Vx::X(_) => unreachable_point(),
     };
-    let split_target_face = |t: u32| -> Result<(u32, Vec<Piece>, usize), CutError> {
+    // Per touched face (in `isect.target_order`): its pieces, the statuses the crossings give
+    // them (`UNKNOWN` otherwise), the triangulation fallbacks, the status of each corner's piece
+    // when known, and which of its sides the contour crosses (bit k: side k).
+    struct TargetFace {
+        slot: usize,
+        t: u32,
+        pieces: Vec<Piece>,
+        statuses: Vec<u32>,
+        fallbacks: usize,
+        corner_status: [u32; 3],
+        crossed: u8,
+    }
+    // Buffers of one worker, reused from face to face.
+    #[derive(Default)]
+    struct Buffers {
+        boundary: Vec<Vx>,
+        arc_status: Vec<u32>,
+        segments: Vec<(u32, u32, u32)>,
+    }
+    let split_target_face = |buf: &mut Buffers, slot: usize| -> Result<TargetFace, CutError> {
+        let t = isect.target_order[slot];
         let tri = mesh.triangles[t as usize];
-        let mut boundary = Vec::with_capacity(8);
-        let mut arc_status = Vec::with_capacity(8);
+        let Buffers {
+            boundary,
+            arc_status,
+            segments,
+        } = buf;
+        boundary.clear();
+        arc_status.clear();
+        segments.clear();
+        let mut crossed = 0u8;
         for k in 0..3 {
             boundary.push(Vx::T(tri[k]));
             arc_status.push(UNKNOWN);
@@ -437,10 +544,13 @@ pub(crate) fn run(
             if e == NO_EDGE {
                 continue;
             }
-            let Some(list) = isect.target_edges.get(&e) else {
+            let Some(list) = isect.crossings_of_edge(e) else {
                 continue;
             };
-            let forward = target.adjacency.edges[e as usize][0] == tri[k];
+            crossed |= 1 << k;
+            // The adjacency stores edges as `[lo, hi]` with `lo < hi`.
+            let forward = tri[k] < tri[(k + 1) % 3];
+            debug_assert_eq!(forward, target.adjacency.edges[e as usize][0] == tri[k]);
             let mut push = |x: &intersect::Crossing| {
                 let u_side = if forward { x.lo_side } else { -x.lo_side };
                 let f = face_of_point(x.point);
@@ -457,13 +567,10 @@ pub(crate) fn run(
                 list.iter().rev().for_each(&mut push);
             }
         }
-        let segments = isect.target_faces[&t]
-            .iter()
-            .map(|&s| {
-                let seg = &isect.segments[s as usize];
-                (seg.a, seg.b, 1 + cutter.face_component[seg.f as usize])
-            })
-            .collect();
+        segments.extend(isect.segments_of_face(slot).iter().map(|&s| {
+            let seg = &isect.segments[s as usize];
+            (seg.a, seg.b, 1 + cutter.face_component[seg.f as usize])
+        }));
         let [u, v, w] = target.face_points(t);
         let input = FaceInput {
             boundary,
@@ -475,74 +582,43 @@ pub(crate) fn run(
         };
         let split = split::split_face(&input)
             .map_err(|e| CutError::Internal(format!("target face {t}: {e}")))?;
-        Ok((t, split.pieces, split.fallbacks))
-    };
-    // Faces split independently: in parallel when there are enough of them.
-    let split_target: Vec<(u32, Vec<Piece>, usize)> = if isect.target_order.len() >= PARALLEL_MIN {
-        isect
-            .target_order
-            .par_iter()
-            .map(|&t| split_target_face(t))
-            .collect::<Result<_, _>>()?
-    } else {
-        isect
-            .target_order
+        let statuses = split
+            .pieces
             .iter()
-            .map(|&t| split_target_face(t))
-            .collect::<Result<_, _>>()?
+            .map(|p| match p.status {
+                PieceStatus::Known(s) => s,
+                _ => UNKNOWN,
+            })
+            .collect();
+        let mut face = TargetFace {
+            slot,
+            t,
+            pieces: split.pieces,
+            statuses,
+            fallbacks: split.fallbacks,
+            corner_status: [UNKNOWN; 3],
+            crossed,
+        };
+        face.set_corner_statuses(&tri);
+        Ok(face)
     };
-    let mut target_pieces: Vec<(u32, Vec<Piece>)> = Vec::with_capacity(split_target.len());
-    for (t, pieces, fallbacks) in split_target {
-        stats.triangulation_fallbacks += fallbacks;
-        target_pieces.push((t, pieces));
-    }
-    stats.touched_target_faces = target_pieces.len();
-
-    // Stage 4b: statuses of the target pieces.
-    let mut vertex_status: FxMap<u32, u32> = Default::default();
-    vertex_status.reserve(3 * target_pieces.len());
-    let mut statuses: Vec<Vec<u32>> = Vec::with_capacity(target_pieces.len());
-    for (_, pieces) in &target_pieces {
-        let mut st = vec![UNKNOWN; pieces.len()];
-        for (i, p) in pieces.iter().enumerate() {
-            if let PieceStatus::Known(s) = p.status {
-                st[i] = s;
-                for &c in &p.corners {
-                    vertex_status.insert(c, s);
-                }
-            }
-        }
-        statuses.push(st);
-    }
-    for (fi, (_, pieces)) in target_pieces.iter().enumerate() {
-        for (i, p) in pieces.iter().enumerate() {
-            if matches!(p.status, PieceStatus::Default) && !p.corners.is_empty() {
-                let known = p.corners.iter().find_map(|c| vertex_status.get(c).copied());
-                let s = match known {
-                    Some(s) => s,
-                    None => {
-                        stats.inside_tests += 1;
-                        classify::target_point_status(
-                            cutter,
-                            &target.lpoints[p.corners[0] as usize],
-                        )
+    impl TargetFace {
+        /// Gives each corner the status of the piece it belongs to (`UNKNOWN` while unknown).
+        fn set_corner_statuses(&mut self, tri: &[u32; 3]) {
+            for (p, &s) in self.pieces.iter().zip(&self.statuses) {
+                if s != UNKNOWN {
+                    for &c in &p.corners {
+                        for k in 0..3 {
+                            if tri[k] == c {
+                                self.corner_status[k] = s;
+                            }
+                        }
                     }
-                };
-                statuses[fi][i] = s;
-                for &c in &p.corners {
-                    vertex_status.insert(c, s);
                 }
             }
         }
-        let inside = isect.target_faces[&target_pieces[fi].0]
-            .first()
-            .map_or(1, |&sg| {
-                1 + cutter.face_component[isect.segments[sg as usize].f as usize]
-            });
-        stats.status_fallbacks += resolve_loops(pieces, &mut statuses[fi], inside)?;
     }
-
-    // Stage 4c: split the touched cutter faces.
+    // Stage 4c (beside 4a): split the touched cutter faces.
     // Per cutter face: its wall triangles, whether the contour splits it, and the fallbacks of
     // the triangulation and of the statuses.
     type CutterFaceWalls = (Vec<([Vx; 3], u32)>, bool, usize, usize);
@@ -585,9 +661,9 @@ pub(crate) fn run(
         prune_segments(&mut segments, &on_boundary);
         let [a, b, c] = cutter.face_points(f);
         let input = FaceInput {
-            boundary,
-            arc_status,
-            segments,
+            boundary: &boundary,
+            arc_status: &arc_status,
+            segments: &segments,
             points: &isect.points,
             corner_point: &target_corner,
             projection: exact::projection(&exact::normal(a, b, c)),
@@ -624,7 +700,91 @@ pub(crate) fn run(
         }
     };
 
-    // Stage 5 (on this thread while stage 4c runs on the others): flood fill of untouched
+    // Faces split independently: in parallel when there are enough of them (the target faces
+    // and the cutter faces at once, so that the threads share the work).
+    let split_targets = || -> Result<Vec<TargetFace>, CutError> {
+        if isect.target_order.len() >= PARALLEL_MIN {
+            (0..isect.target_order.len())
+                .into_par_iter()
+                .map_init(Buffers::default, split_target_face)
+                .collect()
+        } else {
+            let mut buf = Buffers::default();
+            (0..isect.target_order.len())
+                .map(|slot| split_target_face(&mut buf, slot))
+                .collect()
+        }
+    };
+    let (faces, split_cutter) = rayon::join(split_targets, split_walls);
+    let mut faces = faces?;
+    let split_cutter = split_cutter?;
+    for face in &faces {
+        stats.triangulation_fallbacks += face.fallbacks;
+    }
+    stats.touched_target_faces = faces.len();
+    phases.mark("split faces");
+
+    // Stage 4b: statuses of the target pieces the crossings leave open (rare: faces that only
+    // contour loops cross). A piece without crossings on its boundary takes the status of one
+    // of its corners known from another face (a vertex has one status), else one inside test;
+    // a loop's inside is the flip of its container.
+    let open = |f: &TargetFace| {
+        f.pieces
+            .iter()
+            .zip(&f.statuses)
+            .any(|(p, &s)| s == UNKNOWN && matches!(p.status, PieceStatus::Default))
+    };
+    if faces.iter().any(open) {
+        let mut vertex_status: FxMap<u32, u32> = Default::default();
+        for f in &faces {
+            for (p, &s) in f.pieces.iter().zip(&f.statuses) {
+                if s != UNKNOWN {
+                    for &c in &p.corners {
+                        vertex_status.insert(c, s);
+                    }
+                }
+            }
+        }
+        for f in faces.iter_mut() {
+            for (i, p) in f.pieces.iter().enumerate() {
+                if matches!(p.status, PieceStatus::Default) && !p.corners.is_empty() {
+                    let known = p.corners.iter().find_map(|c| vertex_status.get(c).copied());
+                    let s = match known {
+                        Some(s) => s,
+                        None => {
+                            stats.inside_tests += 1;
+                            classify::target_point_status(
+                                cutter,
+                                &target.lpoints[p.corners[0] as usize],
+                            )
+                        }
+                    };
+                    f.statuses[i] = s;
+                    for &c in &p.corners {
+                        vertex_status.insert(c, s);
+                    }
+                }
+            }
+        }
+    }
+    for f in faces.iter_mut() {
+        if f.pieces
+            .iter()
+            .all(|p| matches!(p.status, PieceStatus::Known(_)))
+        {
+            continue;
+        }
+        if f.statuses.contains(&UNKNOWN) {
+            let inside = isect.segments_of_face(f.slot).first().map_or(1, |&sg| {
+                1 + cutter.face_component[isect.segments[sg as usize].f as usize]
+            });
+            stats.status_fallbacks += resolve_loops(&f.pieces, &mut f.statuses, inside)?;
+        }
+        let tri = mesh.triangles[f.t as usize];
+        f.set_corner_statuses(&tri);
+    }
+    phases.mark("piece status");
+    // Stage 5 (on this thread while stage 6 runs on the others): flood fill of untouched
     // target faces inside the cutter. The scratch marks every face of `removed_faces` (touched
     // by the contour, or flooded) in a bitmap, which also gives them back in ascending order; a
     // flooded face's status is recorded only when there are several sub-cutters (with one it is
@@ -642,30 +802,41 @@ pub(crate) fn run(
         for &t in &isect.target_order {
             scratch.mark_touched(t);
         }
-        let mut stack: Vec<(u32, u32)> = Vec::new();
-        let visit = |scratch: &mut crate::target::Scratch, stack: &mut Vec<(u32, u32)>, t2, s| {
+        // Breadth-first: `queue` holds the flooded faces and their statuses in discovery order.
+        // The faces of a large target are far apart in memory (on the peerbench sphere no
+        // neighbour's index is within 4096), so each face's neighbour entry is a cache miss: the
+        // loop below loads the entries of a batch of queued faces first (independent loads,
+        // which the processor overlaps) and only then follows them.
+        let mut queue: Vec<(u32, u32)> = Vec::new();
+        let visit = |scratch: &mut crate::target::Scratch, queue: &mut Vec<(u32, u32)>, t2, s| {
             if !scratch.is_marked(t2) {
                 if many {
                     scratch.mark_with(t2, s);
                 } else {
                     scratch.mark(t2);
                 }
-                stack.push((t2, s));
+                queue.push((t2, s));
             }
         };
-        for &t in &isect.target_order {
-            let tri = mesh.triangles[t as usize];
+        // Seeds: across every side the contour does not cross, the status of its first corner
+        // (its piece's status: a vertex has one status).
+        for face in &faces {
+            let t = face.t;
+            let neighbors = target.face_neighbors[t as usize];
             for k in 0..3 {
-                let e = target.adjacency.triangle_edges[t as usize][k];
-                if e == NO_EDGE || isect.target_edges.contains_key(&e) {
+                let s = face.corner_status[k];
+                if face.crossed & (1 << k) != 0 || s == OUT || s == UNKNOWN {
                     continue;
                 }
-                let s = vertex_status.get(&tri[k]).copied().unwrap_or(UNKNOWN);
-                if s == OUT || s == UNKNOWN {
-                    continue;
-                }
-                for &t2 in target.adjacency.faces_of_edge(e) {
-                    visit(scratch, &mut stack, t2, s);
+                match neighbors[k] {
+                    NO_NEIGHBOR => {}
+                    MANY_NEIGHBORS => {
+                        let e = target.adjacency.triangle_edges[t as usize][k];
+                        for &t2 in target.adjacency.faces_of_edge(e) {
+                            visit(scratch, &mut queue, t2, s);
+                        }
+                    }
+                    t2 => visit(scratch, &mut queue, t2, s),
                 }
             }
         }
@@ -688,21 +859,31 @@ pub(crate) fn run(
             let v0 = mesh.triangles[t0 as usize][0];
             let s = classify::target_point_status(cutter, &target.lpoints[v0 as usize]);
             if s != OUT {
-                visit(scratch, &mut stack, t0, s);
+                visit(scratch, &mut queue, t0, s);
             }
         }
-        while let Some((t, s)) = stack.pop() {
-            let neighbors = target.face_neighbors[t as usize];
-            for (k, &t2) in neighbors.iter().enumerate() {
-                if t2 < MANY_NEIGHBORS {
-                    visit(scratch, &mut stack, t2, s);
-                } else if t2 == MANY_NEIGHBORS {
-                    let e = target.adjacency.triangle_edges[t as usize][k];
-                    for &t2 in target.adjacency.faces_of_edge(e) {
-                        visit(scratch, &mut stack, t2, s);
+        const BATCH: usize = 32;
+        let mut head = 0;
+        while head < queue.len() {
+            let end = queue.len().min(head + BATCH);
+            let mut neighbors = [[0u32; 3]; BATCH];
+            for (n, &(t, _)) in neighbors.iter_mut().zip(&queue[head..end]) {
+                *n = target.face_neighbors[t as usize];
+            }
+            for i in 0..end - head {
+                let (t, s) = queue[head + i];
+                for (k, &t2) in neighbors[i].iter().enumerate() {
+                    if t2 < MANY_NEIGHBORS {
+                        visit(scratch, &mut queue, t2, s);
+                    } else if t2 == MANY_NEIGHBORS {
+                        let e = target.adjacency.triangle_edges[t as usize][k];
+                        for &t2 in target.adjacency.faces_of_edge(e) {
+                            visit(scratch, &mut queue, t2, s);
+                        }
                     }
                 }
             }
+            head = end;
         }
         // Every marked face, ascending: the touched ones and the flooded (whole) ones.
         let marked = scratch.marked_count();
@@ -720,166 +901,286 @@ pub(crate) fn run(
         drop(guard);
         (removed_faces, whole_faces, whole_sub_cutter, inside_tests)
     };
-    let ((removed_faces, whole_faces, whole_sub_cutter, inside_tests), split_cutter) =
-        rayon::join(flood, split_walls);
-    stats.inside_tests += inside_tests;
-    let mut wall_tris: Vec<([Vx; 3], u32)> = Vec::new();
-    for (tris, touched, fallbacks, status_fallbacks) in split_cutter? {
-        wall_tris.extend(tris);
-        stats.touched_cutter_faces += usize::from(touched);
-        stats.triangulation_fallbacks += fallbacks;
-        stats.status_fallbacks += status_fallbacks;
-    }
-
-    // Stage 6: output.
-    // A new vertex whose exact limit is the lattice point of one of its defining input vertices
-    // (degenerate contact at a vertex) takes that vertex's exact input position, so that it
-    // welds with it; otherwise it is its exact value rounded once.
-    let place = |(h, key): (&HPoint, &PointKey)| -> DVec3 {
-        if let Some(l) = h.limit_lattice_point() {
-            let (tv, cv): (Vec<u32>, Vec<u32>) = match *key {
-                PointKey::Ef { edge, face } => (
-                    target.adjacency.edges[edge as usize].to_vec(),
-                    cutter.triangles[face as usize].to_vec(),
-                ),
-                PointKey::Fe { edge, face } => (
-                    mesh.triangles[face as usize].to_vec(),
-                    cutter.edges[edge as usize].to_vec(),
-                ),
-            };
-            if let Some(&v) = tv.iter().find(|&&v| target.lpoints[v as usize] == l) {
-                return mesh.positions[v as usize];
-            }
-            if let Some(&v) = cv.iter().find(|&&v| cutter.lpoints[v as usize] == l) {
-                return cutter.positions[v as usize];
-            }
-        }
-        // Otherwise place it on the target's original geometry: on the original target edge
-        // (EF) or inside the original target face (FE), with the parameters computed on the
-        // lattice. Kept and removed then tile each target face up to f64 rounding.
-        let l = h.limit();
-        match *key {
-            PointKey::Ef { edge, .. } => {
-                let [p, q] = target.adjacency.edges[edge as usize];
-                let (lp, lq) = (&target.lpoints[p as usize], &target.lpoints[q as usize]);
-                let d: [f64; 3] = std::array::from_fn(|k| (lq[k] - lp[k]) as f64);
-                let num: f64 = (0..3).map(|k| (l[k] - lp[k] as f64) * d[k]).sum();
-                let den: f64 = (0..3).map(|k| d[k] * d[k]).sum();
-                let t = if den > 0.0 {
-                    (num / den).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                let (wp, wq) = (mesh.positions[p as usize], mesh.positions[q as usize]);
-                wp + (wq - wp) * t
-            }
-            PointKey::Fe { face, .. } => {
-                let tri = mesh.triangles[face as usize];
-                let [u, v, w] = tri.map(|i| &target.lpoints[i as usize]);
-                match exact::projection(&exact::normal(u, v, w)) {
-                    Some((axis, _)) => {
-                        let (i, j) = exact::plane_axes(axis);
-                        let area = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
-                            (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-                        };
-                        let pr = |p: &LPoint| [p[i] as f64, p[j] as f64];
-                        let x = [l[i], l[j]];
-                        let whole = area(pr(u), pr(v), pr(w));
-                        let beta = area(pr(u), x, pr(w)) / whole;
-                        let gamma = area(pr(u), pr(v), x) / whole;
-                        let [wu, wv, ww] = tri.map(|i| mesh.positions[i as usize]);
-                        wu + (wv - wu) * beta + (ww - wu) * gamma
-                    }
-                    None => target.lattice.to_world(l),
-                }
-            }
-        }
-    };
-    result.new_positions = if isect.points.len() >= PARALLEL_MIN {
-        isect
-            .points
-            .par_iter()
-            .zip(&isect.keys)
-            .map(place)
-            .collect()
-    } else {
-        isect.points.iter().zip(&isect.keys).map(place).collect()
-    };
-    let new_pos = &result.new_positions;
+    // Stage 6 (on the other threads while the flood fill runs on this one): everything that
+    // does not need the flood: the cutter faces' split, the new vertices, the kept pieces and
+    // the removed pieces of split faces, the walls and the contours.
     let merge = options.merge_coincident;
-    let mut removed = Removed::new(target.mesh.clone(), new_pos.clone(), merge);
-    // Kept ids: a new vertex whose rounded position equals (bit for bit) a corner of a touched
-    // face or an earlier new vertex takes that id, and triangles that collapse are dropped
-    // (they have no area; dropping them is an edge collapse, which keeps the surface closed).
-    let mut kept_ids: FxMap<[u64; 3], u32> = Default::default();
-    kept_ids.reserve(3 * isect.target_order.len() + isect.points.len());
-    let bits = |p: DVec3| p.to_array().map(|c| (c + 0.0).to_bits());
-    for &t in &isect.target_order {
-        for v in mesh.triangles[t as usize] {
-            kept_ids
-                .entry(bits(mesh.positions[v as usize]))
-                .or_insert(v);
-        }
-    }
-    for (fi, (t, pieces)) in target_pieces.iter().enumerate() {
-        for (p, &s) in pieces.iter().zip(&statuses[fi]) {
-            for tri in &p.triangles {
-                if s == OUT {
-                    let ids = tri.map(|v| match v {
-                        Vx::T(i) => i,
-                        Vx::X(x) if merge => {
-                            *kept_ids.entry(bits(new_pos[x as usize])).or_insert(nt + x)
+    let output = || -> Result<Output, CutError> {
+        let mut sub = Phases::new();
+        let mut stats = CutStats::default();
+        // A new vertex whose exact limit is the lattice point of one of its defining input
+        // vertices (degenerate contact at a vertex) takes that vertex's exact input position, so
+        // that it welds with it; otherwise it is its exact value rounded once.
+        let place = |(h, key): (&HPoint, &PointKey)| -> DVec3 {
+            if let Some(l) = may_be_lattice_point(h)
+                .then(|| h.limit_lattice_point())
+                .flatten()
+            {
+                let (tv, cv): (Vec<u32>, Vec<u32>) = match *key {
+                    PointKey::Ef { edge, face } => (
+                        target.adjacency.edges[edge as usize].to_vec(),
+                        cutter.triangles[face as usize].to_vec(),
+                    ),
+                    PointKey::Fe { edge, face } => (
+                        mesh.triangles[face as usize].to_vec(),
+                        cutter.edges[edge as usize].to_vec(),
+                    ),
+                };
+                if let Some(&v) = tv.iter().find(|&&v| target.lpoints[v as usize] == l) {
+                    return mesh.positions[v as usize];
+                }
+                if let Some(&v) = cv.iter().find(|&&v| cutter.lpoints[v as usize] == l) {
+                    return cutter.positions[v as usize];
+                }
+            }
+            // Otherwise place it on the target's original geometry: on the original target edge
+            // (EF) or inside the original target face (FE), with the parameters computed on the
+            // lattice. Kept and removed then tile each target face up to f64 rounding.
+            let l = h.limit();
+            match *key {
+                PointKey::Ef { edge, .. } => {
+                    let [p, q] = target.adjacency.edges[edge as usize];
+                    let (lp, lq) = (&target.lpoints[p as usize], &target.lpoints[q as usize]);
+                    let d: [f64; 3] = std::array::from_fn(|k| (lq[k] - lp[k]) as f64);
+                    let num: f64 = (0..3).map(|k| (l[k] - lp[k] as f64) * d[k]).sum();
+                    let den: f64 = (0..3).map(|k| d[k] * d[k]).sum();
+                    let t = if den > 0.0 {
+                        (num / den).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    let (wp, wq) = (mesh.positions[p as usize], mesh.positions[q as usize]);
+                    wp + (wq - wp) * t
+                }
+                PointKey::Fe { face, .. } => {
+                    let tri = mesh.triangles[face as usize];
+                    let [u, v, w] = tri.map(|i| &target.lpoints[i as usize]);
+                    match exact::projection(&exact::normal(u, v, w)) {
+                        Some((axis, _)) => {
+                            let (i, j) = exact::plane_axes(axis);
+                            let area = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+                                (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+                            };
+                            let pr = |p: &LPoint| [p[i] as f64, p[j] as f64];
+                            let x = [l[i], l[j]];
+                            let whole = area(pr(u), pr(v), pr(w));
+                            let beta = area(pr(u), x, pr(w)) / whole;
+                            let gamma = area(pr(u), pr(v), x) / whole;
+                            let [wu, wv, ww] = tri.map(|i| mesh.positions[i as usize]);
+                            wu + (wv - wu) * beta + (ww - wu) * gamma
                         }
-                        Vx::X(x) => nt + x,
-                        Vx::C(_) => u32::MAX,
-                    });
-                    if ids[0] == ids[1] || ids[1] == ids[2] || ids[2] == ids[0] {
-                        continue;
+                        None => target.lattice.to_world(l),
                     }
-                    result.kept_new_faces.push(ids);
-                    result.kept_new_provenance.push(*t);
-                } else {
-                    // Target pieces have target corners and contour points only.
-                    let mut ids = [0u32; 3];
-                    for (id, v) in ids.iter_mut().zip(tri) {
-                        *id = match *v {
-                            Vx::T(i) => i,
-                            Vx::X(x) => nt + x,
-                            Vx::C(c) => {
-                                return Err(CutError::Internal(format!(
-                                    "target face {t} has a piece with cutter vertex {c}"
-                                )));
-                            }
-                        };
+                }
+            }
+        };
+        let new_positions: Vec<DVec3> = if isect.points.len() >= PARALLEL_MIN {
+            isect
+                .points
+                .par_iter()
+                .zip(&isect.keys)
+                .map(place)
+                .collect()
+        } else {
+            isect.points.iter().zip(&isect.keys).map(place).collect()
+        };
+        sub.mark("place");
+        let new_pos = &new_positions;
+        let mut removed = Removed::new(target.mesh.clone(), new_pos.clone(), merge);
+        // Kept ids: a new vertex whose rounded position equals (bit for bit) a corner of a touched
+        // face or an earlier new vertex takes that id, and triangles that collapse are dropped
+        // (they have no area; dropping them is an edge collapse, which keeps the surface closed).
+        // The map holds the new vertices' positions only, each with the id it takes: the first
+        // touched corner at that position (in the order of `faces`), else the first new vertex
+        // there in the order of the loop below (`UNSET` until then).
+        const UNSET: u32 = u32::MAX;
+        let mut kept_new_faces = Vec::new();
+        let mut kept_new_provenance = Vec::new();
+        let mut kept_ids: FxMap<PositionBits, u32> = Default::default();
+        let bits = position_bits;
+        if merge {
+            kept_ids.reserve(new_pos.len());
+            for &p in new_pos.iter() {
+                kept_ids.entry(bits(p)).or_insert(UNSET);
+            }
+            for face in &faces {
+                for v in mesh.triangles[face.t as usize] {
+                    if let Some(id) = kept_ids.get_mut(&bits(mesh.positions[v as usize]))
+                        && *id == UNSET
+                    {
+                        *id = v;
                     }
-                    removed.piece_faces.push(ids);
-                    removed.piece_provenance.push(*t);
-                    removed.piece_sub_cutter.push(s - 1);
                 }
             }
         }
-    }
+        sub.mark("kept ids");
+        for TargetFace {
+            t,
+            pieces,
+            statuses,
+            ..
+        } in &faces
+        {
+            for (p, &s) in pieces.iter().zip(statuses) {
+                for tri in &p.triangles {
+                    if s == OUT {
+                        let ids = tri.map(|v| match v {
+                            Vx::T(i) => i,
+                            Vx::X(x) if merge => match kept_ids.get_mut(&bits(new_pos[x as usize]))
+                            {
+                                Some(id) => {
+                                    if *id == UNSET {
+                                        *id = nt + x;
+                                    }
+                                    *id
+                                }
+                                None => nt + x,
+                            },
+                            Vx::X(x) => nt + x,
+                            Vx::C(_) => u32::MAX,
+                        });
+                        if ids[0] == ids[1] || ids[1] == ids[2] || ids[2] == ids[0] {
+                            continue;
+                        }
+                        kept_new_faces.push(ids);
+                        kept_new_provenance.push(*t);
+                    } else {
+                        // Target pieces have target corners and contour points only.
+                        let mut ids = [0u32; 3];
+                        for (id, v) in ids.iter_mut().zip(tri) {
+                            *id = match *v {
+                                Vx::T(i) => i,
+                                Vx::X(x) => nt + x,
+                                Vx::C(c) => {
+                                    return Err(CutError::Internal(format!(
+                                        "target face {t} has a piece with cutter vertex {c}"
+                                    )));
+                                }
+                            };
+                        }
+                        removed.piece_faces.push(ids);
+                        removed.piece_provenance.push(*t);
+                        removed.piece_sub_cutter.push(s - 1);
+                    }
+                }
+            }
+        }
+        sub.mark("kept+pieces");
+        let mut wall_tris: Vec<([Vx; 3], u32)> = Vec::new();
+        for (tris, touched, fallbacks, status_fallbacks) in split_cutter {
+            wall_tris.extend(tris);
+            stats.touched_cutter_faces += usize::from(touched);
+            stats.triangulation_fallbacks += fallbacks;
+            stats.status_fallbacks += status_fallbacks;
+        }
+        let mut walls = PartBuilder::new(merge);
+        for (tri, f) in &wall_tris {
+            // Reversed: walls face out of kept (into the cutter).
+            let ids = [tri[0], tri[2], tri[1]]
+                .map(|v| walls.vertex(v, &mesh.positions, &cutter.positions, new_pos));
+            walls.push(
+                ids,
+                Provenance::Cutter(*f),
+                cutter.face_component[*f as usize],
+            );
+        }
+        let contours = contour::chain(&isect.segments, new_pos, |s| {
+            cutter.face_component[isect.segments[s].f as usize]
+        });
+        sub.mark("walls+contours");
+        Ok(Output {
+            new_positions,
+            kept_new_faces,
+            kept_new_provenance,
+            removed,
+            walls: walls.finish(),
+            contours,
+            stats,
+            phases: sub,
+        })
+    };
+    let on = phases.on;
+    let (
+        ((removed_faces, whole_faces, whole_sub_cutter, inside_tests), flood_ms),
+        (output, output_ms),
+    ) = rayon::join(
+        || timed(on, flood),
+        || {
+            // When the other thread took this branch (0 when at once; the flood fill's time
+            // when no other thread was free and this one ran it after the flood fill).
+            let start = if on {
+                phases.last.elapsed().as_secs_f64() * 1e3
+            } else {
+                0.0
+            };
+            let (r, ms) = timed(on, output);
+            (r, (start, ms))
+        },
+    );
+    let output = output?;
+    phases.record("(flood)", flood_ms);
+    phases.record("(output starts)", output_ms.0);
+    phases.record("(output)", output_ms.1);
+    phases.append(&output.phases);
+    phases.mark("flood+output");
+    stats.inside_tests += inside_tests;
+    stats.touched_cutter_faces += output.stats.touched_cutter_faces;
+    stats.triangulation_fallbacks += output.stats.triangulation_fallbacks;
+    stats.status_fallbacks += output.stats.status_fallbacks;
+    let mut removed = output.removed;
     removed.whole_faces = whole_faces;
     removed.whole_sub_cutter = whole_sub_cutter;
-    let mut walls = PartBuilder::new(merge);
-    for (tri, f) in &wall_tris {
-        // Reversed: walls face out of kept (into the cutter).
-        let ids = [tri[0], tri[2], tri[1]]
-            .map(|v| walls.vertex(v, &mesh.positions, &cutter.positions, new_pos));
-        walls.push(
-            ids,
-            Provenance::Cutter(*f),
-            cutter.face_component[*f as usize],
-        );
-    }
     result.removed_faces = removed_faces;
     result.removed = removed;
-    result.walls = walls.finish();
-    result.contours = contour::chain(&isect.segments, new_pos, |s| {
-        cutter.face_component[isect.segments[s].f as usize]
-    });
+    result.new_positions = output.new_positions;
+    result.kept_new_faces = output.kept_new_faces;
+    result.kept_new_provenance = output.kept_new_provenance;
+    result.walls = output.walls;
+    result.contours = output.contours;
     result.stats = stats;
     Ok(result)
+}
+
+/// A position's bits (`-0.0` as `0.0`), as a key for "the same rounded position". A tuple, not
+/// an array: arrays hash as one byte slice, which the integer hasher digests byte by byte.
+pub(crate) type PositionBits = (u64, u64, u64);
+
+/// See [`PositionBits`].
+#[inline]
+pub(crate) fn position_bits(p: DVec3) -> PositionBits {
+    let b = p.to_array().map(|c| (c + 0.0).to_bits());
+    (b[0], b[1], b[2])
+}
+
+/// False when the unperturbed limit of `h` is certainly not a lattice point (then
+/// [`HPoint::limit_lattice_point`] is `None`), decided in `f64`: with a non-zero constant
+/// weight the limit is `x / w`; a quotient below 2³⁰ in magnitude (a point on a target face
+/// is below 2²⁸) is computed with an absolute error below 2³⁰ · 3 · 2⁻⁵³ < 10⁻⁶, so one
+/// farther than that from every integer is not one. Saves the exact 128-bit divisions for
+/// almost every new vertex.
+fn may_be_lattice_point(h: &HPoint) -> bool {
+    if h.w[0] == 0 {
+        return true;
+    }
+    let w = h.w[0] as f64;
+    h.x.iter().all(|x| {
+        let q = x[0] as f64 / w;
+        q.abs() > (1u64 << 30) as f64 || (q - q.round()).abs() <= 1e-6
+    })
+}
+
+/// What stage 6 gives back (see `run`).
+struct Output {
+    new_positions: Vec<DVec3>,
+    kept_new_faces: Vec<[u32; 3]>,
+    kept_new_provenance: Vec<u32>,
+    /// The removed pieces of split faces (the whole faces come from the flood fill).
+    removed: Removed,
+    walls: crate::output::Part,
+    contours: Vec<crate::output::Contour>,
+    /// The cutter-face counters.
+    stats: CutStats,
+    phases: Phases,
 }
 
 fn unreachable_point() -> HPoint {
@@ -942,6 +1243,61 @@ fn prune_segments(segments: &mut Vec<(u32, u32, u32)>, on_boundary: &FxMap<u32, 
         segments.retain(|&(a, b, _)| !bad(a) && !bad(b));
         if segments.len() == before {
             break;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testkit;
+
+    /// Everything a cut returns, with positions as bits, for exact comparison.
+    fn fingerprint(r: &CutResult) -> String {
+        let bits =
+            |p: &[DVec3]| -> Vec<PositionBits> { p.iter().map(|&q| position_bits(q)).collect() };
+        format!(
+            "{:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?}",
+            r.removed_faces,
+            bits(&r.new_positions),
+            r.kept_new_faces,
+            r.kept_new_provenance,
+            r.walls.mesh.triangles,
+            bits(&r.walls.mesh.positions),
+            r.walls.provenance,
+            r.removed.whole_faces,
+            r.removed.piece_faces,
+            r.removed.mesh.triangles,
+            r.contours
+                .iter()
+                .map(|c| (bits(&c.points), c.closed, c.sub_cutter))
+                .collect::<Vec<_>>(),
+            r.removed.sub_cutter,
+            r.stats,
+        )
+    }
+
+    /// The parallel stages merge their results in a fixed order: one thread and four threads
+    /// give the same cut, bit for bit (one cutter and two sub-cutters, each large enough for
+    /// every stage to run in parallel).
+    #[test]
+    fn cut_does_not_depend_on_the_thread_count() {
+        let index = TargetIndex::build(testkit::geodesic_sphere(40, 10.0)).unwrap();
+        let slab = testkit::cube(DVec3::new(-12.0, -3.1, 2.05), DVec3::new(12.0, 3.3, 12.0));
+        let a = testkit::cube(DVec3::new(-12.0, -12.0, -4.0), DVec3::new(12.0, 12.0, -3.0));
+        let b = testkit::cube(DVec3::new(-2.0, -12.0, -1.0), DVec3::new(2.5, 12.0, 1.5));
+        let cut = |threads: usize, cutters: &[&Mesh]| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| subtract_many(&index, cutters).unwrap())
+        };
+        for cutters in [vec![&slab], vec![&a, &b]] {
+            let one = cut(1, &cutters);
+            assert!(one.stats.touched_target_faces >= 2 * PARALLEL_MIN);
+            assert!(one.removed.whole_faces.len() > 1000);
+            assert_eq!(fingerprint(&one), fingerprint(&cut(4, &cutters)));
         }
     }
 }

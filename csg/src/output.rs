@@ -224,7 +224,7 @@ impl Removed {
             }
             let seen = &mut target_id[i as usize];
             if *seen == 0 {
-                *seen = b.vertex(Vx::T(i), tp, &[], np) + 1;
+                *seen = b.new_vertex(tp[i as usize], VertexSource::Target(i)) + 1;
             }
             *seen - 1
         };
@@ -261,7 +261,7 @@ impl Deref for Removed {
 /// by their symbolic identity.
 pub(crate) struct PartBuilder {
     merge: bool,
-    by_position: FxMap<[u64; 3], u32>,
+    by_position: FxMap<crate::boolean::PositionBits, u32>,
     by_source: FxMap<Vx, u32>,
     positions: Vec<DVec3>,
     vertex_source: Vec<VertexSource>,
@@ -284,10 +284,11 @@ impl PartBuilder {
         }
     }
 
-    /// Room for `triangles` triangles (and about half as many vertices).
+    /// Room for `triangles` triangles (and about half as many vertices; the map of
+    /// [`PartBuilder::vertex`] grows as needed: the removed piece gives most of its vertices
+    /// through [`PartBuilder::new_vertex`]).
     pub fn reserve(&mut self, triangles: usize) {
         let vertices = triangles / 2 + 16;
-        self.by_source.reserve(vertices);
         if self.merge {
             self.by_position.reserve(vertices);
         }
@@ -307,9 +308,18 @@ impl PartBuilder {
             Vx::C(i) => (cutter[i as usize], VertexSource::Cutter(i)),
             Vx::X(i) => (new[i as usize], VertexSource::New(i)),
         };
+        let id = self.new_vertex(p, source);
+        self.by_source.insert(v, id);
+        id
+    }
+
+    /// The id of a vertex at `p` from `source` that the caller has not asked for before (the
+    /// caller remembers the id; [`PartBuilder::vertex`] would look it up again): a new id, or
+    /// with `merge` the id of an earlier vertex at the same position.
+    pub fn new_vertex(&mut self, p: DVec3, source: VertexSource) -> u32 {
         let next = self.positions.len() as u32;
         let id = if self.merge {
-            let key = p.to_array().map(|c| (c + 0.0).to_bits());
+            let key = crate::boolean::position_bits(p);
             *self.by_position.entry(key).or_insert(next)
         } else {
             next
@@ -318,7 +328,6 @@ impl PartBuilder {
             self.positions.push(p);
             self.vertex_source.push(source);
         }
-        self.by_source.insert(v, id);
         id
     }
 
@@ -399,30 +408,43 @@ impl CutResult {
     /// The full kept mesh: the target without `removed_faces`, plus the new pieces. Untouched
     /// faces keep their order and their vertex indices; the new vertices are appended.
     pub fn materialize(&self, target: &Mesh) -> Mesh {
-        let (mesh, _) = self.materialize_with_provenance(target);
-        mesh
+        self.materialize_parts(target, false).0
     }
 
     /// [`CutResult::materialize`] plus the target face of every output triangle.
     pub fn materialize_with_provenance(&self, target: &Mesh) -> (Mesh, Vec<u32>) {
+        self.materialize_parts(target, true)
+    }
+
+    /// The kept mesh, and the provenance when asked for (else empty). The untouched faces are
+    /// copied run by run between the removed ones (`removed_faces` is ascending).
+    fn materialize_parts(&self, target: &Mesh, with_provenance: bool) -> (Mesh, Vec<u32>) {
         debug_assert_eq!(target.positions.len(), self.target_vertex_count);
         let mut positions = Vec::with_capacity(target.positions.len() + self.new_positions.len());
         positions.extend_from_slice(&target.positions);
         positions.extend_from_slice(&self.new_positions);
         let keep = target.triangles.len() - self.removed_faces.len() + self.kept_new_faces.len();
         let mut triangles = Vec::with_capacity(keep);
-        let mut provenance = Vec::with_capacity(keep);
-        let mut removed = self.removed_faces.iter().peekable();
-        for (t, tri) in target.triangles.iter().enumerate() {
-            if removed.peek() == Some(&&(t as u32)) {
-                removed.next();
-                continue;
+        let mut provenance = Vec::with_capacity(if with_provenance { keep } else { 0 });
+        let mut run_start = 0usize;
+        let runs = self
+            .removed_faces
+            .iter()
+            .map(|&t| t as usize)
+            .chain(std::iter::once(target.triangles.len()));
+        for end in runs {
+            if end > run_start {
+                triangles.extend_from_slice(&target.triangles[run_start..end]);
+                if with_provenance {
+                    provenance.extend(run_start as u32..end as u32);
+                }
             }
-            triangles.push(*tri);
-            provenance.push(t as u32);
+            run_start = end + 1;
         }
         triangles.extend_from_slice(&self.kept_new_faces);
-        provenance.extend_from_slice(&self.kept_new_provenance);
+        if with_provenance {
+            provenance.extend_from_slice(&self.kept_new_provenance);
+        }
         (
             Mesh {
                 positions,
@@ -481,5 +503,31 @@ mod tests {
         assert_eq!(r.removed.clone().into_part(), part);
         let fresh = crate::subtract(&index, &cutter).unwrap();
         assert_eq!(fresh.removed.into_part(), part);
+    }
+
+    /// The kept mesh is the target's faces minus `removed_faces` (first, last and consecutive
+    /// ones included), in order, then the new faces; with and without provenance.
+    #[test]
+    fn materialize_drops_removed_faces_and_appends_new_ones() {
+        let target = testkit::icosphere(1, 1.0);
+        let n = target.triangles.len() as u32;
+        let nv = target.positions.len() as u32;
+        let r = CutResult {
+            target_vertex_count: nv as usize,
+            removed_faces: vec![0, 1, 2, 7, 9, 10, n - 1],
+            new_positions: vec![DVec3::new(0.1, 0.2, 0.3)],
+            kept_new_faces: vec![[0, 1, nv]],
+            kept_new_provenance: vec![7],
+            ..Default::default()
+        };
+        let want: Vec<u32> = (0..n).filter(|t| !r.removed_faces.contains(t)).collect();
+        let (kept, provenance) = r.materialize_with_provenance(&target);
+        let mut want_triangles: Vec<[u32; 3]> =
+            want.iter().map(|&t| target.triangles[t as usize]).collect();
+        want_triangles.push([0, 1, nv]);
+        assert_eq!(kept.triangles, want_triangles);
+        assert_eq!(provenance, [want, vec![7]].concat());
+        assert_eq!(kept.positions.len(), nv as usize + 1);
+        assert_eq!(r.materialize(&target), kept);
     }
 }

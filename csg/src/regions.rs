@@ -44,21 +44,28 @@ impl Regions {
                 }
             }
         }
-        let mut region_of_triangle = vec![0u32; n];
-        let mut count = 0usize;
-        for t in 0..n {
-            let root = find(&mut parent, t as u32) as usize;
-            region_of_triangle[t] = if root == t {
+        Self::from_parents(parent)
+    }
+
+    /// Labels the sets of a union-find forest over triangles built with [`union`] (`parent[t] <=
+    /// t`, starting from `parent[t] == t`): the regions of [`Regions::build`] when every edge's
+    /// faces were joined.
+    pub(crate) fn from_parents(mut parent: Vec<u32>) -> Regions {
+        // One forward pass, in place: `parent[t] < t` lies in t's region and was relabelled
+        // already, so its entry is t's region id; a root (`parent[t] == t`) opens a new region.
+        let mut count = 0u32;
+        for t in 0..parent.len() {
+            let p = parent[t] as usize;
+            parent[t] = if p == t {
                 count += 1;
-                (count - 1) as u32
+                count - 1
             } else {
-                // root < t, so it is labelled already.
-                region_of_triangle[root]
+                parent[p]
             };
         }
         Regions {
-            region_of_triangle,
-            count,
+            region_of_triangle: parent,
+            count: count as usize,
         }
     }
 
@@ -114,7 +121,7 @@ fn find(parent: &mut [u32], mut x: u32) -> u32 {
 }
 
 /// Joins the sets of `a` and `b`; the smaller root wins.
-fn union(parent: &mut [u32], a: u32, b: u32) {
+pub(crate) fn union(parent: &mut [u32], a: u32, b: u32) {
     let (ra, rb) = (find(parent, a), find(parent, b));
     if ra < rb {
         parent[rb as usize] = ra;

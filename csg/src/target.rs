@@ -3,20 +3,25 @@
 //! Built once per model ([`TargetIndex::build`], O(N log N)) and reused by every cut, so that a
 //! cut only ever touches what the cutter overlaps. It holds the mesh itself, its edge adjacency
 //! and regions (from the mesh core), per-region closedness and bounding boxes, the integer
-//! lattice coordinates of every vertex (see [`crate::lattice`]) and a bounding-volume hierarchy
-//! over the triangles in lattice coordinates.
+//! lattice coordinates of every vertex (see [`crate::lattice`]) and the core's
+//! [`SpatialIndex`] over the triangles.
 //!
-//! The broad phase queries the core's [`SpatialIndex`] (`obvhs`, conservative `f32` boxes) with
-//! the query box widened by two lattice steps, then keeps only the faces whose exact integer box
-//! overlaps the query: no pair can be missed by rounding, and no extra pair survives. The small
-//! integer [`Bvh`] here serves the cutter (its self-intersection check).
+//! The broad phase queries the [`SpatialIndex`] (conservative `f32` boxes) with the query box
+//! widened by two lattice steps, then keeps only the faces whose exact integer box
+//! ([`TargetIndex::face_box`], from the lattice points) overlaps the query: no pair can be missed
+//! by rounding, and no extra pair survives. The small integer [`Bvh`] here serves the cutter
+//! (its self-intersection check).
+//!
+//! Building the index of a 2M-triangle target is the "cold" cost of the first cut
+//! (`benches/boolean.rs` prints it per phase, from [`TargetIndex::build_timed`]).
 
 use std::sync::Arc;
+use std::time::Instant;
 
 use glam::DVec3;
 
 use crate::aabb::Aabb;
-use crate::adjacency::{EdgeAdjacency, NO_EDGE};
+use crate::adjacency::EdgeAdjacency;
 use crate::exact::LPoint;
 use crate::lattice::Lattice;
 use crate::mesh::{Mesh, MeshError};
@@ -321,6 +326,46 @@ pub const NO_NEIGHBOR: u32 = u32::MAX;
 /// faces are in the adjacency.
 pub const MANY_NEIGHBORS: u32 = u32::MAX - 1;
 
+/// Wall time of each phase of [`TargetIndex::build_timed`], in milliseconds. Phases that run
+/// side by side on rayon's workers are listed as indented "(task)" entries (each task's own
+/// wall time) followed by the wall time of the whole join.
+#[derive(Clone, Debug, Default)]
+pub struct BuildTimes {
+    /// `(phase, ms)` in the order they ran.
+    pub phases: Vec<(&'static str, f64)>,
+    /// Wall time of the whole build.
+    pub total_ms: f64,
+}
+
+impl BuildTimes {
+    fn push(&mut self, phase: &'static str, ms: f64) {
+        self.phases.push((phase, ms));
+    }
+
+    fn lap(&mut self, phase: &'static str, since: &mut Instant) {
+        let now = Instant::now();
+        self.push(phase, (now - *since).as_secs_f64() * 1e3);
+        *since = now;
+    }
+}
+
+impl std::fmt::Display for BuildTimes {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(f, "index build {:.1} ms:", self.total_ms)?;
+        for (phase, ms) in &self.phases {
+            writeln!(f, "  {phase:<48} {ms:8.1} ms")?;
+        }
+        Ok(())
+    }
+}
+
+/// Runs `f`, returning its result and its wall time in milliseconds.
+fn timed<R>(f: impl FnOnce() -> R) -> (R, f64) {
+    let t = Instant::now();
+    let r = f();
+    (r, t.elapsed().as_secs_f64() * 1e3)
+}
+
 /// The cached, cutter-independent part of a target (see the module doc).
 #[derive(Clone, Debug)]
 pub struct TargetIndex {
@@ -344,8 +389,6 @@ pub struct TargetIndex {
     pub bounds: IBox,
     /// Spatial index over the faces (world coordinates, conservative).
     pub spatial: SpatialIndex,
-    /// Per face: its lattice box (the BVH leaves' contents). Same length as `mesh.triangles`.
-    pub face_boxes: Vec<IBox>,
     /// Per face, per side `k` (the edge `adjacency.triangle_edges[t][k]`): the other face of
     /// that edge when it has exactly two, else [`NO_NEIGHBOR`] or [`MANY_NEIGHBORS`]. The flood
     /// fill of a cut reads this instead of the CSR adjacency: one load per face.
@@ -358,99 +401,199 @@ pub struct TargetIndex {
     pub(crate) scratch: ScratchCell,
 }
 
-impl TargetIndex {
-    /// Builds the index of `mesh` (checked with [`Mesh::sanity_check`] first).
-    pub fn build(mesh: impl Into<Arc<Mesh>>) -> Result<TargetIndex, MeshError> {
-        let mesh: Arc<Mesh> = mesh.into();
-        mesh.sanity_check()?;
-        let bbox: Aabb = Aabb::from_points(&mesh.positions);
-        let lattice = Lattice::for_box(&bbox);
-        // Inside the box every point quantizes (the box spans a quarter of the lattice range).
-        let lpoints: Vec<LPoint> = mesh
-            .positions
-            .iter()
-            .map(|&p| lattice.quantize(p).unwrap_or([0, 0, 0]))
-            .collect();
-        let ((adjacency, regions), (face_boxes, spatial)) = rayon::join(
-            || {
-                let adjacency = EdgeAdjacency::build(&mesh);
-                let regions = Regions::build(&mesh, &adjacency);
-                (adjacency, regions)
-            },
-            || {
-                rayon::join(
-                    || {
-                        mesh.triangles
-                            .iter()
-                            .map(|t| {
-                                IBox::of_triangle([
-                                    &lpoints[t[0] as usize],
-                                    &lpoints[t[1] as usize],
-                                    &lpoints[t[2] as usize],
-                                ])
-                            })
-                            .collect::<Vec<_>>()
-                    },
-                    || SpatialIndex::build(&mesh),
-                )
-            },
-        );
-        let mut region_closed = vec![true; regions.count];
-        for e in 0..adjacency.edge_count() as u32 {
-            let faces = adjacency.faces_of_edge(e);
-            if faces.len() != 2 {
-                for &f in faces {
-                    region_closed[regions.region_of_triangle[f as usize] as usize] = false;
+/// The cutter-independent topology of a target, from one pass over its edges, and its lattice
+/// points.
+struct Topology {
+    lpoints: Vec<LPoint>,
+    adjacency: EdgeAdjacency,
+    regions: Regions,
+    region_closed: Vec<bool>,
+    region_boxes: Vec<IBox>,
+    region_first_face: Vec<u32>,
+    face_neighbors: Vec<[u32; 3]>,
+    times: Vec<(&'static str, f64)>,
+}
+
+/// Builds the edge adjacency of `mesh` and, while it visits each edge once, the face neighbours
+/// (see [`TargetIndex::face_neighbors`]), the union-find of the regions (every edge joins its
+/// faces, as [`Regions::build`] does) and the faces on edges without exactly two faces (which
+/// open their region); then the regions' lattice boxes and first faces from `lpoints`.
+fn build_topology(mesh: &Mesh, lattice: &Lattice) -> Topology {
+    use rayon::prelude::*;
+    let n = mesh.triangles.len();
+    let mut times = Vec::new();
+    let mut lap = Instant::now();
+    let mut face_neighbors = vec![[NO_NEIGHBOR; 3]; n];
+    // parent[t] <= t (see `regions::union`).
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    let mut open_faces: Vec<u32> = Vec::new();
+    let adjacency = EdgeAdjacency::build_visiting(mesh, |half_edges| {
+        let side = |h: u32| ((h / 3) as usize, (h % 3) as usize);
+        match *half_edges {
+            [h1, h2] => {
+                let ((f1, k1), (f2, k2)) = (side(h1), side(h2));
+                face_neighbors[f1][k1] = f2 as u32;
+                face_neighbors[f2][k2] = f1 as u32;
+                crate::regions::union(&mut parent, f1 as u32, f2 as u32);
+            }
+            [h] => open_faces.push(h / 3),
+            _ => {
+                let first = half_edges[0] / 3;
+                for &h in half_edges {
+                    let (f, k) = side(h);
+                    face_neighbors[f][k] = MANY_NEIGHBORS;
+                    open_faces.push(f as u32);
+                    crate::regions::union(&mut parent, first, f as u32);
                 }
             }
         }
-        let open = region_closed.iter().any(|&closed| !closed);
-        let (face_neighbors, (scratch, winding)) = rayon::join(
-            || {
-                use rayon::prelude::*;
-                adjacency
-                    .triangle_edges
-                    .par_iter()
-                    .enumerate()
-                    .map(|(t, edges)| {
-                        edges.map(|e| {
-                            if e == NO_EDGE {
-                                return NO_NEIGHBOR;
-                            }
-                            match *adjacency.faces_of_edge(e) {
-                                [a, b] => {
-                                    if a as usize == t {
-                                        b
-                                    } else {
-                                        a
-                                    }
-                                }
-                                [_] => NO_NEIGHBOR,
-                                _ => MANY_NEIGHBORS,
-                            }
-                        })
-                    })
-                    .collect::<Vec<_>>()
-            },
+    });
+    let mut t = Instant::now();
+    times.push((
+        "  adjacency + neighbours + union-find (task)",
+        (t - lap).as_secs_f64() * 1e3,
+    ));
+    lap = t;
+    let regions = Regions::from_parents(parent);
+    let mut region_closed = vec![true; regions.count];
+    for &f in &open_faces {
+        region_closed[regions.region_of_triangle[f as usize] as usize] = false;
+    }
+    t = Instant::now();
+    times.push(("  regions (task)", (t - lap).as_secs_f64() * 1e3));
+    lap = t;
+    // Region ids are numbered in order of first face, so a region's first face is where the
+    // count of regions seen so far first passes its id.
+    // Quantized here rather than before the spatial index starts: the index does not need the
+    // lattice points, and this task has time to spare while the index builds.
+    // Inside the box every point quantizes (the box spans a quarter of the lattice range).
+    let lpoint_vec: Vec<LPoint> = mesh
+        .positions
+        .par_iter()
+        .with_min_len(1 << 14)
+        .map(|&p| lattice.quantize(p).unwrap_or([0, 0, 0]))
+        .collect();
+    let lpoints = &lpoint_vec[..];
+    t = Instant::now();
+    times.push(("  quantize (task)", (t - lap).as_secs_f64() * 1e3));
+    lap = t;
+    let mut region_first_face = Vec::with_capacity(regions.count);
+    for (t, &r) in regions.region_of_triangle.iter().enumerate() {
+        if r as usize == region_first_face.len() {
+            region_first_face.push(t as u32);
+        }
+    }
+    let grow = |mut boxes: Vec<IBox>, t: usize| {
+        let b = &mut boxes[regions.region_of_triangle[t] as usize];
+        for &v in &mesh.triangles[t] {
+            b.grow(&lpoints[v as usize]);
+        }
+        boxes
+    };
+    // Per-worker box lists are merged at the end: worth it for a few regions only.
+    let region_boxes = if regions.count == 1 {
+        // One region: the box of the vertices some face uses. Marking them in a bitmap (in
+        // cache) and then scanning `lpoints` in order is much cheaper than gathering three
+        // points per face.
+        let mut used = vec![0u64; lpoints.len().div_ceil(64)];
+        for tri in &mesh.triangles {
+            for &v in tri {
+                used[v as usize >> 6] |= 1 << (v & 63);
+            }
+        }
+        let bounds = lpoints
+            .par_iter()
+            .enumerate()
+            .with_min_len(1 << 16)
+            .filter(|&(v, _)| used[v >> 6] & (1 << (v & 63)) != 0)
+            .fold(
+                || IBox::EMPTY,
+                |mut b, (_, p)| {
+                    b.grow(p);
+                    b
+                },
+            )
+            .reduce(|| IBox::EMPTY, |a, b| a.union(&b));
+        vec![bounds]
+    } else if regions.count <= 64 {
+        (0..n)
+            .into_par_iter()
+            .with_min_len(1 << 16)
+            .fold(|| vec![IBox::EMPTY; regions.count], grow)
+            .reduce(
+                || vec![IBox::EMPTY; regions.count],
+                |a, b| a.iter().zip(&b).map(|(a, b)| a.union(b)).collect(),
+            )
+    } else {
+        (0..n).fold(vec![IBox::EMPTY; regions.count], grow)
+    };
+    times.push(("  region boxes (task)", lap.elapsed().as_secs_f64() * 1e3));
+    Topology {
+        lpoints: lpoint_vec,
+        adjacency,
+        regions,
+        region_closed,
+        region_boxes,
+        region_first_face,
+        face_neighbors,
+        times,
+    }
+}
+
+impl TargetIndex {
+    /// Builds the index of `mesh` (checked with [`Mesh::sanity_check`] first).
+    pub fn build(mesh: impl Into<Arc<Mesh>>) -> Result<TargetIndex, MeshError> {
+        Self::build_timed(mesh).map(|(index, _)| index)
+    }
+
+    /// [`TargetIndex::build`], also returning how long each phase took (for benchmarks).
+    ///
+    /// Two tasks run side by side on rayon's workers once the lattice is chosen: the topology
+    /// (edge adjacency, with face neighbours, regions and closedness derived in the same pass
+    /// over its edges, then the lattice points and the region boxes) and the spatial index (with
+    /// the per-cut scratch). On the 2-core machines most of the cost is first-touching fresh
+    /// memory (about 0.6 ms per MB), so the index keeps no array it can derive cheaply (face
+    /// boxes come from `lpoints`).
+    pub fn build_timed(mesh: impl Into<Arc<Mesh>>) -> Result<(TargetIndex, BuildTimes), MeshError> {
+        let mut times = BuildTimes::default();
+        let clock = Instant::now();
+        let mesh: Arc<Mesh> = mesh.into();
+        let mut lap = Instant::now();
+        mesh.sanity_check()?;
+        times.lap("sanity_check", &mut lap);
+        let bbox: Aabb = Aabb::from_points(&mesh.positions);
+        let lattice = Lattice::for_box(&bbox);
+        times.lap("bbox", &mut lap);
+        let (topology, ((spatial, t_spatial), (scratch, t_scratch))) = rayon::join(
+            || build_topology(&mesh, &lattice),
             || {
                 rayon::join(
-                    || Scratch::for_faces(mesh.triangles.len()),
-                    || open.then(|| WindingTree::build(&mesh)),
+                    || timed(|| SpatialIndex::build(&mesh)),
+                    || timed(|| Scratch::for_faces(mesh.triangles.len())),
                 )
             },
         );
-        let mut region_boxes = vec![IBox::EMPTY; regions.count];
-        let mut region_first_face = vec![u32::MAX; regions.count];
-        let mut bounds = IBox::EMPTY;
-        for (t, b) in face_boxes.iter().enumerate() {
-            let r = regions.region_of_triangle[t] as usize;
-            region_boxes[r] = region_boxes[r].union(b);
-            if region_first_face[r] == u32::MAX {
-                region_first_face[r] = t as u32;
-            }
-            bounds = bounds.union(b);
-        }
-        Ok(TargetIndex {
+        let Topology {
+            lpoints,
+            adjacency,
+            regions,
+            region_closed,
+            region_boxes,
+            region_first_face,
+            face_neighbors,
+            times: topology_times,
+        } = topology;
+        times.phases.extend(topology_times);
+        times.push("  spatial bvh (task)", t_spatial);
+        times.push("  scratch (task)", t_scratch);
+        times.lap("join (topology | bvh | scratch)", &mut lap);
+        // Only open targets need the winding-number tree (walls of closed ones use ray parity).
+        let open = region_closed.iter().any(|&closed| !closed);
+        let winding = open.then(|| WindingTree::build(&mesh));
+        times.lap("winding (open targets only)", &mut lap);
+        let bounds = region_boxes.iter().fold(IBox::EMPTY, |acc, b| acc.union(b));
+        times.total_ms = clock.elapsed().as_secs_f64() * 1e3;
+        let index = TargetIndex {
             mesh,
             adjacency,
             regions,
@@ -461,11 +604,17 @@ impl TargetIndex {
             lpoints,
             bounds,
             spatial,
-            face_boxes,
             face_neighbors,
             winding,
             scratch: ScratchCell(std::sync::Mutex::new(scratch)),
-        })
+        };
+        Ok((index, times))
+    }
+
+    /// Lattice box of face `t`.
+    #[inline]
+    pub fn face_box(&self, t: u32) -> IBox {
+        IBox::of_triangle(self.face_points(t))
     }
 
     /// The target mesh.
@@ -483,7 +632,7 @@ impl TargetIndex {
         let mut found = Vec::new();
         self.spatial.faces_in_box(&aabb, &mut found);
         for f in found {
-            if self.face_boxes[f as usize].overlaps(query) {
+            if self.face_box(f).overlaps(query) {
                 visit(f);
             }
         }
@@ -537,7 +686,7 @@ impl TargetIndex {
             &mut found,
         );
         for t in found {
-            if self.face_boxes[t as usize].overlaps(query) {
+            if self.face_box(t).overlaps(query) {
                 visit(t);
             }
         }
@@ -598,8 +747,8 @@ mod tests {
         let mut got = Vec::new();
         index.faces_in_box(&q, |f| got.push(f));
         got.sort_unstable();
-        let want: Vec<u32> = (0..index.face_boxes.len() as u32)
-            .filter(|&f| index.face_boxes[f as usize].overlaps(&q))
+        let want: Vec<u32> = (0..index.mesh.triangles.len() as u32)
+            .filter(|&f| index.face_box(f).overlaps(&q))
             .collect();
         assert!(!want.is_empty());
         assert_eq!(got, want);
@@ -629,6 +778,111 @@ mod tests {
         let across = testkit::cube(DVec3::new(-3.0, -3.0, -12.0), DVec3::new(3.0, 3.0, -8.0));
         let r = crate::subtract(&index, &across).unwrap();
         assert!(!r.walls.mesh.is_empty() && !r.removed.mesh.is_empty());
+    }
+
+    /// The fused build (neighbours, regions and closedness from the adjacency pass, region boxes
+    /// from `lpoints`) gives exactly what the separate definitions give, on meshes with several
+    /// regions, boundaries, a non-manifold fin, degenerate and duplicate triangles.
+    #[test]
+    fn fused_build_matches_the_definitions() {
+        let mut open_sphere = testkit::icosphere(3, 10.0);
+        let positions = open_sphere.positions.clone();
+        open_sphere
+            .triangles
+            .retain(|t| positions[t[0] as usize].z < 8.0);
+        let mut messy = testkit::cube(DVec3::ZERO, DVec3::ONE);
+        messy.append(&testkit::torus(3.0, 1.0, 8, 6));
+        messy.append(&testkit::icosphere(1, 0.5));
+        messy.append(&testkit::bow_tie());
+        let v = messy.positions.len() as u32;
+        messy.positions.extend([
+            DVec3::new(9.0, 0.0, 0.0),
+            DVec3::new(9.0, 1.0, 0.0),
+            DVec3::new(9.0, 0.0, 1.0),
+            DVec3::new(8.0, 0.0, 0.0),
+            DVec3::new(10.0, 0.5, 0.5),
+            DVec3::splat(-7.0),
+        ]);
+        messy.triangles.extend([
+            // A fin: three faces on the edge v..v+1, then degenerate and duplicate faces.
+            [v, v + 1, v + 2],
+            [v + 1, v, v + 3],
+            [v, v + 1, v + 4],
+            [v + 2, v + 2, v + 4],
+            [v + 3, v + 4, v + 3],
+            [v + 5, v + 5, v + 5],
+            [v, v + 1, v + 2],
+        ]);
+        // Interleave the regions' faces.
+        let last = messy.triangles.len() - 1;
+        messy.triangles.swap(3, last - 8);
+        for mesh in [
+            testkit::icosphere(2, 1.0),
+            open_sphere,
+            messy,
+            Mesh::default(),
+        ] {
+            let index = TargetIndex::build(mesh.clone()).unwrap();
+            let adjacency = EdgeAdjacency::build(&mesh);
+            adjacency.sanity_check(&mesh).unwrap();
+            assert_eq!(index.adjacency.edges, adjacency.edges);
+            assert_eq!(index.adjacency.edge_faces, adjacency.edge_faces);
+            assert_eq!(
+                index.adjacency.edge_face_offsets,
+                adjacency.edge_face_offsets
+            );
+            assert_eq!(index.adjacency.triangle_edges, adjacency.triangle_edges);
+            let regions = Regions::build(&mesh, &adjacency);
+            regions.sanity_check(&mesh).unwrap();
+            assert_eq!(index.regions.region_of_triangle, regions.region_of_triangle);
+            assert_eq!(index.regions.count, regions.count);
+            let mut closed = vec![true; regions.count];
+            for e in 0..adjacency.edge_count() as u32 {
+                let faces = adjacency.faces_of_edge(e);
+                if faces.len() != 2 {
+                    for &f in faces {
+                        closed[regions.region_of_triangle[f as usize] as usize] = false;
+                    }
+                }
+            }
+            assert_eq!(index.region_closed, closed);
+            assert_eq!(index.winding.is_some(), closed.iter().any(|c| !c));
+            let neighbors: Vec<[u32; 3]> = (0..mesh.triangles.len())
+                .map(|t| {
+                    adjacency.triangle_edges[t].map(|e| {
+                        if e == crate::adjacency::NO_EDGE {
+                            return NO_NEIGHBOR;
+                        }
+                        match *adjacency.faces_of_edge(e) {
+                            [a, b] => {
+                                if a as usize == t {
+                                    b
+                                } else {
+                                    a
+                                }
+                            }
+                            [_] => NO_NEIGHBOR,
+                            _ => MANY_NEIGHBORS,
+                        }
+                    })
+                })
+                .collect();
+            assert_eq!(index.face_neighbors, neighbors);
+            let mut boxes = vec![IBox::EMPTY; regions.count];
+            let mut first = vec![u32::MAX; regions.count];
+            let mut bounds = IBox::EMPTY;
+            for t in 0..mesh.triangles.len() as u32 {
+                let r = regions.region_of_triangle[t as usize] as usize;
+                let b = index.face_box(t);
+                boxes[r] = boxes[r].union(&b);
+                first[r] = first[r].min(t);
+                bounds = bounds.union(&b);
+            }
+            assert_eq!(index.region_boxes, boxes);
+            assert_eq!(index.region_first_face, first);
+            assert_eq!(index.bounds, bounds);
+            index.spatial.sanity_check(&mesh).unwrap();
+        }
     }
 
     #[test]

@@ -3,7 +3,9 @@
 //! A 1,000-step Archimedean spiral (turn spacing 3h, step 1h, h = mean edge length) around the
 //! north pole of geodesic spheres of ~10k, ~130k and ~1M triangles; every step is timed alone.
 //! Prints p50 / p99 / max per size, the 1M/10k median ratio and new triangles per crossed
-//! triangle; targets: p50 ≤ 0.5 ms, max ≤ 4 ms at 1M, ratio ≤ 1.5, ≤ 3 new per crossed.
+//! triangle (per triangle the stroke crossed, and triangle by triangle as counted by
+//! `survey::element_budget`: mean and largest); targets: p50 ≤ 0.5 ms, max ≤ 4 ms at 1M,
+//! ratio ≤ 1.5, ≤ 3 new per crossed on average, never more than 4 in one.
 //! Then the refusal rate on random strokes (slits and grooves; a real muscle with
 //! `CUTAWAY_ANATOMY` set).
 //! Criterion then measures one step at 1M. Run: `cargo bench -p cutter --bench scalpel`.
@@ -47,6 +49,7 @@ struct Figures {
     times: Vec<Duration>,
     created: usize,
     crossed: usize,
+    budget: survey::ElementBudget,
 }
 
 fn run_spiral(frequency: u32, depth: f64) -> Figures {
@@ -69,6 +72,7 @@ fn run_spiral(frequency: u32, depth: f64) -> Figures {
         times,
         created: s.dyn_mesh().triangle_count() - before,
         crossed: report.triangles_cut,
+        budget: survey::element_budget(&mesh, s.dyn_mesh()),
     }
 }
 
@@ -96,7 +100,7 @@ fn bench_scalpel(c: &mut Criterion) {
             slowest.truncate(3);
             eprintln!("  slowest steps (index, ms): {slowest:.3?}");
             eprintln!(
-                "scalpel spiral depth {depth}: {:>9} triangles, {} steps: p50 {:.4} ms, p99 {:.4} ms, max {:.4} ms; {} triangles crossed, {} created ({:.2} new per crossed)",
+                "scalpel spiral depth {depth}: {:>9} triangles, {} steps: p50 {:.4} ms, p99 {:.4} ms, max {:.4} ms; {} triangles crossed, {} created ({:.2} new per crossed; triangle by triangle mean {:.2}, max {}, {} over 4)",
                 f.triangles,
                 f.times.len(),
                 p50,
@@ -105,6 +109,9 @@ fn bench_scalpel(c: &mut Criterion) {
                 f.crossed,
                 f.created,
                 f.created as f64 / f.crossed.max(1) as f64,
+                f.budget.mean,
+                f.budget.max,
+                f.budget.over_four,
             );
             medians.push((depth, frequency, p50));
         }

@@ -5,7 +5,7 @@
 
 use csg::{DVec3, Mesh};
 use cutter::scalpel::invariants::{min_angle_deg, t_junction_near, validate};
-use cutter::scalpel::{Scalpel, ScalpelOptions, Tool, TopologyReport};
+use cutter::scalpel::{Scalpel, ScalpelOptions, Tool, TopologyReport, survey};
 
 /// An `n × n` grid of unit squares on z = 0 from (0, 0), each split on the (0,0)-(1,1) diagonal
 /// (right-isosceles triangles; longest edge h = √2).
@@ -689,11 +689,14 @@ fn element_budget_straight_cut() {
     let r = s.end_stroke().unwrap();
     assert!(r.triangles_cut > 30);
     // Triangle by triangle: never more than 4 new in one crossed triangle.
-    let (max, _, at, _) = new_per_crossed_triangle(&mesh, &s);
+    let b = survey::element_budget(&mesh, s.dyn_mesh());
     assert!(
-        max <= 4,
-        "{max} new triangles in one crossed triangle: {at:?}"
+        b.max <= 4.0,
+        "{} new triangles in one crossed triangle: {:?}",
+        b.max,
+        b.worst
     );
+    assert_eq!(b.total_new, r.triangles_created as f64);
     let per = r.triangles_created as f64 / r.triangles_cut as f64;
     assert!(
         per <= 2.0 + 6.0 / r.triangles_cut as f64,
@@ -1255,7 +1258,8 @@ fn through_stroke(
     assert!(before.closed && before.manifold, "{before:?}");
     s.begin_stroke(pts[0]).unwrap();
     for (i, &q) in pts[1..].iter().enumerate() {
-        s.step(q).unwrap_or_else(|e| panic!("step {i}: {e}"));
+        s.step(q)
+            .unwrap_or_else(|e| panic!("step {i}: {e} ({})", s.last_refusal()));
         let t = topo(&s);
         assert!(t.closed && t.manifold, "step {i}: {t:?}");
     }
@@ -1291,6 +1295,40 @@ fn blade_deeper_than_a_slab_cuts_a_slot_through_it() {
     assert_eq!((groove.components, groove.euler), (1, 2));
 }
 
+/// A slot crossing another slot cannot open into it (its end there would not close): it ends
+/// short of it and the stroke cuts a new slot past it, every step accepted, the slab closed and
+/// manifold after each. Two slots crossing make three holes through the slab: χ 2 → −4.
+#[test]
+fn slot_reaching_another_slot_goes_on_past_it() {
+    let mesh = slab(20, 0.5);
+    let first = line(DVec3::new(5.3, 10.2, 0.5), DVec3::new(14.6, 10.7, 0.5), 0.4);
+    let (_, after_first, mut s) = through_stroke(&mesh, 1.0, &first);
+    assert_eq!(after_first.euler, 0);
+    let second = line(DVec3::new(10.3, 4.1, 0.5), DVec3::new(10.6, 16.3, 0.5), 0.4);
+    let vertices = s.dyn_mesh().vertex_count();
+    s.begin_stroke(second[0]).unwrap();
+    for (i, &q) in second[1..].iter().enumerate() {
+        s.step(q)
+            .unwrap_or_else(|e| panic!("step {i}: {e} ({})", s.last_refusal()));
+        let t = topo(&s);
+        assert!(t.closed && t.manifold, "step {i}: {t:?}");
+    }
+    s.end_stroke().unwrap();
+    let t = topo(&s);
+    assert_eq!((t.components, t.boundary_loops, t.euler), (1, 0, -4));
+    // The second stroke cut on both sides of the first slot, on the top and on the bottom.
+    let m = s.dyn_mesh();
+    let new: Vec<DVec3> = (vertices..m.vertex_count())
+        .map(|v| m.pos(v as u32))
+        .collect();
+    for z in [0.0, 0.5] {
+        assert!(
+            new.iter().any(|p| p.z == z && p.y < 9.0) && new.iter().any(|p| p.z == z && p.y > 12.0),
+            "z {z}: not cut on both sides of the first slot"
+        );
+    }
+}
+
 #[test]
 fn blade_deeper_than_a_sphere_cuts_through_it() {
     let sphere = csg::testkit::icosphere(4, 10.0);
@@ -1302,56 +1340,66 @@ fn blade_deeper_than_a_sphere_cuts_through_it() {
     );
 }
 
-/// New triangles per crossed triangle, triangle by triangle: each triangle of the cut mesh is
-/// attributed to the original triangle nearest its centroid (surface pieces to the one they lie
-/// in, groove walls to one beside their lip); an original triangle with `k` attributed triangles
-/// got `k - 1` new ones. Returns the largest count, the number of original triangles that got
-/// new ones, and where the largest is (original triangle, its surface pieces, its walls); prints
-/// the histogram (`(pieces, walls)` → number of original triangles).
-fn new_per_crossed_triangle(
-    original: &Mesh,
-    s: &Scalpel,
-) -> (usize, usize, (u32, usize, usize), usize) {
-    let index = csg::SpatialIndex::build(original);
+/// The far side of a through-cut follows the actual far surface under each sample (a ray along
+/// the inward normal), not the near side moved by the thickness where the cut started: a slab
+/// whose top is inclined (normal tilted 17° along the stroke) and rises along it, so the
+/// structure is 2 thick along the normal where the stroke starts and 6.4 where it ends. Moved by
+/// the starting thickness, the far slit would end about 1.3 short of where the ray from the
+/// last sample leaves the slab.
+#[test]
+fn through_cut_far_side_follows_the_far_surface() {
+    let mut mesh = slab(20, 1.0);
+    let top = |x: f64| 4.0 + 0.3 * (x - 10.0);
+    for p in mesh.positions.iter_mut() {
+        if p.z == 1.0 {
+            p.z = top(p.x);
+        }
+    }
+    let y0 = 10.7;
+    let pts: Vec<DVec3> = line(DVec3::new(3.0, y0, 0.0), DVec3::new(17.0, y0, 0.0), 0.4)
+        .into_iter()
+        .map(|p| DVec3::new(p.x, p.y, top(p.x)))
+        .collect();
+    let (_, after, s) = through_stroke(&mesh, 10.0, &pts);
+    assert_eq!(
+        (after.components, after.boundary_loops, after.euler),
+        (1, 0, 0)
+    );
+    // Where the rays along the inward normal from the first and last samples meet the bottom.
+    let n = DVec3::new(-0.3, 0.0, 1.0).normalize();
+    let hit = |q: DVec3| q - n * (q.z / n.z);
+    let (first, last) = (hit(pts[0]), hit(pts[pts.len() - 1]));
     let m = s.dyn_mesh();
-    let mut pieces = vec![0usize; original.triangles.len()];
-    let mut walls = vec![0usize; original.triangles.len()];
-    for t in 0..m.triangle_count() as u32 {
-        let [a, b, c] = m.triangles()[t as usize].map(|v| m.pos(v));
-        let centroid = (a + b + c) / 3.0;
-        let f = index.closest_point(original, centroid).unwrap().face as usize;
-        if m.is_wall(t) {
-            walls[f] += 1;
-        } else {
-            pieces[f] += 1;
-        }
-    }
-    let mut histogram = std::collections::BTreeMap::new();
-    for f in 0..pieces.len() {
-        if pieces[f] + walls[f] > 1 {
-            *histogram.entry((pieces[f], walls[f])).or_insert(0usize) += 1;
-        }
-    }
-    eprintln!("(pieces, walls) of cut triangles: {histogram:?}");
-    let mut worst = (0, 0, (0, 0, 0), 0);
-    for f in 0..pieces.len() {
-        let new = (pieces[f] + walls[f]).saturating_sub(1);
-        if new > 0 {
-            worst.1 += 1;
-        }
-        if new > 4 {
-            worst.3 += 1;
-        }
-        if new > worst.0 {
-            worst.0 = new;
-            worst.2 = (f as u32, pieces[f], walls[f]);
-        }
-    }
-    worst
+    let far: Vec<DVec3> = (mesh.positions.len()..m.vertex_count())
+        .map(|v| m.pos(v as u32))
+        .filter(|p| p.z == 0.0)
+        .collect();
+    let lo = far.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
+    let hi = far.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max);
+    eprintln!(
+        "far slit from x {lo:.2} to {hi:.2}; rays from the ends meet the bottom at {:.2}, {:.2}",
+        first.x, last.x
+    );
+    assert!(far.len() > 10, "only {} far-side vertices", far.len());
+    assert!(
+        (lo - first.x).abs() <= 0.5 && (hi - last.x).abs() <= 0.5,
+        "far slit from {lo} to {hi}, rays at {} and {}",
+        first.x,
+        last.x
+    );
+    let drift = far.iter().map(|p| (p.y - y0).abs()).fold(0.0, f64::max);
+    assert!(
+        drift <= 0.05,
+        "the far slit drifts {drift} across the stroke"
+    );
 }
 
 /// Issue 6 element budget for grooves: new triangles (walls included) per triangle crossed, on a
-/// spiral like the benchmark's (turns 3 h apart) on a geodesic sphere.
+/// spiral like the benchmark's (turns 3 h apart) on a geodesic sphere: at most 3 on average per
+/// triangle the stroke crossed, never more than 4 in one. What "new in one crossed triangle"
+/// counts is defined at `survey::element_budget`: its surface pieces minus one, plus the lip
+/// walls of the segments cut through it, plus half of each floor triangle at either end of those
+/// segments; every new triangle is counted exactly once (checked).
 #[test]
 fn groove_element_budget_on_a_spiral() {
     let sphere = csg::testkit::geodesic_sphere(40, 50.0);
@@ -1390,20 +1438,18 @@ fn groove_element_budget_on_a_spiral() {
             r.triangles_cut
         );
         assert!(per <= 3.0, "{per} new triangles per crossed triangle");
-        let (max, crossed, at, over) = new_per_crossed_triangle(&sphere, &s);
+        let b = survey::element_budget(&sphere, s.dyn_mesh());
         eprintln!(
-            "groove depth {depth}: at most {max} new triangles in one of {crossed} cut triangles, {over} over 4 (worst: triangle, pieces, walls {at:?})"
+            "groove depth {depth}: {} cut triangles, mean {:.2}, max {} new ({} over 4; worst: triangle, pieces, walls {:?}); (pieces, 2 walls) histogram {:?}",
+            b.crossed, b.mean, b.max, b.over_four, b.worst, b.histogram
         );
-        // Not "never more than 4": a triangle split in 3 under which a new floor vertex starts
-        // gets both lips' wall quads (2 + 2 triangles): 6 new. Measured (seeded spiral): 12 of
-        // ~200 cut triangles over 4 at depth 0.5, the worst 6.
+        // Every new triangle is counted once.
+        assert_eq!(b.total_new, (s.dyn_mesh().triangle_count() - t0) as f64);
         assert!(
-            max <= 6,
-            "{max} new triangles in one crossed triangle: {at:?}"
-        );
-        assert!(
-            over <= crossed / 10,
-            "{over} of {crossed} cut triangles got more than 4 new"
+            b.max <= 4.0,
+            "{} new triangles in one crossed triangle: {:?}",
+            b.max,
+            b.worst
         );
     }
 }
@@ -1454,9 +1500,9 @@ fn refusal_rate_on_random_strokes() {
     // Bounds: measured rates (seeded, so exact) with a margin; see the report printed.
     let cases: [(&str, &Mesh, f64, u64, f64); 4] = [
         ("sphere slit", &sphere, 0.0, 1, 0.01),
-        ("sphere groove", &sphere, 0.5, 2, 0.04),
+        ("sphere groove", &sphere, 0.5, 2, 0.005),
         ("slab slit", &plate, 0.0, 3, 0.01),
-        ("slab through", &plate, 1.0, 4, 0.08),
+        ("slab through", &plate, 1.0, 4, 0.06),
     ];
     // Paths for the slot: on the slab's top face, 1 from its rim (a through-cut over the rim
     // has no far side under it): drawn on a sheet of that extent, lifted onto the top.
@@ -1479,16 +1525,15 @@ fn refusal_rate_on_random_strokes() {
         );
         assert!(r.steps >= 80, "{name}: only {} steps", r.steps);
         validate(s.dyn_mesh()).unwrap_or_else(|e| panic!("{name}: {e}"));
-        // A slot meeting another cut stops there by design (every later step of the stroke is
-        // refused with this cause); bounded are the refusals of cases the code does not handle.
-        let stopped = r
-            .causes
-            .get("through-cut blocked by a cut or boundary")
-            .copied()
-            .unwrap_or(0);
-        let unhandled = (r.refused - stopped) as f64 / r.steps as f64;
+        // A slot meeting another cut ends there and starts again past it (no refusal).
         assert!(
-            unhandled <= bound,
+            !r.causes
+                .contains_key("through-cut blocked by a cut or boundary"),
+            "{name}: {:?}",
+            r.top_causes()
+        );
+        assert!(
+            r.rate() <= bound,
             "{name}: {} of {} steps refused; causes {:?}",
             r.refused,
             r.steps,
@@ -1501,6 +1546,50 @@ fn refusal_rate_on_random_strokes() {
             r.off_mesh,
             r.steps
         );
+    }
+}
+
+/// Grooves on random strokes (`scalpel::survey`) on three spheres: no step refused (24 strokes
+/// crossing one another, per seed), fewer than 1% of the samples out of the tip's reach; and
+/// the element budget of single strokes (turning up to 25° per sample): never more than 4 new
+/// triangles in one crossed triangle at this depth. (At depth 0.2 a few triangles in a hundred
+/// strokes get 5: a sharp turn where no vertex is near forces a floor change between two edge
+/// splits; see `Groove::make_bottom`.)
+#[test]
+fn grooves_on_random_strokes_refuse_nothing_and_keep_the_budget() {
+    use cutter::scalpel::survey::{element_budget, random_strokes, survey};
+    let meshes = [
+        ("icosphere 3", csg::testkit::icosphere(3, 10.0)),
+        ("icosphere 4", csg::testkit::icosphere(4, 10.0)),
+        ("geodesic 20", csg::testkit::geodesic_sphere(20, 10.0)),
+    ];
+    let options = ScalpelOptions::default().with_depth(0.5);
+    for (name, mesh) in &meshes {
+        let (mut steps, mut refused, mut off) = (0, 0, 0);
+        for seed in [1, 5] {
+            let strokes = random_strokes(mesh, 24, seed);
+            let (r, s) = survey(mesh, options, &strokes).unwrap();
+            let t = validate(s.dyn_mesh()).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(t.closed && t.manifold, "{name} seed {seed}: {t:?}");
+            assert_eq!(r.refused, 0, "{name} seed {seed}: {:?}", r.top_causes());
+            (steps, refused, off) = (steps + r.steps, refused + r.refused, off + r.off_mesh);
+        }
+        let (mut worst, mut mean, mut n) = (0.0f64, 0.0, 0);
+        for stroke in random_strokes(mesh, 8, 99) {
+            let (_, s) = survey(mesh, options, std::slice::from_ref(&stroke)).unwrap();
+            let b = element_budget(mesh, s.dyn_mesh());
+            assert_eq!(
+                b.total_new,
+                (s.dyn_mesh().triangle_count() - mesh.triangles.len()) as f64
+            );
+            assert!(b.max <= 4.0, "{name}: {} new in one: {:?}", b.max, b.worst);
+            (worst, mean, n) = (worst.max(b.max), mean + b.mean, n + 1);
+        }
+        eprintln!(
+            "{name}: {steps} groove steps, {refused} refused, {off} out of reach; single strokes: at most {worst} new per crossed triangle, mean {:.2}",
+            mean / n as f64
+        );
+        assert!(off * 100 <= steps, "{name}: {off} of {steps} out of reach");
     }
 }
 

@@ -365,6 +365,10 @@ pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
     }
     if app.mode == Mode::Edit && app.viewport.live.enabled && !app.scene.cutters.is_empty() {
         inputs.preview = app.viewport.live.geometry();
+        inputs.deltas = app.viewport.live.deltas();
+    }
+    if app.mode == Mode::Scalpel {
+        inputs.deltas.extend(app.viewport.scalpel.delta());
     }
     if app.mode == Mode::Edit && !app.cutters_hidden {
         let active = app.viewport.editor.active_cutter();

@@ -12,20 +12,40 @@
 //! The live view is the Normal Cut of every cutter whatever its Visualization settings
 //! (transparency, ribbons and slices are Preview's): that is what painting needs, and the cheapest
 //! view to recompute.
+//!
+//! ## Drawn from the cut's delta
+//! The boolean returns the kept part as a delta against the cached target (faces removed, kept
+//! pieces of split faces added). A model cut by one cutter is shown from that delta
+//! ([`crate::render::delta`]): the model's mesh stays in its GPU buffers as it was uploaded, the
+//! renderer hides the removed faces (and the ring of faces whose vertex normals the cut changed)
+//! in place and draws a small patch. So per re-cut the UI thread uploads the patch, the walls
+//! and the contour, never the model; the O(N) work that remains (the per-model vertex-to-face
+//! table, built once per mesh) runs here on the worker. A model with several cutters (each cuts
+//! the closed result of the ones before) or whose cut the exact boolean refuses goes through
+//! [`preview_geometry_with`] as before and is drawn by whole parts.
 
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
-use crate::cutaway_geometry::{CutCache, PreviewGeometry, preview_geometry_with};
-use crate::scene::{CutterViews, Scene};
+use csg::Mesh;
+
+use crate::cutaway_geometry::{
+    CutCache, PartKind, PreviewGeometry, PreviewPart, cutter_mesh, preview_geometry_with,
+};
+use crate::render::delta::{self, MeshDelta, VertexFaces};
+use crate::scene::{CutterViews, Scene, SceneCutter};
 
 use super::bridge::PreviewKey;
 
 /// A finished live cut.
 #[derive(Clone)]
 pub struct LiveResult {
+    /// Walls and contours of every cut model; the kept parts of models cut by several cutters
+    /// (the others' kept parts are in `deltas`).
     pub geometry: Arc<PreviewGeometry>,
+    /// The kept part of each model cut by one cutter, as a delta against the model's mesh.
+    pub deltas: Vec<Arc<MeshDelta>>,
     /// The cutters and target meshes it was computed for.
     pub key: PreviewKey,
     /// Wall time of the cut in milliseconds (index builds included when they happened).
@@ -188,6 +208,14 @@ impl LiveCut {
         self.shown.as_ref().map(|r| r.geometry.clone())
     }
 
+    /// The kept parts drawn as deltas in Edit mode (with [`LiveCut::geometry`]).
+    pub fn deltas(&self) -> Vec<Arc<MeshDelta>> {
+        self.shown
+            .as_ref()
+            .map(|r| r.deltas.clone())
+            .unwrap_or_default()
+    }
+
     /// True while the newest request has no result yet.
     pub fn pending(&self) -> bool {
         self.requested.is_some() && self.requested.as_ref() != self.shown.as_ref().map(|r| &r.key)
@@ -225,7 +253,7 @@ impl LiveCut {
 
 /// The worker: waits for a request, cuts, sends the result, repeats until shut down.
 fn worker(shared: &Shared, results: &Sender<LiveResult>) {
-    let mut cache = CutCache::default();
+    let mut cache = LiveCache::default();
     loop {
         let request = {
             let Ok(mut slot) = shared.slot.lock() else {
@@ -246,22 +274,24 @@ fn worker(shared: &Shared, results: &Sender<LiveResult>) {
         };
         let started = Instant::now();
         let computed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            preview_geometry_with(&request.scene, &mut cache)
+            live_geometry(&request.scene, &mut cache)
         }));
-        let geometry = match computed {
+        let (geometry, deltas) = match computed {
             Ok(g) => g,
             Err(_) => {
                 // A bug in a cut must not take the window down: show the scene uncut, note why.
-                cache = CutCache::default();
-                PreviewGeometry {
+                cache = LiveCache::default();
+                let geometry = PreviewGeometry {
                     replaced: vec![false; request.scene.models.len()],
                     notes: vec!["the live cut failed (internal error); see Preview".into()],
                     ..PreviewGeometry::default()
-                }
+                };
+                (geometry, Vec::new())
             }
         };
         let result = LiveResult {
             geometry: Arc::new(geometry),
+            deltas,
             key: request.key,
             ms: started.elapsed().as_secs_f64() * 1000.0,
         };
@@ -272,6 +302,157 @@ fn worker(shared: &Shared, results: &Sender<LiveResult>) {
             ctx.request_repaint();
         }
     }
+}
+
+/// What the worker keeps between cuts: the exact indexes and cut prefixes ([`CutCache`]), the
+/// vertex-to-face table of each model mesh (for the deltas' normals), and the last live cut of
+/// each model (so a model whose cutter did not change is not cut again and keeps its delta, which
+/// the renderer then does not touch).
+#[derive(Default)]
+struct LiveCache {
+    cuts: CutCache,
+    faces: Vec<(std::sync::Weak<Mesh>, Arc<VertexFaces>)>,
+    models: Vec<(std::sync::Weak<Mesh>, SceneCutter, ModelLive)>,
+}
+
+/// The live cut of one model by one cutter.
+#[derive(Clone)]
+struct ModelLive {
+    walls: Mesh,
+    contours: Vec<Vec<glam::DVec3>>,
+    kept: Arc<MeshDelta>,
+}
+
+/// Entries of [`LiveCache`]'s per-mesh lists.
+const LIVE_CACHE_ENTRIES: usize = 4;
+
+impl LiveCache {
+    fn faces(&mut self, mesh: &Arc<Mesh>) -> Arc<VertexFaces> {
+        self.faces.retain(|(w, _)| w.strong_count() > 0);
+        if let Some((_, f)) = self
+            .faces
+            .iter()
+            .find(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+        {
+            return f.clone();
+        }
+        let faces = Arc::new(VertexFaces::build(mesh));
+        if self.faces.len() >= LIVE_CACHE_ENTRIES {
+            self.faces.remove(0);
+        }
+        self.faces.push((Arc::downgrade(mesh), faces.clone()));
+        faces
+    }
+
+    /// The live cut of `mesh` by `cutter` (None: the exact boolean refused it).
+    fn model(&mut self, mesh: &Arc<Mesh>, cutter: &SceneCutter) -> Option<ModelLive> {
+        self.models.retain(|(w, _, _)| w.strong_count() > 0);
+        if let Some((_, _, live)) = self
+            .models
+            .iter()
+            .find(|(w, c, _)| c == cutter && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+        {
+            return Some(live.clone());
+        }
+        let index = self.cuts.index(mesh).ok()?;
+        let surface = cutter_mesh(cutter);
+        let live = if surface.is_empty() {
+            ModelLive {
+                walls: Mesh::default(),
+                contours: Vec::new(),
+                kept: Arc::new(MeshDelta {
+                    base: mesh.clone(),
+                    ..MeshDelta::default()
+                }),
+            }
+        } else {
+            let result = csg::subtract(&index, &surface).ok()?;
+            let faces = self.faces(mesh);
+            let kept = Arc::new(delta::of_cut(mesh, &faces, &result));
+            let contours = result
+                .contours
+                .into_iter()
+                .map(|c| {
+                    let mut points = c.points;
+                    if c.closed
+                        && let Some(&first) = points.first()
+                    {
+                        points.push(first);
+                    }
+                    points
+                })
+                .collect();
+            ModelLive {
+                walls: result.walls.mesh,
+                contours,
+                kept,
+            }
+        };
+        // One entry per mesh: older states of an edited cutter are never asked for again.
+        self.models
+            .retain(|(w, _, _)| !w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)));
+        if self.models.len() >= LIVE_CACHE_ENTRIES {
+            self.models.remove(0);
+        }
+        self.models
+            .push((Arc::downgrade(mesh), cutter.clone(), live.clone()));
+        Some(live)
+    }
+}
+
+/// The live cut of `scene` (its cutters as Normal Cuts): models cut by one cutter as deltas
+/// (walls and contour in the geometry), the others by [`preview_geometry_with`].
+fn live_geometry(scene: &Scene, cache: &mut LiveCache) -> (PreviewGeometry, Vec<Arc<MeshDelta>>) {
+    let mut geometry = PreviewGeometry {
+        replaced: vec![false; scene.models.len()],
+        ..PreviewGeometry::default()
+    };
+    let mut deltas = Vec::new();
+    let mut rest = scene.clone();
+    for (m, model) in scene.models.iter().enumerate() {
+        let cutters: Vec<usize> = (0..scene.cutters.len())
+            .filter(|&c| scene.cutters[c].target == m && scene.cutters[c].views.any())
+            .collect();
+        // A wireframe is drawn from the mesh's edges, which a delta does not patch.
+        let [c] = cutters[..] else { continue };
+        if model.style != crate::scene::ModelStyle::Solid {
+            continue;
+        }
+        let Some(live) = cache.model(&model.mesh, &scene.cutters[c]) else {
+            continue;
+        };
+        // Drawn here: the remaining scene leaves this cutter out.
+        rest.cutters[c].views = CutterViews {
+            cut: false,
+            transparency: None,
+            ribbons: None,
+            slices: None,
+        };
+        geometry.replaced[m] = true;
+        if !live.walls.is_empty() {
+            geometry.parts.push(PreviewPart {
+                model: m,
+                cutter: c,
+                kind: PartKind::Wall,
+                opacity: 1.0,
+                mesh: live.walls,
+            });
+        }
+        geometry
+            .contours
+            .extend(live.contours.into_iter().map(|line| (m, line)));
+        deltas.push(live.kept);
+    }
+    if rest.cutters.iter().any(|c| c.views.any()) {
+        let others = preview_geometry_with(&rest, &mut cache.cuts);
+        for (r, o) in geometry.replaced.iter_mut().zip(&others.replaced) {
+            *r |= *o;
+        }
+        geometry.parts.extend(others.parts);
+        geometry.contours.extend(others.contours);
+        geometry.notes.extend(others.notes);
+    }
+    (geometry, deltas)
 }
 
 /// Once per frame: takes a finished live cut (its time goes to the status line) and, in Edit
@@ -303,7 +484,18 @@ mod tests {
     use super::*;
     use crate::cutaway_geometry::PartKind;
     use crate::cutaway_geometry::tests::scene_with_cube_cut;
-    use csg::Mesh;
+
+    /// Everything the live cut draws as one mesh: the parts, and the kept deltas composed.
+    fn drawn(r: &LiveResult) -> Mesh {
+        let mut closed = Mesh::default();
+        for p in &r.geometry.parts {
+            closed.append(&p.mesh);
+        }
+        for d in &r.deltas {
+            closed.append(&d.compose());
+        }
+        closed
+    }
 
     #[test]
     fn a_live_request_produces_the_normal_cut_off_the_calling_thread() {
@@ -325,10 +517,8 @@ mod tests {
         assert!(g.parts.iter().any(|p| p.kind == PartKind::Wall));
         assert!(g.parts.iter().all(|p| p.kind != PartKind::Removed));
         assert_eq!(g.contours.len(), 1);
-        let mut closed = Mesh::default();
-        for p in &g.parts {
-            closed.append(&p.mesh);
-        }
+        assert_eq!(shown.deltas.len(), 1, "the kept part is a delta");
+        let closed = drawn(shown);
         assert!((closed.volume() - 7.0).abs() < 1e-9, "{}", closed.volume());
     }
 
@@ -353,11 +543,7 @@ mod tests {
         // Every request was either cut (in order, so all arrived before the newest) or dropped.
         assert_eq!(live.finished + live.dropped(), 40);
         // The newest state's cut: the corner box from x = last_x removes (2 - x) · 1 · 1.
-        let g = live.geometry().unwrap();
-        let mut closed = Mesh::default();
-        for p in &g.parts {
-            closed.append(&p.mesh);
-        }
+        let closed = drawn(live.shown().unwrap());
         let expected = 8.0 - (2.0 - last_x);
         assert!(
             (closed.volume() - expected).abs() < 1e-9,
@@ -467,6 +653,206 @@ mod knee {
             times.len(),
             sorted[sorted.len() / 2],
             sorted[sorted.len() - 1],
+        );
+    }
+}
+
+/// The live cut drawn from its delta looks exactly as the whole kept part did, and a re-cut
+/// uploads only what changed.
+#[cfg(test)]
+pub(crate) mod view {
+    use super::*;
+    use crate::cutaway_geometry::tests::box_cutter;
+    use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
+    use crate::scene::{SceneCutter, SceneModel};
+
+    /// Pixels that differ between two images of the same size.
+    pub(crate) fn differing_pixels(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
+        assert_eq!(a.dimensions(), b.dimensions());
+        a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count()
+    }
+
+    #[test]
+    fn the_live_cut_from_its_delta_looks_as_the_whole_kept_part_and_uploads_little() {
+        let mut renderer = match HeadlessRenderer::new() {
+            Ok(r) => r,
+            Err(e) => {
+                println!("skipped: {e}");
+                return;
+            }
+        };
+        let sphere = Arc::new(csg::testkit::icosphere(6, 10.0));
+        let mut scene = crate::gui::app::new_scene();
+        scene.models.push(SceneModel::new(
+            "sphere",
+            "sphere.obj",
+            sphere.clone(),
+            [0.9, 0.7, 0.6],
+        ));
+        scene.camera = scene.framing_camera();
+        let frame = |scene: &Scene| {
+            let mut f = FrameInputs::new(scene.clone(), [320, 240], ViewMode::Edit);
+            f.deterministic = true;
+            f
+        };
+        let uncut = renderer.render(&frame(&scene)).expect("render");
+        let model_bytes = renderer.last_frame_uploads().bytes;
+        let mut live = LiveCut::default();
+        for (k, x1) in [1.0, 4.0, 2.5].into_iter().enumerate() {
+            scene.cutters = vec![SceneCutter {
+                target: 0,
+                kind: crate::scene::CutKind::Curving,
+                smooth: false,
+                planes: box_cutter(-4.0, x1, -12.0, -8.0, -2.0, 3.0),
+                views: CutterViews::default(),
+            }];
+            assert!(live.request(&scene, None));
+            assert!(live.wait(Duration::from_secs(120)), "no live cut");
+            assert_eq!(
+                live.deltas().len(),
+                1,
+                "{:?}",
+                live.shown().unwrap().geometry.notes
+            );
+            // The way before: the whole kept part as a preview part.
+            let mut whole = frame(&scene);
+            whole.preview = Some(Arc::new(crate::cutaway_geometry::preview_geometry(
+                &live_scene(&scene),
+            )));
+            let expected = renderer.render(&whole).expect("render");
+            let mut delta = frame(&scene);
+            delta.preview = live.geometry();
+            delta.deltas = live.deltas();
+            let got = renderer.render(&delta).expect("render");
+            let uploads = renderer.last_frame_uploads();
+            if k == 0 {
+                let _ = got.save(std::env::temp_dir().join("live-cut-from-delta.png"));
+            }
+            assert_ne!(differing_pixels(&got, &uncut), 0, "re-cut {k}: nothing cut");
+            assert_eq!(
+                differing_pixels(&got, &expected),
+                0,
+                "re-cut {k}: the view differs"
+            );
+            // Neither the model nor anything its size went up: the patch, walls, contour and
+            // index patches only.
+            assert!(
+                uploads.bytes * 10 < model_bytes,
+                "re-cut {k}: {} bytes uploaded, the model is {model_bytes}",
+                uploads.bytes
+            );
+            assert!(uploads.triangles * 10 < sphere.triangle_count() as u64);
+        }
+        // Without the live cut the model is whole again (its hidden faces are shown).
+        let again = renderer.render(&frame(&scene)).expect("render");
+        assert_eq!(differing_pixels(&again, &uncut), 0);
+    }
+}
+
+/// The UI thread's cost of a live re-cut on a 2M-triangle model: what a frame does when a new
+/// live cut arrives (take it, hand it to the renderer, which uploads what changed). Prints
+/// figures; no timing assertion. Heavy, so it runs only with
+/// `CUTAWAY_UI_TIMINGS=1 WGPU_BACKEND=vulkan cargo test -p cutaway --lib ui_thread_cost -- --nocapture`.
+#[cfg(test)]
+pub(crate) mod timings {
+    use super::*;
+    use crate::cutaway_geometry::tests::box_cutter;
+    use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
+    use crate::scene::{SceneCutter, SceneModel};
+
+    pub(crate) fn median_max(v: &[f64]) -> (f64, f64) {
+        let mut s = v.to_vec();
+        s.sort_by(f64::total_cmp);
+        (s[s.len() / 2], s[s.len() - 1])
+    }
+
+    /// Per re-cut, the window's way (the live cut drawn from its delta) and the way before it
+    /// (the whole kept part cut, materialized and uploaded, as `preview_geometry_with` gives
+    /// it), each with a renderer of its own, in the same run.
+    #[test]
+    fn live_recut_ui_thread_cost_on_two_million_triangles() {
+        if std::env::var_os("CUTAWAY_UI_TIMINGS").is_none() {
+            println!("skipped: set CUTAWAY_UI_TIMINGS=1 to measure");
+            return;
+        }
+        let (mut renderer, mut whole) = match (HeadlessRenderer::new(), HeadlessRenderer::new()) {
+            (Ok(a), Ok(b)) => (a, b),
+            (Err(e), _) | (_, Err(e)) => {
+                println!("skipped: {e}");
+                return;
+            }
+        };
+        let sphere = Arc::new(csg::testkit::geodesic_sphere(316, 100.0));
+        let mut scene = crate::gui::app::new_scene();
+        scene.models.push(SceneModel::new(
+            "sphere",
+            "sphere.ply",
+            sphere.clone(),
+            [0.9, 0.7, 0.6],
+        ));
+        scene.camera = scene.framing_camera();
+        let mut frame = FrameInputs::new(scene.clone(), [640, 400], ViewMode::Camera);
+        frame.deterministic = true;
+        let first = renderer.time_prepare(&frame).expect("first frame");
+        let base_bytes = renderer.last_frame_uploads().bytes;
+        whole.time_prepare(&frame).expect("first frame");
+        let mut live = LiveCut::default();
+        let mut whole_cache = CutCache::default();
+        let (mut cut_ms, mut ui_ms, mut bytes) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut whole_cut_ms, mut whole_ui_ms, mut whole_bytes) =
+            (Vec::new(), Vec::new(), Vec::new());
+        for k in 0..=10 {
+            let x1 = -20.0 + 5.0 * k as f64;
+            let planes = box_cutter(-60.0, x1, -120.0, -70.0, -8.0, 8.0);
+            scene.cutters = vec![SceneCutter {
+                target: 0,
+                kind: crate::scene::CutKind::Curving,
+                smooth: false,
+                planes,
+                views: CutterViews::default(),
+            }];
+            assert!(live.request(&scene, None));
+            assert!(live.wait(Duration::from_secs(600)), "no live cut");
+            let mut frame = FrameInputs::new(scene.clone(), [640, 400], ViewMode::Edit);
+            frame.deterministic = true;
+            frame.preview = live.geometry();
+            frame.deltas = live.deltas();
+            let ms = renderer.time_prepare(&frame).expect("frame");
+            let uploaded = renderer.last_frame_uploads().bytes as f64 / 1e6;
+            // The same re-cut the way before: whole kept part, uploaded whole.
+            let started = Instant::now();
+            let geometry = preview_geometry_with(&live_scene(&scene), &mut whole_cache);
+            let whole_cut = started.elapsed().as_secs_f64() * 1000.0;
+            frame.preview = Some(Arc::new(geometry));
+            frame.deltas.clear();
+            let whole_frame = whole.time_prepare(&frame).expect("frame");
+            if k > 0 {
+                cut_ms.push(live.shown().unwrap().ms);
+                ui_ms.push(ms);
+                bytes.push(uploaded);
+                whole_cut_ms.push(whole_cut);
+                whole_ui_ms.push(whole_frame);
+                whole_bytes.push(whole.last_frame_uploads().bytes as f64 / 1e6);
+            }
+        }
+        let f = |v: &[f64]| {
+            let (med, max) = median_max(v);
+            format!("median {med:.2} (max {max:.2})")
+        };
+        println!(
+            "live re-cut on {} triangles ({}): first frame {first:.1} ms ({:.1} MB); {} re-cuts:\n  \
+             delta: worker ms {}, UI thread ms {}, MB uploaded {}\n  \
+             whole: worker ms {}, UI thread ms {}, MB uploaded {}",
+            sphere.triangle_count(),
+            renderer.adapter_name(),
+            base_bytes as f64 / 1e6,
+            ui_ms.len(),
+            f(&cut_ms),
+            f(&ui_ms),
+            f(&bytes),
+            f(&whole_cut_ms),
+            f(&whole_ui_ms),
+            f(&whole_bytes),
         );
     }
 }

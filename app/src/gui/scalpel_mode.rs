@@ -3,13 +3,25 @@
 //! [`Scalpel::step`] so the cut front follows the tool, and the release ends the stroke.
 //!
 //! ## One truth for the mesh
-//! The scene's model mesh is what is drawn, saved, cut in Preview and undone. During a stroke it
-//! is replaced after every step that changed the scalpel's mesh (the renderer re-uploads a model
-//! when its `Arc` changes), so the cut is seen while it is made. The [`Scalpel`] keeps its own
-//! half-edge copy in the rest pose; the scene shows that pose opened by the DFFD when an opening
-//! width is set. Every mesh the scalpel puts into the scene (and every detached piece) marks its
-//! model [`MeshOrigin::Edited`], so Save Session writes the cut mesh instead of naming the file
-//! it was loaded from (`crate::session_meshes`).
+//! The scene's model mesh is what is saved, cut in Preview and undone. The [`Scalpel`] keeps its
+//! own half-edge copy in the rest pose; the scene shows that pose opened by the DFFD when an
+//! opening width is set. Every mesh the scalpel puts into the scene (and every detached piece)
+//! marks its model [`MeshOrigin::Edited`], so Save Session writes the cut mesh instead of naming
+//! the file it was loaded from (`crate::session_meshes`).
+//!
+//! ## Drawing a stroke in progress (a step touches only its neighbourhood)
+//! Copying a 2M-triangle mesh into the scene and uploading it after every step costs the UI
+//! thread about a hundred milliseconds. So during a stroke the scene keeps the mesh from before
+//! it, and each step that changed something makes a [`MeshDelta`] against that mesh instead
+//! ([`ScalpelSlot::delta`], drawn by the renderer over the uploaded model): the triangles the
+//! stroke has touched so far, the ones it appended, and the ring around them whose normals
+//! changed. The touched triangles are found from the cut itself: every triangle a step
+//! rewrites uses a vertex of one of the stroke's cut segments (the split ends, or a lip copy of
+//! one), or a groove floor vertex next to them, so the fans of those vertices cover them; the
+//! set only grows during a stroke (a temporary tip undone at the next step is still drawn from
+//! the current mesh). The release puts the whole mesh into the scene once. A stroke on a
+//! wireframe model, or with an opening width different from the one the scene's mesh was shown
+//! with, replaces the scene's mesh per step as before.
 //!
 //! ## Undo
 //! A stroke is one step of the window's history: the scene before the stroke and after it
@@ -35,7 +47,8 @@ use cutter::scalpel::{OpenOptions, Scalpel, ScalpelOptions, Tool, dffd};
 
 use super::app::CutawayApp;
 use super::camera_controls;
-use crate::scene::{MeshOrigin, Scene, SceneModel};
+use crate::render::delta::{self, MeshDelta, VertexFaces};
+use crate::scene::{MeshOrigin, ModelStyle, Scene, SceneModel};
 
 /// A press must move this many pixels before it cuts (a click does nothing).
 const START_PIXELS: f64 = 3.0;
@@ -87,26 +100,87 @@ struct Session {
     scalpel: Scalpel,
     /// The mesh the scene shows for `model`, made from the scalpel's mesh.
     shown: Arc<Mesh>,
-    /// `shown` before each committed stroke of this session, oldest first.
-    before_strokes: Vec<Arc<Mesh>>,
+    /// `shown` before each committed stroke of this session, oldest first, with the opening it
+    /// was shown with.
+    before_strokes: Vec<(Arc<Mesh>, OpenOptions)>,
     /// Bumped whenever the scalpel's rest mesh changes at a stroke boundary (commit, undo).
     revision: u64,
     /// The rest mesh and its spatial index for projecting samples, with the `revision` they were
     /// built at. Splitting keeps the surface where it was, so one index serves a whole stroke.
     rest: Option<(u64, Arc<Mesh>, Arc<SpatialIndex>)>,
+    /// The opening `shown` was made with (a stroke with another one redraws the whole mesh).
+    shown_open: OpenOptions,
+    /// The faces of each vertex of `shown`, for the deltas of a stroke; built on a thread of its
+    /// own as soon as `shown` changes, so a stroke rarely waits for it.
+    faces: Option<(Arc<Mesh>, FacesJob)>,
+}
+
+/// [`VertexFaces`] of a mesh, being built or built.
+enum FacesJob {
+    Building(std::thread::JoinHandle<VertexFaces>),
+    Built(Arc<VertexFaces>),
 }
 
 impl Session {
     fn new(model: usize, mesh: &Arc<Mesh>) -> Result<Session, String> {
         let scalpel = Scalpel::new(mesh, ScalpelOptions::default()).map_err(|e| e.to_string())?;
-        Ok(Session {
+        let mut session = Session {
             model,
             scalpel,
             shown: mesh.clone(),
             before_strokes: Vec::new(),
             revision: 0,
             rest: None,
-        })
+            shown_open: OpenOptions {
+                width: 0.0,
+                window: 0.0,
+            },
+            faces: None,
+        };
+        session.start_faces();
+        Ok(session)
+    }
+
+    /// Starts building the vertex-to-face table of `shown` (when not done for it yet).
+    fn start_faces(&mut self) {
+        if self
+            .faces
+            .as_ref()
+            .is_some_and(|(m, _)| Arc::ptr_eq(m, &self.shown))
+        {
+            return;
+        }
+        let mesh = self.shown.clone();
+        let job = {
+            let mesh = mesh.clone();
+            std::thread::Builder::new()
+                .name("cutaway scalpel faces".into())
+                .spawn(move || VertexFaces::build(&mesh))
+        };
+        self.faces = Some((
+            mesh.clone(),
+            match job {
+                Ok(handle) => FacesJob::Building(handle),
+                Err(_) => FacesJob::Built(Arc::new(VertexFaces::build(&mesh))),
+            },
+        ));
+    }
+
+    /// The vertex-to-face table of `shown` (waits for its thread when still building).
+    fn faces(&mut self) -> Arc<VertexFaces> {
+        self.start_faces();
+        let Some((mesh, job)) = self.faces.take() else {
+            return Arc::new(VertexFaces::build(&self.shown));
+        };
+        let built = match job {
+            FacesJob::Built(f) => f,
+            FacesJob::Building(handle) => match handle.join() {
+                Ok(f) => Arc::new(f),
+                Err(_) => Arc::new(VertexFaces::build(&mesh)),
+            },
+        };
+        self.faces = Some((mesh, FacesJob::Built(built.clone())));
+        built
     }
 
     /// The rest mesh and its index (built when the rest mesh changed since the last stroke).
@@ -120,6 +194,89 @@ impl Session {
         let index = Arc::new(SpatialIndex::build(&mesh));
         self.rest = Some((self.revision, mesh.clone(), index.clone()));
         (mesh, index)
+    }
+
+    /// The delta of the stroke so far against `shown` (see the module documentation). Cost:
+    /// the stroke's segments, their fans and the opening's displaced vertices; never the mesh.
+    fn stroke_delta(&mut self, open: &OpenOptions, stroke: &mut Stroke) -> Arc<MeshDelta> {
+        let faces = self.faces();
+        let base = self.shown.clone();
+        let mesh = self.scalpel.dyn_mesh();
+        let nb = base.triangles.len() as u32;
+        let nv = base.positions.len() as u32;
+        let segments = self.scalpel.segments();
+        let from = stroke.segments_before.min(segments.len());
+        let mut fan = Vec::new();
+        let mut visit = |v: u32, touched: &mut HashSet<u32>, floors: &mut Vec<u32>| {
+            if v as usize >= mesh.vertex_count() {
+                return;
+            }
+            let mut copies = mesh.copies(v);
+            copies.push(v);
+            for c in copies {
+                mesh.fan_into(c, &mut fan);
+                for &h in &fan {
+                    let t = h / 3;
+                    touched.insert(t);
+                    for &w in &mesh.triangles()[t as usize] {
+                        if mesh.is_floor(w) {
+                            floors.push(w);
+                        }
+                    }
+                }
+            }
+        };
+        let mut floors = Vec::new();
+        for s in &segments[from..] {
+            visit(s.a, &mut stroke.touched, &mut floors);
+            visit(s.b, &mut stroke.touched, &mut floors);
+        }
+        floors.sort_unstable();
+        floors.dedup();
+        let mut more = Vec::new();
+        for f in floors {
+            visit(f, &mut stroke.touched, &mut more);
+        }
+        let displaced: std::collections::HashMap<u32, DVec3> = if open.width > 0.0 {
+            dffd::open_displacements(&self.scalpel, open, self.scalpel.clock())
+                .into_iter()
+                .collect()
+        } else {
+            Default::default()
+        };
+        let position = |v: u32| {
+            displaced
+                .get(&v)
+                .copied()
+                .unwrap_or_else(|| mesh.positions()[v as usize])
+        };
+        // Base vertices that moved: displaced ones, and floor vertices a deeper cut lowered.
+        let mut moved: Vec<u32> = displaced
+            .keys()
+            .chain(&stroke.base_displaced)
+            .copied()
+            .filter(|&v| v < nv && position(v) != base.positions[v as usize])
+            .collect();
+        let mut touched: Vec<u32> = stroke.touched.iter().copied().filter(|&t| t < nb).collect();
+        touched.sort_unstable();
+        for &t in &touched {
+            for &v in &mesh.triangles()[t as usize] {
+                if v < nv && position(v) != base.positions[v as usize] {
+                    moved.push(v);
+                }
+            }
+        }
+        let current = |t: u32| Some(mesh.triangles()[t as usize]);
+        let added = &mesh.triangles()[(nb as usize).min(mesh.triangle_count())..];
+        Arc::new(delta::build(&delta::Change {
+            base: &base,
+            faces: &faces,
+            touched: &touched,
+            current: &current,
+            added,
+            position: &position,
+            moved: &moved,
+        }))
     }
 
     /// The mesh to show: the rest pose, opened by the DFFD at the tool's clock.
@@ -166,6 +323,19 @@ struct Stroke {
     /// The stroke could not begin: the rest of the drag is ignored.
     failed: bool,
     signature: (usize, usize, usize, [u64; 3]),
+    /// Steps replace the scene's mesh (wireframe models, a changed opening) instead of making
+    /// a delta.
+    whole_mesh: bool,
+    /// The scalpel's segment count before the stroke (its segments are the ones after).
+    segments_before: usize,
+    /// The opening the scene's mesh was shown with at the press.
+    open_before: OpenOptions,
+    /// Vertices that opening displaced in the scene's mesh.
+    base_displaced: Vec<u32>,
+    /// Triangles of the scene's mesh (and appended ones) the stroke's steps touched so far.
+    touched: HashSet<u32>,
+    /// What the view draws for the stroke so far (delta mode).
+    delta: Option<Arc<MeshDelta>>,
 }
 
 /// What a camera drag in Scalpel mode does.
@@ -249,7 +419,8 @@ impl ScalpelSlot {
                     break true;
                 }
                 match s.before_strokes.last() {
-                    Some(previous) if Arc::ptr_eq(previous, &mesh) => {
+                    Some((previous, open)) if Arc::ptr_eq(previous, &mesh) => {
+                        s.shown_open = *open;
                         s.scalpel.undo_stroke();
                         s.shown = mesh.clone();
                         s.before_strokes.pop();
@@ -284,9 +455,24 @@ impl ScalpelSlot {
         };
         let point = ray.at(t);
         let settings = self.settings;
+        let wireframe = scene.models[model].style != ModelStyle::Solid;
         let session = self.session_for(scene, model)?;
         session.scalpel.set_options(settings.options());
         let signature = session.signature();
+        let open = settings.open();
+        let whole_mesh = wireframe
+            || ((open.width > 0.0 || session.shown_open.width > 0.0) && open != session.shown_open);
+        let segments_before = session.scalpel.segments().len();
+        let open_before = session.shown_open;
+        // The vertices the opening displaces in the scene's mesh: a step may move them back.
+        let base_displaced = if open.width > 0.0 && !whole_mesh {
+            dffd::open_displacements(&session.scalpel, &open, session.scalpel.clock())
+                .into_iter()
+                .map(|(v, _)| v)
+                .collect()
+        } else {
+            Vec::new()
+        };
         self.stroke = Some(Stroke {
             before: scene.clone(),
             press_px: px,
@@ -296,6 +482,12 @@ impl ScalpelSlot {
             begun: false,
             failed: false,
             signature,
+            whole_mesh,
+            segments_before,
+            open_before,
+            base_displaced,
+            touched: HashSet::new(),
+            delta: None,
         });
         Ok(Some(model))
     }
@@ -320,6 +512,7 @@ impl ScalpelSlot {
                 session.scalpel.undo_stroke();
                 if let Some(m) = stroke.before.models.get(session.model) {
                     session.shown = m.mesh.clone();
+                    session.shown_open = stroke.open_before;
                 }
             }
             self.stroke = None;
@@ -361,12 +554,23 @@ impl ScalpelSlot {
             return Ok(false);
         }
         stroke.signature = signature;
+        if !stroke.whole_mesh {
+            stroke.delta = Some(session.stroke_delta(&open, stroke));
+            return Ok(true);
+        }
         let shown = session.display(&open);
         session.shown = shown.clone();
+        session.shown_open = open;
         if let Some(m) = scene.models.get_mut(session.model) {
             m.replace_mesh(shown);
         }
         Ok(true)
+    }
+
+    /// What the view draws over the scene's mesh for the stroke in progress (see the module
+    /// documentation); `None` outside a stroke or when its steps replace the scene's mesh.
+    pub fn delta(&self) -> Option<Arc<MeshDelta>> {
+        self.stroke.as_ref()?.delta.clone()
     }
 
     /// Release: ends the stroke. A loop's detached pieces become models of their own.
@@ -393,6 +597,7 @@ impl ScalpelSlot {
                     m.mesh = mesh.clone();
                     m.origin = before_origin.unwrap_or(m.origin);
                     session.shown = mesh;
+                    session.shown_open = stroke.open_before;
                 }
                 return Released::Failed(format!("{e}; the stroke was discarded"));
             }
@@ -412,14 +617,17 @@ impl ScalpelSlot {
                 m.mesh = b.clone();
                 m.origin = before_origin.unwrap_or(m.origin);
                 session.shown = b;
+                session.shown_open = stroke.open_before;
             }
             return Released::Nothing;
         }
         if let Some(b) = &before_mesh {
-            session.before_strokes.push(b.clone());
+            session.before_strokes.push((b.clone(), stroke.open_before));
         }
         session.shown = shown.clone();
+        session.shown_open = open;
         session.revision += 1;
+        session.start_faces();
         let mut message = format!(
             "Scalpel: {} triangles cut, {} created",
             report.triangles_cut, report.triangles_created
@@ -653,6 +861,96 @@ mod tests {
         scene
     }
 
+    /// The stroke in progress as the view draws it (the scene's mesh, faces hidden, plus the
+    /// patch) is the scalpel's mesh as the whole-mesh update shows it: the same triangles with
+    /// the same vertex positions and normals, bit for bit. Returns the patch's share of it.
+    fn assert_view_is_the_cut_mesh(slot: &ScalpelSlot) -> f64 {
+        use crate::render::delta::tests::{assert_same_corners, delta_corners, drawn_corners};
+        let delta = slot
+            .delta()
+            .expect("a stroke in progress is drawn as a delta");
+        let session = slot.session.as_ref().expect("a session");
+        let full = session.display(&slot.settings.open());
+        let vertices = crate::render::draw_data::mesh_vertices(&full);
+        assert_same_corners(
+            delta_corners(&delta),
+            drawn_corners(&full, &vertices),
+            "the view vs the cut mesh",
+        );
+        delta.patch.triangle_count() as f64 / full.triangle_count() as f64
+    }
+
+    /// Grooves crossing (the deeper one lowers the other's floor) and a slit opening by the
+    /// DFFD: after every step the view of the stroke in progress is the cut mesh.
+    #[test]
+    fn the_view_of_a_stroke_in_progress_is_the_cut_mesh_step_by_step() {
+        let mut scene = sphere_scene();
+        scene.models[0].replace_mesh(Arc::new(csg::testkit::icosphere(5, 10.0)));
+        let viewport = DVec2::new(800.0, 600.0);
+        let mut slot = ScalpelSlot::default();
+        let drag = |slot: &mut ScalpelSlot, scene: &mut Scene, px: &[DVec2]| {
+            assert_eq!(slot.press(scene, viewport, px[0]), Ok(Some(0)));
+            let mut checked = 0;
+            for &p in &px[1..] {
+                if slot.drag(scene, viewport, p).expect("step") {
+                    let share = assert_view_is_the_cut_mesh(slot);
+                    assert!(share < 0.1, "the patch is {share} of the mesh");
+                    checked += 1;
+                }
+            }
+            assert!(checked > 3, "{checked} steps drawn");
+            let before = scene.models[0].mesh.clone();
+            let released = slot.release(scene);
+            assert!(
+                matches!(released, Released::Committed { .. }),
+                "{released:?}"
+            );
+            assert!(!Arc::ptr_eq(&before, &scene.models[0].mesh));
+            assert!(slot.delta().is_none(), "no delta after the release");
+        };
+        slot.settings.depth = 0.4;
+        drag(&mut slot, &mut scene, &across(viewport, 0.4, 0.6, 16));
+        // Down across the first groove, deeper.
+        slot.settings.depth = 0.8;
+        let down: Vec<DVec2> = (0..=16)
+            .map(|i| DVec2::new(viewport.x * 0.5, viewport.y * (0.4 + 0.2 * i as f64 / 16.0)))
+            .collect();
+        drag(&mut slot, &mut scene, &down);
+        // A slit that opens (the scene's mesh was shown closed: that stroke updates the whole
+        // mesh), then another with the same opening, drawn as a delta.
+        slot.settings.depth = 0.0;
+        slot.settings.opening = 0.3;
+        let slanted = |y0: f64, y1: f64| -> Vec<DVec2> {
+            (0..=16)
+                .map(|i| {
+                    let s = i as f64 / 16.0;
+                    DVec2::new(
+                        viewport.x * (0.42 + 0.16 * s),
+                        viewport.y * (y0 + (y1 - y0) * s),
+                    )
+                })
+                .collect()
+        };
+        assert_eq!(
+            slot.press(&scene, viewport, slanted(0.42, 0.47)[0]),
+            Ok(Some(0))
+        );
+        for &p in &slanted(0.42, 0.47)[1..] {
+            slot.drag(&mut scene, viewport, p).expect("step");
+            assert!(
+                slot.delta().is_none(),
+                "a changed opening redraws the whole mesh"
+            );
+        }
+        assert!(matches!(
+            slot.release(&mut scene),
+            Released::Committed { .. }
+        ));
+        drag(&mut slot, &mut scene, &slanted(0.55, 0.6));
+        let topo = slot.validate().unwrap().expect("scalpel invariants");
+        assert!(topo.manifold, "{topo:?}");
+    }
+
     /// Pixels of a horizontal drag across the middle of the view.
     fn across(viewport: DVec2, from: f64, to: f64, steps: usize) -> Vec<DVec2> {
         (0..=steps)
@@ -671,7 +969,9 @@ mod tests {
     ) -> Released {
         assert_eq!(slot.press(scene, viewport, px[0]), Ok(Some(0)));
         for &p in &px[1..] {
-            slot.drag(scene, viewport, p).expect("step");
+            if slot.drag(scene, viewport, p).expect("step") && slot.delta().is_some() {
+                assert_view_is_the_cut_mesh(slot);
+            }
         }
         slot.release(scene)
     }
@@ -690,10 +990,13 @@ mod tests {
         for &p in &px[1..] {
             if slot.drag(&mut scene, viewport, p).expect("step") {
                 updates += 1;
+                assert_view_is_the_cut_mesh(&slot);
             }
-            counts.push(scene.models[0].mesh.triangle_count());
+            counts.push(slot.delta().map_or(0, |d| d.compose().triangle_count()));
+            // The scene keeps the mesh from before the stroke until the release.
+            assert!(Arc::ptr_eq(&scene.models[0].mesh, &original));
         }
-        // Progressive: the scene's mesh grew while the pointer moved, not only at the release.
+        // Progressive: the view's mesh grew while the pointer moved, not only at the release.
         assert!(updates > 5, "{updates} updates");
         assert!(counts[counts.len() / 2] > original.triangle_count());
         // Moving to the same pixel is no step and no update.
@@ -823,12 +1126,14 @@ mod tests {
         slot.settings.depth = 0.0;
         assert_eq!(slot.press(&scene, viewport, a), Ok(Some(0)));
         assert!(slot.drag(&mut scene, viewport, b).unwrap());
-        let shown = scene.models[0].mesh.clone();
+        let before = scene.models[0].mesh.clone();
+        let shown = slot.delta().expect("the step is drawn");
         let err = slot.drag(&mut scene, viewport, c).unwrap_err();
         assert!(err.contains("non-manifold"), "{err}");
-        assert!(Arc::ptr_eq(&scene.models[0].mesh, &shown));
-        // The scalpel's own mesh is still the one shown.
-        assert_eq!(slot.session.as_ref().unwrap().scalpel.mesh(), *shown);
+        assert!(Arc::ptr_eq(&scene.models[0].mesh, &before));
+        // The view is as before the refused step, and still the scalpel's own mesh.
+        assert!(Arc::ptr_eq(&slot.delta().unwrap(), &shown));
+        assert_view_is_the_cut_mesh(&slot);
     }
 
     #[test]
@@ -1219,5 +1524,225 @@ mod tests {
         assert!(again.report().closed);
         assert_eq!(h.state().scene.cutters, vec![cutter]);
         let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+/// A stroke in progress drawn from its delta looks exactly as the whole cut mesh did, and a
+/// step uploads only what changed.
+#[cfg(test)]
+mod view {
+    use super::*;
+    use crate::gui::live_cut::view::differing_pixels;
+    use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
+
+    #[test]
+    fn a_stroke_drawn_from_its_delta_looks_as_the_whole_mesh_and_uploads_little() {
+        let mut renderer = match HeadlessRenderer::new() {
+            Ok(r) => r,
+            Err(e) => {
+                println!("skipped: {e}");
+                return;
+            }
+        };
+        let mut scene = super::super::app::new_scene();
+        let sphere = Arc::new(csg::testkit::icosphere(6, 10.0));
+        scene.models.push(SceneModel::new(
+            "sphere",
+            "sphere.obj",
+            sphere.clone(),
+            [0.9, 0.7, 0.6],
+        ));
+        scene.camera = scene.framing_camera();
+        let viewport = DVec2::new(320.0, 240.0);
+        let frame = |scene: &Scene, delta: Option<Arc<MeshDelta>>| {
+            let mut f = FrameInputs::new(scene.clone(), [320, 240], ViewMode::Camera);
+            f.deterministic = true;
+            f.deltas.extend(delta);
+            f
+        };
+        let uncut = renderer.render(&frame(&scene, None)).expect("render");
+        let model_bytes = renderer.last_frame_uploads().bytes;
+        let mut slot = ScalpelSlot::default();
+        slot.settings.depth = 0.6;
+        let at = |s: f64| DVec2::new(viewport.x * s, viewport.y * 0.45);
+        assert_eq!(slot.press(&scene, viewport, at(0.4)), Ok(Some(0)));
+        let mut drawn = 0;
+        for k in 1..=10 {
+            if !slot
+                .drag(&mut scene, viewport, at(0.4 + 0.02 * k as f64))
+                .expect("step")
+            {
+                continue;
+            }
+            let delta = slot.delta().expect("a delta");
+            let got = renderer
+                .render(&frame(&scene, Some(delta)))
+                .expect("render");
+            let uploads = renderer.last_frame_uploads();
+            // The way before: the whole mesh in the scene.
+            let mut whole = scene.clone();
+            let session = slot.session.as_ref().unwrap();
+            whole.models[0].replace_mesh(session.display(&slot.settings.open()));
+            let expected = renderer.render(&frame(&whole, None)).expect("render");
+            assert_ne!(differing_pixels(&got, &uncut), 0, "step {k}: nothing cut");
+            assert_eq!(
+                differing_pixels(&got, &expected),
+                0,
+                "step {k}: the view differs"
+            );
+            assert!(
+                uploads.bytes * 10 < model_bytes,
+                "step {k}: {} bytes uploaded, the model is {model_bytes}",
+                uploads.bytes
+            );
+            drawn += 1;
+            if k == 6 {
+                let _ = got.save(std::env::temp_dir().join("scalpel-delta.png"));
+            }
+        }
+        assert!(drawn > 3, "{drawn} steps drawn");
+        let cut = {
+            let session = slot.session.as_ref().unwrap();
+            session.display(&slot.settings.open())
+        };
+        assert!(matches!(
+            slot.release(&mut scene),
+            Released::Committed { .. }
+        ));
+        assert_eq!(
+            *scene.models[0].mesh, *cut,
+            "the release puts the cut mesh in the scene"
+        );
+    }
+}
+
+/// The UI thread's cost of a scalpel step on a 2M-triangle model: the step itself, what the
+/// scene and the view get from it, and the renderer's frame. Prints figures; no timing
+/// assertion. Heavy, so it runs only with
+/// `CUTAWAY_UI_TIMINGS=1 WGPU_BACKEND=vulkan cargo test -p cutaway --lib ui_thread_cost -- --nocapture`.
+#[cfg(test)]
+mod timings {
+    use super::*;
+    use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
+    use std::time::Instant;
+
+    /// Per step, the window's way (the stroke drawn as a delta over the uploaded model) and the
+    /// way before it (the whole mesh copied into the scene and uploaded), each with a renderer
+    /// of its own, in the same run.
+    #[test]
+    fn scalpel_step_ui_thread_cost_on_two_million_triangles() {
+        if std::env::var_os("CUTAWAY_UI_TIMINGS").is_none() {
+            println!("skipped: set CUTAWAY_UI_TIMINGS=1 to measure");
+            return;
+        }
+        let (mut renderer, mut whole) = match (HeadlessRenderer::new(), HeadlessRenderer::new()) {
+            (Ok(a), Ok(b)) => (a, b),
+            (Err(e), _) | (_, Err(e)) => {
+                println!("skipped: {e}");
+                return;
+            }
+        };
+        let sphere = Arc::new(csg::testkit::geodesic_sphere(316, 100.0));
+        let mut scene = super::super::app::new_scene();
+        scene.models.push(SceneModel::new(
+            "sphere",
+            "sphere.ply",
+            sphere.clone(),
+            [0.9, 0.7, 0.6],
+        ));
+        scene.camera = scene.framing_camera();
+        let viewport = DVec2::new(640.0, 400.0);
+        let frame_of = |scene: &Scene, delta: Option<Arc<MeshDelta>>| {
+            let mut frame = FrameInputs::new(scene.clone(), [640, 400], ViewMode::Camera);
+            frame.deterministic = true;
+            frame.deltas.extend(delta);
+            frame
+        };
+        let first = renderer
+            .time_prepare(&frame_of(&scene, None))
+            .expect("first frame");
+        whole
+            .time_prepare(&frame_of(&scene, None))
+            .expect("first frame");
+        let mut slot = ScalpelSlot::default();
+        slot.settings.depth = 1.0;
+        let started = Instant::now();
+        let press = DVec2::new(viewport.x * 0.4, viewport.y * 0.5);
+        assert_eq!(slot.press(&scene, viewport, press), Ok(Some(0)));
+        let press_ms = started.elapsed().as_secs_f64() * 1000.0;
+        let mut whole_scene = scene.clone();
+        let (mut step_ms, mut delta_ms, mut frame_ms, mut total_ms, mut bytes) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let (mut copy_ms, mut whole_frame_ms, mut whole_total_ms, mut whole_bytes) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for k in 1..=40 {
+            let px = DVec2::new(viewport.x * (0.4 + 0.005 * k as f64), viewport.y * 0.5);
+            let started = Instant::now();
+            let changed = slot.drag(&mut scene, viewport, px).expect("step");
+            let step = started.elapsed().as_secs_f64() * 1000.0;
+            let frame = renderer
+                .time_prepare(&frame_of(&scene, slot.delta()))
+                .expect("frame");
+            let uploaded = renderer.last_frame_uploads().bytes as f64 / 1e6;
+            // The delta's share of the step (built again: the same state gives the same delta).
+            let open = slot.settings.open();
+            let (Some(session), Some(stroke)) = (slot.session.as_mut(), slot.stroke.as_mut())
+            else {
+                panic!("no stroke");
+            };
+            let started = Instant::now();
+            session.stroke_delta(&open, stroke);
+            let delta = started.elapsed().as_secs_f64() * 1000.0;
+            // The way before: the whole mesh into the scene, uploaded.
+            let started = Instant::now();
+            whole_scene.models[0].replace_mesh(session.display(&open));
+            let copy = started.elapsed().as_secs_f64() * 1000.0;
+            let whole_frame = whole
+                .time_prepare(&frame_of(&whole_scene, None))
+                .expect("frame");
+            if changed && k > 1 {
+                step_ms.push(step);
+                delta_ms.push(delta);
+                frame_ms.push(frame);
+                total_ms.push(step + frame);
+                bytes.push(uploaded);
+                copy_ms.push(copy);
+                whole_frame_ms.push(whole_frame);
+                whole_total_ms.push(step - delta + copy + whole_frame);
+                whole_bytes.push(whole.last_frame_uploads().bytes as f64 / 1e6);
+            }
+        }
+        let started = Instant::now();
+        let released = slot.release(&mut scene);
+        let release_ms = started.elapsed().as_secs_f64() * 1000.0;
+        assert!(
+            matches!(released, Released::Committed { .. }),
+            "{released:?}"
+        );
+        let after_release = renderer
+            .time_prepare(&frame_of(&scene, None))
+            .expect("frame");
+        let f = |v: &[f64]| {
+            let (med, max) = crate::gui::live_cut::timings::median_max(v);
+            format!("median {med:.2} (max {max:.2})")
+        };
+        println!(
+            "scalpel on {} triangles ({}): first frame {first:.1} ms, press {press_ms:.1} ms; \
+             {} steps:\n  delta: step ms {} (of which the delta {}), frame ms {}, UI thread ms \
+             {}, MB uploaded {}; release {release_ms:.1} ms + frame {after_release:.1} ms\n  \
+             whole: copy ms {}, frame ms {}, UI thread ms {}, MB uploaded {}",
+            sphere.triangle_count(),
+            renderer.adapter_name(),
+            step_ms.len(),
+            f(&step_ms),
+            f(&delta_ms),
+            f(&frame_ms),
+            f(&total_ms),
+            f(&bytes),
+            f(&copy_ms),
+            f(&whole_frame_ms),
+            f(&whole_total_ms),
+            f(&whole_bytes),
+        );
     }
 }

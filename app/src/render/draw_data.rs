@@ -106,23 +106,42 @@ impl GpuMesh {
         if mesh.triangles.is_empty() {
             return None;
         }
-        let vertices = mesh_vertices(mesh);
+        GpuMesh::upload_vertices(device, label, &mesh_vertices(mesh), &mesh.triangles)
+    }
+
+    /// Uploads prepared vertices and triangles (`None` when there is no triangle). The index
+    /// buffer is also a storage buffer, so the renderer can hide faces in place (see
+    /// [`super::delta`]).
+    pub fn upload_vertices(
+        device: &wgpu::Device,
+        label: &str,
+        vertices: &[Vertex],
+        triangles: &[[u32; 3]],
+    ) -> Option<GpuMesh> {
+        if triangles.is_empty() || vertices.is_empty() {
+            return None;
+        }
         let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("{label} vertices")),
-            contents: bytemuck::cast_slice(&vertices),
+            contents: bytemuck::cast_slice(vertices),
             usage: wgpu::BufferUsages::VERTEX,
         });
         let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("{label} indices")),
-            contents: bytemuck::cast_slice(&mesh.triangles),
-            usage: wgpu::BufferUsages::INDEX,
+            contents: bytemuck::cast_slice(triangles),
+            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
         });
         Some(GpuMesh {
             vertex_buffer,
             index_buffer,
-            index_count: (mesh.triangles.len() * 3) as u32,
+            index_count: (triangles.len() * 3) as u32,
             edges: None,
         })
+    }
+
+    /// Bytes this mesh's buffers hold (what its upload sent), edges left out.
+    pub fn byte_size(&self) -> u64 {
+        self.vertex_buffer.size() + self.index_buffer.size()
     }
 
     /// Uploads the wireframe edges of `mesh` (the mesh this was uploaded from) if not done yet.
@@ -141,6 +160,11 @@ pub struct GpuSegments {
 }
 
 impl GpuSegments {
+    /// Bytes this upload sent.
+    pub fn byte_size(&self) -> u64 {
+        self.buffer.size()
+    }
+
     /// `None` when there is no segment.
     pub fn upload(device: &wgpu::Device, label: &str, segments: &[Segment]) -> Option<GpuSegments> {
         if segments.is_empty() {

@@ -93,6 +93,11 @@ impl HeadlessRenderer {
         })
     }
 
+    /// What the last frame uploaded (see [`Renderer::last_frame_uploads`]).
+    pub fn last_frame_uploads(&self) -> super::UploadStats {
+        self.renderer.last_frame_uploads()
+    }
+
     /// Name and backend of the adapter, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan)`.
     pub fn adapter_name(&self) -> String {
         format!("{} ({:?})", self.adapter.name, self.adapter.backend)
@@ -151,6 +156,27 @@ impl HeadlessRenderer {
             y += th;
         }
         Ok(image)
+    }
+
+    /// The UI thread's share of a frame, as in the window's paint callback: [`Renderer::prepare`]
+    /// (uploads and command recording) and the queue submission, in milliseconds. Then waits for
+    /// the GPU (not timed), so the next call starts idle. For the timing tests
+    /// (`CUTAWAY_UI_TIMINGS=1`); the image is not read back.
+    pub fn time_prepare(&mut self, frame: &FrameInputs) -> anyhow::Result<f64> {
+        let started = std::time::Instant::now();
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("cutaway timed frame"),
+            });
+        self.renderer
+            .prepare(&self.device, &self.queue, &mut encoder, frame);
+        self.queue.submit([encoder.finish()]);
+        let ms = started.elapsed().as_secs_f64() * 1000.0;
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .context("GPU did not finish")?;
+        Ok(ms)
     }
 
     /// One tile: prepare, blit into an `Rgba8Unorm` texture, copy out. Returns tightly packed

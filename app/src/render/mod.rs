@@ -31,7 +31,11 @@
 //! ```
 //!
 //! [`FrameInputs::scene`] is a [`Scene`] clone: cheap, since meshes are `Arc`s. The renderer
-//! uploads a mesh once and re-uploads only when the `Arc` is replaced (see `scene.rs`). Preview
+//! uploads a mesh once and re-uploads only when the `Arc` is replaced (see `scene.rs`). A model
+//! that changes a little at a time (the live cut while painting, a scalpel stroke) comes as a
+//! [`delta::MeshDelta`] in [`FrameInputs::deltas`] instead: the uploaded mesh stays, some of its
+//! faces are hidden in place and a small patch is drawn with it, so a change uploads only what
+//! changed ([`Renderer::last_frame_uploads`] counts it). Preview
 //! geometry (the cut parts) is computed on the CPU by [`crate::cutaway_geometry::preview_geometry`]
 //! — the GUI should do that on a worker thread and pass the `Arc` result every frame.
 //!
@@ -59,6 +63,7 @@ use cutter::Camera;
 use crate::cutaway_geometry::PreviewGeometry;
 use crate::scene::{CutterPlane, Scene};
 
+pub mod delta;
 pub mod draw_data;
 pub mod gpu_data;
 pub mod headless;
@@ -66,7 +71,7 @@ mod pipelines;
 mod renderer;
 
 pub use headless::{HeadlessRenderer, RenderPngOptions, render_png};
-pub use renderer::Renderer;
+pub use renderer::{Renderer, UploadStats};
 
 /// What the view shows (the GUI's mode buttons; Scalpel draws like Camera).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -125,6 +130,10 @@ pub struct FrameInputs {
     pub deterministic: bool,
     /// Render only this part of a larger image (`None`: the whole image is `size`).
     pub tile: Option<Tile>,
+    /// Models drawn as their uploaded mesh plus a small change (the live cut's kept part, a
+    /// scalpel stroke in progress): a delta applies to the scene model whose mesh is its
+    /// `base` (same `Arc`), replaced by the preview or not. See [`delta`].
+    pub deltas: Vec<Arc<delta::MeshDelta>>,
 }
 
 impl FrameInputs {
@@ -139,6 +148,7 @@ impl FrameInputs {
             overlays: Vec::new(),
             deterministic: false,
             tile: None,
+            deltas: Vec::new(),
         }
     }
 }
@@ -202,12 +212,14 @@ pub mod shaders {
     pub const LINES: &str = include_str!("shaders/lines.wgsl");
     pub const COMPOSITE: &str = include_str!("shaders/composite.wgsl");
     pub const BLIT: &str = include_str!("shaders/blit.wgsl");
+    pub const SCATTER: &str = include_str!("shaders/scatter.wgsl");
     /// Every shader with its file name.
-    pub const ALL: [(&str, &str); 4] = [
+    pub const ALL: [(&str, &str); 5] = [
         ("mesh.wgsl", MESH),
         ("lines.wgsl", LINES),
         ("composite.wgsl", COMPOSITE),
         ("blit.wgsl", BLIT),
+        ("scatter.wgsl", SCATTER),
     ];
 }
 

@@ -25,7 +25,15 @@ pub struct Pipelines {
     pub composite: wgpu::RenderPipeline,
     pub blit: wgpu::RenderPipeline,
     pub sampler: wgpu::Sampler,
+    /// Scattered word writes into a storage buffer (`scatter.wgsl`): hides and shows faces of an
+    /// uploaded index buffer.
+    pub scatter_layout: wgpu::BindGroupLayout,
+    pub scatter: wgpu::ComputePipeline,
 }
+
+/// Workgroup size of `scatter.wgsl` and the invocations per row of its dispatch grid.
+pub const SCATTER_GROUP: u32 = 64;
+pub const SCATTER_ROW_GROUPS: u32 = 65535;
 
 const PREMULTIPLIED_OVER: wgpu::BlendState = wgpu::BlendState {
     color: wgpu::BlendComponent {
@@ -330,6 +338,36 @@ impl Pipelines {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
+        let storage = |binding: u32, read_only: bool, min: u64| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(min),
+            },
+            count: None,
+        };
+        let scatter_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("cutaway scatter layout"),
+            // An index word; a (word, value) patch.
+            entries: &[storage(0, false, 4), storage(1, true, 8)],
+        });
+        let scatter_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("cutaway scatter pipeline layout"),
+                bind_group_layouts: &[Some(&scatter_layout)],
+                immediate_size: 0,
+            });
+        let scatter_module = module("cutaway scatter.wgsl", shaders::SCATTER);
+        let scatter = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("cutaway scatter"),
+            layout: Some(&scatter_pipeline_layout),
+            module: &scatter_module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
         Pipelines {
             frame_layout,
             draw_layout,
@@ -342,6 +380,8 @@ impl Pipelines {
             composite,
             blit,
             sampler,
+            scatter_layout,
+            scatter,
         }
     }
 }

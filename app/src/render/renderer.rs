@@ -12,9 +12,15 @@ use std::sync::{Arc, Weak};
 use csg::Mesh;
 use glam::{DMat4, DVec2, DVec3, DVec4};
 
+use wgpu::util::DeviceExt as _;
+
+use super::delta::MeshDelta;
 use super::draw_data::{GpuMesh, GpuSegments, cutter_outline_segments, polyline_segments};
 use super::gpu_data::{BlitUniform, DRAW_UNIFORM_STRIDE, DrawUniform, FrameUniform};
-use super::pipelines::{ACCUM_FORMAT, COLOR_FORMAT, DEPTH_FORMAT, Pipelines, REVEALAGE_FORMAT};
+use super::pipelines::{
+    ACCUM_FORMAT, COLOR_FORMAT, DEPTH_FORMAT, Pipelines, REVEALAGE_FORMAT, SCATTER_GROUP,
+    SCATTER_ROW_GROUPS,
+};
 use super::{FrameInputs, OutputTarget, ViewMode, srgb_to_linear};
 use crate::cutaway_geometry::{PartKind, PreviewGeometry, cutter_surface};
 use crate::scene::{ModelStyle, Stereo};
@@ -43,6 +49,48 @@ struct CachedMesh {
     mesh: Weak<Mesh>,
     gpu: Option<GpuMesh>,
     last_used: u64,
+    /// Faces currently hidden in `gpu`'s index buffer (ascending; see [`MeshDelta`]) and the
+    /// delta they were hidden for.
+    hidden: Vec<u32>,
+    hidden_for: Option<Weak<MeshDelta>>,
+}
+
+/// The patch mesh of a [`MeshDelta`], uploaded.
+struct CachedDelta {
+    delta: Weak<MeshDelta>,
+    gpu: Option<GpuMesh>,
+    last_used: u64,
+}
+
+/// What went to the GPU: mesh, line and patch data (uniforms left out). See
+/// [`Renderer::last_frame_uploads`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct UploadStats {
+    /// Bytes of vertex, index, line-segment and index-patch data.
+    pub bytes: u64,
+    /// Triangles whose vertices or indices were uploaded (a hidden or shown face counts one).
+    pub triangles: u64,
+}
+
+impl UploadStats {
+    fn mesh(&mut self, mesh: Option<&GpuMesh>) {
+        if let Some(m) = mesh {
+            self.bytes += m.byte_size();
+            self.triangles += u64::from(m.index_count / 3);
+        }
+    }
+
+    fn segments(&mut self, segments: Option<&GpuSegments>) {
+        if let Some(s) = segments {
+            self.bytes += s.byte_size();
+        }
+    }
+}
+
+/// Index words to overwrite in one model's index buffer: (word, value), ascending by word.
+struct IndexPatch {
+    key: usize,
+    words: Vec<[u32; 2]>,
 }
 
 struct CachedPreview {
@@ -73,6 +121,8 @@ enum Source {
     Model(usize),
     /// `PreviewGeometry::parts[i]`.
     Part(usize),
+    /// The patch of a [`MeshDelta`], by cache key.
+    Delta(usize),
     /// A per-frame overlay mesh.
     Overlay(usize),
 }
@@ -101,6 +151,15 @@ pub struct Renderer {
     preview: Option<CachedPreview>,
     overlay_meshes: Vec<Option<GpuMesh>>,
     overlay_lines: Vec<Option<GpuSegments>>,
+    /// Uploaded delta patches, by the delta's address.
+    deltas: HashMap<usize, CachedDelta>,
+    /// Index patches to apply before this frame's passes.
+    patches: Vec<IndexPatch>,
+    uploads: UploadStats,
+    /// Bounding box of each model mesh seen (by address), so a frame does not scan the models.
+    bboxes: HashMap<usize, (Weak<Mesh>, csg::Aabb)>,
+    /// This frame's [`Scene::bbox`](crate::scene::Scene::bbox), the deltas' patches included.
+    scene_bbox: csg::Aabb,
     frame_index: u64,
 }
 
@@ -143,6 +202,11 @@ impl Renderer {
             preview: None,
             overlay_meshes: Vec::new(),
             overlay_lines: Vec::new(),
+            deltas: HashMap::new(),
+            patches: Vec::new(),
+            uploads: UploadStats::default(),
+            bboxes: HashMap::new(),
+            scene_bbox: csg::Aabb::EMPTY,
             frame_index: 0,
         }
     }
@@ -150,6 +214,12 @@ impl Renderer {
     /// The target this renderer paints into.
     pub fn output(&self) -> OutputTarget {
         self.output
+    }
+
+    /// What the last [`Renderer::prepare`] uploaded (tests: a live re-cut or a scalpel step
+    /// must not send a whole model).
+    pub fn last_frame_uploads(&self) -> UploadStats {
+        self.uploads
     }
 
     /// Renders `frame` offscreen, recording into `encoder` (egui's encoder in a paint callback's
@@ -162,6 +232,7 @@ impl Renderer {
         frame: &FrameInputs,
     ) {
         self.frame_index += 1;
+        self.uploads = UploadStats::default();
         let supersample = if frame.scene.render.antialias && !frame.deterministic {
             2
         } else {
@@ -185,9 +256,12 @@ impl Renderer {
             self.targets = Some(self.create_targets(device, size, eyes));
         }
 
+        self.scene_bbox = self.scene_bbox(frame);
+
         // Phase 1: uploads (mutable caches).
         let draws = self.upload_and_list(device, frame);
         let (draws, uniforms) = draws;
+        self.apply_patches(device, encoder);
 
         // Phase 2: uniforms.
         let line_scale = supersample as f32 * (full_size(frame)[1] as f32 / 800.0).max(1.0);
@@ -212,7 +286,7 @@ impl Renderer {
         if !bytes.is_empty() {
             queue.write_buffer(&self.draw_buffer, 0, &bytes);
         }
-        let (near, far, radius) = depth_range(frame);
+        let (near, far, radius) = depth_range(frame, self.scene_bbox);
         let cameras = eye_cameras(frame);
         let mut frame_bytes = vec![0u8; 2 * DRAW_UNIFORM_STRIDE as usize];
         for (eye, camera) in cameras.iter().enumerate() {
@@ -353,7 +427,7 @@ impl Renderer {
             });
             (uniforms.len() - 1) as u32
         };
-        let radius = 0.5 * scene.bbox().diagonal().max(1e-9);
+        let radius = 0.5 * self.scene_bbox.diagonal().max(1e-9);
         let contour_bias = (radius * 0.004) as f32;
 
         // Preview parts.
@@ -369,7 +443,14 @@ impl Renderer {
                 .as_ref()
                 .is_none_or(|c| !c.preview.upgrade().is_some_and(|q| Arc::ptr_eq(&q, p)));
             if stale {
-                self.preview = Some(upload_preview(device, p));
+                let cache = upload_preview(device, p);
+                for part in &cache.parts {
+                    self.uploads.mesh(part.as_ref());
+                }
+                for c in cache.contours.values() {
+                    self.uploads.segments(Some(c));
+                }
+                self.preview = Some(cache);
             }
         }
         let replaced = |m: usize| {
@@ -380,7 +461,11 @@ impl Renderer {
 
         // Models (uncut, or the kept parts of cut ones).
         for (index, model) in scene.models.iter().enumerate() {
-            if !model.visible || model.opacity <= 0.0 || replaced(index) {
+            let delta = frame
+                .deltas
+                .iter()
+                .find(|d| Arc::ptr_eq(&d.base, &model.mesh));
+            if !model.visible || model.opacity <= 0.0 || (replaced(index) && delta.is_none()) {
                 continue;
             }
             let key = Arc::as_ptr(&model.mesh) as usize;
@@ -390,12 +475,16 @@ impl Renderer {
                     .is_some_and(|m| Arc::ptr_eq(&m, &model.mesh))
             });
             if !fresh {
+                let gpu = GpuMesh::upload(device, &model.name, &model.mesh);
+                self.uploads.mesh(gpu.as_ref());
                 self.models.insert(
                     key,
                     CachedMesh {
                         mesh: Arc::downgrade(&model.mesh),
-                        gpu: GpuMesh::upload(device, &model.name, &model.mesh),
+                        gpu,
                         last_used: 0,
+                        hidden: Vec::new(),
+                        hidden_for: None,
                     },
                 );
             }
@@ -403,22 +492,90 @@ impl Renderer {
                 continue;
             };
             cached.last_used = self.frame_index;
-            let Some(gpu) = cached.gpu.as_mut() else {
+            if cached.gpu.is_none() {
                 continue;
+            }
+            // Hide the faces the delta replaces (or show them again when it is gone).
+            let same = match (&cached.hidden_for, delta) {
+                (Some(w), Some(d)) => w.upgrade().is_some_and(|x| Arc::ptr_eq(&x, d)),
+                (None, None) => true,
+                _ => false,
             };
+            if !same {
+                let wanted: &[u32] = delta.map_or(&[], |d| &d.hidden);
+                let words = hidden_patches(&model.mesh, &cached.hidden, wanted);
+                self.uploads.bytes += (words.len() * size_of::<[u32; 2]>()) as u64;
+                self.uploads.triangles += (words.len() / 3) as u64;
+                if !words.is_empty() {
+                    self.patches.push(IndexPatch { key, words });
+                }
+                cached.hidden = wanted.to_vec();
+                cached.hidden_for = delta.map(Arc::downgrade);
+            }
+            let delta_key = delta.map(|d| {
+                let dkey = Arc::as_ptr(d) as usize;
+                let fresh = self
+                    .deltas
+                    .get(&dkey)
+                    .is_some_and(|c| c.delta.upgrade().is_some_and(|x| Arc::ptr_eq(&x, d)));
+                if !fresh {
+                    let gpu = GpuMesh::upload_vertices(
+                        device,
+                        &format!("{} patch", model.name),
+                        &d.vertices,
+                        &d.patch.triangles,
+                    );
+                    self.uploads.mesh(gpu.as_ref());
+                    self.deltas.insert(
+                        dkey,
+                        CachedDelta {
+                            delta: Arc::downgrade(d),
+                            gpu,
+                            last_used: 0,
+                        },
+                    );
+                }
+                if let Some(c) = self.deltas.get_mut(&dkey) {
+                    c.last_used = self.frame_index;
+                }
+                (dkey, d)
+            });
+            let mut sources = vec![Source::Model(key)];
+            sources.extend(delta_key.map(|(k, _)| Source::Delta(k)));
             match model.style {
                 ModelStyle::Solid => {
                     let u = push_uniform(model.color, model.opacity, true, 0.0, 0.0);
-                    if model.opacity < 1.0 {
-                        list.transparent.push(Draw::Mesh(Source::Model(key), u));
-                    } else {
-                        list.opaque.push(Draw::Mesh(Source::Model(key), u));
+                    for source in sources {
+                        if model.opacity < 1.0 {
+                            list.transparent.push(Draw::Mesh(source, u));
+                        } else {
+                            list.opaque.push(Draw::Mesh(source, u));
+                        }
                     }
                 }
                 ModelStyle::Wireframe => {
-                    gpu.ensure_edges(device, &model.name, &model.mesh);
+                    // The base's edges include those of hidden faces: a wireframe under a
+                    // delta shows the old edges too until the change is committed.
+                    if let Some(gpu) = self.models.get_mut(&key).and_then(|c| c.gpu.as_mut()) {
+                        let had = gpu.edges.is_some();
+                        gpu.ensure_edges(device, &model.name, &model.mesh);
+                        if !had {
+                            self.uploads.segments(gpu.edges.as_ref());
+                        }
+                    }
+                    if let Some((k, d)) = delta_key
+                        && let Some(gpu) = self.deltas.get_mut(&k).and_then(|c| c.gpu.as_mut())
+                    {
+                        let had = gpu.edges.is_some();
+                        gpu.ensure_edges(device, &model.name, &d.patch);
+                        if !had {
+                            self.uploads.segments(gpu.edges.as_ref());
+                        }
+                    }
                     let u = push_uniform(model.color, 1.0, false, WIREFRAME_WIDTH_PX, 0.0);
-                    list.opaque.push(Draw::Edges(Source::Model(key), u));
+                    for source in sources {
+                        list.opaque.push(Draw::Edges(source, u));
+                    }
                 }
             }
         }
@@ -529,6 +686,12 @@ impl Renderer {
                     ));
                 }
             }
+            for m in self.overlay_meshes.iter().flatten() {
+                self.uploads.mesh(Some(m));
+            }
+            for l in self.overlay_lines.iter().flatten() {
+                self.uploads.segments(Some(l));
+            }
         }
         (list, uniforms)
     }
@@ -538,6 +701,7 @@ impl Renderer {
             Source::Model(key) => self.models.get(&key)?.gpu.as_ref(),
             Source::Part(i) => self.preview.as_ref()?.parts.get(i)?.as_ref(),
             Source::Overlay(i) => self.overlay_meshes.get(i)?.as_ref(),
+            Source::Delta(key) => self.deltas.get(&key)?.gpu.as_ref(),
         }
     }
 
@@ -705,12 +869,121 @@ impl Renderer {
         }
     }
 
-    /// Drops uploads of meshes that no longer exist or were not drawn for a while.
+    /// `Scene::bbox` of the frame's scene with each mesh's box computed once, and each model
+    /// drawn with a delta grown by its patch (a scalpel step can open a cut a little past the
+    /// mesh's old box; what a delta hides lies inside the base's box anyway).
+    fn scene_bbox(&mut self, frame: &FrameInputs) -> csg::Aabb {
+        self.bboxes.retain(|_, (w, _)| w.strong_count() > 0);
+        let mut visible = csg::Aabb::EMPTY;
+        let mut all = csg::Aabb::EMPTY;
+        for model in &frame.scene.models {
+            let key = Arc::as_ptr(&model.mesh) as usize;
+            let cached = self
+                .bboxes
+                .get(&key)
+                .filter(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, &model.mesh)))
+                .map(|(_, b)| *b);
+            let mut b = match cached {
+                Some(b) => b,
+                None => {
+                    let b = model.mesh.bbox();
+                    self.bboxes.insert(key, (Arc::downgrade(&model.mesh), b));
+                    b
+                }
+            };
+            for d in frame
+                .deltas
+                .iter()
+                .filter(|d| Arc::ptr_eq(&d.base, &model.mesh))
+            {
+                if !d.patch.triangles.is_empty() {
+                    b = b.union(&d.patch.bbox());
+                }
+            }
+            all = all.union(&b);
+            if model.visible {
+                visible = visible.union(&b);
+            }
+        }
+        if visible.is_empty() { all } else { visible }
+    }
+
+    /// Drops uploads of meshes that no longer exist or were not drawn for a while (a model
+    /// mesh dropped with faces hidden goes with them). Delta patches go as soon as a frame did
+    /// not draw them: each change makes a new one.
     fn evict(&mut self) {
         let now = self.frame_index;
         self.models.retain(|_, c| {
             c.mesh.strong_count() > 0 && now.saturating_sub(c.last_used) <= CACHE_FRAMES
         });
+        self.deltas
+            .retain(|_, c| c.delta.strong_count() > 0 && c.last_used == now);
+    }
+
+    /// Writes this frame's index patches (hidden faces) with the scatter compute shader, before
+    /// the render passes that read the index buffers. Each patch list names every word once.
+    fn apply_patches(&mut self, device: &wgpu::Device, encoder: &mut wgpu::CommandEncoder) {
+        let patches = std::mem::take(&mut self.patches);
+        if patches.is_empty() {
+            return;
+        }
+        // A storage binding may be smaller than a big model's index buffer: bind it in windows
+        // (a multiple of 256 bytes long, the offset alignment).
+        let limit = device.limits().max_storage_buffer_binding_size;
+        let window_words = ((limit / 4) & !63).max(64);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("cutaway hide faces"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipelines.scatter);
+        for patch in &patches {
+            let Some(gpu) = self.models.get(&patch.key).and_then(|c| c.gpu.as_ref()) else {
+                continue;
+            };
+            let total_words = gpu.index_buffer.size() / 4;
+            for run in patch
+                .words
+                .chunk_by(|a, b| u64::from(a[0]) / window_words == u64::from(b[0]) / window_words)
+            {
+                let window = u64::from(run[0][0]) / window_words;
+                let first = window * window_words;
+                let len = window_words.min(total_words - first);
+                let relative: Vec<[u32; 2]> = run
+                    .iter()
+                    .map(|&[w, v]| [(u64::from(w) - first) as u32, v])
+                    .collect();
+                let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("cutaway index patches"),
+                    contents: bytemuck::cast_slice(&relative),
+                    usage: wgpu::BufferUsages::STORAGE,
+                });
+                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("cutaway scatter bind group"),
+                    layout: &self.pipelines.scatter_layout,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                                buffer: &gpu.index_buffer,
+                                offset: first * 4,
+                                size: wgpu::BufferSize::new(len * 4),
+                            }),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: buffer.as_entire_binding(),
+                        },
+                    ],
+                });
+                pass.set_bind_group(0, &bind_group, &[]);
+                let groups = (relative.len() as u32).div_ceil(SCATTER_GROUP);
+                pass.dispatch_workgroups(
+                    groups.min(SCATTER_ROW_GROUPS),
+                    groups.div_ceil(SCATTER_ROW_GROUPS),
+                    1,
+                );
+            }
+        }
     }
 }
 
@@ -720,6 +993,45 @@ struct DrawList {
     transparent: Vec<Draw>,
     /// Drawn after the transparency composite, with no depth test.
     overlay: Vec<Draw>,
+}
+
+/// The index words that turn the hidden faces `old` into `new` (both ascending): a face no
+/// longer hidden gets its three indices back from `mesh`, a newly hidden one becomes the
+/// degenerate triangle at its first corner (no pixels). Proportional to the two lists.
+fn hidden_patches(mesh: &Mesh, old: &[u32], new: &[u32]) -> Vec<[u32; 2]> {
+    let mut out = Vec::new();
+    let (mut i, mut j) = (0, 0);
+    let emit = |f: u32, show: bool, out: &mut Vec<[u32; 2]>| {
+        let Some(tri) = mesh.triangles.get(f as usize) else {
+            return;
+        };
+        for k in 0..3 {
+            let value = if show { tri[k] } else { tri[0] };
+            out.push([3 * f + k as u32, value]);
+        }
+    };
+    while i < old.len() || j < new.len() {
+        match (old.get(i), new.get(j)) {
+            (Some(&a), Some(&b)) if a == b => {
+                i += 1;
+                j += 1;
+            }
+            (Some(&a), Some(&b)) if a < b => {
+                emit(a, true, &mut out);
+                i += 1;
+            }
+            (Some(&a), None) => {
+                emit(a, true, &mut out);
+                i += 1;
+            }
+            (_, Some(&b)) => {
+                emit(b, false, &mut out);
+                j += 1;
+            }
+            (None, None) => break,
+        }
+    }
+    out
 }
 
 fn upload_preview(device: &wgpu::Device, preview: &Arc<PreviewGeometry>) -> CachedPreview {
@@ -805,8 +1117,8 @@ fn full_size(frame: &FrameInputs) -> [u32; 2] {
 }
 
 /// Near and far distances that enclose everything drawn, and the scene radius.
-fn depth_range(frame: &FrameInputs) -> (f64, f64, f64) {
-    let mut bbox = frame.scene.bbox();
+fn depth_range(frame: &FrameInputs, scene_bbox: csg::Aabb) -> (f64, f64, f64) {
+    let mut bbox = scene_bbox;
     if frame.mode == ViewMode::Edit {
         for o in &frame.overlays {
             for p in o.planes.iter().flatten() {

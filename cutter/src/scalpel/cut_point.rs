@@ -64,6 +64,26 @@ pub fn classify(mesh: &DynMesh, t: u32, bary: DVec3, tau: f64) -> CutPoint {
     CutPoint::Face { t, point: p }
 }
 
+/// [`classify`], but a point inside the face goes onto the nearest edge (the one opposite its
+/// smallest weight) instead: for cuts that must not start inside a face.
+pub fn classify_on_edges(mesh: &DynMesh, t: u32, bary: DVec3, tau: f64) -> CutPoint {
+    match classify(mesh, t, bary, tau) {
+        CutPoint::Face { .. } => {
+            let w = [bary.x, bary.y, bary.z];
+            let kmin = (0..3).min_by(|&a, &b| w[a].total_cmp(&w[b])).unwrap_or(0);
+            let mut on = bary;
+            on[kmin] = 0.0;
+            let sum = on.x + on.y + on.z;
+            if sum > 0.0 {
+                on /= sum;
+            }
+            // Its smallest weight is 0 now: an edge (or a vertex), even with no snapping.
+            classify(mesh, t, on, tau.max(1e-9))
+        }
+        cp => cp,
+    }
+}
+
 /// Closest point of triangle `(a, b, c)` to `p`, as barycentric weights (Ericson, RTCD 5.1.5).
 pub fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     let ab = b - a;
@@ -139,8 +159,10 @@ pub fn closest_face(mesh: &DynMesh, p: DVec3) -> Option<(u32, DVec3, f64)> {
 
 /// The surface triangle nearest `p` among those connected to vertex `v`, searched best-first
 /// outward from `v`'s triangles (by the distance from `p` to each triangle's bounding box, over
-/// twins, walls included as passages) and stopped once no unvisited triangle can be nearer or
-/// `limit` triangles were examined. Cost independent of the mesh size: used where a cut restarts
+/// twins, walls included as passages) and stopped once one is found with `p` on it (to
+/// rounding) and no unvisited triangle can be nearer, or `limit` triangles were examined. (Not
+/// stopped at the nearest so far otherwise: the way from `v` to the triangles under `p` may
+/// lead through farther ones, around or through another cut.) Cost independent of the mesh size: used where a cut restarts
 /// inside a stroke (after merging into another cut), where the walk knows where it is.
 pub fn closest_face_near(
     mesh: &DynMesh,
@@ -170,8 +192,12 @@ pub fn closest_face_near(
     }
     let mut best: Option<(u32, DVec3, f64)> = None;
     let mut examined = 0;
+    // On the surface (to rounding): no unvisited triangle can be nearer.
+    let on_surface = 1e-9 * (1.0 + p.length());
     while let Some(Reverse((bits, t))) = heap.pop() {
-        if best.is_some_and(|(_, _, d)| f64::from_bits(bits) >= d) || examined >= limit {
+        if best.is_some_and(|(_, _, d)| d <= on_surface && f64::from_bits(bits) >= d)
+            || examined >= limit
+        {
             break;
         }
         examined += 1;

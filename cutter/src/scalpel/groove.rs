@@ -9,6 +9,20 @@
 //! itself and the quad degenerates to one triangle, so the groove ends in a point and the
 //! surface is closed.
 //!
+//! ## Element budget
+//! Issue 6 asks for at most 4 new triangles in one triangle the cut crosses (counted as in
+//! [`super::survey::element_budget`]: surface pieces minus one, plus the lip walls of the
+//! segments cut through it, plus half of each floor triangle at either end of those segments).
+//! A segment from an edge split to an edge split leaves 3 pieces and 2 lip walls: 4, no room. So
+//! the floor changes only at a path vertex where a segment beside it has room ([`Groove::load`]
+//! below 2: it ends on a vertex of the mesh), and the two floor triangles (one per lip) sit at
+//! that vertex, one counted for each segment meeting there. When the floor is due and the anchor
+//! split an edge, the walk snaps its next crossing to a vertex (`FLOOR_DUE_SNAP` in `step`); the
+//! floor waits at most [`FLOOR_STRETCH`] times its reach. The rest of the budget is kept by the
+//! walk: a groove never starts or ends inside a face (the start goes onto the nearest edge, the
+//! tip to the nearer of the anchor and the crossing), never snaps back onto the edge its anchor
+//! split, and splits an edge for good only once the sample is clearly past it.
+//!
 //! Walls trail the cut by one segment: segment `i`'s walls need the bottom of `p(i+1)`, which
 //! exists only once the cut has left `p(i+1)`. The last segment gets its walls with the tool tip
 //! in the temporary part of each step.
@@ -39,6 +53,15 @@ pub struct Groove {
     /// Where the last floor vertex was made: the path point above it and the path's direction
     /// there (for reusing it, see [`Groove::make_bottom`]).
     pub floor_top: Option<(DVec3, DVec3)>,
+    /// Per path vertex: the surface pieces the cut added for it in each triangle beside it, 0
+    /// for a vertex of the mesh (the cut went through it), 1 for a point where it split an edge,
+    /// 2 for a start inside a face. With `attached`, the element budget of each segment (see
+    /// [`Groove::load`]).
+    pub split: Vec<u8>,
+    /// Per path vertex: floor changes whose floor triangles (one per lip) sit at this vertex.
+    pub attached: Vec<u8>,
+    /// Segments whose floor triangles sit at their first path vertex (the others' at their last).
+    pub floor_at_start: Vec<usize>,
 }
 
 /// A new floor vertex once the path is farther than this many blade depths (or segment
@@ -46,6 +69,35 @@ pub struct Groove {
 pub const FLOOR_REACH: f64 = 6.0;
 /// A new floor vertex once the path turns more than this from where the current one was made.
 pub const FLOOR_TURN_DEG: f64 = 35.0;
+/// At most about this many blade depths (plus a segment) between consecutive floor vertices,
+/// even where the floor is waiting for room (see [`FLOOR_STRETCH`]): the floor triangle joining
+/// them to a lip vertex one depth above the newer one has angles of about 1° or more (notes
+/// Q0). Past it the floor changes anyway (5 new triangles in one crossed triangle): with a blade
+/// much shallower than the triangles are wide, the element budget gives way to element quality.
+pub const FLOOR_MAX_SPAN: f64 = 45.0;
+/// A floor change waits for a path vertex with room for its floor triangles (see
+/// [`Groove::make_bottom`]) up to this many times [`FLOOR_REACH`], or a turn of
+/// [`FLOOR_FORCE_TURN_DEG`].
+pub const FLOOR_STRETCH: f64 = 3.0;
+/// See [`FLOOR_STRETCH`]. (The turn is measured from the one segment where the floor vertex was
+/// made: zigzags of the path across the mesh make it noisy, so the limit is generous.)
+pub const FLOOR_FORCE_TURN_DEG: f64 = 85.0;
+
+/// Whether a path vertex at `p` (the one before at `prev`) is more than `k` times
+/// [`FLOOR_REACH`] (never more than [`FLOOR_MAX_SPAN`] depths) from `top`, where the current floor vertex was made going `dir`, or turned
+/// more than [`FLOOR_TURN_DEG`] from `dir` (for `k > 1`, [`FLOOR_FORCE_TURN_DEG`]).
+fn floor_far(depth: f64, top: DVec3, dir: DVec3, p: DVec3, prev: DVec3, k: f64) -> bool {
+    let d = p - top;
+    let reach = FLOOR_REACH * depth.max(p.distance(prev));
+    let l = d.length() * dir.length();
+    let turn = if k > 1.0 {
+        FLOOR_FORCE_TURN_DEG
+    } else {
+        k * FLOOR_TURN_DEG
+    };
+    let turned = l > 0.0 && d.dot(dir) < l * turn.to_radians().cos();
+    d.length() > (k * reach).min(FLOOR_MAX_SPAN * depth) || turned
+}
 
 /// See [`Groove::backup`].
 #[derive(Clone, Debug)]
@@ -58,10 +110,16 @@ pub struct GrooveBackup {
     bottom_vertices: usize,
     junctions: Vec<usize>,
     floor_top: Option<(DVec3, DVec3)>,
+    /// `split` and `attached` from `from - 1` on (a floor change may sit at the vertex before).
+    split_tail: Vec<u8>,
+    attached_tail: Vec<u8>,
+    floor_at_start: Vec<usize>,
 }
 
 impl Groove {
-    pub fn new(depth: f64, start: u32) -> Groove {
+    /// A groove starting at `start`, a vertex the cut made by splitting `start_split` pieces
+    /// more into the triangles around it (see [`Groove::split`]).
+    pub fn new(depth: f64, start: u32, start_split: u8) -> Groove {
         Groove {
             depth,
             bottoms: vec![start],
@@ -70,7 +128,48 @@ impl Groove {
             bottom_vertices: Vec::new(),
             junctions: Vec::new(),
             floor_top: None,
+            split: vec![start_split],
+            attached: vec![0],
+            floor_at_start: Vec::new(),
         }
+    }
+
+    /// Records how path vertex `index` was made (see [`Groove::split`]).
+    pub fn set_split(&mut self, index: usize, pieces: u8) {
+        if self.split.len() <= index {
+            self.split.resize(index + 1, 0);
+        }
+        self.split[index] = pieces;
+    }
+
+    /// Inserts a path vertex at `index` (made by splitting an edge), shifting the later ones.
+    pub fn insert_split(&mut self, index: usize) {
+        if self.split.len() >= index {
+            self.split.insert(index, 1);
+        }
+        if self.attached.len() >= index {
+            self.attached.insert(index, 0);
+        }
+    }
+
+    /// New triangles segment `s` (path vertices `s`, `s + 1`) adds to the triangle it crosses,
+    /// beyond its two lip walls: the surface pieces of its ends plus one per floor change sitting
+    /// at either end (two floor triangles, counted half for each segment at that vertex). Kept
+    /// at most 2, so a crossed triangle gets at most 4 new ones (see
+    /// `survey::element_budget`).
+    pub fn load(&self, s: usize) -> u8 {
+        let at = |v: &Vec<u8>, i: usize| v.get(i).copied().unwrap_or(0);
+        at(&self.split, s)
+            + at(&self.split, s + 1)
+            + at(&self.attached, s)
+            + at(&self.attached, s + 1)
+    }
+
+    fn attach(&mut self, index: usize) {
+        if self.attached.len() <= index {
+            self.attached.resize(index + 1, 0);
+        }
+        self.attached[index] += 1;
     }
 
     /// Makes path vertex `index` open into an existing trench whose floor vertex is `floor`.
@@ -90,10 +189,18 @@ impl Groove {
     }
 
     /// Makes the bottom of path vertex `index` (at rest position `p`, previous path vertex at
-    /// `prev`, normal `n`). The floor is coarser than the lips: the bottom of the previous path
-    /// vertex is reused while the path stays within [`FLOOR_REACH`] of where that floor vertex
-    /// was made and turns less than [`FLOOR_TURN_DEG`] from the way it was going then, so each
-    /// path segment costs one wall triangle per lip plus a share of the floor (notes T4).
+    /// `prev`, normal `n`; [`Groove::split`] of `index + 1` already recorded). The floor is
+    /// coarser than the lips: the bottom of the previous path vertex is reused while the path
+    /// stays within [`FLOOR_REACH`] of where that floor vertex was made and turns less than
+    /// [`FLOOR_TURN_DEG`] from the way it was going then, so each path segment costs one wall
+    /// triangle per lip plus a share of the floor (notes T4).
+    ///
+    /// Where the floor changes (a new floor vertex after one of this groove's), each lip gets a
+    /// floor triangle at a path vertex next to the change. It goes where the two segments
+    /// meeting at that vertex have room ([`Groove::load`] below 2): at `index` or at
+    /// `index - 1`. Where neither has room (both ends split an edge), the old floor vertex is
+    /// kept a little longer, up to [`FLOOR_STRETCH`] times the reach (and one segment more when
+    /// the next path vertex is a vertex of the mesh).
     pub fn make_bottom(
         &mut self,
         mesh: &mut DynMesh,
@@ -108,23 +215,48 @@ impl Groove {
         if self.bottoms[index] != NO_TWIN {
             return;
         }
-        if index >= 1
+        if self.owns_floor(index)
             && let Some((top, dir)) = self.floor_top
-            && self.bottom_vertices.last() == Some(&self.bottoms[index - 1])
         {
-            let d = p - top;
-            let reach = FLOOR_REACH * self.depth.max(p.distance(prev));
-            let l = d.length() * dir.length();
-            let straight = l == 0.0 || d.dot(dir) >= l * FLOOR_TURN_DEG.to_radians().cos();
-            if d.length() <= reach && straight {
+            let far = |k: f64| floor_far(self.depth, top, dir, p, prev, k);
+            if !far(1.0) {
                 self.bottoms[index] = self.bottoms[index - 1];
                 return;
+            }
+            if self.load(index - 1) <= 1 && self.load(index) <= 1 {
+                self.attach(index);
+            } else if index >= 2 && self.load(index - 2) <= 1 && self.load(index - 1) <= 1 {
+                self.attach(index - 1);
+                self.floor_at_start.push(index - 1);
+            } else if !far(FLOOR_STRETCH) || self.load(index) <= 1 {
+                // Waiting; past the stretch only while the next path vertex (known) is a vertex
+                // of the mesh, where the floor can change with room.
+                self.bottoms[index] = self.bottoms[index - 1];
+                return;
+            } else {
+                // Over the budget rather than a wall too long and thin.
+                self.attach(index);
             }
         }
         let b = mesh.push_floor_vertex(p - n * self.depth);
         self.bottoms[index] = b;
         self.bottom_vertices.push(b);
         self.floor_top = Some((p, p - prev));
+    }
+
+    /// Whether the bottom of path vertex `index` would continue this groove's own floor (not a
+    /// crack tip's or another trench's).
+    fn owns_floor(&self, index: usize) -> bool {
+        index >= 1 && self.bottom_vertices.last() == self.bottoms.get(index - 1)
+    }
+
+    /// Whether path vertex `index` (at `p`, the one before at `prev`) is past where the floor
+    /// should get a new vertex (see [`Groove::make_bottom`]).
+    pub fn floor_due(&self, index: usize, p: DVec3, prev: DVec3) -> bool {
+        self.owns_floor(index)
+            && self
+                .floor_top
+                .is_some_and(|(top, dir)| floor_far(self.depth, top, dir, p, prev, 1.0))
     }
 
     /// What the temporary tip may change, to restore it without copying the whole groove
@@ -143,6 +275,17 @@ impl Groove {
             bottom_vertices: self.bottom_vertices.len(),
             junctions: self.junctions.clone(),
             floor_top: self.floor_top,
+            split_tail: self
+                .split
+                .get(from.saturating_sub(1)..)
+                .map(<[u8]>::to_vec)
+                .unwrap_or_default(),
+            attached_tail: self
+                .attached
+                .get(from.saturating_sub(1)..)
+                .map(<[u8]>::to_vec)
+                .unwrap_or_default(),
+            floor_at_start: self.floor_at_start.clone(),
         }
     }
 
@@ -156,6 +299,12 @@ impl Groove {
         self.bottom_vertices.truncate(backup.bottom_vertices);
         self.junctions = backup.junctions;
         self.floor_top = backup.floor_top;
+        let keep = backup.from.saturating_sub(1);
+        self.split.truncate(keep);
+        self.split.extend_from_slice(&backup.split_tail);
+        self.attached.truncate(keep);
+        self.attached.extend_from_slice(&backup.attached_tail);
+        self.floor_at_start = backup.floor_at_start;
     }
 
     /// Marks path vertex `index` (vertex `v`) as a crack tip: its own bottom.
@@ -182,6 +331,13 @@ impl Groove {
                 // One segment from trench to trench: its walls would lie in the old walls.
                 return false;
             }
+            // Where this segment's floor triangles sit (see `make_bottom`): at its first or its
+            // last vertex on both lips; next to a junction, each lip's at its own end.
+            let floor_at_a = if self.junctions.contains(&i) || self.junctions.contains(&(i + 1)) {
+                None
+            } else {
+                Some(self.floor_at_start.contains(&i))
+            };
             for j in [i, i + 1] {
                 if let Some(at) = self.junctions.iter().position(|&x| x == j) {
                     self.junctions.swap_remove(at);
@@ -194,8 +350,8 @@ impl Groove {
                 return false;
             };
             let (Some(w1), Some(w2)) = (
-                self.wall(mesh, lip_ab, ba, bb),
-                self.wall(mesh, lip_ba, bb, ba),
+                self.wall(mesh, lip_ab, ba, bb, floor_at_a),
+                self.wall(mesh, lip_ba, bb, ba, floor_at_a.map(|a| !a)),
             ) else {
                 return false;
             };
@@ -224,20 +380,34 @@ impl Groove {
         true
     }
 
-    /// Wall under boundary half-edge `lip` (`u → w`) with bottoms `bu` (of `u`) and `bw`.
+    /// Wall under boundary half-edge `lip` (`u → w`) with bottoms `bu` (of `u`) and `bw`; when
+    /// the bottoms differ, the floor triangle (two bottoms, one lip vertex) sits at `u` when
+    /// `floor_at_u` is `Some(true)`, else at `w`.
     /// Returns whether triangles were made (`Option` for the callers' failure path; a wall that
     /// duplicates an existing edge, where a cut doubled back into a trench, is caught by the
     /// step's local validation, which refuses the step).
-    fn wall(&mut self, mesh: &mut DynMesh, lip: u32, bu: u32, bw: u32) -> Option<bool> {
+    fn wall(
+        &mut self,
+        mesh: &mut DynMesh,
+        lip: u32,
+        bu: u32,
+        bw: u32,
+        floor_at_u: Option<bool>,
+    ) -> Option<bool> {
         let (u, w) = (mesh.origin(lip), mesh.dest(lip));
         let bu = if mesh.same_point(bu, u) { u } else { bu };
         let bw = if mesh.same_point(bw, w) { w } else { bw };
         let mut tris = Vec::with_capacity(2);
-        if bu != u {
-            tris.push([w, u, bu]);
-        }
-        if bw != w && bw != bu {
-            tris.push([w, bu, bw]);
+        if bu != u && bw != w && bw != bu && floor_at_u == Some(true) {
+            tris.push([w, u, bw]);
+            tris.push([u, bu, bw]);
+        } else {
+            if bu != u {
+                tris.push([w, u, bu]);
+            }
+            if bw != w && bw != bu {
+                tris.push([w, bu, bw]);
+            }
         }
         if tris.is_empty() {
             return Some(false);

@@ -36,8 +36,19 @@
 //!   two junctions); one that comes straight back into the trench it crossed, at the same floor
 //!   vertex, ends on the lip in a crack tip instead of opening into it.
 //! - Grooves share floor vertices along straight runs and snap to vertices a little more than
-//!   slits (`groove_snap_edge`), so a groove costs about 3 new triangles per crossed triangle,
-//!   walls included.
+//!   slits (`groove_snap_edge`), so a groove costs under 3 new triangles per crossed triangle on
+//!   average, walls included, and never more than 4 in one where the floor can change at a
+//!   vertex of the mesh (see [`groove`], "Element budget"; counted by
+//!   [`survey::element_budget`]).
+//! - A cut that cannot leave its anchor toward a sample that is on the surface two triangles
+//!   away (a trench's lip in the way where it cannot cross) ends there and starts again under
+//!   the blade, instead of refusing every later step of the stroke. A groove starting on a
+//!   trench's lip (or just past a trench it crossed) that would reach the same trench's lip at
+//!   once ends there (merged).
+//! - A through-cut's far side follows the far surface under each sample (a ray along the
+//!   inward normal, searched near the far cut), so the slot follows a structure whose thickness
+//!   changes. A slot reaching another cut or a boundary ends at its last tip and the stroke
+//!   starts a new slot past it (its far side searched near where it starts again).
 //! - [`Tool::Loop`] closes the stroke back to its start and reports the pieces it detached
 //!   ([`loop_tool`]).
 //! - [`dffd`] opens the incision by a displacement that is discontinuous across the cut, over a
@@ -49,7 +60,8 @@
 //!
 //! ## Cost
 //! `begin_stroke` scans the mesh once (nearest face, whether the surface is closed, the
-//! through-cut ray). No step does: a cut restarting inside a stroke (after merging into another
+//! through-cut ray). No step does (the searches inside a stroke examine at most
+//! `RESTART_SEARCH` triangles): a cut restarting inside a stroke (after merging into another
 //! cut) searches for its start outward from where it merged, over a bounded number of triangles,
 //! and keeps the stroke's kind (groove, slit) and its surface's closedness.
 //!

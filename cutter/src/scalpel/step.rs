@@ -15,7 +15,9 @@
 
 use glam::DVec3;
 
-use super::cut_point::{CutPoint, classify, closest_face, closest_face_near, side};
+use super::cut_point::{
+    CutPoint, classify, classify_on_edges, closest_face, closest_face_near, side,
+};
 use super::dyn_mesh::{DynMesh, Mark, NO_TWIN, NONMANIFOLD, is_real, next, prev};
 use super::groove::{Groove, GrooveBackup};
 use super::{ScalpelError, ScalpelOptions, Tool};
@@ -29,6 +31,21 @@ const THROUGH_SNAP_END: f64 = 0.02;
 /// At most this many triangles examined when a cut restarts inside a stroke (see
 /// `Scalpel::start_cut`).
 pub const RESTART_SEARCH: usize = 4096;
+
+/// A cut that cannot leave its anchor is stuck (see `Scalpel::stuck`) once the blade is this
+/// many of the anchor's longest surface edges away.
+const STUCK_REACH: f64 = 2.0;
+
+/// Edge snapping of a groove whose floor is due for a new vertex (see `walk`): every crossing
+/// not blocked from it goes through the nearer end of its edge.
+const FLOOR_DUE_SNAP: f64 = 0.5;
+
+/// At most this many triangles examined when a through-cut looks for its far side under a
+/// sample (see `Scalpel::place_tips`).
+const FAR_SEARCH: usize = 512;
+
+/// Why a slot's step was refused when it reached another cut or a boundary (see `step`).
+const SLOT_BLOCKED: &str = "through-cut blocked by a cut or boundary";
 
 /// At most this many fan crossings in one step (a guard against a walk that cannot progress).
 const MAX_CROSSINGS: usize = 100_000;
@@ -77,6 +94,9 @@ pub(crate) struct Cut {
     pub groove: Option<Groove>,
     /// One side of a through-cut: never doubles back along its own open slit.
     pub through: bool,
+    /// The two ends of the edge the cut split to make its anchor (`None` when the anchor is a
+    /// vertex it went through). A groove never goes on along that edge (see `walk`).
+    pub split_edge: Option<(u32, u32)>,
 }
 
 /// Where the walk toward a sample ends, relative to the anchor.
@@ -335,6 +355,27 @@ impl Scalpel {
                     // Deterministic: the same walk from the same anchor places the same tip.
                     let _ = self.place_tip(&mut stroke, pq);
                 }
+                let unstarted = |c: &Option<Cut>| c.as_ref().is_some_and(|c| c.path.len() == 1);
+                if self.reason == SLOT_BLOCKED
+                    && stroke.far.is_some()
+                    && (stroke.tip.is_some() || (unstarted(&stroke.cut) && unstarted(&stroke.far)))
+                {
+                    // A slot reaching another cut or a boundary cannot open into it (its end there
+                    // would not close): it ends at its last tip, made permanent as at the end of
+                    // a stroke (or, not started yet, is given up), and the stroke starts a new
+                    // slot past the other cut (`start_cut`, once the blade is off that cut's lips).
+                    stroke.crossed += stroke.tip.take().map_or(0, |t| t.crossed);
+                    stroke.last_end = stroke.cut.as_ref().map(|c| c.anchor);
+                    stroke.cut = None;
+                    stroke.far = None;
+                    stroke.tip_q = None;
+                    stroke.merged = true;
+                    self.stroke = Some(stroke);
+                    return Ok(StepReport {
+                        triangles_crossed: 0,
+                        on_mesh: false,
+                    });
+                }
                 self.stroke = Some(stroke);
                 Err(e)
             }
@@ -419,7 +460,19 @@ impl Scalpel {
             stroke.cut = Some(cut);
             r?
         };
+        let stuck = matches!(end, WalkEnd::Reached(End::AtVertex))
+            && stroke.far.is_none()
+            && stroke.cut.as_ref().is_some_and(|c| self.stuck(c.anchor, q));
         match end {
+            WalkEnd::Reached(_) if stuck => {
+                // The cut cannot leave its anchor toward the sample (a trench's lip or another
+                // cut is in the way and it cannot cross there) while the blade has moved on
+                // over the surface: the cut ends where it is and starts again under the blade
+                // (at the next sample, once off the other cut's lips), instead of refusing
+                // every later step of the stroke.
+                self.finish_cut(stroke)?;
+                stroke.merged = true;
+            }
             WalkEnd::Reached(end) => {
                 let tip = self.place_tips(stroke, end, q)?;
                 let d = self.mesh.pos(tip).distance(q);
@@ -434,8 +487,8 @@ impl Scalpel {
             }
             WalkEnd::Blocked { .. } if stroke.far.is_some() => {
                 // A slot cannot open into another cut or a boundary (its end there would not
-                // close): the step is refused, the slot keeps its last tip.
-                self.reason = "through-cut blocked by a cut or boundary";
+                // close): this step is undone and the slot ends at its last tip (see `step`).
+                self.reason = SLOT_BLOCKED;
                 return Err(ScalpelError::WalkFailed {
                     point: q.to_array(),
                 });
@@ -451,6 +504,27 @@ impl Scalpel {
             triangles_crossed: stroke.crossed - before + tip_crossed,
             on_mesh: stroke.cut.is_some(),
         })
+    }
+
+    /// Whether a cut whose walk toward `q` cannot leave anchor `v` is stuck rather than
+    /// waiting: `q` is farther than [`STUCK_REACH`] of `v`'s longest surface edges (or than the
+    /// off-mesh tolerance) from `v`, and
+    /// on the surface (within the off-mesh tolerance of a triangle near `v`).
+    fn stuck(&mut self, v: u32, q: DVec3) -> bool {
+        let pv = self.mesh.pos(v);
+        self.mesh.surface_fan_into(v, &mut self.scratch);
+        let longest = self
+            .scratch
+            .iter()
+            .map(|&h| self.mesh.longest_edge(h / 3))
+            .fold(0.0, f64::max);
+        // Beyond the off-mesh tolerance the tip could not be placed at all (the step would be
+        // refused although the blade is on the surface), so that is "stuck" too, however long
+        // the edges around `v` are (a lip of an opened trench has long floor edges beside it).
+        let reach = (STUCK_REACH * longest).min(self.tolerance);
+        pv.distance(q) > reach
+            && closest_face_near(&self.mesh, v, q, RESTART_SEARCH)
+                .is_some_and(|(_, _, d)| d <= self.tolerance)
     }
 
     /// Walks toward `q` and places the temporary tip (used to redo a tip after a failed step).
@@ -498,7 +572,18 @@ impl Scalpel {
                 tolerance: self.tolerance,
             });
         }
-        let cp = classify(&self.mesh, t, bary, self.options.snap_end);
+        if !stroke.touched {
+            stroke.surface_closed = self.component_closed(t);
+        }
+        let groove_mode =
+            self.options.depth > 0.0 && self.options.tool == Tool::Scalpel && stroke.surface_closed;
+        let cp = if groove_mode {
+            // A groove never starts inside a face (a face split, the crossing out of it and the
+            // walls would be 5 new triangles in one): it starts on the nearest edge.
+            classify_on_edges(&self.mesh, t, bary, self.options.snap_end)
+        } else {
+            classify(&self.mesh, t, bary, self.options.snap_end)
+        };
         if stroke.merged {
             // After merging into an existing slit, stay merged while the blade is on its lips.
             let tri = self.mesh.triangles[t as usize];
@@ -506,25 +591,27 @@ impl Scalpel {
                 return Ok(StepReport::default());
             }
         }
-        let v = match cp {
-            CutPoint::Vertex(v) => v,
-            CutPoint::Edge { h, point } => self.split_edge_with_mate(h, point)?,
-            CutPoint::Face { t, point } => self.mesh.split_face(t, point),
+        let (v, start_split) = match cp {
+            CutPoint::Vertex(v) => (v, 0),
+            CutPoint::Edge { h, point } => (self.split_edge_with_mate(h, point)?, 1),
+            CutPoint::Face { t, point } => (self.mesh.split_face(t, point), 2),
         };
         if self.mesh.singular[v as usize] {
             return Err(self.nonmanifold(v));
         }
-        if !stroke.touched {
-            stroke.surface_closed = self.component_closed(v);
-        }
-        let groove_mode =
-            self.options.depth > 0.0 && self.options.tool == Tool::Scalpel && stroke.surface_closed;
-        let mut groove = groove_mode.then(|| Groove::new(self.options.depth, v));
+        let mut groove = groove_mode.then(|| Groove::new(self.options.depth, v, start_split));
         stroke.far = None;
-        if groove_mode
-            && !stroke.touched
-            && let Some((far, thickness)) = self.through_start(v)?
-        {
+        let through = if !groove_mode {
+            None
+        } else if !stroke.touched {
+            self.through_start(v, None)?
+        } else if stroke.thickness > 0.0 {
+            // A slot restarting past another cut: its far side is searched near here.
+            self.through_start(v, Some(stroke.thickness))?
+        } else {
+            None
+        };
+        if let Some((far, thickness)) = through {
             // Deeper than the structure is thick: a slot through it instead of a groove.
             groove = None;
             stroke.far = Some(Cut {
@@ -533,11 +620,13 @@ impl Scalpel {
                 path: vec![far],
                 groove: None,
                 through: true,
+                split_edge: None,
             });
             stroke.thickness = thickness;
         }
         stroke.cut = Some(Cut {
             through: stroke.far.is_some(),
+            split_edge: None,
             start: v,
             anchor: v,
             path: vec![v],
@@ -552,15 +641,11 @@ impl Scalpel {
         })
     }
 
-    /// Whether the connected surface around `v` is closed (no boundary edge reachable).
-    fn component_closed(&self, v: u32) -> bool {
-        let h = self.mesh.vert_he[v as usize];
-        if h == NO_TWIN {
-            return false;
-        }
+    /// Whether the connected surface of triangle `t` is closed (no boundary edge reachable).
+    fn component_closed(&self, t: u32) -> bool {
         let mut seen = vec![false; self.mesh.triangle_count()];
-        let mut stack = vec![h / 3];
-        seen[(h / 3) as usize] = true;
+        let mut stack = vec![t];
+        seen[t as usize] = true;
         while let Some(t) = stack.pop() {
             for k in 0..3 {
                 let g = self.mesh.twin(3 * t + k);
@@ -652,11 +737,21 @@ impl Scalpel {
         });
     }
 
-    /// Permanent move of the cut from the anchor `v` to its neighbour `x`.
-    fn move_to(&mut self, cut: &mut Cut, v: u32, x: u32) -> Result<(), ScalpelError> {
+    /// Permanent move of the cut from the anchor `v` to its neighbour `x`, which the cut made
+    /// by splitting the edge `split_edge` (`None`: a vertex it goes through; see
+    /// [`Groove::split`]).
+    fn move_to(
+        &mut self,
+        cut: &mut Cut,
+        v: u32,
+        x: u32,
+        split_edge: Option<(u32, u32)>,
+    ) -> Result<(), ScalpelError> {
         let n = self.mesh.surface_normal(v, &mut self.scratch);
+        cut.split_edge = split_edge;
         if let Some(g) = cut.groove.as_mut() {
             let k = cut.path.len() - 1;
+            g.set_split(k + 1, u8::from(split_edge.is_some()));
             if k >= 1 {
                 let pv = self.mesh.pos(v);
                 let prev = self.mesh.pos(cut.path[k - 1]);
@@ -749,26 +844,58 @@ impl Scalpel {
         crossed: &mut usize,
         tau_end: f64,
     ) -> Result<WalkEnd, ScalpelError> {
-        let tau = if cut.groove.is_some() {
+        let tau0 = if cut.groove.is_some() {
             self.options.groove_snap_edge
         } else {
             self.options.snap_edge
         };
         for _ in 0..MAX_CROSSINGS {
             let v = cut.anchor;
+            // A groove whose floor is due for a new vertex where the anchor split an edge (no
+            // room for the floor triangles there, see `Groove::make_bottom`) snaps its next
+            // crossing to the nearer vertex, where the floor can change.
+            let k = cut.path.len() - 1;
+            let tau = match cut.groove.as_ref() {
+                Some(g)
+                    if k >= 1
+                        && g.split.get(k).is_some_and(|&x| x > 0)
+                        && g.floor_due(k, self.mesh.pos(v), self.mesh.pos(cut.path[k - 1])) =>
+                {
+                    FLOOR_DUE_SNAP
+                }
+                _ => tau0,
+            };
             if let Some(s) = close_to {
                 if self.mesh.same_point(v, s) {
                     return Ok(WalkEnd::Closed);
                 }
                 if self.mesh.edge_between(v, s, &mut self.scratch).is_some() {
-                    self.move_to(cut, v, s)?;
+                    self.move_to(cut, v, s, None)?;
                     *crossed += 1;
                     return Ok(WalkEnd::Closed);
                 }
             }
             let n = self.mesh.surface_normal(v, &mut self.scratch);
             let pv = self.mesh.pos(v);
+            let h = self.mesh.vert_he[v as usize];
+            if is_real(h) && pv.distance(q) <= 1e-9 * self.mesh.longest_edge(h / 3) {
+                // The sample is on the anchor (a through-cut's far side found exactly under
+                // the sample at a vertex): nothing to cut, no direction to find an exit in.
+                return Ok(WalkEnd::Reached(End::AtVertex));
+            }
             let forward = |p: DVec3| (p - pv).dot(q - pv) > 0.0;
+            // A groove still at its start, on a trench's lip: the floor vertices there.
+            let start_floors = match cut.groove.as_ref() {
+                Some(g) if k == 0 => {
+                    let mut f = floors_joined(&self.mesh, v);
+                    if g.junctions.contains(&0) {
+                        f.extend(g.bottoms.first().copied());
+                    }
+                    f
+                }
+                _ => Vec::new(),
+            };
+
             match self.find_exit(v, q, n, cut.groove.is_some() || cut.through) {
                 Exit::Degenerate => return Ok(WalkEnd::Reached(End::AtVertex)),
                 Exit::Blocked => {
@@ -813,6 +940,7 @@ impl Scalpel {
                         && let Some(m) = super::cross::crossing_mate(self, v, q, dir)
                     {
                         cut.anchor = m;
+                        cut.split_edge = None;
                         cut.path.push(m);
                         continue;
                     }
@@ -820,12 +948,19 @@ impl Scalpel {
                     return Ok(WalkEnd::Blocked { merged });
                 }
                 Exit::Vertex { e, b } => {
+                    if on_trenches(&self.mesh, &start_floors, b) {
+                        // See the same case in `Exit::Edge` below.
+                        return Ok(WalkEnd::Blocked { merged: true });
+                    }
                     let pb = self.mesh.pos(b);
                     let s = foot(pv, pb, q);
                     if s <= 1.0 {
-                        let end = if s < tau_end {
+                        let end = if s < tau_end || (cut.groove.is_some() && s < 0.5) {
                             End::AtVertex
-                        } else if s > 1.0 - tau_end {
+                        } else if s > 1.0 - tau_end || cut.groove.is_some() {
+                            // A groove's tip is never in the middle of an edge from its anchor:
+                            // that edge may lie inside the triangle the groove just crossed (two
+                            // pieces more there). It goes to the nearer end.
                             End::OnVertex(b)
                         } else {
                             End::OnEdge {
@@ -835,27 +970,87 @@ impl Scalpel {
                         };
                         return Ok(WalkEnd::Reached(end));
                     }
-                    self.move_to(cut, v, b)?;
+                    self.move_to(cut, v, b, None)?;
                     *crossed += 1;
                 }
                 Exit::Edge { h0, t, .. } => {
                     let b = self.mesh.dest(h0);
                     let c = self.mesh.origin(prev(h0));
+                    let lip_floor = against_wall(&self.mesh, next(h0))
+                        .then(|| wall_floor(&self.mesh, self.mesh.twin(next(h0)) / 3))
+                        .flatten();
+                    if lip_floor.is_some_and(|f| start_floors.contains(&f))
+                        || (t < tau && on_trenches(&self.mesh, &start_floors, b))
+                        || (t > 1.0 - tau && on_trenches(&self.mesh, &start_floors, c))
+                    {
+                        // Starting on a trench's lip (or just past a trench it crossed), the
+                        // groove would reach a lip of the same trench again at once (the trench
+                        // bends or ends there): its first segment would run from that trench's
+                        // floor back to its lip, inside the trench's own walls. It ends here
+                        // instead (merged), as it does meeting a trench at a small angle.
+                        return Ok(WalkEnd::Blocked { merged: true });
+                    }
                     let (pb, pc) = (self.mesh.pos(b), self.mesh.pos(c));
                     // Snapping to `b` (or `c`) cuts along the edge from `v`; never along a
                     // groove's lip (its other side is the wall): then cross the edge away
                     // from that end instead (no sliver either).
-                    let near_b = t < tau && !against_wall(&self.mesh, h0);
-                    let near_c = t > 1.0 - tau && !against_wall(&self.mesh, prev(h0));
+                    // A groove does not snap back onto the edge its anchor split: it would run
+                    // along the triangle it just crossed, a wall more there (5 new in one).
+                    let split_end = |x: u32| {
+                        cut.groove.is_some()
+                            && cut.split_edge.is_some_and(|(p, q)| {
+                                self.mesh.same_point(x, p) || self.mesh.same_point(x, q)
+                            })
+                    };
+                    let near_b = t < tau && !against_wall(&self.mesh, h0) && !split_end(b);
+                    let near_c =
+                        t > 1.0 - tau && !against_wall(&self.mesh, prev(h0)) && !split_end(c);
                     let t = if (t < tau && !near_b) || (t > 1.0 - tau && !near_c) {
                         t.clamp(tau, 1.0 - tau)
                     } else {
                         t
                     };
                     let y = pb.lerp(pc, t);
-                    let s = foot(pv, y, q);
+                    let mut s = foot(pv, y, q);
+                    if s > 1.0
+                        && cut.groove.is_some()
+                        && !(near_b && forward(pb) || near_c && forward(pc))
+                        && !clearly_beyond(pv, pb, pc, q)
+                    {
+                        // A groove splits an edge for good only once the sample is clearly past
+                        // it: a path grazing the edge and turning back would otherwise cut the
+                        // triangle it left a second time (more than 4 new triangles in one).
+                        // Until then the tip waits on the edge.
+                        s = 1.0;
+                    }
                     if s <= 1.0 {
-                        let end = if s < tau_end {
+                        let end = if let Some(end) = cut.groove.is_some().then(|| {
+                            // A groove's tip goes to the nearer of its anchor and where the cut
+                            // leaves the triangle: never inside a face (a face split, the
+                            // crossing and the tip's walls would be 5 new triangles in one), nor
+                            // in the middle of an edge from the anchor (which may lie inside the
+                            // triangle the groove just crossed: two pieces more there). At most
+                            // half a triangle from the sample; the next sample moves it on.
+                            if s < 0.5 {
+                                End::AtVertex
+                            } else if near_b {
+                                if forward(pb) {
+                                    End::OnVertex(b)
+                                } else {
+                                    End::AtVertex
+                                }
+                            } else if near_c {
+                                if forward(pc) {
+                                    End::OnVertex(c)
+                                } else {
+                                    End::AtVertex
+                                }
+                            } else {
+                                End::OnEdge { h: next(h0), p: y }
+                            }
+                        }) {
+                            end
+                        } else if s < tau_end {
                             End::AtVertex
                         } else if s > 1.0 - tau_end {
                             if near_b {
@@ -883,14 +1078,14 @@ impl Scalpel {
                         };
                         return Ok(WalkEnd::Reached(end));
                     }
-                    let x = if near_b && forward(pb) {
-                        b
+                    let (x, split_edge) = if near_b && forward(pb) {
+                        (b, None)
                     } else if near_c && forward(pc) {
-                        c
+                        (c, None)
                     } else {
-                        self.split_edge_with_mate(next(h0), y)?
+                        (self.split_edge_with_mate(next(h0), y)?, Some((b, c)))
                     };
-                    self.move_to(cut, v, x)?;
+                    self.move_to(cut, v, x, split_edge)?;
                     *crossed += 1;
                 }
             }
@@ -939,6 +1134,7 @@ impl Scalpel {
             let pa = self.mesh.pos(a);
             cut.path.insert(1, mid);
             if let Some(g) = cut.groove.as_mut() {
+                g.insert_split(1);
                 g.make_bottom(&mut self.mesh, 1, pm, pa, nm);
             }
             k = 2;
@@ -982,11 +1178,12 @@ impl Scalpel {
         };
         let nm = self.mesh.surface_normal(m, &mut self.scratch);
         let far_floor = super::groove::floor_under(&self.mesh, m, nm).ok_or_else(|| fail(pv))?;
-        let mut groove = Groove::new(depth, m);
+        let mut groove = Groove::new(depth, m, 1);
         groove.set_junction(0, far_floor);
         cut.groove = Some(groove);
         cut.start = m;
         cut.anchor = m;
+        cut.split_edge = None;
         cut.path = vec![m];
         Ok(Some(m))
     }
@@ -1026,7 +1223,27 @@ impl Scalpel {
             End::OnVertex(b) => self.mesh.surface_normal(b, &mut self.scratch),
             End::AtVertex => self.mesh.surface_normal(anchor, &mut self.scratch),
         };
-        let q_far = q - n * stroke.thickness;
+        // The far side under the sample: where the ray from it along the inward normal leaves
+        // the structure, searched near the far cut (the structure's thickness may change along
+        // the stroke, by up to half from one sample to the next); where that is not found, the
+        // thickness so far.
+        let q_far = match super::through::ray_hit_near(
+            &self.mesh,
+            far.anchor,
+            q,
+            -n,
+            stroke.thickness,
+            FAR_SEARCH,
+        ) {
+            Some((_, _, s))
+                if s < self.options.depth
+                    && (s - stroke.thickness).abs() <= 0.5 * stroke.thickness =>
+            {
+                stroke.thickness = s;
+                q - n * s
+            }
+            _ => q - n * stroke.thickness,
+        };
         let mut crossed = 0;
         let r = self.walk(&mut far, q_far, None, &mut crossed, THROUGH_SNAP_END);
         let far_end = match r {
@@ -1138,13 +1355,30 @@ impl Scalpel {
     /// Whether a cut starting at `v` goes through the structure: the far side's vertex (made
     /// where the inward ray from `v` leaves it) and the thickness there, when that is less than
     /// the blade's depth.
-    fn through_start(&mut self, v: u32) -> Result<Option<(u32, f64)>, ScalpelError> {
+    /// With `near` (the thickness where the stroke's last slot ended), the far side is searched
+    /// outward from `v` ([`super::through::ray_hit_near`]), not over the whole mesh.
+    fn through_start(
+        &mut self,
+        v: u32,
+        near: Option<f64>,
+    ) -> Result<Option<(u32, f64)>, ScalpelError> {
         let n = self.mesh.surface_normal(v, &mut self.scratch);
         if n == DVec3::ZERO {
             return Ok(None);
         }
         let pv = self.mesh.pos(v);
-        let Some((t, bary, s)) = super::through::ray_first_hit(&self.mesh, pv, -n, v) else {
+        let hit = match near {
+            None => super::through::ray_first_hit(&self.mesh, pv, -n, v),
+            Some(expected) => {
+                super::through::ray_hit_near(&self.mesh, v, pv, -n, expected, RESTART_SEARCH)
+                    .filter(|&(t, _, _)| {
+                        !self.mesh.triangles[t as usize]
+                            .iter()
+                            .any(|&x| self.mesh.same_point(x, v))
+                    })
+            }
+        };
+        let Some((t, bary, s)) = hit else {
             return Ok(None);
         };
         if s >= self.options.depth || self.mesh.face_normal_scaled(t).dot(n) >= 0.0 {
@@ -1186,6 +1420,14 @@ impl Scalpel {
             // The tip joins the path only for building the walls (popped again below).
             let k = cut.path.len() - 1;
             if x != v {
+                g.set_split(
+                    k + 1,
+                    match end {
+                        End::OnEdge { .. } => 1,
+                        End::InFace { .. } => 2,
+                        _ => 0,
+                    },
+                );
                 if k >= 1 {
                     let pv = self.mesh.pos(v);
                     let prev = self.mesh.pos(cut.path[k - 1]);
@@ -1306,10 +1548,54 @@ impl Scalpel {
     }
 }
 
+/// The floor vertices joined to `v` by an edge (`v` is on those trenches' lips).
+fn floors_joined(mesh: &DynMesh, v: u32) -> Vec<u32> {
+    let mut fan = Vec::new();
+    mesh.fan_into(v, &mut fan);
+    let mut out = Vec::new();
+    for &h in &fan {
+        for f in [mesh.dest(h), mesh.origin(prev(h))] {
+            if mesh.is_floor(f) && !out.contains(&f) {
+                out.push(f);
+            }
+        }
+    }
+    out
+}
+
+/// Whether `x` is joined by a wall edge to one of `floors` (on those trenches' lips).
+fn on_trenches(mesh: &DynMesh, floors: &[u32], x: u32) -> bool {
+    floors
+        .iter()
+        .any(|&f| super::groove::wall_edge(mesh, x, f).is_some())
+}
+
+/// The floor vertex of wall triangle `t` (the first one; `None` for a triangle without one).
+fn wall_floor(mesh: &DynMesh, t: u32) -> Option<u32> {
+    mesh.triangles[t as usize]
+        .into_iter()
+        .find(|&v| mesh.is_floor(v))
+}
+
 /// Whether surface half-edge `h` runs along a groove's lip (its twin is a wall triangle).
 fn against_wall(mesh: &DynMesh, h: u32) -> bool {
     let g = mesh.twin(h);
     is_real(g) && mesh.is_wall(g / 3) && !mesh.is_wall(h / 3)
+}
+
+/// How far past edge `b c` (away from `v`, across the edge in the triangle's plane) a sample
+/// must be before a groove splits that edge for good, relative to the edge's length.
+const COMMIT_BEYOND: f64 = 0.25;
+
+/// Whether `q` lies more than [`COMMIT_BEYOND`] edge lengths past edge `b c` of triangle
+/// `v b c`.
+fn clearly_beyond(pv: DVec3, pb: DVec3, pc: DVec3, q: DVec3) -> bool {
+    let e = pc - pb;
+    let n = e.cross(pv - pb);
+    let out = n.cross(e).normalize_or_zero();
+    // `out` points from the edge away from `v`.
+    let out = if out.dot(pv - pb) > 0.0 { -out } else { out };
+    (q - pb).dot(out) > COMMIT_BEYOND * e.length()
 }
 
 /// Parameter of the point of segment `a b` closest to `q` (unclamped).

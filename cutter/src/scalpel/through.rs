@@ -3,9 +3,13 @@
 //! When a groove starts on a closed surface and the blade's depth reaches the opposite side of
 //! the structure (a ray from the start point along the inward normal meets a surface facing away
 //! before `depth`), the stroke cuts a slit on the near side and, in step, a slit on the far side
-//! under it (the far cut follows the near one's samples moved by the thickness along the inward
-//! normal), and joins their lips with two walls. The result is a slot through the structure: a
-//! closed surface stays closed and its genus grows by one (χ drops by 2).
+//! under it (the far cut follows, for each sample, where the ray from it along the inward normal
+//! leaves the structure: [`ray_hit_near`], searched near the far cut; where that is not found,
+//! the sample moved by the last thickness), and joins their lips with two walls. The result is
+//! a slot through the structure: a closed surface stays closed and its genus grows by one (χ
+//! drops by 2). A slot cannot open into another cut or a boundary (its end there would not
+//! close): where it reaches one, it ends at its last tip and the stroke starts a new slot past
+//! it (`Scalpel::step`, `start_cut`; the new far side found by [`ray_hit_near`]).
 //!
 //! Walls: the near slit's left lip `t0 … tK` and the far slit's left lip `f0 … fM` (both in
 //! stroke order; the far surface faces the other way, so its lip on the same side is the one
@@ -19,7 +23,7 @@ use std::collections::HashMap;
 use glam::DVec3;
 
 use super::cut_point::closest_on_triangle;
-use super::dyn_mesh::DynMesh;
+use super::dyn_mesh::{DynMesh, is_real};
 use super::groove::find_lips;
 
 /// The first surface (non-wall) triangle hit by the ray `origin + s · dir` (`s > 0`), ignoring
@@ -37,31 +41,99 @@ pub fn ray_first_hit(
             continue;
         }
         let [a, b, c] = tri.map(|v| mesh.pos(v));
-        // Möller–Trumbore.
-        let (e1, e2) = (b - a, c - a);
-        let p = dir.cross(e2);
-        let det = e1.dot(p);
-        if det.abs() <= f64::MIN_POSITIVE {
-            continue;
-        }
-        let inv = 1.0 / det;
-        let s0 = origin - a;
-        let u = s0.dot(p) * inv;
-        if !(0.0..=1.0).contains(&u) {
-            continue;
-        }
-        let qv = s0.cross(e1);
-        let v = dir.dot(qv) * inv;
-        if v < 0.0 || u + v > 1.0 {
-            continue;
-        }
-        let s = e2.dot(qv) * inv;
-        if s > 0.0 && best.is_none_or(|(_, _, bs)| s < bs) {
+        if let Some(s) = ray_triangle(origin, dir, a, b, c)
+            && best.is_none_or(|(_, _, bs)| s < bs)
+        {
             let hit = origin + dir * s;
             best = Some((t as u32, closest_on_triangle(hit, a, b, c), s));
         }
     }
     best
+}
+
+/// The surface triangle facing away from `dir` (a far side) hit by the ray `origin + s · dir`
+/// (`s > 0`) nearest `expected` along the ray, searched best-first outward from vertex `v`'s
+/// triangles (by the distance of each triangle's bounding box from `origin + expected · dir`,
+/// over twins, walls included as passages), at most `limit` triangles: `(triangle,
+/// barycentric weights, s)`. Cost independent of the mesh size: where a through-cut follows
+/// its far side step by step, and where it restarts inside a stroke.
+pub fn ray_hit_near(
+    mesh: &DynMesh,
+    v: u32,
+    origin: DVec3,
+    dir: DVec3,
+    expected: f64,
+    limit: usize,
+) -> Option<(u32, DVec3, f64)> {
+    use std::cmp::Reverse;
+    use std::collections::{BinaryHeap, HashSet};
+    let p = origin + dir * expected;
+    let box_distance = |t: u32| {
+        let [a, b, c] = mesh.triangles()[t as usize].map(|x| mesh.pos(x));
+        p.clamp(a.min(b).min(c), a.max(b).max(c)).distance(p)
+    };
+    let mut seen = HashSet::new();
+    let mut heap = BinaryHeap::new();
+    let mut fan = Vec::new();
+    let mut seeds = vec![v];
+    seeds.extend(mesh.copies(v));
+    for x in seeds {
+        mesh.fan_into(x, &mut fan);
+        for &h in &fan {
+            if seen.insert(h / 3) {
+                heap.push(Reverse((box_distance(h / 3).to_bits(), h / 3)));
+            }
+        }
+    }
+    // (triangle, weights, s, |s - expected|)
+    let mut best: Option<(u32, DVec3, f64, f64)> = None;
+    let mut examined = 0;
+    while let Some(Reverse((bits, t))) = heap.pop() {
+        if best.is_some_and(|b| f64::from_bits(bits) >= b.3) || examined >= limit {
+            break;
+        }
+        examined += 1;
+        if !mesh.is_wall(t) && mesh.face_normal_scaled(t).dot(dir) > 0.0 {
+            let [a, b, c] = mesh.triangles()[t as usize].map(|x| mesh.pos(x));
+            if let Some(s) = ray_triangle(origin, dir, a, b, c)
+                && best.is_none_or(|b| (s - expected).abs() < b.3)
+            {
+                let w = closest_on_triangle(origin + dir * s, a, b, c);
+                best = Some((t, w, s, (s - expected).abs()));
+            }
+        }
+        for k in 0..3 {
+            let g = mesh.twin(3 * t + k);
+            if is_real(g) && seen.insert(g / 3) {
+                heap.push(Reverse((box_distance(g / 3).to_bits(), g / 3)));
+            }
+        }
+    }
+    best.map(|(t, w, s, _)| (t, w, s))
+}
+
+/// Parameter `s > 0` where the ray `origin + s · dir` meets triangle `(a, b, c)`
+/// (Möller–Trumbore), if it does.
+fn ray_triangle(origin: DVec3, dir: DVec3, a: DVec3, b: DVec3, c: DVec3) -> Option<f64> {
+    let (e1, e2) = (b - a, c - a);
+    let p = dir.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() <= f64::MIN_POSITIVE {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let s0 = origin - a;
+    let u = s0.dot(p) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let qv = s0.cross(e1);
+    let v = dir.dot(qv) * inv;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let s = e2.dot(qv) * inv;
+    (s > 0.0).then_some(s)
 }
 
 /// The lip half-edges of each segment of `path`: `(a → b side, b → a side)`.
