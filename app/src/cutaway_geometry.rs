@@ -648,20 +648,24 @@ pub fn cut_exact(target: &TargetIndex, cutter: &SceneCutter) -> Result<CutParts,
         kept: result.materialize(target.mesh()),
         walls: result.walls.mesh,
         removed: result.removed.into_part().mesh,
-        contour: result
-            .contours
-            .into_iter()
-            .map(|c| {
-                let mut points = c.points;
-                if c.closed
-                    && let Some(&first) = points.first()
-                {
-                    points.push(first);
-                }
-                points
-            })
-            .collect(),
+        contour: contour_polylines(result.contours),
     })
+}
+
+/// The contour loops as polylines to draw: a closed loop repeats its first point at the end.
+pub fn contour_polylines(contours: Vec<csg::Contour>) -> Vec<Vec<DVec3>> {
+    contours
+        .into_iter()
+        .map(|c| {
+            let mut points = c.points;
+            if c.closed
+                && let Some(&first) = points.first()
+            {
+                points.push(first);
+            }
+            points
+        })
+        .collect()
 }
 
 /// Ribbons (the removed surface inside `count` thin sub-cutters of `width`) and the walls of

@@ -369,19 +369,7 @@ impl LiveCache {
             let result = csg::subtract(&index, &surface).ok()?;
             let faces = self.faces(mesh);
             let kept = Arc::new(delta::of_cut(mesh, &faces, &result));
-            let contours = result
-                .contours
-                .into_iter()
-                .map(|c| {
-                    let mut points = c.points;
-                    if c.closed
-                        && let Some(&first) = points.first()
-                    {
-                        points.push(first);
-                    }
-                    points
-                })
-                .collect();
+            let contours = crate::cutaway_geometry::contour_polylines(result.contours);
             ModelLive {
                 walls: result.walls.mesh,
                 contours,

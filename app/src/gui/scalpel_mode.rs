@@ -31,6 +31,16 @@
 //! keeping earlier openings), and when the scene shows anything else it starts again from the
 //! scene's mesh.
 //!
+//! ## Layers below (multi-layer)
+//! Each region of a file is a model of its own, so the surfaces under the touched one (muscle
+//! under skin) are other models. When a groove stroke commits, the blade below each of its
+//! samples is cast against the other visible models' meshes as they were before the stroke
+//! (`layer_runs`), and every model it meets within the depth is cut with strokes of its own at
+//! the hit points, with the depth left there (`cut_layers`), on a scalpel of its own. They go into
+//! the scene with the top cut, so the stroke stays one undo step for all of them. A model whose
+//! strokes the scalpel refuses keeps its mesh (the same `Arc`) and the status line says why; the
+//! top cut commits all the same. "Cut layers below" in the panel turns this off.
+//!
 //! ## Errors
 //! A step the scalpel refuses (off the mesh, non-manifold region) leaves its mesh as it was; the
 //! scene is then not touched and the reason goes to the status line. The stroke goes on with the
@@ -65,6 +75,9 @@ pub struct ScalpelSettings {
     pub opening: f64,
     /// Seconds of tool time over which a fresh cut opens to its full width (the trailing window).
     pub window: f64,
+    /// A groove stroke also cuts the other visible models the blade meets below the surface
+    /// within its depth (multi-layer, see `layer_runs`); off cuts only the touched surface.
+    pub layers: bool,
 }
 
 impl Default for ScalpelSettings {
@@ -74,6 +87,7 @@ impl Default for ScalpelSettings {
             depth: 1.0,
             opening: 0.0,
             window: 0.5,
+            layers: true,
         }
     }
 }
@@ -336,6 +350,9 @@ struct Stroke {
     touched: HashSet<u32>,
     /// What the view draws for the stroke so far (delta mode).
     delta: Option<Arc<MeshDelta>>,
+    /// The samples fed to the scalpel that landed on the surface, in order; `None` marks a step
+    /// off the surface (it splits the strokes on the layers below).
+    samples: Vec<Option<DVec3>>,
 }
 
 /// What a camera drag in Scalpel mode does.
@@ -372,6 +389,9 @@ pub struct ScalpelSlot {
     pub last_report: Option<String>,
     /// The last step left the surface (the blade is in the air; the cut ended there).
     pub off_surface: bool,
+    /// Spatial indexes of the models cut as layers below a stroke, by mesh (weak: a replaced
+    /// mesh invalidates its entry). Used when the editor has none cached for the mesh.
+    layer_indexes: Vec<(std::sync::Weak<Mesh>, Arc<SpatialIndex>)>,
 }
 
 impl Default for ScalpelSlot {
@@ -384,6 +404,7 @@ impl Default for ScalpelSlot {
             rect: egui::Rect::NOTHING,
             last_report: None,
             off_surface: false,
+            layer_indexes: Vec::new(),
         }
     }
 }
@@ -488,6 +509,7 @@ impl ScalpelSlot {
             base_displaced,
             touched: HashSet::new(),
             delta: None,
+            samples: Vec::new(),
         });
         Ok(Some(model))
     }
@@ -523,9 +545,14 @@ impl ScalpelSlot {
                 return Ok(false);
             }
             stroke.begun = true;
-            if let Err(e) = session.scalpel.begin_stroke(stroke.press_point) {
-                stroke.failed = true;
-                return Err(e.to_string());
+            match session.scalpel.begin_stroke(stroke.press_point) {
+                Ok(report) => stroke
+                    .samples
+                    .push(report.on_mesh.then_some(stroke.press_point)),
+                Err(e) => {
+                    stroke.failed = true;
+                    return Err(e.to_string());
+                }
             }
         }
         stroke.last_px = px;
@@ -547,6 +574,7 @@ impl ScalpelSlot {
         };
         let report = session.scalpel.step(q).map_err(|e| e.to_string())?;
         self.off_surface = !report.on_mesh;
+        stroke.samples.push(report.on_mesh.then_some(q));
         stroke.last_point = q;
         let open = self.settings.open();
         let signature = session.signature();
@@ -575,6 +603,16 @@ impl ScalpelSlot {
 
     /// Release: ends the stroke. A loop's detached pieces become models of their own.
     pub fn release(&mut self, scene: &mut Scene) -> Released {
+        self.release_with(scene, &|_| None)
+    }
+
+    /// [`ScalpelSlot::release`], taking the spatial index of a model cut as a layer below the
+    /// stroke from `cached` when it has one (the editor's cache), else from the slot's own.
+    pub fn release_with(
+        &mut self,
+        scene: &mut Scene,
+        cached: &dyn Fn(&Arc<Mesh>) -> Option<Arc<SpatialIndex>>,
+    ) -> Released {
         let Some(stroke) = self.stroke.take() else {
             return Released::Nothing;
         };
@@ -585,6 +623,8 @@ impl ScalpelSlot {
             return Released::Nothing;
         }
         let model = session.model;
+        // The touched surface before the stroke, for the rays to the layers below it.
+        let (top_mesh, top_index) = session.rest();
         let before_mesh = stroke.before.models.get(model).map(|m| m.mesh.clone());
         // What the model was before the stroke, for putting it back when nothing is kept.
         let before_origin = stroke.before.models.get(model).map(|m| m.origin);
@@ -637,6 +677,55 @@ impl ScalpelSlot {
             if let Some(m) = scene.models.get_mut(model) {
                 m.replace_mesh(shown);
             }
+            let settings = self.settings;
+            if settings.layers && settings.tool == Tool::Scalpel && settings.depth > 0.0 {
+                // Only indexes of meshes the scene shows now are worth keeping (the history
+                // holds old meshes alive; their indexes would pile up).
+                self.layer_indexes.retain(|(w, _)| {
+                    w.upgrade()
+                        .is_some_and(|m| scene.models.iter().any(|s| Arc::ptr_eq(&s.mesh, &m)))
+                });
+                let indexes = &mut self.layer_indexes;
+                let mut index_of = |mesh: &Arc<Mesh>| -> Arc<SpatialIndex> {
+                    if let Some(index) = cached(mesh) {
+                        return index;
+                    }
+                    if let Some((_, index)) = indexes
+                        .iter()
+                        .find(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+                    {
+                        return index.clone();
+                    }
+                    let index = Arc::new(SpatialIndex::build(mesh));
+                    indexes.push((Arc::downgrade(mesh), index.clone()));
+                    index
+                };
+                let outcome = cut_layers(
+                    scene,
+                    model,
+                    &top_mesh,
+                    &top_index,
+                    &stroke.samples,
+                    &settings,
+                    &mut index_of,
+                );
+                if !outcome.cut.is_empty() {
+                    let created: usize = outcome.cut.iter().map(|(_, r)| r.triangles_created).sum();
+                    let names: Vec<&str> = outcome
+                        .cut
+                        .iter()
+                        .filter_map(|(m, _)| scene.models.get(*m).map(|m| m.name.as_str()))
+                        .collect();
+                    message.push_str(&format!(
+                        "; below it {} ({created} triangles created)",
+                        names.join(", ")
+                    ));
+                }
+                for (m, e) in &outcome.refused {
+                    let name = scene.models.get(*m).map_or("?", |m| m.name.as_str());
+                    message.push_str(&format!("; {name} below was not cut ({e})"));
+                }
+            }
         } else {
             let kept = without_pieces(&shown, &report.detached);
             let Some(original) = scene.models.get(model).cloned() else {
@@ -674,6 +763,174 @@ impl ScalpelSlot {
         self.stroke = None;
         self.camera_drag = None;
     }
+}
+
+/// The strokes on one other model below a stroke (see [`layer_runs`]).
+#[derive(Clone, Debug, PartialEq)]
+struct LayerRun {
+    /// Index into `Scene::models`.
+    model: usize,
+    /// Points on that model's surface, in stroke order (at least 2).
+    samples: Vec<DVec3>,
+    /// Blade depth left below that surface (mean over the samples; > 0).
+    depth: f64,
+}
+
+/// Multi-layer cutting in the window (issue 6: "where segmented structures lie under one
+/// another, the blade cuts every surface it passes through down to its depth").
+///
+/// `cutter::scalpel::layers` does this for the CLI, where the stacked surfaces are regions of one
+/// mesh under one scalpel. In the window every region is a model of its own, so the layers are
+/// the *other* models: below each sample of the stroke on the touched model, the blade is the
+/// segment from the surface point down its inward normal, `depth` long. It is cast against each
+/// other model's uncut mesh; the consecutive samples whose blade meets a model become a stroke
+/// on that model at the hit points, with the mean depth left below them. Computed from the
+/// meshes before the stroke, so the rays never meet the new groove walls.
+///
+/// `top_mesh` and `top_index` are the touched model's surface before the stroke; `others` are
+/// the candidate models with their meshes and indexes; a `None` sample (the blade off the
+/// surface) ends every run.
+fn layer_runs(
+    top_mesh: &Mesh,
+    top_index: &SpatialIndex,
+    samples: &[Option<DVec3>],
+    depth: f64,
+    others: &[(usize, Arc<Mesh>, Arc<SpatialIndex>)],
+) -> Vec<LayerRun> {
+    if depth <= 0.0 || others.is_empty() || top_mesh.triangles.is_empty() {
+        return Vec::new();
+    }
+    // Start the rays just below the touched surface so they never hit it where they start.
+    let eps = 1e-7 * top_mesh.bbox().diagonal().max(f64::MIN_POSITIVE);
+    let hits = samples.iter().map(|sample| {
+        let mut below: Vec<(u32, DVec3, f64)> = Vec::new();
+        if let Some(q) = sample
+            && let Some(cp) = top_index.closest_point(top_mesh, *q)
+        {
+            let n = top_mesh
+                .face_normal_scaled(cp.face as usize)
+                .normalize_or_zero();
+            if n != DVec3::ZERO {
+                let origin = cp.point - n * eps;
+                for (model, mesh, index) in others {
+                    if let Some(hit) = index.ray_cast(mesh, origin, -n, depth) {
+                        let left = depth - hit.t - eps;
+                        if left > 0.0 {
+                            below.push((*model as u32, hit.point, left));
+                        }
+                    }
+                }
+            }
+        }
+        below
+    });
+    cutter::scalpel::layers::runs(hits)
+        .into_iter()
+        .map(|run| LayerRun {
+            model: run.region as usize,
+            samples: run.samples,
+            depth: run.depth,
+        })
+        .collect()
+}
+
+/// What [`cut_layers`] did.
+#[derive(Debug, Default)]
+struct LayersOutcome {
+    /// Models cut, with what their strokes did (summed).
+    cut: Vec<(usize, cutter::scalpel::StrokeReport)>,
+    /// Models the scalpel refused to cut, with why (each left exactly as it was).
+    refused: Vec<(usize, String)>,
+}
+
+/// Cuts the layers below a committed stroke on `model` (see [`layer_runs`]) into the scene: each
+/// model met gets its own scalpel strokes with the depth left there, opened like the top cut,
+/// and becomes [`MeshOrigin::Edited`]. All of a model's strokes are kept or none: a refused one
+/// leaves that model's mesh (the same `Arc`) untouched. `index_of` gives a model mesh's spatial
+/// index; it is asked only for visible models whose bounds the blade reaches.
+fn cut_layers(
+    scene: &mut Scene,
+    model: usize,
+    top_mesh: &Mesh,
+    top_index: &SpatialIndex,
+    samples: &[Option<DVec3>],
+    settings: &ScalpelSettings,
+    index_of: &mut dyn FnMut(&Arc<Mesh>) -> Arc<SpatialIndex>,
+) -> LayersOutcome {
+    let depth = settings.depth.max(0.0);
+    let points: Vec<DVec3> = samples.iter().flatten().copied().collect();
+    if depth <= 0.0 || points.len() < 2 {
+        return LayersOutcome::default();
+    }
+    // Everything the blade can reach: the samples' box grown by the depth.
+    let reach = csg::Aabb::from_points(&points).expanded(depth * 1.01 + 1e-9);
+    let others: Vec<(usize, Arc<Mesh>, Arc<SpatialIndex>)> = scene
+        .models
+        .iter()
+        .enumerate()
+        .filter(|(i, m)| {
+            *i != model
+                && m.visible
+                && m.opacity > 0.0
+                && !m.mesh.triangles.is_empty()
+                && m.mesh.bbox().overlaps(&reach)
+        })
+        .map(|(i, m)| (i, m.mesh.clone(), index_of(&m.mesh)))
+        .collect();
+    let runs = layer_runs(top_mesh, top_index, samples, depth, &others);
+    let mut outcome = LayersOutcome::default();
+    let open = settings.open();
+    for (target, mesh, _) in &others {
+        let mine: Vec<&LayerRun> = runs.iter().filter(|r| r.model == *target).collect();
+        if mine.is_empty() {
+            continue;
+        }
+        match cut_one_layer(mesh, &mine, settings.options(), &open) {
+            Ok(Some((cut, report))) => {
+                if let Some(m) = scene.models.get_mut(*target) {
+                    m.replace_mesh(Arc::new(cut));
+                    outcome.cut.push((*target, report));
+                }
+            }
+            Ok(None) => {}
+            Err(e) => outcome.refused.push((*target, e)),
+        }
+    }
+    outcome
+}
+
+/// One model's layer strokes on a scalpel of its own. `Ok(None)`: they changed nothing.
+fn cut_one_layer(
+    mesh: &Mesh,
+    runs: &[&LayerRun],
+    options: ScalpelOptions,
+    open: &OpenOptions,
+) -> Result<Option<(Mesh, cutter::scalpel::StrokeReport)>, String> {
+    let mut scalpel = Scalpel::new(mesh, options).map_err(|e| e.to_string())?;
+    let mut total = cutter::scalpel::StrokeReport::default();
+    for run in runs {
+        scalpel.set_options(options.with_depth(run.depth));
+        let mut r = scalpel.begin_stroke(run.samples[0]).map(|_| ());
+        for &q in &run.samples[1..] {
+            r = r.and_then(|_| scalpel.step(q).map(|_| ()));
+        }
+        let report = r
+            .and_then(|_| scalpel.end_stroke())
+            .map_err(|e| e.to_string())?;
+        total.triangles_cut += report.triangles_cut;
+        total.triangles_created += report.triangles_created;
+    }
+    let mut cut = scalpel.mesh();
+    if open.width > 0.0 {
+        scalpel.advance_clock(open.window);
+        for (v, p) in dffd::open_displacements(&scalpel, open, scalpel.clock()) {
+            cut.positions[v as usize] = p;
+        }
+    }
+    if cut.triangles == mesh.triangles && cut.positions == mesh.positions {
+        return Ok(None);
+    }
+    Ok(Some((cut, total)))
 }
 
 /// `mesh` without the triangles of `pieces` (matched by their corner coordinates, bit for bit:
@@ -785,7 +1042,12 @@ pub fn scalpel_input(
 
 /// Ends the stroke in progress and records it for undo.
 pub fn finish_stroke(app: &mut CutawayApp) {
-    match app.viewport.scalpel.release(&mut app.scene) {
+    let editor = &app.viewport.editor;
+    let released = app
+        .viewport
+        .scalpel
+        .release_with(&mut app.scene, &|mesh| editor.index_for(mesh));
+    match released {
         Released::Nothing => {}
         Released::Committed {
             before,
@@ -832,6 +1094,9 @@ pub fn scalpel_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
         )
         .on_hover_text("Width the incision opens to (DFFD), over a trailing window of the tool");
     });
+    ui.checkbox(&mut s.layers, "Cut layers below").on_hover_text(
+        "A groove also cuts the other models the blade meets below the surface, down to its depth",
+    );
     ui.label(
         egui::RichText::new(
             "Drag on a model to cut; Alt+drag or right drag orbits, Shift+drag pans",
@@ -1368,6 +1633,381 @@ mod tests {
         assert_eq!(reopened[0].origin, MeshOrigin::Exact);
         assert!(reopened[0].mesh.triangles == cut.triangles);
         assert!(position_bits(&reopened[0].mesh) == position_bits(&cut));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Two nested spheres, each a model: skin (radius 10, model 0) over muscle (radius 9.7,
+    /// model 1, tessellated differently so their vertices never line up).
+    fn nested_scene() -> Scene {
+        let mut scene = sphere_scene();
+        scene.models.push(SceneModel::new(
+            "inner",
+            "inner.obj",
+            Arc::new(csg::testkit::icosphere(3, 9.7)),
+            [0.8, 0.3, 0.3],
+        ));
+        scene
+    }
+
+    /// Positions of `after` that are not positions of `before` (bit for bit).
+    fn new_vertices(before: &Mesh, after: &Mesh) -> Vec<DVec3> {
+        let old: HashSet<[u64; 3]> = position_bits(before).into_iter().collect();
+        after
+            .positions
+            .iter()
+            .filter(|p| !old.contains(&p.to_array().map(f64::to_bits)))
+            .copied()
+            .collect()
+    }
+
+    /// The mesh is closed and manifold by the csg report and by the scalpel's invariants.
+    fn assert_closed_and_manifold(mesh: &Mesh, what: &str) {
+        let report = mesh.report();
+        assert!(report.closed && report.manifold, "{what}: {report:?}");
+        let scalpel = Scalpel::new(mesh, ScalpelOptions::default()).expect(what);
+        let topo = cutter::scalpel::invariants::validate(scalpel.dyn_mesh())
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert!(topo.closed && topo.manifold, "{what}: {topo:?}");
+    }
+
+    #[test]
+    fn a_groove_cuts_the_model_below_within_its_depth() {
+        let mut scene = nested_scene();
+        let viewport = DVec2::new(800.0, 600.0);
+        let (outer, inner) = (scene.models[0].mesh.clone(), scene.models[1].mesh.clone());
+        let mut slot = ScalpelSlot::default();
+        assert!(slot.settings.layers, "on by default");
+        slot.settings.depth = 0.6;
+        let released = stroke(
+            &mut slot,
+            &mut scene,
+            viewport,
+            &across(viewport, 0.42, 0.58, 24),
+        );
+        let Released::Committed {
+            before, message, ..
+        } = released
+        else {
+            panic!("the stroke did not commit: {released:?}");
+        };
+        assert!(message.contains("below it inner"), "{message}");
+        assert!(Arc::ptr_eq(&before.models[1].mesh, &inner));
+        let (outer_cut, inner_cut) = (&scene.models[0].mesh, &scene.models[1].mesh);
+        assert!(outer_cut.triangle_count() > outer.triangle_count());
+        assert!(
+            inner_cut.triangle_count() > inner.triangle_count() + 10,
+            "the inner sphere was not grooved: {} -> {}",
+            inner.triangle_count(),
+            inner_cut.triangle_count()
+        );
+        assert_eq!(scene.models[1].origin, MeshOrigin::Edited);
+        assert_closed_and_manifold(outer_cut, "outer");
+        assert_closed_and_manifold(inner_cut, "inner");
+        // The inner groove lies under the outer one: every new inner vertex is, seen from the
+        // centre, next to a new outer vertex; and it goes below the inner surface, but only by
+        // the depth left there (0.6 - 0.3).
+        let outer_new = new_vertices(&outer, outer_cut);
+        let inner_new = new_vertices(&inner, inner_cut);
+        assert!(!inner_new.is_empty());
+        for v in &inner_new {
+            let nearest = outer_new
+                .iter()
+                .map(|w| v.normalize().distance(w.normalize()))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                nearest < 0.05,
+                "inner vertex {v} is {nearest} off the stroke"
+            );
+        }
+        let deepest = inner_new
+            .iter()
+            .map(|p| p.length())
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            deepest < 9.7 - 0.15 && deepest > 9.7 - 0.45,
+            "inner groove floor at radius {deepest}"
+        );
+        // One undo step: the snapshot from before the stroke holds both models as they were.
+        scene = *before;
+        assert!(Arc::ptr_eq(&scene.models[0].mesh, &outer));
+        assert!(Arc::ptr_eq(&scene.models[1].mesh, &inner));
+    }
+
+    #[test]
+    fn a_shallow_groove_or_layers_off_leaves_the_model_below_alone() {
+        let viewport = DVec2::new(800.0, 600.0);
+        for (depth, layers) in [(0.2, true), (0.6, false)] {
+            let mut scene = nested_scene();
+            let (outer, inner) = (scene.models[0].mesh.clone(), scene.models[1].mesh.clone());
+            let inner_bits = position_bits(&inner);
+            let mut slot = ScalpelSlot::default();
+            slot.settings.depth = depth;
+            slot.settings.layers = layers;
+            let released = stroke(
+                &mut slot,
+                &mut scene,
+                viewport,
+                &across(viewport, 0.42, 0.58, 24),
+            );
+            assert!(
+                matches!(released, Released::Committed { .. }),
+                "{released:?}"
+            );
+            assert!(scene.models[0].mesh.triangle_count() > outer.triangle_count());
+            let kept = &scene.models[1];
+            assert!(
+                Arc::ptr_eq(&kept.mesh, &inner),
+                "depth {depth}, layers {layers}: the inner sphere changed"
+            );
+            assert_eq!(kept.mesh.triangles, inner.triangles);
+            assert_eq!(position_bits(&kept.mesh), inner_bits);
+            assert_eq!(kept.origin, MeshOrigin::Region);
+        }
+    }
+
+    #[test]
+    fn layer_runs_follow_the_samples_whose_blade_reaches_a_model() {
+        // A plate at z = 0 (top, normal +z) over a plate at z = -1: the blade reaches the
+        // lower one only with depth over 1, and a sample off the surface splits the run.
+        let plate = |z: f64| {
+            let mut m = super::super::app::box_mesh(
+                DVec3::new(-5.0, -5.0, z - 0.1),
+                DVec3::new(5.0, 5.0, z),
+            );
+            m = m.compacted();
+            Arc::new(m)
+        };
+        let (top, lower) = (plate(0.0), plate(-1.0));
+        let top_index = SpatialIndex::build(&top);
+        let others = vec![(7, lower.clone(), Arc::new(SpatialIndex::build(&lower)))];
+        let at = |x: f64| Some(DVec3::new(x, 0.5, 0.0));
+        let samples = [at(-2.0), at(-1.0), at(0.0), None, at(1.0), at(2.0), at(3.0)];
+        assert!(layer_runs(&top, &top_index, &samples, 0.95, &others).is_empty());
+        let runs = layer_runs(&top, &top_index, &samples, 1.5, &others);
+        assert_eq!(runs.len(), 2, "{runs:?}");
+        assert_eq!(runs[0].model, 7);
+        assert_eq!(runs[0].samples.len(), 3);
+        assert_eq!(runs[1].samples.len(), 3);
+        for r in &runs {
+            assert!((r.depth - 0.5).abs() < 1e-6, "{}", r.depth);
+            assert!(r.samples.iter().all(|p| (p.z + 1.0).abs() < 1e-9));
+        }
+    }
+
+    /// A layer the scalpel refuses (a bow-tie below a plate: its stroke crosses the
+    /// non-manifold vertex) is left exactly as it was and reported; a sphere below it is cut.
+    #[test]
+    fn a_refused_layer_is_left_alone_and_reported() {
+        let mut scene = super::super::app::new_scene();
+        let plate = Arc::new(
+            super::super::app::box_mesh(DVec3::new(-3.0, -1.0, 0.5), DVec3::new(3.0, 1.0, 1.0))
+                .compacted(),
+        );
+        let bow_tie = Arc::new(csg::testkit::bow_tie());
+        // A big sphere whose top is at z = -0.3 under the plate.
+        let mut lower = csg::testkit::icosphere(4, 10.0);
+        for p in &mut lower.positions {
+            p.z -= 10.3;
+        }
+        let lower = Arc::new(lower);
+        for (name, mesh) in [("plate", &plate), ("bowtie", &bow_tie), ("lower", &lower)] {
+            scene
+                .models
+                .push(SceneModel::new(name, "x.obj", mesh.clone(), [1.0; 3]));
+        }
+        let index = SpatialIndex::build(&plate);
+        let samples: Vec<Option<DVec3>> = (0..=16)
+            .map(|i| Some(DVec3::new(-2.0 + 0.25 * i as f64, 0.1, 1.0)))
+            .collect();
+        let settings = ScalpelSettings {
+            depth: 1.6,
+            ..Default::default()
+        };
+        let outcome = cut_layers(
+            &mut scene,
+            0,
+            &plate,
+            &index,
+            &samples,
+            &settings,
+            &mut |m| Arc::new(SpatialIndex::build(m)),
+        );
+        assert_eq!(outcome.refused.len(), 1, "{outcome:?}");
+        assert_eq!(outcome.refused[0].0, 1);
+        assert!(Arc::ptr_eq(&scene.models[1].mesh, &bow_tie));
+        assert_eq!(scene.models[1].origin, MeshOrigin::Region);
+        assert_eq!(
+            outcome.cut.iter().map(|(m, _)| *m).collect::<Vec<_>>(),
+            vec![2]
+        );
+        assert!(scene.models[2].mesh.triangle_count() > lower.triangle_count());
+        assert_closed_and_manifold(&scene.models[2].mesh, "lower sphere");
+        // The touched model itself is never a layer of its own stroke.
+        assert!(Arc::ptr_eq(&scene.models[0].mesh, &plate));
+    }
+
+    #[test]
+    fn a_session_saves_and_reopens_both_cut_layers_bit_for_bit() {
+        let mut scene = nested_scene();
+        let viewport = DVec2::new(800.0, 600.0);
+        let inner = scene.models[1].mesh.clone();
+        let mut slot = ScalpelSlot::default();
+        slot.settings.depth = 0.6;
+        let released = stroke(
+            &mut slot,
+            &mut scene,
+            viewport,
+            &across(viewport, 0.42, 0.58, 16),
+        );
+        assert!(matches!(released, Released::Committed { .. }));
+        assert!(!Arc::ptr_eq(&scene.models[1].mesh, &inner), "no layer cut");
+        let dir = session_dir("layers");
+        let path = dir.join("layers.json");
+        crate::session::save(&path, &scene).unwrap();
+        let back = crate::session::load(&path).unwrap();
+        assert_eq!(back.models.len(), 2);
+        for (a, b) in scene.models.iter().zip(&back.models) {
+            assert_eq!(a.name, b.name);
+            assert!(a.mesh.triangles == b.mesh.triangles, "{}", a.name);
+            assert!(
+                position_bits(&a.mesh) == position_bits(&b.mesh),
+                "{}",
+                a.name
+            );
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// The real window: one file with two nested spheres opens as two models; a groove across
+    /// the outer one cuts both, Ctrl+Z brings both back bit for bit in one step, Ctrl+Shift+Z
+    /// redoes both; with "Cut layers below" unticked only the outer one is cut.
+    #[test]
+    fn the_window_cuts_the_layer_below_and_undoes_both_in_one_step() {
+        use egui_kittest::Harness;
+        use egui_kittest::kittest::Queryable;
+
+        let dir = session_dir("layers-gui");
+        let file = dir.join("nested.obj");
+        let mut both = csg::testkit::icosphere(4, 10.0);
+        both.append(&csg::testkit::icosphere(3, 9.7));
+        crate::io::write_mesh(&file, &both).unwrap();
+        let start = super::super::StartOptions {
+            paths: vec![file],
+            state_dir: dir.join("state"),
+            offer_recovery: false,
+        };
+        let mut h = Harness::builder()
+            .with_size(egui::vec2(1280.0, 800.0))
+            .with_max_steps(10_000)
+            .with_accessibility_check(false)
+            .build_eframe(move |cc| super::super::CutawayApp::new(cc, start));
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+        while h.state().busy() {
+            assert!(std::time::Instant::now() < deadline, "load did not finish");
+            h.step();
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        h.run_steps(3);
+        let models = &h.state().scene.models;
+        assert_eq!(models.len(), 2, "{}", h.state().status.message);
+        let outer_i = if models[0].mesh.bbox().diagonal() > models[1].mesh.bbox().diagonal() {
+            0
+        } else {
+            1
+        };
+        let inner_i = 1 - outer_i;
+        let (outer, inner) = (models[outer_i].mesh.clone(), models[inner_i].mesh.clone());
+        h.query_all_by_label("Scalpel")
+            .find(|n| {
+                use egui_kittest::kittest::NodeT;
+                n.accesskit_node().toggled().is_some()
+            })
+            .expect("the Scalpel mode button")
+            .click();
+        h.run_steps(3);
+        h.state_mut().viewport.scalpel.settings.depth = 0.6;
+        h.run_steps(1);
+        let app = h.state();
+        let rect = app.viewport.scalpel.rect;
+        let ppp = h.ctx.pixels_per_point() as f64;
+        let centre = app
+            .scene
+            .camera
+            .project(app.viewport.size_px, DVec3::ZERO)
+            .unwrap();
+        let edge = app
+            .scene
+            .camera
+            .project(app.viewport.size_px, DVec3::new(10.0, 0.0, 0.0))
+            .unwrap();
+        let radius_px = (edge - centre).length();
+        let at = |dx: f64, dy: f64| {
+            let px = centre + DVec2::new(dx, dy) * radius_px;
+            rect.min + egui::vec2((px.x / ppp) as f32, (px.y / ppp) as f32)
+        };
+        let drag = |h: &mut Harness<'_, super::super::CutawayApp>, dy: f64| {
+            h.hover_at(at(-0.4, dy));
+            h.step();
+            h.drag_at(at(-0.4, dy));
+            h.step();
+            for k in 1..=16 {
+                h.hover_at(at(-0.4 + 0.8 * k as f64 / 16.0, dy));
+                h.step();
+            }
+            h.drop_at(at(0.4, dy));
+            h.run_steps(2);
+        };
+        drag(&mut h, 0.0);
+        let state = h.state();
+        assert!(!state.status.is_error, "{}", state.status.message);
+        let (outer_cut, inner_cut) = (
+            state.scene.models[outer_i].mesh.clone(),
+            state.scene.models[inner_i].mesh.clone(),
+        );
+        assert!(outer_cut.triangle_count() > outer.triangle_count());
+        assert!(
+            inner_cut.triangle_count() > inner.triangle_count(),
+            "the inner sphere was not cut (status: {})",
+            state.status.message
+        );
+        assert_closed_and_manifold(&inner_cut, "inner");
+        assert_eq!(state.scene.models[inner_i].origin, MeshOrigin::Edited);
+
+        // One Ctrl+Z: both models as they were, bit for bit.
+        h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+        h.run_steps(2);
+        for (i, original) in [(outer_i, &outer), (inner_i, &inner)] {
+            let m = &h.state().scene.models[i].mesh;
+            assert_eq!(m.triangles, original.triangles, "model {i}");
+            assert_eq!(position_bits(m), position_bits(original), "model {i}");
+        }
+        // Ctrl+Shift+Z: both cuts again.
+        h.key_press_modifiers(
+            egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
+            egui::Key::Z,
+        );
+        h.run_steps(2);
+        assert!(Arc::ptr_eq(
+            &h.state().scene.models[outer_i].mesh,
+            &outer_cut
+        ));
+        assert!(Arc::ptr_eq(
+            &h.state().scene.models[inner_i].mesh,
+            &inner_cut
+        ));
+
+        // Untick "Cut layers below": a second groove cuts the outer sphere only.
+        h.get_by_label("Cut layers below").click();
+        h.run_steps(2);
+        assert!(!h.state().viewport.scalpel.settings.layers);
+        drag(&mut h, 0.3);
+        let state = h.state();
+        assert!(
+            state.scene.models[outer_i].mesh.triangle_count() > outer_cut.triangle_count(),
+            "the second groove did not cut (status: {})",
+            state.status.message
+        );
+        assert!(Arc::ptr_eq(&state.scene.models[inner_i].mesh, &inner_cut));
         let _ = std::fs::remove_dir_all(&dir);
     }
 

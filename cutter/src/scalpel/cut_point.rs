@@ -170,6 +170,38 @@ pub fn closest_face_near(
     p: DVec3,
     limit: usize,
 ) -> Option<(u32, DVec3, f64)> {
+    let mut best: Option<(u32, DVec3, f64)> = None;
+    // On the surface (to rounding): no unvisited triangle can be nearer.
+    let on_surface = 1e-9 * (1.0 + p.length());
+    visit_near(mesh, v, p, limit, |t, box_distance| {
+        if best.is_some_and(|(_, _, d)| d <= on_surface && box_distance >= d) {
+            return false;
+        }
+        if !mesh.is_wall(t) {
+            let [a, b, c] = mesh.triangles[t as usize].map(|x| mesh.pos(x));
+            let w = closest_on_triangle(p, a, b, c);
+            let d = (a * w.x + b * w.y + c * w.z).distance(p);
+            if best.is_none_or(|(_, _, bd)| d < bd) {
+                best = Some((t, w, d));
+            }
+        }
+        true
+    });
+    best
+}
+
+/// Visits the triangles connected to vertex `v` (and its copies) best-first by the distance of
+/// each triangle's bounding box from `p`, over twins (walls included as passages), at most
+/// `limit` of them: `visit(triangle, box distance)` returns false to stop. The local search
+/// behind [`closest_face_near`] and [`super::through::ray_hit_near`]: its cost depends on how
+/// far it goes, not on the mesh size.
+pub fn visit_near(
+    mesh: &DynMesh,
+    v: u32,
+    p: DVec3,
+    limit: usize,
+    mut visit: impl FnMut(u32, f64) -> bool,
+) {
     use std::cmp::Reverse;
     use std::collections::{BinaryHeap, HashSet};
     let box_distance = |t: u32| {
@@ -190,25 +222,12 @@ pub fn closest_face_near(
             }
         }
     }
-    let mut best: Option<(u32, DVec3, f64)> = None;
     let mut examined = 0;
-    // On the surface (to rounding): no unvisited triangle can be nearer.
-    let on_surface = 1e-9 * (1.0 + p.length());
     while let Some(Reverse((bits, t))) = heap.pop() {
-        if best.is_some_and(|(_, _, d)| d <= on_surface && f64::from_bits(bits) >= d)
-            || examined >= limit
-        {
+        if examined >= limit || !visit(t, f64::from_bits(bits)) {
             break;
         }
         examined += 1;
-        if !mesh.is_wall(t) {
-            let [a, b, c] = mesh.triangles[t as usize].map(|x| mesh.pos(x));
-            let w = closest_on_triangle(p, a, b, c);
-            let d = (a * w.x + b * w.y + c * w.z).distance(p);
-            if best.is_none_or(|(_, _, bd)| d < bd) {
-                best = Some((t, w, d));
-            }
-        }
         for k in 0..3 {
             let g = mesh.twin(3 * t + k);
             if is_real(g) && seen.insert(g / 3) {
@@ -216,7 +235,6 @@ pub fn closest_face_near(
             }
         }
     }
-    best
 }
 
 #[cfg(test)]

@@ -69,6 +69,15 @@ pub fn layer_strokes(
         }
         hits.push(below);
     }
+    runs(hits)
+}
+
+/// Strokes from per-sample hits: `hits[i]` lists the surfaces (`id`, hit point, blade depth left)
+/// the blade of sample `i` meets; the consecutive samples meeting one surface become a stroke on
+/// it (at least 2 samples; depth = mean depth left). An empty list (the blade met nothing, or the
+/// sample was off the surface) ends every run. Shared with the window, where the surfaces are
+/// other models.
+pub fn runs(hits: impl IntoIterator<Item = Vec<(u32, DVec3, f64)>>) -> Vec<LayerStroke> {
     // Runs of consecutive samples per region.
     let mut out: Vec<LayerStroke> = Vec::new();
     let mut open: Vec<(u32, Vec<DVec3>, f64)> = Vec::new();

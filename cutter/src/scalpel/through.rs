@@ -23,7 +23,7 @@ use std::collections::HashMap;
 use glam::DVec3;
 
 use super::cut_point::closest_on_triangle;
-use super::dyn_mesh::{DynMesh, is_real};
+use super::dyn_mesh::DynMesh;
 use super::groove::find_lips;
 
 /// The first surface (non-wall) triangle hit by the ray `origin + s · dir` (`s > 0`), ignoring
@@ -65,50 +65,29 @@ pub fn ray_hit_near(
     expected: f64,
     limit: usize,
 ) -> Option<(u32, DVec3, f64)> {
-    use std::cmp::Reverse;
-    use std::collections::{BinaryHeap, HashSet};
-    let p = origin + dir * expected;
-    let box_distance = |t: u32| {
-        let [a, b, c] = mesh.triangles()[t as usize].map(|x| mesh.pos(x));
-        p.clamp(a.min(b).min(c), a.max(b).max(c)).distance(p)
-    };
-    let mut seen = HashSet::new();
-    let mut heap = BinaryHeap::new();
-    let mut fan = Vec::new();
-    let mut seeds = vec![v];
-    seeds.extend(mesh.copies(v));
-    for x in seeds {
-        mesh.fan_into(x, &mut fan);
-        for &h in &fan {
-            if seen.insert(h / 3) {
-                heap.push(Reverse((box_distance(h / 3).to_bits(), h / 3)));
-            }
-        }
-    }
     // (triangle, weights, s, |s - expected|)
     let mut best: Option<(u32, DVec3, f64, f64)> = None;
-    let mut examined = 0;
-    while let Some(Reverse((bits, t))) = heap.pop() {
-        if best.is_some_and(|b| f64::from_bits(bits) >= b.3) || examined >= limit {
-            break;
-        }
-        examined += 1;
-        if !mesh.is_wall(t) && mesh.face_normal_scaled(t).dot(dir) > 0.0 {
-            let [a, b, c] = mesh.triangles()[t as usize].map(|x| mesh.pos(x));
-            if let Some(s) = ray_triangle(origin, dir, a, b, c)
-                && best.is_none_or(|b| (s - expected).abs() < b.3)
-            {
-                let w = closest_on_triangle(origin + dir * s, a, b, c);
-                best = Some((t, w, s, (s - expected).abs()));
+    super::cut_point::visit_near(
+        mesh,
+        v,
+        origin + dir * expected,
+        limit,
+        |t, box_distance| {
+            if best.is_some_and(|b| box_distance >= b.3) {
+                return false;
             }
-        }
-        for k in 0..3 {
-            let g = mesh.twin(3 * t + k);
-            if is_real(g) && seen.insert(g / 3) {
-                heap.push(Reverse((box_distance(g / 3).to_bits(), g / 3)));
+            if !mesh.is_wall(t) && mesh.face_normal_scaled(t).dot(dir) > 0.0 {
+                let [a, b, c] = mesh.triangles()[t as usize].map(|x| mesh.pos(x));
+                if let Some(s) = ray_triangle(origin, dir, a, b, c)
+                    && best.is_none_or(|b| (s - expected).abs() < b.3)
+                {
+                    let w = closest_on_triangle(origin + dir * s, a, b, c);
+                    best = Some((t, w, s, (s - expected).abs()));
+                }
             }
-        }
-    }
+            true
+        },
+    );
     best.map(|(t, w, s, _)| (t, w, s))
 }
 
