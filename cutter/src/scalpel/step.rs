@@ -1248,9 +1248,16 @@ impl Scalpel {
         let r = self.walk(&mut far, q_far, None, &mut crossed, THROUGH_SNAP_END);
         let far_end = match r {
             Ok(WalkEnd::Reached(e)) => e,
-            Ok(_) => {
+            Ok(walk_end) => {
                 stroke.far = Some(far);
-                self.reason = "far cut did not reach its sample";
+                // The far cut has no way on from its anchor: it met another cut (a vertex of
+                // that cut's slot, whose walls bound the fan) or a boundary. A slot cannot open
+                // into it (see `step`): it ends at its last tip and starts again past it.
+                self.reason = if matches!(walk_end, WalkEnd::Blocked { .. }) {
+                    SLOT_BLOCKED
+                } else {
+                    "far cut did not reach its sample"
+                };
                 return Err(fail(q_far));
             }
             Err(e) => {
