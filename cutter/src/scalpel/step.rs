@@ -1336,6 +1336,21 @@ impl Scalpel {
                 path.insert(1, mid);
             }
         }
+        // Both tips on the end vertices of another slot (the blade ran onto that slot's end):
+        // the edge between them is already that slot's end edge, and walls here would use it a
+        // second time. That is the slot meeting another cut, not a failure of this one: it ends
+        // at its last tip and restarts past the other cut (see `step`).
+        let (near_end, far_end) = (near[near.len() - 1], far_path[far_path.len() - 1]);
+        if self
+            .mesh
+            .edge_between(near_end, far_end, &mut self.scratch)
+            .is_some()
+        {
+            self.reason = SLOT_BLOCKED;
+            return Err(ScalpelError::WalkFailed {
+                point: self.mesh.pos(fx).to_array(),
+            });
+        }
         if !super::through::build_walls(&mut self.mesh, &near, &far_path) {
             self.reason = "slot walls";
             return Err(ScalpelError::WalkFailed {

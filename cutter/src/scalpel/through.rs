@@ -9,7 +9,9 @@
 //! a slot through the structure: a closed surface stays closed and its genus grows by one (χ
 //! drops by 2). A slot cannot open into another cut or a boundary (its end there would not
 //! close): where it reaches one, it ends at its last tip and the stroke starts a new slot past
-//! it (`Scalpel::step`, `start_cut`; the new far side found by [`ray_hit_near`]).
+//! it (`Scalpel::step`, `start_cut`; the new far side found by [`ray_hit_near`]). Both tips
+//! landing on another slot's two end vertices is such a meeting too (`Scalpel::far_tip`: that
+//! slot's end edge joins them already, and walls here would use it a second time).
 //!
 //! Walls: the near slit's left lip `t0 … tK` and the far slit's left lip `f0 … fM` (both in
 //! stroke order; the far surface faces the other way, so its lip on the same side is the one
