@@ -140,11 +140,17 @@ impl<T: Send + 'static> Job<T> {
     }
 
     /// The result once the worker finished; `None` while it runs and after the result was taken.
+    /// A job cancelled before its result is taken ends [`Cancelled`] even when the worker
+    /// finished its last step anyway: Cancel never lets a late result into the scene.
     pub fn poll(&mut self) -> Option<anyhow::Result<T>> {
         if !self.running {
             return None;
         }
         match self.result.try_recv() {
+            Ok(_) if self.progress.is_cancelled() => {
+                self.running = false;
+                Some(Err(Cancelled.into()))
+            }
             Ok(result) => {
                 self.running = false;
                 Some(result)
@@ -281,6 +287,29 @@ mod tests {
         go_tx.send(()).unwrap();
         let err = job.wait(Duration::from_secs(10)).unwrap_err();
         assert!(is_cancelled(&err), "{err:#}");
+    }
+
+    /// The race a fast index build hits: the worker finishes its only step, then the user
+    /// presses Cancel before the UI takes the result. The result must not be applied.
+    #[test]
+    fn a_result_that_arrives_after_cancel_is_dropped() {
+        let (done_tx, done_rx) = channel::<()>();
+        let mut job = Job::spawn(
+            "one step",
+            move || {
+                let _ = done_tx.send(());
+            },
+            |_| Ok(42u32),
+        );
+        done_rx
+            .recv_timeout(Duration::from_secs(10))
+            .expect("the worker finished");
+        job.progress.cancel();
+        let result = job.poll().expect("the job has ended");
+        let err = result.expect_err("a cancelled job's late result was delivered");
+        assert!(is_cancelled(&err), "{err:#}");
+        assert!(!job.is_running());
+        assert!(job.poll().is_none());
     }
 
     #[test]
