@@ -23,8 +23,44 @@ use crate::testkit;
 /// rounded to `f64`; afterwards only that rounding (about 1e-16 relative per vertex) remains.
 pub const MEASURE_TOLERANCE: f64 = 1e-9;
 
-/// Signed volume (Σ a · (b × c) / 6).
-fn volume(m: &Mesh) -> f64 {
+/// The measure identities of a cut of a closed target: area(kept) + area(removed) = area(T),
+/// vol(kept + walls) + vol(removed + reversed walls) = vol(T) (both to [`MEASURE_TOLERANCE`]),
+/// and every target vertex keeps its exact coordinates in kept.
+pub fn check_measures(target: &Mesh, result: &CutResult) -> Result<(), String> {
+    measures(target, &result.materialize(target), result)
+}
+
+/// [`check_measures`] with kept already materialized.
+fn measures(target: &Mesh, kept: &Mesh, result: &CutResult) -> Result<(), String> {
+    let walls = &result.walls.mesh;
+    let removed = &result.removed.part().mesh;
+    let rel = |x: f64, y: f64| (x - y).abs() / y.abs().max(f64::MIN_POSITIVE);
+    let (at, ak, ar) = (target.area(), kept.area(), removed.area());
+    if rel(ak + ar, at) > MEASURE_TOLERANCE {
+        return Err(format!("area: kept {ak} + removed {ar} != target {at}"));
+    }
+    let mut kw = kept.clone();
+    kw.append(walls);
+    let mut rw = removed.clone();
+    rw.append(&walls.reversed());
+    let (vt, vk, vr) = (volume(target), volume(&kw), volume(&rw));
+    if rel(vk + vr, vt) > MEASURE_TOLERANCE {
+        return Err(format!(
+            "volume: kept+walls {vk} + removed+walls {vr} != target {vt}"
+        ));
+    }
+    for (i, p) in target.positions.iter().enumerate() {
+        if kept.positions[i].to_array().map(f64::to_bits) != p.to_array().map(f64::to_bits) {
+            return Err(format!("target vertex {i} moved"));
+        }
+    }
+    Ok(())
+}
+
+/// Signed volume about the origin (Σ a · (b × c) / 6): the same origin for every part, so the
+/// parts' volumes add up with nothing but the rounding of the new vertices (unlike
+/// [`Mesh::volume`], which measures each mesh about its own box centre).
+pub fn volume(m: &Mesh) -> f64 {
     m.triangles
         .iter()
         .map(|t| {
@@ -80,26 +116,7 @@ pub fn check_closed_cut(target: &Mesh, result: &CutResult) -> Result<(), String>
     let (kept, _) = result.materialize_with_provenance(target);
     let walls = &result.walls;
     let removed = result.removed.part();
-    let rel = |x: f64, y: f64| (x - y).abs() / y.abs().max(f64::MIN_POSITIVE);
-    let (at, ak, ar) = (target.area(), kept.area(), removed.mesh.area());
-    if rel(ak + ar, at) > MEASURE_TOLERANCE {
-        return Err(format!("area: kept {ak} + removed {ar} != target {at}"));
-    }
-    let mut kw = kept.clone();
-    kw.append(&walls.mesh);
-    let mut rw = removed.mesh.clone();
-    rw.append(&walls.mesh.reversed());
-    let (vt, vk, vr) = (volume(target), volume(&kw), volume(&rw));
-    if rel(vk + vr, vt) > MEASURE_TOLERANCE {
-        return Err(format!(
-            "volume: kept+walls {vk} + removed+walls {vr} != target {vt}"
-        ));
-    }
-    for (i, p) in target.positions.iter().enumerate() {
-        if kept.positions[i].to_array().map(f64::to_bits) != p.to_array().map(f64::to_bits) {
-            return Err(format!("target vertex {i} moved"));
-        }
-    }
+    measures(target, &kept, result)?;
     let n = target.positions.len() as u32;
     let src = |i: u32| {
         if i < n {

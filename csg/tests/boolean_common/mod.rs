@@ -5,17 +5,7 @@ use std::collections::HashMap;
 
 use csg::{CutOptions, CutResult, DVec3, Mesh, TargetIndex, VertexSource};
 
-/// Signed volume about the origin (Σ a·(b×c)/6).
-pub fn volume(m: &Mesh) -> f64 {
-    m.triangles
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|i| m.positions[i as usize]);
-            a.dot(b.cross(c))
-        })
-        .sum::<f64>()
-        / 6.0
-}
+pub use csg::cutcheck::volume;
 
 pub fn area(m: &Mesh) -> f64 {
     m.area()
@@ -56,31 +46,8 @@ pub fn concat(a: &Mesh, b: &Mesh) -> Mesh {
     m
 }
 
-/// The measure identities only: area partition and volume identity, exact vertices.
-pub fn check_measures(target: &Mesh, result: &CutResult) -> Result<(), String> {
-    let kept = result.materialize(target);
-    let walls = &result.walls.mesh;
-    let removed = &result.removed.mesh;
-    let rel = |x: f64, y: f64| (x - y).abs() / y.abs().max(1e-300);
-    let (at, ak, ar) = (area(target), area(&kept), area(removed));
-    if rel(ak + ar, at) > 1e-9 {
-        return Err(format!("area: kept {ak} + removed {ar} != target {at}"));
-    }
-    let kw = concat(&kept, walls);
-    let rw = concat(removed, &walls.reversed());
-    let (vt, vk, vr) = (volume(target), volume(&kw), volume(&rw));
-    if rel(vk + vr, vt) > 1e-9 {
-        return Err(format!(
-            "volume: kept+walls {vk} + removed+walls {vr} != target {vt}"
-        ));
-    }
-    for (i, p) in target.positions.iter().enumerate() {
-        if kept.positions[i].to_array().map(f64::to_bits) != p.to_array().map(f64::to_bits) {
-            return Err(format!("vertex {i} moved"));
-        }
-    }
-    Ok(())
-}
+// The measure identities (area partition, volume identity, exact vertices) are the fuzz body's.
+pub use csg::cutcheck::check_measures;
 
 // The closedness-by-identity check and the face lists are the fuzz body's (one definition).
 pub use csg::cutcheck::{closed_by_identity as check_closed_by_source, part_faces};
