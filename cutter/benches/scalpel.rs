@@ -17,6 +17,10 @@ use glam::DVec3;
 
 use cutter::scalpel::{Scalpel, ScalpelOptions, survey};
 
+#[path = "../tests/support/binary_stl.rs"]
+mod binary_stl;
+use binary_stl::read_binary_stl;
+
 const RADIUS: f64 = 50.0;
 
 fn mean_edge(mesh: &csg::Mesh) -> f64 {
@@ -202,34 +206,6 @@ fn refusal_figures() {
             );
         }
     }
-}
-
-/// Binary STL, bit-identical corners welded (bench-local: the loaders live in the app).
-fn read_binary_stl(path: &std::path::Path) -> Option<csg::Mesh> {
-    let bytes = std::fs::read(path).ok()?;
-    let n = u32::from_le_bytes(bytes.get(80..84)?.try_into().ok()?) as usize;
-    let mut map = std::collections::HashMap::new();
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    for t in 0..n {
-        let base = 84 + 50 * t + 12;
-        let mut tri = [0u32; 3];
-        for (k, corner) in tri.iter_mut().enumerate() {
-            let mut c = [0f32; 3];
-            for (a, x) in c.iter_mut().enumerate() {
-                let o = base + 12 * k + 4 * a;
-                *x = f32::from_le_bytes(bytes.get(o..o + 4)?.try_into().ok()?);
-            }
-            *corner = *map.entry(c.map(f32::to_bits)).or_insert_with(|| {
-                positions.push(DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64));
-                positions.len() as u32 - 1
-            });
-        }
-        if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
-            triangles.push(tri);
-        }
-    }
-    csg::Mesh::new(positions, triangles).ok()
 }
 
 criterion_group! {

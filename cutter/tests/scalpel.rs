@@ -3,6 +3,10 @@
 //! every step is followed by the full validator, an area check (splitting conserves area) and a
 //! sliver check on the triangles the step created.
 
+#[path = "support/binary_stl.rs"]
+mod binary_stl;
+
+use binary_stl::read_binary_stl;
 use csg::{DVec3, Mesh};
 use cutter::scalpel::invariants::{min_angle_deg, t_junction_near, validate};
 use cutter::scalpel::{Scalpel, ScalpelOptions, Tool, TopologyReport, survey};
@@ -704,35 +708,6 @@ fn element_budget_straight_cut() {
         r.triangles_created,
         r.triangles_cut
     );
-}
-
-/// Reads a binary STL and welds bit-identical corners (test-local, no app dependency).
-fn read_binary_stl(path: &std::path::Path) -> Option<Mesh> {
-    let bytes = std::fs::read(path).ok()?;
-    let n = u32::from_le_bytes(bytes.get(80..84)?.try_into().ok()?) as usize;
-    let mut map = std::collections::HashMap::new();
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    for t in 0..n {
-        let base = 84 + 50 * t + 12;
-        let mut tri = [0u32; 3];
-        for k in 0..3 {
-            let mut c = [0f32; 3];
-            for a in 0..3 {
-                let o = base + 12 * k + 4 * a;
-                c[a] = f32::from_le_bytes(bytes.get(o..o + 4)?.try_into().ok()?);
-            }
-            let key = c.map(f32::to_bits);
-            tri[k] = *map.entry(key).or_insert_with(|| {
-                positions.push(DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64));
-                positions.len() as u32 - 1
-            });
-        }
-        if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
-            triangles.push(tri);
-        }
-    }
-    Mesh::new(positions, triangles).ok()
 }
 
 fn anatomy_dir() -> Option<std::path::PathBuf> {

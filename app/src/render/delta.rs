@@ -240,19 +240,7 @@ pub fn build(change: &Change) -> MeshDelta {
             normals[k] = n;
         }
     }
-    let vertices = patch
-        .positions
-        .iter()
-        .zip(&normals)
-        .map(|(p, n)| Vertex {
-            position_in_world: p.as_vec3().to_array(),
-            normal_in_world: n
-                .try_normalize()
-                .unwrap_or(DVec3::ZERO)
-                .as_vec3()
-                .to_array(),
-        })
-        .collect();
+    let vertices = super::draw_data::vertices_with_normals(&patch.positions, &normals);
     MeshDelta {
         base: change.base.clone(),
         hidden,

@@ -22,9 +22,14 @@ pub fn mesh_vertices(mesh: &Mesh) -> Vec<Vertex> {
             normals[i as usize] += n;
         }
     }
-    mesh.positions
+    vertices_with_normals(&mesh.positions, &normals)
+}
+
+/// GPU vertices from positions and summed (unnormalized) normals; a zero sum gives a zero normal.
+pub fn vertices_with_normals(positions: &[DVec3], normal_sums: &[DVec3]) -> Vec<Vertex> {
+    positions
         .iter()
-        .zip(&normals)
+        .zip(normal_sums)
         .map(|(p, n)| Vertex {
             position_in_world: p.as_vec3().to_array(),
             normal_in_world: n
