@@ -51,7 +51,7 @@ fn assert_closed_volume(mesh: &Mesh, volume: f64) {
 fn awkward_tetrahedron() -> Mesh {
     let positions = vec![
         DVec3::new(0.1, 1.0 / 3.0, -0.0),
-        DVec3::new(1e17 + 8.0, std::f64::consts::PI, 2.5e-300),
+        DVec3::new(123456789012.25, std::f64::consts::PI, 2.5e-300),
         DVec3::new(-7.000000000000001, 0.30000000000000004, 1e-7),
         DVec3::new(123456.789, -1e-310, 42.0),
     ];
@@ -421,6 +421,144 @@ POLYGONS 1 4\n3 0 1 7\n";
     assert!(line.contains("no triangles"), "{line}");
 }
 
+#[test]
+fn special_and_oversized_files_are_refused_before_reading() {
+    let dir = scratch("special");
+    // A link to /dev/zero would be read forever: refused by kind, after following the link.
+    let zero = dir.join("zero.stl");
+    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    let line = error_of(io::read_parts(&zero));
+    assert!(
+        line.contains("zero.stl") && line.contains("character device"),
+        "{line}"
+    );
+    // A FIFO without a writer would block the open: refused before it is opened.
+    let fifo = dir.join("pipe.obj");
+    if std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        let line = error_of(io::read_parts(&fifo));
+        assert!(line.contains("pipe.obj") && line.contains("FIFO"), "{line}");
+        let line = error_of(io::read_mesh_verbatim(&fifo));
+        assert!(line.contains("FIFO"), "{line}");
+    } else {
+        eprintln!("FIFO case skipped: mkfifo is not available");
+    }
+    // A 40 GB (sparse) file: refused by its size, nothing read.
+    let big = dir.join("big.ply");
+    std::fs::File::create(&big)
+        .unwrap()
+        .set_len(40_000_000_000)
+        .unwrap();
+    let line = error_of(io::read_parts(&big));
+    assert!(
+        line.contains("big.ply") && line.contains("40000000000 bytes"),
+        "{line}"
+    );
+    // The JSON readers share the check.
+    let session = dir.join("s.json");
+    std::os::unix::fs::symlink("/dev/zero", &session).unwrap();
+    let line = error_of(cutaway::session::load(&session));
+    assert!(
+        line.contains("s.json") && line.contains("character device"),
+        "{line}"
+    );
+    let line = error_of(cutaway::gesture::read_gesture(&session));
+    assert!(line.contains("character device"), "{line}");
+    let line = error_of(cutaway::path_file::read_path_file(&session));
+    assert!(line.contains("character device"), "{line}");
+}
+
+#[test]
+fn absurd_and_non_finite_coordinates_are_refused_naming_the_vertex() {
+    let obj = b"v 0 0 0\nv 1 0 0\nv 0 3e38 0\nf 1 2 3\n";
+    let line = error_of(io::parse_bytes(Format::Obj, obj, "x"));
+    assert!(
+        line.contains("vertex 2 (counted from 0)") && line.contains("3e38"),
+        "{line}"
+    );
+    let ply = b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1e13 0 0\n0 1 0\n3 0 1 2\n";
+    let line = error_of(io::parse_bytes(Format::Ply, ply, "x"));
+    assert!(line.contains("vertex 1 (counted from 0)"), "{line}");
+    let vtk = b"# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 3 double\n0 0 0 1 0 0 0 -inf 0\n\
+POLYGONS 1 4\n3 0 1 2\n";
+    let line = error_of(io::parse_bytes(Format::Vtk, vtk, "x"));
+    assert!(
+        line.contains("vertex 2") && line.contains("non-finite"),
+        "{line}"
+    );
+    // Binary STL: 3e38 is a valid f32.
+    let mut stl = vec![0u8; 84];
+    stl[80..84].copy_from_slice(&1u32.to_le_bytes());
+    stl.extend_from_slice(&[0u8; 12]);
+    for v in [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 3e38, 0.0] {
+        stl.extend_from_slice(&v.to_le_bytes());
+    }
+    stl.extend_from_slice(&[0u8; 2]);
+    let line = error_of(io::parse_bytes(Format::Stl, &stl, "x"));
+    assert!(line.contains("vertex 2"), "{line}");
+    // Through a file: the line names it.
+    let dir = scratch("coordinates");
+    let path = dir.join("far.obj");
+    std::fs::write(&path, obj).unwrap();
+    let line = error_of(io::read_mesh(&path));
+    assert!(
+        line.starts_with(&format!("error: {}: ", path.display())),
+        "{line}"
+    );
+    // 1e12 itself is accepted.
+    let edge = b"v 0 0 0\nv 1e12 0 0\nv 0 -1e12 0\nf 1 2 3\n";
+    io::parse_bytes(Format::Obj, edge, "x").unwrap();
+}
+
+#[test]
+fn obj_vertex_weight_is_ignored_not_divided_by() {
+    let dir = scratch("w");
+    let path = dir.join("w.obj");
+    // The normal reference sends the file through tobj, which would divide by w (and refuse 0).
+    std::fs::write(
+        &path,
+        "v 2 4 6 0.5\nv 1 0 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n",
+    )
+    .unwrap();
+    let mesh = io::read_mesh(&path).unwrap();
+    let mut positions = mesh.positions.clone();
+    positions.sort_by(|a, b| a.to_array().partial_cmp(&b.to_array()).unwrap());
+    assert_eq!(
+        positions,
+        [
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::X,
+            DVec3::new(2.0, 4.0, 6.0)
+        ]
+    );
+}
+
+#[test]
+fn control_bytes_from_a_file_never_reach_the_error_line_raw() {
+    // Two named parts, the second with a non-finite vertex: the error quotes its name.
+    let obj =
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 0\no first\nf 1 2 3\no evil\x1b[2J\x07name\nf 1 2 4\n";
+    let line = error_of(io::parse_bytes(Format::Obj, obj, "x"));
+    assert!(line.contains("evil\\u{1b}[2J\\u{7}name"), "{line:?}");
+    assert!(!line.chars().any(|c| c.is_control()), "{line:?}");
+    let stl = b"solid \x1b]0;title\x07\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 \x1b[31m 0\nendloop\nendfacet\nendsolid\n";
+    let line = error_of(io::parse_bytes(Format::Stl, stl, "x"));
+    assert!(line.contains("\\u{1b}"), "{line:?}");
+    assert!(!line.chars().any(|c| c.is_control()), "{line:?}");
+    let session = "{\"format\": \"cutaway-session/1\", \"models\": [{\"path\": \"a.obj\", \"style\": \"\\u001b[31mred\\n\"}]}";
+    let dir = scratch("control");
+    let path = dir.join("s.json");
+    std::fs::write(&path, session).unwrap();
+    std::fs::write(dir.join("a.obj"), b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let line = error_of(cutaway::session::load(&path));
+    assert!(line.contains("style"), "{line}");
+    assert!(!line.chars().any(|c| c.is_control()), "{line:?}");
+}
+
 /// Valid files of every format and flavour, for truncation tests (built once).
 fn valid_files() -> &'static [(Format, Vec<u8>)] {
     static FILES: std::sync::OnceLock<Vec<(Format, Vec<u8>)>> = std::sync::OnceLock::new();
@@ -499,5 +637,31 @@ proptest! {
             bytes[at % n] = value;
         }
         let _ = io::parse_bytes(format, &bytes, "x");
+    }
+
+    /// Byte flips of the contract's session, gesture and path examples: every JSON reader
+    /// returns a value or an error, never panics.
+    #[test]
+    fn corrupted_json_documents_never_panic(which in 0usize..3, flips in proptest::collection::vec((any::<usize>(), any::<u8>()), 1..8)) {
+        let samples: [&str; 3] = [
+            r#"{"format": "cutaway-session/1", "models": [{"path": "knee.obj", "color": [0.9, 0.7, 0.6]}],
+                "cutters": [{"target": 0, "planes": [[[0,0,0],[0,1,0],[0,1,-1],[0,0,-1]]],
+                "views": {"ribbons": {"count": 5, "width": 2.0}}}]}"#,
+            r#"{"format": "cutaway-gesture/1", "viewport": [1280, 800],
+                "camera": {"eye": [0, -300, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 30},
+                "events": [{"type": "press", "x": 600, "y": 380}, {"type": "wheel", "delta": 3}]}"#,
+            r#"{"format": "cutaway-path/1", "depth": 4.0, "points": [[0, 0, 0], [1, 2, 3]], "open": {"width": 1.5}}"#,
+        ];
+        let mut bytes = samples[which].as_bytes().to_vec();
+        for (at, value) in flips {
+            let n = bytes.len();
+            bytes[at % n] = value;
+        }
+        let text = String::from_utf8_lossy(&bytes);
+        match which {
+            0 => { let _ = cutaway::session::parse(&text); }
+            1 => { let _ = cutaway::gesture::parse_gesture(&text); }
+            _ => { let _ = cutaway::path_file::parse_path_file(&text); }
+        }
     }
 }

@@ -176,6 +176,138 @@ fn open_cutter_is_one_error_line_naming_the_file() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Runs `cutaway subtract TARGET CUTTER --out OUT` with extra environment variables.
+fn run_subtract(
+    target: &Path,
+    cutter: &Path,
+    out: &Path,
+    env: &[(&str, &str)],
+) -> std::process::Output {
+    let mut command = cutaway();
+    command
+        .args(["subtract"])
+        .arg(target)
+        .arg(cutter)
+        .arg("--out")
+        .arg(out);
+    for (k, v) in env {
+        command.env(k, v);
+    }
+    command.output().unwrap()
+}
+
+/// Every entry under `dir` (relative paths, sorted) with its bytes; folders as `None`.
+fn tree(dir: &Path) -> Vec<(String, Option<Vec<u8>>)> {
+    fn walk(root: &Path, dir: &Path, out: &mut Vec<(String, Option<Vec<u8>>)>) {
+        for entry in std::fs::read_dir(dir).unwrap().flatten() {
+            let path = entry.path();
+            let relative = path.strip_prefix(root).unwrap().display().to_string();
+            if path.is_dir() {
+                out.push((relative, None));
+                walk(root, &path, out);
+            } else {
+                out.push((relative, Some(std::fs::read(&path).unwrap())));
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(dir, dir, &mut out);
+    out.sort();
+    out
+}
+
+/// `subtract`'s four outputs are one set: a run killed between the renames of the new set leaves
+/// a commit that the next look at the folder finishes, so the folder then holds exactly the new
+/// set and nothing else; without a kill the old set is replaced whole.
+#[test]
+fn outputs_are_replaced_as_a_set_even_when_killed_between_renames() {
+    let dir = scratch("set");
+    let target = dir.join("sphere.obj");
+    cutaway::io::write_mesh(&target, &csg::testkit::icosphere(3, 10.0)).unwrap();
+    let (small, large) = (dir.join("small.obj"), dir.join("large.obj"));
+    write_quad_box(
+        &small,
+        DVec3::new(-3.0, -3.0, 4.0),
+        DVec3::new(3.0, 3.0, 20.0),
+    );
+    write_quad_box(
+        &large,
+        DVec3::new(-6.0, -6.0, 2.0),
+        DVec3::new(6.0, 6.0, 20.0),
+    );
+    // The two reference sets, each written by an undisturbed run.
+    let (old_ref, new_ref) = (dir.join("old_ref"), dir.join("new_ref"));
+    assert!(
+        run_subtract(&target, &small, &old_ref, &[])
+            .status
+            .success()
+    );
+    assert!(
+        run_subtract(&target, &large, &new_ref, &[])
+            .status
+            .success()
+    );
+    let (old_set, new_set) = (tree(&old_ref), tree(&new_ref));
+    assert_eq!(old_set.len(), 4);
+    assert_ne!(old_set, new_set);
+    // Replaced whole.
+    let out = dir.join("out");
+    assert!(run_subtract(&target, &small, &out, &[]).status.success());
+    assert!(run_subtract(&target, &large, &out, &[]).status.success());
+    assert_eq!(tree(&out), new_set);
+    // Killed after k of the 4 renames (0: right after the commit marker).
+    for k in 0..4 {
+        let out = dir.join(format!("killed-{k}"));
+        assert!(run_subtract(&target, &small, &out, &[]).status.success());
+        let killed = run_subtract(
+            &target,
+            &large,
+            &out,
+            &[("CUTAWAY_TEST_KILL_AFTER_RENAMES", &k.to_string())],
+        );
+        assert!(
+            !killed.status.success(),
+            "the test hook did not stop run {k}"
+        );
+        assert_ne!(tree(&out), new_set, "nothing to recover after {k} renames?");
+        cutaway::io::recover_output_set(&out).unwrap();
+        assert_eq!(tree(&out), new_set, "after a kill after {k} renames");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A cutter identical to the target: every face is coplanar with a cutter face, and the rule for
+/// coplanar faces decides (the cutter is translated by δ = (ε, ε², ε³)). The target faces whose
+/// normal's first non-zero component is negative lie outside the translated cutter and are kept,
+/// the others are removed; the walls are the cutter's faces opposite the kept ones, so kept +
+/// walls is a closed double layer of zero volume and removed + reversed walls is the whole solid.
+#[test]
+fn a_cutter_identical_to_the_target_leaves_a_zero_volume_double_layer() {
+    let cube = csg::testkit::cube(DVec3::ZERO, DVec3::ONE);
+    let index = csg::TargetIndex::build(cube.clone()).unwrap();
+    let result = csg::subtract(&index, &cube).unwrap();
+    let kept = result.kept_mesh(index.mesh());
+    let walls = result.walls.mesh.clone();
+    let removed = result.removed.part().mesh.clone();
+    let first_nonzero_negative = |m: &Mesh, t: usize| {
+        let n = m.face_normal_scaled(t);
+        let c = [n.x, n.y, n.z].into_iter().find(|c| *c != 0.0).unwrap();
+        c < 0.0
+    };
+    assert!(kept.triangle_count() > 0 && removed.triangle_count() > 0);
+    assert!((0..kept.triangle_count()).all(|t| first_nonzero_negative(&kept, t)));
+    assert!((0..removed.triangle_count()).all(|t| !first_nonzero_negative(&removed, t)));
+    assert_eq!(kept.area() + removed.area(), cube.area());
+    let mut layer = kept.clone();
+    layer.append(&walls);
+    assert!(closed_oriented(&layer));
+    assert_eq!(layer.volume(), 0.0);
+    let mut solid = removed.clone();
+    solid.append(&walls.reversed());
+    assert!(closed_oriented(&solid));
+    assert_eq!(solid.volume(), cube.volume());
+}
+
 /// The anatomy folder: `CUTAWAY_ANATOMY`, else `../shared/anatomy` next to the workspace.
 fn anatomy_dir() -> Option<PathBuf> {
     if let Ok(p) = std::env::var("CUTAWAY_ANATOMY") {

@@ -3,6 +3,16 @@
 //! GUI's "record gesture" debug action writes one, so an editing bug becomes a replayable test.
 //!
 //! Unknown fields are ignored; every error names the file and says what is wrong.
+//!
+//! # Bounds
+//! A gesture is a request for work: a viewport of `[1, 2]` pixels makes every pixel of a drag
+//! span a large part of the scene, and one drag then builds boxes by the thousand. Parsing
+//! refuses what no window records: a viewport side outside
+//! [`MIN_VIEWPORT_PX`]..=[`MAX_VIEWPORT_PX`], more than [`MAX_EVENTS`] events, a pointer more
+//! than one viewport size outside the viewport, a wheel step beyond ±[`MAX_WHEEL_DELTA`], camera
+//! coordinates beyond ±[`crate::io::MAX_ABS_COORDINATE`]. The replay itself stops with an error
+//! once the cutter has more than [`MAX_REPLAY_BOXES`] boxes (see `cutaway extrude`), so every
+//! replay is bounded.
 
 use std::path::Path;
 
@@ -14,6 +24,18 @@ use cutter::{Camera, CutKind, EditorEvent, Key};
 
 /// The format tag.
 pub const FORMAT: &str = "cutaway-gesture/1";
+
+/// Smallest viewport side, in pixels.
+pub const MIN_VIEWPORT_PX: f64 = 16.0;
+/// Largest viewport side, in pixels (the largest image the renderer makes).
+pub const MAX_VIEWPORT_PX: f64 = 16384.0;
+/// Most events in one gesture (a minute of recording at 60 Hz is 3600).
+pub const MAX_EVENTS: usize = 10_000;
+/// Largest wheel step of one event.
+pub const MAX_WHEEL_DELTA: f64 = 1000.0;
+/// Most boxes (planes) a replayed cutter may reach before the replay stops with an error; a drag
+/// across a whole scene at the default spacing makes about a hundred.
+pub const MAX_REPLAY_BOXES: usize = 400;
 
 /// Cut settings of a gesture (`cut` object).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -127,8 +149,8 @@ enum EventJson {
 
 /// Reads and validates a gesture file.
 pub fn read_gesture(path: &Path) -> anyhow::Result<Gesture> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("{}: cannot read", path.display()))?;
+    let text = crate::io::bounded::read_text(path, crate::io::bounded::JSON_MAX_BYTES)
+        .with_context(|| path.display().to_string())?;
     parse_gesture(&text).with_context(|| path.display().to_string())
 }
 
@@ -140,8 +162,17 @@ pub fn parse_gesture(text: &str) -> anyhow::Result<Gesture> {
         bail!("format is {:?}, expected {FORMAT:?}", file.format);
     }
     let [w, h] = file.viewport;
-    if !(w.is_finite() && h.is_finite() && w >= 1.0 && h >= 1.0) {
-        bail!("viewport [{w}, {h}] must be two positive pixel sizes");
+    let sane = |side: f64| (MIN_VIEWPORT_PX..=MAX_VIEWPORT_PX).contains(&side);
+    if !(sane(w) && sane(h)) {
+        bail!(
+            "viewport [{w}, {h}] must be two pixel sizes between {MIN_VIEWPORT_PX} and {MAX_VIEWPORT_PX}"
+        );
+    }
+    if file.events.len() > MAX_EVENTS {
+        bail!(
+            "events: {} events, more than the limit of {MAX_EVENTS}",
+            file.events.len()
+        );
     }
     let c = &file.camera;
     let camera = Camera {
@@ -150,8 +181,12 @@ pub fn parse_gesture(text: &str) -> anyhow::Result<Gesture> {
         up: DVec3::from(c.up),
         fov_y_deg: c.fov_y_deg,
     };
-    if !(camera.eye.is_finite() && camera.target.is_finite() && camera.up.is_finite()) {
-        bail!("camera has a non-finite coordinate");
+    let limit = crate::io::MAX_ABS_COORDINATE;
+    if [camera.eye, camera.target, camera.up]
+        .iter()
+        .any(|p| !p.to_array().iter().all(|c| c.abs() <= limit))
+    {
+        bail!("camera has a non-finite coordinate or one beyond ±{limit:e}");
     }
     if camera.eye == camera.target {
         bail!("camera eye and target are the same point");
@@ -195,8 +230,10 @@ pub fn parse_gesture(text: &str) -> anyhow::Result<Gesture> {
             EventJson::Move { x, y, shift, ctrl } => EditorEvent::Move { x, y, shift, ctrl },
             EventJson::Release { x, y, shift, ctrl } => EditorEvent::Release { x, y, shift, ctrl },
             EventJson::Wheel { x, y, delta, ctrl } => {
-                if !delta.is_finite() {
-                    bail!("event {i}: wheel delta is not a finite number");
+                if !(delta.is_finite() && delta.abs() <= MAX_WHEEL_DELTA) {
+                    bail!(
+                        "event {i}: wheel delta {delta} is not a number within ±{MAX_WHEEL_DELTA}"
+                    );
                 }
                 EditorEvent::Wheel { x, y, delta, ctrl }
             }
@@ -206,8 +243,13 @@ pub fn parse_gesture(text: &str) -> anyhow::Result<Gesture> {
             },
         };
         let p = event.pointer();
-        if !p.is_finite() {
-            bail!("event {i}: pixel position is not finite");
+        let inside = |v: f64, side: f64| (-side..=2.0 * side).contains(&v);
+        if !(inside(p.x, w) && inside(p.y, h)) {
+            bail!(
+                "event {i}: pixel position ({}, {}) is more than one viewport size outside the {w}x{h} viewport",
+                p.x,
+                p.y
+            );
         }
         events.push(event);
     }
@@ -255,10 +297,9 @@ pub fn gesture_to_json(g: &Gesture) -> String {
     serde_json::to_string_pretty(&file).unwrap_or_default()
 }
 
-/// Writes a gesture file.
+/// Writes a gesture file (atomically).
 pub fn write_gesture(path: &Path, g: &Gesture) -> anyhow::Result<()> {
-    std::fs::write(path, gesture_to_json(g))
-        .with_context(|| format!("{}: cannot write", path.display()))
+    crate::io::write_file(path, gesture_to_json(g).as_bytes())
 }
 
 #[cfg(test)]
@@ -302,5 +343,30 @@ mod tests {
         let e = format!("{:#}", parse_gesture(&bad_key).unwrap_err());
         assert!(e.contains("F13"), "{e}");
         assert!(parse_gesture("{").is_err());
+    }
+
+    #[test]
+    fn absurd_sizes_and_counts_are_refused_naming_the_field() {
+        let tiny = EXAMPLE.replace("[1280, 800]", "[1, 2]");
+        let e = format!("{:#}", parse_gesture(&tiny).unwrap_err());
+        assert!(e.contains("viewport [1, 2]"), "{e}");
+        let huge = EXAMPLE.replace("[1280, 800]", "[1280, 1e9]");
+        assert!(format!("{:#}", parse_gesture(&huge).unwrap_err()).contains("viewport"));
+        let far = EXAMPLE.replace("\"x\": 600", "\"x\": 1e7");
+        let e = format!("{:#}", parse_gesture(&far).unwrap_err());
+        assert!(e.contains("event 0: pixel position"), "{e}");
+        let wheel = EXAMPLE.replace("\"delta\": 3", "\"delta\": 1e300");
+        let e = format!("{:#}", parse_gesture(&wheel).unwrap_err());
+        assert!(e.contains("event 3: wheel delta"), "{e}");
+        let eye = EXAMPLE.replace("[0, -300, 0]", "[0, -3e38, 0]");
+        assert!(format!("{:#}", parse_gesture(&eye).unwrap_err()).contains("camera"));
+        let moves = vec![r#"{"type": "move", "x": 1, "y": 1}"#; MAX_EVENTS + 1].join(",");
+        let many = format!(
+            r#"{{"format": "cutaway-gesture/1", "viewport": [100, 100],
+              "camera": {{"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 30}},
+              "events": [{moves}]}}"#
+        );
+        let e = format!("{:#}", parse_gesture(&many).unwrap_err());
+        assert!(e.contains("10001 events"), "{e}");
     }
 }

@@ -14,4 +14,5 @@ pub mod phantom;
 pub mod render;
 pub mod scene;
 pub mod session;
+pub mod session_limits;
 pub mod session_meshes;

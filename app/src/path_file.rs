@@ -122,8 +122,7 @@ pub fn parse_path_file(text: &str) -> Result<PathFile, String> {
 
 /// Reads and validates a path file; errors read `<file>: <problem>`.
 pub fn read_path_file(path: &Path) -> anyhow::Result<PathFile> {
-    let text = std::fs::read_to_string(path)
-        .map_err(anyhow::Error::from)
+    let text = crate::io::bounded::read_text(path, crate::io::bounded::JSON_MAX_BYTES)
         .with_context(|| path.display().to_string())?;
     parse_path_file(&text)
         .map_err(anyhow::Error::msg)

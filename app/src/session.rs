@@ -13,7 +13,11 @@
 //!   (colour: distinct colours, opacity 1, solid, visible, no cutters, a framing camera, default
 //!   render settings).
 //! - Saving is atomic: the JSON goes to a temporary file next to the target, then is renamed over
-//!   it, so a crash never leaves a half-written session.
+//!   it ([`crate::io::write_file`]), so a crash never leaves a half-written session; with its
+//!   meshes folder it is replaced as a set (see [`crate::session_meshes`] for why the order of
+//!   the writes is enough).
+//! - Counts and sizes are bounded when the file is parsed ([`crate::session_limits`]), before
+//!   anything is loaded or built.
 //! - Every error is one line naming the session file and the problem.
 
 use std::path::{Component, Path, PathBuf};
@@ -158,6 +162,7 @@ pub fn parse(text: &str) -> anyhow::Result<SessionFile> {
     if file.format != FORMAT {
         anyhow::bail!("format is {:?}, expected {FORMAT:?}", file.format);
     }
+    crate::session_limits::check(&file)?;
     Ok(file)
 }
 
@@ -174,7 +179,8 @@ pub fn load_with(
     path: &Path,
     mut load_models: impl FnMut(&Path) -> anyhow::Result<Vec<crate::io::Model>>,
 ) -> anyhow::Result<Scene> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("{}", path.display()))?;
+    let text = crate::io::bounded::read_text(path, crate::io::bounded::JSON_MAX_BYTES)
+        .with_context(|| format!("{}", path.display()))?;
     let file = parse(&text).with_context(|| format!("{}", path.display()))?;
     let folder = path.parent().unwrap_or(Path::new(""));
     let scene = scene_from_file(&file, folder, &mut load_models)
@@ -380,25 +386,8 @@ pub fn save(path: &Path, scene: &Scene) -> anyhow::Result<()> {
     let mut text =
         serde_json::to_string_pretty(&file).with_context(|| format!("{}", path.display()))?;
     text.push('\n');
-    write_atomic(path, text.as_bytes())?;
+    crate::io::write_file(path, text.as_bytes())?;
     crate::session_meshes::remove_stale(path, &meshes);
-    Ok(())
-}
-
-/// Writes `bytes` to `path` through a temporary file next to it and a rename.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    let name = path
-        .file_name()
-        .ok_or_else(|| anyhow::anyhow!("{}: not a file path", path.display()))?;
-    let mut tmp_name = std::ffi::OsString::from(".");
-    tmp_name.push(name);
-    tmp_name.push(format!(".{}.tmp", std::process::id()));
-    let tmp = path.with_file_name(tmp_name);
-    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(anyhow::anyhow!("{}: could not write: {e}", path.display()));
-    }
     Ok(())
 }
 

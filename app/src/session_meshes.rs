@@ -18,7 +18,10 @@
 //! JSON no longer names. At every moment the session on disk names complete files that hold
 //! exactly what it was saved with: a crash or an error at any point leaves the previous session
 //! intact (at worst with unreferenced new files, removed by the next save). A mesh that did not
-//! change keeps its name, so re-saving does not write it again.
+//! change keeps its name, so re-saving does not write it again. So the session and its meshes
+//! folder are replaced as a set without a staging folder; the temporary files of single writes
+//! that a kill leaves are removed by the next write into the same folder
+//! ([`crate::io::atomic`]).
 //!
 //! The hash is computed at save time from the mesh (a cheap pass over its words); it only names
 //! files, it never decides whether a model changed ([`MeshOrigin::Edited`] does).
@@ -279,15 +282,15 @@ mod tests {
         let first_mesh = mesh_dir(&session).join(mesh_file_name("m", &scene.models[0].mesh));
         let first_bytes = std::fs::read(&first_mesh).unwrap();
 
-        // A second version whose JSON cannot be written: a folder stands where the session's
-        // temporary file goes, so the save fails after its mesh files were written.
+        // A second version whose JSON cannot be written (an injected failure at its rename), so
+        // the save fails after its mesh files were written.
         let mut second = scene.clone();
         let mut changed = awkward_mesh();
         changed.positions[4].x = 8.0;
         second.models[0].replace_mesh(Arc::new(changed));
-        let blocked = dir.join(format!(".s.json.{}.tmp", std::process::id()));
-        std::fs::create_dir_all(blocked.join("x")).unwrap();
+        crate::io::atomic::fail_writes_to(Some(session.clone()));
         assert!(crate::session::save(&session, &second).is_err());
+        crate::io::atomic::fail_writes_to(None);
         assert_eq!(std::fs::read(&session).unwrap(), first_json);
         assert_eq!(std::fs::read(&first_mesh).unwrap(), first_bytes);
         let back = crate::session::load(&session).unwrap();
@@ -297,12 +300,18 @@ mod tests {
         );
 
         // Once the save goes through, the old mesh file is gone and the new one is named.
-        std::fs::remove_dir_all(&blocked).unwrap();
         crate::session::save(&session, &second).unwrap();
         assert!(!first_mesh.exists());
         let back = crate::session::load(&session).unwrap();
         assert_eq!(back.models[0].mesh.positions[4].x, 8.0);
         assert_eq!(std::fs::read_dir(mesh_dir(&session)).unwrap().count(), 1);
+        // Nothing else: no temporary file of the failed save is left.
+        let mut names: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(names, ["s.json", "s.meshes"]);
         let _ = std::fs::remove_dir_all(&dir);
     }
 

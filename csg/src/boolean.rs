@@ -45,6 +45,11 @@
 //!   component comes from the target's generalized winding number (≥ ½ is inside), which is a
 //!   classifier, not an exact test; a fast winding-number tree ([`crate::winding`], built with
 //!   the index of an open target) makes it about O(log N) per cutter component.
+//! - A cutter identical to the target (or sharing faces with it) is decided by the same δ rule
+//!   as every coplanar case: the target faces whose normal's first non-zero component (x, then
+//!   y, then z) is negative lie outside the translated cutter and are kept, the others are
+//!   removed, and the walls are the cutter's faces against the kept ones. So kept + walls is a
+//!   closed double layer of zero volume, and removed + reversed walls is the whole solid.
 //! - Target faces with a repeated vertex index have no area and no edges of their own: they are
 //!   never split; if one is crossed it is dropped from both kept and removed.
 //! - Geometry after rounding: new vertices move by at most half a lattice step plus one `f64`
@@ -227,7 +232,9 @@ pub enum CutError {
 /// Cuts `cutter` out of the target (see the robustness contract in the module doc): exact
 /// topology for any sane target, closed and manifold kept + walls for closed targets that do not
 /// intersect themselves, degeneracies resolved by translating the cutter by δ = (ε, ε², ε³), a
-/// typed [`CutError`] for an invalid cutter, never a panic.
+/// typed [`CutError`] for an invalid cutter, never a panic. A cutter identical to the target
+/// keeps the faces whose normal's first non-zero component is negative, with walls against them:
+/// a zero-volume double layer (module doc).
 pub fn subtract(target: &TargetIndex, cutter: &Mesh) -> Result<CutResult, CutError> {
     subtract_many(target, &[cutter])
 }

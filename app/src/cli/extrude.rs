@@ -16,7 +16,7 @@ use glam::DVec2;
 use csg::{EdgeAdjacency, Mesh, SpatialIndex};
 use cutter::{Cutter, Editor, EditorEvent, EditorSettings};
 
-use crate::gesture::{Gesture, read_gesture};
+use crate::gesture::{Gesture, MAX_REPLAY_BOXES, read_gesture};
 
 #[derive(Debug, clap::Args)]
 pub struct ExtrudeArgs {
@@ -65,8 +65,15 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
         delta,
     };
     let mut editor = Editor::new(mesh, index, gesture.camera, gesture.viewport, settings);
-    for &event in &gesture.events {
+    for (i, &event) in gesture.events.iter().enumerate() {
         editor.handle(event);
+        // One event adds a bounded number of boxes, so checking after each bounds the replay.
+        let boxes = editor.cutter().map_or(0, |c| c.box_count());
+        if boxes > MAX_REPLAY_BOXES {
+            bail!(
+                "event {i}: the cutter has {boxes} boxes, more than the limit of {MAX_REPLAY_BOXES}; replay stopped (a tiny viewport or spacing makes each pixel of a drag a whole box)"
+            );
+        }
     }
     let Some(cutter) = editor.cutter().cloned() else {
         bail!(

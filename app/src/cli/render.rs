@@ -43,5 +43,5 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             image::ImageFormat::Png,
         )
         .with_context(|| format!("{}: could not encode the PNG", args.out.display()))?;
-    crate::session::write_atomic(&args.out, &bytes)
+    crate::io::write_file(&args.out, &bytes)
 }

@@ -3,8 +3,13 @@
 //! Reads both meshes, builds the target index (not timed), cuts with [`csg::subtract`] and builds
 //! the removed piece (timed: `boolean_ms`), then writes `kept.obj`, `walls.obj`, `removed.obj`
 //! and `contour.obj` into DIR (see `../shared/CONTRACT.md`).
+//!
+//! The outputs are one [`crate::io::OutputSet`]: they replace the previous run's outputs as a
+//! whole, and a kill at any moment leaves the old set or the new one once the next run (or
+//! [`crate::io::recover_output_set`]) has looked at DIR. More outputs join the set by one more
+//! `set.write_…` call before the commit.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::Context;
@@ -52,12 +57,11 @@ pub fn run(args: &SubtractArgs) -> anyhow::Result<()> {
     let removed = result.removed.part();
     let boolean_ms = clock.elapsed().as_secs_f64() * 1e3;
 
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("{}: cannot create the folder", args.out.display()))?;
+    let mut set = crate::io::OutputSet::begin(&args.out)?;
     let kept = result.kept_mesh(index.mesh());
-    crate::io::write_mesh(&args.out.join("kept.obj"), &kept)?;
-    crate::io::write_mesh(&args.out.join("walls.obj"), &result.walls.mesh)?;
-    crate::io::write_mesh(&args.out.join("removed.obj"), &removed.mesh)?;
+    set.write_mesh(Path::new("kept.obj"), &kept)?;
+    set.write_mesh(Path::new("walls.obj"), &result.walls.mesh)?;
+    set.write_mesh(Path::new("removed.obj"), &removed.mesh)?;
     let polylines: Vec<Vec<glam::DVec3>> = result
         .contours
         .iter()
@@ -71,7 +75,8 @@ pub fn run(args: &SubtractArgs) -> anyhow::Result<()> {
             p
         })
         .collect();
-    crate::io::write_obj_polylines(&args.out.join("contour.obj"), &polylines)?;
+    set.write_obj_polylines(Path::new("contour.obj"), &polylines)?;
+    set.commit()?;
 
     let report = SubtractReport {
         target_triangles,

@@ -505,11 +505,11 @@ pub fn export_image(
     });
     let image = crate::render::render_png(scene, &options)
         .map_err(|e| anyhow::anyhow!("{}: {e:#}", path.display()))?;
-    let tmp = path.with_extension("png.tmp");
+    let mut png = Vec::new();
     image
-        .save_with_format(&tmp, image::ImageFormat::Png)
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    std::fs::rename(&tmp, path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    crate::io::write_file(path, &png)?;
     Ok(format!(
         "Exported {}×{} image to {}",
         settings.width,

@@ -154,10 +154,7 @@ impl RecentFiles {
                 let _ = std::fs::create_dir_all(dir);
             }
             if let Ok(text) = serde_json::to_string_pretty(&self.paths) {
-                let tmp = file.with_extension("json.tmp");
-                if std::fs::write(&tmp, text).is_ok() {
-                    let _ = std::fs::rename(&tmp, file);
-                }
+                let _ = crate::io::write_file(file, text.as_bytes());
             }
         }
     }

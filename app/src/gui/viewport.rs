@@ -144,9 +144,7 @@ impl ViewportState {
             anyhow::bail!("{}: no gesture is being recorded", path.display());
         };
         let gesture = recording.gesture();
-        let tmp = path.with_extension("json.tmp");
-        crate::gesture::write_gesture(&tmp, &gesture)?;
-        std::fs::rename(&tmp, path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        crate::gesture::write_gesture(path, &gesture)?;
         Ok(gesture.events.len())
     }
 

@@ -13,7 +13,7 @@
 //!
 //! | format | reader | notes |
 //! |---|---|---|
-//! | `.obj` | `tobj` (`single_index`, `triangulate`) | every `o`/`g` name is its own [`Part`]; polygons fan-triangulated; points and lines ignored |
+//! | `.obj` | `tobj` (`single_index`, `triangulate`) | every `o`/`g` name is its own [`Part`]; polygons fan-triangulated; points and lines ignored; a vertex weight `w` is ignored, not divided by |
 //! | `.stl` | our own ([`stl`]) | binary when the size is exactly `84 + 50·count` (even if the header starts with `solid`), else ASCII; `stl_io` decides by the `solid ` prefix alone and so rejects such binary files |
 //! | `.ply` | `ply-rs-bw` | ASCII and binary (both byte orders); faces from `vertex_indices` or `vertex_index` lists of any integer type, fan-triangulated |
 //! | `.vtk` | `vtkio` (legacy) | `POLYDATA` with `POLYGONS` (fan-triangulated) and `TRIANGLE_STRIPS` (triangulated here with alternating winding) |
@@ -23,11 +23,14 @@
 //!
 //! # Bad input
 //! Every error is one line naming the file (`anyhow` context `"<path>"`), so `main` prints
-//! `error: <file>: <what is wrong>`. No allocation is sized by a count read from a header before
-//! the data it counts is seen to exist (our own parsers compare counts with the file size; the
-//! third-party parsers were checked for this, see `../shared/DESIGN.md`). Third-party parsers
-//! run inside [`std::panic::catch_unwind`] as a last resort, so that a parser bug on malformed
-//! input becomes an error, not a crash.
+//! `error: <file>: <what is wrong>`. Files are read through [`bounded`]: only regular files
+//! (symbolic links followed; FIFOs, devices and sockets refused before they are opened) of at most
+//! [`bounded::MESH_MAX_BYTES`] (2 GiB). No allocation is sized by a count read from a header
+//! before the data it counts is seen to exist (our own parsers compare counts with the file size;
+//! the third-party parsers were checked for this, see `../shared/DESIGN.md`). Coordinates must be
+//! finite and within ±[`MAX_ABS_COORDINATE`] (10¹²); the error names the vertex. Third-party
+//! parsers run inside [`std::panic::catch_unwind`] as a last resort, so that a parser bug on
+//! malformed input becomes an error, not a crash.
 //!
 //! # Models
 //! [`load_models`] splits every part into regions (edge-connected components,
@@ -38,8 +41,9 @@
 //! `../shared/anatomy/SOURCES.md`: `lumbar_spine#vertebra_L1 1`, `lumbar_spine#vertebra_L2 2`.
 //!
 //! # Writing
-//! All writers are atomic (a temporary file in the same directory, then a rename), so a crash
-//! never leaves a half-written file under the requested name. OBJ and PLY round-trip `f64`
+//! All writers are atomic ([`atomic`]: a temporary file in the same directory, then a rename), so
+//! a crash never leaves a half-written file under the requested name; files that belong together
+//! are written as an [`OutputSet`], which replaces the previous set as a whole. OBJ and PLY round-trip `f64`
 //! exactly (OBJ: Rust's shortest round-trip decimal formatting; PLY: `double` properties). STL
 //! stores `f32` by definition, so writing STL rounds coordinates to `f32`.
 
@@ -50,13 +54,15 @@ use std::sync::Once;
 use anyhow::Context as _;
 use csg::Mesh;
 
-mod atomic;
+pub mod atomic;
+pub mod bounded;
 mod dir;
 mod obj;
 mod ply;
 mod stl;
 mod vtk;
 
+pub use atomic::{OutputSet, recover as recover_output_set, write_file};
 pub use dir::mesh_files;
 
 /// A named part of a file (an OBJ object/group, or the whole file for formats without parts).
@@ -170,11 +176,7 @@ fn read_parts_inner(path: &Path) -> anyhow::Result<Vec<Part>> {
             .unwrap_or_else(|| "no extension".to_owned());
         anyhow::anyhow!("unknown mesh format ({ext}); expected .obj, .stl, .ply or .vtk")
     })?;
-    let metadata = std::fs::metadata(path)?;
-    if metadata.is_dir() {
-        anyhow::bail!("is a directory, not a mesh file");
-    }
-    let bytes = std::fs::read(path)?;
+    let bytes = bounded::read_bytes(path, bounded::MESH_MAX_BYTES)?;
     let stem = file_stem(path);
     parse_bytes(format, &bytes, &stem)
 }
@@ -229,13 +231,15 @@ pub(crate) fn finish_parts(raw: Vec<RawPart>, default_name: &str) -> anyhow::Res
             positions: part.positions,
             triangles: part.triangles,
         };
-        mesh.sanity_check().with_context(|| {
-            if named {
-                format!("part {} ('{name}')", index + 1)
-            } else {
-                "bad mesh data".to_owned()
-            }
-        })?;
+        check_coordinates(&mesh.positions)
+            .and_then(|()| mesh.sanity_check().map_err(anyhow::Error::from))
+            .with_context(|| {
+                if named {
+                    format!("part {} ('{name}')", index + 1)
+                } else {
+                    "bad mesh data".to_owned()
+                }
+            })?;
         match merged.iter_mut().find(|(n, _)| *n == name) {
             Some((_, existing)) => {
                 existing.append(&mesh);
@@ -250,6 +254,39 @@ pub(crate) fn finish_parts(raw: Vec<RawPart>, default_name: &str) -> anyhow::Res
             mesh: csg::weld::weld_exact(&mesh).compacted(),
         })
         .collect())
+}
+
+/// Largest coordinate magnitude a mesh file may hold. Anatomy in metres or millimetres is many
+/// orders of magnitude below; a value beyond it is a corrupt or mis-scaled file, and exact
+/// predicates on such values would overflow the products they form (|x|³ near `f64::MAX`).
+pub const MAX_ABS_COORDINATE: f64 = 1e12;
+
+/// Refuses non-finite coordinates and coordinates beyond ±[`MAX_ABS_COORDINATE`], naming the
+/// first vertex (0-based index in the part) that has one.
+pub(crate) fn check_coordinates(positions: &[csg::DVec3]) -> anyhow::Result<()> {
+    let bad = positions
+        .iter()
+        .position(|p| !p.to_array().iter().all(|c| c.abs() <= MAX_ABS_COORDINATE));
+    match bad {
+        None => Ok(()),
+        Some(v) => {
+            let p = positions[v];
+            if p.is_finite() {
+                anyhow::bail!(
+                    "vertex {v} (counted from 0) has coordinate ({:?}, {:?}, {:?}) beyond ±{MAX_ABS_COORDINATE:e} (a corrupt or mis-scaled file)",
+                    p.x,
+                    p.y,
+                    p.z
+                )
+            }
+            anyhow::bail!(
+                "vertex {v} (counted from 0) has a non-finite coordinate ({:?}, {:?}, {:?})",
+                p.x,
+                p.y,
+                p.z
+            )
+        }
+    }
 }
 
 thread_local! {
@@ -315,7 +352,7 @@ pub fn read_mesh_verbatim(path: &Path) -> anyhow::Result<Mesh> {
 fn read_mesh_verbatim_inner(path: &Path) -> anyhow::Result<Mesh> {
     let format = Format::from_path(path)
         .ok_or_else(|| anyhow::anyhow!("unknown mesh format; expected .obj, .stl, .ply or .vtk"))?;
-    let bytes = std::fs::read(path)?;
+    let bytes = bounded::read_bytes(path, bounded::MESH_MAX_BYTES)?;
     if bytes.is_empty() {
         anyhow::bail!("the file is empty");
     }
@@ -332,7 +369,9 @@ fn read_mesh_verbatim_inner(path: &Path) -> anyhow::Result<Mesh> {
             positions: part.positions,
             triangles: part.triangles,
         };
-        part.sanity_check().context("bad mesh data")?;
+        check_coordinates(&part.positions)
+            .and_then(|()| part.sanity_check().map_err(anyhow::Error::from))
+            .context("bad mesh data")?;
         if mesh.positions.is_empty() && mesh.triangles.is_empty() {
             mesh = part;
         } else {
@@ -377,24 +416,29 @@ pub fn models_of_parts(source: &Path, parts: &[Part]) -> Vec<Model> {
 /// Writes a triangle mesh; format by extension (`.obj`, `.stl` binary, `.ply` binary). Atomic
 /// (temporary file, then rename).
 pub fn write_mesh(path: &Path, mesh: &Mesh) -> anyhow::Result<()> {
-    write_mesh_inner(path, mesh).with_context(|| path.display().to_string())
+    mesh_writer(path, mesh)
+        .and_then(|fill| atomic::write(path, fill))
+        .with_context(|| path.display().to_string())
 }
 
-fn write_mesh_inner(path: &Path, mesh: &Mesh) -> anyhow::Result<()> {
+/// A function writing `mesh` in the format `path`'s extension names, after checking the mesh.
+fn mesh_writer<'a>(path: &Path, mesh: &'a Mesh) -> anyhow::Result<Box<MeshFill<'a>>> {
     mesh.sanity_check()
         .context("refusing to write an invalid mesh")?;
-    match Format::from_path(path) {
-        Some(Format::Obj) => atomic::write(path, |w| obj::write_mesh(w, mesh)),
+    Ok(match Format::from_path(path) {
+        Some(Format::Obj) => Box::new(|w: &mut dyn std::io::Write| obj::write_mesh(w, mesh)),
         Some(Format::Stl) => {
             let count = u32::try_from(mesh.triangles.len())
                 .map_err(|_| anyhow::anyhow!("binary STL holds at most {} triangles", u32::MAX))?;
-            atomic::write(path, |w| stl::write_binary(w, mesh, count))
+            Box::new(move |w: &mut dyn std::io::Write| stl::write_binary(w, mesh, count))
         }
-        Some(Format::Ply) => atomic::write(path, |w| ply::write_binary(w, mesh)),
+        Some(Format::Ply) => Box::new(|w: &mut dyn std::io::Write| ply::write_binary(w, mesh)),
         Some(Format::Vtk) => anyhow::bail!("writing VTK is not supported; use .obj, .stl or .ply"),
         None => anyhow::bail!("unknown mesh extension; use .obj, .stl or .ply"),
-    }
+    })
 }
+
+type MeshFill<'a> = dyn FnOnce(&mut dyn std::io::Write) -> std::io::Result<()> + 'a;
 
 /// Writes an OBJ of general polygons (`f a b c d` for quads), exact f64 round trip. Atomic.
 pub fn write_obj_polygons(
@@ -415,6 +459,27 @@ pub fn write_obj_polylines(path: &Path, polylines: &[Vec<glam::DVec3>]) -> anyho
     obj::check_polylines(polylines)
         .and_then(|()| atomic::write(path, |w| obj::write_polylines(w, polylines)))
         .with_context(|| path.display().to_string())
+}
+
+impl OutputSet {
+    /// Stages `mesh` as the file `relative` of the set, as [`write_mesh`] writes it.
+    pub fn write_mesh(&mut self, relative: &Path, mesh: &Mesh) -> anyhow::Result<()> {
+        let fill = mesh_writer(relative, mesh)
+            .with_context(|| self.final_path(relative).display().to_string())?;
+        self.write(relative, fill)
+    }
+
+    /// Stages polylines as the OBJ file `relative` of the set, as [`write_obj_polylines`] writes
+    /// them.
+    pub fn write_obj_polylines(
+        &mut self,
+        relative: &Path,
+        polylines: &[Vec<glam::DVec3>],
+    ) -> anyhow::Result<()> {
+        obj::check_polylines(polylines)
+            .with_context(|| self.final_path(relative).display().to_string())?;
+        self.write(relative, |w| obj::write_polylines(w, polylines))
+    }
 }
 
 #[cfg(test)]

@@ -7,6 +7,11 @@
 //! (polygons become fans), points and lines ignored (they bound no surface). Each OBJ object or
 //! group (`o`/`g`) is a part; tobj's placeholder name for faces before any `o`/`g` becomes "the
 //! file". Materials are not loaded.
+//!
+//! A vertex's optional fourth value `w` is a weight for rational curves and surfaces; the OBJ
+//! specification says it is not used for polygonal geometry. tobj divides `x y z` by it (and
+//! refuses `w = 0`), so `w` is removed from `v` lines before tobj sees them ([`without_vertex_w`])
+//! and the fast path skips it: `v 1 2 3 0.5` is the point (1, 2, 3).
 
 use std::io::{BufReader, Write};
 
@@ -25,6 +30,8 @@ pub(crate) fn parse(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
 }
 
 fn parse_with_tobj(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
+    let bytes = without_vertex_w(bytes);
+    let bytes = &bytes[..];
     // `LoadOptions` has more fields when tobj's optional features (`merging`, `reordering`) are
     // on, so the update is needed in such builds although it is not in ours.
     #[allow(clippy::needless_update)]
@@ -75,10 +82,46 @@ fn parse_with_tobj(bytes: &[u8]) -> anyhow::Result<Vec<RawPart>> {
         .collect()
 }
 
+/// `bytes` with the fourth value of every `v` line that has exactly four values removed (see the
+/// module doc); borrowed unchanged when no line has one. Lines with colours (`v x y z r g b`) and
+/// everything else are kept byte for byte, so tobj's errors and line numbers stay the same.
+fn without_vertex_w(bytes: &[u8]) -> std::borrow::Cow<'_, [u8]> {
+    let has_w = |line: &[u8]| {
+        let mut words = line
+            .split(|b| b.is_ascii_whitespace())
+            .filter(|w| !w.is_empty());
+        words.next() == Some(b"v".as_slice()) && words.count() == 4
+    };
+    if !bytes.split(|&b| b == b'\n').any(has_w) {
+        return std::borrow::Cow::Borrowed(bytes);
+    }
+    let mut out = Vec::with_capacity(bytes.len());
+    for (i, line) in bytes.split(|&b| b == b'\n').enumerate() {
+        if i > 0 {
+            out.push(b'\n');
+        }
+        if !has_w(line) {
+            out.extend_from_slice(line);
+            continue;
+        }
+        // Keep everything up to the end of the third value: drop the last word only.
+        let trimmed = line.trim_ascii_end();
+        let last_start = trimmed
+            .iter()
+            .rposition(|b| b.is_ascii_whitespace())
+            .map_or(0, |p| p + 1);
+        out.extend_from_slice(trimmed[..last_start].trim_ascii_end());
+        if line.ends_with(b"\r") {
+            out.push(b'\r');
+        }
+    }
+    std::borrow::Cow::Owned(out)
+}
+
 /// The fast path for plain triangle OBJ (what our writer and most mesh tools produce): ASCII text
 /// whose geometry is only `v x y z`, `f a b c` with plain (possibly negative) position indices
 /// that refer to vertices already read, and `o`/`g` names. Anything else (texture or normal
-/// references, polygons, `w` or colours, lines, points, an index that is out of range,
+/// references, polygons, colours, lines, points, an index that is out of range,
 /// malformed numbers) returns `None` and the whole file goes to tobj, which also words the
 /// errors. On the files it accepts the result equals tobj's after welding and compaction.
 ///
@@ -103,8 +146,12 @@ fn parse_plain(bytes: &[u8]) -> Option<Vec<RawPart>> {
                 for value in &mut xyz {
                     *value = words.next()?.parse().ok()?;
                 }
-                if words.next().is_some() {
-                    return None;
+                // An optional weight `w`, not used by polygons (see the module doc).
+                if let Some(w) = words.next() {
+                    w.parse::<f64>().ok()?;
+                    if words.next().is_some() {
+                        return None;
+                    }
                 }
                 positions.push(DVec3::from_array(xyz));
             }
@@ -341,7 +388,7 @@ o first\ng first\nf 1 2 3 4\no second\nf 1 2 5\n";
             b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
             b"# unused vertex and negative indices\nv 9 9 9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\ns off\nusemtl x\nv 0 0 0.5\nf 2 3 -1\n",
             b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\no a\ng a\nf 1 2 3\no b\nf 4 2 1\nf 4 3 2\no a\nf 1 3 4\n",
-            b"v 0.1 -0.0 1e-300\r\nv 1e17 3.141592653589793 0\r\nv 0 1 0\r\nf 1 2 3\r\n",
+            b"v 0.1 -0.0 1e-300\r\nv 1e11 3.141592653589793 0\r\nv 0 1 0\r\nf 1 2 3\r\n",
         ];
         for bytes in files {
             let fast = parse_plain(bytes).expect("plain file takes the fast path");
@@ -361,7 +408,7 @@ o first\ng first\nf 1 2 3 4\no second\nf 1 2 5\n";
         for bytes in [
             &b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3 4\n"[..],
             b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n",
-            b"v 0 0 0 2\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+            b"v 0 0 0 2 1 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
             b"f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n",
             b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n",
             b"v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nf 1 2 3\n",
@@ -373,6 +420,36 @@ o first\ng first\nf 1 2 3 4\no second\nf 1 2 5\n";
                 String::from_utf8_lossy(bytes)
             );
         }
+    }
+
+    #[test]
+    fn vertex_w_is_ignored_not_divided_by() {
+        let expected = [
+            DVec3::new(2.0, 4.0, 6.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ];
+        // Fast path, tobj path (a normal reference sends the file there), w = 0, CRLF.
+        for text in [
+            &b"v 2 4 6 0.5\nv 1 0 0\nv 0 1 0 1\nf 1 2 3\n"[..],
+            b"v 2 4 6 0.5\nv 1 0 0\nv 0 1 0 1\nvn 0 0 1\nf 1//1 2//1 3//1\n",
+            b"v 2 4 6 0\r\nv 1 0 0\r\nv 0 1 0\r\nvn 0 0 1\r\nf 1//1 2//1 3//1\r\n",
+        ] {
+            let parts = parse(text).unwrap();
+            let fin = crate::io::finish_parts(parts, "x").unwrap();
+            let mut got = fin[0].mesh.positions.clone();
+            got.sort_by(|a, b| a.to_array().partial_cmp(&b.to_array()).unwrap());
+            let mut want = expected.to_vec();
+            want.sort_by(|a, b| a.to_array().partial_cmp(&b.to_array()).unwrap());
+            assert_eq!(got, want, "{}", String::from_utf8_lossy(text));
+        }
+        // Colours (three extra values) are not a weight: kept for tobj, which ignores them.
+        let colour = b"v 2 4 6 1 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        assert_eq!(&without_vertex_w(colour)[..], &colour[..]);
+        assert_eq!(
+            &without_vertex_w(b"v 1 2 3 0.5\r\nf 1 2 3")[..],
+            b"v 1 2 3\r\nf 1 2 3"
+        );
     }
 
     #[test]

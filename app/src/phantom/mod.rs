@@ -202,7 +202,7 @@ pub fn write_all(out: &Path) -> anyhow::Result<()> {
         for part in &parts {
             let path = dir.join(format!("{}.ply", part.name));
             let bytes = ply::encode(&part.mesh, PLY_COMMENT);
-            ply::write_atomic(&path, &bytes)?;
+            crate::io::write_file(&path, &bytes)?;
             println!(
                 "{}: {} triangles, {} vertices, {} bytes, volume {:.0} mm3",
                 path.display(),

@@ -7,9 +7,6 @@
 //! files. The reader accepts exactly the layout the writer produces (comments aside) and checks
 //! every count against the bytes present before allocating.
 
-use std::io::Write;
-use std::path::Path;
-
 use anyhow::Context;
 use glam::DVec3;
 
@@ -46,19 +43,6 @@ pub fn encode(mesh: &Mesh, comment: &str) -> Vec<u8> {
         }
     }
     bytes
-}
-
-/// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    let tmp = path.with_extension("ply.tmp");
-    let mut file = std::fs::File::create(&tmp).with_context(|| format!("{}", tmp.display()))?;
-    file.write_all(bytes)
-        .with_context(|| format!("{}", tmp.display()))?;
-    file.sync_all()
-        .with_context(|| format!("{}", tmp.display()))?;
-    drop(file);
-    std::fs::rename(&tmp, path).with_context(|| format!("{}", path.display()))?;
-    Ok(())
 }
 
 /// Parses bytes produced by [`encode`]. Errors name the problem; the caller adds the file name.

@@ -323,3 +323,35 @@ pub fn render_with(
     }
     renderer.render(&frame)
 }
+
+/// The folder to use as `XDG_RUNTIME_DIR` when the process has none: `None` when the variable
+/// already names an absolute path of an existing folder.
+///
+/// Why: at instance creation the window-system libraries that Mesa and wgpu load (Wayland's
+/// client library among them) print `error: XDG_RUNTIME_DIR is invalid or not set in the
+/// environment.` when the variable is unset or relative, although a headless render needs no
+/// window system at all. `main` sets the variable to this private folder
+/// (`<temp>/cutaway-runtime-<uid>`, mode 0700, created if needed) before any thread starts, so a
+/// successful render prints nothing. Returns `None` too when the folder cannot be made safe (it
+/// exists but belongs to another user or is not a folder): then nothing changes.
+pub fn private_runtime_dir() -> Option<std::path::PathBuf> {
+    use std::os::unix::fs::{DirBuilderExt as _, MetadataExt as _, PermissionsExt as _};
+    let current = std::env::var_os("XDG_RUNTIME_DIR").map(std::path::PathBuf::from);
+    if current.is_some_and(|d| d.is_absolute() && d.is_dir()) {
+        return None;
+    }
+    // The owner of /proc/self is this process's effective user.
+    let uid = std::fs::metadata("/proc/self").ok()?.uid();
+    let dir = std::env::temp_dir().join(format!("cutaway-runtime-{uid}"));
+    match std::fs::DirBuilder::new().mode(0o700).create(&dir) {
+        Ok(()) => {}
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
+        Err(_) => return None,
+    }
+    let metadata = std::fs::symlink_metadata(&dir).ok()?;
+    let private = metadata.is_dir()
+        && metadata.uid() == uid
+        && metadata.permissions().mode() & 0o077 == 0
+        && dir.is_absolute();
+    private.then_some(dir)
+}
