@@ -398,3 +398,152 @@ fn cuts_every_anatomy_mesh() {
     );
     assert!(cuts > 0);
 }
+
+/// Writes `parts` into one OBJ (one file, several shells).
+fn write_joined(path: &Path, parts: &[Mesh]) {
+    let mut m = Mesh::default();
+    for p in parts {
+        m.append(p);
+    }
+    cutaway::io::write_mesh(path, &m).unwrap();
+}
+
+/// Runs `cutaway subtract TARGET CUTTER --out OUT --json` and returns its JSON.
+fn subtract_json(target: &Path, cutter: &Path, out_dir: &Path) -> serde_json::Value {
+    let out = cutaway()
+        .args(["subtract"])
+        .arg(target)
+        .arg(cutter)
+        .arg("--out")
+        .arg(out_dir)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// A cube of side 10 with a cube of side 4 inside, cut by a slab 3 thick crossing both. Both
+/// outward: two solids, each cut closed, with its own files and JSON entry. The inner one
+/// inward: one hollow solid, no per-region output.
+#[test]
+fn nested_cubes_are_cut_per_region() {
+    let dir = scratch("nested");
+    let outer = csg::testkit::cube(DVec3::ZERO, DVec3::splat(10.0));
+    let inner = csg::testkit::cube(DVec3::splat(3.0), DVec3::splat(7.0));
+    let cutter = dir.join("slab.obj");
+    write_quad_box(
+        &cutter,
+        DVec3::new(3.5, -1.0, -1.0),
+        DVec3::new(6.5, 11.0, 11.0),
+    );
+
+    let target = dir.join("nested.obj");
+    write_joined(&target, &[outer.clone(), inner.clone()]);
+    let out_dir = dir.join("out");
+    let json = subtract_json(&target, &cutter, &out_dir);
+    let (cut, materialize, total) = (
+        json["cut_ms"].as_f64().unwrap(),
+        json["materialize_ms"].as_f64().unwrap(),
+        json["boolean_ms"].as_f64().unwrap(),
+    );
+    assert!(cut >= 0.0 && materialize >= 0.0);
+    assert!((cut + materialize - total).abs() <= 1e-9 * total.max(1.0));
+    let walls = cutaway::io::read_mesh(&out_dir.join("walls.obj")).unwrap();
+    assert!((walls.area() - 232.0).abs() < 1e-9, "{}", walls.area());
+    let regions = json["regions"].as_array().expect("regions in the JSON");
+    assert_eq!(regions.len(), 2);
+    for (i, (region, (walls_area, removed_volume))) in regions
+        .iter()
+        .zip([(200.0, 300.0), (32.0, 48.0)])
+        .enumerate()
+    {
+        assert_eq!(region["index"], i);
+        assert_eq!(region["closed"], true);
+        let v = region["removed_volume"].as_f64().unwrap();
+        assert!((v - removed_volume).abs() < 1e-9, "region {i}: {v}");
+        let folder = out_dir.join("regions").join(i.to_string());
+        let read = |name: &str| cutaway::io::read_mesh(&folder.join(name)).unwrap();
+        let (kept, walls, removed) = (read("kept.obj"), read("walls.obj"), read("removed.obj"));
+        assert_eq!(region["kept_triangles"], kept.triangles.len());
+        assert_eq!(region["walls_triangles"], walls.triangles.len());
+        assert_eq!(region["removed_triangles"], removed.triangles.len());
+        assert!((walls.area() - walls_area).abs() < 1e-9, "region {i}");
+        let mut kw = kept.clone();
+        kw.append(&walls);
+        assert!(closed_oriented(&kw), "region {i}: kept + walls");
+        let mut rw = removed.clone();
+        rw.append(&walls.reversed());
+        assert!(closed_oriented(&rw), "region {i}: removed + reversed walls");
+    }
+
+    let hollow = dir.join("hollow.obj");
+    write_joined(&hollow, &[outer, inner.reversed()]);
+    let out_dir = dir.join("out-hollow");
+    let json = subtract_json(&hollow, &cutter, &out_dir);
+    assert!(json.get("regions").is_none(), "{json}");
+    assert!(!out_dir.join("regions").exists());
+    let kept = cutaway::io::read_mesh(&out_dir.join("kept.obj")).unwrap();
+    let walls = cutaway::io::read_mesh(&out_dir.join("walls.obj")).unwrap();
+    assert!((walls.area() - 168.0).abs() < 1e-9, "{}", walls.area());
+    let mut kw = kept;
+    kw.append(&walls);
+    assert!(closed_oriented(&kw));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The SPL brain atlas structures with the skin around them, as one target: nested closed
+/// surfaces (brain structures inside the skin, ventricles inside the hemispheres' space). A box
+/// through the middle of the head crosses several; every region is cut as its own solid, so
+/// each one's kept + walls and removed + reversed walls close up and its volume identity holds
+/// (`cutcheck::check_closed_cut` checks both per region).
+#[test]
+fn spl_atlas_with_skin_is_cut_closed_per_region() {
+    let Some(dir) = anatomy_dir() else {
+        eprintln!("skipped: no anatomy folder (set CUTAWAY_ANATOMY)");
+        return;
+    };
+    let folder = dir.join("head_brain_spl_atlas");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&folder)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "vtk"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 30, "{} files", files.len());
+    let mut target = Mesh::default();
+    for f in &files {
+        target.append(&cutaway::io::read_mesh(f).unwrap());
+    }
+    let index = csg::TargetIndex::build(target.clone()).unwrap();
+    assert!(index.is_closed());
+    let bbox = target.bbox();
+    let (c, s) = (bbox.center(), bbox.size());
+    // A box from the centre towards +x (the right side) and up: ventricles, nuclei, skin.
+    let cutter = csg::testkit::cube(
+        c - DVec3::new(0.05, 0.2, 0.05) * s,
+        c + DVec3::new(0.6, 0.2, 0.6) * s,
+    );
+    let options = csg::CutOptions::default().with_merge_coincident(false);
+    let result = csg::subtract_with(&index, &[&cutter], &options).unwrap();
+    csg::cutcheck::check_closed_cut(&target, &result).unwrap();
+    let parts = result.region_parts(&index);
+    let cut_regions = parts
+        .iter()
+        .filter(|p| !p.walls.is_empty() && !p.kept.is_empty())
+        .count();
+    assert!(cut_regions >= 4, "only {cut_regions} regions crossed");
+    // Nested solids: the skin's walls alone already cover the cut through the head, the
+    // structures inside add their own.
+    let skin_walls = parts.iter().map(|p| p.walls.area()).fold(0.0f64, f64::max);
+    assert!(result.walls.mesh.area() > skin_walls);
+    eprintln!(
+        "{} regions, {cut_regions} crossed, walls {} triangles",
+        index.regions.count,
+        result.walls.mesh.triangles.len()
+    );
+}

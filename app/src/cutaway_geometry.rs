@@ -303,17 +303,14 @@ pub fn cut_in_turn(
         }
         let tag = c as u32;
         let exact = match &stage.index {
-            Some(index) => csg::subtract(index, &surface).map_err(|e| e.to_string()),
+            Some(index) => csg::subtract(index, &surface)
+                .map(|result| (index.clone(), result))
+                .map_err(|e| e.to_string()),
             None => Err("no exact index".to_string()),
         };
         let (after, after_tags, removed) = match exact {
-            Ok(result) => {
-                let (kept, provenance) = result.materialize_with_provenance(&stage.mesh);
-                let mut tags: Vec<u32> =
-                    provenance.iter().map(|&f| stage.tags[f as usize]).collect();
-                let mut closed = kept;
-                closed.append(&result.walls.mesh);
-                tags.resize(closed.triangle_count(), tag);
+            Ok((index, result)) => {
+                let (closed, tags) = closed_by_region(&index, &stage.tags, &result, tag);
                 // The removed piece is built only when someone looks at this step.
                 let removed = if may_skip(c) {
                     Mesh::default()
@@ -324,8 +321,7 @@ pub fn cut_in_turn(
                             csg::Provenance::Target(f) if stage.tags[f as usize] == SURFACE)
                     })
                 };
-                // Walls share the contour's vertices bit for bit: welding closes the seam.
-                (csg::weld::weld_exact(&closed).compacted(), tags, removed)
+                (closed, tags, removed)
             }
             Err(why) => {
                 if stage.index.is_some() {
@@ -386,6 +382,65 @@ pub fn cut_in_turn(
         notes,
         approx_contours,
     }
+}
+
+/// The closed result of cutting `index`'s mesh (triangle tags `tags`) with `result`: per region
+/// solid, its kept part and its walls (tagged `wall_tag`) welded into one closed surface (walls
+/// share the contour's vertices bit for bit, so welding closes the seam), the solids one after
+/// another. Each region is welded on its own: where regions are nested their walls overlap, and
+/// welding across them would join the solids through the shared cutter vertices.
+pub fn closed_by_region(
+    index: &TargetIndex,
+    tags: &[u32],
+    result: &csg::CutResult,
+    wall_tag: u32,
+) -> (Mesh, Vec<u32>) {
+    let (kept, provenance) = result.materialize_with_provenance(index.mesh());
+    let region_closed: Vec<bool> = (0..index.regions.count as u32)
+        .map(|r| index.region_closed(r))
+        .collect();
+    // The solid of a kept face: its region when that is closed, else the open regions together
+    // (as the walls' solids are numbered).
+    let solid = |f: u32| {
+        let r = index.region_of_face(f);
+        if region_closed[r as usize] {
+            r
+        } else {
+            csg::solids::OPEN_PART
+        }
+    };
+    let mut groups: Vec<u32> = provenance
+        .iter()
+        .map(|&f| solid(f))
+        .chain(result.walls_solid.iter().copied())
+        .collect();
+    groups.sort_unstable();
+    groups.dedup();
+    if groups.len() <= 1 {
+        // One solid (the common case): no split, no extra copy of a large kept part.
+        let mut closed_tags: Vec<u32> = provenance.iter().map(|&f| tags[f as usize]).collect();
+        let mut closed = kept;
+        closed.append(&result.walls.mesh);
+        closed_tags.resize(closed.triangle_count(), wall_tag);
+        return (csg::weld::weld_exact(&closed).compacted(), closed_tags);
+    }
+    let mut closed = Mesh::default();
+    let mut closed_tags =
+        Vec::with_capacity(kept.triangle_count() + result.walls.mesh.triangle_count());
+    for group in groups {
+        let mut part = select(&kept, |t| solid(provenance[t]) == group);
+        let mut part_tags: Vec<u32> = provenance
+            .iter()
+            .filter(|&&f| solid(f) == group)
+            .map(|&f| tags[f as usize])
+            .collect();
+        let walls = select(&result.walls.mesh, |t| result.walls_solid[t] == group);
+        part.append(&walls);
+        part_tags.resize(part.triangle_count(), wall_tag);
+        closed.append(&csg::weld::weld_exact(&part).compacted());
+        closed_tags.extend(part_tags);
+    }
+    (closed, closed_tags)
 }
 
 /// The triangles `keep(t)` accepts, compacted.
@@ -1360,6 +1415,48 @@ pub(crate) mod tests {
             });
         }
         scene
+    }
+
+    /// Nested structures in one model are each cut closed, and a cavity stays a cavity: two
+    /// cutters in turn on a cube of side 10 with a cube of side 4 inside (both outward: two
+    /// solids; the inner one inward: one hollow solid).
+    #[test]
+    fn nested_shells_are_each_cut_closed_and_a_cavity_stays_hollow() {
+        let outer = cube(DVec3::ZERO, DVec3::splat(10.0));
+        let inner = cube(DVec3::splat(3.0), DVec3::splat(7.0));
+        let cutter = |planes| SceneCutter {
+            target: 0,
+            kind: crate::scene::CutKind::Straight,
+            smooth: false,
+            planes,
+            views: crate::scene::CutterViews::default(),
+        };
+        let k1 = cutter(box_cutter(3.5, 6.5, -1.0, 11.0, -1.0, 11.0));
+        let k2 = cutter(box_cutter(-1.0, 11.0, 4.5, 5.5, -1.0, 11.0));
+        let cutters: Vec<(usize, &SceneCutter)> = vec![(0, &k1), (1, &k2)];
+        // Removed: slab 1 (3 thick) and slab 2 (1 thick) overlap in a 3 × 1 bar.
+        for (inner, expected) in [
+            (inner.clone(), (1000.0 - 370.0) + (64.0 - 52.0)),
+            (inner.reversed(), (1000.0 - 64.0) - (370.0 - 52.0)),
+        ] {
+            let mut model = outer.clone();
+            model.append(&inner);
+            let sequence = cut_in_turn(
+                &mut CutCache::default(),
+                &Arc::new(model),
+                &cutters,
+                |_| true,
+                |_| {},
+            );
+            assert!(sequence.notes.is_empty(), "{:?}", sequence.notes);
+            let report = sequence.closed.report();
+            assert!(report.closed && report.manifold, "{report:?}");
+            assert!(
+                (sequence.closed.volume() - expected).abs() < 1e-9,
+                "{} vs {expected}",
+                sequence.closed.volume()
+            );
+        }
     }
 
     /// Volume of the sphere minus one box, by a single exact cut (kept + walls).

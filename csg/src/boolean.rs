@@ -25,12 +25,21 @@
 //! - Every vertex the cut did not create keeps its exact input coordinates (same bits); the new
 //!   contour vertices are rounded once from their exact lattice value. Each contour vertex has
 //!   one id, shared by kept, removed, walls and contours, so they weld bit for bit.
-//! - For a closed, edge-manifold target: kept + walls and removed + reversed walls are each
-//!   closed, edge-manifold and consistently oriented, without T-junctions; kept and removed
+//! - **Regions.** Every region of the target is cut as its own solid. A region is a connected
+//!   component together with its cavities: a closed component oriented inward (negative
+//!   volume) that lies inside another closed component is a cavity of the innermost such
+//!   component; every other component is its own region (decided exactly when the index is
+//!   built, [`crate::cavities`]). The walls of a closed region are the cutter inside that
+//!   region's solid (non-zero winding: inside its outer shell, outside its cavities), split by
+//!   that region's contour only; nested regions (a brain inside the skin, a cube inside a cube)
+//!   each get their own walls, which overlap where the solids do. [`CutResult::walls_solid`]
+//!   names each wall triangle's region and [`CutResult::region_parts`] splits a result by
+//!   region.
+//! - For a closed, edge-manifold target, per region: kept + walls and removed + reversed walls
+//!   are each closed, edge-manifold and consistently oriented, without T-junctions, and the
+//!   volumes add up to the region's up to the rounding of the new vertices; kept and removed
 //!   together are exactly the target's faces, split along the contour (so their areas add up to
-//!   the target's area, and the volumes add up to the target's up to the rounding of the new
-//!   vertices); contours are closed loops. "Inside the target" uses the even-odd rule over all
-//!   regions, so nested regions (a bone inside skin) get walls only where the parity is odd.
+//!   the target's area); contours are closed loops.
 //! - Self-intersecting targets (regions that interpenetrate, a region crossing itself): kept and
 //!   removed are exact as above. Where the contour curves of two target sheets cross inside one
 //!   cutter face, the three-plane crossing point is not constructed: that face is split by the
@@ -76,8 +85,10 @@
 //! # Stages
 //! 1. Validate and quantize the cutter ([`prepare_cutter`]). Early-out: boxes disjoint.
 //! 2. Exact intersection ([`crate::intersect`]).
-//! 3. Cutter vertex statuses: one inside test per cutter component, then crossing parity.
-//! 4. Split touched target faces and cutter faces ([`crate::split`]); statuses of the pieces.
+//! 3. Cutter vertex statuses (the set of region solids each lies in, [`crate::solids`]): one
+//!    inside test per cutter component, then crossings toggle their face's solid.
+//! 4. Split touched target faces, and touched cutter faces once per solid they meet
+//!    ([`crate::split`]); statuses of the pieces.
 //! 5. Flood fill of untouched target faces inside the cutter; untouched regions.
 //! 6. Assemble the output and the contours ([`crate::contour`]).
 
@@ -91,6 +102,7 @@ use crate::exact::{self, HPoint, LPoint};
 use crate::intersect::{self, FxMap, PointKey, PreparedCutter};
 use crate::mesh::{Mesh, MeshError};
 use crate::output::{CutOptions, CutResult, CutStats, PartBuilder, Provenance, Removed};
+use crate::solids::{SolidSets, solid_of_face};
 use crate::split::{self, FaceInput, OUT, Piece, PieceStatus, UNKNOWN, Vx};
 use crate::target::{IBox, MANY_NEIGHBORS, NO_NEIGHBOR, TargetIndex};
 
@@ -232,9 +244,19 @@ pub enum CutError {
 /// Cuts `cutter` out of the target (see the robustness contract in the module doc): exact
 /// topology for any sane target, closed and manifold kept + walls for closed targets that do not
 /// intersect themselves, degeneracies resolved by translating the cutter by δ = (ε, ε², ε³), a
-/// typed [`CutError`] for an invalid cutter, never a panic. A cutter identical to the target
-/// keeps the faces whose normal's first non-zero component is negative, with walls against them:
-/// a zero-volume double layer (module doc).
+/// typed [`CutError`] for an invalid cutter, never a panic.
+///
+/// Each region of the target is cut as its own solid (non-zero winding). A region is a
+/// connected component together with its cavities: a closed component oriented inward
+/// (negative volume) that lies inside another closed component (decided exactly) is a cavity of
+/// the innermost such one; every other component is its own region. So a cube of side 10 with
+/// an inward cube of side 4 inside is one hollow solid (walls skip the cavity), while the same
+/// inner cube oriented outward is a second solid, with walls of its own inside the first's. For
+/// every closed region, kept + walls and removed + reversed walls are closed and the volume
+/// identity holds; [`CutResult::region_parts`] gives each region's kept, walls and removed.
+///
+/// A cutter identical to the target keeps the faces whose normal's first non-zero component is
+/// negative, with walls against them: a zero-volume double layer (module doc).
 pub fn subtract(target: &TargetIndex, cutter: &Mesh) -> Result<CutResult, CutError> {
     subtract_many(target, &[cutter])
 }
@@ -462,33 +484,35 @@ pub(crate) fn run(
         }
     };
 
-    // Stage 3: cutter vertex statuses (true = inside the target).
+    // Stage 3: cutter vertex statuses: the set of region solids each lies in (see
+    // `crate::solids`); crossing a target face toggles that face's solid.
     let nv = cutter.positions.len();
     let mut vertex_edges: Vec<Vec<u32>> = vec![Vec::new(); nv];
     for (g, e) in cutter.edges.iter().enumerate() {
         vertex_edges[e[0] as usize].push(g as u32);
         vertex_edges[e[1] as usize].push(g as u32);
     }
-    let mut cutter_in: Vec<Option<bool>> = vec![None; nv];
+    let solid_of_point = |p: u32| solid_of_face(target, face_of_point(p));
+    let mut sets = SolidSets::new();
+    let mut cutter_in: Vec<Option<u32>> = vec![None; nv];
     let closed = target.is_closed();
     for seed in 0..nv {
         if cutter_in[seed].is_some() {
             continue;
         }
         stats.inside_tests += 1;
-        let s = classify::cutter_point_inside_target(
-            target,
-            &cutter.lpoints[seed],
-            cutter.positions[seed],
-        );
-        cutter_in[seed] = Some(s);
+        let s =
+            classify::cutter_point_solids(target, &cutter.lpoints[seed], cutter.positions[seed]);
+        cutter_in[seed] = Some(sets.intern(s));
         let mut stack = vec![seed];
         while let Some(v) = stack.pop() {
-            let sv = cutter_in[v].unwrap_or(false);
+            let sv = cutter_in[v].unwrap_or(0);
             for &g in &vertex_edges[v] {
                 let [a, b] = cutter.edges[g as usize];
                 let other = if a as usize == v { b } else { a } as usize;
-                let so = sv ^ (isect.cutter_edges[g as usize].len() % 2 == 1);
+                let so = isect.cutter_edges[g as usize]
+                    .iter()
+                    .fold(sv, |set, x| sets.toggle(set, solid_of_point(x.point)));
                 match cutter_in[other] {
                     None => {
                         cutter_in[other] = Some(so);
@@ -504,7 +528,8 @@ pub(crate) fn run(
             }
         }
     }
-    let cutter_in: Vec<bool> = cutter_in.into_iter().map(|s| s.unwrap_or(false)).collect();
+    let cutter_in: Vec<u32> = cutter_in.into_iter().map(|s| s.unwrap_or(0)).collect();
+    let sets = &sets;
     phases.mark("cutter status");
 
     // Stage 4a: split the touched target faces.
@@ -625,75 +650,95 @@ pub(crate) fn run(
             }
         }
     }
-    // Stage 4c (beside 4a): split the touched cutter faces.
-    // Per cutter face: its wall triangles, whether the contour splits it, and the fallbacks of
-    // the triangulation and of the statuses.
-    type CutterFaceWalls = (Vec<([Vx; 3], u32)>, bool, usize, usize);
+    // Stage 4c (beside 4a): split the touched cutter faces, once per solid that the face meets
+    // (its corners lie in, or its contour belongs to): each solid's walls are split by that
+    // solid's contour only, so every region's kept + walls closes on its own.
+    // Per cutter face: its wall triangles with their solid, whether the contour splits it, and
+    // the fallbacks of the triangulation and of the statuses.
+    type CutterFaceWalls = (Vec<([Vx; 3], u32, u32)>, bool, usize, usize);
     let split_cutter_face = |f: u32| -> Result<CutterFaceWalls, CutError> {
         let tri = cutter.triangles[f as usize];
         let seg_ids = &isect.cutter_faces[f as usize];
         let mut wall_tris = Vec::new();
-        if seg_ids.is_empty() {
-            if cutter_in[tri[0] as usize] {
-                wall_tris.push(([Vx::C(tri[0]), Vx::C(tri[1]), Vx::C(tri[2])], f));
-            }
-            return Ok((wall_tris, false, 0, 0));
+        let mut solids: Vec<u32> = Vec::new();
+        for &v in &tri {
+            solids.extend_from_slice(sets.solids(cutter_in[v as usize]));
         }
-        let mut boundary = Vec::with_capacity(16);
-        let mut arc_status = Vec::with_capacity(16);
-        let mut on_boundary: FxMap<u32, ()> = Default::default();
-        for k in 0..3 {
-            boundary.push(Vx::C(tri[k]));
-            arc_status.push(UNKNOWN);
-            let g = cutter.tri_edges[f as usize][k];
-            let list = &isect.cutter_edges[g as usize];
-            let forward = cutter.edges[g as usize][0] == tri[k];
-            let start_in = cutter_in[tri[k] as usize];
-            let n = list.len();
-            for i in 0..n {
-                let x = if forward { list[i] } else { list[n - 1 - i] };
-                boundary.push(Vx::X(x.point));
-                on_boundary.insert(x.point, ());
-                // The arc before the i-th crossing has the start's status flipped i times.
-                arc_status.push(u32::from(start_in ^ (i % 2 == 1)));
-            }
+        for &sg in seg_ids {
+            solids.push(solid_of_face(target, isect.segments[sg as usize].t));
         }
-        let mut segments: Vec<(u32, u32, u32)> = seg_ids
-            .iter()
-            .map(|&s| {
-                let seg = &isect.segments[s as usize];
-                (seg.a, seg.b, 1)
-            })
-            .collect();
-        prune_segments(&mut segments, &on_boundary);
-        let [a, b, c] = cutter.face_points(f);
-        let input = FaceInput {
-            boundary: &boundary,
-            arc_status: &arc_status,
-            segments: &segments,
-            points: &isect.points,
-            corner_point: &target_corner,
-            projection: exact::projection(&exact::normal(a, b, c)),
-        };
-        let split = split::split_face(&input)
-            .map_err(|e| CutError::Internal(format!("cutter face {f}: {e}")))?;
-        let mut st = vec![UNKNOWN; split.pieces.len()];
-        for (i, p) in split.pieces.iter().enumerate() {
-            match p.status {
-                PieceStatus::Known(s) => st[i] = s,
-                PieceStatus::Default => st[i] = u32::from(cutter_in[tri[0] as usize]),
-                PieceStatus::LoopOf { .. } => {}
+        solids.sort_unstable();
+        solids.dedup();
+        let (mut fallbacks, mut status_fallbacks) = (0, 0);
+        for solid in solids {
+            let inside = |v: u32| sets.contains(cutter_in[v as usize], solid);
+            let mut segments: Vec<(u32, u32, u32)> = seg_ids
+                .iter()
+                .map(|&sg| &isect.segments[sg as usize])
+                .filter(|seg| solid_of_face(target, seg.t) == solid)
+                .map(|seg| (seg.a, seg.b, 1))
+                .collect();
+            if segments.is_empty() {
+                if inside(tri[0]) {
+                    wall_tris.push(([Vx::C(tri[0]), Vx::C(tri[1]), Vx::C(tri[2])], f, solid));
+                }
+                continue;
             }
-        }
-        let status_fallbacks = resolve_loops(&split.pieces, &mut st, 1)?;
-        for (p, &s) in split.pieces.iter().zip(&st) {
-            if s != OUT {
-                for t in &p.triangles {
-                    wall_tris.push((*t, f));
+            let mut boundary = Vec::with_capacity(16);
+            let mut arc_status = Vec::with_capacity(16);
+            let mut on_boundary: FxMap<u32, ()> = Default::default();
+            for k in 0..3 {
+                boundary.push(Vx::C(tri[k]));
+                arc_status.push(UNKNOWN);
+                let g = cutter.tri_edges[f as usize][k];
+                let list = &isect.cutter_edges[g as usize];
+                let forward = cutter.edges[g as usize][0] == tri[k];
+                let start_in = inside(tri[k]);
+                let mut i = 0;
+                let n = list.len();
+                for j in 0..n {
+                    let x = if forward { list[j] } else { list[n - 1 - j] };
+                    if solid_of_point(x.point) != solid {
+                        continue;
+                    }
+                    boundary.push(Vx::X(x.point));
+                    on_boundary.insert(x.point, ());
+                    // The arc before the i-th crossing has the start's status flipped i times.
+                    arc_status.push(u32::from(start_in ^ (i % 2 == 1)));
+                    i += 1;
+                }
+            }
+            prune_segments(&mut segments, &on_boundary);
+            let [a, b, c] = cutter.face_points(f);
+            let input = FaceInput {
+                boundary: &boundary,
+                arc_status: &arc_status,
+                segments: &segments,
+                points: &isect.points,
+                corner_point: &target_corner,
+                projection: exact::projection(&exact::normal(a, b, c)),
+            };
+            let split = split::split_face(&input)
+                .map_err(|e| CutError::Internal(format!("cutter face {f}: {e}")))?;
+            let mut st = vec![UNKNOWN; split.pieces.len()];
+            for (i, p) in split.pieces.iter().enumerate() {
+                match p.status {
+                    PieceStatus::Known(s) => st[i] = s,
+                    PieceStatus::Default => st[i] = u32::from(inside(tri[0])),
+                    PieceStatus::LoopOf { .. } => {}
+                }
+            }
+            status_fallbacks += resolve_loops(&split.pieces, &mut st, 1)?;
+            fallbacks += split.fallbacks;
+            for (p, &s) in split.pieces.iter().zip(&st) {
+                if s != OUT {
+                    for t in &p.triangles {
+                        wall_tris.push((*t, f, solid));
+                    }
                 }
             }
         }
-        Ok((wall_tris, true, split.fallbacks, status_fallbacks))
+        Ok((wall_tris, !seg_ids.is_empty(), fallbacks, status_fallbacks))
     };
     let split_walls = || -> Result<Vec<CutterFaceWalls>, CutError> {
         let cutter_faces = 0..cutter.triangles.len() as u32;
@@ -850,15 +895,15 @@ pub(crate) fn run(
         // Untouched regions whose box overlaps the cutter: one inside test each.
         let mut touched_regions: FxMap<u32, ()> = Default::default();
         for &t in &isect.target_order {
-            touched_regions.insert(target.regions.region_of_triangle[t as usize], ());
+            touched_regions.insert(target.components.region_of_triangle[t as usize], ());
         }
-        for r in 0..target.regions.count {
+        for r in 0..target.components.count {
             if touched_regions.contains_key(&(r as u32))
-                || !target.region_boxes[r].overlaps(&cutter.bounds)
+                || !target.component_boxes[r].overlaps(&cutter.bounds)
             {
                 continue;
             }
-            let t0 = target.region_first_face[r];
+            let t0 = target.component_first_face[r];
             if t0 == u32::MAX || scratch.is_marked(t0) {
                 continue;
             }
@@ -1073,7 +1118,7 @@ pub(crate) fn run(
             }
         }
         sub.mark("kept+pieces");
-        let mut wall_tris: Vec<([Vx; 3], u32)> = Vec::new();
+        let mut wall_tris: Vec<([Vx; 3], u32, u32)> = Vec::new();
         for (tris, touched, fallbacks, status_fallbacks) in split_cutter {
             wall_tris.extend(tris);
             stats.touched_cutter_faces += usize::from(touched);
@@ -1081,15 +1126,18 @@ pub(crate) fn run(
             stats.status_fallbacks += status_fallbacks;
         }
         let mut walls = PartBuilder::new(merge);
-        for (tri, f) in &wall_tris {
+        let mut walls_solid = Vec::with_capacity(wall_tris.len());
+        for (tri, f, solid) in &wall_tris {
             // Reversed: walls face out of kept (into the cutter).
             let ids = [tri[0], tri[2], tri[1]]
                 .map(|v| walls.vertex(v, &mesh.positions, &cutter.positions, new_pos));
-            walls.push(
+            if walls.push(
                 ids,
                 Provenance::Cutter(*f),
                 cutter.face_component[*f as usize],
-            );
+            ) {
+                walls_solid.push(*solid);
+            }
         }
         let contours = contour::chain(&isect.segments, new_pos, |s| {
             cutter.face_component[isect.segments[s].f as usize]
@@ -1101,6 +1149,7 @@ pub(crate) fn run(
             kept_new_provenance,
             removed,
             walls: walls.finish(),
+            walls_solid,
             contours,
             stats,
             phases: sub,
@@ -1143,6 +1192,7 @@ pub(crate) fn run(
     result.kept_new_faces = output.kept_new_faces;
     result.kept_new_provenance = output.kept_new_provenance;
     result.walls = output.walls;
+    result.walls_solid = output.walls_solid;
     result.contours = output.contours;
     result.stats = stats;
     Ok(result)
@@ -1184,6 +1234,7 @@ struct Output {
     /// The removed pieces of split faces (the whole faces come from the flood fill).
     removed: Removed,
     walls: crate::output::Part,
+    walls_solid: Vec<u32>,
     contours: Vec<crate::output::Contour>,
     /// The cutter-face counters.
     stats: CutStats,

@@ -13,9 +13,11 @@ use std::collections::HashMap;
 
 use glam::{DQuat, DVec3};
 
+use crate::adjacency::EdgeAdjacency;
 use crate::boolean::{CutError, subtract_with};
 use crate::mesh::Mesh;
-use crate::output::{CutOptions, CutResult, Part, VertexSource};
+use crate::output::{CutOptions, CutResult, Part, Provenance, VertexSource};
+use crate::regions::Regions;
 use crate::target::TargetIndex;
 use crate::testkit;
 
@@ -110,27 +112,14 @@ where
 }
 
 /// Checks a cut of a closed, edge-manifold `target` computed with `merge_coincident = false`:
-/// area partition, volume identity, untouched vertices bit for bit, kept + walls and removed +
-/// reversed walls closed and oriented by vertex identity, closed contours, no fallback used.
+/// area partition, volume identity, untouched vertices bit for bit, per region (see
+/// [`crate::regions::Regions::build`]) kept + walls and removed + reversed walls closed and
+/// oriented by vertex identity and the region's volume identity, closed contours, no fallback
+/// used.
 pub fn check_closed_cut(target: &Mesh, result: &CutResult) -> Result<(), String> {
-    let (kept, _) = result.materialize_with_provenance(target);
-    let walls = &result.walls;
-    let removed = result.removed.part();
+    let (kept, kept_faces) = result.materialize_with_provenance(target);
     measures(target, &kept, result)?;
-    let n = target.positions.len() as u32;
-    let src = |i: u32| {
-        if i < n {
-            VertexSource::Target(i)
-        } else {
-            VertexSource::New(i - n)
-        }
-    };
-    let mut kwf: Vec<[VertexSource; 3]> = kept.triangles.iter().map(|t| t.map(src)).collect();
-    kwf.extend(part_faces(walls, false));
-    closed_by_identity(&kwf).map_err(|e| format!("kept + walls: {e}"))?;
-    let mut rwf = part_faces(removed, false);
-    rwf.extend(part_faces(walls, true));
-    closed_by_identity(&rwf).map_err(|e| format!("removed + reversed walls: {e}"))?;
+    regions_closed(target, &kept, &kept_faces, result)?;
     if let Some(c) = result.contours.iter().find(|c| !c.closed) {
         return Err(format!(
             "open contour of {} points on a closed target",
@@ -142,6 +131,87 @@ pub fn check_closed_cut(target: &Mesh, result: &CutResult) -> Result<(), String>
             "fallbacks used: {} triangulation, {} status",
             result.stats.triangulation_fallbacks, result.stats.status_fallbacks
         ));
+    }
+    Ok(())
+}
+
+/// Per region of `target`: its kept faces (`kept`, whose triangles come from target faces
+/// `kept_faces`) and its walls close up by vertex identity, as do its removed faces and its
+/// reversed walls, and vol(kept + walls) + vol(removed + reversed walls) = vol(region).
+fn regions_closed(
+    target: &Mesh,
+    kept: &Mesh,
+    kept_faces: &[u32],
+    result: &CutResult,
+) -> Result<(), String> {
+    let regions = Regions::build(target, &EdgeAdjacency::build(target));
+    let region = |t: u32| regions.region_of_triangle[t as usize];
+    let n = target.positions.len() as u32;
+    let src = |i: u32| {
+        if i < n {
+            VertexSource::Target(i)
+        } else {
+            VertexSource::New(i - n)
+        }
+    };
+    let walls = &result.walls;
+    if result.walls_solid.len() != walls.mesh.triangles.len() {
+        return Err(format!(
+            "{} wall solids for {} wall triangles",
+            result.walls_solid.len(),
+            walls.mesh.triangles.len()
+        ));
+    }
+    let removed = result.removed.part();
+    let wall_faces = part_faces(walls, false);
+    let removed_faces = part_faces(removed, false);
+    let position = |v: VertexSource| match v {
+        VertexSource::Target(i) => target.positions[i as usize],
+        VertexSource::New(k) => result.new_positions[k as usize],
+        VertexSource::Cutter(_) => DVec3::NAN,
+    };
+    let wall_position =
+        |t: usize, k: usize| walls.mesh.positions[walls.mesh.triangles[t][k] as usize];
+    let signed = |p: [DVec3; 3]| p[0].dot(p[1].cross(p[2])) / 6.0;
+    for r in 0..regions.count as u32 {
+        let mut kw: Vec<[VertexSource; 3]> = Vec::new();
+        let mut rw: Vec<[VertexSource; 3]> = Vec::new();
+        let (mut vk, mut vr, mut vt) = (0.0, 0.0, 0.0);
+        for (t, tri) in target.triangles.iter().enumerate() {
+            if region(t as u32) == r {
+                vt += signed(tri.map(|i| target.positions[i as usize]));
+            }
+        }
+        for (tri, &t) in kept.triangles.iter().zip(kept_faces) {
+            if region(t) == r {
+                kw.push(tri.map(src));
+                vk += signed(tri.map(|i| kept.positions[i as usize]));
+            }
+        }
+        for (f, prov) in removed_faces.iter().zip(&removed.provenance) {
+            if matches!(prov, Provenance::Target(t) if region(*t) == r) {
+                rw.push(*f);
+                vr += signed(f.map(position));
+            }
+        }
+        for (t, f) in wall_faces.iter().enumerate() {
+            if result.walls_solid[t] == r {
+                kw.push(*f);
+                rw.push([f[0], f[2], f[1]]);
+                let w = signed(std::array::from_fn(|k| wall_position(t, k)));
+                vk += w;
+                vr -= w;
+            }
+        }
+        closed_by_identity(&kw).map_err(|e| format!("region {r}: kept + walls: {e}"))?;
+        closed_by_identity(&rw)
+            .map_err(|e| format!("region {r}: removed + reversed walls: {e}"))?;
+        let scale = vt.abs().max(target.area().powf(1.5)).max(f64::MIN_POSITIVE);
+        if (vk + vr - vt).abs() / scale > MEASURE_TOLERANCE {
+            return Err(format!(
+                "region {r}: volume: kept+walls {vk} + removed+walls {vr} != region {vt}"
+            ));
+        }
     }
     Ok(())
 }

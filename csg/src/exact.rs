@@ -239,6 +239,26 @@ pub fn segment_crosses_cutter_face(
     target_edge_crosses_cutter_face(p, q, a, b, c).is_some()
 }
 
+/// Does point `p` lie on the closed triangle `abc` (exact, unperturbed)? A zero-area triangle
+/// holds no point here (its points lie on the neighbouring faces of a closed surface).
+pub fn point_on_triangle(p: &LPoint, a: &LPoint, b: &LPoint, c: &LPoint) -> bool {
+    if orient3d(a, b, c, p) != 0 {
+        return false;
+    }
+    let Some((axis, _)) = projection(&normal(a, b, c)) else {
+        return false;
+    };
+    let (i, j) = plane_axes(axis);
+    let pr = |q: &LPoint| [q[i] as i128, q[j] as i128];
+    let (pp, pa, pb, pc) = (pr(p), pr(a), pr(b), pr(c));
+    let s = [
+        orient2d_int(pa, pb, pp).signum(),
+        orient2d_int(pb, pc, pp).signum(),
+        orient2d_int(pc, pa, pp).signum(),
+    ];
+    !(s.contains(&1) && s.contains(&-1))
+}
+
 /// 2-D orientation of integer points (exact).
 #[inline]
 fn orient2d_int(a: [i128; 2], b: [i128; 2], c: [i128; 2]) -> i128 {

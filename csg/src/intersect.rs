@@ -105,6 +105,7 @@ pub(crate) struct Crossing {
 /// One piece of contour: `t ∩ f` from point `a` to point `b` (unordered).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Segment {
+    pub t: u32,
     pub f: u32,
     pub a: u32,
     pub b: u32,
@@ -297,7 +298,7 @@ pub(crate) fn intersect_timed(
                 }
             });
             let id = out.segments.len() as u32;
-            out.segments.push(Segment { f, a, b });
+            out.segments.push(Segment { t, f, a, b });
             let slot = *face_slot.entry(t).or_insert_with(|| {
                 out.target_order.push(t);
                 out.target_order.len() as u32 - 1

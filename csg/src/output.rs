@@ -331,13 +331,15 @@ impl PartBuilder {
         id
     }
 
-    pub fn push(&mut self, tri: [u32; 3], provenance: Provenance, sub_cutter: u32) {
+    /// Adds a triangle unless it has collapsed (a repeated vertex id); true when added.
+    pub fn push(&mut self, tri: [u32; 3], provenance: Provenance, sub_cutter: u32) -> bool {
         if tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0] {
-            return;
+            return false;
         }
         self.triangles.push(tri);
         self.provenance.push(provenance);
         self.sub_cutter.push(sub_cutter);
+        true
     }
 
     pub fn finish(self) -> Part {
@@ -387,8 +389,13 @@ pub struct CutResult {
     pub kept_new_faces: Vec<[u32; 3]>,
     /// Target face each of `kept_new_faces` comes from. Same length.
     pub kept_new_provenance: Vec<u32>,
-    /// The cutter surface inside the target, oriented to face out of kept.
+    /// The cutter surface inside the target, oriented to face out of kept: for every region
+    /// solid, the cutter inside it (so where closed regions are nested, their walls overlap).
     pub walls: Part,
+    /// The solid each wall triangle bounds: its region ([`crate::TargetIndex::regions`]), or
+    /// [`crate::solids::OPEN_PART`] for the open regions together. Same length as
+    /// `walls.mesh.triangles`.
+    pub walls_solid: Vec<u32>,
     /// The target surface inside the cutter, with the target's orientation: a delta against the
     /// target, built into a [`Part`] on first read (see [`Removed`]).
     pub removed: Removed,

@@ -1,19 +1,29 @@
-//! Regions: connected components of a mesh (faces joined through shared edges).
+//! Regions of a mesh: its connected components, with each cavity joined to the component
+//! around it.
 //!
-//! A segmentation file often stores several structures in one mesh (two vertebrae, a bone and its
-//! marrow cavity); the thesis's Models list shows each as its own model, and the boolean classifies
-//! each untouched closed region with one inside test. Regions are joined through edges only:
-//! surfaces that merely touch at a vertex stay separate, which matches how segmentations are
-//! built (marching cubes joins voxels through faces). Non-manifold edges join all their faces.
+//! A segmentation file often stores several structures in one mesh (two vertebrae, a bone with
+//! its marrow cavity, a brain inside the skin); the Models list shows each region as its own
+//! model and the boolean cuts each region as its own solid. Components are joined through edges
+//! only: surfaces that merely touch at a vertex stay separate, which matches how segmentations
+//! are built (marching cubes joins voxels through faces). Non-manifold edges join all their
+//! faces. A region is a component together with its cavities: closed inward components inside
+//! it ([`crate::cavities`] states the rule and how it is decided exactly). So
+//! [`Regions::components`] labels components and [`Regions::build`] regions; both have the same
+//! type and numbering (in order of the first triangle).
 //!
 //! Labelling is a union-find over triangles in which the smaller triangle index always becomes the
 //! root, so every root is the first triangle of its region and numbering "in order of the first
 //! triangle" falls out of one forward pass.
 
+use crate::aabb::Aabb;
 use crate::adjacency::EdgeAdjacency;
+use crate::cavities;
+use crate::exact::LPoint;
+use crate::lattice::Lattice;
 use crate::mesh::Mesh;
+use crate::target::{Bvh, IBox};
 
-/// The region of every triangle.
+/// The region (or component) of every triangle.
 #[derive(Clone, Debug, Default)]
 pub struct Regions {
     /// Region id of each triangle, in `0..count`. Regions are numbered in order of their first
@@ -24,10 +34,56 @@ pub struct Regions {
 }
 
 impl Regions {
-    /// Labels edge-connected components of `mesh` (non-manifold edges connect all their faces).
+    /// Labels the regions of `mesh`: its edge-connected components, each cavity (a closed inward
+    /// component inside another closed component) joined to the innermost component around it
+    /// (see [`crate::cavities`]).
     ///
     /// `adjacency` must be [`EdgeAdjacency::build`] of `mesh`.
     pub fn build(mesh: &Mesh, adjacency: &EdgeAdjacency) -> Regions {
+        Self::of_components(mesh, adjacency, Self::components(mesh, adjacency))
+    }
+
+    /// [`Regions::build`] from the components ([`Regions::components`]) already labelled.
+    pub fn of_components(mesh: &Mesh, adjacency: &EdgeAdjacency, components: Regions) -> Regions {
+        if components.count <= 1 {
+            return components;
+        }
+        let mut closed = vec![true; components.count];
+        for e in 0..adjacency.edge_count() as u32 {
+            let faces = adjacency.faces_of_edge(e);
+            if faces.len() != 2 {
+                for &f in faces {
+                    closed[components.region_of_triangle[f as usize] as usize] = false;
+                }
+            }
+        }
+        if closed.iter().all(|&c| !c) {
+            return components;
+        }
+        let lattice = Lattice::for_box(&Aabb::from_points(&mesh.positions));
+        let lpoints: Vec<LPoint> = mesh
+            .positions
+            .iter()
+            .map(|&p| lattice.quantize(p).unwrap_or([0, 0, 0]))
+            .collect();
+        let boxes: Vec<IBox> = mesh
+            .triangles
+            .iter()
+            .map(|t| IBox::of_triangle(t.map(|v| &lpoints[v as usize])))
+            .collect();
+        let bounds = boxes.iter().fold(IBox::EMPTY, |acc, b| acc.union(b));
+        let bvh = Bvh::build(&boxes);
+        let faces_in_box =
+            |query: &IBox, visit: &mut dyn FnMut(u32)| bvh.query(query, &boxes, visit);
+        let solids =
+            cavities::solid_regions(mesh, &lpoints, &bounds, &components, &closed, &faces_in_box);
+        solids.label(&components)
+    }
+
+    /// Labels edge-connected components of `mesh` (non-manifold edges connect all their faces).
+    ///
+    /// `adjacency` must be [`EdgeAdjacency::build`] of `mesh`.
+    pub fn components(mesh: &Mesh, adjacency: &EdgeAdjacency) -> Regions {
         let n = mesh.triangles.len();
         debug_assert_eq!(
             adjacency.triangle_edges.len(),
@@ -130,7 +186,8 @@ pub(crate) fn union(parent: &mut [u32], a: u32, b: u32) {
     }
 }
 
-/// Splits `mesh` into one compacted mesh per region, in region order. Vertex coordinates are kept bit-exact.
+/// Splits `mesh` into one compacted mesh per region ([`Regions::build`]: a cavity stays with the
+/// component around it), in region order. Vertex coordinates are kept bit-exact.
 ///
 /// Inside each piece, triangles keep their relative order and vertices are numbered in order of
 /// first use (as [`Mesh::compacted`] does). A vertex shared by two regions (surfaces touching at a

@@ -22,6 +22,7 @@ use glam::DVec3;
 
 use crate::aabb::Aabb;
 use crate::adjacency::EdgeAdjacency;
+use crate::cavities::{self, SolidRegions};
 use crate::exact::LPoint;
 use crate::lattice::Lattice;
 use crate::mesh::{Mesh, MeshError};
@@ -373,14 +374,17 @@ pub struct TargetIndex {
     pub mesh: Arc<Mesh>,
     /// Edge → faces adjacency of `mesh`.
     pub adjacency: EdgeAdjacency,
-    /// Connected regions of `mesh`.
-    pub regions: Regions,
-    /// Per region: every edge of the region has exactly two faces. Indexed by region id.
-    pub region_closed: Vec<bool>,
-    /// Per region: lattice bounding box. Indexed by region id.
-    pub region_boxes: Vec<IBox>,
-    /// Per region: one of its triangles (the first). Indexed by region id.
-    pub region_first_face: Vec<u32>,
+    /// Edge-connected components of `mesh` (what the flood fill of a cut spreads over).
+    pub components: Regions,
+    /// Per component: every edge of the component has exactly two faces.
+    pub component_closed: Vec<bool>,
+    /// Per component: lattice bounding box.
+    pub component_boxes: Vec<IBox>,
+    /// Per component: one of its triangles (the first).
+    pub component_first_face: Vec<u32>,
+    /// The regions (components with their cavities, [`crate::cavities`]): each is cut as its
+    /// own solid.
+    pub regions: SolidRegions,
     /// The lattice every predicate of a cut on this target uses.
     pub lattice: Lattice,
     /// Lattice coordinates of every vertex; same length as `mesh.positions`.
@@ -406,10 +410,10 @@ pub struct TargetIndex {
 struct Topology {
     lpoints: Vec<LPoint>,
     adjacency: EdgeAdjacency,
-    regions: Regions,
-    region_closed: Vec<bool>,
-    region_boxes: Vec<IBox>,
-    region_first_face: Vec<u32>,
+    components: Regions,
+    component_closed: Vec<bool>,
+    component_boxes: Vec<IBox>,
+    component_first_face: Vec<u32>,
     face_neighbors: Vec<[u32; 3]>,
     times: Vec<(&'static str, f64)>,
 }
@@ -455,9 +459,9 @@ fn build_topology(mesh: &Mesh, lattice: &Lattice) -> Topology {
     ));
     lap = t;
     let regions = Regions::from_parents(parent);
-    let mut region_closed = vec![true; regions.count];
+    let mut component_closed = vec![true; regions.count];
     for &f in &open_faces {
-        region_closed[regions.region_of_triangle[f as usize] as usize] = false;
+        component_closed[regions.region_of_triangle[f as usize] as usize] = false;
     }
     t = Instant::now();
     times.push(("  regions (task)", (t - lap).as_secs_f64() * 1e3));
@@ -477,10 +481,10 @@ fn build_topology(mesh: &Mesh, lattice: &Lattice) -> Topology {
     t = Instant::now();
     times.push(("  quantize (task)", (t - lap).as_secs_f64() * 1e3));
     lap = t;
-    let mut region_first_face = Vec::with_capacity(regions.count);
+    let mut component_first_face = Vec::with_capacity(regions.count);
     for (t, &r) in regions.region_of_triangle.iter().enumerate() {
-        if r as usize == region_first_face.len() {
-            region_first_face.push(t as u32);
+        if r as usize == component_first_face.len() {
+            component_first_face.push(t as u32);
         }
     }
     let grow = |mut boxes: Vec<IBox>, t: usize| {
@@ -491,7 +495,7 @@ fn build_topology(mesh: &Mesh, lattice: &Lattice) -> Topology {
         boxes
     };
     // Per-worker box lists are merged at the end: worth it for a few regions only.
-    let region_boxes = if regions.count == 1 {
+    let component_boxes = if regions.count == 1 {
         // One region: the box of the vertices some face uses. Marking them in a bitmap (in
         // cache) and then scanning `lpoints` in order is much cheaper than gathering three
         // points per face.
@@ -531,10 +535,10 @@ fn build_topology(mesh: &Mesh, lattice: &Lattice) -> Topology {
     Topology {
         lpoints: lpoint_vec,
         adjacency,
-        regions,
-        region_closed,
-        region_boxes,
-        region_first_face,
+        components: regions,
+        component_closed,
+        component_boxes,
+        component_first_face,
         face_neighbors,
         times,
     }
@@ -576,10 +580,10 @@ impl TargetIndex {
         let Topology {
             lpoints,
             adjacency,
-            regions,
-            region_closed,
-            region_boxes,
-            region_first_face,
+            components,
+            component_closed,
+            component_boxes,
+            component_first_face,
             face_neighbors,
             times: topology_times,
         } = topology;
@@ -588,18 +592,19 @@ impl TargetIndex {
         times.push("  scratch (task)", t_scratch);
         times.lap("join (topology | bvh | scratch)", &mut lap);
         // Only open targets need the winding-number tree (walls of closed ones use ray parity).
-        let open = region_closed.iter().any(|&closed| !closed);
+        let open = component_closed.iter().any(|&closed| !closed);
         let winding = open.then(|| WindingTree::build(&mesh));
         times.lap("winding (open targets only)", &mut lap);
-        let bounds = region_boxes.iter().fold(IBox::EMPTY, |acc, b| acc.union(b));
-        times.total_ms = clock.elapsed().as_secs_f64() * 1e3;
-        let index = TargetIndex {
+        let bounds = component_boxes
+            .iter()
+            .fold(IBox::EMPTY, |acc, b| acc.union(b));
+        let mut index = TargetIndex {
             mesh,
             adjacency,
-            regions,
-            region_closed,
-            region_boxes,
-            region_first_face,
+            components,
+            component_closed,
+            component_boxes,
+            component_first_face,
             lattice,
             lpoints,
             bounds,
@@ -607,7 +612,18 @@ impl TargetIndex {
             face_neighbors,
             winding,
             scratch: ScratchCell(std::sync::Mutex::new(scratch)),
+            regions: SolidRegions::default(),
         };
+        index.regions = cavities::solid_regions(
+            &index.mesh,
+            &index.lpoints,
+            &index.bounds,
+            &index.components,
+            &index.component_closed,
+            &|query, visit| index.faces_in_box(query, visit),
+        );
+        times.lap("regions (cavities)", &mut lap);
+        times.total_ms = clock.elapsed().as_secs_f64() * 1e3;
         Ok((index, times))
     }
 
@@ -714,9 +730,28 @@ impl TargetIndex {
         }
     }
 
+    /// Region of face `t` (see [`TargetIndex::regions`]).
+    #[inline]
+    pub fn region_of_face(&self, t: u32) -> u32 {
+        let c = self.components.region_of_triangle[t as usize];
+        self.regions.region_of_component[c as usize]
+    }
+
+    /// True when region `r` is closed (every component of it is).
+    pub fn region_closed(&self, r: u32) -> bool {
+        (0..self.components.count)
+            .filter(|&c| self.regions.region_of_component[c] == r)
+            .all(|c| self.component_closed[c])
+    }
+
+    /// The region of every triangle, as a [`Regions`] labelling.
+    pub fn region_labels(&self) -> Regions {
+        self.regions.label(&self.components)
+    }
+
     /// True when every region is closed (every edge has exactly two faces).
     pub fn is_closed(&self) -> bool {
-        self.region_closed.iter().all(|&c| c)
+        self.component_closed.iter().all(|&c| c)
     }
 
     /// Lattice corners of face `t`.
@@ -832,10 +867,13 @@ mod tests {
                 adjacency.edge_face_offsets
             );
             assert_eq!(index.adjacency.triangle_edges, adjacency.triangle_edges);
-            let regions = Regions::build(&mesh, &adjacency);
+            let regions = Regions::components(&mesh, &adjacency);
             regions.sanity_check(&mesh).unwrap();
-            assert_eq!(index.regions.region_of_triangle, regions.region_of_triangle);
-            assert_eq!(index.regions.count, regions.count);
+            assert_eq!(
+                index.components.region_of_triangle,
+                regions.region_of_triangle
+            );
+            assert_eq!(index.components.count, regions.count);
             let mut closed = vec![true; regions.count];
             for e in 0..adjacency.edge_count() as u32 {
                 let faces = adjacency.faces_of_edge(e);
@@ -845,7 +883,7 @@ mod tests {
                     }
                 }
             }
-            assert_eq!(index.region_closed, closed);
+            assert_eq!(index.component_closed, closed);
             assert_eq!(index.winding.is_some(), closed.iter().any(|c| !c));
             let neighbors: Vec<[u32; 3]> = (0..mesh.triangles.len())
                 .map(|t| {
@@ -878,8 +916,8 @@ mod tests {
                 first[r] = first[r].min(t);
                 bounds = bounds.union(&b);
             }
-            assert_eq!(index.region_boxes, boxes);
-            assert_eq!(index.region_first_face, first);
+            assert_eq!(index.component_boxes, boxes);
+            assert_eq!(index.component_first_face, first);
             assert_eq!(index.bounds, bounds);
             index.spatial.sanity_check(&mesh).unwrap();
         }

@@ -36,7 +36,9 @@ pub struct MeshReport {
     /// are joined through every edge at that vertex, non-manifold ones included, so a vertex on a
     /// non-manifold edge is counted only if its faces also fall apart into separate fans.
     pub nonmanifold_vertices: usize,
-    /// Connected components (see [`crate::regions`]).
+    /// Edge-connected components (see [`crate::regions`]).
+    pub components: usize,
+    /// Regions: components with their cavities joined to them (see [`crate::cavities`]).
     pub regions: usize,
     /// Every edge is used by exactly two faces (false for a mesh with no triangle).
     pub closed: bool,
@@ -50,15 +52,22 @@ impl Mesh {
     /// Requires a structurally valid mesh ([`Mesh::sanity_check`]).
     pub fn report(&self) -> MeshReport {
         let adjacency = EdgeAdjacency::build(self);
-        let regions = Regions::build(self, &adjacency);
-        MeshReport::from_parts(self, &adjacency, &regions)
+        let components = Regions::components(self, &adjacency);
+        let count = components.count;
+        let regions = Regions::of_components(self, &adjacency, components);
+        MeshReport::from_parts(self, &adjacency, count, regions.count)
     }
 }
 
 impl MeshReport {
-    /// The report from an adjacency and regions already built for `mesh` (a cached target index
-    /// has both).
-    pub fn from_parts(mesh: &Mesh, adjacency: &EdgeAdjacency, regions: &Regions) -> MeshReport {
+    /// The report from an adjacency and the numbers of components and regions already found for
+    /// `mesh` (a cached target index has all three).
+    pub fn from_parts(
+        mesh: &Mesh,
+        adjacency: &EdgeAdjacency,
+        components: usize,
+        regions: usize,
+    ) -> MeshReport {
         let mut boundary_edges = 0;
         let mut nonmanifold_edges = 0;
         let mut misoriented_edges = 0;
@@ -94,7 +103,8 @@ impl MeshReport {
             misoriented_edges,
             degenerate_triangles,
             nonmanifold_vertices,
-            regions: regions.count,
+            components,
+            regions,
             closed,
             manifold,
         }

@@ -143,9 +143,11 @@ proptest! {
     #[test]
     fn regions_match_flood_fill_and_split_keeps_triangles(mesh in grid_mesh()) {
         let adj = EdgeAdjacency::build(&mesh);
+        let components = Regions::components(&mesh, &adj);
+        components.sanity_check(&mesh).unwrap();
+        prop_assert_eq!(&components.region_of_triangle, &naive_regions(&mesh));
         let regions = Regions::build(&mesh, &adj);
         regions.sanity_check(&mesh).unwrap();
-        prop_assert_eq!(&regions.region_of_triangle, &naive_regions(&mesh));
         let pieces = split_regions(&mesh);
         prop_assert_eq!(pieces.len(), regions.count);
         let mut next_in_piece = vec![0usize; pieces.len()];
@@ -172,7 +174,7 @@ proptest! {
         prop_assert_eq!(report.edges, naive.len());
         prop_assert_eq!(report.boundary_edges, uses(1));
         prop_assert_eq!(report.nonmanifold_edges, naive.values().filter(|f| f.len() >= 3).count());
-        prop_assert_eq!(report.regions, naive_regions(&mesh).iter().copied().max().map_or(0, |m| m as usize + 1));
+        prop_assert_eq!(report.components, naive_regions(&mesh).iter().copied().max().map_or(0, |m| m as usize + 1));
         // Degenerate by exact integer cross product.
         let degenerate = (0..mesh.triangles.len())
             .filter(|&t| {
