@@ -15,6 +15,7 @@ pub(crate) mod contour;
 pub mod cutcheck;
 pub mod exact;
 pub(crate) mod intersect;
+pub mod labels;
 pub mod lattice;
 pub mod mesh;
 pub mod output;

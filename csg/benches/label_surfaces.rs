@@ -1,0 +1,184 @@
+//! Label volume → smoothed surfaces on the SPL head atlas, against VTK in the same run.
+//!
+//! ```text
+//! CUTAWAY_ANATOMY=DIR [CUTAWAY_PEERBENCH=DIR] cargo bench -p csg --bench label_surfaces -- [--json OUT]
+//! ```
+//! Times "read to last smoothed surface" (gzip NRRD decode + [`label_surfaces`] at the default
+//! smoothing), median of 3 runs, then runs the peer script `label_surfaces.py` from
+//! `CUTAWAY_PEERBENCH` (VTK's vtkSurfaceNets3D and the classic flying edges + windowed sinc) on
+//! the same volume and prints both and the ratios. Without python/vtk the peer is skipped with the
+//! reason printed. Also prints the distribution of per-label volume and centroid errors against
+//! the voxels.
+
+#[path = "../tests/label_atlas/nrrd.rs"]
+mod nrrd;
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use csg::DVec3;
+use csg::labels::{LabelGrid, LabelSurface, SurfaceOptions, label_surfaces};
+use serde_json::{Value, json};
+
+const ATLAS: &str = "volumes/spl_head_atlas/hncma-atlas.nrrd";
+const RUNS: usize = 3;
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let json_out = args
+        .iter()
+        .position(|a| a == "--json")
+        .and_then(|i| args.get(i + 1))
+        .map(PathBuf::from);
+    let Some(root) = std::env::var_os("CUTAWAY_ANATOMY") else {
+        println!("label_surfaces bench skipped: CUTAWAY_ANATOMY is not set");
+        return;
+    };
+    let path = Path::new(&root).join(ATLAS);
+
+    let mut runs = Vec::new();
+    let mut last = None;
+    for _ in 0..RUNS {
+        let start = Instant::now();
+        let volume = nrrd::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let read_s = start.elapsed().as_secs_f64();
+        let grid = LabelGrid::new(volume.dims, &volume.data, volume.world_from_voxel).unwrap();
+        let surfaces = label_surfaces(&grid, &SurfaceOptions::default(), &|_| true).unwrap();
+        let total_s = start.elapsed().as_secs_f64();
+        runs.push((total_s, read_s));
+        last = Some((volume, surfaces));
+    }
+    runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (total_s, read_s) = runs[RUNS / 2];
+    let (volume, surfaces) = last.expect("at least one run");
+    let triangles: usize = surfaces.iter().map(|s| s.mesh.triangle_count()).sum();
+    println!(
+        "cutaway  read+surfaces {:8.1} ms (read {:.1} ms), {} labels, {} triangles",
+        total_s * 1e3,
+        read_s * 1e3,
+        surfaces.len(),
+        triangles
+    );
+    let errors = error_summary(&volume, &surfaces);
+    println!("errors   {errors}");
+
+    let peer = run_peer(&path);
+    let mut report = json!({
+        "volume": ATLAS,
+        "labels": surfaces.len(),
+        "triangles": triangles,
+        "threads": rayon::current_num_threads(),
+        "read_s": read_s,
+        "total_s": total_s,
+        "errors": errors,
+    });
+    match peer {
+        Ok(peer) => {
+            let nets = peer["surface_nets"]["s"].as_f64().unwrap_or(f64::NAN);
+            let classic = peer["flying_edges_sinc"]["s"].as_f64().unwrap_or(f64::NAN);
+            let peer_read = peer["read_s"].as_f64().unwrap_or(f64::NAN);
+            println!(
+                "vtk      surface_nets {:8.1} ms, flying_edges_sinc {:8.1} ms (read {:.1} ms excluded)",
+                nets * 1e3,
+                classic * 1e3,
+                peer_read * 1e3
+            );
+            println!(
+                "ratio    vtk surface_nets / cutaway = {:.2}, vtk classic / cutaway = {:.2}",
+                nets / total_s,
+                classic / total_s
+            );
+            report["peer"] = peer;
+            report["ratio_surface_nets"] = json!(nets / total_s);
+            report["ratio_classic"] = json!(classic / total_s);
+        }
+        Err(reason) => {
+            println!("vtk      skipped: {reason}");
+            report["peer_skipped"] = json!(reason);
+        }
+    }
+    if let Some(out) = json_out {
+        std::fs::write(&out, serde_json::to_string_pretty(&report).unwrap())
+            .unwrap_or_else(|e| panic!("{}: {e}", out.display()));
+    }
+}
+
+/// Runs the VTK peer script on `volume`; its JSON, or why not.
+fn run_peer(volume: &Path) -> Result<Value, String> {
+    let dir = std::env::var_os("CUTAWAY_PEERBENCH").ok_or("CUTAWAY_PEERBENCH is not set")?;
+    let script = Path::new(&dir).join("label_surfaces.py");
+    let out = std::env::temp_dir().join(format!("label_surfaces_peer_{}.json", std::process::id()));
+    let threads = rayon::current_num_threads().to_string();
+    let status = std::process::Command::new("python3")
+        .arg(&script)
+        .arg(volume)
+        .args(["--threads", &threads, "--json"])
+        .arg(&out)
+        .status()
+        .map_err(|e| format!("python3: {e}"))?;
+    if !status.success() {
+        return Err(format!(
+            "{} failed ({status}); is vtk installed?",
+            script.display()
+        ));
+    }
+    let text = std::fs::read_to_string(&out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let _ = std::fs::remove_file(&out);
+    serde_json::from_str(&text).map_err(|e| format!("peer json: {e}"))
+}
+
+/// Per-label relative volume error and centroid offset (in voxel sizes) against the voxels:
+/// median, 95th percentile and maximum, over labels of at least 1000 voxels and over all.
+fn error_summary(volume: &nrrd::Volume, surfaces: &[LabelSurface]) -> Value {
+    let grid = LabelGrid::new(volume.dims, &volume.data, volume.world_from_voxel).unwrap();
+    let voxel_volume = grid.voxel_volume();
+    let mut sums = vec![(DVec3::ZERO, 0u64); 1 << 16];
+    for k in 0..grid.dims[2] {
+        for j in 0..grid.dims[1] {
+            for i in 0..grid.dims[0] {
+                let s = &mut sums[grid.value(i, j, k) as usize];
+                s.0 += DVec3::new(i as f64, j as f64, k as f64);
+                s.1 += 1;
+            }
+        }
+    }
+    let mut rows = Vec::new();
+    for s in surfaces {
+        let expected = s.voxels as f64 * voxel_volume;
+        let volume_error = (s.mesh.volume() - expected) / expected;
+        let (sum, n) = sums[s.value as usize];
+        let centroid = grid.world_from_voxel.transform_point3(sum / n as f64);
+        let offset = (centroid_of(&s.mesh) - centroid).length() / voxel_volume.cbrt();
+        rows.push((s.voxels, volume_error, offset));
+    }
+    let stats = |large: bool| {
+        let pick: Vec<&(u64, f64, f64)> = rows.iter().filter(|r| !large || r.0 >= 1000).collect();
+        let summary = |mut v: Vec<f64>| {
+            v.sort_by(f64::total_cmp);
+            let at = |q: f64| {
+                v.get(((v.len() as f64 - 1.0) * q).round() as usize)
+                    .copied()
+            };
+            json!({"median": at(0.5), "p95": at(0.95), "max": v.last()})
+        };
+        json!({
+            "labels": pick.len(),
+            "abs_volume_error": summary(pick.iter().map(|r| r.1.abs()).collect()),
+            "signed_volume_error_median": summary(pick.iter().map(|r| r.1).collect())["median"],
+            "centroid_offset_voxels": summary(pick.iter().map(|r| r.2).collect()),
+        })
+    };
+    json!({"labels_ge_1000_voxels": stats(true), "all_labels": stats(false)})
+}
+
+fn centroid_of(mesh: &csg::Mesh) -> DVec3 {
+    let origin = mesh.bbox().center();
+    let (mut moment, mut volume) = (DVec3::ZERO, 0.0);
+    for t in 0..mesh.triangles.len() {
+        let [a, b, c] = mesh.corners(t).map(|p| p - origin);
+        let v = a.dot(b.cross(c)) / 6.0;
+        volume += v;
+        moment += (a + b + c) * (v / 4.0);
+    }
+    origin + moment / volume
+}

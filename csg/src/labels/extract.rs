@@ -1,0 +1,176 @@
+//! Raw surface of one label: marching cubes over the label's padded bounding box.
+//!
+//! Notation: local voxel `(u, v, w)` is global voxel `(u, v, w) + origin`, where `origin` is the
+//! label's box minimum minus one, so the local grid is the box padded by one voxel of outside on
+//! every side (voxels outside the grid are outside too): the surface is always closed. Cube
+//! `(u, v, w)` has local corners `(u..=u+1, v..=v+1, w..=w+1)`.
+//!
+//! Stages per layer of cubes `w`: read slice `w + 1` into a mask, then for each cube look up its
+//! polygons ([`super::cases`]), create its centre vertices and the edge vertices it is the first
+//! to meet, and emit one triangle per polygon segment. Edge vertex ids live in rolling buffers of
+//! two slices, so memory is O(box slice), never O(grid).
+
+use glam::DVec3;
+
+use super::cases::{self, EDGE_CORNERS};
+use super::scan::LabelStats;
+use super::{LabelGrid, LabelValue, VoxelSurface};
+
+/// No vertex yet on this edge.
+const NONE: u32 = u32::MAX;
+
+/// How far an edge vertex stays from the voxel centres at the ends of its edge (in voxels), so
+/// that smoothing cannot collapse a triangle onto a voxel centre.
+pub const EDGE_MARGIN: f64 = 0.05;
+
+/// Edge vertex ids of one slice: x-edge of local voxel `(u, v)` at `2 * (u + width * v)`, y-edge
+/// at the next index.
+struct SliceEdges {
+    ids: Vec<u32>,
+}
+
+/// The raw surface of label `stats.value` in voxel coordinates, with constraint boxes. `None`
+/// when it would need more than `u32::MAX` vertices.
+pub fn extract_label<T: LabelValue>(
+    grid: &LabelGrid<T>,
+    stats: &LabelStats,
+) -> Option<VoxelSurface> {
+    let value = stats.value;
+    let origin = stats.min.map(|m| m as i64 - 1);
+    let size = [0, 1, 2].map(|a| stats.max[a] - stats.min[a] + 3);
+    let [width, height, depth] = size;
+    let plane = width * height;
+    let table = cases::table();
+
+    let mut mask_lo = vec![0u8; plane];
+    let mut mask_hi = vec![0u8; plane];
+    read_slice(grid, value, origin, size, 0, &mut mask_lo);
+    let mut xy_lo = SliceEdges {
+        ids: vec![NONE; 2 * plane],
+    };
+    let mut xy_hi = SliceEdges {
+        ids: vec![NONE; 2 * plane],
+    };
+    let mut z_mid = vec![NONE; plane];
+    let mut out = VoxelSurface::default();
+    let mut overflow = false;
+
+    for w in 0..depth - 1 {
+        read_slice(grid, value, origin, size, w + 1, &mut mask_hi);
+        for v in 0..height - 1 {
+            for u in 0..width - 1 {
+                let at = |mask: &[u8], du: usize, dv: usize| mask[u + du + width * (v + dv)];
+                let config = at(&mask_lo, 0, 0)
+                    | at(&mask_lo, 1, 0) << 1
+                    | at(&mask_lo, 0, 1) << 2
+                    | at(&mask_lo, 1, 1) << 3
+                    | at(&mask_hi, 0, 0) << 4
+                    | at(&mask_hi, 1, 0) << 5
+                    | at(&mask_hi, 0, 1) << 6
+                    | at(&mask_hi, 1, 1) << 7;
+                if config == 0 || config == 255 {
+                    continue;
+                }
+                let cube = DVec3::new(
+                    (u as i64 + origin[0]) as f64,
+                    (v as i64 + origin[1]) as f64,
+                    (w as i64 + origin[2]) as f64,
+                );
+                for polygon in &table[config as usize] {
+                    let centre = out.positions.len() as u32;
+                    out.positions.push(cube + polygon.centre);
+                    out.lo.push(cube + polygon.lo);
+                    out.hi.push(cube + polygon.hi);
+                    for &[from, to] in &polygon.segments {
+                        let mut vertex = |e: u8| {
+                            let slot = match e {
+                                0..4 => {
+                                    let (dv, dz) = ((e & 1) as usize, (e >> 1) as usize);
+                                    let edges = if dz == 0 { &mut xy_lo } else { &mut xy_hi };
+                                    &mut edges.ids[2 * (u + width * (v + dv))]
+                                }
+                                4..8 => {
+                                    let f = e - 4;
+                                    let (du, dz) = ((f & 1) as usize, (f >> 1) as usize);
+                                    let edges = if dz == 0 { &mut xy_lo } else { &mut xy_hi };
+                                    &mut edges.ids[2 * (u + du + width * v) + 1]
+                                }
+                                _ => {
+                                    let f = e - 8;
+                                    let (du, dv) = ((f & 1) as usize, (f >> 1) as usize);
+                                    &mut z_mid[u + du + width * (v + dv)]
+                                }
+                            };
+                            if *slot == NONE {
+                                *slot = out.positions.len() as u32;
+                                push_edge_vertex(&mut out, cube, e as usize);
+                            }
+                            *slot
+                        };
+                        let (a, b) = (vertex(from), vertex(to));
+                        out.triangles.push([centre, a, b]);
+                    }
+                }
+                if out.positions.len() >= NONE as usize - 64 {
+                    overflow = true;
+                }
+            }
+            if overflow {
+                return None;
+            }
+        }
+        std::mem::swap(&mut mask_lo, &mut mask_hi);
+        std::mem::swap(&mut xy_lo, &mut xy_hi);
+        xy_hi.ids.fill(NONE);
+        z_mid.fill(NONE);
+    }
+    Some(out)
+}
+
+/// Appends the vertex of cube edge `e` at its midpoint, constrained to the edge less
+/// [`EDGE_MARGIN`] at each end.
+fn push_edge_vertex(out: &mut VoxelSurface, cube: DVec3, e: usize) {
+    let [a, b] = EDGE_CORNERS[e].map(|c| cube + cases::corner(c));
+    let axis = e / 4;
+    let mut lo = a.min(b);
+    let mut hi = a.max(b);
+    lo[axis] += EDGE_MARGIN;
+    hi[axis] -= EDGE_MARGIN;
+    out.positions.push((a + b) * 0.5);
+    out.lo.push(lo);
+    out.hi.push(hi);
+}
+
+/// Fills `mask` with 1 where local slice `w` holds `value`, 0 elsewhere (outside the grid too).
+fn read_slice<T: LabelValue>(
+    grid: &LabelGrid<T>,
+    value: u32,
+    origin: [i64; 3],
+    size: [usize; 3],
+    w: usize,
+    mask: &mut [u8],
+) {
+    mask.fill(0);
+    let [nx, ny, nz] = grid.dims.map(|d| d as i64);
+    let z = w as i64 + origin[2];
+    if z < 0 || z >= nz {
+        return;
+    }
+    let [width, height, _] = size;
+    // Local u range that lies inside the grid.
+    let u0 = (-origin[0]).max(0) as usize;
+    let u1 = ((nx - origin[0]) as usize).min(width);
+    for v in 0..height {
+        let y = v as i64 + origin[1];
+        if y < 0 || y >= ny {
+            continue;
+        }
+        let row_start = (nx * (y + ny * z)) as usize;
+        let row = &grid.data[row_start..row_start + nx as usize];
+        let out = &mut mask[width * v..width * (v + 1)];
+        for u in u0..u1 {
+            let x = (u as i64 + origin[0]) as usize;
+            out[u] = (row[x].to_u32() == value) as u8;
+        }
+    }
+}
