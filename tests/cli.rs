@@ -200,3 +200,54 @@ fn bad_inputs_fail_with_one_line_naming_the_file() {
     let out = cutaway().arg("info").arg(&dir).output().unwrap();
     assert_one_error_line(&out, &dir);
 }
+
+/// Inputs that once ran away (a session asking for 10⁹ ribbons, a gesture with a 1×2 viewport, a
+/// link to /dev/zero) stop at once with one line naming the file and the field.
+#[test]
+fn runaway_inputs_are_refused_up_front_naming_the_file_and_field() {
+    let dir = scratch("runaway");
+    std::fs::copy(data("two_cubes.obj"), dir.join("m.obj")).unwrap();
+    let session = dir.join("s.json");
+    std::fs::write(
+        &session,
+        r#"{"format": "cutaway-session/1", "models": [{"path": "m.obj"}],
+            "cutters": [{"target": 0, "planes": [[[0,0,0],[0,1,0],[0,1,-1],[0,0,-1]]],
+                         "views": {"ribbons": {"count": 1000000000, "width": 2}}}]}"#,
+    )
+    .unwrap();
+    let out = cutaway()
+        .arg("render")
+        .arg(&session)
+        .args(["--out"])
+        .arg(dir.join("x.png"))
+        .output()
+        .unwrap();
+    let line = assert_one_error_line(&out, &session);
+    assert!(line.contains("views.ribbons.count 1000000000"), "{line}");
+
+    let gesture = dir.join("g.json");
+    std::fs::write(
+        &gesture,
+        r#"{"format": "cutaway-gesture/1", "viewport": [1, 2],
+            "camera": {"eye": [0, -300, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 30},
+            "events": [{"type": "press", "x": 0, "y": 0}]}"#,
+    )
+    .unwrap();
+    let out = cutaway()
+        .arg("extrude")
+        .arg(dir.join("m.obj"))
+        .arg("--gesture")
+        .arg(&gesture)
+        .arg("--out")
+        .arg(dir.join("c.obj"))
+        .output()
+        .unwrap();
+    let line = assert_one_error_line(&out, &gesture);
+    assert!(line.contains("viewport [1, 2]"), "{line}");
+
+    let zero = dir.join("zero.obj");
+    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    let out = cutaway().arg("info").arg(&zero).output().unwrap();
+    let line = assert_one_error_line(&out, &zero);
+    assert!(line.contains("character device"), "{line}");
+}

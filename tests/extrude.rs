@@ -565,3 +565,27 @@ fn every_contract_field_is_present_and_means_what_the_contract_says() {
     );
     assert!(gap <= 3.0 * delta);
 }
+
+/// A replay is bounded: a viewport no window has is refused when the gesture is parsed, and a
+/// drag that would build boxes by the hundred (here a spacing 40 times finer than the recorded
+/// one) stops with an error once the cutter passes the box limit, instead of running for minutes.
+#[test]
+fn runaway_gestures_stop_with_an_error() {
+    let text = std::fs::read_to_string(gestures().join("sphere_s.json")).unwrap();
+    let recorded: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let mut tiny = recorded.clone();
+    tiny["viewport"] = serde_json::json!([1, 2]);
+    let e = format!("{:#}", parse_gesture(&tiny.to_string()).unwrap_err());
+    assert!(e.contains("viewport [1, 2]"), "{e}");
+
+    let mut fine = recorded;
+    fine["cut"]["spacing"] = serde_json::json!(0.5);
+    let gesture = parse_gesture(&fine.to_string()).unwrap();
+    let sphere = csg::testkit::icosphere(5, 50.0);
+    let e = format!("{:#}", replay(&sphere, &gesture).unwrap_err());
+    let limit = cutaway::gesture::MAX_REPLAY_BOXES;
+    assert!(
+        e.contains(&format!("more than the limit of {limit}")),
+        "{e}"
+    );
+}

@@ -689,4 +689,37 @@ mod sessions {
             "centre pixel {r} {g} {b} is not the model's red"
         );
     }
+
+    /// A successful render prints nothing, also without `XDG_RUNTIME_DIR` and without
+    /// `WGPU_BACKEND` (then wgpu also probes OpenGL, whose window-system libraries complain
+    /// about the missing runtime folder unless `cutaway` gives them one).
+    #[test]
+    fn cli_render_success_prints_nothing_without_a_runtime_dir() {
+        let dir = temp_dir("quiet");
+        let scene = scene_for(&dir);
+        let file = dir.join("s.json");
+        session::save(&file, &scene).unwrap();
+        let out = dir.join("out.png");
+        let run = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
+            .args(["render"])
+            .arg(&file)
+            .arg("--out")
+            .arg(&out)
+            .args(["--width", "32", "--height", "32"])
+            .env_remove("XDG_RUNTIME_DIR")
+            .env_remove("WGPU_BACKEND")
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        if !run.status.success() && stderr.contains("no GPU adapter") {
+            println!("skipped: {stderr}");
+            return;
+        }
+        assert!(run.status.success(), "{stderr}");
+        assert_eq!(
+            stderr, "",
+            "a successful render must print nothing on stderr"
+        );
+        assert!(out.is_file());
+    }
 }

@@ -33,9 +33,11 @@ pub const MAX_VIEWPORT_PX: f64 = 16384.0;
 pub const MAX_EVENTS: usize = 10_000;
 /// Largest wheel step of one event.
 pub const MAX_WHEEL_DELTA: f64 = 1000.0;
-/// Most boxes (planes) a replayed cutter may reach before the replay stops with an error; a drag
-/// across a whole scene at the default spacing makes about a hundred.
-pub const MAX_REPLAY_BOXES: usize = 400;
+/// Most boxes a replayed cutter may reach before the replay stops with an error. A drag across a
+/// whole scene at the default spacing makes a few dozen; each new box costs more than the last
+/// (the cutter is checked whole: the replay's cost grows about with the square of the box
+/// count), and 100 keep a replay well within 2 s.
+pub const MAX_REPLAY_BOXES: usize = 100;
 
 /// Cut settings of a gesture (`cut` object).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -58,7 +58,8 @@
 //!   as every coplanar case: the target faces whose normal's first non-zero component (x, then
 //!   y, then z) is negative lie outside the translated cutter and are kept, the others are
 //!   removed, and the walls are the cutter's faces against the kept ones. So kept + walls is a
-//!   closed double layer of zero volume, and removed + reversed walls is the whole solid.
+//!   double layer of zero volume (its two sides may be triangulated differently), and removed +
+//!   reversed walls is the whole solid, closed.
 //! - Target faces with a repeated vertex index have no area and no edges of their own: they are
 //!   never split; if one is crossed it is dropped from both kept and removed.
 //! - Geometry after rounding: new vertices move by at most half a lattice step plus one `f64`

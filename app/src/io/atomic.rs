@@ -97,10 +97,10 @@ pub(crate) fn fail_writes_to(path: Option<PathBuf>) {
 
 #[cfg(test)]
 fn injected_failure(path: &Path) -> std::io::Result<()> {
-    match FAIL_WRITES_TO.with(|f| f.borrow().as_deref() == Some(path)) {
-        true => Err(std::io::Error::other("injected write failure")),
-        false => Ok(()),
+    if FAIL_WRITES_TO.with(|f| f.borrow().as_deref() == Some(path)) {
+        return Err(std::io::Error::other("injected write failure"));
     }
+    Ok(())
 }
 
 #[cfg(not(test))]

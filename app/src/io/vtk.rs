@@ -228,24 +228,22 @@ impl<'a> Reader<'a> {
 
     /// The next line that is not blank, or `None` at the end of the file.
     fn next_keyword_line(&mut self) -> anyhow::Result<Option<&'a str>> {
-        loop {
-            let skip = self
-                .rest()
-                .iter()
-                .take_while(|b| b.is_ascii_whitespace())
-                .count();
-            self.at += skip;
-            if self.rest().is_empty() {
-                return Ok(None);
-            }
-            let start = self.at;
-            let line = self.line()?;
-            if line.trim().is_empty() || !line.is_ascii() {
-                let shown = String::from_utf8_lossy(&self.bytes[start..self.at.min(start + 40)]);
-                anyhow::bail!("VTK: expected a section keyword at byte {start}, found {shown:?}");
-            }
-            return Ok(Some(line));
+        let skip = self
+            .rest()
+            .iter()
+            .take_while(|b| b.is_ascii_whitespace())
+            .count();
+        self.at += skip;
+        if self.rest().is_empty() {
+            return Ok(None);
         }
+        let start = self.at;
+        let line = self.line()?;
+        if line.trim().is_empty() || !line.is_ascii() {
+            let shown = String::from_utf8_lossy(&self.bytes[start..self.at.min(start + 40)]);
+            anyhow::bail!("VTK: expected a section keyword at byte {start}, found {shown:?}");
+        }
+        Ok(Some(line))
     }
 
     /// Skips a `METADATA` block: lines up to and including the first blank one.
