@@ -92,6 +92,7 @@ pub fn load_scene(scene: &Scene) -> anyhow::Result<Vec<Model>> {
             crate::phantom::ply::decode(bytes).with_context(|| path.display().to_string())?;
         let part = Part {
             name: name.to_string(),
+            color: None,
             mesh: csg::weld::weld_exact(&mesh),
         };
         models.extend(crate::io::models_of_parts(&path, &[part]));
@@ -122,6 +123,7 @@ pub fn load_embedded_part(path: &Path) -> Option<anyhow::Result<Vec<Model>>> {
         .map(|mesh| {
             let part = Part {
                 name: name.to_string(),
+                color: None,
                 mesh: csg::weld::weld_exact(&mesh),
             };
             crate::io::models_of_parts(&virtual_path, &[part])

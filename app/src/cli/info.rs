@@ -3,16 +3,25 @@
 //! The file is read as one mesh ([`crate::io::read_mesh`]: every part welded on its own, then
 //! concatenated) and described by [`csg::Mesh::report`]. `volume` is the signed enclosed volume;
 //! it is meaningful only when `closed` is true.
+//!
+//! A label volume (file or mask directory) is described by the same mesh fields, computed on all
+//! its label surfaces together, plus its grid (`dims`, `spacing`) and its labels (value, name,
+//! colour, voxel count).
 
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
+use anyhow::Context as _;
 use serde::Serialize;
 
 #[derive(Debug, clap::Args)]
 pub struct InfoArgs {
-    /// The mesh file (.obj, .stl, .ply, .vtk).
+    /// The mesh file (.obj, .stl, .ply, .vtk), or a label volume (.nrrd, .seg.nrrd, .nhdr,
+    /// .nii, .nii.gz, a folder of masks).
     pub mesh: PathBuf,
+    /// Colour table naming the labels of a volume (Slicer .ctbl/.txt, FreeSurfer LUT, ITK-SNAP).
+    #[arg(long)]
+    pub labels: Option<PathBuf>,
     /// Print one JSON object (see CONTRACT.md).
     #[arg(long)]
     pub json: bool,
@@ -29,14 +38,71 @@ pub struct Info {
     pub bbox_min: [f64; 3],
     pub bbox_max: [f64; 3],
     pub volume: f64,
+    /// Label volumes only: voxels along i, j, k.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dims: Option<[usize; 3]>,
+    /// Label volumes only: voxel size along i, j, k in millimetres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spacing: Option<[f64; 3]>,
+    /// Label volumes only: the labels present, ascending.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub labels: Option<Vec<LabelInfo>>,
+}
+
+/// One label of a volume in `info --json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LabelInfo {
+    pub value: u32,
+    pub name: String,
+    /// sRGB, 0..=255.
+    pub color: [u8; 3],
+    pub voxels: u64,
 }
 
 /// Reads `path` and computes its [`Info`] (all the work of `cutaway info` except printing).
 pub fn info(path: &Path) -> anyhow::Result<Info> {
+    info_with_labels(path, None)
+}
+
+/// [`info`] with a colour table for a volume's labels.
+pub fn info_with_labels(path: &Path, labels: Option<&Path>) -> anyhow::Result<Info> {
+    if crate::io::volume::is_volume(path) {
+        return volume_info(path, labels);
+    }
     let mesh = crate::io::read_mesh(path)?;
+    Ok(mesh_info(&mesh))
+}
+
+fn volume_info(path: &Path, labels: Option<&Path>) -> anyhow::Result<Info> {
+    let volume = crate::io::volume::read_volume(path, labels)?;
+    let surfaces = crate::io::volume::surfaces(&volume, None, &|_| true)
+        .with_context(|| path.display().to_string())?;
+    let mut mesh = csg::Mesh::default();
+    for surface in &surfaces {
+        mesh.append(&surface.mesh);
+    }
+    let mut info = mesh_info(&mesh);
+    info.dims = Some(volume.dims);
+    info.spacing = Some(volume.spacing());
+    info.labels = Some(
+        volume
+            .structures
+            .iter()
+            .map(|s| LabelInfo {
+                value: s.value,
+                name: s.name.clone(),
+                color: s.color,
+                voxels: s.voxels,
+            })
+            .collect(),
+    );
+    Ok(info)
+}
+
+fn mesh_info(mesh: &csg::Mesh) -> Info {
     let report = mesh.report();
     let bbox = mesh.bbox();
-    Ok(Info {
+    Info {
         vertices: report.vertices,
         triangles: report.triangles,
         regions: report.regions,
@@ -45,11 +111,14 @@ pub fn info(path: &Path) -> anyhow::Result<Info> {
         bbox_min: bbox.min.to_array(),
         bbox_max: bbox.max.to_array(),
         volume: mesh.volume(),
-    })
+        dims: None,
+        spacing: None,
+        labels: None,
+    }
 }
 
 pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
-    let info = info(&args.mesh)?;
+    let info = info_with_labels(&args.mesh, args.labels.as_deref())?;
     let text = if args.json {
         format!("{}\n", serde_json::to_string(&info)?)
     } else {
@@ -85,9 +154,22 @@ fn table(path: &Path, info: &Info) -> String {
         ("bbox size", xyz(size)),
         ("volume", volume),
     ];
-    rows.iter()
+    let mut text: String = rows
+        .iter()
         .map(|(name, value)| format!("{name:<10} {value}\n"))
-        .collect()
+        .collect();
+    if let (Some(dims), Some(spacing)) = (info.dims, info.spacing) {
+        text += &format!("{:<10} {} {} {}\n", "dims", dims[0], dims[1], dims[2]);
+        text += &format!("{:<10} {}\n", "spacing", xyz(spacing));
+    }
+    for label in info.labels.iter().flatten() {
+        let [r, g, b] = label.color;
+        text += &format!(
+            "label {:<4} {} ({} voxels, colour {r} {g} {b})\n",
+            label.value, label.name, label.voxels
+        );
+    }
+    text
 }
 
 #[cfg(test)]
@@ -105,6 +187,9 @@ mod tests {
             bbox_min: [0.0, 0.0, 0.0],
             bbox_max: [1.0, 2.0, 3.5],
             volume: 7.0,
+            dims: None,
+            spacing: None,
+            labels: None,
         };
         assert_eq!(
             serde_json::to_string(&info).unwrap(),
@@ -113,5 +198,37 @@ mod tests {
         let text = table(Path::new("cube.obj"), &info);
         assert!(text.contains("triangles  12\n"), "{text}");
         assert!(text.contains("bbox size  1 2 3.5\n"), "{text}");
+    }
+
+    #[test]
+    fn volume_fields_follow_the_mesh_fields() {
+        let info = Info {
+            vertices: 8,
+            triangles: 12,
+            regions: 1,
+            closed: true,
+            manifold: true,
+            bbox_min: [0.0; 3],
+            bbox_max: [1.0; 3],
+            volume: 1.0,
+            dims: Some([4, 5, 6]),
+            spacing: Some([1.0, 0.5, 2.0]),
+            labels: Some(vec![LabelInfo {
+                value: 3,
+                name: "skin".into(),
+                color: [225, 190, 150],
+                voxels: 42,
+            }]),
+        };
+        let json = serde_json::to_string(&info).unwrap();
+        assert!(
+            json.ends_with(r#""volume":1.0,"dims":[4,5,6],"spacing":[1.0,0.5,2.0],"labels":[{"value":3,"name":"skin","color":[225,190,150],"voxels":42}]}"#),
+            "{json}"
+        );
+        let text = table(Path::new("a.nrrd"), &info);
+        assert!(
+            text.contains("label 3    skin (42 voxels, colour 225 190 150)"),
+            "{text}"
+        );
     }
 }

@@ -15,6 +15,7 @@ pub mod phantom;
 pub mod render;
 pub mod scalpel;
 pub mod subtract;
+pub mod surfaces;
 
 /// Context-preserving cutaways of segmented anatomy.
 #[derive(Debug, Parser)]
@@ -28,7 +29,7 @@ pub struct Cli {
 pub enum Command {
     /// Open the GUI with meshes, directories of meshes, or a session file.
     Open(open::OpenArgs),
-    /// Print mesh facts.
+    /// Print mesh facts (of a label volume: its surfaces, grid and labels).
     Info(info::InfoArgs),
     /// Cut CUTTER out of every region of TARGET; write kept, walls, removed and contour to DIR.
     Subtract(subtract::SubtractArgs),
@@ -38,6 +39,8 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Progressive scalpel cut along a path on the surface.
     Scalpel(scalpel::ScalpelArgs),
+    /// One closed surface per label of a segmentation volume, one mesh file each.
+    Surfaces(surfaces::SurfacesArgs),
     /// Regenerate the embedded synthetic anatomy phantoms into a folder (maintainers only).
     #[command(hide = true)]
     Phantom(phantom::PhantomArgs),
@@ -72,6 +75,7 @@ where
         Some(Command::Extrude(a)) => extrude::run(&a),
         Some(Command::Render(a)) => render::run(&a),
         Some(Command::Scalpel(a)) => scalpel::run(&a),
+        Some(Command::Surfaces(a)) => surfaces::run(&a),
         Some(Command::Phantom(a)) => phantom::run(&a),
     }
 }

@@ -12,7 +12,7 @@ const MAX_DEPTH: usize = 16;
 
 pub(crate) fn load_models(path: &Path) -> anyhow::Result<Vec<Model>> {
     let metadata = std::fs::metadata(path).with_context(|| path.display().to_string())?;
-    let files = if metadata.is_dir() {
+    let files = if metadata.is_dir() && !super::volume::is_volume(path) {
         let files = mesh_files(path)?;
         if files.is_empty() {
             anyhow::bail!(

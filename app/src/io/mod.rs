@@ -60,6 +60,7 @@ mod dir;
 mod obj;
 mod ply;
 mod stl;
+pub mod volume;
 mod vtk;
 
 pub use atomic::{OutputSet, recover as recover_output_set, write_file};
@@ -69,6 +70,9 @@ pub use dir::mesh_files;
 #[derive(Clone, Debug)]
 pub struct Part {
     pub name: String,
+    /// The colour the file gives the part (sRGB, 0..=1), if any: label volumes name a colour
+    /// per label.
+    pub color: Option<[f32; 3]>,
     /// Welded (bit-identical positions merged), validated mesh.
     pub mesh: Mesh,
 }
@@ -164,7 +168,12 @@ pub(crate) struct RawPart {
 }
 
 /// Reads every part of a mesh file (format chosen by extension, checked against the content).
+/// A label volume (file or mask directory, [`volume::is_volume`]) gives one part per structure,
+/// named and coloured, in ascending label order.
 pub fn read_parts(path: &Path) -> anyhow::Result<Vec<Part>> {
+    if volume::is_volume(path) {
+        return volume::read_parts(path);
+    }
     read_parts_inner(path).with_context(|| path.display().to_string())
 }
 
@@ -251,6 +260,7 @@ pub(crate) fn finish_parts(raw: Vec<RawPart>, default_name: &str) -> anyhow::Res
         .into_iter()
         .map(|(name, mesh)| Part {
             name,
+            color: None,
             mesh: csg::weld::weld_exact(&mesh).compacted(),
         })
         .collect())
