@@ -46,9 +46,7 @@ impl CutResult {
         };
         let removed_region: Vec<u32> = removed.provenance.iter().map(region_of_part_face).collect();
         let closed = target.regions_closed();
-        let open: Vec<u32> = (0..count as u32)
-            .filter(|&r| !closed[r as usize])
-            .collect();
+        let open: Vec<u32> = (0..count as u32).filter(|&r| !closed[r as usize]).collect();
         let walls_region: Vec<u32> = self
             .walls_solid
             .iter()
