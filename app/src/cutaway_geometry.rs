@@ -396,9 +396,7 @@ pub fn closed_by_region(
     wall_tag: u32,
 ) -> (Mesh, Vec<u32>) {
     let (kept, provenance) = result.materialize_with_provenance(index.mesh());
-    let region_closed: Vec<bool> = (0..index.regions.count as u32)
-        .map(|r| index.region_closed(r))
-        .collect();
+    let region_closed = index.regions_closed();
     // The solid of a kept face: its region when that is closed, else the open regions together
     // (as the walls' solids are numbered).
     let solid = |f: u32| {

@@ -73,6 +73,9 @@ impl SolidRegions {
     }
 }
 
+/// Calls its second argument for every face whose lattice box overlaps the first (at least).
+pub(crate) type FacesInBox<'a> = &'a dyn Fn(&IBox, &mut dyn FnMut(u32));
+
 /// The regions of `mesh` under the cavity rule (module doc).
 ///
 /// `lpoints` are the lattice points of `mesh`'s vertices, `bounds` their box, `components` its
@@ -84,7 +87,7 @@ pub(crate) fn solid_regions(
     bounds: &IBox,
     components: &Regions,
     component_closed: &[bool],
-    faces_in_box: &dyn Fn(&IBox, &mut dyn FnMut(u32)),
+    faces_in_box: FacesInBox<'_>,
 ) -> SolidRegions {
     let n = components.count;
     if n <= 1 {

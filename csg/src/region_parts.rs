@@ -45,9 +45,8 @@ impl CutResult {
             Provenance::Cutter(_) => u32::MAX,
         };
         let removed_region: Vec<u32> = removed.provenance.iter().map(region_of_part_face).collect();
-        let open: Vec<u32> = (0..count as u32)
-            .filter(|&r| !target.region_closed(r))
-            .collect();
+        let closed = target.regions_closed();
+        let open: Vec<u32> = (0..count as u32).filter(|&r| !closed[r as usize]).collect();
         let walls_region: Vec<u32> = self
             .walls_solid
             .iter()
@@ -62,7 +61,7 @@ impl CutResult {
                 kept: select(&kept, &kept_region, r),
                 walls: select(&self.walls.mesh, &walls_region, r),
                 removed: select(&removed.mesh, &removed_region, r),
-                closed: !open.contains(&r),
+                closed: closed[r as usize],
             })
             .collect()
     }

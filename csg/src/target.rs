@@ -737,11 +737,13 @@ impl TargetIndex {
         self.regions.region_of_component[c as usize]
     }
 
-    /// True when region `r` is closed (every component of it is).
-    pub fn region_closed(&self, r: u32) -> bool {
-        (0..self.components.count)
-            .filter(|&c| self.regions.region_of_component[c] == r)
-            .all(|c| self.component_closed[c])
+    /// Per region: closed (every component of it is).
+    pub fn regions_closed(&self) -> Vec<bool> {
+        let mut closed = vec![true; self.regions.count];
+        for (c, &r) in self.regions.region_of_component.iter().enumerate() {
+            closed[r as usize] &= self.component_closed[c];
+        }
+        closed
     }
 
     /// The region of every triangle, as a [`Regions`] labelling.
