@@ -8,8 +8,10 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
 
+pub mod export;
 pub mod extrude;
 pub mod info;
+pub mod metrics;
 pub mod open;
 pub mod phantom;
 pub mod render;
@@ -38,6 +40,10 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Progressive scalpel cut along a path on the surface.
     Scalpel(scalpel::ScalpelArgs),
+    /// Write the cut scene of a session as glTF 2.0 binary (.glb).
+    Export(export::ExportArgs),
+    /// Measure the cuts of a session: removed volume and area, exposure, distances.
+    Metrics(metrics::MetricsArgs),
     /// Regenerate the embedded synthetic anatomy phantoms into a folder (maintainers only).
     #[command(hide = true)]
     Phantom(phantom::PhantomArgs),
@@ -72,6 +78,8 @@ where
         Some(Command::Extrude(a)) => extrude::run(&a),
         Some(Command::Render(a)) => render::run(&a),
         Some(Command::Scalpel(a)) => scalpel::run(&a),
+        Some(Command::Export(a)) => export::run(&a),
+        Some(Command::Metrics(a)) => metrics::run(&a),
         Some(Command::Phantom(a)) => phantom::run(&a),
     }
 }

@@ -50,7 +50,7 @@ use std::sync::Once;
 use anyhow::Context as _;
 use csg::Mesh;
 
-mod atomic;
+pub(crate) mod atomic;
 mod dir;
 mod obj;
 mod ply;
