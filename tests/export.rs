@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use cutaway::cutaway_geometry::{PartKind, preview_geometry};
-use scene_files::{box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session};
+use scene_files::{
+    box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
+};
 
 fn cutaway() -> Command {
     Command::new(env!("CARGO_BIN_EXE_cutaway"))
@@ -22,7 +24,10 @@ fn cut_scene(dir: &Path) -> PathBuf {
     write_session(
         dir,
         &[
-            ("skin.obj", box_obj([-20.0, -20.0, -20.0], [20.0, 20.0, 20.0])),
+            (
+                "skin.obj",
+                box_obj([-20.0, -20.0, -20.0], [20.0, 20.0, 20.0]),
+            ),
             ("organ.obj", sphere_obj([0.0, 0.0, 0.0], 8.0, 24, 12)),
             ("hidden.obj", box_obj([30.0, 0.0, 0.0], [31.0, 1.0, 1.0])),
         ],
@@ -32,7 +37,11 @@ fn cut_scene(dir: &Path) -> PathBuf {
             serde_json::json!({"path": "hidden.obj", "visible": false}),
         ],
         vec![
-            cutter(0, box_planes(-10.0, 10.0, -30.0, -5.0, -10.0, 30.0), all_views),
+            cutter(
+                0,
+                box_planes(-10.0, 10.0, -30.0, -5.0, -10.0, 30.0),
+                all_views,
+            ),
             cutter(1, box_planes(0.0, 20.0, -20.0, 0.0, 0.0, 20.0), cut_view()),
         ],
         [0.0, -200.0, 0.0],
@@ -79,9 +88,18 @@ fn export_reads_back_with_the_cut_s_nodes_materials_and_triangles() {
     let r = glam::Quat::from_array(rotation);
     let superior = r * glam::Vec3::Z;
     let anterior = r * glam::Vec3::Y;
-    assert!(superior.distance(glam::Vec3::Y) < 1e-6, "Z-up becomes Y-up: {superior}");
-    assert!(anterior.distance(glam::Vec3::Z) < 1e-6, "anterior faces +Z: {anterior}");
-    let names: Vec<_> = root.children().map(|n| n.name().unwrap().to_string()).collect();
+    assert!(
+        superior.distance(glam::Vec3::Y) < 1e-6,
+        "Z-up becomes Y-up: {superior}"
+    );
+    assert!(
+        anterior.distance(glam::Vec3::Z) < 1e-6,
+        "anterior faces +Z: {anterior}"
+    );
+    let names: Vec<_> = root
+        .children()
+        .map(|n| n.name().unwrap().to_string())
+        .collect();
     assert_eq!(names, ["skin 1", "organ 1"]);
     assert_eq!(summary["nodes"], 2);
 
@@ -122,7 +140,10 @@ fn export_reads_back_with_the_cut_s_nodes_materials_and_triangles() {
             let bbox = scene.models[m].mesh.bbox();
             for p in &positions {
                 let p = glam::DVec3::from_array(p.map(f64::from));
-                assert!(p.cmpge(bbox.min - 1e-3).all() && p.cmple(bbox.max + 1e-3).all(), "{p}");
+                assert!(
+                    p.cmpge(bbox.min - 1e-3).all() && p.cmple(bbox.max + 1e-3).all(),
+                    "{p}"
+                );
             }
             positions_seen += positions.len();
         }
@@ -145,9 +166,18 @@ fn export_reads_back_with_the_cut_s_nodes_materials_and_triangles() {
         total_triangles += triangles;
     }
     assert_eq!(summary["triangles"], total_triangles);
-    for kind in [PartKind::Kept, PartKind::Wall, PartKind::Removed, PartKind::Ribbon, PartKind::SliceWall] {
+    for kind in [
+        PartKind::Kept,
+        PartKind::Wall,
+        PartKind::Removed,
+        PartKind::Ribbon,
+        PartKind::SliceWall,
+    ] {
         assert!(
-            geometry.parts.iter().any(|p| p.kind == kind && p.mesh.triangle_count() > 0),
+            geometry
+                .parts
+                .iter()
+                .any(|p| p.kind == kind && p.mesh.triangle_count() > 0),
             "the scene exercises {kind:?}"
         );
     }
@@ -206,7 +236,10 @@ fn export_passes_the_khronos_validator_with_no_errors() {
     let report = validate(&package, &out);
     let issues = &report["issues"];
     assert_eq!(issues["numErrors"], 0, "{issues:#}");
-    assert!(report["info"]["totalTriangleCount"].as_u64().unwrap() > 0, "{report}");
+    assert!(
+        report["info"]["totalTriangleCount"].as_u64().unwrap() > 0,
+        "{report}"
+    );
     // A broken file is caught: the validator is really looking.
     let mut bytes = std::fs::read(&out).unwrap();
     bytes.truncate(bytes.len() - 8);
@@ -229,12 +262,22 @@ fn an_uncut_scene_exports_every_visible_model() {
     let out = dir.join("a.glb");
     let summary = export_json(&session, &out);
     assert_eq!(
-        (summary["nodes"].as_u64(), summary["triangles"].as_u64(), summary["lines"].as_u64()),
+        (
+            summary["nodes"].as_u64(),
+            summary["triangles"].as_u64(),
+            summary["lines"].as_u64()
+        ),
         (Some(1), Some(12), Some(0))
     );
     let gltf = gltf::Gltf::from_slice(&std::fs::read(&out).unwrap()).unwrap();
     let node = gltf.nodes().find(|n| n.name() == Some("a 1")).unwrap();
-    let bounds = node.mesh().unwrap().primitives().next().unwrap().bounding_box();
+    let bounds = node
+        .mesh()
+        .unwrap()
+        .primitives()
+        .next()
+        .unwrap()
+        .bounding_box();
     assert_eq!((bounds.min, bounds.max), ([0.0; 3], [1.0, 2.0, 3.0]));
 }
 
@@ -250,18 +293,36 @@ fn export_errors_are_one_line_and_leave_no_file() {
     );
     // The output folder does not exist.
     let out = dir.join("missing/scene.glb");
-    let output = cutaway().arg("export").arg(&session).arg("--out").arg(&out).output().unwrap();
+    let output = cutaway()
+        .arg("export")
+        .arg(&session)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
     assert!(!output.status.success());
     let stderr = String::from_utf8(output.stderr).unwrap();
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    assert!(stderr.starts_with(&format!("error: {}: ", out.display())), "{stderr}");
+    assert!(
+        stderr.starts_with(&format!("error: {}: ", out.display())),
+        "{stderr}"
+    );
     // A missing session.
     let missing = dir.join("none.json");
-    let output = cutaway().arg("export").arg(&missing).arg("--out").arg(dir.join("x.glb")).output().unwrap();
+    let output = cutaway()
+        .arg("export")
+        .arg(&missing)
+        .arg("--out")
+        .arg(dir.join("x.glb"))
+        .output()
+        .unwrap();
     assert!(!output.status.success());
     let stderr = String::from_utf8(output.stderr).unwrap();
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("none.json"), "{stderr}");
-    let names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(names.len(), 2, "no partial or temporary files: {names:?}");
 }

@@ -54,7 +54,10 @@ pub fn sphere_obj(center: [f64; 3], radius: f64, segments: usize, rings: usize) 
             let phi = 2.0 * PI * s as f64 / segments as f64;
             let (st, ct) = theta.sin_cos();
             let (sp, cp) = phi.sin_cos();
-            v(&mut text, [radius * st * cp, radius * st * sp, -radius * ct]);
+            v(
+                &mut text,
+                [radius * st * cp, radius * st * sp, -radius * ct],
+            );
         }
     }
     v(&mut text, [0.0, 0.0, radius]);
@@ -62,9 +65,20 @@ pub fn sphere_obj(center: [f64; 3], radius: f64, segments: usize, rings: usize) 
     let top = 2 + (rings - 1) * segments;
     for s in 0..segments {
         writeln!(text, "f 1 {} {}", ring(1, s + 1), ring(1, s)).unwrap();
-        writeln!(text, "f {top} {} {}", ring(rings - 1, s), ring(rings - 1, s + 1)).unwrap();
+        writeln!(
+            text,
+            "f {top} {} {}",
+            ring(rings - 1, s),
+            ring(rings - 1, s + 1)
+        )
+        .unwrap();
         for r in 1..rings - 1 {
-            let (a, b, c, d) = (ring(r, s), ring(r, s + 1), ring(r + 1, s + 1), ring(r + 1, s));
+            let (a, b, c, d) = (
+                ring(r, s),
+                ring(r, s + 1),
+                ring(r + 1, s + 1),
+                ring(r + 1, s),
+            );
             writeln!(text, "f {a} {b} {c}").unwrap();
             writeln!(text, "f {a} {c} {d}").unwrap();
         }
@@ -85,7 +99,11 @@ pub fn model(path: &str, color: [f32; 3]) -> serde_json::Value {
 }
 
 /// A cutter entry of a session with the given views.
-pub fn cutter(target: usize, planes: serde_json::Value, views: serde_json::Value) -> serde_json::Value {
+pub fn cutter(
+    target: usize,
+    planes: serde_json::Value,
+    views: serde_json::Value,
+) -> serde_json::Value {
     serde_json::json!({"target": target, "kind": "straight", "smooth": false, "planes": planes, "views": views})
 }
 

@@ -32,7 +32,8 @@ pub fn run(args: &MetricsArgs) -> anyhow::Result<()> {
         critical: args.critical.clone(),
         samples: args.samples,
     };
-    let metrics = measure(&scene, &options).with_context(|| format!("{}", args.session.display()))?;
+    let metrics =
+        measure(&scene, &options).with_context(|| format!("{}", args.session.display()))?;
     println!("{}", serde_json::to_string(&metrics)?);
     Ok(())
 }

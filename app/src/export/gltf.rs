@@ -42,7 +42,12 @@ pub const ROOT_NODE_NAME: &str = "cutaway scene";
 pub const METRES_PER_MM: f32 = 0.001;
 /// Rotation of the root node as a glTF quaternion `[x, y, z, w]`: 180° about (0, 1, 1)/√2, which
 /// maps (x, y, z) to (−x, z, y).
-pub const Z_UP_TO_Y_UP: [f32; 4] = [0.0, std::f32::consts::FRAC_1_SQRT_2, std::f32::consts::FRAC_1_SQRT_2, 0.0];
+pub const Z_UP_TO_Y_UP: [f32; 4] = [
+    0.0,
+    std::f32::consts::FRAC_1_SQRT_2,
+    std::f32::consts::FRAC_1_SQRT_2,
+    0.0,
+];
 /// Roughness of every material (matte, like the renderer's shading).
 const ROUGHNESS: f32 = 0.65;
 
@@ -199,7 +204,12 @@ impl Builder {
     }
 
     /// `LINES` of the unique edges of `mesh`.
-    fn edges(&mut self, scene: &Scene, mesh: &Mesh, key: MaterialKey) -> Option<json::mesh::Primitive> {
+    fn edges(
+        &mut self,
+        scene: &Scene,
+        mesh: &Mesh,
+        key: MaterialKey,
+    ) -> Option<json::mesh::Primitive> {
         let mut edges: Vec<(u32, u32)> = mesh
             .triangles
             .iter()
@@ -211,7 +221,13 @@ impl Builder {
         let indices = self.indices(edges.iter().flat_map(|&(a, b)| [a, b]));
         self.stats.lines += edges.len();
         let material = self.material(scene, key);
-        Some(primitive(positions, None, indices, material, json::mesh::Mode::Lines))
+        Some(primitive(
+            positions,
+            None,
+            indices,
+            material,
+            json::mesh::Mode::Lines,
+        ))
     }
 
     /// One `LINES` primitive of all segments of `lines` (none if there are none).
@@ -237,7 +253,13 @@ impl Builder {
         self.stats.lines += indices.len() / 2;
         let indices = self.indices(indices.into_iter());
         let material = self.material(scene, key);
-        Some(primitive(positions, None, indices, material, json::mesh::Mode::Lines))
+        Some(primitive(
+            positions,
+            None,
+            indices,
+            material,
+            json::mesh::Mode::Lines,
+        ))
     }
 
     /// A `VEC3` `f32` accessor of `points` with its bounds (required for `POSITION`).
@@ -251,7 +273,10 @@ impl Builder {
                 max[k] = max[k].max(p[k]);
             }
         }
-        let view = self.view(bytemuck::cast_slice(&data), json::buffer::Target::ArrayBuffer);
+        let view = self.view(
+            bytemuck::cast_slice(&data),
+            json::buffer::Target::ArrayBuffer,
+        );
         self.root.push(accessor(
             view,
             data.len(),
@@ -278,7 +303,10 @@ impl Builder {
                 unit.try_normalize().unwrap_or(glam::Vec3::Z).to_array()
             })
             .collect();
-        let view = self.view(bytemuck::cast_slice(&data), json::buffer::Target::ArrayBuffer);
+        let view = self.view(
+            bytemuck::cast_slice(&data),
+            json::buffer::Target::ArrayBuffer,
+        );
         self.root.push(accessor(
             view,
             data.len(),
@@ -305,7 +333,11 @@ impl Builder {
     }
 
     /// Appends `bytes` to the buffer (every view starts on a 4-byte boundary) as a buffer view.
-    fn view(&mut self, bytes: &[u8], target: json::buffer::Target) -> json::Index<json::buffer::View> {
+    fn view(
+        &mut self,
+        bytes: &[u8],
+        target: json::buffer::Target,
+    ) -> json::Index<json::buffer::View> {
         let offset = self.bin.len();
         self.bin.extend_from_slice(bytes);
         self.bin.resize(super::glb::padded_len(self.bin.len()), 0);
@@ -328,7 +360,12 @@ impl Builder {
         }
         let name_of = |m: usize| scene.models[m].name.clone();
         let (name, srgb, opacity, double_sided) = match key {
-            MaterialKey::Surface(m) => (name_of(m), scene.models[m].color, scene.models[m].opacity, false),
+            MaterialKey::Surface(m) => (
+                name_of(m),
+                scene.models[m].color,
+                scene.models[m].opacity,
+                false,
+            ),
             MaterialKey::Wall(m) => (
                 format!("{} wall", name_of(m)),
                 mix(scene.models[m].color, WALL_TINT, WALL_MIX),
@@ -341,7 +378,12 @@ impl Builder {
                 f32::from_bits(bits),
                 true,
             ),
-            MaterialKey::Ribbon(m) => (format!("{} ribbon", name_of(m)), scene.models[m].color, 1.0, true),
+            MaterialKey::Ribbon(m) => (
+                format!("{} ribbon", name_of(m)),
+                scene.models[m].color,
+                1.0,
+                true,
+            ),
             MaterialKey::Contour => ("contour".to_string(), CONTOUR_COLOR, 1.0, false),
         };
         let opacity = opacity.clamp(0.0, 1.0);

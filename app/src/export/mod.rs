@@ -53,8 +53,7 @@ pub fn glb_of_scene(scene: &Scene) -> anyhow::Result<(Vec<u8>, GlbExport)> {
 /// Cuts `scene` and writes it to `out` as a `.glb`, atomically (a temporary file renamed over
 /// `out`, so a failure leaves the old file or none). Errors name `out`.
 pub fn export_glb(scene: &Scene, out: &Path) -> anyhow::Result<GlbExport> {
-    let (bytes, mut summary) =
-        glb_of_scene(scene).with_context(|| format!("{}", out.display()))?;
+    let (bytes, mut summary) = glb_of_scene(scene).with_context(|| format!("{}", out.display()))?;
     let clock = std::time::Instant::now();
     crate::io::atomic::write(out, |w| w.write_all(&bytes))
         .with_context(|| format!("{}: could not write", out.display()))?;

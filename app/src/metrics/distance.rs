@@ -68,8 +68,7 @@ pub fn min_distance(first: &Mesh, second: &Mesh) -> Option<ClosestPair> {
             }
             for i in 0..3 {
                 for j in 0..3 {
-                    let (p, q) =
-                        closest_on_segments(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]);
+                    let (p, q) = closest_on_segments(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]);
                     keep(&mut best, p.distance(q), p, q);
                 }
             }
@@ -276,7 +275,11 @@ mod tests {
                 brute = brute.min(pa.distance(c));
             }
         }
-        assert!(pair.distance <= brute + 1e-12, "{} > {brute}", pair.distance);
+        assert!(
+            pair.distance <= brute + 1e-12,
+            "{} > {brute}",
+            pair.distance
+        );
         assert!(pair.distance > brute - 0.1, "{} << {brute}", pair.distance);
         assert!((pair.on_first.distance(pair.on_second) - pair.distance).abs() < 1e-12);
     }

@@ -116,12 +116,11 @@ pub fn measure(scene: &Scene, options: &MetricsOptions) -> anyhow::Result<Metric
         let cut = cuts.iter().find(|c| c.model == m);
         let closed = cut.map_or_else(|| model.mesh.report().closed, |c| c.model_closed);
         let cutters = cut.map_or(&[][..], |c| &c.cutters[..]);
-        let removed_volume = closed.then(|| {
-            cutters
-                .iter()
-                .map(|c| c.removed_volume.unwrap_or(0.0))
-                .sum()
-        });
+        // Folded from +0 (an empty `sum` of floats is −0).
+        let total = |value: fn(&removal::CutterMeasures) -> f64| {
+            cutters.iter().map(value).fold(0.0, |a, b| a + b)
+        };
+        let removed_volume = closed.then(|| total(|c| c.removed_volume.unwrap_or(0.0)));
         let pair = critical
             .contains(&m)
             .then(|| distance::min_distance(&walls, &model.mesh))
@@ -130,8 +129,8 @@ pub fn measure(scene: &Scene, options: &MetricsOptions) -> anyhow::Result<Metric
             name: model.name.clone(),
             closed,
             removed_volume,
-            removed_area: cutters.iter().map(|c| c.removed_area).sum(),
-            wall_area: cutters.iter().map(|c| c.wall_area).sum(),
+            removed_area: total(|c| c.removed_area),
+            wall_area: total(|c| c.wall_area),
             min_distance: pair.map(|p| p.distance),
             closest_point: pair.map(|p| p.on_second.to_array()),
             wall_point: pair.map(|p| p.on_first.to_array()),
@@ -164,7 +163,12 @@ fn focus_measures(scene: &Scene, focus: usize, samples: usize) -> anyhow::Result
         .filter(|&m| hides(m))
         .map(|m| &*scene.models[m].mesh)
         .collect();
-    let none = || anyhow::anyhow!("{}: the structure has no surface area", scene.models[focus].name);
+    let none = || {
+        anyhow::anyhow!(
+            "{}: the structure has no surface area",
+            scene.models[focus].name
+        )
+    };
     let exposure_before = exposure::exposure(
         &scene.models[focus].mesh,
         &before_occluders,

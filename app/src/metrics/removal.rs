@@ -14,18 +14,17 @@
 //!   cutters that a later one removes are not the model's surface and are not counted);
 //! - wall area = area of the walls the cutter leaves in the final result (a later cutter may take
 //!   some of them away);
-//! - depth = the largest distance from a vertex of the cutter's final walls to the model's
-//!   original surface (exact point–triangle distances through the model's BVH). The walls are
-//!   planar pieces between the cutter's planes, so their deepest point is a vertex except where a
-//!   wall face's interior passes over a concavity of the surface; the figure is then a lower
-//!   bound.
+//! - depth = how far the cut reaches below the surface along the cutter's depth direction (the
+//!   mean of its planes' front → back directions): from the shallowest point of the model
+//!   surface it removed to the deepest point of its removed piece or walls. Exact for straight
+//!   cutters (one direction); for a curved cutter it is measured along the mean direction.
 //!
 //! Cuts must be exact: when the boolean refuses a cutter the measurement fails instead of
 //! measuring the approximate stand-in.
 
 use std::sync::Arc;
 
-use csg::{Mesh, SpatialIndex};
+use csg::Mesh;
 use glam::DVec3;
 
 use crate::cutaway_geometry::{CutCache, SURFACE, cut_in_turn};
@@ -91,9 +90,14 @@ pub fn cut_models(scene: &Scene) -> anyhow::Result<Vec<ModelCut>> {
             &mut cache,
             &model.mesh,
             &cutters,
-            |_| true,
+            |_| false,
             |step| {
-                let volume = volume_about(step.before_mesh, origin) - volume_about(step.after, origin);
+                let walls = (0..step.after.triangle_count())
+                    .filter(|&t| step.after_tags[t] == step.cutter as u32)
+                    .flat_map(|t| step.after.corners(t));
+                let depth = cut_depth(&scene.cutters[step.cutter], step.removed, walls);
+                let volume =
+                    volume_about(step.before_mesh, origin) - volume_about(step.after, origin);
                 let removed_area = surface_area(step.before_mesh, step.before_tags)
                     - surface_area(step.after, step.after_tags);
                 measures.push(CutterMeasures {
@@ -102,24 +106,19 @@ pub fn cut_models(scene: &Scene) -> anyhow::Result<Vec<ModelCut>> {
                     removed_volume: model_closed.then_some(volume),
                     removed_area,
                     wall_area: 0.0,
-                    depth: 0.0,
+                    depth,
                 });
             },
         );
         if let Some(note) = sequence.notes.first() {
             anyhow::bail!("{}: {note}; metrics need exact cuts", model.name);
         }
-        let index = SpatialIndex::build(&model.mesh);
         for measure in &mut measures {
             let tag = measure.index as u32;
-            let walls = crate::cutaway_geometry::select(&sequence.closed, |t| sequence.tags[t] == tag);
-            measure.wall_area = walls.area();
-            measure.depth = walls
-                .positions
-                .iter()
-                .filter_map(|&p| index.closest_point(&model.mesh, p))
-                .map(|c| c.distance)
-                .fold(0.0, f64::max);
+            measure.wall_area = (0..sequence.closed.triangle_count())
+                .filter(|&t| sequence.tags[t] == tag)
+                .map(|t| sequence.closed.face_normal_scaled(t).length() * 0.5)
+                .sum();
         }
         out.push(ModelCut {
             model: m,
@@ -130,6 +129,39 @@ pub fn cut_models(scene: &Scene) -> anyhow::Result<Vec<ModelCut>> {
         });
     }
     Ok(out)
+}
+
+/// The extent along `cutter`'s mean depth direction from the shallowest point of `removed` (the
+/// model surface it took) to the deepest point of `removed` and `walls` (0 when it took none).
+fn cut_depth(cutter: &SceneCutter, removed: &Mesh, walls: impl Iterator<Item = DVec3>) -> f64 {
+    let direction = cutter
+        .planes
+        .iter()
+        .map(|[front_top, back_top, back_bottom, front_bottom]| {
+            (*back_top - *front_top) + (*back_bottom - *front_bottom)
+        })
+        .sum::<DVec3>()
+        .try_normalize();
+    let Some(direction) = direction else {
+        return 0.0;
+    };
+    let used = removed
+        .triangles
+        .iter()
+        .flatten()
+        .map(|&v| removed.positions[v as usize]);
+    let shallowest = used
+        .clone()
+        .map(|p| p.dot(direction))
+        .fold(f64::INFINITY, f64::min);
+    if !shallowest.is_finite() {
+        return 0.0;
+    }
+    let deepest = used
+        .chain(walls)
+        .map(|p| p.dot(direction))
+        .fold(f64::NEG_INFINITY, f64::max);
+    deepest - shallowest
 }
 
 /// Signed volume enclosed by `mesh`, as the sum of the tetrahedra from `origin` to its triangles.
