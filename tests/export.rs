@@ -254,20 +254,27 @@ fn an_uncut_scene_exports_every_visible_model() {
     let dir = scratch("export-uncut");
     let session = write_session(
         &dir,
-        &[("a.obj", box_obj([0.0; 3], [1.0, 2.0, 3.0]))],
-        vec![model("a.obj", [0.5, 0.5, 0.5])],
+        &[
+            ("a.obj", box_obj([0.0; 3], [1.0, 2.0, 3.0])),
+            ("w.obj", box_obj([5.0; 3], [6.0; 3])),
+        ],
+        vec![
+            model("a.obj", [0.5, 0.5, 0.5]),
+            serde_json::json!({"path": "w.obj", "style": "wireframe"}),
+        ],
         vec![],
         [0.0, -50.0, 0.0],
     );
     let out = dir.join("a.glb");
     let summary = export_json(&session, &out);
+    // The wireframe box is its 18 edges (12 sides and 6 face diagonals), not triangles.
     assert_eq!(
         (
             summary["nodes"].as_u64(),
             summary["triangles"].as_u64(),
             summary["lines"].as_u64()
         ),
-        (Some(1), Some(12), Some(0))
+        (Some(2), Some(12), Some(18))
     );
     let gltf = gltf::Gltf::from_slice(&std::fs::read(&out).unwrap()).unwrap();
     let node = gltf.nodes().find(|n| n.name() == Some("a 1")).unwrap();
