@@ -6,9 +6,11 @@
 pub mod assets;
 pub mod cli;
 pub mod cutaway_geometry;
+pub mod export;
 pub mod gesture;
 pub mod gui;
 pub mod io;
+pub mod metrics;
 pub mod path_file;
 pub mod phantom;
 pub mod render;

@@ -8,8 +8,10 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
 
+pub mod export;
 pub mod extrude;
 pub mod info;
+pub mod metrics;
 pub mod open;
 pub mod phantom;
 pub mod render;
@@ -41,6 +43,10 @@ pub enum Command {
     Scalpel(scalpel::ScalpelArgs),
     /// One closed surface per label of a segmentation volume, one mesh file each.
     Surfaces(surfaces::SurfacesArgs),
+    /// Write the cut scene of a session as glTF 2.0 binary (.glb).
+    Export(export::ExportArgs),
+    /// Measure the cuts of a session: removed volume and area, exposure, distances.
+    Metrics(metrics::MetricsArgs),
     /// Regenerate the embedded synthetic anatomy phantoms into a folder (maintainers only).
     #[command(hide = true)]
     Phantom(phantom::PhantomArgs),
@@ -76,6 +82,8 @@ where
         Some(Command::Render(a)) => render::run(&a),
         Some(Command::Scalpel(a)) => scalpel::run(&a),
         Some(Command::Surfaces(a)) => surfaces::run(&a),
+        Some(Command::Export(a)) => export::run(&a),
+        Some(Command::Metrics(a)) => metrics::run(&a),
         Some(Command::Phantom(a)) => phantom::run(&a),
     }
 }

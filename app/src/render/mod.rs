@@ -71,7 +71,7 @@ mod pipelines;
 mod renderer;
 
 pub use headless::{HeadlessRenderer, RenderPngOptions, render_png};
-pub use renderer::{Renderer, UploadStats};
+pub use renderer::{CONTOUR_COLOR, Renderer, UploadStats, WALL_MIX, WALL_TINT};
 
 /// What the view shows (the GUI's mode buttons; Scalpel draws like Camera).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -27,11 +27,11 @@ use crate::scene::{ModelStyle, Stereo};
 
 /// Wall colour (sRGB) that the cut surfaces lean toward: a pale cream, distinct from anatomy
 /// colours yet close enough to read as "inside of the same thing".
-const WALL_TINT: [f32; 3] = [0.98, 0.93, 0.78];
+pub const WALL_TINT: [f32; 3] = [0.98, 0.93, 0.78];
 /// How far a wall's colour goes from its model's colour toward [`WALL_TINT`].
-const WALL_MIX: f32 = 0.6;
+pub const WALL_MIX: f32 = 0.6;
 /// Contour line colour (sRGB) and width in pixels at 800 px image height.
-const CONTOUR_COLOR: [f32; 3] = [0.08, 0.07, 0.1];
+pub const CONTOUR_COLOR: [f32; 3] = [0.08, 0.07, 0.1];
 const CONTOUR_WIDTH_PX: f32 = 3.0;
 const WIREFRAME_WIDTH_PX: f32 = 1.0;
 /// Cutter overlay colours (sRGB) and opacities.

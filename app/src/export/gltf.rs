@@ -1,0 +1,460 @@
+//! The cut scene as a glTF 2.0 document: what Preview mode draws, as meshes a 3D viewer, Blender
+//! or a web page can open.
+//!
+//! Layout of the document:
+//! - One root node, `cutaway scene`, holding the axis and unit conversion (below); its children
+//!   are one node per visible model (structure), named after the model, with one mesh of the same
+//!   name.
+//! - Each structure's mesh has one primitive per drawn part: the kept surface (the model's colour
+//!   and opacity), the walls (their own material: the model's colour leaning toward the wall tint,
+//!   as the renderer draws them), the removed piece when the cutter's Transparency view is on
+//!   (the model's colour at the cutter's opacity, blended, two-sided), ribbons (two-sided) and
+//!   slice walls (wall material), and the contour as a `LINES` primitive (contour material).
+//!   A wireframe model is exported as `LINES` of its edges.
+//! - Triangle primitives carry `POSITION` and `NORMAL` (area-weighted vertex normals of that
+//!   part) and `u32` indices.
+//!
+//! Units and axes: the vertex data stay in the scene's coordinates, millimetres in the anatomy's
+//! Z-up RAS frame (x right, y anterior, z superior), so every exported position is the scene's
+//! position rounded to `f32`. The root node converts them to glTF's frame: it scales by 0.001
+//! (glTF units are metres, so a knee opens 0.3 units tall, a sane size in three.js and Blender) and
+//! rotates (x, y, z) ↦ (−x, z, y), a proper rotation (180° about (0, 1, 1)/√2) that puts superior
+//! on glTF's +Y up, anterior on +Z (the front of a glTF asset faces +Z) and the patient's right on
+//! −X (glTF's right side of the asset).
+//!
+//! Colours: the scene's colours are sRGB; glTF's `baseColorFactor` is linear, so they are
+//! converted. Materials are dielectric (metallic 0) with a matte roughness.
+
+use std::collections::{BTreeMap, HashMap};
+
+use csg::Mesh;
+use glam::DVec3;
+use gltf_json as json;
+use json::validation::{Checked::Valid, USize64};
+
+use crate::cutaway_geometry::{PartKind, PreviewGeometry};
+use crate::render::{CONTOUR_COLOR, WALL_MIX, WALL_TINT, srgb_to_linear};
+use crate::scene::{ModelStyle, Scene};
+
+/// Name of the root node that carries the unit and axis conversion.
+pub const ROOT_NODE_NAME: &str = "cutaway scene";
+/// Scale of the root node: scene millimetres to glTF metres.
+pub const METRES_PER_MM: f32 = 0.001;
+/// Rotation of the root node as a glTF quaternion `[x, y, z, w]`: 180° about (0, 1, 1)/√2, which
+/// maps (x, y, z) to (−x, z, y).
+pub const Z_UP_TO_Y_UP: [f32; 4] = [
+    0.0,
+    std::f32::consts::FRAC_1_SQRT_2,
+    std::f32::consts::FRAC_1_SQRT_2,
+    0.0,
+];
+/// Roughness of every material (matte, like the renderer's shading).
+const ROUGHNESS: f32 = 0.65;
+
+/// What went into a document (for `--json` and the tests).
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct ExportStats {
+    /// Structure nodes (one per visible model).
+    pub nodes: usize,
+    pub materials: usize,
+    /// Triangles of all triangle primitives.
+    pub triangles: usize,
+    /// Line segments of all `LINES` primitives (contours and wireframes).
+    pub lines: usize,
+}
+
+/// A glTF document and its binary buffer (the BIN chunk of a `.glb`).
+#[derive(Debug)]
+pub struct Document {
+    pub root: json::Root,
+    pub bin: Vec<u8>,
+    pub stats: ExportStats,
+}
+
+/// The material a primitive uses; the key that shares one material between primitives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum MaterialKey {
+    /// The model's own surface at its opacity.
+    Surface(usize),
+    Wall(usize),
+    /// The removed piece at an opacity (bits of the `f32`).
+    Removed(usize, u32),
+    Ribbon(usize),
+    Contour,
+}
+
+/// Builds the document of `scene` as drawn with `geometry` (its [`crate::cutaway_geometry::preview_geometry`]).
+pub fn scene_document(scene: &Scene, geometry: &PreviewGeometry) -> Document {
+    let mut builder = Builder::default();
+    let mut children = Vec::new();
+    for (m, model) in scene.models.iter().enumerate() {
+        if !model.visible {
+            continue;
+        }
+        let mut primitives = Vec::new();
+        let replaced = geometry.replaced.get(m).copied().unwrap_or(false);
+        if !replaced {
+            primitives.extend(builder.surface(scene, m, &model.mesh, MaterialKey::Surface(m)));
+        }
+        for part in geometry.parts.iter().filter(|p| p.model == m) {
+            let key = match part.kind {
+                PartKind::Kept => MaterialKey::Surface(m),
+                PartKind::Wall | PartKind::SliceWall => MaterialKey::Wall(m),
+                PartKind::Removed => MaterialKey::Removed(m, part.opacity.to_bits()),
+                PartKind::Ribbon => MaterialKey::Ribbon(m),
+            };
+            primitives.extend(builder.surface(scene, m, &part.mesh, key));
+        }
+        let contour: Vec<&[DVec3]> = geometry
+            .contours
+            .iter()
+            .filter(|(model, _)| *model == m)
+            .map(|(_, line)| line.as_slice())
+            .collect();
+        primitives.extend(builder.polylines(scene, &contour, MaterialKey::Contour));
+        let mesh = (!primitives.is_empty()).then(|| {
+            builder.root.push(json::Mesh {
+                extensions: None,
+                extras: Default::default(),
+                name: Some(model.name.clone()),
+                primitives,
+                weights: None,
+            })
+        });
+        children.push(builder.root.push(json::Node {
+            mesh,
+            name: Some(model.name.clone()),
+            ..Default::default()
+        }));
+        builder.stats.nodes += 1;
+    }
+    let root_node = builder.root.push(json::Node {
+        children: (!children.is_empty()).then_some(children),
+        name: Some(ROOT_NODE_NAME.to_string()),
+        rotation: Some(json::scene::UnitQuaternion(Z_UP_TO_Y_UP)),
+        scale: Some([METRES_PER_MM; 3]),
+        ..Default::default()
+    });
+    let scene_index = builder.root.push(json::Scene {
+        extensions: None,
+        extras: Default::default(),
+        name: Some("cutaway".to_string()),
+        nodes: vec![root_node],
+    });
+    builder.root.scene = Some(scene_index);
+    builder.root.asset = json::Asset {
+        generator: Some(format!("cutaway {}", env!("CARGO_PKG_VERSION"))),
+        ..Default::default()
+    };
+    if !builder.bin.is_empty() {
+        builder.root.buffers.push(json::Buffer {
+            byte_length: USize64::from(builder.bin.len()),
+            name: None,
+            uri: None,
+            extensions: None,
+            extras: Default::default(),
+        });
+    }
+    builder.stats.materials = builder.root.materials.len();
+    Document {
+        root: builder.root,
+        bin: builder.bin,
+        stats: builder.stats,
+    }
+}
+
+/// Accumulates the JSON objects and the binary buffer.
+#[derive(Default)]
+struct Builder {
+    root: json::Root,
+    bin: Vec<u8>,
+    materials: HashMap<MaterialKey, json::Index<json::Material>>,
+    stats: ExportStats,
+}
+
+impl Builder {
+    /// The primitive of a triangle mesh drawn with `key`'s material (none for an empty mesh); a
+    /// wireframe model's own surface becomes `LINES` of its edges.
+    fn surface(
+        &mut self,
+        scene: &Scene,
+        model: usize,
+        mesh: &Mesh,
+        key: MaterialKey,
+    ) -> Option<json::mesh::Primitive> {
+        if mesh.triangles.is_empty() {
+            return None;
+        }
+        if key == MaterialKey::Surface(model) && scene.models[model].style == ModelStyle::Wireframe
+        {
+            return self.edges(scene, mesh, key);
+        }
+        let positions = self.positions(&mesh.positions);
+        let normals = self.normals(mesh);
+        let indices = self.indices(mesh.triangles.iter().flatten().copied());
+        self.stats.triangles += mesh.triangles.len();
+        let material = self.material(scene, key);
+        Some(primitive(
+            positions,
+            Some(normals),
+            indices,
+            material,
+            json::mesh::Mode::Triangles,
+        ))
+    }
+
+    /// `LINES` of the unique edges of `mesh`.
+    fn edges(
+        &mut self,
+        scene: &Scene,
+        mesh: &Mesh,
+        key: MaterialKey,
+    ) -> Option<json::mesh::Primitive> {
+        let mut edges: Vec<(u32, u32)> = mesh
+            .triangles
+            .iter()
+            .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
+            .collect();
+        edges.sort_unstable();
+        edges.dedup();
+        let positions = self.positions(&mesh.positions);
+        let indices = self.indices(edges.iter().flat_map(|&(a, b)| [a, b]));
+        self.stats.lines += edges.len();
+        let material = self.material(scene, key);
+        Some(primitive(
+            positions,
+            None,
+            indices,
+            material,
+            json::mesh::Mode::Lines,
+        ))
+    }
+
+    /// One `LINES` primitive of all segments of `lines` (none if there are none).
+    fn polylines(
+        &mut self,
+        scene: &Scene,
+        lines: &[&[DVec3]],
+        key: MaterialKey,
+    ) -> Option<json::mesh::Primitive> {
+        let mut points = Vec::new();
+        let mut indices = Vec::new();
+        for line in lines.iter().filter(|l| l.len() >= 2) {
+            let first = points.len() as u32;
+            points.extend_from_slice(line);
+            for k in 0..line.len() as u32 - 1 {
+                indices.extend([first + k, first + k + 1]);
+            }
+        }
+        if indices.is_empty() {
+            return None;
+        }
+        let positions = self.positions(&points);
+        self.stats.lines += indices.len() / 2;
+        let indices = self.indices(indices.into_iter());
+        let material = self.material(scene, key);
+        Some(primitive(
+            positions,
+            None,
+            indices,
+            material,
+            json::mesh::Mode::Lines,
+        ))
+    }
+
+    /// A `VEC3` `f32` accessor of `points` with its bounds (required for `POSITION`).
+    fn positions(&mut self, points: &[DVec3]) -> json::Index<json::Accessor> {
+        let data: Vec<[f32; 3]> = points.iter().map(|p| p.as_vec3().to_array()).collect();
+        let mut min = [f32::INFINITY; 3];
+        let mut max = [f32::NEG_INFINITY; 3];
+        for p in &data {
+            for k in 0..3 {
+                min[k] = min[k].min(p[k]);
+                max[k] = max[k].max(p[k]);
+            }
+        }
+        let view = self.view(
+            bytemuck::cast_slice(&data),
+            json::buffer::Target::ArrayBuffer,
+        );
+        self.root.push(accessor(
+            view,
+            data.len(),
+            json::accessor::ComponentType::F32,
+            json::accessor::Type::Vec3,
+            Some((min, max)),
+        ))
+    }
+
+    /// Area-weighted unit vertex normals of `mesh` (+Z for a vertex whose faces have no area).
+    fn normals(&mut self, mesh: &Mesh) -> json::Index<json::Accessor> {
+        let mut sums = vec![DVec3::ZERO; mesh.positions.len()];
+        for t in 0..mesh.triangles.len() {
+            let n = mesh.face_normal_scaled(t);
+            for &v in &mesh.triangles[t] {
+                sums[v as usize] += n;
+            }
+        }
+        let data: Vec<[f32; 3]> = sums
+            .iter()
+            .map(|n| {
+                let unit = n.try_normalize().unwrap_or(DVec3::Z).as_vec3();
+                // Renormalized in f32 so the validator's unit-length check holds after rounding.
+                unit.try_normalize().unwrap_or(glam::Vec3::Z).to_array()
+            })
+            .collect();
+        let view = self.view(
+            bytemuck::cast_slice(&data),
+            json::buffer::Target::ArrayBuffer,
+        );
+        self.root.push(accessor(
+            view,
+            data.len(),
+            json::accessor::ComponentType::F32,
+            json::accessor::Type::Vec3,
+            None,
+        ))
+    }
+
+    /// A `u32` index accessor.
+    fn indices(&mut self, indices: impl Iterator<Item = u32>) -> json::Index<json::Accessor> {
+        let data: Vec<u32> = indices.collect();
+        let view = self.view(
+            bytemuck::cast_slice(&data),
+            json::buffer::Target::ElementArrayBuffer,
+        );
+        self.root.push(accessor(
+            view,
+            data.len(),
+            json::accessor::ComponentType::U32,
+            json::accessor::Type::Scalar,
+            None,
+        ))
+    }
+
+    /// Appends `bytes` to the buffer (every view starts on a 4-byte boundary) as a buffer view.
+    fn view(
+        &mut self,
+        bytes: &[u8],
+        target: json::buffer::Target,
+    ) -> json::Index<json::buffer::View> {
+        let offset = self.bin.len();
+        self.bin.extend_from_slice(bytes);
+        self.bin.resize(super::glb::padded_len(self.bin.len()), 0);
+        self.root.push(json::buffer::View {
+            buffer: json::Index::new(0),
+            byte_length: USize64::from(bytes.len()),
+            byte_offset: Some(USize64::from(offset)),
+            byte_stride: None,
+            name: None,
+            target: Some(Valid(target)),
+            extensions: None,
+            extras: Default::default(),
+        })
+    }
+
+    /// The material of `key`, created on first use.
+    fn material(&mut self, scene: &Scene, key: MaterialKey) -> json::Index<json::Material> {
+        if let Some(&index) = self.materials.get(&key) {
+            return index;
+        }
+        let name_of = |m: usize| scene.models[m].name.clone();
+        let (name, srgb, opacity, double_sided) = match key {
+            MaterialKey::Surface(m) => (
+                name_of(m),
+                scene.models[m].color,
+                scene.models[m].opacity,
+                false,
+            ),
+            MaterialKey::Wall(m) => (
+                format!("{} wall", name_of(m)),
+                mix(scene.models[m].color, WALL_TINT, WALL_MIX),
+                1.0,
+                false,
+            ),
+            MaterialKey::Removed(m, bits) => (
+                format!("{} removed", name_of(m)),
+                scene.models[m].color,
+                f32::from_bits(bits),
+                true,
+            ),
+            MaterialKey::Ribbon(m) => (
+                format!("{} ribbon", name_of(m)),
+                scene.models[m].color,
+                1.0,
+                true,
+            ),
+            MaterialKey::Contour => ("contour".to_string(), CONTOUR_COLOR, 1.0, false),
+        };
+        let opacity = opacity.clamp(0.0, 1.0);
+        let [r, g, b] = srgb.map(|c| srgb_to_linear(c.clamp(0.0, 1.0)));
+        let index = self.root.push(json::Material {
+            name: Some(name),
+            alpha_mode: Valid(if opacity < 1.0 {
+                json::material::AlphaMode::Blend
+            } else {
+                json::material::AlphaMode::Opaque
+            }),
+            double_sided,
+            pbr_metallic_roughness: json::material::PbrMetallicRoughness {
+                base_color_factor: json::material::PbrBaseColorFactor([r, g, b, opacity]),
+                metallic_factor: json::material::StrengthFactor(0.0),
+                roughness_factor: json::material::StrengthFactor(ROUGHNESS),
+                ..Default::default()
+            },
+            ..Default::default()
+        });
+        self.materials.insert(key, index);
+        index
+    }
+}
+
+fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
+    [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t)
+}
+
+fn accessor(
+    view: json::Index<json::buffer::View>,
+    count: usize,
+    component: json::accessor::ComponentType,
+    type_: json::accessor::Type,
+    bounds: Option<([f32; 3], [f32; 3])>,
+) -> json::Accessor {
+    json::Accessor {
+        buffer_view: Some(view),
+        byte_offset: None,
+        count: USize64::from(count),
+        component_type: Valid(json::accessor::GenericComponentType(component)),
+        extensions: None,
+        extras: Default::default(),
+        type_: Valid(type_),
+        min: bounds.map(|(min, _)| serde_json::json!(min)),
+        max: bounds.map(|(_, max)| serde_json::json!(max)),
+        name: None,
+        normalized: false,
+        sparse: None,
+    }
+}
+
+fn primitive(
+    positions: json::Index<json::Accessor>,
+    normals: Option<json::Index<json::Accessor>>,
+    indices: json::Index<json::Accessor>,
+    material: json::Index<json::Material>,
+    mode: json::mesh::Mode,
+) -> json::mesh::Primitive {
+    let mut attributes = BTreeMap::new();
+    attributes.insert(Valid(json::mesh::Semantic::Positions), positions);
+    if let Some(normals) = normals {
+        attributes.insert(Valid(json::mesh::Semantic::Normals), normals);
+    }
+    json::mesh::Primitive {
+        attributes,
+        extensions: None,
+        extras: Default::default(),
+        indices: Some(indices),
+        material: Some(material),
+        mode: Valid(mode),
+        targets: None,
+    }
+}

@@ -1,0 +1,213 @@
+//! Measures of a session's cuts, for comparing cut variants: what each cut removes, how much of a
+//! focus structure the camera sees with and without the cuts, and how close the cut walls come
+//! to critical structures. Units are the scene's: mm, mm², mm³.
+//!
+//! - [`removal`]: removed volume and area, wall area and depth, per cutter and per structure,
+//!   from the exact boolean (the same cuts Preview draws);
+//! - [`exposure`]: the visible share of a surface from the camera eye, by ray casting to
+//!   area-spread samples;
+//! - [`distance`]: the smallest distance between two meshes with the closest points.
+//!
+//! A structure is a model of the scene, named as the model list names it.
+
+pub mod distance;
+pub mod exposure;
+pub mod removal;
+
+use csg::Mesh;
+
+use crate::cutaway_geometry::{PartKind, preview_geometry};
+use crate::scene::{ModelStyle, Scene};
+
+/// What to measure besides the removal of every cut.
+#[derive(Clone, Debug)]
+pub struct MetricsOptions {
+    /// Structure whose exposure is measured (none by default).
+    pub focus: Option<String>,
+    /// Structures whose distance to the cut walls is measured (none by default).
+    pub critical: Vec<String>,
+    /// Surface samples of the exposure estimate (default [`exposure::DEFAULT_SAMPLES`]).
+    pub samples: usize,
+}
+
+impl Default for MetricsOptions {
+    fn default() -> MetricsOptions {
+        MetricsOptions {
+            focus: None,
+            critical: Vec::new(),
+            samples: exposure::DEFAULT_SAMPLES,
+        }
+    }
+}
+
+/// The measures of one structure.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct StructureMeasures {
+    pub name: String,
+    /// Whether the structure's surface is closed (volumes are reported only then).
+    pub closed: bool,
+    /// mm³ removed by all cuts (0 when uncut; `None` for an open surface).
+    pub removed_volume: Option<f64>,
+    /// mm² of the structure's own surface removed.
+    pub removed_area: f64,
+    /// mm² of walls the cuts leave on it.
+    pub wall_area: f64,
+    /// For a critical structure: mm from the nearest cut wall (0 when a wall touches or crosses
+    /// it); `None` otherwise or when there are no walls.
+    pub min_distance: Option<f64>,
+    /// The closest point on the structure, and on the walls.
+    pub closest_point: Option<[f64; 3]>,
+    pub wall_point: Option<[f64; 3]>,
+}
+
+/// Exposure of the focus structure.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FocusMeasures {
+    pub name: String,
+    /// Share (0..=1) of its surface area visible from the camera without the cuts.
+    pub exposure_before: f64,
+    /// The same with the cuts (its surface as drawn: kept part and walls when it is cut itself).
+    pub exposure_after: f64,
+    /// Surface samples, each one ray from the camera eye.
+    pub samples: usize,
+}
+
+/// Everything `cutaway metrics` prints.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Metrics {
+    pub cutters: Vec<removal::CutterMeasures>,
+    pub structures: Vec<StructureMeasures>,
+    pub focus: Option<FocusMeasures>,
+}
+
+/// Measures the cuts of `scene`. Fails when a named structure does not exist or a cut is not
+/// exact.
+pub fn measure(scene: &Scene, options: &MetricsOptions) -> anyhow::Result<Metrics> {
+    let find = |name: &str| {
+        scene
+            .models
+            .iter()
+            .position(|m| m.name == name)
+            .ok_or_else(|| {
+                let names: Vec<&str> = scene.models.iter().map(|m| m.name.as_str()).collect();
+                anyhow::anyhow!(
+                    "no structure named '{name}' (structures: {})",
+                    names.join(", ")
+                )
+            })
+    };
+    let focus = options.focus.as_deref().map(find).transpose()?;
+    let critical = options
+        .critical
+        .iter()
+        .map(|n| find(n))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    if !(1..=10_000_000).contains(&options.samples) {
+        anyhow::bail!("--samples {} is outside 1..10000000", options.samples);
+    }
+
+    let cuts = removal::cut_models(scene)?;
+    let mut walls = Mesh::default();
+    for cut in &cuts {
+        walls.append(&cut.walls());
+    }
+    let mut structures = Vec::new();
+    for (m, model) in scene.models.iter().enumerate() {
+        let cut = cuts.iter().find(|c| c.model == m);
+        let closed = cut.map_or_else(|| model.mesh.report().closed, |c| c.model_closed);
+        let cutters = cut.map_or(&[][..], |c| &c.cutters[..]);
+        // Folded from +0 (an empty `sum` of floats is −0).
+        let total = |value: fn(&removal::CutterMeasures) -> f64| {
+            cutters.iter().map(value).fold(0.0, |a, b| a + b)
+        };
+        let removed_volume = closed.then(|| total(|c| c.removed_volume.unwrap_or(0.0)));
+        let pair = critical
+            .contains(&m)
+            .then(|| distance::min_distance(&walls, &model.mesh))
+            .flatten();
+        structures.push(StructureMeasures {
+            name: model.name.clone(),
+            closed,
+            removed_volume,
+            removed_area: total(|c| c.removed_area),
+            wall_area: total(|c| c.wall_area),
+            min_distance: pair.map(|p| p.distance),
+            closest_point: pair.map(|p| p.on_second.to_array()),
+            wall_point: pair.map(|p| p.on_first.to_array()),
+        });
+    }
+    let mut cutters: Vec<removal::CutterMeasures> =
+        cuts.into_iter().flat_map(|c| c.cutters).collect();
+    cutters.sort_by_key(|c| c.index);
+    let focus = match focus {
+        Some(f) => Some(focus_measures(scene, f, options.samples)?),
+        None => None,
+    };
+    Ok(Metrics {
+        cutters,
+        structures,
+        focus,
+    })
+}
+
+/// Exposure of model `focus` without and with the cuts.
+fn focus_measures(scene: &Scene, focus: usize, samples: usize) -> anyhow::Result<FocusMeasures> {
+    let eye = scene.camera.eye;
+    let forward = scene.camera.forward();
+    // Opaque, drawn models hide what is behind them; translucent ones do not.
+    let hides = |m: usize| {
+        let model = &scene.models[m];
+        m != focus && model.visible && model.opacity >= 1.0 && model.style == ModelStyle::Solid
+    };
+    let before_occluders: Vec<&Mesh> = (0..scene.models.len())
+        .filter(|&m| hides(m))
+        .map(|m| &*scene.models[m].mesh)
+        .collect();
+    let none = || {
+        anyhow::anyhow!(
+            "{}: the structure has no surface area",
+            scene.models[focus].name
+        )
+    };
+    let exposure_before = exposure::exposure(
+        &scene.models[focus].mesh,
+        &before_occluders,
+        eye,
+        forward,
+        samples,
+    )
+    .ok_or_else(none)?;
+
+    let geometry = preview_geometry(scene);
+    if let Some(note) = geometry.notes.first() {
+        anyhow::bail!("{note}; metrics need exact cuts");
+    }
+    let drawn = |m: usize| -> Vec<&Mesh> {
+        if geometry.replaced[m] {
+            geometry
+                .parts
+                .iter()
+                .filter(|p| p.model == m && p.kind != PartKind::Removed)
+                .map(|p| &p.mesh)
+                .collect()
+        } else {
+            vec![&*scene.models[m].mesh]
+        }
+    };
+    let after_occluders: Vec<&Mesh> = (0..scene.models.len())
+        .filter(|&m| hides(m))
+        .flat_map(drawn)
+        .collect();
+    let mut focus_surface = Mesh::default();
+    for part in drawn(focus) {
+        focus_surface.append(part);
+    }
+    let exposure_after =
+        exposure::exposure(&focus_surface, &after_occluders, eye, forward, samples).unwrap_or(0.0);
+    Ok(FocusMeasures {
+        name: scene.models[focus].name.clone(),
+        exposure_before,
+        exposure_after,
+        samples,
+    })
+}
