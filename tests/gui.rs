@@ -681,11 +681,17 @@ fn the_models_list_names_structures_groups_folders_and_filters() {
 
     // A group's box hides everything in it, and one undo brings it back.
     click_checkbox(&mut h, "brainstem (1)");
-    assert!(!h.state().scene.models[2].visible, "the group box hid the pons");
+    assert!(
+        !h.state().scene.models[2].visible,
+        "the group box hid the pons"
+    );
     assert!(h.state().scene.models[0].visible);
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
     h.run_steps(2);
-    assert!(h.state().scene.models[2].visible, "undo showed the pons again");
+    assert!(
+        h.state().scene.models[2].visible,
+        "undo showed the pons again"
+    );
 
     // The filter keeps the matching rows; Hide listed hides only those.
     h.get_by_role(egui::accesskit::Role::TextInput).click();
@@ -693,7 +699,10 @@ fn the_models_list_names_structures_groups_folders_and_filters() {
     h.get_by_role(egui::accesskit::Role::TextInput)
         .type_text("hippo");
     h.run_steps(3);
-    assert!(h.query_by_label("pons").is_none(), "the filter hides the pons row");
+    assert!(
+        h.query_by_label("pons").is_none(),
+        "the filter hides the pons row"
+    );
     h.get_by_label("left hippocampus");
     h.get_by_label("Hide listed").click();
     h.run_steps(3);
@@ -701,7 +710,7 @@ fn the_models_list_names_structures_groups_folders_and_filters() {
     assert_eq!(visible, [false, false, true]);
 
     // Cleared filter: every row is back, and Show all shows everything.
-    h.get_by_label("✖").click();
+    h.get_by_label("Clear").click();
     h.run_steps(3);
     h.get_by_label("pons");
     h.get_by_label("Show all").click();
@@ -711,4 +720,77 @@ fn the_models_list_names_structures_groups_folders_and_filters() {
     h.render().expect("render").save(&shot).expect("save");
     println!("screenshot: {}", shot.display());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_brain_atlas_folder_lists_one_named_coloured_model_per_file() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let anatomy = std::env::var_os("CUTAWAY_ANATOMY")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("../shared/anatomy"));
+    let atlas = anatomy.join("head_brain_spl_atlas");
+    if !atlas.is_dir() {
+        println!(
+            "skipped: {} not found (set CUTAWAY_ANATOMY)",
+            atlas.display()
+        );
+        return;
+    }
+    let dir = temp_dir("brain-atlas");
+    let mut h = harness(&dir, vec![atlas], false);
+    settle(&mut h);
+    let app = h.state();
+    assert_eq!(
+        app.scene.models.len(),
+        38,
+        "one model per file (status: {})",
+        app.status.message
+    );
+    let model = |name: &str| {
+        app.scene
+            .models
+            .iter()
+            .find(|m| m.name == name)
+            .unwrap_or_else(|| panic!("no model named {name}"))
+    };
+    let srgb = |c: [f32; 3]| c.map(|v| (v * 255.0).round() as u8);
+    assert_eq!(srgb(model("left hippocampus").color), [220, 216, 20]);
+    assert_eq!(srgb(model("right lateral ventricle").color), [88, 106, 215]);
+    assert_eq!(model("corpus callosum").group, "head_brain_spl_atlas");
+    h.get_by_label("left hippocampus");
+    let shot = dir.join("brain-atlas-list.png");
+    h.render().expect("render").save(&shot).expect("save");
+    println!("screenshot: {}", shot.display());
+}
+
+#[test]
+fn the_default_scene_is_the_head_atlas_seen_from_the_front() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("default-head");
+    let mut h = harness(&dir, Vec::new(), false);
+    settle(&mut h);
+    let app = h.state();
+    let names: Vec<&str> = app.scene.models.iter().map(|m| m.name.as_str()).collect();
+    assert_eq!(names.first(), Some(&"skin"), "{names:?}");
+    for deep in [
+        "left lateral ventricle",
+        "left hippocampus",
+        "right putamen",
+        "pons",
+    ] {
+        assert!(names.contains(&deep), "{deep} missing from {names:?}");
+    }
+    // RAS anatomy: the face looks toward +Y, so the camera stands on the +Y side, Z up.
+    let camera = app.scene.camera;
+    assert!(camera.eye.y > camera.target.y + 100.0, "{camera:?}");
+    assert_eq!(camera.up, glam::DVec3::Z);
+    let shot = dir.join("default-scene.png");
+    h.render().expect("render").save(&shot).expect("save");
+    println!("screenshot: {}", shot.display());
 }

@@ -71,8 +71,7 @@ pub fn color_for_name(name: &str) -> Option<[f32; 3]> {
     let words = words_of(name);
     let mut best: Option<&Entry> = None;
     for entry in table() {
-        if in_order(&entry.words, &words)
-            && best.is_none_or(|b| entry.words.len() > b.words.len())
+        if in_order(&entry.words, &words) && best.is_none_or(|b| entry.words.len() > b.words.len())
         {
             best = Some(entry);
         }
@@ -115,7 +114,10 @@ mod tests {
             color_for_name("white matter").map(rgb),
             Some([250, 250, 210])
         );
-        assert_eq!(color_for_name("VHF_Left_Bone_Tibia_smooth").map(rgb), Some([241, 214, 145]));
+        assert_eq!(
+            color_for_name("VHF_Left_Bone_Tibia_smooth").map(rgb),
+            Some([241, 214, 145])
+        );
         // Whole words only: "skinny" is not skin, "eyeball" is not "eye".
         assert_eq!(color_for_name("skinny widget"), None);
         assert_eq!(color_for_name("part 3"), None);

@@ -88,7 +88,10 @@ impl Scene {
 pub fn load_scene(scene: &Scene) -> anyhow::Result<Vec<Model>> {
     let mut models = Vec::new();
     for part in decode_parts(scene)? {
-        models.extend(crate::io::models_of_parts(&scene.part_path(&part.name), &[part]));
+        models.extend(crate::io::models_of_parts(
+            &scene.part_path(&part.name),
+            &[part],
+        ));
     }
     Ok(models)
 }

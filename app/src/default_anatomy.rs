@@ -41,8 +41,14 @@ static FILES: &[(&str, &str, &[u8])] = &[
     file!("skin.ply", ""),
     file!("Model_4_left_lateral_ventricle.vtk", "ventricles"),
     file!("Model_43_right_lateral_ventricle.vtk", "ventricles"),
-    file!("Model_5_temporal_horn_of_left_lateral_ventricle.vtk", "ventricles"),
-    file!("Model_44_temporal_horn_of_right_lateral_ventricle.vtk", "ventricles"),
+    file!(
+        "Model_5_temporal_horn_of_left_lateral_ventricle.vtk",
+        "ventricles"
+    ),
+    file!(
+        "Model_44_temporal_horn_of_right_lateral_ventricle.vtk",
+        "ventricles"
+    ),
     file!("Model_24_third_ventricle.vtk", "ventricles"),
     file!("Model_15_fourth_ventricle.vtk", "ventricles"),
     file!("Model_11_left_caudate_nucleus.vtk", "basal ganglia"),
@@ -135,7 +141,11 @@ mod tests {
             report.closed && report.manifold && report.regions == 1,
             "the decimated skin must stay one closed manifold surface: {report:?}"
         );
-        assert!(skin.mesh.volume() > 1.0e6, "skin volume {}", skin.mesh.volume());
+        assert!(
+            skin.mesh.volume() > 1.0e6,
+            "skin volume {}",
+            skin.mesh.volume()
+        );
         let hippocampus = models
             .iter()
             .find(|m| m.name == "left hippocampus")

@@ -119,10 +119,7 @@ pub enum MeshOrigin {
 
 impl SceneModel {
     /// A visible, opaque, solid model of structure `index` of `source` in `group`.
-    pub fn structure(
-        model: crate::io::Model,
-        color: [f32; 3],
-    ) -> SceneModel {
+    pub fn structure(model: crate::io::Model, color: [f32; 3]) -> SceneModel {
         let crate::io::Model {
             name,
             source,

@@ -197,8 +197,7 @@ pub fn load(path: &Path) -> anyhow::Result<Scene> {
 
 /// Loads one model file or folder as a list of models of one [`ModelUnit`]: its regions in file
 /// order, or its structures.
-pub type LoadModels<'a> =
-    dyn FnMut(&Path, ModelUnit) -> anyhow::Result<Vec<crate::io::Model>> + 'a;
+pub type LoadModels<'a> = dyn FnMut(&Path, ModelUnit) -> anyhow::Result<Vec<crate::io::Model>> + 'a;
 
 /// Reads the session at `path`, loading each model file with `load_models`. Errors name the
 /// session file (or the model file that failed).
@@ -248,7 +247,10 @@ pub fn scene_from_file(
             }];
             &exact_model
         } else {
-            let slot = match loaded.iter().position(|(p, u, _)| *p == source && *u == unit) {
+            let slot = match loaded
+                .iter()
+                .position(|(p, u, _)| *p == source && *u == unit)
+            {
                 Some(k) => k,
                 None => {
                     let models = load_models(&source, unit)?;
@@ -375,10 +377,7 @@ pub fn scene_from_file(
 /// `cutaway-session/1` (a scene made only of regions, as loaded from a `/1` file, keeps its
 /// format).
 pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
-    let structures_format = scene
-        .models
-        .iter()
-        .any(|m| m.unit == ModelUnit::Structure);
+    let structures_format = scene.models.iter().any(|m| m.unit == ModelUnit::Structure);
     let models = scene
         .models
         .iter()
@@ -566,7 +565,11 @@ mod tests {
     /// A loader that serves one file, `pair.obj`: two regions as models, or one structure
     /// holding both.
     fn pair_loader(path: &Path, unit: ModelUnit) -> anyhow::Result<Vec<crate::io::Model>> {
-        anyhow::ensure!(path.ends_with("pair.obj"), "{}: no such file", path.display());
+        anyhow::ensure!(
+            path.ends_with("pair.obj"),
+            "{}: no such file",
+            path.display()
+        );
         let sphere = |x: f64| {
             let mut m = csg::testkit::icosphere(1, 1.0);
             for p in &mut m.positions {
@@ -583,7 +586,10 @@ mod tests {
             mesh,
         };
         Ok(match unit {
-            ModelUnit::Region => vec![model("pair 1", 0, sphere(0.0)), model("pair 2", 1, sphere(3.0))],
+            ModelUnit::Region => vec![
+                model("pair 1", 0, sphere(0.0)),
+                model("pair 2", 1, sphere(3.0)),
+            ],
             ModelUnit::Structure => {
                 let mut both = sphere(0.0);
                 both.append(&sphere(3.0));
@@ -616,8 +622,12 @@ mod tests {
         assert_eq!(scene.models[0].mesh.triangle_count(), 2 * 80);
         // The structure's colour comes from the palette (no anatomical name, no file colour).
         assert_eq!(scene.models[0].color, distinct_colors(1)[0]);
-        let err = scene_from_file(&session(FORMAT, r#"[{"path": "pair.obj"}]"#, 1), folder, &mut pair_loader)
-            .unwrap_err();
+        let err = scene_from_file(
+            &session(FORMAT, r#"[{"path": "pair.obj"}]"#, 1),
+            folder,
+            &mut pair_loader,
+        )
+        .unwrap_err();
         assert!(format!("{err}").contains("target 1"), "{err}");
 
         // v2 may keep a single region (a model carried over from a v1 session).
@@ -628,12 +638,26 @@ mod tests {
         );
         let scene = scene_from_file(&mixed, folder, &mut pair_loader).unwrap();
         assert_eq!(
-            scene.models.iter().map(|m| (m.name.as_str(), m.group.as_str(), m.unit)).collect::<Vec<_>>(),
-            [("both", "g/h", ModelUnit::Structure), ("pair 2", "", ModelUnit::Region)]
+            scene
+                .models
+                .iter()
+                .map(|m| (m.name.as_str(), m.group.as_str(), m.unit))
+                .collect::<Vec<_>>(),
+            [
+                ("both", "g/h", ModelUnit::Structure),
+                ("pair 2", "", ModelUnit::Region)
+            ]
         );
-        let both = session(FORMAT, r#"[{"path": "pair.obj", "structure": 0, "region": 0}]"#, 0);
+        let both = session(
+            FORMAT,
+            r#"[{"path": "pair.obj", "structure": 0, "region": 0}]"#,
+            0,
+        );
         let err = scene_from_file(&both, folder, &mut pair_loader).unwrap_err();
-        assert!(format!("{err}").contains("both a region and a structure"), "{err}");
+        assert!(
+            format!("{err}").contains("both a region and a structure"),
+            "{err}"
+        );
         let missing = session(FORMAT, r#"[{"path": "pair.obj", "structure": 3}]"#, 0);
         let err = scene_from_file(&missing, folder, &mut pair_loader).unwrap_err();
         assert!(format!("{err}").contains("structure 3"), "{err}");
@@ -657,7 +681,10 @@ mod tests {
             .collect();
         assert_eq!(
             entries,
-            [(Some(0), None, Some("pair"), Some("g")), (None, Some(1), None, None)]
+            [
+                (Some(0), None, Some("pair"), Some("g")),
+                (None, Some(1), None, None)
+            ]
         );
         let back = scene_from_file(&file, folder, &mut pair_loader).unwrap();
         assert_eq!(back.models.len(), 2);
@@ -667,7 +694,14 @@ mod tests {
         let v1 = session(FORMAT_V1, r#"[{"path": "pair.obj"}]"#, 1);
         let scene = scene_from_file(&v1, folder, &mut pair_loader).unwrap();
         let file = file_from_scene(&scene, folder);
-        assert_eq!(file.format, FORMAT_V1, "a scene of regions keeps its format");
-        assert!(file.models.iter().all(|m| m.structure.is_none() && m.name.is_none()));
+        assert_eq!(
+            file.format, FORMAT_V1,
+            "a scene of regions keeps its format"
+        );
+        assert!(
+            file.models
+                .iter()
+                .all(|m| m.structure.is_none() && m.name.is_none())
+        );
     }
 }

@@ -129,10 +129,7 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
             }
             ui.menu_button("Open Example", |ui| {
                 let atlas = crate::default_anatomy::NAME;
-                if ui
-                    .button(format!("{atlas} (real anatomy)"))
-                    .clicked()
-                {
+                if ui.button(format!("{atlas} (real anatomy)")).clicked() {
                     actions.push(Action::OpenExample(atlas.to_string()));
                 }
                 for scene in crate::assets::scenes() {

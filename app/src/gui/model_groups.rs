@@ -102,7 +102,10 @@ mod tests {
         assert_eq!(root.models, [0]);
         assert_eq!(root.groups.len(), 1);
         let atlas = &root.groups[0];
-        assert_eq!((atlas.name.as_str(), atlas.path.as_str()), ("atlas", "atlas"));
+        assert_eq!(
+            (atlas.name.as_str(), atlas.path.as_str()),
+            ("atlas", "atlas")
+        );
         assert_eq!(atlas.models, [1, 3]);
         assert_eq!(atlas.groups[0].path, "atlas/brainstem");
         assert_eq!(atlas.groups[0].models, [2, 4]);

@@ -55,11 +55,11 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         ui.add(
             egui::TextEdit::singleline(&mut state.filter)
                 .hint_text("Filter by name or group")
-                .desired_width(ui.available_width() - 28.0),
+                .desired_width(ui.available_width() - 52.0),
         )
         .on_hover_text("Shows only the models whose name or group contains every word typed");
         if ui
-            .add_enabled(!state.filter.is_empty(), egui::Button::new("✖"))
+            .add_enabled(!state.filter.is_empty(), egui::Button::new("Clear"))
             .on_hover_text("Clear the filter")
             .clicked()
         {
@@ -76,19 +76,25 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         };
         for (show, label) in [(true, "Show"), (false, "Hide")] {
             if ui
-                .add_enabled(!listed.is_empty(), egui::Button::new(format!("{label} {what}")))
+                .add_enabled(
+                    !listed.is_empty(),
+                    egui::Button::new(format!("{label} {what}")),
+                )
                 .clicked()
             {
-                set_visible(app, &listed, show, if show { "show models" } else { "hide models" });
+                set_visible(
+                    app,
+                    &listed,
+                    show,
+                    if show { "show models" } else { "hide models" },
+                );
             }
         }
         if !state.filter.is_empty() {
             ui.label(egui::RichText::new(format!("{} listed", listed.len())).weak());
         }
     });
-    let selected = app
-        .selected_model
-        .filter(|&i| i < app.scene.models.len());
+    let selected = app.selected_model.filter(|&i| i < app.scene.models.len());
     if selected != state.shown_selection {
         state.shown_selection = selected;
         state.reveal_frames = if selected.is_some() { REVEAL_FRAMES } else { 0 };
@@ -197,7 +203,10 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
 
 /// Sets the visibility of `models` as one undo step (nothing when none changes).
 fn set_visible(app: &mut CutawayApp, models: &[usize], visible: bool, label: &str) {
-    if models.iter().all(|&i| app.scene.models[i].visible == visible) {
+    if models
+        .iter()
+        .all(|&i| app.scene.models[i].visible == visible)
+    {
         return;
     }
     app.begin_edit(label);
@@ -286,7 +295,11 @@ fn model_row_ui(
             row.scroll_to_me(None);
         }
         if row.clicked() {
-            actions.push(Action::SelectModel(if selected { None } else { Some(index) }));
+            actions.push(Action::SelectModel(if selected {
+                None
+            } else {
+                Some(index)
+            }));
         }
         if row.double_clicked() {
             actions.push(Action::FocusModel(index));

@@ -53,9 +53,9 @@ use csg::Mesh;
 mod atomic;
 mod dir;
 mod obj;
-mod structures;
 mod ply;
 mod stl;
+mod structures;
 mod vtk;
 
 pub use dir::mesh_files;

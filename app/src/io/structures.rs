@@ -122,7 +122,10 @@ mod tests {
             structure_name("Model_17_left_hippocampus"),
             "left hippocampus"
         );
-        assert_eq!(structure_name("Model_3004_corpus_callosum"), "corpus callosum");
+        assert_eq!(
+            structure_name("Model_3004_corpus_callosum"),
+            "corpus callosum"
+        );
         assert_eq!(
             structure_name("VHF_Left_Bone_Tibia_smooth"),
             "VHF Left Bone Tibia smooth"
