@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 
 use crate::io::{Model, Part};
+use crate::scene::ModelUnit;
 
 /// One embedded scene.
 #[derive(Debug)]
@@ -86,24 +87,64 @@ impl Scene {
 /// named `<part> <n>` (as [`crate::io::load_models`] names a file's regions), in part order.
 pub fn load_scene(scene: &Scene) -> anyhow::Result<Vec<Model>> {
     let mut models = Vec::new();
-    for &(name, bytes) in scene.parts {
-        let path = scene.part_path(name);
-        let mesh =
-            crate::phantom::ply::decode(bytes).with_context(|| path.display().to_string())?;
-        let part = Part {
-            name: name.to_string(),
-            color: None,
-            mesh: csg::weld::weld_exact(&mesh),
-        };
-        models.extend(crate::io::models_of_parts(&path, &[part]));
+    for part in decode_parts(scene)? {
+        models.extend(crate::io::models_of_parts(
+            &scene.part_path(&part.name),
+            &[part],
+        ));
     }
     Ok(models)
+}
+
+/// Parses every part of `scene` and welds it: one structure [`Model`] per part, named as
+/// [`crate::io::load_structures`] names a file (`femur_marrow` → `femur marrow`), in part order,
+/// coloured by [`default_color`].
+pub fn load_scene_structures(scene: &Scene) -> anyhow::Result<Vec<Model>> {
+    let mut models = Vec::new();
+    for part in decode_parts(scene)? {
+        let path = scene.part_path(&part.name);
+        let color = default_color(&part.name);
+        models.extend(
+            crate::io::structures_of_parts(&path, vec![part], "")
+                .into_iter()
+                .map(|m| Model {
+                    color: Some(color),
+                    ..m
+                }),
+        );
+    }
+    Ok(models)
+}
+
+/// Every part of `scene`, decoded and welded; errors name the part's virtual path.
+fn decode_parts(scene: &Scene) -> anyhow::Result<Vec<Part>> {
+    scene
+        .parts
+        .iter()
+        .map(|&(name, bytes)| {
+            let path = scene.part_path(name);
+            let mesh =
+                crate::phantom::ply::decode(bytes).with_context(|| path.display().to_string())?;
+            Ok(Part {
+                name: name.to_string(),
+                color: None,
+                mesh: csg::weld::weld_exact(&mesh),
+            })
+        })
+        .collect()
 }
 
 /// The embedded part a path names, when the path does not exist on disk and ends in
 /// `assets/<scene>/<part>.ply` (as sessions saved from the built-in examples do): its models, as
 /// [`load_scene`] makes them. `None` for any other path, so callers fall back to the file loader.
 pub fn load_embedded_part(path: &Path) -> Option<anyhow::Result<Vec<Model>>> {
+    let (virtual_path, part) = embedded_part(path)?;
+    Some(part.map(|part| crate::io::models_of_parts(&virtual_path, &[part])))
+}
+
+/// The welded mesh of the embedded part `path` names (see [`load_embedded_part`]) and the
+/// part's virtual path.
+fn embedded_part(path: &Path) -> Option<(PathBuf, anyhow::Result<Part>)> {
     if path.exists() {
         return None;
     }
@@ -118,23 +159,38 @@ pub fn load_embedded_part(path: &Path) -> Option<anyhow::Result<Vec<Model>>> {
     let scene = scene(scene_name)?;
     let &(name, bytes) = scene.parts.iter().find(|(name, _)| *name == part_name)?;
     let virtual_path = scene.part_path(name);
-    let result = crate::phantom::ply::decode(bytes)
+    let part = crate::phantom::ply::decode(bytes)
         .with_context(|| virtual_path.display().to_string())
-        .map(|mesh| {
-            let part = Part {
-                name: name.to_string(),
-                color: None,
-                mesh: csg::weld::weld_exact(&mesh),
-            };
-            crate::io::models_of_parts(&virtual_path, &[part])
+        .map(|mesh| Part {
+            name: name.to_string(),
+            color: None,
+            mesh: csg::weld::weld_exact(&mesh),
         });
-    Some(result)
+    Some((virtual_path, part))
 }
 
 /// Loads a model file like [`crate::io::load_models`], except that a missing
 /// `…/assets/<scene>/<part>.ply` is served from the embedded scenes (see [`load_embedded_part`]).
 pub fn load_models_or_embedded(path: &Path) -> anyhow::Result<Vec<Model>> {
     load_embedded_part(path).unwrap_or_else(|| crate::io::load_models(path))
+}
+
+/// Loads a model file or folder as regions ([`load_models_or_embedded`]) or as structures
+/// ([`crate::io::load_structures`]; a missing embedded part or file of the default anatomy is
+/// served from the binary).
+pub fn load_or_embedded(path: &Path, unit: ModelUnit) -> anyhow::Result<Vec<Model>> {
+    match unit {
+        ModelUnit::Region => load_models_or_embedded(path),
+        ModelUnit::Structure => match embedded_part(path) {
+            Some((virtual_path, part)) => Ok(crate::io::structures_of_parts(
+                &virtual_path,
+                vec![part?],
+                "",
+            )),
+            None => crate::default_anatomy::load_missing(path)
+                .unwrap_or_else(|| crate::io::load_structures(path)),
+        },
+    }
 }
 
 /// The display colour (linear-ish sRGB in `0..=1`) of a part, by anatomical class: skin beige,

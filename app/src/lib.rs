@@ -3,10 +3,12 @@
 //! The CLI (clap), file formats, the scene and session, the egui UI and the wgpu renderer. The
 //! mesh core (`csg`) and the tools (`cutter`) never see any of these.
 
+pub mod anatomy_colors;
 pub mod assets;
 pub mod cli;
 pub mod cutaway_geometry;
 pub mod export;
+pub mod default_anatomy;
 pub mod gesture;
 pub mod gui;
 pub mod io;

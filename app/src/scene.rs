@@ -1,7 +1,8 @@
 //! The in-memory scene: what the GUI edits, the session file stores and the renderer draws.
 //!
-//! One [`Scene`] holds the models (one per connected region of a loaded file, in file order), the
-//! cutters (each aimed at one model), the camera and the render settings. It is cheap to clone:
+//! One [`Scene`] holds the models (one per structure: a mesh file or one label of a segmentation
+//! volume, with all its regions; or one per connected region for scenes from
+//! `cutaway-session/1` files, see [`ModelUnit`]), the cutters (each aimed at one model), the camera and the render settings. It is cheap to clone:
 //! meshes sit behind [`Arc`], so the GUI can hand a snapshot to the renderer's paint callback or
 //! to an undo stack every frame without copying triangles.
 //!
@@ -31,18 +32,38 @@ pub enum ModelStyle {
     Wireframe,
 }
 
-/// One model of the scene: one connected region of one file.
+/// What one model of a file is: the piece of `source` that [`SceneModel::region`] indexes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ModelUnit {
+    /// One connected region of the file, counted through the whole file in file order: the
+    /// meaning `cutaway-session/1` gives its models, kept for scenes loaded from such files.
+    #[default]
+    Region,
+    /// One structure: the whole mesh file, or one label of a segmentation volume (ascending
+    /// label value). What the model list shows and what `cutaway-session/2` indexes; a cutter on
+    /// it cuts every region of it.
+    Structure,
+}
+
+/// One model of the scene: one structure of a file, or one connected region of it (see
+/// [`ModelUnit`]).
 #[derive(Clone, Debug)]
 pub struct SceneModel {
-    /// Display name: file stem + region number (`knee_skin 1`).
+    /// Display name: the structure's name (`left hippocampus`), or for a region the file stem +
+    /// region number (`knee_skin 1`).
     pub name: String,
-    /// The file the region came from (absolute or relative to the working directory; sessions
+    /// The file the model came from (absolute or relative to the working directory; sessions
     /// store it relative to the session file).
     pub source: PathBuf,
-    /// Index of this region among the regions of `source`, in file order (0-based). Together
-    /// with `source` it says which model a session entry is.
+    /// Index of this model among the pieces of `source` of kind `unit`, in file order (0-based).
+    /// Together with `source` and `unit` it says which model a session entry is.
     pub region: usize,
-    /// The welded, validated mesh of the region.
+    /// Whether `region` counts structures or connected regions of `source`.
+    pub unit: ModelUnit,
+    /// The model list's group: folder names from the opened folder down, `/` between them
+    /// (`head_brain_spl_atlas/sub`); `""` for no group.
+    pub group: String,
+    /// The welded, validated mesh of the structure (all its regions) or of the region.
     pub mesh: Arc<Mesh>,
     /// How `mesh` relates to `source`, which decides how a session stores it. Whoever replaces
     /// `mesh` with other geometry sets [`MeshOrigin::Edited`] (see [`SceneModel::replace_mesh`]);
@@ -57,7 +78,7 @@ pub struct SceneModel {
 }
 
 impl SceneModel {
-    /// A visible, opaque, solid model with the given colour.
+    /// A visible, opaque, solid model of region 0 of `source`, with the given colour and no group.
     pub fn new(
         name: impl Into<String>,
         source: impl Into<PathBuf>,
@@ -68,6 +89,8 @@ impl SceneModel {
             name: name.into(),
             source: source.into(),
             region: 0,
+            unit: ModelUnit::Region,
+            group: String::new(),
             mesh,
             origin: MeshOrigin::Region,
             color,
@@ -95,6 +118,23 @@ pub enum MeshOrigin {
 }
 
 impl SceneModel {
+    /// A visible, opaque, solid model of structure `index` of `source` in `group`.
+    pub fn structure(model: crate::io::Model, color: [f32; 3]) -> SceneModel {
+        let crate::io::Model {
+            name,
+            source,
+            index,
+            color: _,
+            group,
+            mesh,
+        } = model;
+        let mut entry = SceneModel::new(name, source, Arc::new(mesh), color);
+        entry.region = index;
+        entry.unit = ModelUnit::Structure;
+        entry.group = group;
+        entry
+    }
+
     /// Replaces the mesh with other geometry and marks the model edited, so that saving a
     /// session writes the new mesh instead of naming the file it was loaded from.
     pub fn replace_mesh(&mut self, mesh: Arc<Mesh>) {
@@ -285,11 +325,17 @@ impl Scene {
 
     /// A camera framing every visible model from the front (−Y toward +Y, +Z up), as after a load.
     pub fn framing_camera(&self) -> Camera {
+        self.framing_camera_from(DVec3::NEG_Y)
+    }
+
+    /// A camera framing every visible model from `direction` (pointing from the models toward
+    /// the eye), +Z up: `DVec3::Y` faces RAS anatomy, whose front is +Y.
+    pub fn framing_camera_from(&self, direction: DVec3) -> Camera {
         let bbox = self.bbox();
         if bbox.is_empty() {
             return Scene::default().camera;
         }
-        Camera::framing(&bbox, DVec3::NEG_Y, DVec3::Z, 30.0)
+        Camera::framing(&bbox, direction, DVec3::Z, 30.0)
     }
 
     /// Checks what the renderer and the cut code rely on: cutter targets in range, at least one

@@ -1,5 +1,16 @@
-//! `cutaway-session/1`: the session file of `../shared/CONTRACT.md`, saved and loaded exactly.
+//! The session file of `../shared/CONTRACT.md`, saved and loaded exactly, in two versions:
 //!
+//! - `cutaway-session/2` (what Cutaway writes when the scene holds structures): a model is a
+//!   **structure** (one mesh file, or one label of a segmentation volume, with all its regions),
+//!   and a cutter's `target` indexes the models list, so a cutter cuts every region of its
+//!   structure. An entry names `"structure": k` (0-based among the file's structures: 0 for a mesh
+//!   file, ascending label value for a volume), or `"region": k` for a single connected region
+//!   (a model kept from a `/1` session), or neither for every structure of the file. It also
+//!   stores the structure's `name` and the model list's `group`.
+//! - `cutaway-session/1`: a model is a **region**, as described below; such files keep loading
+//!   with that meaning, and a scene made only of regions is saved as `/1` again.
+//!
+//! Rules shared by both:
 //! - Model paths are written relative to the session file's folder and resolved against it on
 //!   load (absolute paths are accepted and kept when no relative path exists).
 //! - Regions count as models, in file order: an entry without `region` stands for every region of
@@ -29,12 +40,16 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::scene::{
-    CutKind, CutterViews, MeshOrigin, ModelStyle, RenderSettings, Scene, SceneCutter, SceneModel,
-    Stereo, SubCutterView, distinct_colors,
+    CutKind, CutterViews, MeshOrigin, ModelStyle, ModelUnit, RenderSettings, Scene, SceneCutter,
+    SceneModel, Stereo, SubCutterView, distinct_colors,
 };
 
-/// The `format` value of this version.
-pub const FORMAT: &str = "cutaway-session/1";
+/// The `format` value of the structure-based version, written whenever a scene holds structures.
+pub const FORMAT: &str = "cutaway-session/2";
+
+/// The `format` value of the region-based version: loaded with its meaning, written for scenes
+/// made only of regions.
+pub const FORMAT_V1: &str = "cutaway-session/1";
 
 /// The file as it is on disk.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -53,9 +68,16 @@ pub struct SessionFile {
 pub struct ModelEntry {
     /// Relative to the session file's folder (or absolute).
     pub path: PathBuf,
-    /// Which region of the file (0-based, file order); absent: every region.
+    /// Which region of the file (0-based, file order); in `/1` absent means every region.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub region: Option<usize>,
+    /// `/2` only: which structure of the file (0-based); absent (and no `region`): every
+    /// structure of the file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub structure: Option<usize>,
+    /// `/2` only: the model list's group (folder names, `/` between them).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
     /// sRGB, 0..=1.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub color: Option<[f32; 3]>,
@@ -70,7 +92,8 @@ pub struct ModelEntry {
     /// see [`crate::session_meshes`]): read verbatim, no welding, no region split.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub exact: bool,
-    /// The model's display name (written for `exact` entries, whose file name is not the name).
+    /// The model's display name (written for `exact` entries, whose file name is not the name,
+    /// and for structures in `/2`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
 }
@@ -159,25 +182,33 @@ fn white() -> [f32; 4] {
 pub fn parse(text: &str) -> anyhow::Result<SessionFile> {
     let file: SessionFile =
         serde_json::from_str(text).map_err(|e| anyhow::anyhow!("not a valid session: {e}"))?;
-    if file.format != FORMAT {
-        anyhow::bail!("format is {:?}, expected {FORMAT:?}", file.format);
+    if file.format != FORMAT && file.format != FORMAT_V1 {
+        anyhow::bail!(
+            "format is {:?}, expected {FORMAT:?} or {FORMAT_V1:?}",
+            file.format
+        );
     }
     crate::session_limits::check(&file)?;
     Ok(file)
 }
 
-/// Reads the session at `path` and loads its models with [`crate::io::load_models`]; model paths
-/// of the built-in example scenes (`…/assets/<scene>/<part>.ply`) that do not exist on disk are
-/// served from the embedded phantoms, so sessions saved from the examples open anywhere.
+/// Reads the session at `path` and loads its models with [`crate::io::load_models`] (regions)
+/// or [`crate::io::load_structures`]; model paths of the built-in example scenes
+/// (`…/assets/<scene>/<part>.ply`) that do not exist on disk are served from the embedded
+/// phantoms, so sessions saved from the examples open anywhere.
 pub fn load(path: &Path) -> anyhow::Result<Scene> {
-    load_with(path, crate::assets::load_models_or_embedded)
+    load_with(path, crate::assets::load_or_embedded)
 }
 
-/// Reads the session at `path`, loading each model file with `load_models` (a file or folder →
-/// its regions in file order). Errors name the session file (or the model file that failed).
+/// Loads one model file or folder as a list of models of one [`ModelUnit`]: its regions in file
+/// order, or its structures.
+pub type LoadModels<'a> = dyn FnMut(&Path, ModelUnit) -> anyhow::Result<Vec<crate::io::Model>> + 'a;
+
+/// Reads the session at `path`, loading each model file with `load_models`. Errors name the
+/// session file (or the model file that failed).
 pub fn load_with(
     path: &Path,
-    mut load_models: impl FnMut(&Path) -> anyhow::Result<Vec<crate::io::Model>>,
+    mut load_models: impl FnMut(&Path, ModelUnit) -> anyhow::Result<Vec<crate::io::Model>>,
 ) -> anyhow::Result<Scene> {
     let text = crate::io::bounded::read_text(path, crate::io::bounded::JSON_MAX_BYTES)
         .with_context(|| format!("{}", path.display()))?;
@@ -192,32 +223,48 @@ pub fn load_with(
 pub fn scene_from_file(
     file: &SessionFile,
     folder: &Path,
-    load_models: &mut dyn FnMut(&Path) -> anyhow::Result<Vec<crate::io::Model>>,
+    load_models: &mut LoadModels,
 ) -> anyhow::Result<Scene> {
     let mut scene = Scene::default();
-    // Files loaded once, however many entries name them.
-    let mut loaded: Vec<(PathBuf, Vec<crate::io::Model>)> = Vec::new();
+    let structures_format = file.format != FORMAT_V1;
+    // Files loaded once per unit, however many entries name them.
+    let mut loaded: Vec<(PathBuf, ModelUnit, Vec<crate::io::Model>)> = Vec::new();
     for (i, entry) in file.models.iter().enumerate() {
         let source = folder.join(&entry.path);
+        let unit = if !structures_format || entry.region.is_some() {
+            ModelUnit::Region
+        } else {
+            ModelUnit::Structure
+        };
+        if structures_format && !entry.exact && entry.region.is_some() && entry.structure.is_some()
+        {
+            anyhow::bail!("model {i}: names both a region and a structure; give one of them");
+        }
         let exact_model: Vec<crate::io::Model>;
         let regions = if entry.exact {
             let stem = entry.path.file_stem().unwrap_or_default().to_string_lossy();
             exact_model = vec![crate::io::Model {
                 name: entry.name.clone().unwrap_or_else(|| stem.into_owned()),
                 source: source.clone(),
+                index: 0,
+                color: None,
+                group: entry.group.clone().unwrap_or_default(),
                 mesh: crate::io::read_mesh_verbatim(&source)?,
             }];
             &exact_model
         } else {
-            let slot = match loaded.iter().position(|(p, _)| *p == source) {
+            let slot = match loaded
+                .iter()
+                .position(|(p, u, _)| *p == source && *u == unit)
+            {
                 Some(k) => k,
                 None => {
-                    let models = load_models(&source)?;
-                    loaded.push((source.clone(), models));
+                    let models = load_models(&source, unit)?;
+                    loaded.push((source.clone(), unit, models));
                     loaded.len() - 1
                 }
             };
-            &loaded[slot].1
+            &loaded[slot].2
         };
         let style = match entry.style.as_str() {
             "solid" => ModelStyle::Solid,
@@ -226,11 +273,15 @@ pub fn scene_from_file(
                 anyhow::bail!("model {i}: style {other:?} is neither \"solid\" nor \"wireframe\"")
             }
         };
-        let picked: Vec<(usize, &crate::io::Model)> = match entry.region {
+        let (picked_index, what) = match unit {
+            ModelUnit::Region => (entry.region, "region"),
+            ModelUnit::Structure => (entry.structure, "structure"),
+        };
+        let picked: Vec<(usize, &crate::io::Model)> = match picked_index {
             Some(r) => match regions.get(r) {
                 Some(m) => vec![(r, m)],
                 None => anyhow::bail!(
-                    "model {i}: region {r} of {} does not exist (it has {} regions)",
+                    "model {i}: {what} {r} of {} does not exist (it has {} {what}s)",
                     entry.path.display(),
                     regions.len()
                 ),
@@ -238,13 +289,31 @@ pub fn scene_from_file(
             None => regions.iter().enumerate().collect(),
         };
         for (region, model) in picked {
-            let color = entry
-                .color
-                .unwrap_or_else(|| distinct_colors(scene.models.len() + 1)[scene.models.len()]);
+            let index = scene.models.len();
+            let color = entry.color.unwrap_or_else(|| match unit {
+                ModelUnit::Region => distinct_colors(index + 1)[index],
+                ModelUnit::Structure => {
+                    crate::anatomy_colors::structure_color(&model.name, model.color, index)
+                }
+            });
+            let name = match (&entry.name, entry.exact, unit) {
+                (Some(name), false, ModelUnit::Structure) => name.clone(),
+                _ => model.name.clone(),
+            };
+            let group = match (&entry.group, structures_format) {
+                (Some(group), true) => group.clone(),
+                _ => model.group.clone(),
+            };
             scene.models.push(SceneModel {
-                name: model.name.clone(),
+                name,
                 source: model.source.clone(),
                 region,
+                unit: if entry.exact && structures_format {
+                    ModelUnit::Structure
+                } else {
+                    unit
+                },
+                group,
                 mesh: Arc::new(model.mesh.clone()),
                 origin: if entry.exact {
                     MeshOrigin::Exact
@@ -310,14 +379,19 @@ pub fn scene_from_file(
 }
 
 /// The session file describing `scene`, model paths relative to `folder` (the session file's
-/// folder) where possible.
+/// folder) where possible: `cutaway-session/2` when any model is a structure, else
+/// `cutaway-session/1` (a scene made only of regions, as loaded from a `/1` file, keeps its
+/// format).
 pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
+    let structures_format = scene.models.iter().any(|m| m.unit == ModelUnit::Structure);
     let models = scene
         .models
         .iter()
         .map(|m| ModelEntry {
             path: relative_path(&m.source, folder),
-            region: Some(m.region),
+            region: (m.unit == ModelUnit::Region).then_some(m.region),
+            structure: (m.unit == ModelUnit::Structure).then_some(m.region),
+            group: (structures_format && !m.group.is_empty()).then(|| m.group.clone()),
             color: Some(m.color),
             opacity: m.opacity,
             style: match m.style {
@@ -327,7 +401,7 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
             .to_string(),
             visible: m.visible,
             exact: false,
-            name: None,
+            name: (m.unit == ModelUnit::Structure).then(|| m.name.clone()),
         })
         .collect();
     let cutters = scene
@@ -356,7 +430,7 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
         .collect();
     let c = scene.camera;
     SessionFile {
-        format: FORMAT.to_string(),
+        format: if structures_format { FORMAT } else { FORMAT_V1 }.to_string(),
         models,
         cutters,
         camera: Some(CameraEntry {
@@ -475,5 +549,148 @@ mod tests {
         assert!(format!("{err}").contains("cutaway-session/9"));
         let err = parse("{\"format\": \"cutaway-session/1\", \"models\": [").unwrap_err();
         assert!(format!("{err}").contains("line"), "{err}");
+    }
+
+    /// A loader that serves one file, `pair.obj`: two regions as models, or one structure
+    /// holding both.
+    fn pair_loader(path: &Path, unit: ModelUnit) -> anyhow::Result<Vec<crate::io::Model>> {
+        anyhow::ensure!(
+            path.ends_with("pair.obj"),
+            "{}: no such file",
+            path.display()
+        );
+        let sphere = |x: f64| {
+            let mut m = csg::testkit::icosphere(1, 1.0);
+            for p in &mut m.positions {
+                p.x += x;
+            }
+            m
+        };
+        let model = |name: &str, index: usize, mesh: csg::Mesh| crate::io::Model {
+            name: name.to_string(),
+            source: path.to_path_buf(),
+            index,
+            color: None,
+            group: String::new(),
+            mesh,
+        };
+        Ok(match unit {
+            ModelUnit::Region => vec![
+                model("pair 1", 0, sphere(0.0)),
+                model("pair 2", 1, sphere(3.0)),
+            ],
+            ModelUnit::Structure => {
+                let mut both = sphere(0.0);
+                both.append(&sphere(3.0));
+                vec![model("pair", 0, both)]
+            }
+        })
+    }
+
+    fn session(format: &str, models: &str, target: usize) -> SessionFile {
+        parse(&format!(
+            r#"{{"format": "{format}", "models": {models},
+                "cutters": [{{"target": {target}, "planes": [[[0,0,0],[0,1,0],[0,1,-1],[0,0,-1]]]}}]}}"#
+        ))
+        .unwrap()
+    }
+
+    #[test]
+    fn version_1_models_are_regions_and_version_2_models_are_structures() {
+        let folder = Path::new("/s");
+        let v1 = session(FORMAT_V1, r#"[{"path": "pair.obj"}]"#, 1);
+        let scene = scene_from_file(&v1, folder, &mut pair_loader).unwrap();
+        assert_eq!(scene.models.len(), 2, "v1: one model per region");
+        assert!(scene.models.iter().all(|m| m.unit == ModelUnit::Region));
+        assert_eq!((scene.models[1].region, scene.cutters[0].target), (1, 1));
+
+        let v2 = session(FORMAT, r#"[{"path": "pair.obj"}]"#, 0);
+        let scene = scene_from_file(&v2, folder, &mut pair_loader).unwrap();
+        assert_eq!(scene.models.len(), 1, "v2: one model per structure");
+        assert_eq!(scene.models[0].unit, ModelUnit::Structure);
+        assert_eq!(scene.models[0].mesh.triangle_count(), 2 * 80);
+        // The structure's colour comes from the palette (no anatomical name, no file colour).
+        assert_eq!(scene.models[0].color, distinct_colors(1)[0]);
+        let err = scene_from_file(
+            &session(FORMAT, r#"[{"path": "pair.obj"}]"#, 1),
+            folder,
+            &mut pair_loader,
+        )
+        .unwrap_err();
+        assert!(format!("{err}").contains("target 1"), "{err}");
+
+        // v2 may keep a single region (a model carried over from a v1 session).
+        let mixed = session(
+            FORMAT,
+            r#"[{"path": "pair.obj", "structure": 0, "name": "both", "group": "g/h"}, {"path": "pair.obj", "region": 1}]"#,
+            1,
+        );
+        let scene = scene_from_file(&mixed, folder, &mut pair_loader).unwrap();
+        assert_eq!(
+            scene
+                .models
+                .iter()
+                .map(|m| (m.name.as_str(), m.group.as_str(), m.unit))
+                .collect::<Vec<_>>(),
+            [
+                ("both", "g/h", ModelUnit::Structure),
+                ("pair 2", "", ModelUnit::Region)
+            ]
+        );
+        let both = session(
+            FORMAT,
+            r#"[{"path": "pair.obj", "structure": 0, "region": 0}]"#,
+            0,
+        );
+        let err = scene_from_file(&both, folder, &mut pair_loader).unwrap_err();
+        assert!(
+            format!("{err}").contains("both a region and a structure"),
+            "{err}"
+        );
+        let missing = session(FORMAT, r#"[{"path": "pair.obj", "structure": 3}]"#, 0);
+        let err = scene_from_file(&missing, folder, &mut pair_loader).unwrap_err();
+        assert!(format!("{err}").contains("structure 3"), "{err}");
+    }
+
+    #[test]
+    fn saving_writes_version_2_for_structures_and_version_1_for_regions_only() {
+        let folder = Path::new("/s");
+        let mixed = session(
+            FORMAT,
+            r#"[{"path": "pair.obj", "structure": 0, "group": "g"}, {"path": "pair.obj", "region": 1}]"#,
+            0,
+        );
+        let scene = scene_from_file(&mixed, folder, &mut pair_loader).unwrap();
+        let file = file_from_scene(&scene, folder);
+        assert_eq!(file.format, FORMAT);
+        let entries: Vec<_> = file
+            .models
+            .iter()
+            .map(|m| (m.structure, m.region, m.name.as_deref(), m.group.as_deref()))
+            .collect();
+        assert_eq!(
+            entries,
+            [
+                (Some(0), None, Some("pair"), Some("g")),
+                (None, Some(1), None, None)
+            ]
+        );
+        let back = scene_from_file(&file, folder, &mut pair_loader).unwrap();
+        assert_eq!(back.models.len(), 2);
+        assert_eq!(back.models[0].group, "g");
+        assert_eq!(back.cutters, scene.cutters);
+
+        let v1 = session(FORMAT_V1, r#"[{"path": "pair.obj"}]"#, 1);
+        let scene = scene_from_file(&v1, folder, &mut pair_loader).unwrap();
+        let file = file_from_scene(&scene, folder);
+        assert_eq!(
+            file.format, FORMAT_V1,
+            "a scene of regions keeps its format"
+        );
+        assert!(
+            file.models
+                .iter()
+                .all(|m| m.structure.is_none() && m.name.is_none())
+        );
     }
 }

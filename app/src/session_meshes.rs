@@ -83,6 +83,7 @@ pub fn point_entries(
         if let Some(path) = path {
             entry.path = crate::session::relative_path(path, folder);
             entry.region = Some(0);
+            entry.structure = None;
             entry.exact = true;
             entry.name = Some(model.name.clone());
         }

@@ -9,7 +9,7 @@ use crate::render::{RenderPngOptions, render_png};
 
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
-    /// A `cutaway-session/1` file.
+    /// A session file (`cutaway-session/2` or `/1`).
     pub session: PathBuf,
     /// The PNG to write.
     #[arg(long)]

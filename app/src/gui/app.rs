@@ -835,24 +835,18 @@ impl CutawayApp {
         }
         let first_new = self.scene.models.len();
         let count = models.len();
-        let mut region_of_source: std::collections::HashMap<PathBuf, usize> = Default::default();
-        for model in self.scene.models.iter() {
-            *region_of_source.entry(model.source.clone()).or_default() += 1;
-        }
+        let front = if crate::default_anatomy::is_default_scene(&models) {
+            crate::default_anatomy::FRONT
+        } else {
+            glam::DVec3::NEG_Y
+        };
         for (i, model) in models.into_iter().enumerate() {
-            let color = if sources.is_empty() {
-                crate::assets::default_color(&model.name)
-            } else {
-                model_colour(&model.name, first_new + i)
-            };
-            let region = region_of_source.entry(model.source.clone()).or_default();
-            let mut entry = SceneModel::new(model.name, model.source, Arc::new(model.mesh), color);
-            entry.region = *region;
-            *region += 1;
-            self.scene.models.push(entry);
+            let color =
+                crate::anatomy_colors::structure_color(&model.name, model.color, first_new + i);
+            self.scene.models.push(SceneModel::structure(model, color));
         }
         if replace {
-            self.scene.camera = self.scene.framing_camera();
+            self.scene.camera = self.scene.framing_camera_from(front);
             self.last_committed = self.scene.clone();
             self.recovery.mark_dirty();
         } else {
@@ -1194,94 +1188,39 @@ fn file_label(path: &Path) -> String {
         .unwrap_or_else(|| path.display().to_string())
 }
 
-/// Mesh extensions the loaders understand.
-const MESH_EXTENSIONS: [&str; 4] = ["obj", "stl", "ply", "vtk"];
-
-/// Reads meshes and directories of meshes one file at a time, reporting progress per file and
-/// stopping between files when cancelled.
+/// Reads files and folders (recursively) as structures, one file at a time, reporting progress
+/// per file and stopping between files when cancelled. A folder's files are grouped by the
+/// folders between it and them, its own name first.
 pub fn load_paths(paths: &[PathBuf], progress: &Progress) -> anyhow::Result<Vec<crate::io::Model>> {
-    let mut files = Vec::new();
+    let mut files: Vec<(PathBuf, String)> = Vec::new();
     for path in paths {
         if path.is_dir() {
-            let mut entries: Vec<PathBuf> = std::fs::read_dir(path)
-                .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| {
-                    p.is_file()
-                        && p.extension().is_some_and(|e| {
-                            MESH_EXTENSIONS.iter().any(|m| e.eq_ignore_ascii_case(m))
-                        })
-                })
-                .collect();
-            entries.sort();
-            if entries.is_empty() {
+            let found = crate::io::mesh_files(path)?;
+            if found.is_empty() {
                 anyhow::bail!(
                     "{}: no .obj, .stl, .ply or .vtk files in this folder",
                     path.display()
                 );
             }
-            files.extend(entries);
+            let root = path.parent().unwrap_or(Path::new(""));
+            files.extend(found.into_iter().map(|f| {
+                let group = crate::io::group_of(&f, root);
+                (f, group)
+            }));
         } else {
-            files.push(path.clone());
+            files.push((path.clone(), String::new()));
         }
     }
     let mut models = Vec::new();
     let total = files.len() as u64;
-    for (i, file) in files.iter().enumerate() {
+    for (i, (file, group)) in files.iter().enumerate() {
         progress.check()?;
         progress.set(i as u64, total);
         progress.set_message(file_label(file));
-        models.extend(crate::io::load_models(file)?);
+        models.extend(crate::io::structures_of_file(file, group)?);
     }
     progress.set(total, total);
     Ok(models)
-}
-
-/// A colour for a model: anatomy-like colours for well-known names, else distinct hues spread by
-/// the golden angle so neighbours in the list never look alike.
-pub fn model_colour(name: &str, index: usize) -> [f32; 3] {
-    let lower = name.to_ascii_lowercase();
-    let named: [(&str, [f32; 3]); 8] = [
-        ("skin", [0.93, 0.74, 0.62]),
-        ("fat", [0.95, 0.86, 0.55]),
-        ("muscle", [0.72, 0.25, 0.22]),
-        ("cartilage", [0.62, 0.78, 0.86]),
-        ("ligament", [0.85, 0.85, 0.75]),
-        ("vessel", [0.75, 0.12, 0.15]),
-        ("artery", [0.80, 0.10, 0.12]),
-        ("vein", [0.25, 0.32, 0.70]),
-    ];
-    for (key, colour) in named {
-        if lower.contains(key) {
-            return colour;
-        }
-    }
-    let bones = [
-        "bone", "femur", "tibia", "fibula", "patella", "skull", "vertebra", "mandible", "pelvis",
-    ];
-    if bones.iter().any(|b| lower.contains(b)) {
-        // Ivory with a slight variation so adjacent bones stay distinguishable.
-        let t = (index as f32 * 0.618_034).fract() * 0.08;
-        return [0.92 - t, 0.88 - t, 0.76 - t];
-    }
-    let hue = (index as f32 * 0.618_034 + 0.08).fract();
-    hsv_to_rgb(hue, 0.55, 0.85)
-}
-
-fn hsv_to_rgb(h: f32, s: f32, v: f32) -> [f32; 3] {
-    let c = v * s;
-    let hp = h * 6.0;
-    let x = c * (1.0 - (hp % 2.0 - 1.0).abs());
-    let (r, g, b) = match hp as u32 {
-        0 => (c, x, 0.0),
-        1 => (x, c, 0.0),
-        2 => (0.0, c, x),
-        3 => (0.0, x, c),
-        4 => (x, 0.0, c),
-        _ => (c, 0.0, x),
-    };
-    let m = v - c;
-    [r + m, g + m, b + m]
 }
 
 /// A small mesh for tests of the window's state handling: a closed box.
@@ -1326,23 +1265,6 @@ pub fn box_mesh(min: DVec3, max: DVec3) -> Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn colours_are_distinct_for_unnamed_models() {
-        let colours: Vec<[f32; 3]> = (0..8).map(|i| model_colour("part", i)).collect();
-        for i in 0..colours.len() {
-            for j in (i + 1)..colours.len() {
-                let d: f32 = (0..3).map(|k| (colours[i][k] - colours[j][k]).abs()).sum();
-                assert!(
-                    d > 0.05,
-                    "{i} and {j} look alike: {:?} {:?}",
-                    colours[i],
-                    colours[j]
-                );
-            }
-        }
-        assert_eq!(model_colour("knee_skin 1", 3), [0.93, 0.74, 0.62]);
-    }
 
     #[test]
     fn load_paths_names_an_empty_folder() {

@@ -430,11 +430,7 @@ pub fn paint_scene(ui: &mut egui::Ui, rect: egui::Rect, app: &CutawayApp) -> boo
 
 /// The embedded default scene (the knee).
 pub fn default_scene_models(progress: &Progress) -> anyhow::Result<Vec<crate::io::Model>> {
-    let name = crate::assets::scenes()
-        .first()
-        .map(|s| s.name)
-        .unwrap_or("knee");
-    example_scene_models(name, progress)
+    example_scene_models(crate::default_anatomy::NAME, progress)
 }
 
 /// An embedded example scene by name. Models keep the virtual `assets/<scene>/<part>.ply`
@@ -444,10 +440,14 @@ pub fn example_scene_models(
     name: &str,
     progress: &Progress,
 ) -> anyhow::Result<Vec<crate::io::Model>> {
-    let scene = crate::assets::scene(name)
-        .ok_or_else(|| anyhow::anyhow!("{name}: no such example scene"))?;
     progress.set_message(name.to_string());
-    let mut models = crate::assets::load_scene(scene)?;
+    let mut models = if name == crate::default_anatomy::NAME {
+        crate::default_anatomy::load()?
+    } else {
+        let scene = crate::assets::scene(name)
+            .ok_or_else(|| anyhow::anyhow!("{name}: no such example scene"))?;
+        crate::assets::load_scene_structures(scene)?
+    };
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     for model in &mut models {
         let on_disk = root.join(&model.source);
@@ -473,7 +473,7 @@ pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
             .unwrap_or_default(),
     );
     let mut files = 0u64;
-    let scene = crate::session::load_with(path, |file| {
+    let scene = crate::session::load_with(path, |file, unit| {
         progress.check()?;
         files += 1;
         progress.set_message(
@@ -481,7 +481,10 @@ pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default(),
         );
-        crate::io::load_models(file)
+        match unit {
+            crate::scene::ModelUnit::Region => crate::io::load_models(file),
+            crate::scene::ModelUnit::Structure => crate::io::load_structures(file),
+        }
     })?;
     scene
         .sanity_check()

@@ -128,8 +128,12 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
                 app.export_meshes.open = true;
             }
             ui.menu_button("Open Example", |ui| {
+                let atlas = crate::default_anatomy::NAME;
+                if ui.button(format!("{atlas} (real anatomy)")).clicked() {
+                    actions.push(Action::OpenExample(atlas.to_string()));
+                }
                 for scene in crate::assets::scenes() {
-                    if ui.button(scene.name).clicked() {
+                    if ui.button(format!("{} (synthetic)", scene.name)).clicked() {
                         actions.push(Action::OpenExample(scene.name.to_string()));
                     }
                 }
@@ -262,7 +266,13 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
                 actions.push(Action::StopGesture);
             }
         });
+        ui.menu_button("Help", |ui| {
+            if ui.button("About Cutaway…").clicked() {
+                super::about::open(ui.ctx());
+            }
+        });
     });
+    super::about::about_window_ui(ui.ctx());
     actions.extend(export_image_window_ui(ui.ctx(), app));
     actions.extend(export_meshes_window_ui(ui.ctx(), app));
     actions

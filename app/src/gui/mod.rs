@@ -14,6 +14,7 @@
 
 use std::path::PathBuf;
 
+pub mod about;
 pub mod app;
 pub mod bridge;
 pub mod camera_controls;
@@ -22,6 +23,7 @@ pub mod jobs;
 pub mod key_reference;
 pub mod live_cut;
 pub mod menus;
+pub mod model_groups;
 pub mod models_panel;
 pub mod recovery;
 pub mod scalpel_mode;

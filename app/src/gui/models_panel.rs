@@ -1,8 +1,12 @@
-//! The Models list (thesis 3.5 D): one row per region (file stem + region number) with visibility
-//! and colour, and for the selected model its colour picker, Solid/Wireframe, opacity and
-//! visibility. Every change is undoable; a slider drag or a colour-picker drag is one step.
+//! The Models list (thesis 3.5 D): one row per model (a structure: a mesh file or a volume label)
+//! with visibility and colour, grouped by folder (each a collapsible header with its own
+//! show/hide box), a filter box and Show all / Hide all for what the filter leaves; for the
+//! selected model its colour picker, Solid/Wireframe, opacity and visibility. Every change is
+//! undoable; a slider drag or a colour-picker drag is one step. When the selection changes (a
+//! double-click in the view), the list opens the model's groups and scrolls to its row.
 
 use super::app::{Action, CutawayApp};
+use super::model_groups::GroupNode;
 use crate::scene::ModelStyle;
 
 fn srgb_u8(c: [f32; 3]) -> [u8; 3] {
@@ -14,8 +18,24 @@ fn colour32(c: [f32; 3]) -> egui::Color32 {
     egui::Color32::from_rgb(r, g, b)
 }
 
+/// What the list remembers between frames (in egui's memory, not in the scene).
+#[derive(Clone, Debug, Default)]
+struct ListState {
+    filter: String,
+    /// The selection the list last saw.
+    shown_selection: Option<usize>,
+    /// Frames left to keep scrolling to the selection (groups open with an animation, so the
+    /// row's place settles over a few frames).
+    reveal_frames: u8,
+}
+
+/// How many frames the list keeps scrolling to a newly selected model.
+const REVEAL_FRAMES: u8 = 12;
+
 pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     let mut actions = Vec::new();
+    let state_id = egui::Id::unique("models-list-state");
+    let mut state: ListState = ui.data(|d| d.get_temp(state_id)).unwrap_or_default();
     ui.add_space(4.0);
     ui.horizontal(|ui| {
         ui.heading("Models");
@@ -31,55 +51,72 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         );
         return actions;
     }
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::TextEdit::singleline(&mut state.filter)
+                .hint_text("Filter by name or group")
+                .desired_width(ui.available_width() - 52.0),
+        )
+        .on_hover_text("Shows only the models whose name or group contains every word typed");
+        if ui
+            .add_enabled(!state.filter.is_empty(), egui::Button::new("Clear"))
+            .on_hover_text("Clear the filter")
+            .clicked()
+        {
+            state.filter.clear();
+        }
+    });
+    let tree = GroupNode::build(&app.scene.models, &state.filter);
+    let listed = tree.all_models();
+    ui.horizontal(|ui| {
+        let what = if state.filter.is_empty() {
+            "all"
+        } else {
+            "listed"
+        };
+        for (show, label) in [(true, "Show"), (false, "Hide")] {
+            if ui
+                .add_enabled(
+                    !listed.is_empty(),
+                    egui::Button::new(format!("{label} {what}")),
+                )
+                .clicked()
+            {
+                set_visible(
+                    app,
+                    &listed,
+                    show,
+                    if show { "show models" } else { "hide models" },
+                );
+            }
+        }
+        if !state.filter.is_empty() {
+            ui.label(egui::RichText::new(format!("{} listed", listed.len())).weak());
+        }
+    });
+    let selected = app.selected_model.filter(|&i| i < app.scene.models.len());
+    if selected != state.shown_selection {
+        state.shown_selection = selected;
+        state.reveal_frames = if selected.is_some() { REVEAL_FRAMES } else { 0 };
+    }
+    let reveal = selected.filter(|_| state.reveal_frames > 0);
+    if reveal.is_some() {
+        state.reveal_frames -= 1;
+        ui.ctx().request_repaint();
+    }
+    let list_height = (ui.ctx().content_rect().height() * 0.45).max(220.0);
     egui::ScrollArea::vertical()
         .id_salt("models-list")
-        .max_height(220.0)
+        .max_height(list_height)
         .auto_shrink([false, true])
         .show(ui, |ui| {
-            for index in 0..app.scene.models.len() {
-                let model = &app.scene.models[index];
-                let selected = app.selected_model == Some(index);
-                let (name, visible, colour) = (model.name.clone(), model.visible, model.color);
-                ui.horizontal(|ui| {
-                    let mut v = visible;
-                    if ui
-                        .checkbox(&mut v, "")
-                        .on_hover_text(format!("Show or hide {name}"))
-                        .changed()
-                    {
-                        app.begin_edit(if v { "show model" } else { "hide model" });
-                        app.scene.models[index].visible = v;
-                    }
-                    let (rect, _) =
-                        ui.allocate_exact_size(egui::vec2(14.0, 14.0), egui::Sense::hover());
-                    ui.painter().rect_filled(rect, 3.0, colour32(colour));
-                    let text = if visible {
-                        egui::RichText::new(&name)
-                    } else {
-                        egui::RichText::new(&name).weak()
-                    };
-                    let row = ui.add(egui::Button::selectable(selected, text));
-                    if row.clicked() {
-                        actions.push(Action::SelectModel(if selected {
-                            None
-                        } else {
-                            Some(index)
-                        }));
-                    }
-                    if row.double_clicked() {
-                        actions.push(Action::FocusModel(index));
-                    }
-                    row.context_menu(|ui| {
-                        if ui.button("Centre camera on it").clicked() {
-                            actions.push(Action::FocusModel(index));
-                        }
-                        if ui.button("Remove from scene").clicked() {
-                            actions.push(Action::RemoveModel(index));
-                        }
-                    });
-                });
+            let filtering = !state.filter.is_empty();
+            group_body_ui(ui, app, &tree, filtering, reveal, &mut actions);
+            if listed.is_empty() {
+                ui.label(egui::RichText::new("No model matches the filter.").weak());
             }
         });
+    ui.data_mut(|d| d.insert_temp(state_id, state));
     ui.separator();
     let Some(index) = app.selected_model.filter(|&i| i < app.scene.models.len()) else {
         ui.label(
@@ -162,4 +199,118 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         }
     });
     actions
+}
+
+/// Sets the visibility of `models` as one undo step (nothing when none changes).
+fn set_visible(app: &mut CutawayApp, models: &[usize], visible: bool, label: &str) {
+    if models
+        .iter()
+        .all(|&i| app.scene.models[i].visible == visible)
+    {
+        return;
+    }
+    app.begin_edit(label);
+    for &i in models {
+        app.scene.models[i].visible = visible;
+    }
+}
+
+/// The rows of a group's own models, then its sub-groups as collapsible headers. Groups stay
+/// open while filtering and open up to reveal the model `reveal`.
+fn group_body_ui(
+    ui: &mut egui::Ui,
+    app: &mut CutawayApp,
+    node: &GroupNode,
+    filtering: bool,
+    reveal: Option<usize>,
+    actions: &mut Vec<Action>,
+) {
+    for &index in &node.models {
+        model_row_ui(ui, app, index, reveal == Some(index), actions);
+    }
+    for group in &node.groups {
+        let id = ui.make_persistent_id(("models-group", &group.path));
+        let mut header =
+            egui::collapsing_header::CollapsingState::load_with_default_open(ui.ctx(), id, true);
+        if filtering || reveal.is_some_and(|i| group.contains(i)) {
+            header.set_open(true);
+        }
+        header
+            .show_header(ui, |ui| {
+                let members = group.all_models();
+                let shown = members
+                    .iter()
+                    .filter(|&&i| app.scene.models[i].visible)
+                    .count();
+                let mut all = shown == members.len();
+                let some = shown > 0 && !all;
+                let label = format!("{} ({})", group.name, members.len());
+                if ui
+                    .add(egui::Checkbox::new(&mut all, label).indeterminate(some))
+                    .on_hover_text(format!("Show or hide everything in {}", group.path))
+                    .changed()
+                {
+                    set_visible(
+                        app,
+                        &members,
+                        all,
+                        if all { "show group" } else { "hide group" },
+                    );
+                }
+            })
+            .body(|ui| group_body_ui(ui, app, group, filtering, reveal, actions));
+    }
+}
+
+/// One model's row: visibility box, colour swatch, name (click selects, double-click centres).
+fn model_row_ui(
+    ui: &mut egui::Ui,
+    app: &mut CutawayApp,
+    index: usize,
+    reveal: bool,
+    actions: &mut Vec<Action>,
+) {
+    let model = &app.scene.models[index];
+    let selected = app.selected_model == Some(index);
+    let (name, visible, colour) = (model.name.clone(), model.visible, model.color);
+    ui.horizontal(|ui| {
+        let mut v = visible;
+        if ui
+            .checkbox(&mut v, "")
+            .on_hover_text(format!("Show or hide {name}"))
+            .changed()
+        {
+            app.begin_edit(if v { "show model" } else { "hide model" });
+            app.scene.models[index].visible = v;
+        }
+        let (rect, _) = ui.allocate_exact_size(egui::vec2(14.0, 14.0), egui::Sense::hover());
+        ui.painter().rect_filled(rect, 3.0, colour32(colour));
+        let text = if visible {
+            egui::RichText::new(&name)
+        } else {
+            egui::RichText::new(&name).weak()
+        };
+        let row = ui.add(egui::Button::selectable(selected, text));
+        if reveal {
+            row.scroll_to_me(None);
+        }
+        if row.clicked() {
+            actions.push(Action::SelectModel(if selected {
+                None
+            } else {
+                Some(index)
+            }));
+        }
+        if row.double_clicked() {
+            actions.push(Action::FocusModel(index));
+        }
+        row.context_menu(|ui| {
+            if ui.button("Centre camera on it").clicked() {
+                actions.push(Action::FocusModel(index));
+            }
+            if ui.button("Remove from scene").clicked() {
+                actions.push(Action::RemoveModel(index));
+            }
+        });
+    });
 }

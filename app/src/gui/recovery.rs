@@ -1,7 +1,7 @@
 //! Crash recovery and the recent-files list: the small state the window keeps between runs.
 //!
-//! While the window is open, the scene is autosaved as a normal `cutaway-session/1` file into the
-//! state folder every [`AUTOSAVE_EVERY`] when something changed. A clean exit deletes it, so a
+//! While the window is open, the scene is autosaved as a normal session file (`crate::session`)
+//! into the state folder every [`AUTOSAVE_EVERY`] when something changed. A clean exit deletes it, so a
 //! recovery file found at start-up means the last run ended without one (crash, kill, power loss)
 //! and the window offers to reopen it. The file records the process that owns it: a second window
 //! started while the first still runs does not offer the first one's live autosave.

@@ -1878,7 +1878,7 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
     }
 
-    /// The real window: one file with two nested spheres opens as two models; a groove across
+    /// The real window: two files with nested spheres open as two models; a groove across
     /// the outer one cuts both, Ctrl+Z brings both back bit for bit in one step, Ctrl+Shift+Z
     /// redoes both; with "Cut layers below" unticked only the outer one is cut.
     #[test]
@@ -1887,12 +1887,11 @@ mod tests {
         use egui_kittest::kittest::Queryable;
 
         let dir = session_dir("layers-gui");
-        let file = dir.join("nested.obj");
-        let mut both = csg::testkit::icosphere(4, 10.0);
-        both.append(&csg::testkit::icosphere(3, 9.7));
-        crate::io::write_mesh(&file, &both).unwrap();
+        let (outer_file, inner_file) = (dir.join("outer.obj"), dir.join("inner.obj"));
+        crate::io::write_mesh(&outer_file, &csg::testkit::icosphere(4, 10.0)).unwrap();
+        crate::io::write_mesh(&inner_file, &csg::testkit::icosphere(3, 9.7)).unwrap();
         let start = super::super::StartOptions {
-            paths: vec![file],
+            paths: vec![outer_file, inner_file],
             state_dir: dir.join("state"),
             offer_recovery: false,
         };

@@ -61,10 +61,14 @@ mod obj;
 mod ply;
 mod stl;
 pub mod volume;
+mod structures;
 mod vtk;
 
 pub use atomic::{OutputSet, recover as recover_output_set, write_file};
 pub use dir::mesh_files;
+pub use structures::{
+    group_of, load_structures, structure_name, structures_of_file, structures_of_parts,
+};
 
 /// A named part of a file (an OBJ object/group, or the whole file for formats without parts).
 #[derive(Clone, Debug)]
@@ -77,14 +81,24 @@ pub struct Part {
     pub mesh: Mesh,
 }
 
-/// A model of the scene: one connected region of one file.
+/// A model of the scene: one structure of a file ([`load_structures`]) or one connected region of
+/// it ([`load_models`]).
 #[derive(Clone, Debug)]
 pub struct Model {
-    /// File stem + region number, as in the thesis's Models list (e.g. `knee_skin 1`).
+    /// A structure's name (`left hippocampus`), or a region's file stem + region number as in the
+    /// thesis's Models list (`knee_skin 1`).
     pub name: String,
     /// The file it came from.
     pub source: std::path::PathBuf,
-    /// Welded, validated, compacted mesh of this region only.
+    /// Index of this piece among the pieces of `source` of the same kind (structures or regions),
+    /// in file order, 0-based.
+    pub index: usize,
+    /// The colour the file gives it (sRGB, 0..=1), if any.
+    pub color: Option<[f32; 3]>,
+    /// The group it belongs to in the model list: the folder path from the opened folder down
+    /// (`head_brain_spl_atlas/sub`), `""` for a file opened on its own.
+    pub group: String,
+    /// Welded, validated, compacted mesh: the whole structure (all its regions) or one region.
     pub mesh: Mesh,
 }
 
@@ -334,7 +348,8 @@ fn guarded<T>(format: Format, parse: impl FnOnce() -> anyhow::Result<T>) -> anyh
     })
 }
 
-fn file_stem(path: &Path) -> String {
+/// The file stem of `path` as text (`"mesh"` when it has none).
+pub fn file_stem(path: &Path) -> String {
     path.file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "mesh".to_owned())
@@ -416,6 +431,9 @@ pub fn models_of_parts(source: &Path, parts: &[Part]) -> Vec<Model> {
             models.push(Model {
                 name: format!("{prefix} {}", models.len() + 1),
                 source: source.to_path_buf(),
+                index: models.len(),
+                color: None,
+                group: String::new(),
                 mesh: region,
             });
         }

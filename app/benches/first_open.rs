@@ -1,0 +1,96 @@
+//! First open of the default scene: from creating the window (headless, egui_kittest with the
+//! real wgpu renderer) to the first frame drawn with the scene loaded (`start_to_first_frame_ms`,
+//! what a user waits for), and from File → Open Example to the first frame with it
+//! (`open_to_first_frame_ms`), for the default (the embedded head atlas) and, as the peer
+//! measured in the same run, the synthetic knee phantom that was the default before, with the
+//! ratio of the two. Best of five runs each.
+//!
+//! Run: `WGPU_BACKEND=vulkan cargo bench -p cutaway --bench first_open` (release; on a machine
+//! without a GPU, Mesa's lavapipe draws). Goal: the default scene's first frame within 1.5 s on
+//! two cores.
+
+use std::time::{Duration, Instant};
+
+use cutaway::gui::app::Action;
+use cutaway::gui::{CutawayApp, StartOptions};
+use egui_kittest::Harness;
+
+/// Milliseconds from building the window to the first frame after the load job finished, and
+/// the scene's triangle count. `example`: `None` for the default scene, else an example's name
+/// loaded right after start (its time measured from the click).
+fn first_frame_ms(example: Option<&str>) -> (f64, usize) {
+    let state_dir = std::env::temp_dir().join(format!(
+        "cutaway-bench-first-open-{}-{}",
+        std::process::id(),
+        example.unwrap_or("default")
+    ));
+    std::fs::create_dir_all(&state_dir).expect("state folder");
+    let start = StartOptions {
+        paths: Vec::new(),
+        state_dir: state_dir.clone(),
+        offer_recovery: false,
+    };
+    let started = Instant::now();
+    let mut h = Harness::builder()
+        .wgpu()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .with_max_steps(100_000)
+        .with_accessibility_check(false)
+        .build_eframe(move |cc| CutawayApp::new(cc, start));
+    let mut clock = started;
+    if let Some(name) = example {
+        settle(&mut h);
+        clock = Instant::now();
+        let ctx = h.ctx.clone();
+        h.state_mut()
+            .apply(&ctx, Action::OpenExample(name.to_string()));
+    }
+    settle(&mut h);
+    h.render().expect("render the first frame");
+    let ms = clock.elapsed().as_secs_f64() * 1000.0;
+    let triangles = h
+        .state()
+        .scene
+        .models
+        .iter()
+        .map(|m| m.mesh.triangle_count())
+        .sum();
+    std::fs::remove_dir_all(&state_dir).ok();
+    (ms, triangles)
+}
+
+fn settle(h: &mut Harness<'_, CutawayApp>) {
+    let deadline = Instant::now() + Duration::from_secs(120);
+    h.step();
+    while h.state().busy() {
+        assert!(Instant::now() < deadline, "loading took over 120 s");
+        h.step();
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    h.step();
+}
+
+fn main() {
+    // `cargo bench` passes `--bench`; a plain `cargo test --benches` run passes nothing and
+    // only checks that the bench runs once.
+    let runs = if std::env::args().any(|a| a == "--bench") {
+        5
+    } else {
+        1
+    };
+    let best = |example: Option<&str>| {
+        (0..runs)
+            .map(|_| first_frame_ms(example))
+            .fold((f64::INFINITY, 0), |(best, _), (ms, t)| (best.min(ms), t))
+    };
+    let (cold_ms, default_triangles) = best(None);
+    let (atlas_ms, _) = best(Some(cutaway::default_anatomy::NAME));
+    let (knee_ms, knee_triangles) = best(Some("knee"));
+    println!(
+        "{{\"scene\":\"head atlas (default)\",\"start_to_first_frame_ms\":{cold_ms:.1},\"open_to_first_frame_ms\":{atlas_ms:.1},\"triangles\":{default_triangles},\"goal_ms\":1500,\"runs\":{runs}}}"
+    );
+    println!(
+        "{{\"scene\":\"knee phantom (previous default)\",\"open_to_first_frame_ms\":{knee_ms:.1},\"triangles\":{knee_triangles},\"runs\":{runs}}}"
+    );
+    println!("{{\"atlas_over_knee\":{:.2}}}", atlas_ms / knee_ms);
+}
