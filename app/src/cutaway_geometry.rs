@@ -170,7 +170,9 @@ struct ModelPreview {
 /// mesh never matches a stale entry.
 #[derive(Default)]
 pub struct CutCache {
-    indexes: Vec<(std::sync::Weak<Mesh>, Arc<TargetIndex>)>,
+    /// Per target mesh: its exact index, and whether a cut used it since the last
+    /// [`CutCache::forget_unused`].
+    indexes: Vec<(std::sync::Weak<Mesh>, Arc<TargetIndex>, bool)>,
     prefixes: std::collections::VecDeque<(PrefixKey, std::sync::Weak<Mesh>, Stage)>,
     models: std::collections::VecDeque<(ModelKey, std::sync::Weak<Mesh>, ModelPreview)>,
 }
@@ -181,16 +183,18 @@ const CACHE_ENTRIES: usize = 4;
 impl CutCache {
     /// The exact index of `mesh`, built on first use.
     pub fn index(&mut self, mesh: &Arc<Mesh>) -> Result<Arc<TargetIndex>, csg::MeshError> {
-        self.indexes.retain(|(w, _)| w.strong_count() > 0);
-        if let Some((_, index)) = self
+        self.indexes.retain(|(w, _, _)| w.strong_count() > 0);
+        if let Some((_, index, used)) = self
             .indexes
-            .iter()
-            .find(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+            .iter_mut()
+            .find(|(w, _, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
         {
+            *used = true;
             return Ok(index.clone());
         }
         let index = Arc::new(TargetIndex::build(mesh.clone())?);
-        self.indexes.push((Arc::downgrade(mesh), index.clone()));
+        self.indexes
+            .push((Arc::downgrade(mesh), index.clone(), true));
         Ok(index)
     }
 
@@ -198,7 +202,19 @@ impl CutCache {
     pub fn has_index(&self, mesh: &Arc<Mesh>) -> bool {
         self.indexes
             .iter()
-            .any(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+            .any(|(w, _, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+    }
+
+    /// Drops the exact indexes that no cut used since the previous call. A long-lived cache
+    /// (the live cut's) calls this after each request, so it holds the index of the models
+    /// being re-cut, not of every model ever cut: an index costs several times its mesh, and
+    /// a model whose cutter did not change is not cut again.
+    pub fn forget_unused(&mut self) {
+        self.indexes
+            .retain(|(w, _, used)| *used && w.strong_count() > 0);
+        for (_, _, used) in &mut self.indexes {
+            *used = false;
+        }
     }
 
     fn prefix(&self, mesh: &Arc<Mesh>, key: &PrefixKey) -> Option<Stage> {

@@ -1,0 +1,60 @@
+//! The window's memory stays flat over a scripted session ([`memory_script`]: 10 cutters of 50
+//! drag frames each, every view toggled, everything undone and redone) on the embedded default
+//! scene: the resident size after loading is at most 4× the loaded triangle data + 300 MB, and
+//! no later level exceeds the level after the first cut by more than 10 %.
+//!
+//! It is the only test of this binary, so no other test allocates in the process while it
+//! measures. Skipped, with the reason printed, when no wgpu adapter exists (install
+//! `mesa-vulkan-drivers` and set `WGPU_BACKEND=vulkan`; CI does). The same script on the real
+//! anatomy, with peak figures: `cargo bench -p cutaway --bench memory`.
+
+#[path = "memory_script.rs"]
+mod memory_script;
+
+use memory_script::{Options, mb};
+
+#[test]
+fn window_memory_stays_flat_over_a_scripted_session() {
+    if let Some(reason) = memory_script::no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let report = memory_script::run(Options {
+        paths: Vec::new(),
+        cutters: 10,
+        drag_frames: 50,
+        save_session: None,
+    });
+    println!(
+        "{} triangles ({:.1} MB): after loading {:.1} MB (bound {:.1} MB); after the first cut \
+         {:.1} MB; highest later {:.1} MB at \"{}\" (limit {:.1} MB); peak {:.1} MB; {:.0} s",
+        report.triangles,
+        mb(report.data_bytes),
+        mb(report.loaded),
+        mb(report.load_bound()),
+        mb(report.first_cut),
+        mb(report.worst.1),
+        report.worst.0,
+        mb(report.growth_limit()),
+        mb(report.peak),
+        report.seconds
+    );
+    assert!(
+        report.cutters_made >= 8,
+        "only {} of 10 cutters were made",
+        report.cutters_made
+    );
+    assert!(
+        report.loaded <= report.load_bound(),
+        "after loading the window holds {:.1} MB, over 4 × {:.1} MB of triangle data + 300 MB",
+        mb(report.loaded),
+        mb(report.data_bytes)
+    );
+    assert!(
+        report.worst.1 <= report.growth_limit(),
+        "memory grew to {:.1} MB at \"{}\", over the {:.1} MB after the first cut + 10 %",
+        mb(report.worst.1),
+        report.worst.0,
+        mb(report.first_cut)
+    );
+}
