@@ -52,9 +52,9 @@ fn main() {
         let render = child("render", &anatomy.join(folder), &session);
         let get = |v: &serde_json::Value, k: &str| v[k].as_u64().unwrap_or(0);
         let data = get(&window, "data_bytes");
-        let bound = 4 * data + memory_script::FIXED_ALLOWANCE;
+        let bound = get(&window, "load_bound");
         let first = get(&window, "first_cut");
-        let limit = (first as f64 * (1.0 + memory_script::GROWTH)) as u64;
+        let limit = get(&window, "growth_limit");
         let (peak, render_peak) = (get(&window, "peak"), get(&render, "peak"));
         println!(
             "{name}: {} triangles, {:.1} MB of triangle data",
@@ -129,8 +129,11 @@ fn window_child() {
     let input = PathBuf::from(std::env::var_os(INPUT).expect("input"));
     let session = PathBuf::from(std::env::var_os(SESSION).expect("session"));
     eprintln!("window on {}:", input.display());
+    let mut paths = Vec::new();
+    mesh_files(&input, &mut paths);
+    paths.sort();
     let report = memory_script::run(Options {
-        paths: vec![input],
+        paths,
         cutters: 10,
         drag_frames: 50,
         save_session: Some(session),
@@ -139,6 +142,8 @@ fn window_child() {
         "triangles": report.triangles,
         "data_bytes": report.data_bytes,
         "loaded": report.loaded,
+        "load_bound": report.load_bound(),
+        "growth_limit": report.growth_limit(),
         "first_cut": report.first_cut,
         "worst": report.worst.1,
         "worst_step": report.worst.0,
@@ -147,6 +152,23 @@ fn window_child() {
         "seconds": report.seconds,
     });
     println!("{line}");
+}
+
+/// Every mesh file under `dir`, subfolders included (a folder opens only its own files).
+fn mesh_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            mesh_files(&path, out);
+        } else if path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+            ["ply", "vtk", "obj", "stl"].contains(&e.to_ascii_lowercase().as_str())
+        }) {
+            out.push(path);
+        }
+    }
 }
 
 fn render_child() {

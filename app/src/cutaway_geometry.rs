@@ -173,8 +173,11 @@ pub struct CutCache {
     /// Per target mesh: its exact index, and whether a cut used it since the last
     /// [`CutCache::forget_unused`].
     indexes: Vec<(std::sync::Weak<Mesh>, Arc<TargetIndex>, bool)>,
-    prefixes: std::collections::VecDeque<(PrefixKey, std::sync::Weak<Mesh>, Stage)>,
-    models: std::collections::VecDeque<(ModelKey, std::sync::Weak<Mesh>, ModelPreview)>,
+    /// Closed results of leading runs of cutters, and whether a cut used them since the last
+    /// [`CutCache::forget_unused`].
+    prefixes: std::collections::VecDeque<(PrefixKey, std::sync::Weak<Mesh>, Stage, bool)>,
+    /// Preview parts per model, and whether a cut used them since the last `forget_unused`.
+    models: std::collections::VecDeque<(ModelKey, std::sync::Weak<Mesh>, ModelPreview, bool)>,
 }
 
 /// Entries kept of each of [`CutCache`]'s bounded lists (each may hold a model-sized mesh).
@@ -205,50 +208,68 @@ impl CutCache {
             .any(|(w, _, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
     }
 
-    /// Drops the exact indexes that no cut used since the previous call. A long-lived cache
-    /// (the live cut's) calls this after each request, so it holds the index of the models
-    /// being re-cut, not of every model ever cut: an index costs several times its mesh, and
-    /// a model whose cutter did not change is not cut again.
+    /// Drops the indexes, cut prefixes and model previews that no cut used since the previous
+    /// call. A long-lived cache (the live cut's) calls this after each request, so it holds
+    /// what the current cutters need, not every model or cutter state ever cut: an index costs
+    /// several times its mesh, a prefix or a preview a model-sized mesh, and a model whose
+    /// cutters did not change is not cut again. (Without calls, each list stays bounded:
+    /// [`CACHE_ENTRIES`] prefixes and previews, an index per live target mesh.)
     pub fn forget_unused(&mut self) {
         self.indexes
             .retain(|(w, _, used)| *used && w.strong_count() > 0);
+        self.prefixes
+            .retain(|(_, w, _, used)| *used && w.strong_count() > 0);
+        self.models
+            .retain(|(_, w, _, used)| *used && w.strong_count() > 0);
         for (_, _, used) in &mut self.indexes {
+            *used = false;
+        }
+        for (_, _, _, used) in &mut self.prefixes {
+            *used = false;
+        }
+        for (_, _, _, used) in &mut self.models {
             *used = false;
         }
     }
 
-    fn prefix(&self, mesh: &Arc<Mesh>, key: &PrefixKey) -> Option<Stage> {
-        self.prefixes
-            .iter()
-            .find(|(k, w, _)| k == key && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
-            .map(|(_, _, s)| s.clone())
+    fn prefix(&mut self, mesh: &Arc<Mesh>, key: &PrefixKey) -> Option<Stage> {
+        let (_, _, stage, used) = self
+            .prefixes
+            .iter_mut()
+            .find(|(k, w, _, _)| k == key && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))?;
+        *used = true;
+        Some(stage.clone())
     }
 
     fn store_prefix(&mut self, mesh: &Arc<Mesh>, key: PrefixKey, stage: Stage) {
         self.prefixes
-            .retain(|(k, w, _)| w.strong_count() > 0 && *k != key);
+            .retain(|(k, w, _, _)| w.strong_count() > 0 && *k != key);
         if self.prefixes.len() >= CACHE_ENTRIES {
             self.prefixes.pop_front();
         }
-        self.prefixes.push_back((key, Arc::downgrade(mesh), stage));
+        self.prefixes
+            .push_back((key, Arc::downgrade(mesh), stage, true));
     }
 
-    fn model(&self, mesh: &Arc<Mesh>, key: &ModelKey) -> Option<ModelPreview> {
-        self.models
-            .iter()
-            .find(|(k, w, _)| k == key && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
-            .map(|(_, _, p)| p.clone())
+    fn model(&mut self, mesh: &Arc<Mesh>, key: &ModelKey) -> Option<ModelPreview> {
+        let (_, _, preview, used) = self
+            .models
+            .iter_mut()
+            .find(|(k, w, _, _)| k == key && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))?;
+        *used = true;
+        Some(preview.clone())
     }
 
     /// Keeps one preview per model mesh (the newest): older states of an edited model's cutters
     /// are never asked for again, and a big model's parts are large.
     fn store_model(&mut self, mesh: &Arc<Mesh>, key: ModelKey, preview: ModelPreview) {
         self.models
-            .retain(|(k, w, _)| w.strong_count() > 0 && k.0 != key.0);
+            .retain(|(k, w, _, _)| w.strong_count() > 0 && k.0 != key.0);
         if self.models.len() >= CACHE_ENTRIES {
             self.models.pop_front();
         }
-        self.models.push_back((key, Arc::downgrade(mesh), preview));
+        self.models
+            .push_back((key, Arc::downgrade(mesh), preview, true));
     }
 }
 
