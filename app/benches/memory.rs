@@ -75,6 +75,12 @@ fn main() {
             window["worst_step"].as_str().unwrap_or("")
         );
         println!(
+            "  every view shown       {:>8.1} MB   highest after          {:>8.1} MB  (limit {:.1} MB)",
+            mb(get(&window, "all_shown")),
+            mb(get(&window, "worst_after_all_shown")),
+            mb(get(&window, "repeat_limit"))
+        );
+        println!(
             "  window peak            {:>8.1} MB   cutaway render peak    {:>8.1} MB  (ratio {:.2})",
             mb(peak),
             mb(render_peak),
@@ -144,6 +150,9 @@ fn window_child() {
         "loaded": report.loaded,
         "load_bound": report.load_bound(),
         "growth_limit": report.growth_limit(),
+        "all_shown": report.all_shown,
+        "worst_after_all_shown": report.worst_after_all_shown.1,
+        "repeat_limit": report.repeat_limit(),
         "first_cut": report.first_cut,
         "worst": report.worst.1,
         "worst_step": report.worst.0,
