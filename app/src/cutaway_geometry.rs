@@ -170,9 +170,14 @@ struct ModelPreview {
 /// mesh never matches a stale entry.
 #[derive(Default)]
 pub struct CutCache {
-    indexes: Vec<(std::sync::Weak<Mesh>, Arc<TargetIndex>)>,
-    prefixes: std::collections::VecDeque<(PrefixKey, std::sync::Weak<Mesh>, Stage)>,
-    models: std::collections::VecDeque<(ModelKey, std::sync::Weak<Mesh>, ModelPreview)>,
+    /// Per target mesh: its exact index, and whether a cut used it since the last
+    /// [`CutCache::forget_unused`].
+    indexes: Vec<(std::sync::Weak<Mesh>, Arc<TargetIndex>, bool)>,
+    /// Closed results of leading runs of cutters, and whether a cut used them since the last
+    /// [`CutCache::forget_unused`].
+    prefixes: std::collections::VecDeque<(PrefixKey, std::sync::Weak<Mesh>, Stage, bool)>,
+    /// Preview parts per model, and whether a cut used them since the last `forget_unused`.
+    models: std::collections::VecDeque<(ModelKey, std::sync::Weak<Mesh>, ModelPreview, bool)>,
 }
 
 /// Entries kept of each of [`CutCache`]'s bounded lists (each may hold a model-sized mesh).
@@ -181,16 +186,18 @@ const CACHE_ENTRIES: usize = 4;
 impl CutCache {
     /// The exact index of `mesh`, built on first use.
     pub fn index(&mut self, mesh: &Arc<Mesh>) -> Result<Arc<TargetIndex>, csg::MeshError> {
-        self.indexes.retain(|(w, _)| w.strong_count() > 0);
-        if let Some((_, index)) = self
+        self.indexes.retain(|(w, _, _)| w.strong_count() > 0);
+        if let Some((_, index, used)) = self
             .indexes
-            .iter()
-            .find(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+            .iter_mut()
+            .find(|(w, _, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
         {
+            *used = true;
             return Ok(index.clone());
         }
         let index = Arc::new(TargetIndex::build(mesh.clone())?);
-        self.indexes.push((Arc::downgrade(mesh), index.clone()));
+        self.indexes
+            .push((Arc::downgrade(mesh), index.clone(), true));
         Ok(index)
     }
 
@@ -198,41 +205,71 @@ impl CutCache {
     pub fn has_index(&self, mesh: &Arc<Mesh>) -> bool {
         self.indexes
             .iter()
-            .any(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+            .any(|(w, _, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
     }
 
-    fn prefix(&self, mesh: &Arc<Mesh>, key: &PrefixKey) -> Option<Stage> {
+    /// Drops the indexes, cut prefixes and model previews that no cut used since the previous
+    /// call. A long-lived cache (the live cut's) calls this after each request, so it holds
+    /// what the current cutters need, not every model or cutter state ever cut: an index costs
+    /// several times its mesh, a prefix or a preview a model-sized mesh, and a model whose
+    /// cutters did not change is not cut again. (Without calls, each list stays bounded:
+    /// [`CACHE_ENTRIES`] prefixes and previews, an index per live target mesh.)
+    pub fn forget_unused(&mut self) {
+        self.indexes
+            .retain(|(w, _, used)| *used && w.strong_count() > 0);
         self.prefixes
-            .iter()
-            .find(|(k, w, _)| k == key && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
-            .map(|(_, _, s)| s.clone())
+            .retain(|(_, w, _, used)| *used && w.strong_count() > 0);
+        self.models
+            .retain(|(_, w, _, used)| *used && w.strong_count() > 0);
+        for (_, _, used) in &mut self.indexes {
+            *used = false;
+        }
+        for (_, _, _, used) in &mut self.prefixes {
+            *used = false;
+        }
+        for (_, _, _, used) in &mut self.models {
+            *used = false;
+        }
+    }
+
+    fn prefix(&mut self, mesh: &Arc<Mesh>, key: &PrefixKey) -> Option<Stage> {
+        let (_, _, stage, used) = self
+            .prefixes
+            .iter_mut()
+            .find(|(k, w, _, _)| k == key && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))?;
+        *used = true;
+        Some(stage.clone())
     }
 
     fn store_prefix(&mut self, mesh: &Arc<Mesh>, key: PrefixKey, stage: Stage) {
         self.prefixes
-            .retain(|(k, w, _)| w.strong_count() > 0 && *k != key);
+            .retain(|(k, w, _, _)| w.strong_count() > 0 && *k != key);
         if self.prefixes.len() >= CACHE_ENTRIES {
             self.prefixes.pop_front();
         }
-        self.prefixes.push_back((key, Arc::downgrade(mesh), stage));
+        self.prefixes
+            .push_back((key, Arc::downgrade(mesh), stage, true));
     }
 
-    fn model(&self, mesh: &Arc<Mesh>, key: &ModelKey) -> Option<ModelPreview> {
-        self.models
-            .iter()
-            .find(|(k, w, _)| k == key && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
-            .map(|(_, _, p)| p.clone())
+    fn model(&mut self, mesh: &Arc<Mesh>, key: &ModelKey) -> Option<ModelPreview> {
+        let (_, _, preview, used) = self
+            .models
+            .iter_mut()
+            .find(|(k, w, _, _)| k == key && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))?;
+        *used = true;
+        Some(preview.clone())
     }
 
     /// Keeps one preview per model mesh (the newest): older states of an edited model's cutters
     /// are never asked for again, and a big model's parts are large.
     fn store_model(&mut self, mesh: &Arc<Mesh>, key: ModelKey, preview: ModelPreview) {
         self.models
-            .retain(|(k, w, _)| w.strong_count() > 0 && k.0 != key.0);
+            .retain(|(k, w, _, _)| w.strong_count() > 0 && k.0 != key.0);
         if self.models.len() >= CACHE_ENTRIES {
             self.models.pop_front();
         }
-        self.models.push_back((key, Arc::downgrade(mesh), preview));
+        self.models
+            .push_back((key, Arc::downgrade(mesh), preview, true));
     }
 }
 

@@ -57,7 +57,10 @@ struct Active {
 #[derive(Default)]
 pub struct EditorSlot {
     active: Option<Active>,
-    /// Spatial indexes by target mesh (weak: a replaced mesh invalidates its entry).
+    /// Spatial indexes by target mesh (weak: a replaced mesh invalidates its entry). Only the
+    /// index of the target being edited is kept (see [`EditorSlot::ensure`]), and one built in
+    /// the background for the next target: an index per model ever edited would add up to
+    /// several times the scene.
     indexes: Vec<(Weak<Mesh>, Arc<SpatialIndex>)>,
     /// The cursor the editor asked for at the last event.
     pub cursor: cutter::CursorHint,
@@ -131,6 +134,8 @@ impl EditorSlot {
             }
             None => return false,
         };
+        self.indexes
+            .retain(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, &model.mesh)));
         let settings = EditorSettings::for_scene(&scene.bbox(), scene.camera.fov_y_deg)
             .with_kind(editor_kind(init.kind))
             .with_spacing(init.spacing)

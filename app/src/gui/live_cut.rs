@@ -274,7 +274,9 @@ fn worker(shared: &Shared, results: &Sender<LiveResult>) {
         };
         let started = Instant::now();
         let computed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            live_geometry(&request.scene, &mut cache)
+            let drawn = live_geometry(&request.scene, &mut cache);
+            cache.forget_unused();
+            drawn
         }));
         let (geometry, deltas) = match computed {
             Ok(g) => g,
@@ -308,58 +310,73 @@ fn worker(shared: &Shared, results: &Sender<LiveResult>) {
 /// vertex-to-face table of each model mesh (for the deltas' normals), and the last live cut of
 /// each model (so a model whose cutter did not change is not cut again and keeps its delta, which
 /// the renderer then does not touch).
+///
+/// Each entry is kept while the newest request uses it and dropped after the first request that
+/// does not ([`LiveCache::forget_unused`]): the cache holds what the current live view is made
+/// of, whatever the number of cutters or the history of the session, never a copy per past state.
 #[derive(Default)]
 struct LiveCache {
     cuts: CutCache,
-    faces: Vec<(std::sync::Weak<Mesh>, Arc<VertexFaces>)>,
-    models: Vec<(std::sync::Weak<Mesh>, SceneCutter, ModelLive)>,
+    /// Per mesh: its vertex-to-face table, and whether this request used it.
+    faces: Vec<(std::sync::Weak<Mesh>, Arc<VertexFaces>, bool)>,
+    /// Per mesh: the cutter of its last live cut, the cut, and whether this request used it.
+    models: Vec<(std::sync::Weak<Mesh>, SceneCutter, ModelLive, bool)>,
 }
 
 /// The live cut of one model by one cutter.
 #[derive(Clone)]
 struct ModelLive {
-    walls: Mesh,
-    contours: Vec<Vec<glam::DVec3>>,
+    walls: Arc<Mesh>,
+    contours: Arc<Vec<Vec<glam::DVec3>>>,
     kept: Arc<MeshDelta>,
 }
 
-/// Entries of [`LiveCache`]'s per-mesh lists.
-const LIVE_CACHE_ENTRIES: usize = 4;
-
 impl LiveCache {
     fn faces(&mut self, mesh: &Arc<Mesh>) -> Arc<VertexFaces> {
-        self.faces.retain(|(w, _)| w.strong_count() > 0);
-        if let Some((_, f)) = self
+        if let Some((_, f, used)) = self
             .faces
-            .iter()
-            .find(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+            .iter_mut()
+            .find(|(w, _, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
         {
+            *used = true;
             return f.clone();
         }
         let faces = Arc::new(VertexFaces::build(mesh));
-        if self.faces.len() >= LIVE_CACHE_ENTRIES {
-            self.faces.remove(0);
-        }
-        self.faces.push((Arc::downgrade(mesh), faces.clone()));
+        self.faces.push((Arc::downgrade(mesh), faces.clone(), true));
         faces
+    }
+
+    /// Drops what the request just answered did not use (see [`LiveCache`]).
+    fn forget_unused(&mut self) {
+        self.cuts.forget_unused();
+        self.faces
+            .retain(|(w, _, used)| *used && w.strong_count() > 0);
+        self.models
+            .retain(|(w, _, _, used)| *used && w.strong_count() > 0);
+        for (_, _, used) in &mut self.faces {
+            *used = false;
+        }
+        for (_, _, _, used) in &mut self.models {
+            *used = false;
+        }
     }
 
     /// The live cut of `mesh` by `cutter` (None: the exact boolean refused it).
     fn model(&mut self, mesh: &Arc<Mesh>, cutter: &SceneCutter) -> Option<ModelLive> {
-        self.models.retain(|(w, _, _)| w.strong_count() > 0);
-        if let Some((_, _, live)) = self
+        if let Some((_, _, live, used)) = self
             .models
-            .iter()
-            .find(|(w, c, _)| c == cutter && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
+            .iter_mut()
+            .find(|(w, c, _, _)| c == cutter && w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
         {
+            *used = true;
             return Some(live.clone());
         }
         let index = self.cuts.index(mesh).ok()?;
         let surface = cutter_mesh(cutter);
         let live = if surface.is_empty() {
             ModelLive {
-                walls: Mesh::default(),
-                contours: Vec::new(),
+                walls: Arc::default(),
+                contours: Arc::default(),
                 kept: Arc::new(MeshDelta {
                     base: mesh.clone(),
                     ..MeshDelta::default()
@@ -371,19 +388,16 @@ impl LiveCache {
             let kept = Arc::new(delta::of_cut(mesh, &faces, &result));
             let contours = crate::cutaway_geometry::contour_polylines(result.contours);
             ModelLive {
-                walls: result.walls.mesh,
-                contours,
+                walls: Arc::new(result.walls.mesh),
+                contours: Arc::new(contours),
                 kept,
             }
         };
         // One entry per mesh: older states of an edited cutter are never asked for again.
         self.models
-            .retain(|(w, _, _)| !w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)));
-        if self.models.len() >= LIVE_CACHE_ENTRIES {
-            self.models.remove(0);
-        }
+            .retain(|(w, _, _, _)| !w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)));
         self.models
-            .push((Arc::downgrade(mesh), cutter.clone(), live.clone()));
+            .push((Arc::downgrade(mesh), cutter.clone(), live.clone(), true));
         Some(live)
     }
 }
@@ -423,12 +437,12 @@ fn live_geometry(scene: &Scene, cache: &mut LiveCache) -> (PreviewGeometry, Vec<
                 cutter: c,
                 kind: PartKind::Wall,
                 opacity: 1.0,
-                mesh: live.walls,
+                mesh: Mesh::clone(&live.walls),
             });
         }
         geometry
             .contours
-            .extend(live.contours.into_iter().map(|line| (m, line)));
+            .extend(live.contours.iter().map(|line| (m, line.clone())));
         deltas.push(live.kept);
     }
     if rest.cutters.iter().any(|c| c.views.any()) {

@@ -452,6 +452,10 @@ impl Renderer {
                 }
                 self.preview = Some(cache);
             }
+        } else {
+            // Nothing to show: the last preview's buffers go now, not when the next one comes
+            // (a model-sized kept part would otherwise stay on the GPU through Camera mode).
+            self.preview = None;
         }
         let replaced = |m: usize| {
             preview

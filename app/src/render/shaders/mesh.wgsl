@@ -49,11 +49,11 @@ fn face_normal(p: vec3<f32>) -> vec3<f32> {
     return n / max(length(n), 1e-30);
 }
 
+// No branch depends on a uniform alone (the flat colour is chosen with `select` at the end):
+// a software rasterizer (lavapipe) compiles a shader variant per value of a uniform that decides
+// a branch, and with one draw uniform per model those variants pile up frame after frame.
 fn shade(in: VertexOut, front_facing: bool, flat_normal: vec3<f32>) -> vec3<f32> {
     let base = draw.color.rgb;
-    if draw.params.y < 0.5 {
-        return base;
-    }
     let to_eye = normalize(frame.eye_in_world.xyz - in.position_in_world);
     var n = in.normal_in_world;
     var brightness = 1.0;
@@ -78,7 +78,7 @@ fn shade(in: VertexOut, front_facing: bool, flat_normal: vec3<f32>) -> vec3<f32>
     let h = normalize(l + to_eye);
     let specular = pow(max(dot(n, h), 0.0), 40.0) * 0.18;
     let lit = base * (0.18 + 0.6 * diffuse + 0.24 * fill) * brightness + vec3<f32>(specular * brightness);
-    return lit;
+    return select(base, lit, draw.params.y >= 0.5);
 }
 
 @fragment

@@ -1,0 +1,389 @@
+//! The scripted window session whose resident memory the `memory` test and the `memory` bench
+//! measure: the real `CutawayApp`, driven headless by egui_kittest on wgpu (lavapipe in CI, where
+//! GPU buffers are host memory and count in the resident size), loads a scene, paints cutters
+//! with drags of many frames (every frame drawn), turns every view on and off, and undoes and
+//! redoes everything. The process's resident size is read from `/proc/self/status` after every
+//! step.
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use cutaway::gui::app::Action;
+use cutaway::gui::{CutawayApp, Mode, StartOptions};
+use egui_kittest::Harness;
+
+/// Slack over 4× the loaded triangle data that the window may hold (wgpu, lavapipe, egui).
+pub const FIXED_ALLOWANCE: u64 = 300 << 20;
+/// Allowed growth over the level after the first cut.
+pub const GROWTH: f64 = 0.10;
+
+/// What to run.
+pub struct Options {
+    /// Files to open (a model, a folder, or a session); empty: the embedded default scene.
+    pub paths: Vec<PathBuf>,
+    pub cutters: usize,
+    pub drag_frames: usize,
+    /// Where to save the session at the end (its cutters included), if anywhere.
+    pub save_session: Option<PathBuf>,
+}
+
+/// What was measured.
+#[derive(Debug)]
+pub struct Report {
+    pub triangles: usize,
+    /// Bytes of the loaded triangle data as stored: f64 positions and u32 indices.
+    pub data_bytes: u64,
+    /// Resident size after loading.
+    pub loaded: u64,
+    /// Resident size after the first cutter was painted and its live cut shown.
+    pub first_cut: u64,
+    /// The highest level from the first cut on, and the step it was read after.
+    pub worst: (String, u64),
+    /// Resident size once every cutter's every view was shown (all geometry made once).
+    pub all_shown: u64,
+    /// The highest level after that (toggles, modes, undo and redo of everything).
+    pub worst_after_all_shown: (String, u64),
+    /// Peak resident size of the process (`VmHWM`).
+    pub peak: u64,
+    pub cutters_made: usize,
+    pub seconds: f64,
+}
+
+impl Report {
+    /// The most the window may hold after loading: 4× the triangle data + 300 MB.
+    pub fn load_bound(&self) -> u64 {
+        4 * self.data_bytes + FIXED_ALLOWANCE
+    }
+
+    /// The target for every later level: the level after the first cut + 10 %.
+    pub fn growth_limit(&self) -> u64 {
+        (self.first_cut as f64 * (1.0 + GROWTH)) as u64
+    }
+
+    /// The most a level may be once all geometry was shown: that level + 10 % (repeating
+    /// work must not pile up).
+    pub fn repeat_limit(&self) -> u64 {
+        (self.all_shown as f64 * (1.0 + GROWTH)) as u64
+    }
+}
+
+/// `Some(reason)` when there is no adapter to run the window on.
+pub fn no_adapter() -> Option<String> {
+    let instance =
+        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default())) {
+        Ok(_) => None,
+        Err(e) => Some(format!(
+            "no wgpu adapter ({e}); install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan"
+        )),
+    }
+}
+
+/// Resident size of this process in bytes (`VmRSS`).
+pub fn rss() -> u64 {
+    status_kb("VmRSS:") << 10
+}
+
+/// Peak resident size of this process in bytes (`VmHWM`).
+pub fn peak_rss() -> u64 {
+    status_kb("VmHWM:") << 10
+}
+
+fn status_kb(field: &str) -> u64 {
+    let status = std::fs::read_to_string("/proc/self/status").expect("read /proc/self/status");
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix(field))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+        .unwrap_or_else(|| panic!("no {field} in /proc/self/status"))
+}
+
+pub fn mb(bytes: u64) -> f64 {
+    bytes as f64 / (1u64 << 20) as f64
+}
+
+/// The resident size after each step of the script.
+#[derive(Default)]
+struct Trace {
+    steps: Vec<(String, u64)>,
+}
+
+impl Trace {
+    fn sample(&mut self, h: &mut Harness<'_, CutawayApp>, step: &str) -> u64 {
+        h.render().expect("render the window");
+        let rss = rss();
+        eprintln!("  {step:<40} {:>8.1} MB", mb(rss));
+        self.steps.push((step.to_string(), rss));
+        rss
+    }
+}
+
+/// Steps the window until its background jobs and the live cut are done.
+fn settle(h: &mut Harness<'_, CutawayApp>) {
+    let deadline = Instant::now() + Duration::from_secs(600);
+    loop {
+        let app = h.state();
+        if !app.busy() && !app.viewport.live.pending() {
+            break;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "background work did not finish within 600 s (status: {})",
+            app.status.message
+        );
+        h.step();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    h.run_steps(2);
+}
+
+/// Steps one frame and draws it (the 3D view's paint callback runs only when a frame is drawn).
+fn frame(h: &mut Harness<'_, CutawayApp>) {
+    h.step();
+    h.render().expect("render the window");
+}
+
+fn act(h: &mut Harness<'_, CutawayApp>, action: Action) {
+    let ctx = h.ctx.clone();
+    h.state_mut().apply(&ctx, action);
+    frame(h);
+}
+
+/// Applies a scene change as one undo step, then draws a frame.
+fn change(h: &mut Harness<'_, CutawayApp>, label: &str, edit: impl FnOnce(&mut CutawayApp)) {
+    let before = h.state().scene.clone();
+    edit(h.state_mut());
+    h.state_mut().record(label, before);
+    frame(h);
+}
+
+/// Where `p` appears in the window, in points.
+fn to_screen(h: &Harness<'_, CutawayApp>, p: glam::DVec3) -> Option<egui::Pos2> {
+    let app = h.state();
+    let px = app.scene.camera.project(app.viewport.size_px, p)?;
+    let ppp = h.ctx.pixels_per_point();
+    Some(app.viewport.rect.min + egui::vec2(px.x as f32 / ppp, px.y as f32 / ppp))
+}
+
+/// Makes a new cutter on model `target` in Edit mode: an initialisation drag across the model's
+/// middle, then a drag of the handle over `drag_frames` frames, each drawn. Returns false when
+/// no cutter was made.
+fn paint_cutter(
+    h: &mut Harness<'_, CutawayApp>,
+    target: usize,
+    k: usize,
+    drag_frames: usize,
+) -> bool {
+    let ctx = h.ctx.clone();
+    h.state_mut().apply(&ctx, Action::NewCutter);
+    h.state_mut().selected_model = Some(target);
+    let before = h.state().scene.cutters.len();
+    let centre = h.state().scene.models[target].mesh.bbox().center();
+    let Some(centre) = to_screen(h, centre) else {
+        return false;
+    };
+    let rect = h.state().viewport.rect;
+    let margin = egui::vec2(60.0, 60.0);
+    let centre = centre.clamp(rect.min + margin, rect.max - margin);
+    let angle = k as f32 * 0.7;
+    let dir = egui::vec2(angle.cos(), angle.sin());
+    let (a, b) = (centre - dir * 35.0, centre + dir * 35.0);
+    h.drag_at(a);
+    frame(h);
+    if !h.state().viewport.editor.is_active() {
+        // A big target's index is built in the background first: press again once it exists.
+        h.drop_at(a);
+        settle(h);
+        h.drag_at(a);
+        frame(h);
+    }
+    for s in 1..=5 {
+        h.hover_at(a + (b - a) * (s as f32 / 5.0));
+        frame(h);
+    }
+    h.drop_at(b);
+    frame(h);
+    if h.state().scene.cutters.len() != before + 1 {
+        return false;
+    }
+    let lead = *h.state().scene.cutters[before].planes.last().unwrap();
+    let Some(handle) = to_screen(h, (lead[0] + lead[3]) * 0.5) else {
+        return true;
+    };
+    let across = egui::vec2(-dir.y, dir.x);
+    h.drag_at(handle);
+    frame(h);
+    for s in 1..=drag_frames {
+        let t = s as f32 / drag_frames as f32;
+        h.hover_at(handle + across * (90.0 * t) + dir * (20.0 * (t * 6.0).sin()));
+        frame(h);
+    }
+    h.drop_at(handle + across * 90.0);
+    frame(h);
+    true
+}
+
+/// Runs the script and reads the resident size after each step.
+pub fn run(options: Options) -> Report {
+    let state_dir = std::env::temp_dir().join(format!("cutaway-memory-{}", std::process::id()));
+    std::fs::create_dir_all(&state_dir).expect("state dir");
+    let start = StartOptions {
+        paths: options.paths.clone(),
+        state_dir: state_dir.clone(),
+        offer_recovery: false,
+    };
+    let mut h = Harness::builder()
+        .wgpu()
+        .with_size(egui::vec2(1024.0, 640.0))
+        .with_max_steps(10_000)
+        .with_accessibility_check(false)
+        .build_eframe(move |cc| CutawayApp::new(cc, start));
+    let mut trace = Trace::default();
+    let started = Instant::now();
+
+    settle(&mut h);
+    let app = h.state();
+    assert!(
+        !app.scene.models.is_empty() && !app.status.is_error,
+        "nothing loaded: {}",
+        app.status.message
+    );
+    let data_bytes = app
+        .scene
+        .models
+        .iter()
+        .map(|m| (m.mesh.positions.len() * 24 + m.mesh.triangles.len() * 12) as u64)
+        .sum();
+    let triangles = cutaway::gui::app::triangle_count(&app.scene);
+    let loaded = trace.sample(&mut h, "loaded");
+
+    // Frames with nothing changing: each is a new frame of the same picture.
+    for _ in 0..30 {
+        frame(&mut h);
+    }
+    trace.sample(&mut h, "30 frames");
+    act(&mut h, Action::SetMode(Mode::Preview));
+    settle(&mut h);
+    trace.sample(&mut h, "preview, no cutter");
+    act(&mut h, Action::SetMode(Mode::Edit));
+    trace.sample(&mut h, "edit");
+
+    // Cutters on the models in turn, the biggest first.
+    let models = h.state().scene.models.len();
+    let mut order: Vec<usize> = (0..models).collect();
+    order.sort_by_key(|&m| std::cmp::Reverse(h.state().scene.models[m].mesh.triangle_count()));
+    let mut first_cut = None;
+    let mut cutters_made = 0;
+    for k in 0..options.cutters {
+        if paint_cutter(&mut h, order[k % models], k, options.drag_frames) {
+            cutters_made += 1;
+        }
+        settle(&mut h);
+        let rss = trace.sample(&mut h, &format!("cutter {} painted", k + 1));
+        first_cut.get_or_insert(rss);
+    }
+    let first_cut = first_cut.unwrap_or(loaded);
+
+    // Every view of every cutter on, then off, in Preview; the window's view toggles.
+    act(&mut h, Action::SetMode(Mode::Preview));
+    settle(&mut h);
+    trace.sample(&mut h, "preview");
+    let cutters = h.state().scene.cutters.len();
+    for i in 0..cutters {
+        change(&mut h, "cutter view change", |app| {
+            let views = &mut app.scene.cutters[i].views;
+            let sub = cutaway::scene::SubCutterView {
+                count: 3,
+                width: 2.0,
+            };
+            views.transparency = Some(0.3);
+            views.ribbons = Some(sub);
+            views.slices = Some(sub);
+        });
+        settle(&mut h);
+    }
+    let all_shown = trace.sample(&mut h, "every view on");
+    for i in 0..cutters {
+        change(&mut h, "cutter view change", |app| {
+            app.scene.cutters[i].views = Default::default();
+        });
+        settle(&mut h);
+    }
+    trace.sample(&mut h, "views back to normal cut");
+    for m in 0..models {
+        change(&mut h, "model style change", |app| {
+            let model = &mut app.scene.models[m];
+            model.style = cutaway::scene::ModelStyle::Wireframe;
+            model.opacity = 0.5;
+        });
+    }
+    settle(&mut h);
+    trace.sample(&mut h, "wireframe, half opacity");
+    act(&mut h, Action::ToggleCutters);
+    for mode in [Mode::Camera, Mode::Edit, Mode::Preview, Mode::Camera] {
+        act(&mut h, Action::SetMode(mode));
+        settle(&mut h);
+    }
+    act(&mut h, Action::ToggleCutters);
+    trace.sample(&mut h, "modes, cutters hidden and shown");
+
+    // Undo everything, then redo everything, in Edit mode (each state is cut live).
+    act(&mut h, Action::SetMode(Mode::Edit));
+    let mut undone = 0;
+    while h.state().history.undo_label().is_some() {
+        act(&mut h, Action::Undo);
+        undone += 1;
+        if undone % 10 == 0 {
+            settle(&mut h);
+        }
+    }
+    settle(&mut h);
+    trace.sample(&mut h, &format!("{undone} steps undone"));
+    let mut redone = 0;
+    while h.state().history.redo_label().is_some() {
+        act(&mut h, Action::Redo);
+        redone += 1;
+        if redone % 10 == 0 {
+            settle(&mut h);
+        }
+    }
+    settle(&mut h);
+    assert_eq!(undone, redone, "not everything undone was redone");
+    trace.sample(&mut h, &format!("{redone} steps redone"));
+    act(&mut h, Action::SetMode(Mode::Preview));
+    settle(&mut h);
+    trace.sample(&mut h, "preview after redo");
+
+    if let Some(path) = options.save_session {
+        act(&mut h, Action::SaveSessionTo(path));
+        assert!(!h.state().status.is_error, "{}", h.state().status.message);
+    }
+    let worst = trace
+        .steps
+        .iter()
+        .skip_while(|(s, _)| !s.starts_with("cutter 1 "))
+        .max_by_key(|(_, r)| *r)
+        .cloned()
+        .unwrap_or_else(|| ("loaded".into(), loaded));
+    let worst_after_all_shown = trace
+        .steps
+        .iter()
+        .skip_while(|(s, _)| s != "every view on")
+        .skip(1)
+        .max_by_key(|(_, r)| *r)
+        .cloned()
+        .unwrap_or_else(|| ("every view on".into(), all_shown));
+    let _ = std::fs::remove_dir_all(&state_dir);
+    Report {
+        all_shown,
+        worst_after_all_shown,
+        triangles,
+        data_bytes,
+        loaded,
+        first_cut,
+        worst,
+        peak: peak_rss(),
+        cutters_made,
+        seconds: started.elapsed().as_secs_f64(),
+    }
+}
