@@ -217,7 +217,10 @@ impl Cutter {
                     let chain = Cutter {
                         kind: self.kind,
                         smooth: false,
-                        planes: refined.iter().map(|c| BoundedPlane::from_corners(*c)).collect(),
+                        planes: refined
+                            .iter()
+                            .map(|c| BoundedPlane::from_corners(*c))
+                            .collect(),
                     }
                     .quad_mesh();
                     if csg::check_cutter(&chain.triangulate()).is_ok() {

@@ -144,10 +144,8 @@ pub fn refine_path(planes: &[[DVec3; 4]], passes: u32) -> Vec<[DVec3; 4]> {
         if n < 2 {
             break;
         }
-        let normal = |q: &[DVec3; 4]| {
-            ((q[3] - q[0]).cross(q[1] - q[0]) + (q[2] - q[1]).cross(q[3] - q[2]))
-                .normalize_or_zero()
-        };
+        // The cross product of the diagonals: the quad's normal, planar or not.
+        let normal = |q: &[DVec3; 4]| (q[2] - q[0]).cross(q[3] - q[1]).normalize_or_zero();
         let at = |i: isize| -> [DVec3; 4] {
             if i < 0 {
                 std::array::from_fn(|k| planes[0][k] * 2.0 - planes[1][k])
@@ -165,7 +163,12 @@ pub fn refine_path(planes: &[[DVec3; 4]], passes: u32) -> Vec<[DVec3; 4]> {
                 break;
             }
             if normal(&planes[i]).angle_between(normal(&planes[i + 1])) > threshold {
-                let (a, b, c, d) = (at(i as isize - 1), at(i as isize), at(i as isize + 1), at(i as isize + 2));
+                let (a, b, c, d) = (
+                    at(i as isize - 1),
+                    at(i as isize),
+                    at(i as isize + 1),
+                    at(i as isize + 2),
+                );
                 out.push(std::array::from_fn(|k| {
                     (-a[k] + b[k] * 9.0 + c[k] * 9.0 - d[k]) / 16.0
                 }));
@@ -465,7 +468,10 @@ mod tests {
         // Every input plane is kept, in order.
         let mut at = 0;
         for p in &turn {
-            at += refined[at..].iter().position(|q| q == p).expect("input plane kept");
+            at += refined[at..]
+                .iter()
+                .position(|q| q == p)
+                .expect("input plane kept");
         }
         assert_eq!(refine_path(&turn, 0), turn);
         // The inserted planes lie on the turn (the corners' distance from the axis is kept
