@@ -272,6 +272,8 @@ fn golden_ribbons() {
         ribbons: Some(SubCutterView {
             count: 3,
             width: 0.12,
+            placement: cutter::subcutters::Placement::Even,
+            relative: false,
         }),
         ..CutterViews::default()
     };
@@ -299,6 +301,8 @@ fn golden_slices() {
         slices: Some(SubCutterView {
             count: 3,
             width: 0.12,
+            placement: cutter::subcutters::Placement::Even,
+            relative: false,
         }),
         ..CutterViews::default()
     };
@@ -309,6 +313,8 @@ fn golden_slices() {
         ribbons: Some(SubCutterView {
             count: 3,
             width: 0.12,
+            placement: cutter::subcutters::Placement::Even,
+            relative: false,
         }),
         ..CutterViews::default()
     };
@@ -374,6 +380,97 @@ fn golden_edit_mode_cutter_overlay() {
     compare_to_golden("edit_mode", &image, r.is_software());
 }
 
+/// A rounded (smooth) cutter across the front of the embedded knee phantom: a wavy path of
+/// seven planes at the height of the joint, from just outside the skin 45 mm deep.
+fn rounded_knee_scene() -> Scene {
+    let knee = cutaway::assets::scene("knee").expect("embedded knee");
+    let models = cutaway::assets::load_scene(knee).expect("knee loads");
+    let mut scene = Scene::default();
+    for m in models {
+        let part = m.name.split(' ').next().unwrap_or("").to_string();
+        if part == "skin" || part == "patella" || part == "femur" {
+            let color = cutaway::assets::default_color(&part);
+            scene
+                .models
+                .push(SceneModel::new(m.name, m.source, Arc::new(m.mesh), color));
+        }
+    }
+    let planes = (0..7)
+        .map(|i| {
+            let x = -45.0 + 15.0 * i as f64;
+            let z = 45.0 + 12.0 * (x / 25.0).sin();
+            let slope = 12.0 / 25.0 * (x / 25.0).cos();
+            let edge = DVec3::new(-slope, 0.0, 1.0).normalize() * 22.0;
+            let front = DVec3::new(x, -75.0, z);
+            cutter::BoundedPlane::from_front_edge(front + edge, front - edge, DVec3::Y, 45.0)
+                .corners()
+        })
+        .collect();
+    scene.cutters.push(SceneCutter {
+        target: 0,
+        kind: CutKind::Curving,
+        smooth: true,
+        planes,
+        views: CutterViews::default(),
+    });
+    scene.camera = Camera {
+        eye: DVec3::new(150.0, -300.0, 150.0),
+        target: DVec3::new(0.0, -20.0, 40.0),
+        up: DVec3::Z,
+        fov_y_deg: 30.0,
+    };
+    scene
+}
+
+#[test]
+fn golden_rounded_cut_on_the_knee_overlay_is_the_wall() {
+    let scene = rounded_knee_scene();
+    assert_eq!(scene.models.len(), 3, "skin, patella and femur");
+    let preview = cutaway::cutaway_geometry::preview_geometry(&scene);
+    assert!(preview.notes.is_empty(), "{:?}", preview.notes);
+    assert!(preview.reports[0].1.exact);
+    // The walls lie on the overlay's surface (the one surface that cuts and is drawn), and that
+    // surface is the rounded one, not the boxes.
+    let surface = cutaway::cutaway_geometry::cutter_mesh(&scene.cutters[0]);
+    let boxes = cutaway::cutaway_geometry::to_cutter(&scene.cutters[0])
+        .quad_mesh()
+        .triangulate();
+    let on_surface = csg::SpatialIndex::build(&surface);
+    let on_boxes = csg::SpatialIndex::build(&boxes);
+    let mut off_boxes: f64 = 0.0;
+    let mut wall_vertices = 0;
+    for part in &preview.parts {
+        if part.kind != cutaway::cutaway_geometry::PartKind::Wall {
+            continue;
+        }
+        for &p in &part.mesh.positions {
+            let d = on_surface.closest_point(&surface, p).unwrap().distance;
+            // New contour vertices are rounded once from the boolean's lattice (~3e-6 mm here).
+            assert!(
+                d < 1e-5,
+                "wall vertex {p} is {d} mm off the overlay surface"
+            );
+            off_boxes = off_boxes.max(on_boxes.closest_point(&boxes, p).unwrap().distance);
+            wall_vertices += 1;
+        }
+    }
+    assert!(wall_vertices > 100, "{wall_vertices}");
+    assert!(
+        off_boxes > 1.0,
+        "the walls follow the boxes ({off_boxes} mm)"
+    );
+
+    let Some(mut r) = renderer() else { return };
+    let mut options = RenderPngOptions::new(2 * WIDTH, 2 * HEIGHT);
+    options.deterministic = true;
+    options.mode = Some(ViewMode::Edit);
+    let image =
+        cutaway::render::render_with_preview(&mut r, &scene, &options, Some(Arc::new(preview)))
+            .unwrap();
+    assert!(coverage(&image, [255, 255, 255]) > 0.2);
+    compare_to_golden("rounded_knee_edit", &image, r.is_software());
+}
+
 #[test]
 fn transparent_background_and_tiled_export() {
     let Some(mut r) = renderer() else { return };
@@ -412,6 +509,8 @@ fn sample_renders_for_people() {
     let sub = Some(SubCutterView {
         count: 4,
         width: 0.1,
+        placement: cutter::subcutters::Placement::Even,
+        relative: false,
     });
     let views = [
         ("sample_plain", None),
@@ -497,6 +596,8 @@ mod sessions {
                 ribbons: Some(SubCutterView {
                     count: 5,
                     width: 2.0,
+                    placement: cutter::subcutters::Placement::Even,
+                    relative: false,
                 }),
                 slices: None,
             },

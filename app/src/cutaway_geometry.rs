@@ -5,9 +5,10 @@
 //! ([`CutParts`]), so the renderer does not care which boolean produced them.
 //!
 //! The cuts use `csg`'s exact local boolean ([`csg::subtract`], [`csg::subtract_many`]) on the
-//! cutter surface of the `cutter` crate (smooth cutters subdivided), and the ribbon/slice
-//! sub-cutters of [`cutter::subcutters::at_intervals`] (thin boxes at regular arc-length intervals,
-//! height and depth interpolated from the planes on either side, thesis 3.4.2).
+//! cutter surface of the `cutter` crate ([`cutter::Cutter::surface`], smooth cutters subdivided:
+//! the same surface the Edit overlay draws), and the ribbon/slice sub-cutters of
+//! [`cutter::subcutters`] (thin boxes evenly spaced or centred on the planes, or horizontal layers
+//! at depth steps, thesis 3.4.2).
 //!
 //! Several cutters on one model ([`cut_in_turn`]): each cuts the *closed* result of the ones
 //! before it (their kept part welded to their walls), not just the kept surface, so the walls of
@@ -19,12 +20,11 @@
 //! each model and the closed results of earlier cutters, so re-cutting while one cutter is edited
 //! (the live cut of Edit mode) costs one boolean.
 //!
-//! When the boolean refuses a cutter (it must be closed, oriented and free of
-//! self-intersections; an edited cutter can briefly be none of these), [`cut_approx`] stands in so
-//! that Preview still shows something, and the reason is kept in [`PreviewGeometry::notes`] for the
-//! status line. The stand-in treats every box between two consecutive planes as a convex
-//! hexahedron, splits target triangles by its planes (Sutherland–Hodgman) into kept and removed
-//! pieces, and has walls only for convex targets; its contour is the boundary of the removed piece.
+//! There is no approximate cut. When the boolean refuses a cutter (the editor only hands over
+//! cutters that pass the same exact check, so this is a cutter loaded from a file or a target that
+//! cannot be indexed), that cutter cuts nothing, the reason goes to [`PreviewGeometry::notes`]
+//! (the GUI shows it in the status bar, `cutaway render` exits non-zero) and
+//! [`PreviewGeometry::reports`] marks the cutter not exact.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -85,8 +85,23 @@ pub struct PreviewGeometry {
     pub parts: Vec<PreviewPart>,
     /// Thick contour lines: (model index, polyline). Only for cutters with the normal-cut view.
     pub contours: Vec<(usize, Vec<DVec3>)>,
-    /// Why a cut fell back to the approximate stand-in (one line each, for the status line).
+    /// Why a cutter could not cut (one line each, for the status line); such a cutter cuts
+    /// nothing.
     pub notes: Vec<String>,
+    /// Per cutter that ran (scene index order): whether its cut (and its ribbons and slices)
+    /// was made by the exact boolean, and how long the boolean took.
+    pub reports: Vec<(usize, CutReport)>,
+}
+
+/// How one cutter's cut went.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CutReport {
+    /// The cut (and its ribbons and slices, if shown) was made; false: it was refused and the
+    /// cutter cut nothing.
+    pub exact: bool,
+    /// Wall time of the cutter's boolean against the cached index, in milliseconds (0 for a cut
+    /// taken from the cache).
+    pub cut_ms: f64,
 }
 
 impl PreviewGeometry {
@@ -104,10 +119,10 @@ pub const SURFACE: u32 = u32::MAX;
 pub struct Step<'a> {
     /// Scene index of the cutter.
     pub cutter: usize,
-    /// The surface this cutter cut: the model closed by the walls of the cutters before it
-    /// (`None` when no exact index could be built; the approximate cut was used).
-    pub before: Option<&'a TargetIndex>,
-    /// The mesh of `before` (also set when `before` is `None`).
+    /// The surface this cutter cut, indexed: the model closed by the walls of the cutters before
+    /// it.
+    pub before: &'a TargetIndex,
+    /// The mesh of `before`.
     pub before_mesh: &'a Mesh,
     /// Tag of every triangle of `before_mesh` ([`SURFACE`] or a cutter index).
     pub before_tags: &'a [u32],
@@ -129,20 +144,20 @@ pub struct SequenceResult {
     pub closed: Arc<Mesh>,
     /// Tag of every triangle of `closed`: [`SURFACE`], or the cutter whose wall it is.
     pub tags: Arc<Vec<u32>>,
-    /// Why a step fell back to the approximate cut (one line each).
+    /// Why a cutter could not cut (one line each); it cut nothing.
     pub notes: Vec<String>,
-    /// Contours of approximate steps (their walls do not weld onto the kept part, so the contour
-    /// cannot be read off the tags).
-    pub approx_contours: Vec<Vec<DVec3>>,
+    /// Every cutter of the sequence with how its cut went.
+    pub reports: Vec<(usize, CutReport)>,
 }
 
-/// The state between two steps of [`cut_in_turn`]: a closed mesh, its tags and (when it could be
-/// built) its exact index.
+/// The state between two steps of [`cut_in_turn`]: a closed mesh, its tags, (when it could be
+/// built) its exact index, and how the cutters so far went.
 #[derive(Clone)]
 struct Stage {
     mesh: Arc<Mesh>,
     tags: Arc<Vec<u32>>,
     index: Option<Arc<TargetIndex>>,
+    reports: Vec<(usize, CutReport)>,
 }
 
 /// The geometry of the cutters cutting a model, as a cache key (views left out).
@@ -160,6 +175,7 @@ struct ModelPreview {
     parts: Vec<PreviewPart>,
     contours: Vec<(usize, Vec<DVec3>)>,
     notes: Vec<String>,
+    reports: Vec<(usize, CutReport)>,
 }
 
 /// Caches that make re-cutting while the user edits one cutter cheap: the exact index of every
@@ -301,7 +317,6 @@ pub fn cut_in_turn(
     mut on_step: impl FnMut(&Step),
 ) -> SequenceResult {
     let mut notes = Vec::new();
-    let mut approx_contours = Vec::new();
     // The longest cached prefix of skippable cutters.
     let mut start = 0;
     let mut stage = None;
@@ -321,7 +336,7 @@ pub fn cut_in_turn(
             let index = match cache.index(mesh) {
                 Ok(index) => Some(index),
                 Err(e) => {
-                    notes.push(format!("{e}; showing an approximate cut"));
+                    notes.push(format!("the model cannot be cut: {e}"));
                     None
                 }
             };
@@ -329,60 +344,63 @@ pub fn cut_in_turn(
                 mesh: mesh.clone(),
                 tags: Arc::new(vec![SURFACE; mesh.triangle_count()]),
                 index,
+                reports: Vec::new(),
             }
         }
     };
     for k in start..cutters.len() {
         let (c, cutter) = cutters[k];
+        let Some(index) = stage.index.clone() else {
+            stage.reports.push((c, CutReport::default()));
+            continue;
+        };
         let surface = cutter_mesh(cutter);
         if surface.is_empty() {
+            stage.reports.push((c, CutReport::default()));
+            continue;
+        }
+        if !surface.bbox().overlaps(&stage.mesh.bbox()) {
+            // Exactly nothing to cut (and the boolean would refuse a cutter far out of range).
+            let nothing = CutReport {
+                exact: true,
+                cut_ms: 0.0,
+            };
+            stage.reports.push((c, nothing));
             continue;
         }
         let tag = c as u32;
-        let exact = match &stage.index {
-            Some(index) => csg::subtract(index, &surface)
-                .map(|result| (index.clone(), result))
-                .map_err(|e| e.to_string()),
-            None => Err("no exact index".to_string()),
-        };
-        let (after, after_tags, removed) = match exact {
-            Ok((index, result)) => {
-                let (closed, tags) = closed_by_region(&index, &stage.tags, &result, tag);
-                // The removed piece is built only when someone looks at this step.
-                let removed = if may_skip(c) {
-                    Mesh::default()
-                } else {
-                    let part = result.removed.part();
-                    select(&part.mesh, |t| {
-                        matches!(part.provenance[t],
-                            csg::Provenance::Target(f) if stage.tags[f as usize] == SURFACE)
-                    })
-                };
-                (closed, tags, removed)
-            }
+        let started = std::time::Instant::now();
+        let exact = csg::subtract(&index, &surface);
+        let cut_ms = started.elapsed().as_secs_f64() * 1000.0;
+        let result = match exact {
+            Ok(result) => result,
             Err(why) => {
-                if stage.index.is_some() {
-                    notes.push(format!(
-                        "cutter {}: {why}; showing an approximate cut",
-                        c + 1
-                    ));
-                }
-                let parts = cut_approx(&stage.mesh, &cutter.planes, true);
-                let mut tags = vec![SURFACE; parts.kept.triangle_count()];
-                let mut closed = parts.kept;
-                closed.append(&parts.walls);
-                tags.resize(closed.triangle_count(), tag);
-                approx_contours.extend(parts.contour);
-                (
-                    csg::weld::weld_exact(&closed).compacted(),
-                    tags,
-                    parts.removed,
-                )
+                notes.push(format!("cutter {} cannot cut: {why}", c + 1));
+                stage.reports.push((
+                    c,
+                    CutReport {
+                        exact: false,
+                        cut_ms,
+                    },
+                ));
+                continue;
             }
+        };
+        // Each region's kept part welded to its own walls (nested solids stay apart).
+        let (after, after_tags) = closed_by_region(&index, &stage.tags, &result, tag);
+        // The removed piece is built only when someone looks at this step.
+        let removed = if may_skip(c) {
+            Mesh::default()
+        } else {
+            let part = result.removed.part();
+            select(&part.mesh, |t| {
+                matches!(part.provenance[t],
+                    csg::Provenance::Target(f) if stage.tags[f as usize] == SURFACE)
+            })
         };
         on_step(&Step {
             cutter: c,
-            before: stage.index.as_deref(),
+            before: &index,
             before_mesh: &stage.mesh,
             before_tags: &stage.tags,
             removed: &removed,
@@ -390,12 +408,12 @@ pub fn cut_in_turn(
             after_tags: &after_tags,
         });
         let after = Arc::new(after);
-        let index = if k + 1 < cutters.len() {
+        let next_index = if k + 1 < cutters.len() {
             match TargetIndex::build(after.clone()) {
                 Ok(index) => Some(Arc::new(index)),
                 Err(e) => {
                     notes.push(format!(
-                        "after cutter {}: {e}; showing approximate cuts",
+                        "after cutter {}: {e}; the cutters after it cannot cut",
                         c + 1
                     ));
                     None
@@ -404,20 +422,34 @@ pub fn cut_in_turn(
         } else {
             None
         };
+        let mut reports = std::mem::take(&mut stage.reports);
+        reports.push((
+            c,
+            CutReport {
+                exact: true,
+                cut_ms,
+            },
+        ));
         stage = Stage {
             mesh: after,
             tags: Arc::new(after_tags),
-            index,
+            index: next_index,
+            reports,
         };
         if k + 1 < cutters.len() && stage.index.is_some() {
-            cache.store_prefix(mesh, prefix_key(mesh, &cutters[..=k]), stage.clone());
+            let mut cached = stage.clone();
+            // A cached prefix is not cut again: its time is not this cut's.
+            for (_, r) in &mut cached.reports {
+                r.cut_ms = 0.0;
+            }
+            cache.store_prefix(mesh, prefix_key(mesh, &cutters[..=k]), cached);
         }
     }
     SequenceResult {
         closed: stage.mesh,
         tags: stage.tags,
         notes,
-        approx_contours,
+        reports: stage.reports,
     }
 }
 
@@ -566,7 +598,9 @@ pub fn preview_geometry_with(scene: &Scene, cache: &mut CutCache) -> PreviewGeom
         out.parts.extend(preview.parts);
         out.contours.extend(preview.contours);
         out.notes.extend(preview.notes);
+        out.reports.extend(preview.reports);
     }
+    out.reports.sort_by_key(|(c, _)| *c);
     out
 }
 
@@ -579,6 +613,7 @@ fn model_preview(
 ) -> ModelPreview {
     let model = &scene.models[model_index];
     let mut out = PreviewGeometry::default();
+    let mut refused: Vec<usize> = Vec::new();
     let needs_step = |c: usize| {
         let v = &scene.cutters[c].views;
         v.transparency.is_some() || v.ribbons.is_some() || v.slices.is_some()
@@ -604,32 +639,14 @@ fn model_preview(
             }
             for (view, with_walls) in [(views.ribbons, false), (views.slices, true)] {
                 let Some(view) = view else { continue };
-                let exact = step.before.map(|index| {
-                    sub_cuts_exact(
-                        index,
-                        cutter,
-                        view.count,
-                        view.width,
-                        Some(step.before_tags),
-                    )
-                });
-                let (ribbons, walls) = match exact {
-                    Some(Ok(pieces)) => pieces,
-                    other => {
-                        if let Some(Err(e)) = other {
-                            out.notes.push(format!(
-                                "cutter {} sub-cutters: {e}; showing approximate ones",
-                                c + 1
-                            ));
-                        }
-                        let mut ribbons = Mesh::default();
-                        let mut walls = Mesh::default();
-                        for sub in sub_cutter_planes(&cutter.planes, view.count, view.width) {
-                            let piece = cut_approx(step.before_mesh, &sub, with_walls);
-                            ribbons.append(&piece.removed);
-                            walls.append(&piece.walls);
-                        }
-                        (ribbons, walls)
+                let (ribbons, walls) = match sub_cuts(step, cutter, &view, with_walls) {
+                    Ok(pieces) => pieces,
+                    Err(e) => {
+                        let what = if with_walls { "slices" } else { "ribbons" };
+                        out.notes
+                            .push(format!("cutter {} {what} cannot be cut: {e}", c + 1));
+                        refused.push(c);
+                        continue;
                     }
                 };
                 push_part(&mut out, model_index, c, PartKind::Ribbon, 1.0, ribbons);
@@ -659,48 +676,24 @@ fn model_preview(
     for line in tag_contours(closed, tags, shows_walls) {
         out.contours.push((model_index, line));
     }
-    if cutters.iter().any(|(_, c)| c.views.cut) {
-        for line in sequence.approx_contours {
-            out.contours.push((model_index, line));
-        }
-    }
     let kept = select(closed, |t| tags[t] == SURFACE);
     push_part(&mut out, model_index, usize::MAX, PartKind::Kept, 1.0, kept);
-    out.notes.extend(sequence.notes);
+    let mut notes = sequence.notes;
+    notes.extend(out.notes);
+    let reports = sequence
+        .reports
+        .into_iter()
+        .map(|(c, mut r)| {
+            r.exact &= !refused.contains(&c);
+            (c, r)
+        })
+        .collect();
     ModelPreview {
         parts: out.parts,
         contours: out.contours,
-        notes: out.notes,
+        notes,
+        reports,
     }
-}
-
-/// Cuts `cutter` out of `target` with the exact boolean (honouring the cutter's kind and
-/// smoothing), or with the approximate stand-in when the boolean refuses; the second value then
-/// says why. `with_walls: false` lets the stand-in skip the walls.
-pub fn cut_cutter(
-    target: &Mesh,
-    cutter: &SceneCutter,
-    with_walls: bool,
-) -> (CutParts, Option<String>) {
-    let exact = TargetIndex::build(target.clone())
-        .map_err(|e| e.to_string())
-        .and_then(|index| cut_exact(&index, cutter).map_err(|e| e.to_string()));
-    match exact {
-        Ok(parts) => (parts, None),
-        Err(why) => (cut_approx(target, &cutter.planes, with_walls), Some(why)),
-    }
-}
-
-/// [`cut_cutter`] for a plain (curving, not smooth) cutter with these planes.
-pub fn cut(target: &Mesh, planes: &[CutterPlane], with_walls: bool) -> CutParts {
-    let cutter = SceneCutter {
-        target: 0,
-        kind: crate::scene::CutKind::Curving,
-        smooth: false,
-        planes: planes.to_vec(),
-        views: crate::scene::CutterViews::default(),
-    };
-    cut_cutter(target, &cutter, with_walls).0
 }
 
 /// The `cutter` crate's cutter for a scene cutter.
@@ -716,12 +709,14 @@ pub fn to_cutter(cutter: &SceneCutter) -> cutter::Cutter {
     }
 }
 
-/// The closed surface the boolean cuts with (subdivided when the cutter is smooth).
+/// The closed surface the boolean cuts with and the Edit overlay draws
+/// ([`cutter::Cutter::surface`]: subdivided when the cutter is smooth). Empty for fewer than two
+/// planes.
 pub fn cutter_mesh(cutter: &SceneCutter) -> Mesh {
     if cutter.planes.len() < 2 {
         return Mesh::default();
     }
-    to_cutter(cutter).triangle_mesh()
+    to_cutter(cutter).surface()
 }
 
 /// The exact cut of `cutter` out of the indexed target.
@@ -758,38 +753,104 @@ pub fn contour_polylines(contours: Vec<csg::Contour>) -> Vec<Vec<DVec3>> {
         .collect()
 }
 
-/// Ribbons (the removed surface inside `count` thin sub-cutters of `width`) and the walls of
-/// those sub-cutters inside the target (facing out of the kept part), by the exact boolean.
-/// With `tags` (one per target triangle, see [`cut_in_turn`]) the ribbons keep only the model's
-/// own surface, not the walls of earlier cutters.
-pub fn sub_cuts_exact(
-    target: &TargetIndex,
+/// Ribbons (the removed surface inside the sub-cutters of `view`) and the walls of those
+/// sub-cutters inside the target (facing out of the kept part) for one step of [`cut_in_turn`],
+/// by the exact boolean. Ribbons keep only the model's own surface, not the walls of earlier
+/// cutters.
+///
+/// Horizontal layers are the cutter's own planes cut down to a depth band (smooth when the
+/// cutter is), so they follow its shape. A smooth cutter's rounded sides are not its planes: thin
+/// boxes across it are made larger than its cross-section, and all its sub-cutters are clipped to
+/// the smooth surface, so ribbons and slices follow it exactly (the ribbons are the removed piece
+/// inside the sub-cutters, the slice walls are the sub-cutters' walls inside the smooth cutter).
+pub fn sub_cuts(
+    step: &Step,
     cutter: &SceneCutter,
-    count: u32,
-    width: f64,
-    tags: Option<&[u32]>,
+    view: &crate::scene::SubCutterView,
+    with_walls: bool,
 ) -> Result<(Mesh, Mesh), csg::CutError> {
+    use cutter::subcutters::Placement;
     if cutter.planes.len() < 2 {
         return Ok((Mesh::default(), Mesh::default()));
     }
-    let subs: Vec<Mesh> =
-        cutter::subcutters::at_intervals(&to_cutter(cutter), count as usize, width)
-            .iter()
-            .map(|c| c.triangle_mesh())
-            .collect();
-    if subs.is_empty() {
+    let whole = to_cutter(cutter);
+    let clip = whole.smooth;
+    let mut subs = cutter::subcutters::sub_cutters(&whole, &view.spec());
+    if clip && view.placement != Placement::Horizontal {
+        for sub in &mut subs {
+            for p in &mut sub.planes {
+                *p = grown(p, 1.5);
+            }
+        }
+    }
+    let meshes: Vec<Mesh> = subs.iter().map(|c| c.surface()).collect();
+    if meshes.is_empty() {
         return Ok((Mesh::default(), Mesh::default()));
     }
-    let refs: Vec<&Mesh> = subs.iter().collect();
-    let result = csg::subtract_many(target, &refs)?;
-    let ribbons = match tags {
-        Some(tags) => select(&result.removed.mesh, |t| {
-            matches!(result.removed.provenance[t],
-                csg::Provenance::Target(f) if tags.get(f as usize) == Some(&SURFACE))
-        }),
-        None => result.removed.into_part().mesh,
+    let refs: Vec<&Mesh> = meshes.iter().collect();
+    if !clip {
+        let surface_only = |f: u32| step.before_tags.get(f as usize) == Some(&SURFACE);
+        return cut_each(step.before, &refs, surface_only);
+    }
+    let ribbons = inside(step.removed, &refs)?;
+    let walls = if with_walls {
+        let (_, walls) = cut_each(step.before, &refs, |_| true)?;
+        inside(&walls, &[&whole.surface()])?
+    } else {
+        Mesh::default()
     };
-    Ok((ribbons, result.walls.mesh))
+    Ok((ribbons, walls))
+}
+
+/// The removed surface (the target faces `keep` accepts) and the walls of several sub-cutters:
+/// in one boolean when they are disjoint, else (sub-cutters that overlap in a tight turn) one
+/// boolean each, the pieces put together.
+fn cut_each(
+    target: &TargetIndex,
+    subs: &[&Mesh],
+    keep: impl Fn(u32) -> bool,
+) -> Result<(Mesh, Mesh), csg::CutError> {
+    let pieces = |result: csg::CutResult| {
+        let removed = select(
+            &result.removed.mesh,
+            |t| matches!(result.removed.provenance[t], csg::Provenance::Target(f) if keep(f)),
+        );
+        (removed, result.walls.mesh)
+    };
+    match csg::subtract_many(target, subs) {
+        Ok(result) => Ok(pieces(result)),
+        Err(csg::CutError::SelfIntersecting {
+            first_sub,
+            second_sub,
+            ..
+        }) if first_sub != second_sub => {
+            let (mut removed, mut walls) = (Mesh::default(), Mesh::default());
+            for sub in subs {
+                let (r, w) = pieces(csg::subtract(target, sub)?);
+                removed.append(&r);
+                walls.append(&w);
+            }
+            Ok((removed, walls))
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// The part of `mesh` (open or closed) inside the cutters, by the exact boolean.
+fn inside(mesh: &Mesh, cutters: &[&Mesh]) -> Result<Mesh, csg::CutError> {
+    if mesh.is_empty() {
+        return Ok(Mesh::default());
+    }
+    let index = TargetIndex::build(mesh.clone())
+        .map_err(|e| csg::CutError::Internal(format!("the piece to clip: {e}")))?;
+    Ok(cut_each(&index, cutters, |_| true)?.0)
+}
+
+/// `plane` scaled by `factor` about its centre (a thin box that spans a smooth cutter's
+/// overshoot).
+fn grown(plane: &cutter::BoundedPlane, factor: f64) -> cutter::BoundedPlane {
+    let c = plane.center();
+    cutter::BoundedPlane::from_corners(plane.corners().map(|p| c + (p - c) * factor))
 }
 
 fn push_part(
@@ -810,425 +871,6 @@ fn push_part(
         opacity,
         mesh,
     });
-}
-
-/// The approximate stand-in for the boolean (see the module doc for what it guarantees).
-/// `with_walls: false` skips the walls (ribbons need none).
-pub fn cut_approx(target: &Mesh, planes: &[CutterPlane], with_walls: bool) -> CutParts {
-    let boxes = convex_boxes(planes);
-    if boxes.is_empty() {
-        return CutParts {
-            kept: target.clone(),
-            ..CutParts::default()
-        };
-    }
-    let mut kept = Polygons::default();
-    let mut removed = Polygons::default();
-    let mut untouched: Vec<[u32; 3]> = Vec::new();
-    for &tri in &target.triangles {
-        let corners = tri.map(|i| target.positions[i as usize]);
-        let mut outside = vec![corners.to_vec()];
-        let mut touched = false;
-        for b in &boxes {
-            let mut next = Vec::new();
-            for piece in outside {
-                if !b.bbox_overlaps(&piece) {
-                    next.push(piece);
-                    continue;
-                }
-                touched = true;
-                let mut inside = piece;
-                for h in &b.halfspaces {
-                    let (out_part, in_part) = h.split(&inside);
-                    if out_part.len() >= 3 {
-                        next.push(out_part);
-                    }
-                    inside = in_part;
-                    if inside.len() < 3 {
-                        break;
-                    }
-                }
-                if inside.len() >= 3 {
-                    removed.push(&inside);
-                }
-            }
-            outside = next;
-        }
-        if touched {
-            for piece in &outside {
-                kept.push(piece);
-            }
-        } else {
-            untouched.push(tri);
-        }
-    }
-    let mut kept_mesh = Mesh {
-        positions: target.positions.clone(),
-        triangles: untouched,
-    };
-    kept_mesh.append(&kept.into_mesh());
-    let removed_mesh = removed.into_mesh();
-    let contour = boundary_polylines(&removed_mesh);
-    let walls = if with_walls && !removed_mesh.is_empty() {
-        convex_walls(target, planes)
-    } else {
-        Mesh::default()
-    };
-    CutParts {
-        kept: kept_mesh.compacted(),
-        walls,
-        removed: removed_mesh,
-        contour,
-    }
-}
-
-/// The closed cutter surface of `planes` as triangles: two per side quad of each box between
-/// consecutive planes and two per end cap, outward-facing. Degenerate quads (wedge axes) give
-/// zero-area triangles, which draw as nothing.
-pub fn cutter_surface(planes: &[CutterPlane]) -> Mesh {
-    let mut mesh = Mesh::default();
-    if planes.len() < 2 {
-        return mesh;
-    }
-    for q in cutter_faces(planes) {
-        let base = mesh.positions.len() as u32;
-        mesh.positions.extend_from_slice(&q);
-        mesh.triangles.push([base, base + 1, base + 2]);
-        mesh.triangles.push([base, base + 2, base + 3]);
-    }
-    mesh
-}
-
-/// The outer quads of the cutter (side quads of every box, and the two end caps), each oriented
-/// counter-clockwise seen from outside the cutter.
-fn cutter_faces(planes: &[CutterPlane]) -> Vec<[DVec3; 4]> {
-    let n = planes.len();
-    let mut quads = Vec::new();
-    for i in 0..n - 1 {
-        let (p, q) = (planes[i], planes[i + 1]);
-        // Corner order: 0 front-top, 1 back-top, 2 back-bottom, 3 front-bottom.
-        for (a, b) in [(0, 1), (1, 2), (2, 3), (3, 0)] {
-            quads.push([p[a], q[a], q[b], p[b]]);
-        }
-    }
-    quads.push(planes[0]);
-    quads.push(planes[n - 1]);
-    // Orient each quad away from the centre of its box region (all boxes are roughly convex).
-    for (k, quad) in quads.iter_mut().enumerate() {
-        let local_centre = if k < 4 * (n - 1) {
-            let i = k / 4;
-            (planes[i]
-                .iter()
-                .chain(planes[i + 1].iter())
-                .copied()
-                .sum::<DVec3>())
-                / 8.0
-        } else if k == 4 * (n - 1) {
-            let i = 0;
-            (planes[i]
-                .iter()
-                .chain(planes[i + 1].iter())
-                .copied()
-                .sum::<DVec3>())
-                / 8.0
-        } else {
-            (planes[n - 2]
-                .iter()
-                .chain(planes[n - 1].iter())
-                .copied()
-                .sum::<DVec3>())
-                / 8.0
-        };
-        let normal = newell_normal(quad);
-        let mid = quad.iter().copied().sum::<DVec3>() / 4.0;
-        if normal.dot(mid - local_centre) < 0.0 {
-            quad.reverse();
-        }
-    }
-    quads
-}
-
-/// Planes of `count` thin sub-cutters of width `width` at regular intervals along the path of
-/// `planes`, each as two bounded planes (a one-box cutter).
-pub fn sub_cutter_planes(planes: &[CutterPlane], count: u32, width: f64) -> Vec<Vec<CutterPlane>> {
-    let n = planes.len();
-    if n < 2 || count == 0 || width.is_nan() || width <= 0.0 {
-        return Vec::new();
-    }
-    let centre = |p: &CutterPlane| p.iter().copied().sum::<DVec3>() / 4.0;
-    let mut out = Vec::new();
-    for k in 0..count {
-        // Path parameter in plane-index units, away from the end caps.
-        let s = (k as f64 + 0.5) / count as f64 * (n - 1) as f64;
-        let i = (s.floor() as usize).min(n - 2);
-        let f = s - i as f64;
-        let plane: CutterPlane = std::array::from_fn(|c| planes[i][c].lerp(planes[i + 1][c], f));
-        let Some(along) = (centre(&planes[i + 1]) - centre(&planes[i])).try_normalize() else {
-            continue;
-        };
-        let half = along * (0.5 * width);
-        out.push(vec![plane.map(|p| p - half), plane.map(|p| p + half)]);
-    }
-    out
-}
-
-/// A plane `normal · x = offset`; "inside" is `normal · x - offset <= 0`.
-#[derive(Clone, Copy, Debug)]
-struct Halfspace {
-    normal: DVec3,
-    offset: f64,
-}
-
-impl Halfspace {
-    fn distance(&self, p: DVec3) -> f64 {
-        self.normal.dot(p) - self.offset
-    }
-
-    fn flipped(&self) -> Halfspace {
-        Halfspace {
-            normal: -self.normal,
-            offset: -self.offset,
-        }
-    }
-
-    /// Splits a convex polygon into its (outside, inside) parts. Intersection points are computed
-    /// from the edge's endpoints in a canonical order, so two polygons sharing an edge get the
-    /// same point bit for bit.
-    fn split(&self, poly: &[DVec3]) -> (Vec<DVec3>, Vec<DVec3>) {
-        let d: Vec<f64> = poly.iter().map(|&p| self.distance(p)).collect();
-        if d.iter().all(|&x| x <= 0.0) {
-            return (Vec::new(), poly.to_vec());
-        }
-        if d.iter().all(|&x| x > 0.0) {
-            return (poly.to_vec(), Vec::new());
-        }
-        let (mut outside, mut inside) = (Vec::new(), Vec::new());
-        for i in 0..poly.len() {
-            let j = (i + 1) % poly.len();
-            let (p, dp) = (poly[i], d[i]);
-            if dp > 0.0 {
-                outside.push(p);
-            } else {
-                inside.push(p);
-            }
-            let dq = d[j];
-            if (dp > 0.0) != (dq > 0.0) && dp != 0.0 && dq != 0.0 {
-                let x = edge_point(p, dp, poly[j], dq);
-                outside.push(x);
-                inside.push(x);
-            } else if dp == 0.0 {
-                // A vertex on the plane belongs to both sides.
-                outside.push(p);
-            }
-        }
-        // A vertex exactly on the plane was pushed to `outside` twice in a row when the polygon
-        // only touches the plane; drop repeats.
-        outside.dedup();
-        (outside, inside)
-    }
-}
-
-fn edge_point(p: DVec3, dp: f64, q: DVec3, dq: f64) -> DVec3 {
-    let (a, da, b, db) = if p.to_array() < q.to_array() {
-        (p, dp, q, dq)
-    } else {
-        (q, dq, p, dp)
-    };
-    let t = da / (da - db);
-    a + (b - a) * t
-}
-
-fn newell_normal(poly: &[DVec3]) -> DVec3 {
-    let mut n = DVec3::ZERO;
-    for i in 0..poly.len() {
-        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-        n += DVec3::new(
-            (a.y - b.y) * (a.z + b.z),
-            (a.z - b.z) * (a.x + b.x),
-            (a.x - b.x) * (a.y + b.y),
-        );
-    }
-    n
-}
-
-/// One box of the cutter as the intersection of its half-spaces.
-struct ConvexBox {
-    halfspaces: Vec<Halfspace>,
-    min: DVec3,
-    max: DVec3,
-}
-
-impl ConvexBox {
-    fn bbox_overlaps(&self, poly: &[DVec3]) -> bool {
-        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-        for &p in poly {
-            lo = lo.min(p);
-            hi = hi.max(p);
-        }
-        lo.cmple(self.max).all() && hi.cmpge(self.min).all()
-    }
-}
-
-/// The boxes between consecutive planes. The plane shared by two boxes is computed once and
-/// flipped exactly for the second box, so pieces on both sides split at identical points.
-fn convex_boxes(planes: &[CutterPlane]) -> Vec<ConvexBox> {
-    let n = planes.len();
-    if n < 2 {
-        return Vec::new();
-    }
-    let plane_of = |quad: &[DVec3; 4], inside_point: DVec3| -> Option<Halfspace> {
-        let normal = newell_normal(quad).try_normalize()?;
-        let mid = quad.iter().copied().sum::<DVec3>() / 4.0;
-        let h = Halfspace {
-            normal,
-            offset: normal.dot(mid),
-        };
-        Some(if h.distance(inside_point) > 0.0 {
-            h.flipped()
-        } else {
-            h
-        })
-    };
-    let box_centre = |i: usize| {
-        planes[i]
-            .iter()
-            .chain(planes[i + 1].iter())
-            .copied()
-            .sum::<DVec3>()
-            / 8.0
-    };
-    // Cap plane k, oriented so that box k (after it) is inside; the last one (k = n - 1) so
-    // that box n - 2 (before it) is inside.
-    let caps: Vec<Option<Halfspace>> = (0..n)
-        .map(|k| plane_of(&planes[k], box_centre(k.min(n - 2))))
-        .collect();
-    let mut boxes = Vec::new();
-    for i in 0..n - 1 {
-        let (p, q) = (planes[i], planes[i + 1]);
-        let c = box_centre(i);
-        let mut halfspaces = Vec::new();
-        if let Some(h) = caps[i] {
-            halfspaces.push(h);
-        }
-        if let Some(h) = caps[i + 1] {
-            // caps[i + 1] has box i + 1 inside (box i is on its other side), except the end cap.
-            halfspaces.push(if i + 1 == n - 1 { h } else { h.flipped() });
-        }
-        for (a, b) in [(0, 1), (1, 2), (2, 3), (3, 0)] {
-            if let Some(h) = plane_of(&[p[a], q[a], q[b], p[b]], c) {
-                halfspaces.push(h);
-            }
-        }
-        let (mut min, mut max) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-        for &v in p.iter().chain(q.iter()) {
-            min = min.min(v);
-            max = max.max(v);
-        }
-        boxes.push(ConvexBox {
-            halfspaces,
-            min,
-            max,
-        });
-    }
-    boxes
-}
-
-/// Walls for a convex target: the cutter's outer faces clipped to the inside of every target face
-/// plane, facing into the cutter (out of the kept part). Empty when the target is not convex.
-fn convex_walls(target: &Mesh, planes: &[CutterPlane]) -> Mesh {
-    const MAX_TRIANGLES: usize = 20_000;
-    if target.triangle_count() > MAX_TRIANGLES || planes.len() < 2 {
-        return Mesh::default();
-    }
-    let mut halfspaces = Vec::new();
-    for t in 0..target.triangle_count() {
-        let [a, b, c] = target.corners(t);
-        let Some(normal) = (b - a).cross(c - a).try_normalize() else {
-            continue;
-        };
-        halfspaces.push(Halfspace {
-            normal,
-            offset: normal.dot(a),
-        });
-    }
-    let scale = target.bbox().diagonal().max(1e-300);
-    let convex = halfspaces.iter().all(|h| {
-        target
-            .positions
-            .iter()
-            .all(|&p| h.distance(p) <= 1e-9 * scale)
-    });
-    if !convex {
-        return Mesh::default();
-    }
-    let mut walls = Polygons::default();
-    for quad in cutter_faces(planes) {
-        let mut inside = quad.to_vec();
-        for h in &halfspaces {
-            inside = h.split(&inside).1;
-            if inside.len() < 3 {
-                break;
-            }
-        }
-        if inside.len() >= 3 {
-            inside.reverse();
-            walls.push(&inside);
-        }
-    }
-    walls.into_mesh()
-}
-
-/// Polygons welded by exact position into one mesh (fan-triangulated; every polygon is convex).
-#[derive(Default)]
-struct Polygons {
-    positions: Vec<DVec3>,
-    index: HashMap<[u64; 3], u32>,
-    triangles: Vec<[u32; 3]>,
-}
-
-impl Polygons {
-    fn vertex(&mut self, p: DVec3) -> u32 {
-        let key = p.to_array().map(|c| (c + 0.0).to_bits());
-        *self.index.entry(key).or_insert_with(|| {
-            self.positions.push(p);
-            (self.positions.len() - 1) as u32
-        })
-    }
-
-    fn push(&mut self, poly: &[DVec3]) {
-        let ids: Vec<u32> = poly.iter().map(|&p| self.vertex(p)).collect();
-        for k in 1..ids.len().saturating_sub(1) {
-            let t = [ids[0], ids[k], ids[k + 1]];
-            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
-                self.triangles.push(t);
-            }
-        }
-    }
-
-    fn into_mesh(self) -> Mesh {
-        Mesh {
-            positions: self.positions,
-            triangles: self.triangles,
-        }
-    }
-}
-
-/// The boundary edges (used by exactly one triangle) of `mesh`, chained into polylines; closed
-/// loops repeat their first point at the end.
-pub fn boundary_polylines(mesh: &Mesh) -> Vec<Vec<DVec3>> {
-    let mut count: HashMap<(u32, u32), i32> = HashMap::new();
-    for t in &mesh.triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            *count.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
-    }
-    let edges: Vec<(u32, u32)> = count
-        .into_iter()
-        .filter(|&(_, c)| c == 1)
-        .map(|(e, _)| e)
-        .collect();
-    chain_edges(mesh, edges)
 }
 
 /// Undirected edges (vertex pairs, smaller first) of `mesh` chained into polylines; closed loops
@@ -1320,37 +962,6 @@ pub(crate) mod tests {
         vec![plane(x0), plane((x0 + x1) * 0.5), plane(x1)]
     }
 
-    #[test]
-    fn cutting_a_cube_corner_conserves_area_and_closes() {
-        let target = cube(DVec3::ZERO, DVec3::splat(2.0));
-        let planes = box_cutter(1.0, 3.0, -1.0, 1.0, 1.0, 3.0);
-        let parts = cut_approx(&target, &planes, true);
-        let area = |m: &Mesh| m.area();
-        assert!((area(&parts.kept) + area(&parts.removed) - area(&target)).abs() < 1e-9);
-        // The removed corner: three unit squares of the cube surface.
-        assert!(
-            (area(&parts.removed) - 3.0).abs() < 1e-9,
-            "{}",
-            area(&parts.removed)
-        );
-        // Walls: three unit squares of the cutter inside the cube.
-        assert!(
-            (area(&parts.walls) - 3.0).abs() < 1e-9,
-            "{}",
-            area(&parts.walls)
-        );
-        // kept + walls is closed: the volume is the cube minus the unit corner.
-        let mut closed = parts.kept.clone();
-        closed.append(&parts.walls);
-        assert!((closed.volume() - 7.0).abs() < 1e-9, "{}", closed.volume());
-        // One contour loop around the corner (6 unit edges), closed.
-        assert_eq!(parts.contour.len(), 1);
-        let line = &parts.contour[0];
-        assert_eq!(line.first(), line.last());
-        let length: f64 = line.windows(2).map(|w| (w[1] - w[0]).length()).sum();
-        assert!((length - 6.0).abs() < 1e-9, "{length}");
-    }
-
     pub(crate) fn scene_with_cube_cut(views: crate::scene::CutterViews) -> Scene {
         let mut scene = Scene::default();
         scene.models.push(crate::scene::SceneModel::new(
@@ -1370,7 +981,7 @@ pub(crate) mod tests {
     }
 
     #[test]
-    fn exact_cut_of_a_cube_corner_agrees_with_the_stand_in() {
+    fn exact_cut_of_a_cube_corner_removes_three_squares() {
         let scene = scene_with_cube_cut(crate::scene::CutterViews::default());
         let index = TargetIndex::build(cube(DVec3::ZERO, DVec3::splat(2.0))).unwrap();
         let parts = cut_exact(&index, &scene.cutters[0]).unwrap();
@@ -1399,10 +1010,14 @@ pub(crate) mod tests {
             ribbons: Some(crate::scene::SubCutterView {
                 count: 2,
                 width: 0.2,
+                placement: cutter::subcutters::Placement::Even,
+                relative: false,
             }),
             slices: Some(crate::scene::SubCutterView {
                 count: 2,
                 width: 0.2,
+                placement: cutter::subcutters::Placement::Even,
+                relative: false,
             }),
         };
         let preview = preview_geometry(&scene_with_cube_cut(views));
@@ -1578,33 +1193,111 @@ pub(crate) mod tests {
     #[test]
     fn cutter_outside_the_target_removes_nothing() {
         let target = cube(DVec3::ZERO, DVec3::ONE);
-        let planes = box_cutter(5.0, 6.0, 5.0, 6.0, 5.0, 6.0);
-        let parts = cut_approx(&target, &planes, true);
+        let mut scene = scene_with_cube_cut(crate::scene::CutterViews::default());
+        scene.cutters[0].planes = box_cutter(1.5, 2.5, 1.5, 2.5, 1.5, 2.5);
+        let index = TargetIndex::build(target).unwrap();
+        let parts = cut_exact(&index, &scene.cutters[0]).unwrap();
         assert!(parts.removed.is_empty() && parts.walls.is_empty() && parts.contour.is_empty());
         assert_eq!(parts.kept.triangle_count(), 12);
     }
 
     #[test]
-    fn cutter_surface_is_closed_and_outward() {
-        let planes = box_cutter(0.0, 2.0, 0.0, 1.0, 0.0, 1.0);
-        let surface = cutter_surface(&planes);
+    fn cutter_mesh_is_closed_and_outward() {
+        let mut scene = scene_with_cube_cut(crate::scene::CutterViews::default());
+        scene.cutters[0].planes = box_cutter(0.0, 2.0, 0.0, 1.0, 0.0, 1.0);
+        let surface = cutter_mesh(&scene.cutters[0]);
         assert!(
             (surface.volume() - 2.0).abs() < 1e-9,
             "{}",
             surface.volume()
         );
+        csg::check_cutter(&surface).unwrap();
+        scene.cutters[0].smooth = true;
+        let smooth = cutter_mesh(&scene.cutters[0]);
+        csg::check_cutter(&smooth).unwrap();
+        assert!(smooth.triangle_count() > surface.triangle_count());
     }
 
     #[test]
-    fn sub_cutters_are_thin_and_inside_the_path() {
-        let planes = box_cutter(0.0, 4.0, 0.0, 1.0, 0.0, 1.0);
-        let subs = sub_cutter_planes(&planes, 4, 0.2);
-        assert_eq!(subs.len(), 4);
-        for (k, sub) in subs.iter().enumerate() {
-            let x = (k as f64 + 0.5) / 4.0 * 4.0;
+    fn a_refused_cutter_cuts_nothing_and_says_why() {
+        let mut scene = scene_with_cube_cut(crate::scene::CutterViews::default());
+        // The middle plane folds back past the last one: the boxes overlap.
+        let mut planes = box_cutter(1.0, 3.0, -1.0, 1.0, 1.0, 3.0);
+        planes[1] = planes[1].map(|p| p + DVec3::X * 3.0);
+        scene.cutters[0].planes = planes;
+        let preview = preview_geometry(&scene);
+        assert_eq!(preview.notes.len(), 1, "{:?}", preview.notes);
+        assert!(
+            preview.notes[0].contains("cutter 1 cannot cut"),
+            "{}",
+            preview.notes[0]
+        );
+        assert_eq!(preview.reports.len(), 1);
+        assert!(!preview.reports[0].1.exact);
+        // Nothing in place of the cut: the model is whole and there is no wall.
+        assert!(preview.parts.iter().all(|p| p.kind == PartKind::Kept));
+        let kept: f64 = preview.parts.iter().map(|p| p.mesh.volume()).sum();
+        assert!((kept - 8.0).abs() < 1e-9, "{kept}");
+    }
+
+    #[test]
+    fn ribbons_of_a_smooth_cutter_lie_inside_its_surface() {
+        use cutter::subcutters::Placement;
+        let sphere = Arc::new(csg::testkit::icosphere(4, 1.0));
+        for placement in [Placement::Even, Placement::Planes, Placement::Horizontal] {
+            let mut scene = Scene::default();
+            scene.models.push(crate::scene::SceneModel::new(
+                "sphere",
+                "sphere.obj",
+                sphere.clone(),
+                [0.8, 0.6, 0.5],
+            ));
+            let view = crate::scene::SubCutterView {
+                count: 3,
+                width: 0.4,
+                placement,
+                relative: true,
+            };
+            scene.cutters.push(SceneCutter {
+                target: 0,
+                kind: crate::scene::CutKind::Curving,
+                smooth: true,
+                planes: box_cutter(-0.6, 0.6, -0.5, 0.5, 0.3, 1.5),
+                views: crate::scene::CutterViews {
+                    cut: false,
+                    transparency: None,
+                    ribbons: Some(view),
+                    slices: Some(view),
+                },
+            });
+            let preview = preview_geometry(&scene);
             assert!(
-                (sub[0][0].x - (x - 0.1)).abs() < 1e-12 && (sub[1][0].x - (x + 0.1)).abs() < 1e-12
+                preview.notes.is_empty(),
+                "{placement:?}: {:?}",
+                preview.notes
             );
+            assert!(preview.reports[0].1.exact);
+            let smooth = cutter_mesh(&scene.cutters[0]);
+            let smooth_index = csg::SpatialIndex::build(&smooth);
+            let mut ribbon_area = 0.0;
+            for part in &preview.parts {
+                if !matches!(part.kind, PartKind::Ribbon | PartKind::SliceWall) {
+                    continue;
+                }
+                ribbon_area += part.mesh.area();
+                // Every piece lies inside the smooth cutter (up to the rounding of new vertices).
+                for t in 0..part.mesh.triangle_count() {
+                    let c = part.mesh.corners(t).iter().sum::<DVec3>() / 3.0;
+                    let near = smooth_index.closest_point(&smooth, c).unwrap();
+                    let outward =
+                        (c - near.point).dot(smooth.face_normal_scaled(near.face as usize));
+                    assert!(
+                        outward <= 0.0 || near.distance < 1e-6,
+                        "{placement:?}: piece outside at {c}"
+                    );
+                }
+            }
+            assert!(ribbon_area > 0.0, "{placement:?}: no ribbons");
         }
     }
 }

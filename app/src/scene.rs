@@ -176,13 +176,38 @@ impl CutKind {
     }
 }
 
-/// Thin sub-cutters placed at regular intervals along the cutter path (ribbons or slices).
+/// Thin sub-cutters of a cutter (ribbons or slices, thesis 3.4.2): evenly spaced along the path,
+/// centred on the cutting planes, or horizontal layers at depth steps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SubCutterView {
-    /// Number of sub-cutters, at least 1.
+    /// Number of sub-cutters, at least 1 (one per plane whatever this says for `Planes`).
     pub count: u32,
-    /// Width of each sub-cutter along the path, in model units; positive.
+    /// Width of each sub-cutter (across the path, or the layer's thickness); positive. Model
+    /// units, or with `relative` the fraction of the spacing between sub-cutters each one fills.
     pub width: f64,
+    pub placement: cutter::subcutters::Placement,
+    pub relative: bool,
+}
+
+impl SubCutterView {
+    /// What a new ribbon or slice view starts with: five evenly spaced sub-cutters, each filling
+    /// a third of its interval (relative, so it looks the same in millimetres and metres).
+    pub const NEW: SubCutterView = SubCutterView {
+        count: 5,
+        width: 0.35,
+        placement: cutter::subcutters::Placement::Even,
+        relative: true,
+    };
+
+    /// The sub-cutter request of the `cutter` crate.
+    pub fn spec(&self) -> cutter::subcutters::SubCutterSpec {
+        cutter::subcutters::SubCutterSpec {
+            count: self.count as usize,
+            width: self.width,
+            placement: self.placement,
+            relative: self.relative,
+        }
+    }
 }
 
 /// Which context-preserving views a cutter shows in Preview mode (thesis 3.4).
@@ -385,6 +410,15 @@ impl Scene {
                     return Err(format!(
                         "cutter {i}: {what} need a count of at least 1 and a positive width (got {} and {})",
                         v.count, v.width
+                    ));
+                }
+                if let Some(v) = v
+                    && v.relative
+                    && v.width > 1.0
+                {
+                    return Err(format!(
+                        "cutter {i}: {what} width {} is relative (a fraction of the spacing) and must be at most 1",
+                        v.width
                     ));
                 }
             }

@@ -43,6 +43,7 @@ use crate::scene::{
     CutKind, CutterViews, MeshOrigin, ModelStyle, ModelUnit, RenderSettings, Scene, SceneCutter,
     SceneModel, Stereo, SubCutterView, distinct_colors,
 };
+use cutter::subcutters::Placement;
 
 /// The `format` value of the structure-based version, written whenever a scene holds structures.
 pub const FORMAT: &str = "cutaway-session/2";
@@ -134,10 +135,23 @@ impl Default for ViewsEntry {
     }
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+/// Ribbons or slices. `placement` and `relative` were added later: a file without them means
+/// evenly spaced sub-cutters of an absolute width, as before.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SubCutterEntry {
     pub count: u32,
     pub width: f64,
+    /// `even` (regular intervals along the path), `planes` (centred on each cutting plane) or
+    /// `horizontal` (layers parallel to the surface at depth steps).
+    #[serde(default = "even")]
+    pub placement: String,
+    /// `width` is the fraction of the spacing each sub-cutter fills instead of model units.
+    #[serde(default)]
+    pub relative: bool,
+}
+
+fn even() -> String {
+    "even".to_string()
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -334,11 +348,20 @@ pub fn scene_from_file(
                 c.kind
             )
         })?;
-        let sub = |v: Option<SubCutterEntry>| {
-            v.map(|v| SubCutterView {
+        let sub = |what: &str, v: &Option<SubCutterEntry>| -> anyhow::Result<_> {
+            let Some(v) = v else { return Ok(None) };
+            let placement = Placement::from_name(&v.placement).ok_or_else(|| {
+                anyhow::anyhow!(
+                    "cutter {i}: {what} placement {:?} is not even, planes or horizontal",
+                    v.placement
+                )
+            })?;
+            Ok(Some(SubCutterView {
                 count: v.count,
                 width: v.width,
-            })
+                placement,
+                relative: v.relative,
+            }))
         };
         scene.cutters.push(SceneCutter {
             target: c.target,
@@ -348,8 +371,8 @@ pub fn scene_from_file(
             views: CutterViews {
                 cut: c.views.cut,
                 transparency: c.views.transparency,
-                ribbons: sub(c.views.ribbons),
-                slices: sub(c.views.slices),
+                ribbons: sub("ribbons", &c.views.ribbons)?,
+                slices: sub("slices", &c.views.slices)?,
             },
         });
     }
@@ -412,6 +435,8 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
                 v.map(|v| SubCutterEntry {
                     count: v.count,
                     width: v.width,
+                    placement: v.placement.name().to_string(),
+                    relative: v.relative,
                 })
             };
             CutterEntry {
@@ -541,7 +566,9 @@ mod tests {
             file.cutters[0].views.ribbons,
             Some(SubCutterEntry {
                 count: 5,
-                width: 2.0
+                width: 2.0,
+                placement: "even".into(),
+                relative: false,
             })
         );
         assert_eq!(file.cutters[0].views.transparency, Some(0.25));
@@ -692,5 +719,40 @@ mod tests {
                 .iter()
                 .all(|m| m.structure.is_none() && m.name.is_none())
         );
+    }
+
+    #[test]
+    fn ribbon_placement_and_relative_width_round_trip() {
+        let text = r#"{
+          "format": "cutaway-session/1",
+          "models": [],
+          "cutters": [{"target": 0, "kind": "curving", "smooth": true,
+                       "planes": [[[0,0,0],[0,1,0],[0,1,-1],[0,0,-1]]],
+                       "views": {"cut": true,
+                                 "ribbons": {"count": 4, "width": 0.3, "placement": "horizontal", "relative": true},
+                                 "slices": {"count": 2, "width": 1.5, "placement": "planes"}}}]
+        }"#;
+        let file = parse(text).unwrap();
+        let views = &file.cutters[0].views;
+        let ribbons = views.ribbons.as_ref().unwrap();
+        assert_eq!(
+            (ribbons.placement.as_str(), ribbons.relative),
+            ("horizontal", true)
+        );
+        let slices = views.slices.as_ref().unwrap();
+        assert_eq!(
+            (slices.placement.as_str(), slices.relative),
+            ("planes", false)
+        );
+        let back: SessionFile =
+            serde_json::from_str(&serde_json::to_string(&file).unwrap()).unwrap();
+        assert_eq!(back.cutters[0].views, file.cutters[0].views);
+        let bad = text.replace("\"planes\"}", "\"diagonal\"}");
+        let err = scene_from_file(&parse(&bad).unwrap(), Path::new("."), &mut |_, _| {
+            Ok(Vec::new())
+        })
+        .map(|_| ())
+        .unwrap_err();
+        assert!(format!("{err:#}").contains("diagonal"), "{err:#}");
     }
 }

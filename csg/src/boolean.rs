@@ -101,6 +101,7 @@ use crate::classify;
 use crate::contour;
 use crate::exact::{self, HPoint, LPoint};
 use crate::intersect::{self, FxMap, PointKey, PreparedCutter};
+use crate::lattice::Lattice;
 use crate::mesh::{Mesh, MeshError};
 use crate::output::{CutOptions, CutResult, CutStats, PartBuilder, Provenance, Removed};
 use crate::solids::{SolidSets, solid_of_face};
@@ -291,6 +292,34 @@ pub(crate) fn prepare_cutter(
     target: &TargetIndex,
     cutters: &[&Mesh],
 ) -> Result<PreparedCutter, CutError> {
+    let cutter = prepare_unchecked(&target.lattice, cutters)?;
+    check_self_intersections(&cutter)?;
+    Ok(cutter)
+}
+
+/// Checks a cutter on its own, before any target exists (the cutter editor validates every edit
+/// with it): closed, consistently oriented, positive volume and free of self-intersections, with
+/// the same exact predicates as [`subtract`], on the lattice of the cutter's own bounding box.
+/// A target much larger than the cutter has a coarser lattice, so a cutter whose faces come within
+/// a few of its lattice steps of each other can still be refused by the cut itself.
+pub fn check_cutter(cutter: &Mesh) -> Result<(), CutError> {
+    let prepared = prepare_unchecked(&Lattice::for_box(&cutter.bbox()), &[cutter])?;
+    check_self_intersections(&prepared)
+}
+
+/// Every pair of intersecting triangles of `cutter` (at most `limit`; exact, touching counts, as
+/// in [`check_cutter`]), or the first other defect [`check_cutter`] finds. Lets a caller repair
+/// every offending place of a cutter at once instead of one pair per check.
+pub fn cutter_self_intersections(
+    cutter: &Mesh,
+    limit: usize,
+) -> Result<Vec<(usize, usize)>, CutError> {
+    let prepared = prepare_unchecked(&Lattice::for_box(&cutter.bbox()), &[cutter])?;
+    Ok(self_intersections(&prepared, limit))
+}
+
+/// Validation and quantization without the self-intersection check.
+fn prepare_unchecked(lattice: &Lattice, cutters: &[&Mesh]) -> Result<PreparedCutter, CutError> {
     let mut positions = Vec::new();
     let mut lpoints = Vec::new();
     let mut triangles = Vec::new();
@@ -306,7 +335,7 @@ pub(crate) fn prepare_cutter(
         }
         let base = positions.len() as u32;
         for (i, &p) in m.positions.iter().enumerate() {
-            let q = target.lattice.quantize(p).ok_or(CutError::OutOfRange {
+            let q = lattice.quantize(p).ok_or(CutError::OutOfRange {
                 sub_cutter: k,
                 vertex: i,
                 position: p.to_array(),
@@ -401,7 +430,6 @@ pub(crate) fn prepare_cutter(
     if let Some(k) = vol.iter().position(|&v| v <= 0) {
         return Err(CutError::NotPositive { sub_cutter: k });
     }
-    check_self_intersections(&cutter)?;
     Ok(cutter)
 }
 
@@ -412,16 +440,31 @@ fn first_vertex(cutters: &[&Mesh], k: usize) -> u32 {
 /// Exact self-intersection check of the cutter (touching counts). Triangles sharing an edge are
 /// not compared; triangles sharing one vertex are compared through their opposite edges.
 fn check_self_intersections(cutter: &PreparedCutter) -> Result<(), CutError> {
+    match self_intersections(cutter, 1).first() {
+        Some(&(a, b)) => Err(CutError::SelfIntersecting {
+            first: a,
+            second: b,
+            first_sub: cutter.face_component[a] as usize,
+            second_sub: cutter.face_component[b] as usize,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Up to `limit` intersecting triangle pairs `(a, b)`, `a < b`, in the order of `a` (see
+/// [`check_self_intersections`]).
+fn self_intersections(cutter: &PreparedCutter, limit: usize) -> Vec<(usize, usize)> {
     let bvh = intersect::cutter_bvh(cutter);
-    let mut found: Option<(usize, usize)> = None;
+    let mut found: Vec<(usize, usize)> = Vec::new();
     for f1 in 0..cutter.triangles.len() {
-        if found.is_some() {
+        if found.len() >= limit {
             break;
         }
         let t1 = cutter.triangles[f1];
+        let mut hits = Vec::new();
         bvh.query(&cutter.face_boxes[f1], &cutter.face_boxes, |f2| {
             let f2 = f2 as usize;
-            if f2 <= f1 || found.is_some() {
+            if f2 <= f1 {
                 return;
             }
             let t2 = cutter.triangles[f2];
@@ -441,19 +484,14 @@ fn check_self_intersections(cutter: &PreparedCutter) -> Result<(), CutError> {
                 })
             };
             if hit(&t1, &p1, &p2) || hit(&t2, &p2, &p1) {
-                found = Some((f1, f2));
+                hits.push(f2);
             }
         });
+        hits.sort_unstable();
+        found.extend(hits.into_iter().map(|f2| (f1, f2)));
     }
-    match found {
-        Some((a, b)) => Err(CutError::SelfIntersecting {
-            first: a,
-            second: b,
-            first_sub: cutter.face_component[a] as usize,
-            second_sub: cutter.face_component[b] as usize,
-        }),
-        None => Ok(()),
-    }
+    found.truncate(limit);
+    found
 }
 
 /// Stages 2–6 on a validated cutter.

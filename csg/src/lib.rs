@@ -32,7 +32,9 @@ pub mod winding;
 
 pub use aabb::Aabb;
 pub use adjacency::EdgeAdjacency;
-pub use boolean::{CutError, subtract, subtract_many, subtract_with};
+pub use boolean::{
+    CutError, check_cutter, cutter_self_intersections, subtract, subtract_many, subtract_with,
+};
 pub use glam::DVec3;
 pub use mesh::{Mesh, MeshError};
 pub use output::{Contour, CutOptions, CutResult, Part, Provenance, Removed, VertexSource};

@@ -80,6 +80,9 @@ pub enum CutterError {
     /// An edge is not used exactly twice in opposite directions.
     #[error("the cutter mesh is not closed and oriented at edge {a}-{b}")]
     NotClosed { a: u32, b: u32 },
+    /// The exact check of the cutting surface refused it.
+    #[error("the cutter surface is not a valid cutter: {reason}")]
+    Refused { reason: String },
     /// The wedge sweeps a full turn or more.
     #[error("the wedge sweeps {degrees:.0} degrees, which overlaps itself")]
     WedgeOverlaps { degrees: f64 },
@@ -179,20 +182,89 @@ impl Cutter {
         mesh
     }
 
-    /// The mesh the boolean should cut with: the boxes, or their interpolating subdivision when
-    /// `smooth` (two levels of [`crate::subdivision::subdivide`]).
+    /// The closed polygon mesh the cutter is: the boxes, or when `smooth` their interpolating
+    /// subdivision ([`crate::subdivision::smooth`], [`crate::subdivision::DEFAULT_LEVELS`],
+    /// repaired so that it never folds).
     pub fn display_mesh(&self) -> QuadMesh {
+        self.smoothing(crate::subdivision::DEFAULT_LEVELS).mesh
+    }
+
+    /// The closed, outward, triangulated cutter surface: what the boolean cuts with and what the
+    /// Edit overlay draws (one function for both, so what the user edits is what cuts).
+    pub fn surface(&self) -> csg::Mesh {
+        self.display_mesh().triangulate()
+    }
+
+    /// [`Cutter::surface`] with `levels` subdivision levels when smooth (ignored when not).
+    pub fn surface_with_levels(&self, levels: u32) -> csg::Mesh {
+        self.smoothing(levels).mesh.triangulate()
+    }
+
+    /// The smoothing of the box mesh with `levels` levels (none when the cutter is not smooth),
+    /// with what its repair gave up. A curving or straight cutter's tight turns get planes
+    /// inserted first ([`crate::subdivision::refine_path`]) when the box mesh they make passes
+    /// the exact check.
+    pub fn smoothing(&self, levels: u32) -> crate::subdivision::Smoothing {
         let q = self.quad_mesh();
         if self.smooth {
-            crate::subdivision::subdivide(&q, 2)
+            let mut base = q;
+            let mut inserted = 0;
+            if self.kind != CutKind::Wedge {
+                let corners: Vec<[DVec3; 4]> = self.planes.iter().map(|p| p.corners()).collect();
+                let refined =
+                    crate::subdivision::refine_path(&corners, crate::subdivision::ADAPTIVE_PASSES);
+                if refined.len() > corners.len() {
+                    let chain = Cutter {
+                        kind: self.kind,
+                        smooth: false,
+                        planes: refined
+                            .iter()
+                            .map(|c| BoundedPlane::from_corners(*c))
+                            .collect(),
+                    }
+                    .quad_mesh();
+                    if csg::check_cutter(&chain.triangulate()).is_ok() {
+                        inserted = refined.len() - corners.len();
+                        base = chain;
+                    }
+                }
+            }
+            let mut s = crate::subdivision::smooth(&base, levels);
+            s.inserted = inserted;
+            s
         } else {
-            q
+            crate::subdivision::Smoothing {
+                mesh: q,
+                asked: 0,
+                levels: 0,
+                inserted: 0,
+                damped: 0,
+            }
         }
     }
 
-    /// [`Cutter::display_mesh`] fan-triangulated.
+    /// Same as [`Cutter::surface`] (kept for callers that think of it as the triangle mesh).
     pub fn triangle_mesh(&self) -> csg::Mesh {
-        self.display_mesh().triangulate()
+        self.surface()
+    }
+
+    /// [`Cutter::sanity_check`] plus the exact check the boolean makes of the surface it will
+    /// cut with ([`csg::check_cutter`]: closed, oriented, positive, free of self-intersections
+    /// with touching counted). The editor runs it on every edit it accepts, so a cutter the
+    /// editor holds is always one the exact boolean takes.
+    pub fn validate(&self) -> Result<(), CutterError> {
+        self.validated_smoothing().map(|_| ())
+    }
+
+    /// [`Cutter::validate`], returning the smoothing it checked (what the repair gave up is in
+    /// it, see [`crate::subdivision::Smoothing::note`]).
+    pub fn validated_smoothing(&self) -> Result<crate::subdivision::Smoothing, CutterError> {
+        self.sanity_check()?;
+        let smoothing = self.smoothing(crate::subdivision::DEFAULT_LEVELS);
+        csg::check_cutter(&smoothing.mesh.triangulate()).map_err(|e| CutterError::Refused {
+            reason: e.to_string(),
+        })?;
+        Ok(smoothing)
     }
 
     fn box_faces(&self) -> QuadMesh {

@@ -30,7 +30,11 @@
 //!
 //! Every completed action (a whole drag, one wheel event, one key) is one undo step; undo and
 //! redo restore whole snapshots, so an undo can never lose or corrupt a cutter. An edit that
-//! would make the cutter invalid ([`Cutter::sanity_check`]) is refused and leaves it unchanged.
+//! would make the cutter invalid is refused and leaves it unchanged: every completed action is
+//! checked with [`Cutter::validate`], the exact check the boolean makes of the very surface it
+//! cuts with (smooth cutters subdivided), so the editor never hands over a cutter the exact cut
+//! would refuse. A refusal, or smoothing that had to be reduced so the smooth cutter does not
+//! fold, leaves a one-line [`Editor::note`] for the status bar.
 
 use std::sync::Arc;
 
@@ -174,8 +178,10 @@ pub struct Editor {
     camera: Camera,
     viewport: DVec2,
     settings: EditorSettings,
-    /// Always valid by [`Cutter::sanity_check`] when present.
+    /// Always valid by [`Cutter::validate`] when present.
     cutter: Option<Cutter>,
+    /// What the last completed action refused or corrected, for the status bar.
+    note: Option<String>,
     undo_stack: Vec<Option<Cutter>>,
     redo_stack: Vec<Option<Cutter>>,
     drag: Drag,
@@ -212,6 +218,7 @@ impl Editor {
             viewport,
             settings,
             cutter: None,
+            note: None,
             undo_stack: Vec::new(),
             redo_stack: Vec::new(),
             drag: Drag::None,
@@ -221,21 +228,42 @@ impl Editor {
         }
     }
 
-    /// The current cutter, valid by [`Cutter::sanity_check`].
+    /// The current cutter, valid by [`Cutter::validate`].
     pub fn cutter(&self) -> Option<&Cutter> {
         self.cutter.as_ref()
+    }
+
+    /// What the last completed action refused or corrected (one line for the status bar), if
+    /// anything.
+    pub fn note(&self) -> Option<&str> {
+        self.note.as_deref()
     }
 
     /// Replaces the cutter (e.g. loaded from a session) as an undoable action. Refused (false)
     /// when the cutter is invalid.
     pub fn set_cutter(&mut self, cutter: Option<Cutter>) -> bool {
         if let Some(c) = &cutter
-            && c.sanity_check().is_err()
+            && !self.accepts(c, "the cutter")
         {
             return false;
         }
         self.commit(cutter);
         true
+    }
+
+    /// True when `cutter` passes [`Cutter::validate`]; sets [`Editor::note`] either way (the
+    /// refusal, or what smoothing had to give up).
+    fn accepts(&mut self, cutter: &Cutter, what: &str) -> bool {
+        match cutter.validated_smoothing() {
+            Ok(smoothing) => {
+                self.note = smoothing.note();
+                true
+            }
+            Err(e) => {
+                self.note = Some(format!("{what} was refused: {e}"));
+                false
+            }
+        }
     }
 
     /// The target mesh.
@@ -291,6 +319,9 @@ impl Editor {
             Some(c) if c.smooth != smooth => {
                 let mut c = c.clone();
                 c.smooth = smooth;
+                if !self.accepts(&c, "smoothing") {
+                    return false;
+                }
                 self.commit(Some(c));
                 true
             }
@@ -689,7 +720,7 @@ impl Editor {
                         self.settings.kind,
                         self.settings.smooth,
                     );
-                    if let Some(c) = created {
+                    if let Some(c) = created.filter(|c| self.accepts(c, "the new cutter")) {
                         self.selected = Some(c.planes.len() - 1);
                         self.commit(Some(c));
                         response.changed = true;
@@ -711,26 +742,35 @@ impl Editor {
         response
     }
 
-    /// Ends a drag that started from `before`: a valid, different result is one undo step; an
-    /// invalid one (it should not happen, every move is checked) falls back to `before`.
+    /// Ends a drag that started from `before`: a valid, different result is one undo step. An
+    /// invalid one (every move is checked by [`Cutter::sanity_check`], but only the end of a drag
+    /// by the exact [`Cutter::validate`]) loses boxes from its end until it is valid, else falls
+    /// back to `before`; [`Editor::note`] says so.
     fn finish_drag(&mut self, before: Cutter) {
-        let valid = self
-            .cutter
-            .as_ref()
-            .is_some_and(|c| c.sanity_check().is_ok());
+        let valid = match self.cutter.clone() {
+            Some(c) => self.accepts(&c, "the drag"),
+            None => false,
+        };
         if !valid {
-            // Drop boxes from the end until valid, else restore.
-            if let Some(c) = &mut self.cutter {
-                while c.planes.len() > 2 && c.sanity_check().is_err() {
+            let refusal = self.note.clone();
+            let mut trimmed = self.cutter.clone();
+            let mut kept = false;
+            if let Some(c) = &mut trimmed {
+                while c.planes.len() > 2 && !kept {
                     c.planes.pop();
+                    kept = c.validate().is_ok();
                 }
             }
-            if self
-                .cutter
-                .as_ref()
-                .is_none_or(|c| c.sanity_check().is_err())
-            {
+            if kept && let Some(c) = trimmed {
+                self.accepts(&c, "the drag");
+                self.note = Some(format!(
+                    "{}; the last boxes were dropped",
+                    refusal.unwrap_or_default()
+                ));
+                self.cutter = Some(c);
+            } else {
                 self.cutter = Some(before.clone());
+                self.note = refusal;
             }
         }
         if self.cutter.as_ref() != Some(&before) {
@@ -766,7 +806,7 @@ impl Editor {
             };
             edits::change_depth(cutter, target, notches, self.settings.delta)
         };
-        if let Some(c) = edited {
+        if let Some(c) = edited.filter(|c| self.accepts(c, "the edit")) {
             self.commit(Some(c));
             response.changed = true;
         }
@@ -787,7 +827,12 @@ impl Editor {
                 if self.is_dragging() || !self.over_cutter(px) {
                     return response;
                 }
-                if let Some(c) = self.cutter.as_ref().and_then(edits::remove_last_box) {
+                if let Some(c) = self
+                    .cutter
+                    .as_ref()
+                    .and_then(edits::remove_last_box)
+                    .filter(|c| self.accepts(c, "removing the box"))
+                {
                     self.commit(Some(c));
                     response.changed = true;
                 }

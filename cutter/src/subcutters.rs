@@ -1,14 +1,144 @@
-//! Ribbon and slice sub-cutters (thesis 3.4.2–3.4.3): thin boxes across the cutter's path.
+//! Ribbon and slice sub-cutters (thesis 3.4.2–3.4.3, Fig. 44).
 //!
-//! A sub-cutter is a two-plane [`Cutter`] of width `width` along the path, centred either on each
-//! bounded cutting plane or at regular arc-length intervals along the path (its height and depth
-//! interpolated from the planes on either side). The boolean of each sub-cutter with the target
-//! gives a ribbon (no walls) or a slice (with walls); that choice is the renderer's.
+//! Three placements ([`Placement`]): thin boxes across the path at regular arc-length intervals
+//! (their height and depth interpolated from the planes on either side), thin boxes centred on
+//! each bounded cutting plane, or horizontal layers parallel to the surface at depth steps (the
+//! cutter's own planes cut down to a band of depths, so a layer follows a curving, wedge or
+//! smooth cutter exactly as the cutter does; a smooth cutter's layers are smooth too). The
+//! boolean of each sub-cutter with the target gives a ribbon (no walls) or a slice (with walls);
+//! that choice is the renderer's.
+//!
+//! Sizes are given absolutely (model units) or relative to the cut ([`SubCutterSpec::relative`]),
+//! so one default looks the same on a knee in millimetres and a body in metres: relative, the
+//! width is the fraction of the spacing between neighbouring sub-cutters that each one fills
+//! (between planes for [`Placement::Planes`], between depth steps for
+//! [`Placement::Horizontal`]).
 
 use glam::DVec3;
 
 use crate::cutter::{CutKind, Cutter};
 use crate::plane::BoundedPlane;
+
+/// Largest relative width: neighbouring sub-cutters must stay apart (the boolean takes several
+/// sub-cutters at once only when they are disjoint).
+pub const MAX_RELATIVE: f64 = 0.95;
+
+/// Where sub-cutters go (see the module doc).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Placement {
+    /// `count` thin boxes at regular arc-length intervals along the path.
+    #[default]
+    Even,
+    /// One thin box centred on each bounded cutting plane (`count` is not used).
+    Planes,
+    /// `count` layers parallel to the surface, centred at depth steps.
+    Horizontal,
+}
+
+impl Placement {
+    /// The name used by the session format.
+    pub fn name(self) -> &'static str {
+        match self {
+            Placement::Even => "even",
+            Placement::Planes => "planes",
+            Placement::Horizontal => "horizontal",
+        }
+    }
+
+    /// Parses a format name (`even`, `planes`, `horizontal`).
+    pub fn from_name(name: &str) -> Option<Placement> {
+        match name {
+            "even" => Some(Placement::Even),
+            "planes" => Some(Placement::Planes),
+            "horizontal" => Some(Placement::Horizontal),
+            _ => None,
+        }
+    }
+}
+
+/// Which sub-cutters to make.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SubCutterSpec {
+    /// Number of sub-cutters (not used by [`Placement::Planes`]).
+    pub count: usize,
+    /// Width: model units, or with `relative` the fraction (0..1] of the spacing each fills.
+    pub width: f64,
+    pub placement: Placement,
+    /// `width` is relative to the cut instead of absolute.
+    pub relative: bool,
+}
+
+/// The sub-cutters of `cutter` for `spec`; each passes [`Cutter::sanity_check`] (candidates that
+/// would not are left out).
+pub fn sub_cutters(cutter: &Cutter, spec: &SubCutterSpec) -> Vec<Cutter> {
+    if !(spec.width.is_finite() && spec.width > 0.0) {
+        return Vec::new();
+    }
+    let path = cutter.path();
+    let length: f64 = path.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+    match spec.placement {
+        Placement::Even => {
+            let width = if spec.relative {
+                spec.width.min(MAX_RELATIVE) * length / spec.count.max(1) as f64
+            } else {
+                spec.width
+            };
+            at_intervals(cutter, spec.count, width)
+        }
+        Placement::Planes => {
+            let width = if spec.relative {
+                spec.width.min(MAX_RELATIVE) * length / cutter.box_count().max(1) as f64
+            } else {
+                spec.width
+            };
+            on_planes(cutter, width)
+        }
+        Placement::Horizontal => horizontal(cutter, spec.count, spec.width, spec.relative),
+    }
+}
+
+/// `count` layers of `cutter` parallel to its front (the surface), centred at depth fractions
+/// `(k + ½) / count`; each is the cutter's planes cut down to a band of depths, `width` thick
+/// (model units), or with `relative` the fraction `width` of a depth step (per plane).
+pub fn horizontal(cutter: &Cutter, count: usize, width: f64, relative: bool) -> Vec<Cutter> {
+    if count == 0 || !(width.is_finite() && width > 0.0) {
+        return Vec::new();
+    }
+    (0..count)
+        .filter_map(|k| {
+            let centre = (k as f64 + 0.5) / count as f64;
+            let planes = cutter
+                .planes
+                .iter()
+                .map(|p| {
+                    let half = if relative {
+                        0.5 * width.min(MAX_RELATIVE) / count as f64
+                    } else {
+                        0.5 * width / p.depth().max(f64::MIN_POSITIVE)
+                    };
+                    depth_band(p, (centre - half).max(0.0), (centre + half).min(1.0))
+                })
+                .collect();
+            let c = Cutter {
+                kind: cutter.kind,
+                smooth: cutter.smooth,
+                planes,
+            };
+            c.sanity_check().ok().map(|_| c)
+        })
+        .collect()
+}
+
+/// The part of `plane` between depth fractions `t0 < t1` (0 = front edge, 1 = back edge).
+fn depth_band(plane: &BoundedPlane, t0: f64, t1: f64) -> BoundedPlane {
+    let at = |front: DVec3, back: DVec3, t: f64| front.lerp(back, t);
+    BoundedPlane {
+        front_top: at(plane.front_top, plane.back_top, t0),
+        back_top: at(plane.front_top, plane.back_top, t1),
+        back_bottom: at(plane.front_bottom, plane.back_bottom, t1),
+        front_bottom: at(plane.front_bottom, plane.back_bottom, t0),
+    }
+}
 
 /// One thin box centred on each plane of `cutter`, `width` wide along the path.
 pub fn on_planes(cutter: &Cutter, width: f64) -> Vec<Cutter> {
@@ -109,6 +239,64 @@ mod tests {
             c.sanity_check().unwrap();
             assert!((c.quad_mesh().volume() - 0.2 * 2.0 * (1.0 + i as f64)).abs() < 1e-9);
         }
+    }
+
+    #[test]
+    fn relative_widths_scale_with_the_cut() {
+        let spec = SubCutterSpec {
+            count: 4,
+            width: 0.5,
+            placement: Placement::Even,
+            relative: true,
+        };
+        let small = sub_cutters(&cutter(), &spec);
+        let mut big = cutter();
+        for p in &mut big.planes {
+            *p = BoundedPlane::from_corners(p.corners().map(|c| c * 1000.0));
+        }
+        let big = sub_cutters(&big, &spec);
+        assert_eq!((small.len(), big.len()), (4, 4));
+        // Path length 8, 4 ribbons: spacing 2, half of it filled.
+        let width = |c: &Cutter| (c.planes[1].front_mid() - c.planes[0].front_mid()).length();
+        assert!((width(&small[0]) - 1.0).abs() < 1e-9);
+        assert!((width(&big[0]) - 1000.0).abs() < 1e-6);
+        let planes = SubCutterSpec {
+            placement: Placement::Planes,
+            ..spec
+        };
+        let on = sub_cutters(&cutter(), &planes);
+        assert_eq!(on.len(), 5);
+        assert!((width(&on[2]) - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn horizontal_layers_are_depth_bands_of_the_cutter() {
+        let c = cutter();
+        let layers = horizontal(&c, 3, 0.5, true);
+        assert_eq!(layers.len(), 3);
+        for (k, layer) in layers.iter().enumerate() {
+            layer.sanity_check().unwrap();
+            assert_eq!(layer.planes.len(), c.planes.len());
+            for (p, q) in c.planes.iter().zip(&layer.planes) {
+                // Centred at depth (k + 1/2)/3 of each plane, 1/6 of its depth thick.
+                let centre = (q.front_mid() + q.back_mid()) * 0.5 - p.front_mid();
+                let expect = p.depth() * (k as f64 + 0.5) / 3.0;
+                assert!((centre.dot(p.back_direction()) - expect).abs() < 1e-9);
+                assert!((q.depth() - p.depth() / 6.0).abs() < 1e-9);
+            }
+        }
+        // Absolute: 0.25 units thick whatever the plane's depth.
+        for layer in horizontal(&c, 2, 0.25, false) {
+            for q in &layer.planes {
+                assert!((q.depth() - 0.25).abs() < 1e-9);
+            }
+        }
+        // A smooth cutter's layers are smooth.
+        let smooth = Cutter {
+            smooth: true,
+            ..c.clone()
+        };
+        assert!(horizontal(&smooth, 2, 0.5, true).iter().all(|l| l.smooth));
     }
 
     #[test]

@@ -15,6 +15,27 @@
 //! reflection `2p₀ − p₁`, which makes the rule fall back to a locally linear one instead of
 //! Kobbelt's extraordinary-vertex stencil. Face points are the Boolean sum of the edge points,
 //! `(2/n)·Σ edge points − (1/n)·Σ corners`, which reproduces the centre of any bilinear face.
+//!
+//! ## Never folding
+//!
+//! The four-point rule overshoots: on the inside of a tight turn the new points of neighbouring
+//! boxes can cross, and a smooth cutter that intersects itself is refused by the exact boolean.
+//! So [`smooth`] checks every level with `csg`'s exact self-intersection test
+//! ([`csg::cutter_self_intersections`], the predicates the cut uses) and repairs it in place: each
+//! new point is its linear position (edge midpoint, face centroid) plus a weight times its
+//! smoothing displacement, and the weights of the new points around every intersecting pair are
+//! halved, then zeroed, until the level is clean. A level whose linear refinement still
+//! intersects itself is not applied. The result is therefore free of self-intersections whenever
+//! the box mesh is, and [`Smoothing`] says how much smoothing had to be given up, so the editor
+//! can tell the user.
+//!
+//! ## Adaptive along the path
+//!
+//! A uniform level count is too coarse in a tight turn and wasteful on a straight run. Before the
+//! uniform levels, [`refine_path`] inserts planes between consecutive planes that turn by more
+//! than [`ADAPTIVE_TURN_DEG`], by the same four-point rule applied to the corner curves (so the
+//! result is what more levels would give there), up to [`ADAPTIVE_PASSES`] times: a sharp turn
+//! gets up to four times the boxes, a straight run none.
 
 use std::collections::HashMap;
 
@@ -22,17 +43,239 @@ use glam::DVec3;
 
 use crate::cutter::QuadMesh;
 
-/// `levels` rounds of interpolatory subdivision of a closed, outward polygon mesh. Level 0 returns
-/// a copy. The output is all quads.
+/// Subdivision levels of a smooth cutter unless told otherwise: each level splits every quad in
+/// four, so two levels draw a box side as 16 quads.
+pub const DEFAULT_LEVELS: u32 = 2;
+
+/// The most levels [`smooth`] applies (each multiplies the face count by four).
+pub const MAX_LEVELS: u32 = 4;
+
+/// Consecutive planes whose normals differ by more than this get a plane inserted between them
+/// by [`refine_path`].
+pub const ADAPTIVE_TURN_DEG: f64 = 20.0;
+
+/// Rounds of [`refine_path`] (each can halve a turn).
+pub const ADAPTIVE_PASSES: u32 = 2;
+
+/// Halvings of a damped weight before it is set to zero.
+const HALVINGS: u32 = 3;
+
+/// Intersecting pairs looked at per repair round.
+const PAIRS_PER_ROUND: usize = 4096;
+
+/// `levels` rounds of interpolatory subdivision of a closed, outward polygon mesh, unchecked (it
+/// may fold; see [`smooth`]). Level 0 returns a copy. The output is all quads.
 pub fn subdivide(mesh: &QuadMesh, levels: u32) -> QuadMesh {
     let mut m = mesh.clone();
     for _ in 0..levels {
-        m = subdivide_once(&m);
+        m = refine(&m).with_weights(&[]);
     }
     m
 }
 
-fn subdivide_once(mesh: &QuadMesh) -> QuadMesh {
+/// A smooth cutter mesh and what its repair gave up (see the module doc).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Smoothing {
+    /// The subdivided mesh, all quads (the input itself when no level could be applied).
+    pub mesh: QuadMesh,
+    /// Levels asked for (at most [`MAX_LEVELS`]; 0 for a cutter that is not smooth).
+    pub asked: u32,
+    /// Levels applied (at most `asked`).
+    pub levels: u32,
+    /// Planes [`refine_path`] inserted before the levels (tight turns).
+    pub inserted: usize,
+    /// New points whose smoothing displacement was reduced to stay free of self-intersections.
+    pub damped: usize,
+}
+
+impl Smoothing {
+    /// A one-line note for the status bar when smoothing was reduced, else `None`.
+    pub fn note(&self) -> Option<String> {
+        let asked = self.asked;
+        if self.levels < asked {
+            Some(format!(
+                "smooth cutter: {} of {asked} subdivision levels kept (more would make it intersect itself)",
+                self.levels
+            ))
+        } else if self.damped > 0 {
+            Some(format!(
+                "smooth cutter: rounding reduced at {} points where it would fold",
+                self.damped
+            ))
+        } else {
+            None
+        }
+    }
+}
+
+/// Up to `levels` (at most [`MAX_LEVELS`]) levels of interpolatory subdivision, each repaired so
+/// that the mesh never intersects itself (see the module doc). `mesh` must be closed and outward.
+pub fn smooth(mesh: &QuadMesh, levels: u32) -> Smoothing {
+    let mut out = Smoothing {
+        mesh: mesh.clone(),
+        asked: levels.min(MAX_LEVELS),
+        levels: 0,
+        inserted: 0,
+        damped: 0,
+    };
+    for _ in 0..levels.min(MAX_LEVELS) {
+        let step = refine(&out.mesh);
+        match step.repaired() {
+            Some((mesh, damped)) => {
+                out.mesh = mesh;
+                out.levels += 1;
+                out.damped += damped;
+            }
+            None => break,
+        }
+    }
+    out
+}
+
+/// The corner quads of a box chain (front-top, back-top, back-bottom, front-bottom each) with
+/// planes inserted where consecutive planes turn by more than [`ADAPTIVE_TURN_DEG`] (see the
+/// module doc), `passes` times at most. Every input plane is kept, in order. The new quads are
+/// not exactly planar; the caller checks the box mesh they make before using it.
+pub fn refine_path(planes: &[[DVec3; 4]], passes: u32) -> Vec<[DVec3; 4]> {
+    let mut planes = planes.to_vec();
+    let threshold = ADAPTIVE_TURN_DEG.to_radians();
+    for _ in 0..passes {
+        let n = planes.len();
+        if n < 2 {
+            break;
+        }
+        // The cross product of the diagonals: the quad's normal, planar or not.
+        let normal = |q: &[DVec3; 4]| (q[2] - q[0]).cross(q[3] - q[1]).normalize_or_zero();
+        let at = |i: isize| -> [DVec3; 4] {
+            if i < 0 {
+                std::array::from_fn(|k| planes[0][k] * 2.0 - planes[1][k])
+            } else if i as usize >= n {
+                std::array::from_fn(|k| planes[n - 1][k] * 2.0 - planes[n - 2][k])
+            } else {
+                planes[i as usize]
+            }
+        };
+        let mut out = Vec::with_capacity(2 * n);
+        let mut inserted = false;
+        for i in 0..n {
+            out.push(planes[i]);
+            if i + 1 == n {
+                break;
+            }
+            if normal(&planes[i]).angle_between(normal(&planes[i + 1])) > threshold {
+                let (a, b, c, d) = (
+                    at(i as isize - 1),
+                    at(i as isize),
+                    at(i as isize + 1),
+                    at(i as isize + 2),
+                );
+                out.push(std::array::from_fn(|k| {
+                    (-a[k] + b[k] * 9.0 + c[k] * 9.0 - d[k]) / 16.0
+                }));
+                inserted = true;
+            }
+        }
+        planes = out;
+        if !inserted {
+            break;
+        }
+    }
+    planes
+}
+
+/// One level of subdivision before its new points are placed: the refined faces, every point's
+/// linear position and the displacement the smoothing rule adds to it (zero for the old points).
+struct Refinement {
+    faces: Vec<Vec<u32>>,
+    linear: Vec<DVec3>,
+    displacement: Vec<DVec3>,
+    /// Points `< first_new` are the coarse mesh's vertices (they never move).
+    first_new: usize,
+}
+
+impl Refinement {
+    /// The mesh with each new point at `linear + weight · displacement` (weight 1 where
+    /// `weights` is shorter).
+    fn with_weights(&self, weights: &[f64]) -> QuadMesh {
+        let positions = self
+            .linear
+            .iter()
+            .zip(&self.displacement)
+            .enumerate()
+            .map(|(i, (&l, &d))| l + d * weights.get(i).copied().unwrap_or(1.0))
+            .collect();
+        QuadMesh {
+            positions,
+            faces: self.faces.clone(),
+        }
+    }
+
+    /// The refined mesh with as much smoothing as keeps it free of self-intersections, and the
+    /// number of new points damped; `None` when even the linear refinement intersects itself.
+    fn repaired(&self) -> Option<(QuadMesh, usize)> {
+        let n = self.linear.len();
+        let mut weights = vec![1.0; n];
+        let mut halvings = vec![0u32; n];
+        let mut vertex_faces: Vec<Vec<u32>> = vec![Vec::new(); n];
+        for (fi, f) in self.faces.iter().enumerate() {
+            for &v in f {
+                vertex_faces[v as usize].push(fi as u32);
+            }
+        }
+        // Triangle -> face of the fan triangulation (QuadMesh::triangulate).
+        let tri_face: Vec<u32> = self
+            .faces
+            .iter()
+            .enumerate()
+            .flat_map(|(fi, f)| std::iter::repeat_n(fi as u32, f.len().saturating_sub(2)))
+            .collect();
+        for _ in 0..=HALVINGS + 1 {
+            let mesh = self.with_weights(&weights);
+            let pairs = match csg::cutter_self_intersections(&mesh.triangulate(), PAIRS_PER_ROUND) {
+                Ok(pairs) => pairs,
+                Err(_) => break,
+            };
+            if pairs.is_empty() {
+                let damped = weights.iter().filter(|&&w| w < 1.0).count();
+                return Some((mesh, damped));
+            }
+            // Damp every new point of the faces around the offending triangles' corners.
+            let mut marked = vec![false; n];
+            for (a, b) in pairs {
+                for t in [a, b] {
+                    let face = &self.faces[tri_face[t] as usize];
+                    for &v in face {
+                        for &g in &vertex_faces[v as usize] {
+                            for &u in &self.faces[g as usize] {
+                                if u as usize >= self.first_new {
+                                    marked[u as usize] = true;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            for (i, m) in marked.into_iter().enumerate() {
+                if m {
+                    halvings[i] += 1;
+                    weights[i] = if halvings[i] > HALVINGS {
+                        0.0
+                    } else {
+                        weights[i] * 0.5
+                    };
+                }
+            }
+        }
+        // Last resort: the linear refinement of the whole level.
+        let linear = self.with_weights(&vec![0.0; n]);
+        match csg::cutter_self_intersections(&linear.triangulate(), 1) {
+            Ok(pairs) if pairs.is_empty() => Some((linear, n - self.first_new)),
+            _ => None,
+        }
+    }
+}
+
+fn refine(mesh: &QuadMesh) -> Refinement {
     let nv = mesh.positions.len();
     // Neighbours of each vertex, and the faces around each undirected edge.
     let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); nv];
@@ -68,14 +311,18 @@ fn subdivide_once(mesh: &QuadMesh) -> QuadMesh {
         }
         p[v as usize] * 2.0 - p[w as usize]
     };
-    let mut positions = p.clone();
+    let mut linear = p.clone();
+    let mut displacement = vec![DVec3::ZERO; nv];
     let mut edge_point: HashMap<(u32, u32), u32> = HashMap::new();
     let mut edges: Vec<(u32, u32)> = edge_faces.keys().copied().collect();
     edges.sort_unstable();
     for (a, b) in edges {
-        let q = (-outer(a, b) + p[a as usize] * 9.0 + p[b as usize] * 9.0 - outer(b, a)) / 16.0;
-        edge_point.insert((a, b), positions.len() as u32);
-        positions.push(q);
+        let (pa, pb) = (p[a as usize], p[b as usize]);
+        let mid = (pa + pb) * 0.5;
+        let q = (-outer(a, b) + pa * 9.0 + pb * 9.0 - outer(b, a)) / 16.0;
+        edge_point.insert((a, b), linear.len() as u32);
+        linear.push(mid);
+        displacement.push(q - mid);
     }
     let mut faces = Vec::with_capacity(mesh.faces.len() * 4);
     for f in &mesh.faces {
@@ -83,17 +330,24 @@ fn subdivide_once(mesh: &QuadMesh) -> QuadMesh {
         let e: Vec<u32> = (0..n)
             .map(|k| edge_point[&key(f[k], f[(k + 1) % n])])
             .collect();
-        let sum_e: DVec3 = e.iter().map(|&i| positions[i as usize]).sum();
+        // Face point: the Boolean sum (2/n)·Σ edge points − (1/n)·Σ corners, whose linear part
+        // is the centroid of the corners.
         let sum_v: DVec3 = f.iter().map(|&i| p[i as usize]).sum();
-        let centre = sum_e * (2.0 / n as f64) - sum_v / n as f64;
-        let c = positions.len() as u32;
-        positions.push(centre);
+        let sum_d: DVec3 = e.iter().map(|&i| displacement[i as usize]).sum();
+        let c = linear.len() as u32;
+        linear.push(sum_v / n as f64);
+        displacement.push(sum_d * (2.0 / n as f64));
         for k in 0..n {
             let prev = e[(k + n - 1) % n];
             faces.push(vec![f[k], e[k], c, prev]);
         }
     }
-    QuadMesh { positions, faces }
+    Refinement {
+        faces,
+        linear,
+        displacement,
+        first_new: nv,
+    }
 }
 
 fn key(a: u32, b: u32) -> (u32, u32) {
@@ -132,6 +386,100 @@ mod tests {
         assert!(s.volume() > 0.0);
         // Smoothing moves the faces: the volume changes but stays comparable.
         assert!((s.volume() / q.volume() - 1.0).abs() < 0.5);
+    }
+
+    /// Planes fanned half a turn around the z axis, their inner edges `inner` from it: the
+    /// inside of the turn is tight, where the four-point rule overshoots.
+    fn tight_turn(inner: f64, step_deg: f64, count: usize) -> Cutter {
+        let planes = (0..count)
+            .map(|i| {
+                let a = (i as f64 * step_deg).to_radians();
+                let radial = DVec3::new(a.cos(), a.sin(), 0.0);
+                BoundedPlane::from_front_edge(
+                    radial * inner,
+                    radial * (inner + 2.0),
+                    DVec3::NEG_Z,
+                    1.0,
+                )
+            })
+            .collect();
+        Cutter {
+            kind: CutKind::Curving,
+            smooth: true,
+            planes,
+        }
+    }
+
+    #[test]
+    fn smoothing_of_a_tight_turn_is_repaired_not_folded() {
+        let c = tight_turn(0.05, 40.0, 6);
+        c.sanity_check().unwrap();
+        let boxes = c.quad_mesh();
+        csg::check_cutter(&boxes.triangulate()).unwrap();
+        let raw = subdivide(&boxes, 2).triangulate();
+        let folded = csg::check_cutter(&raw).is_err();
+        let s = smooth(&boxes, 2);
+        csg::check_cutter(&s.mesh.triangulate()).unwrap();
+        s.mesh.check_closed().unwrap();
+        assert_eq!(s.asked, 2);
+        assert!(s.levels >= 1, "{s:?}");
+        // Interpolating: the planes' corners are still there.
+        assert_eq!(
+            &s.mesh.positions[..boxes.positions.len()],
+            &boxes.positions[..]
+        );
+        if folded {
+            // The repair had to give something up, and says so.
+            assert!(s.damped > 0 || s.levels < 2);
+            assert!(s.note().is_some());
+        }
+        c.validate().unwrap();
+    }
+
+    #[test]
+    fn repair_keeps_every_gentle_turn_fully_smooth() {
+        for inner in [0.5, 1.0, 3.0] {
+            let c = tight_turn(inner, 15.0, 6);
+            let s = smooth(&c.quad_mesh(), 2);
+            assert_eq!((s.levels, s.damped), (2, 0), "inner {inner}");
+            assert_eq!(s.note(), None);
+            assert_eq!(s.mesh, subdivide(&c.quad_mesh(), 2));
+        }
+    }
+
+    #[test]
+    fn path_refinement_only_where_it_turns() {
+        let straight: Vec<[DVec3; 4]> = tight_turn(1.0, 0.0, 4)
+            .planes
+            .iter()
+            .enumerate()
+            .map(|(i, p)| p.corners().map(|c| c + DVec3::Y * i as f64))
+            .collect();
+        assert_eq!(refine_path(&straight, 2), straight);
+        let turn: Vec<[DVec3; 4]> = tight_turn(1.0, 45.0, 4)
+            .planes
+            .iter()
+            .map(|p| p.corners())
+            .collect();
+        let refined = refine_path(&turn, 2);
+        // 45° turns: one pass about halves them (still above 20°), the second again.
+        assert!(refined.len() >= 2 * 4 - 1 + 3, "{}", refined.len());
+        assert!(refined.len() <= 3 * 4 + 1, "{}", refined.len());
+        // Every input plane is kept, in order.
+        let mut at = 0;
+        for p in &turn {
+            at += refined[at..]
+                .iter()
+                .position(|q| q == p)
+                .expect("input plane kept");
+        }
+        assert_eq!(refine_path(&turn, 0), turn);
+        // The inserted planes lie on the turn (the corners' distance from the axis is kept
+        // within the four-point rule's overshoot).
+        for q in &refined {
+            let r = q[0].truncate().length();
+            assert!((0.95..1.1).contains(&r), "{r}");
+        }
     }
 
     #[test]

@@ -208,7 +208,9 @@ fn rounded_cutter_interpolates_original_vertices() {
     let smooth = c.display_mesh();
     smooth.check_closed().expect("smooth cutter stays closed");
     assert!(smooth.volume() > 0.0);
-    assert!(smooth.faces.len() == boxes.faces.len() * 16);
+    // Two levels (16 quads per face), more where planes were inserted in a tight turn.
+    assert!(smooth.faces.len() >= boxes.faces.len() * 16);
+    c.validate().expect("the exact boolean takes it");
     for p in &boxes.positions {
         assert!(
             smooth.positions.contains(p),

@@ -1,11 +1,20 @@
-//! `cutaway render SESSION.json --out IMG.png [--width W] [--height H]`: the session's picture,
-//! headless (no window, no display), with the same renderer as the GUI.
+//! `cutaway render SESSION.json --out IMG.png [--width W] [--height H] [--json]`: the session's
+//! picture, headless (no window, no display), with the same renderer as the GUI.
+//!
+//! Every cut is made by the exact boolean; there is no approximate stand-in. A cutter the boolean
+//! refuses makes the command fail (no image is written) with the reason, after `--json` has
+//! printed the report: `{"cutters":[{"exact":bool,"cut_ms":f}],"render_ms":f}`, one entry per
+//! cutter of the session in order (`exact` false for a refused cut; a cutter with no view shown
+//! is not cut: `exact` true, `cut_ms` 0). `render_ms` is the wall time from the loaded scene to
+//! the finished image (cuts and drawing; reading the files and writing the PNG excluded).
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use anyhow::Context as _;
 
-use crate::render::{RenderPngOptions, render_png};
+use crate::cutaway_geometry::{CutReport, preview_geometry};
+use crate::render::{HeadlessRenderer, RenderPngOptions, ViewMode, render_mode};
 
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
@@ -23,6 +32,9 @@ pub struct RenderArgs {
     /// Transparent background instead of the session's background colour.
     #[arg(long)]
     pub transparent: bool,
+    /// Print whether each cut was exact and the times as one JSON object.
+    #[arg(long)]
+    pub json: bool,
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
@@ -34,8 +46,42 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let scene = crate::session::load(&args.session)?;
     let mut options = RenderPngOptions::new(args.width, args.height);
     options.transparent_background = args.transparent;
+    let mut renderer =
+        HeadlessRenderer::new().with_context(|| format!("{}", args.session.display()))?;
+    let started = std::time::Instant::now();
+    let preview = (render_mode(&scene, &options) == ViewMode::Preview)
+        .then(|| Arc::new(preview_geometry(&scene)));
     let image =
-        render_png(&scene, &options).with_context(|| format!("{}", args.session.display()))?;
+        crate::render::render_with_preview(&mut renderer, &scene, &options, preview.clone())
+            .with_context(|| format!("{}", args.session.display()))?;
+    let render_ms = started.elapsed().as_secs_f64() * 1000.0;
+    let reports: Vec<CutReport> = (0..scene.cutters.len())
+        .map(|c| {
+            preview
+                .as_ref()
+                .and_then(|p| p.reports.iter().find(|(i, _)| *i == c))
+                .map_or(
+                    CutReport {
+                        exact: true,
+                        cut_ms: 0.0,
+                    },
+                    |(_, r)| *r,
+                )
+        })
+        .collect();
+    if args.json {
+        let cutters: Vec<serde_json::Value> = reports
+            .iter()
+            .map(|r| serde_json::json!({"exact": r.exact, "cut_ms": r.cut_ms}))
+            .collect();
+        println!(
+            "{}",
+            serde_json::json!({"cutters": cutters, "render_ms": render_ms})
+        );
+    }
+    if let Some(note) = preview.as_ref().and_then(|p| p.notes.first()) {
+        anyhow::bail!("{}: {note}", args.session.display());
+    }
     let mut bytes = Vec::new();
     image
         .write_to(

@@ -1150,6 +1150,20 @@ impl CutawayApp {
         if self.mode != Mode::Preview {
             self.status.cut_triangles = 0;
         }
+        // A cut that could not be made is said in the status bar, never drawn as something else.
+        let notes = |g: Option<&crate::cutaway_geometry::PreviewGeometry>| {
+            g.and_then(|g| g.notes.first().cloned())
+        };
+        self.status.cut_problem = match self.mode {
+            Mode::Preview => notes(self.viewport.preview.as_deref()),
+            Mode::Edit => self
+                .viewport
+                .editor
+                .note()
+                .map(str::to_string)
+                .or_else(|| notes(self.viewport.live.shown().map(|r| r.geometry.as_ref()))),
+            Mode::Camera | Mode::Scalpel => None,
+        };
         self.status.selected = self
             .selected_model
             .and_then(|i| self.scene.models.get(i))

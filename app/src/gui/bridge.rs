@@ -69,6 +69,11 @@ pub struct EditorSlot {
 }
 
 impl EditorSlot {
+    /// What the active editor's last action refused or corrected (see [`Editor::note`]).
+    pub fn note(&self) -> Option<&str> {
+        self.active.as_ref().and_then(|a| a.editor.note())
+    }
+
     /// The cached index of `mesh`, if built.
     pub fn index_for(&self, mesh: &Arc<Mesh>) -> Option<Arc<SpatialIndex>> {
         self.indexes
@@ -384,7 +389,7 @@ pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
             .enumerate()
             .map(|(i, c)| CutterOverlay {
                 planes: c.planes.clone(),
-                surface: None,
+                surface: overlay_surface(c),
                 highlighted_plane: if Some(i) == active {
                     app.viewport.editor.highlighted_plane()
                 } else {
@@ -395,6 +400,30 @@ pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
             .collect();
     }
     inputs
+}
+
+/// The cutter surface the overlay draws: the very mesh the boolean cuts with
+/// ([`cutaway_geometry::cutter_mesh`]). A smooth cutter's surface costs a subdivision and its
+/// exact check, so the surfaces of the last few cutters drawn are kept between frames.
+fn overlay_surface(cutter: &SceneCutter) -> Arc<Mesh> {
+    type Key = (crate::scene::CutKind, bool, Vec<crate::scene::CutterPlane>);
+    thread_local! {
+        static SURFACES: std::cell::RefCell<std::collections::VecDeque<(Key, Arc<Mesh>)>> =
+            Default::default();
+    }
+    let key: Key = (cutter.kind, cutter.smooth, cutter.planes.clone());
+    SURFACES.with(|cache| {
+        let mut cache = cache.borrow_mut();
+        if let Some((_, mesh)) = cache.iter().find(|(k, _)| *k == key) {
+            return mesh.clone();
+        }
+        let mesh = Arc::new(cutaway_geometry::cutter_mesh(cutter));
+        if cache.len() >= 8 {
+            cache.pop_front();
+        }
+        cache.push_back((key, mesh.clone()));
+        mesh
+    })
 }
 
 /// Draws the scene with the GPU renderer into `rect`; false when no renderer is installed.

@@ -175,25 +175,55 @@ fn visualization_ui(ui: &mut egui::Ui, app: &mut CutawayApp, actions: &mut Vec<A
     }
 }
 
-/// A checkbox with count and width for ribbons or slices.
+/// A checkbox with placement, count and width (relative to the cut or in model units) for
+/// ribbons or slices.
 fn sub_cutter_ui(ui: &mut egui::Ui, label: &str, value: &mut Option<SubCutterView>) {
+    use cutter::subcutters::Placement;
     let mut on = value.is_some();
-    let mut v = value.unwrap_or(SubCutterView {
-        count: 5,
-        width: 2.0,
-    });
+    let mut v = value.unwrap_or(SubCutterView::NEW);
     ui.horizontal(|ui| {
         ui.checkbox(&mut on, label);
         ui.add_enabled_ui(on, |ui| {
-            ui.add(
-                egui::DragValue::new(&mut v.count)
-                    .range(1..=50)
-                    .prefix("count "),
-            );
+            egui::ComboBox::from_id_salt(label)
+                .selected_text(v.placement.name())
+                .show_ui(ui, |ui| {
+                    for p in [Placement::Even, Placement::Planes, Placement::Horizontal] {
+                        ui.selectable_value(&mut v.placement, p, p.name());
+                    }
+                });
+            if v.placement != Placement::Planes {
+                ui.add(
+                    egui::DragValue::new(&mut v.count)
+                        .range(1..=50)
+                        .prefix("count "),
+                );
+            }
+        });
+    });
+    ui.horizontal(|ui| {
+        ui.add_enabled_ui(on, |ui| {
+            ui.add_space(18.0);
+            if ui
+                .checkbox(&mut v.relative, "relative")
+                .on_hover_text("width as the fraction of the spacing each one fills")
+                .changed()
+            {
+                v.width = if v.relative {
+                    SubCutterView::NEW.width
+                } else {
+                    1.0
+                };
+            }
+            let range = if v.relative {
+                0.01..=cutter::subcutters::MAX_RELATIVE
+            } else {
+                1e-4..=1e4
+            };
+            let speed = if v.relative { 0.005 } else { v.width * 0.01 };
             ui.add(
                 egui::DragValue::new(&mut v.width)
-                    .range(0.01..=1000.0)
-                    .speed(0.05)
+                    .range(range)
+                    .speed(speed)
                     .prefix("width "),
             );
         });

@@ -21,6 +21,9 @@ pub struct StatusInfo {
     /// Last message; `is_error` colours it.
     pub message: String,
     pub is_error: bool,
+    /// Why a cut could not be made, or what the editor refused or corrected (shown in the
+    /// error colour while it lasts).
+    pub cut_problem: Option<String>,
     /// Milliseconds of the last frame (UI + 3D), shown for performance checks.
     pub frame_ms: f32,
 }
@@ -65,6 +68,10 @@ pub fn status_bar_ui(ui: &mut egui::Ui, info: &StatusInfo) {
         if let Some(name) = &info.selected {
             ui.separator();
             ui.label(format!("target: {name}"));
+        }
+        if let Some(problem) = &info.cut_problem {
+            ui.separator();
+            ui.label(egui::RichText::new(problem).color(ui.visuals().error_fg_color));
         }
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
             ui.label(

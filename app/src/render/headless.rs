@@ -293,19 +293,39 @@ pub fn render_with(
     scene: &Scene,
     options: &RenderPngOptions,
 ) -> anyhow::Result<image::RgbaImage> {
+    render_with_preview(renderer, scene, options, None)
+}
+
+/// The mode [`render_png`] draws `scene` in with `options`.
+pub fn render_mode(scene: &Scene, options: &RenderPngOptions) -> ViewMode {
+    options.mode.unwrap_or(if scene.cutters.is_empty() {
+        ViewMode::Camera
+    } else {
+        ViewMode::Preview
+    })
+}
+
+/// [`render_with`] with the cut parts already computed (`None`: computed here when the mode
+/// needs them), so a caller can report on the cuts it shows. In Edit mode, given parts are drawn
+/// under the cutter overlays (the GUI's live cut).
+pub fn render_with_preview(
+    renderer: &mut HeadlessRenderer,
+    scene: &Scene,
+    options: &RenderPngOptions,
+    preview: Option<Arc<crate::cutaway_geometry::PreviewGeometry>>,
+) -> anyhow::Result<image::RgbaImage> {
     let mut scene = scene.clone();
     if options.transparent_background {
         scene.render.background[3] = 0.0;
     }
-    let mode = options.mode.unwrap_or(if scene.cutters.is_empty() {
-        ViewMode::Camera
-    } else {
-        ViewMode::Preview
-    });
+    let mode = render_mode(&scene, options);
     let mut frame = FrameInputs::new(scene, [options.width, options.height], mode);
     frame.deterministic = options.deterministic;
     if mode == ViewMode::Preview {
-        frame.preview = Some(Arc::new(preview_geometry(&frame.scene)));
+        frame.preview = Some(preview.unwrap_or_else(|| Arc::new(preview_geometry(&frame.scene))));
+    } else if mode == ViewMode::Edit {
+        // Edit mode with the cut parts drawn under the cutters, as the GUI's live cut does.
+        frame.preview = preview;
     }
     if mode == ViewMode::Edit {
         frame.overlays = frame
@@ -314,9 +334,7 @@ pub fn render_with(
             .iter()
             .map(|c| super::CutterOverlay {
                 planes: c.planes.clone(),
-                surface: c
-                    .smooth
-                    .then(|| Arc::new(crate::cutaway_geometry::cutter_mesh(c))),
+                surface: Arc::new(crate::cutaway_geometry::cutter_mesh(c)),
                 ..Default::default()
             })
             .collect();

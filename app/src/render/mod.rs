@@ -70,7 +70,9 @@ pub mod headless;
 mod pipelines;
 mod renderer;
 
-pub use headless::{HeadlessRenderer, RenderPngOptions, render_png};
+pub use headless::{
+    HeadlessRenderer, RenderPngOptions, render_mode, render_png, render_with, render_with_preview,
+};
 pub use renderer::{CONTOUR_COLOR, Renderer, UploadStats, WALL_MIX, WALL_TINT};
 
 /// What the view shows (the GUI's mode buttons; Scalpel draws like Camera).
@@ -91,9 +93,9 @@ pub enum ViewMode {
 pub struct CutterOverlay {
     /// The bounded cutting planes (front-top, back-top, back-bottom, front-bottom).
     pub planes: Vec<CutterPlane>,
-    /// The closed cutter surface when the editor has one (e.g. the smooth, subdivided cutter);
-    /// `None` draws the boxes between consecutive planes.
-    pub surface: Option<Arc<csg::Mesh>>,
+    /// The closed cutter surface, exactly the one the boolean cuts with
+    /// ([`crate::cutaway_geometry::cutter_mesh`], smooth cutters subdivided).
+    pub surface: Arc<csg::Mesh>,
     /// Index into `planes` of the plane under the mouse or selected; drawn in orange.
     pub highlighted_plane: Option<usize>,
     /// The cutter being edited (drawn a little stronger than the others).

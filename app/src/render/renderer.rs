@@ -22,7 +22,7 @@ use super::pipelines::{
     SCATTER_ROW_GROUPS,
 };
 use super::{FrameInputs, OutputTarget, ViewMode, srgb_to_linear};
-use crate::cutaway_geometry::{PartKind, PreviewGeometry, cutter_surface};
+use crate::cutaway_geometry::{PartKind, PreviewGeometry};
 use crate::scene::{ModelStyle, Stereo};
 
 /// Wall colour (sRGB) that the cut surfaces lean toward: a pale cream, distinct from anatomy
@@ -642,14 +642,7 @@ impl Renderer {
         self.overlay_lines.clear();
         if frame.mode == ViewMode::Edit {
             for (k, overlay) in frame.overlays.iter().enumerate() {
-                let surface = match &overlay.surface {
-                    Some(mesh) => GpuMesh::upload(device, "cutter overlay surface", mesh),
-                    None => GpuMesh::upload(
-                        device,
-                        "cutter overlay surface",
-                        &cutter_surface(&overlay.planes),
-                    ),
-                };
+                let surface = GpuMesh::upload(device, "cutter overlay surface", &overlay.surface);
                 if surface.is_some() {
                     let opacity = if overlay.active { 0.35 } else { 0.22 };
                     let u = push_uniform(CUTTER_FILL, opacity, true, 0.0, 0.0);

@@ -1,0 +1,256 @@
+//! Rounded and freeform (smooth) cutters end to end: every recorded gesture in
+//! `tests/data/gestures`, as recorded and as a smooth variant, replayed by the editor and cut out
+//! of the sphere it was recorded on by the exact boolean, through the library (whole cut contract
+//! checked by `csg::cutcheck`) and through `cutaway extrude` + `cutaway subtract`; and
+//! `cutaway render --json` of a session with a smooth cutter, which must report an exact cut.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use csg::{Mesh, TargetIndex};
+use cutaway::cli::extrude::replay;
+use cutaway::gesture::{read_gesture, write_gesture};
+
+fn gestures() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/gestures");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .expect("gesture folder")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 7, "{files:?}");
+    files
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("cutaway-smooth-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    dir
+}
+
+/// The radius-50 sphere the gestures were recorded on.
+fn sphere() -> Mesh {
+    csg::testkit::icosphere(5, 50.0)
+}
+
+fn cutaway(args: &[&std::ffi::OsStr]) -> (bool, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_cutaway"))
+        .args(args)
+        .output()
+        .expect("run cutaway");
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn read_obj(path: &Path) -> Mesh {
+    cutaway::io::read_mesh(path).unwrap_or_else(|e| panic!("{}: {e:#}", path.display()))
+}
+
+#[test]
+fn every_gesture_plain_and_smooth_is_cut_exactly() {
+    let target = sphere();
+    let index = TargetIndex::build(target.clone()).expect("index");
+    let mut smooth_cuts = 0;
+    for file in gestures() {
+        let name = file.file_stem().unwrap().to_string_lossy().into_owned();
+        for smooth in [false, true] {
+            let mut gesture = read_gesture(&file).expect("gesture");
+            gesture.cut.smooth = smooth;
+            let r = replay(&target, &gesture).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+            assert_eq!(r.cutter.smooth, smooth);
+            r.cutter
+                .validate()
+                .unwrap_or_else(|e| panic!("{name} smooth={smooth}: {e}"));
+            let surface = r.cutter.surface();
+            if smooth {
+                // Subdivided (at least one level applied), not the boxes.
+                let boxes = r.cutter.quad_mesh().triangulate();
+                assert!(
+                    surface.triangle_count() >= 4 * boxes.triangle_count(),
+                    "{name}: smoothing gave up"
+                );
+                smooth_cuts += 1;
+            }
+            let result = csg::subtract(&index, &surface)
+                .unwrap_or_else(|e| panic!("{name} smooth={smooth}: refused: {e}"));
+            csg::cutcheck::check_measures(&target, &result)
+                .unwrap_or_else(|e| panic!("{name} smooth={smooth}: {e}"));
+            assert!(
+                !result.walls.mesh.is_empty(),
+                "{name} smooth={smooth}: the cutter missed the sphere"
+            );
+            let mut closed = result.materialize(&target);
+            closed.append(&result.walls.mesh);
+            let report = csg::weld::weld_exact(&closed).compacted().report();
+            assert!(
+                report.closed && report.manifold,
+                "{name} smooth={smooth}: kept + walls {report:?}"
+            );
+        }
+    }
+    assert!(smooth_cuts >= 7);
+}
+
+#[test]
+fn smooth_gestures_through_extrude_and_subtract() {
+    let dir = scratch("cli");
+    let target = dir.join("sphere.obj");
+    cutaway::io::write_mesh(&target, &sphere()).expect("write sphere");
+    let target_volume = sphere().volume();
+    for file in gestures() {
+        let name = file.file_stem().unwrap().to_string_lossy().into_owned();
+        let mut gesture = read_gesture(&file).expect("gesture");
+        gesture.cut.smooth = true;
+        let smooth_gesture = dir.join(format!("{name}_smooth.json"));
+        write_gesture(&smooth_gesture, &gesture).expect("write gesture");
+        let cutter = dir.join(format!("{name}_cutter.obj"));
+        let (ok, out, err) = cutaway(&[
+            "extrude".as_ref(),
+            target.as_os_str(),
+            "--gesture".as_ref(),
+            smooth_gesture.as_os_str(),
+            "--out".as_ref(),
+            cutter.as_os_str(),
+            "--json".as_ref(),
+        ]);
+        assert!(ok, "{name}: extrude failed: {err}");
+        let json: serde_json::Value = serde_json::from_str(out.trim()).expect("extrude JSON");
+        assert_eq!(json["smooth"], true);
+        assert_eq!(json["closed"], true);
+        let parts = dir.join(format!("{name}_parts"));
+        let (ok, out, err) = cutaway(&[
+            "subtract".as_ref(),
+            target.as_os_str(),
+            cutter.as_os_str(),
+            "--out".as_ref(),
+            parts.as_os_str(),
+            "--json".as_ref(),
+        ]);
+        assert!(ok, "{name}: subtract refused the smooth cutter: {err}");
+        let json: serde_json::Value = serde_json::from_str(out.trim()).expect("subtract JSON");
+        assert!(
+            json["walls_triangles"].as_u64().unwrap() > 0,
+            "{name}: {json}"
+        );
+        // kept + walls and removed + reversed walls close the sphere's volume between them.
+        let kept = read_obj(&parts.join("kept.obj"));
+        let walls = read_obj(&parts.join("walls.obj"));
+        let removed = read_obj(&parts.join("removed.obj"));
+        let mut outside = kept;
+        outside.append(&walls);
+        let mut inside = removed;
+        inside.append(&walls.reversed());
+        for (what, m) in [("kept + walls", &outside), ("removed + walls", &inside)] {
+            let report = csg::weld::weld_exact(m).compacted().report();
+            assert!(report.closed, "{name}: {what} is not closed: {report:?}");
+        }
+        let sum = outside.volume() + inside.volume();
+        assert!(
+            (sum - target_volume).abs() < 1e-6 * target_volume,
+            "{name}: volumes {sum} vs {target_volume}"
+        );
+        assert!(inside.volume() > 0.0);
+    }
+}
+
+#[test]
+fn render_json_reports_the_smooth_cut_exact() {
+    let dir = scratch("render");
+    let target = dir.join("sphere.obj");
+    cutaway::io::write_mesh(&target, &sphere()).expect("write sphere");
+    let gesture = gestures()
+        .into_iter()
+        .find(|p| p.ends_with("sphere_tight_turns.json"))
+        .expect("tight-turns gesture");
+    let r = replay(&sphere(), &read_gesture(&gesture).unwrap()).unwrap();
+    assert!(r.cutter.smooth);
+    let planes: Vec<serde_json::Value> = r
+        .cutter
+        .planes
+        .iter()
+        .map(|p| serde_json::json!(p.corners().map(|c| c.to_array())))
+        .collect();
+    let session = serde_json::json!({
+        "format": "cutaway-session/1",
+        "models": [{"path": "sphere.obj", "color": [0.9, 0.7, 0.6]}],
+        "cutters": [{"target": 0, "kind": "curving", "smooth": true, "planes": planes,
+                     "views": {"cut": true, "ribbons": {"count": 3, "width": 0.4, "relative": true}}}],
+        "camera": {"eye": [0, -300, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 30}
+    });
+    let session_path = dir.join("session.json");
+    std::fs::write(&session_path, session.to_string()).unwrap();
+    let png = dir.join("out.png");
+    let (ok, out, err) = cutaway(&[
+        "render".as_ref(),
+        session_path.as_os_str(),
+        "--out".as_ref(),
+        png.as_os_str(),
+        "--width".as_ref(),
+        "64".as_ref(),
+        "--height".as_ref(),
+        "48".as_ref(),
+        "--json".as_ref(),
+    ]);
+    if !ok && err.contains("adapter") {
+        eprintln!("skipped: no GPU adapter ({err})");
+        return;
+    }
+    assert!(ok, "render failed: {err}");
+    let json: serde_json::Value = serde_json::from_str(out.trim()).expect("render JSON");
+    let keys: Vec<&String> = json.as_object().unwrap().keys().collect();
+    assert_eq!(keys, ["cutters", "render_ms"]);
+    let cutters = json["cutters"].as_array().unwrap();
+    assert_eq!(cutters.len(), 1);
+    assert_eq!(cutters[0]["exact"], true, "{json}");
+    assert!(cutters[0]["cut_ms"].as_f64().unwrap() > 0.0);
+    assert!(json["render_ms"].as_f64().unwrap() > 0.0);
+    assert!(png.exists());
+
+    // A cutter the boolean refuses (its boxes fold over each other): no image, a non-zero exit
+    // naming the session, and the report says it was not exact.
+    let mut folded = session.clone();
+    let mut bad = r.cutter.clone();
+    let last = bad.planes.len() - 1;
+    bad.planes[1] = bad.planes[last];
+    folded["cutters"][0]["planes"] = serde_json::json!(
+        bad.planes
+            .iter()
+            .map(|p| serde_json::json!(p.corners().map(|c| c.to_array())))
+            .collect::<Vec<_>>()
+    );
+    let folded_path = dir.join("folded.json");
+    std::fs::write(&folded_path, folded.to_string()).unwrap();
+    let png2 = dir.join("folded.png");
+    let (ok, out, err) = cutaway(&[
+        "render".as_ref(),
+        folded_path.as_os_str(),
+        "--out".as_ref(),
+        png2.as_os_str(),
+        "--width".as_ref(),
+        "64".as_ref(),
+        "--height".as_ref(),
+        "48".as_ref(),
+        "--json".as_ref(),
+    ]);
+    assert!(!ok, "a refused cut must fail");
+    // (The Vulkan loader may add its own lines about the environment; ours is one line.)
+    let ours: Vec<&str> = err
+        .lines()
+        .filter(|l| !l.contains("XDG_RUNTIME_DIR"))
+        .collect();
+    assert_eq!(ours.len(), 1, "{err}");
+    assert!(
+        ours[0].starts_with("error: ")
+            && ours[0].contains("folded.json")
+            && ours[0].contains("cannot cut"),
+        "{err}"
+    );
+    let json: serde_json::Value = serde_json::from_str(out.trim()).expect("render JSON");
+    assert_eq!(json["cutters"][0]["exact"], false);
+    assert!(!png2.exists());
+}
