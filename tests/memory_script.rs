@@ -294,7 +294,7 @@ pub fn run(options: Options) -> Report {
             let views = &mut app.scene.cutters[i].views;
             let sub = cutaway::scene::SubCutterView {
                 count: 3,
-                width: 2.0,
+                ..cutaway::scene::SubCutterView::NEW
             };
             views.transparency = Some(0.3);
             views.ribbons = Some(sub);

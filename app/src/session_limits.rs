@@ -55,10 +55,17 @@ pub fn check(file: &SessionFile) -> anyhow::Result<()> {
             }
         }
         for (what, view) in [
-            ("ribbons", cutter.views.ribbons),
-            ("slices", cutter.views.slices),
+            ("ribbons", &cutter.views.ribbons),
+            ("slices", &cutter.views.slices),
         ] {
-            if let Some(SubCutterEntry { count, width }) = view {
+            // Placement and relative width are checked where the views are built.
+            if let Some(&SubCutterEntry {
+                count,
+                width,
+                placement: _,
+                relative: _,
+            }) = view.as_ref()
+            {
                 if count > MAX_SUB_CUTTERS {
                     anyhow::bail!(
                         "cutter {i}: views.{what}.count {count} is more than the limit of {MAX_SUB_CUTTERS}"

@@ -60,8 +60,8 @@ mod dir;
 mod obj;
 mod ply;
 mod stl;
-pub mod volume;
 mod structures;
+pub mod volume;
 mod vtk;
 
 pub use atomic::{OutputSet, recover as recover_output_set, write_file};
