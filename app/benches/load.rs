@@ -2,7 +2,7 @@
 //! OBJ (read, weld, validate, regions, measures). The inputs are geodesic spheres generated here
 //! into a scratch folder, never committed.
 //!
-//! Run: `CARGO_TARGET_DIR=/work/target-release cargo bench -p cutaway --bench load`.
+//! Run: `cargo bench -p cutaway --bench load`.
 //! Targets (issue 2): each 1M load at most 1 s, `info` on 2M at most 2 s.
 
 use std::hint::black_box;

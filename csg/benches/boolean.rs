@@ -4,9 +4,9 @@
 //! the ratio to the peers measured in the same run:
 //!
 //! ```text
-//! CUTAWAY_BENCH_TARGET=/work/pb/meshes/sphere_2m.obj \
-//! CUTAWAY_BENCH_CUTTER=/work/pb/meshes/cut_sphere_strip.obj \
-//! CUTAWAY_PEERS_CMD="/work/pb/.venv/bin/python /work/pb/peers.py" \
+//! CUTAWAY_BENCH_TARGET=meshes/sphere_2m.obj \
+//! CUTAWAY_BENCH_CUTTER=meshes/cut_sphere_strip.obj \
+//! CUTAWAY_PEERS_CMD="python ../shared/peerbench/peers.py" \
 //! CUTAWAY_BENCH_ONLY=files cargo bench -p csg --bench boolean
 //! ```
 //!
@@ -227,8 +227,8 @@ fn read_peers(path: &str) -> Result<(Vec<PeerFigures>, String, String, String), 
     Ok((out, s(&v["target"]), s(&v["cutter"]), load))
 }
 
-/// The peers' figures for the ratio: `CUTAWAY_PEERS_CMD` (e.g. `"/work/pb/.venv/bin/python
-/// /work/pb/peers.py"`) is run now on the same files (`--peers trueform,manifold3d --repeat 3
+/// The peers' figures for the ratio: `CUTAWAY_PEERS_CMD` (e.g. `"python
+/// ../shared/peerbench/peers.py"`) is run now on the same files (`--peers trueform,manifold3d --repeat 3
 /// --json …`, so the ratio compares figures of one run), or `CUTAWAY_PEERS_JSON` names the
 /// `--json` output of an earlier `peers.py` run (its age is printed: compare only within one
 /// window on this drifting machine).
@@ -256,7 +256,7 @@ fn peers_for(target: &str, cutter: &str) -> Option<Vec<PeerFigures>> {
         p
     } else {
         println!(
-            "peers: set CUTAWAY_PEERS_CMD=\"/work/pb/.venv/bin/python /work/pb/peers.py\" to run \
+            "peers: set CUTAWAY_PEERS_CMD=\"python ../shared/peerbench/peers.py\" to run \
              trueform and manifold3d on the same files in this run (or CUTAWAY_PEERS_JSON to a \
              peers.py --json file) for the ratio"
         );
@@ -304,7 +304,7 @@ fn peers_for(target: &str, cutter: &str) -> Option<Vec<PeerFigures>> {
     }
 }
 
-/// With `CUTAWAY_BENCH_TARGET` and `CUTAWAY_BENCH_CUTTER` (OBJ files, e.g. `/work/pb/meshes/
+/// With `CUTAWAY_BENCH_TARGET` and `CUTAWAY_BENCH_CUTTER` (OBJ files, e.g. `meshes/
 /// sphere_2m.obj` and `cut_sphere_strip.obj`, the inputs of `peers.py`), times the cut of those
 /// files: warm (index cached: the drag-frame cost), the lazy parts materialized (what a consumer
 /// that reads the removed mesh or writes the kept mesh pays on top), and cold (index build +
@@ -315,8 +315,8 @@ fn bench_files() {
         std::env::var("CUTAWAY_BENCH_CUTTER"),
     ) else {
         println!(
-            "files: set CUTAWAY_BENCH_TARGET=/work/pb/meshes/sphere_2m.obj \
-             CUTAWAY_BENCH_CUTTER=/work/pb/meshes/cut_sphere_strip.obj for the peerbench cut"
+            "files: set CUTAWAY_BENCH_TARGET=meshes/sphere_2m.obj \
+             CUTAWAY_BENCH_CUTTER=meshes/cut_sphere_strip.obj for the peerbench cut"
         );
         return;
     };

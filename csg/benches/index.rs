@@ -1,7 +1,7 @@
 //! Mesh-core benchmarks: adjacency, regions, welding, the spatial index and its queries on
 //! geodesic spheres of about 1M and 2M triangles (generated here, never committed).
 //!
-//! Run: `CARGO_TARGET_DIR=/work/target-release cargo bench -p csg --bench index`.
+//! Run: `cargo bench -p csg --bench index`.
 //! Target (DESIGN.md): adjacency + BVH for 1M triangles in at most 0.5 s on the 2-core machine.
 
 use std::hint::black_box;

@@ -1,4 +1,4 @@
-//! `cutaway [open PATH…]`: the GUI. OWNER: GUI helper.
+//! `cutaway [open PATH…]`: the GUI.
 //!
 //! Paths are checked before the window opens, so a typo gives the usual one-line error instead of
 //! a window with an error in its status line.

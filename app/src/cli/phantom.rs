@@ -1,4 +1,4 @@
-//! `cutaway phantom --out assets/`: regenerates the embedded synthetic phantoms. OWNER: phantom helper.
+//! `cutaway phantom --out assets/`: regenerates the embedded synthetic phantoms.
 //!
 //! Maintainers only (hidden from `--help`): writes `OUT/<scene>/<part>.ply` for every scene of
 //! [`crate::phantom`], checking closedness, budgets and clearances on the way, and prints one line

@@ -1,4 +1,4 @@
-//! `cutaway scalpel TARGET --path P.json --out OUT.obj --json`. OWNER: scalpel helper.
+//! `cutaway scalpel TARGET --path P.json --out OUT.obj --json`.
 //!
 //! Replays a `cutaway-path/1` file through the same [`cutter::scalpel::Scalpel`] the GUI's
 //! Scalpel mode drives: one step per sample, strokes one after another; with a depth, each

@@ -37,6 +37,8 @@ fn surfaces_of(
 }
 
 /// Asserts everything the API promises of one surface; returns its region count.
+/// Checks a label surface the way the boolean needs it and returns its connected sheets
+/// (components; a cavity's sheet counts on its own here, though it joins its solid's region).
 fn assert_valid(surface: &LabelSurface) -> usize {
     let mesh = &surface.mesh;
     mesh.sanity_check().unwrap();
@@ -55,7 +57,7 @@ fn assert_valid(surface: &LabelSurface) -> usize {
             surface.value
         );
     }
-    report.regions
+    report.components
 }
 
 /// Both smoothing extremes and the default.
@@ -131,7 +133,8 @@ fn label_on_border() {
 #[test]
 fn hollow_shell() {
     // A 5³ cube of label 1 with a 3³ hole holding label 2: label 1 is a shell whose inner
-    // surface faces inward (two regions, total volume positive), label 2 one solid.
+    // surface faces inward (two sheets, one region with a cavity, total volume positive),
+    // label 2 one solid.
     let dims = [7, 7, 7];
     let inside = |c: usize, lo: usize, hi: usize| (lo..=hi).contains(&c);
     let data = grid_data(dims, |i, j, k| {
@@ -144,6 +147,8 @@ fn hollow_shell() {
         assert_eq!(out.len(), 2);
         assert_eq!(assert_valid(&out[0]), 2);
         assert_eq!(assert_valid(&out[1]), 1);
+        // Its inner sheet faces inward and lies inside the outer one: a cavity, one region.
+        assert_eq!(out[0].mesh.report().regions, 1);
         // The shell's inner surface faces inward: its volume is the shell's 98 voxels.
         let shell = out[0].mesh.volume();
         assert!((shell - 98.0).abs() < 98.0 * 0.25, "shell volume {shell}");
