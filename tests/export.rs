@@ -183,13 +183,16 @@ fn export_reads_back_with_the_cut_s_nodes_materials_and_triangles() {
     }
 }
 
-/// The validator's npm package folder: `CUTAWAY_GLTF_VALIDATOR`, else the folder CI installs it
-/// into.
+/// The validator's npm package folder, named by `CUTAWAY_GLTF_VALIDATOR` (`.ci/run` installs the
+/// package and sets it). Set but not a package folder is a failure, not a skip.
 fn validator_package() -> Option<PathBuf> {
-    let folder = std::env::var_os("CUTAWAY_GLTF_VALIDATOR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from("/var/tmp/cutaway-npm/node_modules/gltf-validator"));
-    folder.join("package.json").is_file().then_some(folder)
+    let folder = PathBuf::from(std::env::var_os("CUTAWAY_GLTF_VALIDATOR")?);
+    assert!(
+        folder.join("package.json").is_file(),
+        "CUTAWAY_GLTF_VALIDATOR={} is not the gltf-validator package folder",
+        folder.display()
+    );
+    Some(folder)
 }
 
 /// Runs the Khronos validator on `file`; returns its report.
@@ -220,8 +223,8 @@ fn validate(package: &Path, file: &Path) -> serde_json::Value {
 fn export_passes_the_khronos_validator_with_no_errors() {
     let Some(package) = validator_package() else {
         eprintln!(
-            "skipped: the Khronos glTF validator is not installed (npm install gltf-validator \
-             into /var/tmp/cutaway-npm, or set CUTAWAY_GLTF_VALIDATOR to its package folder)"
+            "skipped: CUTAWAY_GLTF_VALIDATOR is not set (npm install gltf-validator, then set it \
+             to the package folder, as .ci/run does)"
         );
         return;
     };

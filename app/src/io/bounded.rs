@@ -18,6 +18,10 @@ use std::path::Path;
 /// Largest mesh file read (2 GiB: a binary STL of 43 million triangles).
 pub const MESH_MAX_BYTES: u64 = 2 << 30;
 
+/// Largest label-volume file read (4 GiB: a 1024³ 16-bit volume stored raw, with its header);
+/// the header's sizes are checked against the data before any voxel buffer is allocated.
+pub const VOLUME_MAX_BYTES: u64 = 4 << 30;
+
 /// Largest JSON document read (sessions, gestures, path files): 64 MiB.
 pub const JSON_MAX_BYTES: u64 = 64 << 20;
 

@@ -16,7 +16,7 @@
 //! | `.obj` | `tobj` (`single_index`, `triangulate`) | every `o`/`g` name is its own [`Part`]; polygons fan-triangulated; points and lines ignored; a vertex weight `w` is ignored, not divided by |
 //! | `.stl` | our own ([`stl`]) | binary when the size is exactly `84 + 50·count` (even if the header starts with `solid`), else ASCII; `stl_io` decides by the `solid ` prefix alone and so rejects such binary files |
 //! | `.ply` | `ply-rs-bw` | ASCII and binary (both byte orders); faces from `vertex_indices` or `vertex_index` lists of any integer type, fan-triangulated |
-//! | `.vtk` | `vtkio` (legacy) | `POLYDATA` with `POLYGONS` (fan-triangulated) and `TRIANGLE_STRIPS` (triangulated here with alternating winding) |
+//! | `.vtk` | own reader (`vtk.rs`, legacy) | `POLYDATA` with `POLYGONS` (fan-triangulated) and `TRIANGLE_STRIPS` (triangulated here with alternating winding) |
 //!
 //! The format is chosen by the extension (case-insensitive) and checked against the content: a
 //! PLY file named `.stl` is an error that says so, never a silent guess.

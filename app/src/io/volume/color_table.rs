@@ -35,7 +35,7 @@ fn read_text(path: &Path) -> anyhow::Result<String> {
     if metadata.len() > MAX_TABLE {
         anyhow::bail!("{} bytes is too large for a colour table", metadata.len());
     }
-    let bytes = std::fs::read(path)?;
+    let bytes = crate::io::bounded::read_bytes(path, MAX_TABLE)?;
     String::from_utf8(bytes).map_err(|_| anyhow::anyhow!("a colour table must be text (UTF-8)"))
 }
 

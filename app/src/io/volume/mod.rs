@@ -195,11 +195,15 @@ impl VolumeFormat {
 }
 
 /// Whether `path` is read as a label volume: a file with a volume extension (or, without a mesh
-/// extension, whose content starts like a volume), or a directory holding volume files (a mask
-/// directory; otherwise it is a mesh directory).
+/// extension, whose content starts like a volume), or a directory holding volume files and no
+/// mesh files (a mask directory; otherwise it is a mesh directory, whose volume files are not
+/// read as masks).
 pub fn is_volume(path: &Path) -> bool {
     match std::fs::metadata(path) {
-        Ok(m) if m.is_dir() => masks::mask_files(path).is_ok_and(|files| !files.is_empty()),
+        Ok(m) if m.is_dir() => {
+            masks::mask_files(path).is_ok_and(|files| !files.is_empty())
+                && super::mesh_files(path).is_ok_and(|files| files.is_empty())
+        }
         Ok(m) if m.is_file() => {
             VolumeFormat::from_path(path).is_some()
                 || (super::Format::from_path(path).is_none() && sniff_file(path).is_some())
@@ -210,6 +214,10 @@ pub fn is_volume(path: &Path) -> bool {
 
 fn sniff_file(path: &Path) -> Option<VolumeFormat> {
     use std::io::Read as _;
+    // Only regular files: opening a FIFO would block.
+    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return None;
+    }
     let mut head = [0u8; 348];
     let mut file = std::fs::File::open(path).ok()?;
     let mut filled = 0;

@@ -126,7 +126,7 @@ fn parse_header(bytes: &[u8], version: u8, endian: Endian) -> Header {
 }
 
 pub(crate) fn read(path: &Path) -> anyhow::Result<RawVolume> {
-    let file = std::fs::read(path)?;
+    let file = crate::io::bounded::read_bytes(path, crate::io::bounded::VOLUME_MAX_BYTES)?;
     let gz = file.starts_with(&[0x1f, 0x8b]);
     let mut reader: Box<dyn Read> = if gz {
         Box::new(flate2::read::MultiGzDecoder::new(file.as_slice()))

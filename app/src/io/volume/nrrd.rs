@@ -53,13 +53,14 @@ enum Encoding {
 }
 
 pub(crate) fn read(path: &Path) -> anyhow::Result<RawVolume> {
-    let bytes = std::fs::read(path)?;
+    let bytes = crate::io::bounded::read_bytes(path, crate::io::bounded::VOLUME_MAX_BYTES)?;
     let (text, data_start) = split_header(&bytes)?;
     let header = parse_header(text)?;
     let data = match &header.data_file {
         Some(name) => {
             let file = data_file_path(path, name)?;
-            std::fs::read(&file).with_context(|| format!("data file {}", file.display()))?
+            crate::io::bounded::read_bytes(&file, crate::io::bounded::VOLUME_MAX_BYTES)
+                .with_context(|| format!("data file {}", file.display()))?
         }
         None => bytes[data_start..].to_vec(),
     };

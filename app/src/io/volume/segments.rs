@@ -35,7 +35,9 @@ pub fn from_keys(keys: &[(String, String)], layers: usize) -> anyhow::Result<Vec
                 .parse::<u32>()
                 .map_err(|_| anyhow::anyhow!("{}: not a label value: '{v}'", at("LabelValue")))?,
             None if one_layer_each => 1,
-            None => number + 1,
+            None => number
+                .checked_add(1)
+                .ok_or_else(|| anyhow::anyhow!("{}: segment number too large", at("Name")))?,
         };
         let layer = match fields.get("Layer") {
             Some(v) => v
