@@ -1079,7 +1079,9 @@ impl eframe::App for CutawayApp {
             .default_size(290.0)
             .min_size(230.0)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
+                // Both ways: a wide row (a long name, a note) scrolls instead of widening the
+                // panel, so the view keeps the width the user gave it.
+                egui::ScrollArea::both().show(ui, |ui| {
                     actions.extend(super::models_panel::models_panel_ui(ui, self));
                     ui.add_space(10.0);
                     actions.extend(super::cutter_panel::cutter_panel_ui(ui, self));
