@@ -213,7 +213,14 @@ fn print_side_by_side(mesh: &Mesh) {
         found_theirs += out.len();
         out.clear();
     }
-    assert_eq!(found_ours, found_theirs, "box queries disagree");
+    // Both are conservative broad phases over boxes rounded outward to f32 by each tree in its own
+    // way, so a face whose box only touches a query box's side may be found by one and not the
+    // other; anything more than such a handful means the two do not answer the same query.
+    println!("bvh box query candidates: csg {found_ours}, obvhs {found_theirs}");
+    assert!(
+        found_ours.abs_diff(found_theirs) * 100_000 <= found_ours.max(1),
+        "box queries disagree: csg {found_ours}, obvhs {found_theirs}"
+    );
     let per_query = |t: Duration| t / boxes.len() as u32;
     line(
         &format!("box query ({} faces each)", found_ours / boxes.len()),
