@@ -380,7 +380,7 @@ fn gestures_on_real_anatomy() {
         eprintln!("skipped: no anatomy folder (set CUTAWAY_ANATOMY)");
         return;
     };
-    // (file, kind, largest front-face gap allowed over the surface in δ: issue 4 asks for 3δ).
+    // (file, kind, largest front-face gap allowed over the surface in δ: the contract's surface-gap goal is 3δ).
     for (file, kind, bound) in [
         (
             "knee_vhf_left_denver/VHF_Left_Bone_Tibia_smooth.stl",
@@ -419,7 +419,7 @@ fn gestures_on_real_anatomy() {
             r.region
         );
         assert!(r.cutter.planes.len() >= 3, "{file}: the roller moved");
-        // The front faces stick to the surface (issue 4: within 3δ, see `bound`) wherever the surface is
+        // The front faces stick to the surface (within 3δ, see `bound`) wherever the surface is
         // under the path. A box's front face AE''H''D rests on the surface (thesis 3.3.2.1: it is
         // turned about DA until it touches, then lifted 2δ), so its distance to the painted
         // region's surface, the closest of a grid of points on it, is the gap. "Under the path":

@@ -3,7 +3,7 @@
 //! into a scratch folder, never committed.
 //!
 //! Run: `cargo bench -p cutaway --bench load`.
-//! Targets (issue 2): each 1M load at most 1 s, `info` on 2M at most 2 s.
+//! Targets (DESIGN.md's performance table): each 1M load at most 1 s, `info` on 2M at most 2 s.
 
 use std::hint::black_box;
 use std::path::{Path, PathBuf};

@@ -1,6 +1,6 @@
 //! Benchmarks of the local boolean (release build: `cargo bench -p csg --bench boolean`).
 //!
-//! The figures of issue 3, on peerbench's files (the same inputs `peers.py` cuts), printed with
+//! The boolean's speed figures (DESIGN.md's performance table), on peerbench's files (the same inputs `peers.py` cuts), printed with
 //! the ratio to the peers measured in the same run:
 //!
 //! ```text

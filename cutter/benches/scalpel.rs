@@ -1,4 +1,4 @@
-//! Scalpel step latency (notes/scalpel.md §4 P1–P3, T1; issue 6 speed targets).
+//! Scalpel step latency (notes/scalpel.md §4 P1–P3, T1; DESIGN.md's scalpel targets).
 //!
 //! A 1,000-step Archimedean spiral (turn spacing 3h, step 1h, h = mean edge length) around the
 //! north pole of geodesic spheres of ~10k, ~130k and ~1M triangles; every step is timed alone.

@@ -425,7 +425,7 @@ fn s20_spiral_close_to_its_own_lips() {
     assert_eq!(delta(&before, &topo(&s)), (0, 1, -1));
 }
 
-/// Notes §4 Q0 / issue 6 item 4: the smallest angle of the triangles the corpus creates (slits
+/// Notes §4 Q0: the smallest angle of the triangles the corpus creates (slits
 /// on the grid sheet, grooves and crossings on the sphere), printed as a histogram.
 #[test]
 fn min_angle_statistics_over_the_corpus() {
@@ -930,7 +930,7 @@ mod fuzz {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Grooves (depth > 0) meeting grooves: notes §5 #21, issue 6 cross cuts.
+// Grooves (depth > 0) meeting grooves: notes §5 #21, cross cuts.
 
 /// Points on the great circle of the sphere of radius `r` through `center` (a unit vector) with
 /// tangent direction `dir` (made tangent), from arc parameter `from` to `to` (radians).

@@ -1,4 +1,4 @@
-//! Live re-cut while painting (issue 4 "Speed", the thesis's future work): in Edit mode the view
+//! Live re-cut while painting (the thesis's future work: the cut follows the brush): in Edit mode the view
 //! shows the cut result (kept part, walls, contour) under the translucent cutter, re-cut after
 //! every change of the cutters.
 //!

@@ -1,4 +1,4 @@
-//! Scalpel mode in the window (issue 6, "the user drags the blade over the surface"): a press on
+//! Scalpel mode in the window (the user drags the blade over the surface): a press on
 //! a model starts a stroke, every pointer move is projected onto the surface and fed to
 //! [`Scalpel::step`] so the cut front follows the tool, and the release ends the stroke.
 //!
@@ -776,7 +776,7 @@ struct LayerRun {
     depth: f64,
 }
 
-/// Multi-layer cutting in the window (issue 6: "where segmented structures lie under one
+/// Multi-layer cutting in the window ("where segmented structures lie under one
 /// another, the blade cuts every surface it passes through down to its depth").
 ///
 /// `cutter::scalpel::layers` does this for the CLI, where the stacked surfaces are regions of one

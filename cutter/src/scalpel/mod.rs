@@ -1,6 +1,6 @@
 //! # Scalpel mode: progressive cutting of a triangle surface along a tool path
 //!
-//! The second way to cut (issue 6; papers: Bruyns 2002, interactive cross cutting, progressive
+//! The second way to cut (papers: Bruyns 2002, interactive cross cutting, progressive
 //! re-meshing of thin membranes, Sela 2004 DFFD incision; goals in `notes/scalpel.md`).
 //!
 //! ## Model

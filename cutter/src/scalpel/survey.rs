@@ -181,7 +181,7 @@ pub fn survey(
     Ok((r, s))
 }
 
-/// New triangles per triangle crossed, triangle by triangle (issue 6: "≤ 3 new triangles per
+/// New triangles per triangle crossed, triangle by triangle (DESIGN.md: "≤ 3 new triangles per
 /// triangle crossed edge to edge on average, never more than 4"), for a cut of `original`
 /// (the mesh before the cut) that produced `cut`.
 ///
