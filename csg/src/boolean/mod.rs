@@ -78,21 +78,21 @@
 //! region whose box overlaps the cutter. No per-cut allocation, clear or first touch is
 //! proportional to the target size. The kept part and the removed piece are returned as deltas
 //! against the target (the removed piece is built into a mesh when first read, see
-//! [`Removed`]). The broad phase, the exact pair tests, the splitting of faces and the placing
+//! [`Removed`](crate::output::Removed)). The broad phase, the exact pair tests, the splitting of faces and the placing
 //! of new vertices run in parallel (rayon); the flood fill runs beside the assembly of the
 //! output. Everything a thread decides is a pure function of its inputs and results are merged
 //! in a fixed order, so a cut's output does not depend on the thread count or scheduling.
 //!
 //! # Stages
-//! 1. Validate and quantize the cutter ([`prepare`]). Early-out: boxes disjoint.
+//! 1. Validate and quantize the cutter (`prepare`). Early-out: boxes disjoint.
 //! 2. Exact intersection ([`crate::intersect`]).
 //! 3. Cutter vertex statuses (the set of region solids each lies in, [`crate::solids`]): one
 //!    inside test per cutter component, then crossings toggle their face's solid
-//!    ([`vertex_solids`]).
+//!    (`vertex_solids`).
 //! 4. Split touched target faces, and touched cutter faces once per solid they meet
-//!    ([`faces`], with [`crate::split`]); statuses of the pieces.
-//! 5. Flood fill of untouched target faces inside the cutter; untouched regions ([`flood`]).
-//! 6. Assemble the output and the contours ([`assemble`], with [`crate::contour`]); 5 and 6
+//!    (`faces`, with [`crate::split`]); statuses of the pieces.
+//! 5. Flood fill of untouched target faces inside the cutter; untouched regions (`flood`).
+//! 6. Assemble the output and the contours (`assemble`, with [`crate::contour`]); 5 and 6
 //!    run side by side.
 
 mod assemble;
@@ -139,8 +139,8 @@ pub fn subtract(target: &TargetIndex, cutter: &Mesh) -> Result<CutResult, CutErr
 }
 
 /// Cuts several disjoint sub-cutters (ribbons, slices) at once. Every output face carries the
-/// id of its sub-cutter (`sub_cutter` of [`Part`] and [`crate::output::Contour`]); use
-/// [`Part::of_sub_cutter`] for one sub-cutter's removed piece or walls.
+/// id of its sub-cutter (`sub_cutter` of [`Part`](crate::Part) and [`crate::output::Contour`]); use
+/// [`Part::of_sub_cutter`](crate::Part::of_sub_cutter) for one sub-cutter's removed piece or walls.
 pub fn subtract_many(target: &TargetIndex, cutters: &[&Mesh]) -> Result<CutResult, CutError> {
     subtract_with(target, cutters, &CutOptions::default())
 }

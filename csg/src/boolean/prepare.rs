@@ -21,7 +21,7 @@ pub(crate) fn prepare_cutter(
 
 /// Checks a cutter on its own, before any target exists (the cutter editor validates every edit
 /// with it): closed, consistently oriented, positive volume and free of self-intersections, with
-/// the same exact predicates as [`subtract`], on the lattice of the cutter's own bounding box.
+/// the same exact predicates as [`subtract`](crate::subtract), on the lattice of the cutter's own bounding box.
 /// A target much larger than the cutter has a coarser lattice, so a cutter whose faces come within
 /// a few of its lattice steps of each other can still be refused by the cut itself.
 pub fn check_cutter(cutter: &Mesh) -> Result<(), CutError> {
