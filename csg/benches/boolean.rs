@@ -16,8 +16,8 @@
 //! - `CUTAWAY_PEERS_CMD` runs `peers.py` (trueform and manifold3d, `--repeat 3`) first, so the
 //!   ratios compare figures of one run; `CUTAWAY_PEERS_JSON` reads an earlier `peers.py --json`
 //!   file instead (its age is printed). `CUTAWAY_BENCH_PROFILE=N` runs N warm cuts only (for
-//!   `perf record`). `CUTAWAY_CUT_PHASES=1` makes every cut print its per-stage wall times to
-//!   stderr (broad phase, exact pair tests, ids, points, face splits, flood fill beside the
+//!   `perf record`). `CUTAWAY_CUT_PHASES=1` makes every profiled cut print its per-stage wall
+//!   times (`CutResult::phases`) to stderr (broad phase, exact pair tests, ids, points, face splits, flood fill beside the
 //!   output assembly, ...); e.g. with `CUTAWAY_BENCH_PROFILE=60`, take the minimum and median
 //!   of each stage over the runs.
 //!
@@ -328,7 +328,12 @@ fn bench_files() {
     if profile > 0 {
         // For `perf record`: only warm cuts.
         let index = TargetIndex::build(target.clone()).expect("index");
-        let w = timing(profile, || csg::subtract(&index, &cutter).expect("cut"));
+        let options = csg::CutOptions::default().with_phase_times(phases_wanted());
+        let w = timing(profile, || {
+            let r = csg::subtract_with(&index, &[&cutter], &options).expect("cut");
+            print_phases(&r);
+            r
+        });
         println!("profile: {profile} warm cuts: {w}");
         std::process::exit(0);
     }
@@ -508,3 +513,20 @@ fn bench_boolean(c: &mut Criterion) {
 
 criterion_group!(benches, bench_boolean);
 criterion_main!(benches);
+
+/// `CUTAWAY_CUT_PHASES` set: the profiled cuts record and print their stage times.
+fn phases_wanted() -> bool {
+    std::env::var_os("CUTAWAY_CUT_PHASES").is_some()
+}
+
+/// Prints a cut's stage times (recorded when asked for) on one line of stderr.
+fn print_phases(r: &csg::CutResult) {
+    if !r.phases.is_empty() {
+        let parts: Vec<String> = r
+            .phases
+            .iter()
+            .map(|(n, ms)| format!("{n} {ms:.3}"))
+            .collect();
+        eprintln!("cut phases ms: {}", parts.join(" | "));
+    }
+}

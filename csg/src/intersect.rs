@@ -16,8 +16,8 @@ use std::hash::{BuildHasherDefault, Hasher};
 use glam::DVec3;
 
 use crate::adjacency::NO_EDGE;
-use crate::boolean::Phases;
 use crate::exact::{self, HPoint, LPoint, Sign};
+use crate::phases::Phases;
 use crate::target::{Bvh, IBox, TargetIndex};
 
 /// A small, fast, non-cryptographic hasher for integer keys (FxHash's multiply-rotate).
@@ -217,7 +217,7 @@ pub(crate) fn intersect(
     target: &TargetIndex,
     cutter: &PreparedCutter,
 ) -> Result<Intersections, String> {
-    intersect_timed(target, cutter, &mut Phases::new())
+    intersect_timed(target, cutter, &mut Phases::new(false))
 }
 
 /// [`intersect`], with the time of its stages in `phases`.

@@ -20,6 +20,7 @@ pub mod lattice;
 pub mod lattice_bvh;
 pub mod mesh;
 pub mod output;
+pub(crate) mod phases;
 pub(crate) mod polygon;
 pub mod region_parts;
 pub mod regions;

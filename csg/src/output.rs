@@ -42,17 +42,26 @@ pub struct CutOptions {
     /// `false` every output is closed and manifold by vertex identity ([`VertexSource`]), at
     /// the price of coincident vertices.
     pub merge_coincident: bool,
+    /// Record each stage's wall time in [`CutResult::phases`] (default `false`; for profiling).
+    pub time_phases: bool,
 }
 
 impl Default for CutOptions {
     fn default() -> Self {
         CutOptions {
             merge_coincident: true,
+            time_phases: false,
         }
     }
 }
 
 impl CutOptions {
+    /// Sets [`CutOptions::time_phases`].
+    pub fn with_phase_times(mut self, on: bool) -> Self {
+        self.time_phases = on;
+        self
+    }
+
     /// Sets [`CutOptions::merge_coincident`].
     pub fn with_merge_coincident(mut self, merge: bool) -> Self {
         self.merge_coincident = merge;
@@ -403,6 +412,9 @@ pub struct CutResult {
     pub contours: Vec<Contour>,
     /// Counters of the work done.
     pub stats: CutStats,
+    /// Per-stage wall times in ms, `("total", ms)` first, when [`CutOptions::time_phases`]
+    /// asked for them; empty otherwise.
+    pub phases: Vec<(&'static str, f64)>,
 }
 
 impl CutResult {

@@ -8,11 +8,11 @@ use rayon::prelude::*;
 use super::error::CutError;
 use super::faces::{CutterFaceWalls, TargetFace};
 use super::inputs::{CutInputs, PARALLEL_MIN};
-use super::phases::Phases;
 use crate::contour;
 use crate::exact::{self, HPoint, LPoint};
 use crate::intersect::{FxMap, PointKey};
-use crate::output::{CutStats, PartBuilder, Provenance, Removed};
+use crate::output::{CutOptions, CutStats, PartBuilder, Provenance, Removed};
+use crate::phases::Phases;
 use crate::split::{OUT, Vx};
 
 /// What stage 6 gives back.
@@ -30,18 +30,19 @@ pub(crate) struct Output {
     pub phases: Phases,
 }
 
-/// Assembles the output from the split `faces` and the cutter faces' walls; `merge` welds new
-/// vertices that round to the same position (see [`crate::output::CutOptions`]).
+/// Assembles the output from the split `faces` and the cutter faces' walls; with
+/// [`CutOptions::merge_coincident`], new vertices that round to the same position are welded.
 pub(crate) fn assemble(
     cut: &CutInputs,
     faces: &[TargetFace],
     split_cutter: Vec<CutterFaceWalls>,
-    merge: bool,
+    options: &CutOptions,
 ) -> Result<Output, CutError> {
+    let merge = options.merge_coincident;
     let (target, cutter, isect) = (cut.target, cut.cutter, cut.isect);
     let mesh = &target.mesh;
     let nt = mesh.positions.len() as u32;
-    let mut sub = Phases::new();
+    let mut sub = Phases::new(options.time_phases);
     let mut stats = CutStats::default();
     // A new vertex whose exact limit is the lattice point of one of its defining input
     // vertices (degenerate contact at a vertex) takes that vertex's exact input position, so

@@ -100,18 +100,16 @@ mod error;
 mod faces;
 mod flood;
 mod inputs;
-mod phases;
 mod prepare;
 mod vertex_solids;
 
 pub(crate) use assemble::{PositionBits, position_bits};
 pub use error::CutError;
-pub(crate) use phases::Phases;
 pub(crate) use prepare::prepare_cutter;
 pub use prepare::{check_cutter, cutter_self_intersections};
 
+use crate::phases::{Phases, timed};
 use inputs::CutInputs;
-use phases::timed;
 
 use crate::intersect::{self, PreparedCutter};
 use crate::mesh::Mesh;
@@ -151,15 +149,15 @@ pub fn subtract_with(
     cutters: &[&Mesh],
     options: &CutOptions,
 ) -> Result<CutResult, CutError> {
-    let mut phases = Phases::new();
+    let mut phases = Phases::new(options.time_phases);
     let cutter = prepare_cutter(target, cutters)?;
     phases.mark("prepare");
     // On a rayon worker: the parallel stages inside then hand work to the other workers through
     // their local queues, instead of each waking the pool from outside (which costs a scheduler
     // round trip per stage on a busy machine).
-    let r = rayon::scope(|_| run(target, &cutter, options, &mut phases));
-    phases.print();
-    r
+    let mut result = rayon::scope(|_| run(target, &cutter, options, &mut phases))?;
+    result.phases = phases.into_marks();
+    Ok(result)
 }
 /// Stages 2–6 on a validated cutter.
 pub(crate) fn run(
@@ -200,7 +198,6 @@ pub(crate) fn run(
     phases.mark("piece status");
     // Stage 5 on this thread while stage 6 runs on the others.
     let on = phases.on;
-    let merge = options.merge_coincident;
     let ((flood, flood_ms), (output, output_ms)) = rayon::join(
         || timed(on, || flood::flood(&cut, &faces)),
         || {
@@ -211,7 +208,9 @@ pub(crate) fn run(
             } else {
                 0.0
             };
-            let (r, ms) = timed(on, || assemble::assemble(&cut, &faces, split_cutter, merge));
+            let (r, ms) = timed(on, || {
+                assemble::assemble(&cut, &faces, split_cutter, options)
+            });
             (r, (start, ms))
         },
     );
@@ -294,5 +293,29 @@ mod tests {
             assert!(one.removed.whole_faces.len() > 1000);
             assert_eq!(fingerprint(&one), fingerprint(&cut(4, &cutters)));
         }
+    }
+
+    /// Stage times are returned only when asked for, starting with the total, and a cut with
+    /// them is the same cut.
+    #[test]
+    fn phase_times_only_when_asked() {
+        let index = TargetIndex::build(testkit::geodesic_sphere(8, 10.0)).unwrap();
+        let slab = testkit::cube(DVec3::new(-12.0, -3.1, 2.05), DVec3::new(12.0, 3.3, 12.0));
+        let plain = subtract(&index, &slab).unwrap();
+        assert!(plain.phases.is_empty());
+        let options = CutOptions::default().with_phase_times(true);
+        let timed = subtract_with(&index, &[&slab], &options).unwrap();
+        let names: Vec<&str> = timed.phases.iter().map(|(n, _)| *n).collect();
+        assert_eq!(names.first(), Some(&"total"));
+        for stage in ["prepare", "cutter status", "split faces", "flood+output"] {
+            assert!(names.contains(&stage), "{stage} missing from {names:?}");
+        }
+        assert!(
+            timed
+                .phases
+                .iter()
+                .all(|(_, ms)| ms.is_finite() && *ms >= 0.0)
+        );
+        assert_eq!(fingerprint(&plain), fingerprint(&timed));
     }
 }

@@ -1,8 +1,8 @@
-//! Per-stage wall times of one cut, for profiling the benchmark.
+//! Per-stage wall times of one cut, returned in [`crate::CutResult::phases`] when
+//! [`crate::CutOptions::time_phases`] asks for them (the benchmark prints them; the crate itself
+//! prints nothing).
 
-/// Per-stage wall times of one cut, printed to stderr when the environment variable
-/// `CUTAWAY_CUT_PHASES` is set (for profiling the benchmark; never in tests). Off, it costs a
-/// clock read per cut.
+/// Per-stage wall times of one cut. Off, it costs a clock read per cut.
 pub(crate) struct Phases {
     pub(crate) on: bool,
     start: std::time::Instant,
@@ -11,9 +11,7 @@ pub(crate) struct Phases {
 }
 
 impl Phases {
-    pub(crate) fn new() -> Phases {
-        static ON: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-        let on = *ON.get_or_init(|| std::env::var_os("CUTAWAY_CUT_PHASES").is_some());
+    pub(crate) fn new(on: bool) -> Phases {
         let now = std::time::Instant::now();
         Phases {
             on,
@@ -47,16 +45,14 @@ impl Phases {
         }
     }
 
-    pub(crate) fn print(&self) {
-        if self.on {
-            let total = self.start.elapsed().as_secs_f64() * 1e3;
-            let parts: Vec<String> = self
-                .marks
-                .iter()
-                .map(|(n, ms)| format!("{n} {ms:.3}"))
-                .collect();
-            eprintln!("cut phases ms: total {total:.3} | {}", parts.join(" | "));
+    /// The stages in the order they ran, after a first `("total", ms)` entry; empty when off.
+    pub(crate) fn into_marks(mut self) -> Vec<(&'static str, f64)> {
+        if !self.on {
+            return Vec::new();
         }
+        let total = self.start.elapsed().as_secs_f64() * 1e3;
+        self.marks.insert(0, ("total", total));
+        self.marks
     }
 }
 
