@@ -8,6 +8,7 @@ pub mod assets;
 pub mod cli;
 pub mod cutaway_geometry;
 pub mod default_anatomy;
+pub mod errors;
 pub mod export;
 pub mod gesture;
 pub mod gui;

@@ -481,13 +481,32 @@ pub fn save(path: &Path, scene: &Scene) -> anyhow::Result<()> {
     let meshes = crate::session_meshes::write_meshes(path, scene)
         .with_context(|| format!("{}", path.display()))?;
     let mut file = file_from_scene(scene, folder);
-    crate::session_meshes::point_entries(&mut file, scene, &meshes, folder);
+    point_entries(&mut file, scene, &meshes, folder);
     let mut text =
         serde_json::to_string_pretty(&file).with_context(|| format!("{}", path.display()))?;
     text.push('\n');
     crate::io::write_file(path, text.as_bytes())?;
     crate::session_meshes::remove_stale(path, &meshes);
     Ok(())
+}
+
+/// Points the entries of models with a mesh file of their own (from [`crate::session_meshes::write_meshes`]) at that
+/// file: path relative to `folder` (the session's folder), `exact`, region 0, the model's name.
+fn point_entries(
+    file: &mut SessionFile,
+    scene: &Scene,
+    written: &[Option<PathBuf>],
+    folder: &Path,
+) {
+    for ((entry, model), path) in file.models.iter_mut().zip(&scene.models).zip(written) {
+        if let Some(path) = path {
+            entry.path = relative_path(path, folder);
+            entry.region = Some(0);
+            entry.structure = None;
+            entry.exact = true;
+            entry.name = Some(model.name.clone());
+        }
+    }
 }
 
 /// `path` relative to `folder` when both can be made absolute and share a root; else `path` made

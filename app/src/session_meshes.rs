@@ -33,7 +33,6 @@ use anyhow::Context as _;
 use csg::Mesh;
 
 use crate::scene::{MeshOrigin, Scene};
-use crate::session::SessionFile;
 
 /// The folder holding a session's own meshes: `<session stem>.meshes` next to the session file.
 pub fn mesh_dir(session: &Path) -> PathBuf {
@@ -69,25 +68,6 @@ pub fn write_meshes(session: &Path, scene: &Scene) -> anyhow::Result<Vec<Option<
         written.push(Some(path));
     }
     Ok(written)
-}
-
-/// Points the entries of models with a mesh file of their own (from [`write_meshes`]) at that
-/// file: path relative to `folder` (the session's folder), `exact`, region 0, the model's name.
-pub fn point_entries(
-    file: &mut SessionFile,
-    scene: &Scene,
-    written: &[Option<PathBuf>],
-    folder: &Path,
-) {
-    for ((entry, model), path) in file.models.iter_mut().zip(&scene.models).zip(written) {
-        if let Some(path) = path {
-            entry.path = crate::session::relative_path(path, folder);
-            entry.region = Some(0);
-            entry.structure = None;
-            entry.exact = true;
-            entry.name = Some(model.name.clone());
-        }
-    }
 }
 
 /// Deletes the mesh files in [`mesh_dir`] of `session` that `written` does not name (left from

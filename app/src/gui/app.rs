@@ -299,7 +299,7 @@ impl CutawayApp {
 
     /// Sets an error message (one line, kept until the next message).
     pub fn complain(&mut self, error: &anyhow::Error) {
-        self.status.message = crate::cli::error_line(error);
+        self.status.message = crate::errors::error_line(error);
         self.status.is_error = true;
     }
 
