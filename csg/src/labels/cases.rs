@@ -14,8 +14,17 @@
 //!    outside the mask, and the two cubes sharing a face traverse the segment in opposite
 //!    directions.
 //!
-//! Segments that share a crossing edge form the cube's polygons (closed loops). The extractor
-//! closes each polygon with a fan from one centre vertex.
+//! Segments that share a crossing edge form the cube's polygons (closed loops). A cube whose only
+//! polygon is a triangle or a quadrilateral is filled without a centre vertex (one triangle, or
+//! two split along a diagonal that crosses the cube's interior); every other polygon is closed
+//! with a fan from its own centre vertex.
+//!
+//! Why the direct fill stays free of self-intersection: its vertices stay on their cube edges, so
+//! its triangles lie in the closed cube and meet a neighbouring cube only along the face segments
+//! they share; the diagonal of a quadrilateral never lies in a cube face (checked when the table
+//! is built), and the two triangles of a quadrilateral project onto a convex quadrilateral
+//! (the cube's only 4-sided polygons cut off an edge or a face of corners, whose crossing edges
+//! lie on two parallel lines or are parallel), so they share the diagonal and nothing else.
 
 use std::sync::OnceLock;
 
@@ -78,6 +87,9 @@ pub struct Polygon {
     pub hi: DVec3,
     /// Mean of the polygon's edge midpoints (the centre vertex's raw position).
     pub centre: DVec3,
+    /// Triangles over cube edges, counter-clockwise seen from outside, when the polygon is filled
+    /// without a centre vertex (the cube's only polygon, with 3 or 4 sides); empty for a fan.
+    pub direct: Vec<[u8; 3]>,
 }
 
 /// The polygons of all 256 configurations (built once).
@@ -162,9 +174,52 @@ fn polygons(config: u8) -> Vec<Polygon> {
             p.lo = lo;
             p.hi = hi;
             p.centre = mids.iter().sum::<DVec3>() / mids.len() as f64;
+            if alone {
+                p.direct = direct_triangles(&p.segments);
+            }
             p
         })
         .collect()
+}
+
+/// The loop's edges in order, following the segments from the first one.
+fn loop_order(segments: &[[u8; 2]]) -> Vec<u8> {
+    let mut order = vec![segments[0][0]];
+    while order.len() < segments.len() {
+        let last = *order.last().unwrap_or(&segments[0][0]);
+        match segments.iter().find(|s| s[0] == last) {
+            Some(s) => order.push(s[1]),
+            None => break,
+        }
+    }
+    order
+}
+
+/// True when cube edges `a` and `b` lie on a common cube face.
+fn share_face(a: usize, b: usize) -> bool {
+    FACES.iter().any(|(corners, _)| {
+        let on = |e: usize| EDGE_CORNERS[e].iter().all(|c| corners.contains(c));
+        on(a) && on(b)
+    })
+}
+
+/// Triangles filling a 3- or 4-sided loop without a centre vertex, or none when the loop has more
+/// sides or both diagonals of a quadrilateral lie in cube faces.
+fn direct_triangles(segments: &[[u8; 2]]) -> Vec<[u8; 3]> {
+    let order = loop_order(segments);
+    match order.as_slice() {
+        &[a, b, c] if segments.len() == 3 => vec![[a, b, c]],
+        &[a, b, c, d] if segments.len() == 4 => {
+            if !share_face(a as usize, c as usize) {
+                vec![[a, b, c], [a, c, d]]
+            } else if !share_face(b as usize, d as usize) {
+                vec![[b, c, d], [b, d, a]]
+            } else {
+                Vec::new()
+            }
+        }
+        _ => Vec::new(),
+    }
 }
 
 /// The cube edge along face side `k` (from `corners[k]` to `corners[k + 1]`).
@@ -201,6 +256,51 @@ mod tests {
                 assert_eq!(used[e], crossing as i32, "config {config:#010b} edge {e}");
             }
         }
+    }
+
+    /// The direct fill covers exactly the loop: each of its sides is a polygon segment traversed
+    /// once in the same direction, or a diagonal traversed once each way; quadrilaterals are the
+    /// corner-pair and face-of-four cuts.
+    #[test]
+    fn direct_fill_matches_its_loop() {
+        let mut quads = 0;
+        for config in 0..=255u8 {
+            let polygons = &table()[config as usize];
+            for p in polygons {
+                if p.direct.is_empty() {
+                    assert!(
+                        polygons.len() > 1 || p.segments.len() > 4,
+                        "config {config:#010b}"
+                    );
+                    continue;
+                }
+                assert_eq!(polygons.len(), 1);
+                assert_eq!(p.direct.len(), p.segments.len() - 2);
+                let mut sides: Vec<[u8; 2]> = p
+                    .direct
+                    .iter()
+                    .flat_map(|&[a, b, c]| [[a, b], [b, c], [c, a]])
+                    .collect();
+                for s in &p.segments {
+                    let at = sides.iter().position(|x| x == s).expect("segment kept");
+                    sides.swap_remove(at);
+                }
+                if let [[a, b], [c, d]] = sides[..] {
+                    assert_eq!((a, b), (d, c), "config {config:#010b}");
+                    assert!(!share_face(a as usize, b as usize));
+                    let inside = config.count_ones();
+                    assert!(
+                        inside == 2 || inside == 4 || inside == 6,
+                        "config {config:#010b}"
+                    );
+                    quads += 1;
+                } else {
+                    assert!(sides.is_empty(), "config {config:#010b}");
+                }
+            }
+        }
+        // 12 corner pairs and 3 faces of four, each with its complement.
+        assert_eq!(quads, 30);
     }
 
     #[test]

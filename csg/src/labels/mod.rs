@@ -12,9 +12,11 @@
 //! construction:
 //! - every ambiguous cube face (inside corners on a diagonal) separates the inside corners, on
 //!   both cubes sharing the face, so the face segments of neighbouring cubes agree;
-//! - each polygon a cube cuts is closed by a fan from its own centre vertex (no diagonals), so
-//!   every mesh edge is either a face segment (shared by exactly the two cubes of that face) or a
-//!   spoke to a centre that only its own polygon uses.
+//! - a cube's only polygon, when it has 3 or 4 sides (most cubes of a smooth boundary), is one
+//!   triangle or two split along a diagonal through the cube's interior; every other polygon is
+//!   closed by a fan from its own centre vertex. So every mesh edge is either a face segment
+//!   (shared by exactly the two cubes of that face) or lies inside one cube and is used only by
+//!   that cube's polygon.
 //!
 //! Two voxels that touch only along an edge or at a corner therefore get two separate sheets
 //! (the mask is read with 6-connectivity), never a pinched edge or vertex. Voxels outside the
@@ -32,6 +34,9 @@
 //! One pass over the grid finds each label's voxel count and bounding box ([`scan`]); each label
 //! is then extracted inside its box padded by one voxel, two voxel slices at a time, so no
 //! buffer of the full grid is allocated per label. Labels run in parallel, largest first.
+//! Smoothing, the dominant cost, streams `f32` positions in box coordinates (exact enough for a
+//! box of a few thousand voxels, half the bytes of `f64`); the output mesh is `f64` world
+//! coordinates as everywhere in `csg`.
 
 mod cases;
 mod extract;
@@ -42,7 +47,7 @@ mod tests;
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
-use glam::{DAffine3, DVec3};
+use glam::{DAffine3, DVec3, Vec3};
 use rayon::prelude::*;
 
 use crate::mesh::Mesh;
@@ -291,15 +296,19 @@ pub fn label_counts<T: LabelValue>(grid: &LabelGrid<T>) -> Vec<(u32, u64)> {
         .collect()
 }
 
-/// A surface under construction, in voxel coordinates, with each vertex's constraint box.
+/// A surface under construction, in the label box's voxel coordinates, with each vertex's
+/// constraint box. Box coordinates are small integers plus fractions, so `f32` holds them to
+/// about 10⁻⁵ voxel and halves the memory the smoothing passes stream through.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct VoxelSurface {
-    /// Vertex positions in voxel index space.
-    pub positions: Vec<DVec3>,
+    /// Voxel index of the box's local origin: local `p` is voxel `origin + p`.
+    pub origin: DVec3,
+    /// Vertex positions in local voxel coordinates.
+    pub positions: Vec<Vec3>,
     /// Per vertex, the lowest corner of the box it must stay in. Same length as `positions`.
-    pub lo: Vec<DVec3>,
+    pub lo: Vec<Vec3>,
     /// Per vertex, the highest corner of that box. Same length as `positions`.
-    pub hi: Vec<DVec3>,
+    pub hi: Vec<Vec3>,
     /// Triangles, counter-clockwise seen from outside in voxel index space.
     pub triangles: Vec<[u32; 3]>,
 }
@@ -311,7 +320,7 @@ impl VoxelSurface {
         let positions = self
             .positions
             .iter()
-            .map(|&p| world_from_voxel.transform_point3(p))
+            .map(|&p| world_from_voxel.transform_point3(self.origin + p.as_dvec3()))
             .collect();
         let triangles = if flip {
             self.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect()
