@@ -15,16 +15,17 @@
 //!    directions.
 //!
 //! Segments that share a crossing edge form the cube's polygons (closed loops). A cube whose only
-//! polygon is a triangle or a quadrilateral is filled without a centre vertex (one triangle, or
-//! two split along a diagonal that crosses the cube's interior); every other polygon is closed
-//! with a fan from its own centre vertex.
+//! polygon is a triangle or a quadrilateral keeps it as such, without a centre vertex (the
+//! quadrilateral is split into two triangles after smoothing, along its shorter diagonal, so the
+//! split does not depend on how the grid's axes are ordered or flipped); every other polygon is
+//! closed with a fan from its own centre vertex.
 //!
 //! Why the direct fill stays free of self-intersection: its vertices stay on their cube edges, so
 //! its triangles lie in the closed cube and meet a neighbouring cube only along the face segments
-//! they share; the diagonal of a quadrilateral never lies in a cube face (checked when the table
-//! is built), and the two triangles of a quadrilateral project onto a convex quadrilateral
-//! (the cube's only 4-sided polygons cut off an edge or a face of corners, whose crossing edges
-//! lie on two parallel lines or are parallel), so they share the diagonal and nothing else.
+//! they share; neither diagonal of a quadrilateral lies in a cube face (checked by the tests), and
+//! the two triangles of a quadrilateral project onto a convex quadrilateral (the cube's only
+//! 4-sided polygons cut off an edge or a face of corners, whose crossing edges lie on two parallel
+//! planes or are parallel), so they share the diagonal and nothing else, whichever is chosen.
 
 use std::sync::OnceLock;
 
@@ -87,9 +88,9 @@ pub struct Polygon {
     pub hi: DVec3,
     /// Mean of the polygon's edge midpoints (the centre vertex's raw position).
     pub centre: DVec3,
-    /// Triangles over cube edges, counter-clockwise seen from outside, when the polygon is filled
-    /// without a centre vertex (the cube's only polygon, with 3 or 4 sides); empty for a fan.
-    pub direct: Vec<[u8; 3]>,
+    /// The loop's cube edges in order (counter-clockwise seen from outside) when the polygon is
+    /// kept without a centre vertex (the cube's only polygon, with 3 or 4 sides); empty for a fan.
+    pub direct: Vec<u8>,
 }
 
 /// The polygons of all 256 configurations (built once).
@@ -174,8 +175,8 @@ fn polygons(config: u8) -> Vec<Polygon> {
             p.lo = lo;
             p.hi = hi;
             p.centre = mids.iter().sum::<DVec3>() / mids.len() as f64;
-            if alone {
-                p.direct = direct_triangles(&p.segments);
+            if alone && (3..=4).contains(&p.segments.len()) {
+                p.direct = loop_order(&p.segments);
             }
             p
         })
@@ -193,33 +194,6 @@ fn loop_order(segments: &[[u8; 2]]) -> Vec<u8> {
         }
     }
     order
-}
-
-/// True when cube edges `a` and `b` lie on a common cube face.
-fn share_face(a: usize, b: usize) -> bool {
-    FACES.iter().any(|(corners, _)| {
-        let on = |e: usize| EDGE_CORNERS[e].iter().all(|c| corners.contains(c));
-        on(a) && on(b)
-    })
-}
-
-/// Triangles filling a 3- or 4-sided loop without a centre vertex, or none when the loop has more
-/// sides or both diagonals of a quadrilateral lie in cube faces.
-fn direct_triangles(segments: &[[u8; 2]]) -> Vec<[u8; 3]> {
-    let order = loop_order(segments);
-    match order.as_slice() {
-        &[a, b, c] if segments.len() == 3 => vec![[a, b, c]],
-        &[a, b, c, d] if segments.len() == 4 => {
-            if !share_face(a as usize, c as usize) {
-                vec![[a, b, c], [a, c, d]]
-            } else if !share_face(b as usize, d as usize) {
-                vec![[b, c, d], [b, d, a]]
-            } else {
-                Vec::new()
-            }
-        }
-        _ => Vec::new(),
-    }
 }
 
 /// The cube edge along face side `k` (from `corners[k]` to `corners[k + 1]`).
@@ -258,44 +232,41 @@ mod tests {
         }
     }
 
-    /// The direct fill covers exactly the loop: each of its sides is a polygon segment traversed
-    /// once in the same direction, or a diagonal traversed once each way; quadrilaterals are the
-    /// corner-pair and face-of-four cuts.
+    /// True when cube edges `a` and `b` lie on a common cube face.
+    fn share_face(a: usize, b: usize) -> bool {
+        FACES.iter().any(|(corners, _)| {
+            let on = |e: usize| EDGE_CORNERS[e].iter().all(|c| corners.contains(c));
+            on(a) && on(b)
+        })
+    }
+
+    /// A direct loop runs along its polygon's segments; neither diagonal of a quadrilateral lies
+    /// in a cube face; the quadrilaterals are the corner-pair and face-of-four cuts.
     #[test]
-    fn direct_fill_matches_its_loop() {
+    fn direct_loops_follow_their_segments() {
         let mut quads = 0;
         for config in 0..=255u8 {
             let polygons = &table()[config as usize];
             for p in polygons {
                 if p.direct.is_empty() {
-                    assert!(
-                        polygons.len() > 1 || p.segments.len() > 4,
-                        "config {config:#010b}"
-                    );
+                    assert!(polygons.len() > 1 || p.segments.len() > 4, "config {config:#010b}");
                     continue;
                 }
                 assert_eq!(polygons.len(), 1);
-                assert_eq!(p.direct.len(), p.segments.len() - 2);
-                let mut sides: Vec<[u8; 2]> = p
-                    .direct
-                    .iter()
-                    .flat_map(|&[a, b, c]| [[a, b], [b, c], [c, a]])
-                    .collect();
-                for s in &p.segments {
-                    let at = sides.iter().position(|x| x == s).expect("segment kept");
-                    sides.swap_remove(at);
+                let n = p.direct.len();
+                assert_eq!(n, p.segments.len());
+                for k in 0..n {
+                    let side = [p.direct[k], p.direct[(k + 1) % n]];
+                    assert!(p.segments.contains(&side), "config {config:#010b}");
                 }
-                if let [[a, b], [c, d]] = sides[..] {
-                    assert_eq!((a, b), (d, c), "config {config:#010b}");
-                    assert!(!share_face(a as usize, b as usize));
+                if n == 4 {
+                    for k in 0..2 {
+                        let (a, b) = (p.direct[k] as usize, p.direct[k + 2] as usize);
+                        assert!(!share_face(a, b), "config {config:#010b}");
+                    }
                     let inside = config.count_ones();
-                    assert!(
-                        inside == 2 || inside == 4 || inside == 6,
-                        "config {config:#010b}"
-                    );
+                    assert!(inside == 2 || inside == 4 || inside == 6, "config {config:#010b}");
                     quads += 1;
-                } else {
-                    assert!(sides.is_empty(), "config {config:#010b}");
                 }
             }
         }

@@ -11,7 +11,7 @@
 //! triangle per segment). Edge vertex ids live in rolling buffers of
 //! two slices, so memory is O(box slice), never O(grid).
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 
 use super::cases::{self, EDGE_CORNERS};
 use super::scan::LabelStats;
@@ -22,7 +22,7 @@ const NONE: u32 = u32::MAX;
 
 /// How far an edge vertex stays from the voxel centres at the ends of its edge (in voxels), so
 /// that smoothing cannot collapse a triangle onto a voxel centre.
-pub const EDGE_MARGIN: f32 = 0.05;
+pub const EDGE_MARGIN: f64 = 0.05;
 
 /// Edge vertex ids of the current layer of cubes: x- and y-edges of its low and high slices (the
 /// x-edge of local voxel `(u, v)` at `2 * (u + width * v)`, its y-edge at the next index), and the
@@ -118,7 +118,7 @@ pub fn extract_label<T: LabelValue>(
                 if config == 0 || config == 255 {
                     continue;
                 }
-                let cube = Vec3::new(u as f32, v as f32, w as f32);
+                let cube = DVec3::new(u as f64, v as f64, w as f64);
                 let mut vertex = |out: &mut VoxelSurface, e: u8| {
                     let slot = edges.slot(u, v, e);
                     if *slot == NONE {
@@ -128,21 +128,23 @@ pub fn extract_label<T: LabelValue>(
                     *slot
                 };
                 for polygon in &table[config as usize] {
-                    if !polygon.direct.is_empty() {
-                        for &[a, b, c] in &polygon.direct {
-                            let t = [
-                                vertex(&mut out, a),
-                                vertex(&mut out, b),
-                                vertex(&mut out, c),
-                            ];
+                    match polygon.direct[..] {
+                        [a, b, c] => {
+                            let t = [a, b, c].map(|e| vertex(&mut out, e));
                             out.triangles.push(t);
+                            continue;
                         }
-                        continue;
+                        [a, b, c, d] => {
+                            let q = [a, b, c, d].map(|e| vertex(&mut out, e));
+                            out.quads.push(q);
+                            continue;
+                        }
+                        _ => {}
                     }
                     let centre = out.positions.len() as u32;
-                    out.positions.push(cube + polygon.centre.as_vec3());
-                    out.lo.push(cube + polygon.lo.as_vec3());
-                    out.hi.push(cube + polygon.hi.as_vec3());
+                    out.positions.push(cube + polygon.centre);
+                    out.lo.push(cube + polygon.lo);
+                    out.hi.push(cube + polygon.hi);
                     for &[from, to] in &polygon.segments {
                         let (a, b) = (vertex(&mut out, from), vertex(&mut out, to));
                         out.triangles.push([centre, a, b]);
@@ -164,8 +166,8 @@ pub fn extract_label<T: LabelValue>(
 
 /// Appends the vertex of cube edge `e` at its midpoint, constrained to the edge less
 /// [`EDGE_MARGIN`] at each end.
-fn push_edge_vertex(out: &mut VoxelSurface, cube: Vec3, e: usize) {
-    let [a, b] = EDGE_CORNERS[e].map(|c| cube + cases::corner(c).as_vec3());
+fn push_edge_vertex(out: &mut VoxelSurface, cube: DVec3, e: usize) {
+    let [a, b] = EDGE_CORNERS[e].map(|c| cube + cases::corner(c));
     let axis = e / 4;
     let mut lo = a.min(b);
     let mut hi = a.max(b);
