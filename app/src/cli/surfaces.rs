@@ -221,10 +221,7 @@ fn is_surface_file_name(name: &str) -> bool {
     let known_ext = [MeshFormat::Ply, MeshFormat::Obj, MeshFormat::Stl]
         .iter()
         .any(|f| f.extension() == ext);
-    known_ext
-        && !value.is_empty()
-        && value.bytes().all(|b| b.is_ascii_digit())
-        && !rest.is_empty()
+    known_ext && !value.is_empty() && value.bytes().all(|b| b.is_ascii_digit()) && !rest.is_empty()
 }
 
 #[cfg(test)]
@@ -247,10 +244,22 @@ mod tests {
 
     #[test]
     fn surface_file_names_are_recognised() {
-        for name in ["1_right_lung.ply", "4_Left-Hippocampus_layer1.obj", "17_label.stl"] {
+        for name in [
+            "1_right_lung.ply",
+            "4_Left-Hippocampus_layer1.obj",
+            "17_label.stl",
+        ] {
             assert!(is_surface_file_name(name), "{name}");
         }
-        for name in ["notes.txt", "1_a.vtk", "a_1.ply", "_x.ply", "12_.ply", "12.ply", "x1_a.ply"] {
+        for name in [
+            "notes.txt",
+            "1_a.vtk",
+            "a_1.ply",
+            "_x.ply",
+            "12_.ply",
+            "12.ply",
+            "x1_a.ply",
+        ] {
             assert!(!is_surface_file_name(name), "{name}");
         }
     }

@@ -249,7 +249,10 @@ mod tests {
             let polygons = &table()[config as usize];
             for p in polygons {
                 if p.direct.is_empty() {
-                    assert!(polygons.len() > 1 || p.segments.len() > 4, "config {config:#010b}");
+                    assert!(
+                        polygons.len() > 1 || p.segments.len() > 4,
+                        "config {config:#010b}"
+                    );
                     continue;
                 }
                 assert_eq!(polygons.len(), 1);
@@ -265,7 +268,10 @@ mod tests {
                         assert!(!share_face(a, b), "config {config:#010b}");
                     }
                     let inside = config.count_ones();
-                    assert!(inside == 2 || inside == 4 || inside == 6, "config {config:#010b}");
+                    assert!(
+                        inside == 2 || inside == 4 || inside == 6,
+                        "config {config:#010b}"
+                    );
                     quads += 1;
                 }
             }
