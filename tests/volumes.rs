@@ -209,6 +209,13 @@ fn sorted<const N: usize>(mut names: [&str; N]) -> [&str; N] {
 fn surfaces_writes_one_closed_named_mesh_per_label() {
     let Some(dir) = volumes() else { return };
     let out = scratch("surfaces");
+    // An earlier, larger run (another format too) and a file of the user's in the folder: the
+    // earlier surfaces are replaced as a whole, the user's file stays.
+    std::fs::create_dir_all(&out).unwrap();
+    for stale in ["99_old_structure.obj", "3_thoracic_vertebral_column.ply"] {
+        std::fs::write(out.join(stale), "stale").unwrap();
+    }
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
     let volume = dir.join("slicerio_chest/Segmentation.seg.nrrd");
     let json = run_json(&[
         "surfaces".as_ref(),
@@ -265,8 +272,15 @@ fn surfaces_writes_one_closed_named_mesh_per_label() {
         ]
     );
     assert_eq!(entries[4]["color"], serde_json::json!([22, 197, 71]));
-    // Nothing but the named files is left in the folder (no temporary files).
-    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 7);
+    // Nothing but the named files and the user's is left in the folder (no temporary files,
+    // nothing of the earlier run).
+    let mut left: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    names.push("notes.txt".into());
+    assert_eq!(left, names);
     std::fs::remove_dir_all(&out).ok();
 }
 

@@ -1,9 +1,9 @@
 //! Colours for structures by anatomical name, so a folder of atlas files opens looking like
 //! anatomy (ventricles blue, hippocampus yellow, muscle red) instead of in random hues.
 //!
-//! The table is data, `assets/anatomy_colors.txt` (values after 3D Slicer's public
-//! GenericAnatomyColors table; provenance in `assets/README.md`), compiled into the binary and
-//! parsed once. A structure's colour is, in order: the colour its file gives it, the colour of
+//! The table is data, `assets/anatomy_colors.txt` (values from 3D Slicer's public
+//! GenericAnatomyColors and SPL brain atlas tables; provenance in `assets/README.md`), compiled
+//! into the binary and parsed once. A structure's colour is, in order: the colour its file gives it, the colour of
 //! the best-matching entry of this table ([`color_for_name`]), a distinct palette colour
 //! ([`structure_color`]).
 
@@ -109,7 +109,7 @@ mod tests {
         let horn = color_for_name("temporal horn of left lateral ventricle").map(rgb);
         assert_eq!(horn, Some([88, 106, 215]));
         let cerebellar = color_for_name("white matter of left hemisphere of cerebellum").map(rgb);
-        assert_eq!(cerebellar, Some([180, 210, 120]));
+        assert_eq!(cerebellar, Some([194, 195, 164]));
         assert_eq!(
             color_for_name("white matter").map(rgb),
             Some([250, 250, 210])

@@ -7,8 +7,8 @@
 //! smoothing), median of 3 runs, then runs the peer script `label_surfaces.py` from
 //! `CUTAWAY_PEERBENCH` (VTK's vtkSurfaceNets3D and the classic flying edges + windowed sinc) on
 //! the same volume and prints both and the ratios. Without python/vtk the peer is skipped with the
-//! reason printed. Also prints the distribution of per-label volume and centroid errors against
-//! the voxels.
+//! reason printed. Also prints the peak resident memory against the goal (volume bytes + twice the
+//! output meshes) and the distribution of per-label volume and centroid errors against the voxels.
 
 #[path = "../tests/label_atlas/nrrd.rs"]
 mod nrrd;
@@ -39,6 +39,8 @@ fn main() {
     let mut runs = Vec::new();
     let mut last = None;
     for _ in 0..RUNS {
+        // The previous run's volume and surfaces go first, so the peak below is one run's.
+        drop(last.take());
         let start = Instant::now();
         let volume = nrrd::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let read_s = start.elapsed().as_secs_f64();
@@ -51,7 +53,16 @@ fn main() {
     runs.sort_by(|a, b| a.0.total_cmp(&b.0));
     let (total_s, read_s) = runs[RUNS / 2];
     let (volume, surfaces) = last.expect("at least one run");
+    let peak = peak_resident_bytes();
     let triangles: usize = surfaces.iter().map(|s| s.mesh.triangle_count()).sum();
+    let volume_bytes = std::mem::size_of_val(volume.data.as_slice());
+    let mesh_bytes: usize = surfaces
+        .iter()
+        .map(|s| {
+            std::mem::size_of_val(s.mesh.positions.as_slice())
+                + std::mem::size_of_val(s.mesh.triangles.as_slice())
+        })
+        .sum();
     println!(
         "cutaway  read+surfaces {:8.1} ms (read {:.1} ms), {} labels, {} triangles",
         total_s * 1e3,
@@ -59,6 +70,18 @@ fn main() {
         surfaces.len(),
         triangles
     );
+    let budget = volume_bytes + 2 * mesh_bytes;
+    match peak {
+        Some(peak) => println!(
+            "memory   peak resident {:.1} MB; volume {:.1} MB + 2 x meshes {:.1} MB = {:.1} MB (peak / that = {:.2})",
+            peak as f64 / 1e6,
+            volume_bytes as f64 / 1e6,
+            mesh_bytes as f64 / 1e6,
+            budget as f64 / 1e6,
+            peak as f64 / budget as f64
+        ),
+        None => println!("memory   peak resident size unknown (no /proc/self/status)"),
+    }
     let errors = error_summary(&volume, &surfaces);
     println!("errors   {errors}");
 
@@ -70,6 +93,9 @@ fn main() {
         "threads": rayon::current_num_threads(),
         "read_s": read_s,
         "total_s": total_s,
+        "peak_resident_bytes": peak,
+        "volume_bytes": volume_bytes,
+        "mesh_bytes": mesh_bytes,
         "errors": errors,
     });
     match peer {
@@ -101,6 +127,15 @@ fn main() {
         std::fs::write(&out, serde_json::to_string_pretty(&report).unwrap())
             .unwrap_or_else(|e| panic!("{}: {e}", out.display()));
     }
+}
+
+/// The process's peak resident set size (`VmHWM`), where the system reports it. It includes
+/// the binary and the allocator's slack, so it is an upper bound on what the surfaces need.
+fn peak_resident_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
 }
 
 /// Runs the VTK peer script on `volume`; its JSON, or why not.

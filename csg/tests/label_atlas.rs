@@ -18,7 +18,7 @@ const ATLAS: &str = "volumes/spl_head_atlas/hncma-atlas.nrrd";
 /// Labels with at least this many voxels keep their voxel volume within [`VOLUME_TOLERANCE`]
 /// and their voxel centroid within [`CENTROID_TOLERANCE_VOXELS`]. The atlas's labels of that
 /// size include thin structures one or two voxels across, where marching cubes through the edge
-/// midpoints loses most at convex voxel edges (measured maximum 7.4 % and 0.53 voxel at the
+/// midpoints loses most at convex voxel edges (measured maximum 7.5 % and 0.51 voxel at the
 /// default smoothing); compact labels keep within 5 % (see the ball test in `csg::labels`).
 const LARGE: u64 = 1000;
 const VOLUME_TOLERANCE: f64 = 0.08;

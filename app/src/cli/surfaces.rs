@@ -3,7 +3,10 @@
 //! `DIR/<value>_<name>.<ext>` (see `../shared/CONTRACT.md`).
 //!
 //! The files are written as one output set (`io::atomic`): an error (a full disk, a bad label)
-//! leaves none of the new files behind, and a kill leaves the old set or the new one.
+//! leaves none of the new files behind, and a kill leaves the old set or the new one. The set
+//! replaces the surfaces of an earlier run in DIR: files named like ours (`<digits>_<name>.` and a
+//! mesh extension we write) that the new run does not write are removed at commit; other files in
+//! DIR stay.
 //! `surfaces_ms` is the wall time from opening the volume to the last file renamed.
 
 use std::collections::HashSet;
@@ -185,7 +188,40 @@ fn write_set(dir: &Path, names: &[String], surfaces: &[StructureSurface]) -> any
     for (name, s) in names.iter().zip(surfaces) {
         set.write_mesh(Path::new(name), &s.mesh)?;
     }
+    for earlier in earlier_surface_files(dir)? {
+        set.replace_file(&earlier)?;
+    }
     set.commit()
+}
+
+/// The regular files directly in `dir` named like a surface of an earlier run: `<digits>_`, then
+/// anything, then `.ply`, `.obj` or `.stl`.
+fn earlier_surface_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
+    let entries =
+        std::fs::read_dir(dir).with_context(|| format!("{}: cannot list", dir.display()))?;
+    let mut out = Vec::new();
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(name) = name.to_str() else { continue };
+        if entry.file_type().is_ok_and(|t| t.is_file()) && is_surface_file_name(name) {
+            out.push(PathBuf::from(name));
+        }
+    }
+    Ok(out)
+}
+
+/// True for names [`file_names`] makes: `<digits>_<name>.<ply|obj|stl>`, not hidden.
+fn is_surface_file_name(name: &str) -> bool {
+    let Some((stem, ext)) = name.rsplit_once('.') else {
+        return false;
+    };
+    let Some((value, rest)) = stem.split_once('_') else {
+        return false;
+    };
+    let known_ext = [MeshFormat::Ply, MeshFormat::Obj, MeshFormat::Stl]
+        .iter()
+        .any(|f| f.extension() == ext);
+    known_ext && !value.is_empty() && value.bytes().all(|b| b.is_ascii_digit()) && !rest.is_empty()
 }
 
 #[cfg(test)]
@@ -203,6 +239,28 @@ mod tests {
                 voxels: 1,
             },
             mesh: csg::Mesh::default(),
+        }
+    }
+
+    #[test]
+    fn surface_file_names_are_recognised() {
+        for name in [
+            "1_right_lung.ply",
+            "4_Left-Hippocampus_layer1.obj",
+            "17_label.stl",
+        ] {
+            assert!(is_surface_file_name(name), "{name}");
+        }
+        for name in [
+            "notes.txt",
+            "1_a.vtk",
+            "a_1.ply",
+            "_x.ply",
+            "12_.ply",
+            "12.ply",
+            "x1_a.ply",
+        ] {
+            assert!(!is_surface_file_name(name), "{name}");
         }
     }
 

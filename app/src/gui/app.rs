@@ -633,10 +633,13 @@ impl CutawayApp {
                 dialog = dialog.set_directory(dir);
             }
             let meshes = ["obj", "stl", "ply", "vtk"];
+            // `.seg.nrrd` ends in `nrrd`; `.nii.gz` in `gz` (a filter names one extension).
+            let volumes = ["nrrd", "nhdr", "nii", "gz"];
             let paths: Vec<PathBuf> = pollster::block_on(async move {
                 match purpose {
                     Purpose::LoadModel | Purpose::AddModel => dialog
                         .add_filter("Meshes", &meshes)
+                        .add_filter("Label volumes", &volumes)
                         .add_filter("Session", &["json"])
                         .pick_files()
                         .await

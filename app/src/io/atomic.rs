@@ -16,8 +16,9 @@
 //! 1. **Stage**: every file is written into a hidden staging folder `DIR/.cutaway-set.<pid>-<n>/`
 //!    under its relative path, and flushed to disk.
 //! 2. **Decide**: a marker file `.commit` listing the set's files (and the folders the set
-//!    replaces wholly, see [`OutputSet::replace_folder`]) is written into the staging folder. The
-//!    set is committed from the moment this marker exists.
+//!    replaces wholly, see [`OutputSet::replace_folder`], and the files of an earlier set it
+//!    replaces, see [`OutputSet::replace_file`]) is written into the staging folder. The set is
+//!    committed from the moment this marker exists.
 //! 3. **Move**: each file is renamed from the staging folder into `DIR` (an atomic rename each),
 //!    files the set replaces but does not hold are removed, then the staging folder is removed.
 //!
@@ -185,6 +186,8 @@ pub struct OutputSet {
     staging: PathBuf,
     files: Vec<PathBuf>,
     replaced_folders: Vec<PathBuf>,
+    /// Files of an earlier set that this set replaces: removed at commit unless the set holds them.
+    replaced_files: Vec<PathBuf>,
     /// The commit marker exists: from here on the set is moved in, never rolled back.
     decided: bool,
 }
@@ -204,6 +207,7 @@ impl OutputSet {
             staging,
             files: Vec::new(),
             replaced_folders: Vec::new(),
+            replaced_files: Vec::new(),
             decided: false,
         })
     }
@@ -249,6 +253,16 @@ impl OutputSet {
         Ok(())
     }
 
+    /// The set replaces the file `relative` of an earlier set (one the set's writer recognises as
+    /// its own, for a folder that also holds other files): at commit it is removed unless the set
+    /// holds a file of that name.
+    pub fn replace_file(&mut self, relative: &Path) -> anyhow::Result<()> {
+        check_relative(relative)
+            .with_context(|| self.final_path(relative).display().to_string())?;
+        self.replaced_files.push(relative.to_path_buf());
+        Ok(())
+    }
+
     /// Commits the set: writes the marker, moves every file into place, removes what replaced
     /// folders no longer hold, removes the staging folder.
     pub fn commit(mut self) -> anyhow::Result<()> {
@@ -275,6 +289,9 @@ impl OutputSet {
         }
         for f in &self.replaced_folders {
             marker.push_str(&format!("folder {}\n", f.display()));
+        }
+        for f in &self.replaced_files {
+            marker.push_str(&format!("replace {}\n", f.display()));
         }
         sync_dir(&self.staging);
         write(&self.staging.join(COMMIT_MARKER), |w| {
@@ -344,14 +361,16 @@ fn roll_forward(
         super::bounded::read_text(&staging.join(COMMIT_MARKER), super::bounded::JSON_MAX_BYTES)?;
     let mut files = Vec::new();
     let mut folders = Vec::new();
+    let mut replaced = Vec::new();
     for line in marker.lines() {
         match line.split_once(' ') {
             Some(("file", f)) => files.push(PathBuf::from(f)),
             Some(("folder", f)) => folders.push(PathBuf::from(f)),
+            Some(("replace", f)) => replaced.push(PathBuf::from(f)),
             _ => anyhow::bail!("unreadable commit marker line {line:?}"),
         }
     }
-    for f in files.iter().chain(&folders) {
+    for f in files.iter().chain(&folders).chain(&replaced) {
         check_relative(f)?;
     }
     after_rename(0)?;
@@ -369,6 +388,14 @@ fn roll_forward(
     }
     for folder in &folders {
         remove_unlisted(dir, folder, &files)?;
+    }
+    for relative in replaced.iter().filter(|f| !files.contains(f)) {
+        match std::fs::remove_file(dir.join(relative)) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(e).with_context(|| dir.join(relative).display().to_string());
+            }
+            _ => {}
+        }
     }
     sync_dir(dir);
     std::fs::remove_dir_all(staging)?;
@@ -494,6 +521,31 @@ mod tests {
         let mut set = OutputSet::begin(&dir).unwrap();
         assert!(set.write_bytes(Path::new("../escape"), b"x").is_err());
         assert!(set.write_bytes(Path::new(".hidden"), b"x").is_err());
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn replaced_files_of_an_earlier_set_go_and_other_files_stay() {
+        let dir = temp_dir("replace-files");
+        std::fs::write(dir.join("notes.txt"), "mine").unwrap();
+        let mut set = OutputSet::begin(&dir).unwrap();
+        set.write_bytes(Path::new("1_a.ply"), b"old a").unwrap();
+        set.write_bytes(Path::new("2_b.ply"), b"old b").unwrap();
+        set.commit().unwrap();
+        let mut set = OutputSet::begin(&dir).unwrap();
+        set.write_bytes(Path::new("1_a.ply"), b"new a").unwrap();
+        set.replace_file(Path::new("1_a.ply")).unwrap();
+        set.replace_file(Path::new("2_b.ply")).unwrap();
+        set.replace_file(Path::new("3_gone.ply")).unwrap();
+        assert!(set.replace_file(Path::new("../x.ply")).is_err());
+        set.commit().unwrap();
+        assert_eq!(
+            listing(&dir),
+            [
+                ("1_a.ply".into(), "new a".into()),
+                ("notes.txt".into(), "mine".into())
+            ]
+        );
         std::fs::remove_dir_all(&dir).ok();
     }
 

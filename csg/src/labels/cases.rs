@@ -14,8 +14,18 @@
 //!    outside the mask, and the two cubes sharing a face traverse the segment in opposite
 //!    directions.
 //!
-//! Segments that share a crossing edge form the cube's polygons (closed loops). The extractor
-//! closes each polygon with a fan from one centre vertex.
+//! Segments that share a crossing edge form the cube's polygons (closed loops). A cube whose only
+//! polygon is a triangle or a quadrilateral keeps it as such, without a centre vertex (the
+//! quadrilateral is split into two triangles after smoothing, along its shorter diagonal, so the
+//! split does not depend on how the grid's axes are ordered or flipped); every other polygon is
+//! closed with a fan from its own centre vertex.
+//!
+//! Why the direct fill stays free of self-intersection: its vertices stay on their cube edges, so
+//! its triangles lie in the closed cube and meet a neighbouring cube only along the face segments
+//! they share; neither diagonal of a quadrilateral lies in a cube face (checked by the tests), and
+//! the two triangles of a quadrilateral project onto a convex quadrilateral (the cube's only
+//! 4-sided polygons cut off an edge or a face of corners, whose crossing edges lie on two parallel
+//! planes or are parallel), so they share the diagonal and nothing else, whichever is chosen.
 
 use std::sync::OnceLock;
 
@@ -78,6 +88,9 @@ pub struct Polygon {
     pub hi: DVec3,
     /// Mean of the polygon's edge midpoints (the centre vertex's raw position).
     pub centre: DVec3,
+    /// The loop's cube edges in order (counter-clockwise seen from outside) when the polygon is
+    /// kept without a centre vertex (the cube's only polygon, with 3 or 4 sides); empty for a fan.
+    pub direct: Vec<u8>,
 }
 
 /// The polygons of all 256 configurations (built once).
@@ -162,9 +175,25 @@ fn polygons(config: u8) -> Vec<Polygon> {
             p.lo = lo;
             p.hi = hi;
             p.centre = mids.iter().sum::<DVec3>() / mids.len() as f64;
+            if alone && (3..=4).contains(&p.segments.len()) {
+                p.direct = loop_order(&p.segments);
+            }
             p
         })
         .collect()
+}
+
+/// The loop's edges in order, following the segments from the first one.
+fn loop_order(segments: &[[u8; 2]]) -> Vec<u8> {
+    let mut order = vec![segments[0][0]];
+    while order.len() < segments.len() {
+        let last = *order.last().unwrap_or(&segments[0][0]);
+        match segments.iter().find(|s| s[0] == last) {
+            Some(s) => order.push(s[1]),
+            None => break,
+        }
+    }
+    order
 }
 
 /// The cube edge along face side `k` (from `corners[k]` to `corners[k + 1]`).
@@ -201,6 +230,54 @@ mod tests {
                 assert_eq!(used[e], crossing as i32, "config {config:#010b} edge {e}");
             }
         }
+    }
+
+    /// True when cube edges `a` and `b` lie on a common cube face.
+    fn share_face(a: usize, b: usize) -> bool {
+        FACES.iter().any(|(corners, _)| {
+            let on = |e: usize| EDGE_CORNERS[e].iter().all(|c| corners.contains(c));
+            on(a) && on(b)
+        })
+    }
+
+    /// A direct loop runs along its polygon's segments; neither diagonal of a quadrilateral lies
+    /// in a cube face; the quadrilaterals are the corner-pair and face-of-four cuts.
+    #[test]
+    fn direct_loops_follow_their_segments() {
+        let mut quads = 0;
+        for config in 0..=255u8 {
+            let polygons = &table()[config as usize];
+            for p in polygons {
+                if p.direct.is_empty() {
+                    assert!(
+                        polygons.len() > 1 || p.segments.len() > 4,
+                        "config {config:#010b}"
+                    );
+                    continue;
+                }
+                assert_eq!(polygons.len(), 1);
+                let n = p.direct.len();
+                assert_eq!(n, p.segments.len());
+                for k in 0..n {
+                    let side = [p.direct[k], p.direct[(k + 1) % n]];
+                    assert!(p.segments.contains(&side), "config {config:#010b}");
+                }
+                if n == 4 {
+                    for k in 0..2 {
+                        let (a, b) = (p.direct[k] as usize, p.direct[k + 2] as usize);
+                        assert!(!share_face(a, b), "config {config:#010b}");
+                    }
+                    let inside = config.count_ones();
+                    assert!(
+                        inside == 2 || inside == 4 || inside == 6,
+                        "config {config:#010b}"
+                    );
+                    quads += 1;
+                }
+            }
+        }
+        // 12 corner pairs and 3 faces of four, each with its complement.
+        assert_eq!(quads, 30);
     }
 
     #[test]

@@ -6,8 +6,9 @@
 //! `(u, v, w)` has local corners `(u..=u+1, v..=v+1, w..=w+1)`.
 //!
 //! Stages per layer of cubes `w`: read slice `w + 1` into a mask, then for each cube look up its
-//! polygons ([`super::cases`]), create its centre vertices and the edge vertices it is the first
-//! to meet, and emit one triangle per polygon segment. Edge vertex ids live in rolling buffers of
+//! polygons ([`super::cases`]), create the edge vertices it is the first to meet (and a centre
+//! vertex per fanned polygon), and emit the polygon's triangles (its direct fill, or one fan
+//! triangle per segment). Edge vertex ids live in rolling buffers of
 //! two slices, so memory is O(box slice), never O(grid).
 
 use glam::DVec3;
@@ -23,13 +24,57 @@ const NONE: u32 = u32::MAX;
 /// that smoothing cannot collapse a triangle onto a voxel centre.
 pub const EDGE_MARGIN: f64 = 0.05;
 
-/// Edge vertex ids of one slice: x-edge of local voxel `(u, v)` at `2 * (u + width * v)`, y-edge
-/// at the next index.
-struct SliceEdges {
-    ids: Vec<u32>,
+/// Edge vertex ids of the current layer of cubes: x- and y-edges of its low and high slices (the
+/// x-edge of local voxel `(u, v)` at `2 * (u + width * v)`, its y-edge at the next index), and the
+/// z-edges between them at `u + width * v`.
+struct LayerEdges {
+    width: usize,
+    xy_lo: Vec<u32>,
+    xy_hi: Vec<u32>,
+    z_mid: Vec<u32>,
 }
 
-/// The raw surface of label `stats.value` in voxel coordinates, with constraint boxes. `None`
+impl LayerEdges {
+    /// The id slot of edge `e` of cube `(u, v)` in this layer.
+    fn slot(&mut self, u: usize, v: usize, e: u8) -> &mut u32 {
+        let width = self.width;
+        match e {
+            0..4 => {
+                let (dv, dz) = ((e & 1) as usize, (e >> 1) as usize);
+                let ids = if dz == 0 {
+                    &mut self.xy_lo
+                } else {
+                    &mut self.xy_hi
+                };
+                &mut ids[2 * (u + width * (v + dv))]
+            }
+            4..8 => {
+                let f = e - 4;
+                let (du, dz) = ((f & 1) as usize, (f >> 1) as usize);
+                let ids = if dz == 0 {
+                    &mut self.xy_lo
+                } else {
+                    &mut self.xy_hi
+                };
+                &mut ids[2 * (u + du + width * v) + 1]
+            }
+            _ => {
+                let f = e - 8;
+                let (du, dv) = ((f & 1) as usize, (f >> 1) as usize);
+                &mut self.z_mid[u + du + width * (v + dv)]
+            }
+        }
+    }
+
+    /// Moves on to the next layer: the high slice becomes the low one.
+    fn advance(&mut self) {
+        std::mem::swap(&mut self.xy_lo, &mut self.xy_hi);
+        self.xy_hi.fill(NONE);
+        self.z_mid.fill(NONE);
+    }
+}
+
+/// The raw surface of label `stats.value` in box coordinates, with constraint boxes. `None`
 /// when it would need more than `u32::MAX` vertices.
 pub fn extract_label<T: LabelValue>(
     grid: &LabelGrid<T>,
@@ -45,14 +90,16 @@ pub fn extract_label<T: LabelValue>(
     let mut mask_lo = vec![0u8; plane];
     let mut mask_hi = vec![0u8; plane];
     read_slice(grid, value, origin, size, 0, &mut mask_lo);
-    let mut xy_lo = SliceEdges {
-        ids: vec![NONE; 2 * plane],
+    let mut edges = LayerEdges {
+        width,
+        xy_lo: vec![NONE; 2 * plane],
+        xy_hi: vec![NONE; 2 * plane],
+        z_mid: vec![NONE; plane],
     };
-    let mut xy_hi = SliceEdges {
-        ids: vec![NONE; 2 * plane],
+    let mut out = VoxelSurface {
+        origin: DVec3::new(origin[0] as f64, origin[1] as f64, origin[2] as f64),
+        ..VoxelSurface::default()
     };
-    let mut z_mid = vec![NONE; plane];
-    let mut out = VoxelSurface::default();
     let mut overflow = false;
 
     for w in 0..depth - 1 {
@@ -71,43 +118,35 @@ pub fn extract_label<T: LabelValue>(
                 if config == 0 || config == 255 {
                     continue;
                 }
-                let cube = DVec3::new(
-                    (u as i64 + origin[0]) as f64,
-                    (v as i64 + origin[1]) as f64,
-                    (w as i64 + origin[2]) as f64,
-                );
+                let cube = DVec3::new(u as f64, v as f64, w as f64);
+                let mut vertex = |out: &mut VoxelSurface, e: u8| {
+                    let slot = edges.slot(u, v, e);
+                    if *slot == NONE {
+                        *slot = out.positions.len() as u32;
+                        push_edge_vertex(out, cube, e as usize);
+                    }
+                    *slot
+                };
                 for polygon in &table[config as usize] {
+                    match polygon.direct[..] {
+                        [a, b, c] => {
+                            let t = [a, b, c].map(|e| vertex(&mut out, e));
+                            out.triangles.push(t);
+                            continue;
+                        }
+                        [a, b, c, d] => {
+                            let q = [a, b, c, d].map(|e| vertex(&mut out, e));
+                            out.quads.push(q);
+                            continue;
+                        }
+                        _ => {}
+                    }
                     let centre = out.positions.len() as u32;
                     out.positions.push(cube + polygon.centre);
                     out.lo.push(cube + polygon.lo);
                     out.hi.push(cube + polygon.hi);
                     for &[from, to] in &polygon.segments {
-                        let mut vertex = |e: u8| {
-                            let slot = match e {
-                                0..4 => {
-                                    let (dv, dz) = ((e & 1) as usize, (e >> 1) as usize);
-                                    let edges = if dz == 0 { &mut xy_lo } else { &mut xy_hi };
-                                    &mut edges.ids[2 * (u + width * (v + dv))]
-                                }
-                                4..8 => {
-                                    let f = e - 4;
-                                    let (du, dz) = ((f & 1) as usize, (f >> 1) as usize);
-                                    let edges = if dz == 0 { &mut xy_lo } else { &mut xy_hi };
-                                    &mut edges.ids[2 * (u + du + width * v) + 1]
-                                }
-                                _ => {
-                                    let f = e - 8;
-                                    let (du, dv) = ((f & 1) as usize, (f >> 1) as usize);
-                                    &mut z_mid[u + du + width * (v + dv)]
-                                }
-                            };
-                            if *slot == NONE {
-                                *slot = out.positions.len() as u32;
-                                push_edge_vertex(&mut out, cube, e as usize);
-                            }
-                            *slot
-                        };
-                        let (a, b) = (vertex(from), vertex(to));
+                        let (a, b) = (vertex(&mut out, from), vertex(&mut out, to));
                         out.triangles.push([centre, a, b]);
                     }
                 }
@@ -120,9 +159,7 @@ pub fn extract_label<T: LabelValue>(
             }
         }
         std::mem::swap(&mut mask_lo, &mut mask_hi);
-        std::mem::swap(&mut xy_lo, &mut xy_hi);
-        xy_hi.ids.fill(NONE);
-        z_mid.fill(NONE);
+        edges.advance();
     }
     Some(out)
 }

@@ -12,9 +12,11 @@
 //! construction:
 //! - every ambiguous cube face (inside corners on a diagonal) separates the inside corners, on
 //!   both cubes sharing the face, so the face segments of neighbouring cubes agree;
-//! - each polygon a cube cuts is closed by a fan from its own centre vertex (no diagonals), so
-//!   every mesh edge is either a face segment (shared by exactly the two cubes of that face) or a
-//!   spoke to a centre that only its own polygon uses.
+//! - a cube's only polygon, when it has 3 or 4 sides (most cubes of a smooth boundary), is one
+//!   triangle or two split along a diagonal through the cube's interior; every other polygon is
+//!   closed by a fan from its own centre vertex. So every mesh edge is either a face segment
+//!   (shared by exactly the two cubes of that face) or lies inside one cube and is used only by
+//!   that cube's polygon.
 //!
 //! Two voxels that touch only along an edge or at a corner therefore get two separate sheets
 //! (the mask is read with 6-connectivity), never a pinched edge or vertex. Voxels outside the
@@ -32,6 +34,9 @@
 //! One pass over the grid finds each label's voxel count and bounding box ([`scan`]); each label
 //! is then extracted inside its box padded by one voxel, two voxel slices at a time, so no
 //! buffer of the full grid is allocated per label. Labels run in parallel, largest first.
+//! Smoothing is the dominant cost: it runs over as few vertices as the surface needs (no centre
+//! vertex where a cube holds one triangle or quadrilateral) and as few passes as remove the
+//! staircase.
 
 mod cases;
 mod extract;
@@ -291,10 +296,14 @@ pub fn label_counts<T: LabelValue>(grid: &LabelGrid<T>) -> Vec<(u32, u64)> {
         .collect()
 }
 
-/// A surface under construction, in voxel coordinates, with each vertex's constraint box.
+/// A surface under construction, in the label box's voxel coordinates, with each vertex's
+/// constraint box. `f64` like the rest of `csg`: with `f32` the roundings of a grid and of the
+/// same grid with an axis flipped differ by about 10⁻⁵ voxel, and the surfaces must be the same.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct VoxelSurface {
-    /// Vertex positions in voxel index space.
+    /// Voxel index of the box's local origin: local `p` is voxel `origin + p`.
+    pub origin: DVec3,
+    /// Vertex positions in local voxel coordinates.
     pub positions: Vec<DVec3>,
     /// Per vertex, the lowest corner of the box it must stay in. Same length as `positions`.
     pub lo: Vec<DVec3>,
@@ -302,22 +311,37 @@ pub(crate) struct VoxelSurface {
     pub hi: Vec<DVec3>,
     /// Triangles, counter-clockwise seen from outside in voxel index space.
     pub triangles: Vec<[u32; 3]>,
+    /// Quadrilaterals (a cube's only polygon with four sides), counter-clockwise seen from
+    /// outside; each becomes two triangles in [`VoxelSurface::into_world`].
+    pub quads: Vec<[u32; 4]>,
 }
 
 impl VoxelSurface {
-    /// The mesh in world coordinates; `flip` reverses every triangle (for a transform with
-    /// negative determinant, which mirrors and so turns outward into inward).
+    /// The mesh in world coordinates; each quadrilateral is split along its shorter diagonal in
+    /// world space (so the split is the same for any order or direction of the grid's axes);
+    /// `flip` reverses every triangle (for a transform with negative determinant, which mirrors
+    /// and so turns outward into inward).
     fn into_world(self, world_from_voxel: &DAffine3, flip: bool) -> Mesh {
-        let positions = self
+        let positions: Vec<DVec3> = self
             .positions
             .iter()
-            .map(|&p| world_from_voxel.transform_point3(p))
+            .map(|&p| world_from_voxel.transform_point3(self.origin + p))
             .collect();
-        let triangles = if flip {
-            self.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect()
-        } else {
-            self.triangles
-        };
+        let mut triangles = self.triangles;
+        triangles.reserve(2 * self.quads.len());
+        for [a, b, c, d] in self.quads {
+            let at = |v: u32| positions[v as usize];
+            if at(a).distance_squared(at(c)) <= at(b).distance_squared(at(d)) {
+                triangles.extend([[a, b, c], [a, c, d]]);
+            } else {
+                triangles.extend([[b, c, d], [b, d, a]]);
+            }
+        }
+        if flip {
+            for t in &mut triangles {
+                t.swap(1, 2);
+            }
+        }
         Mesh {
             positions,
             triangles,
