@@ -20,3 +20,4 @@ pub mod scene;
 pub mod session;
 pub mod session_limits;
 pub mod session_meshes;
+pub mod view;

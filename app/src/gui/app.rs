@@ -135,6 +135,8 @@ pub enum Action {
     RemoveCutter(usize),
     RestoreRecovery,
     DiscardRecovery,
+    /// Turn, zoom or re-orient the view (View menu, view keys).
+    View(super::view_menu::ViewCommand),
 }
 
 /// Result of a background job.
@@ -186,11 +188,13 @@ pub struct StartOptions {
 }
 
 impl StartOptions {
+    /// Files named on the command line are what the user wants to see: no recovery prompt then
+    /// (the autosave stays on disk until the next autosave replaces it).
     pub fn new(paths: Vec<PathBuf>) -> StartOptions {
         StartOptions {
+            offer_recovery: paths.is_empty(),
             paths,
             state_dir: recovery::state_dir(),
-            offer_recovery: true,
         }
     }
 }
@@ -205,8 +209,10 @@ pub struct CutawayApp {
     pub selected_model: Option<usize>,
     /// Index of the cutter whose Visualization settings are shown.
     pub selected_cutter: usize,
-    /// "Hide/Show Current Cutters".
+    /// "Hide/Show Current Cutters": the first `hidden_cutters` scene cutters are hidden (those
+    /// that existed when the user hid them; cutters made afterwards show).
     pub cutters_hidden: bool,
+    pub hidden_cutters: usize,
     /// Undo snapshots are whole scenes (meshes shared); the camera is not part of undo.
     pub history: History<Scene>,
     pub jobs: Vec<Job<JobOutput>>,
@@ -256,6 +262,7 @@ impl CutawayApp {
             selected_model: None,
             selected_cutter: 0,
             cutters_hidden: false,
+            hidden_cutters: 0,
             history: History::default(),
             jobs: Vec::new(),
             recent: RecentFiles::load(&start.state_dir),
@@ -403,6 +410,15 @@ impl CutawayApp {
             Action::RemoveAllCutGeometry => self.remove_all_cut_geometry(ctx),
             Action::ToggleCutters => {
                 self.cutters_hidden = !self.cutters_hidden;
+                self.hidden_cutters = if self.cutters_hidden {
+                    self.scene.cutters.len()
+                } else {
+                    0
+                };
+                if self.cutters_hidden {
+                    // The next drag makes a new, visible cutter instead of editing a hidden one.
+                    self.viewport.editor.finish();
+                }
                 self.say(if self.cutters_hidden {
                     "Cutters hidden"
                 } else {
@@ -410,7 +426,7 @@ impl CutawayApp {
                 });
             }
             Action::ResetCamera => {
-                self.scene.camera = self.scene.framing_camera();
+                self.scene.camera = self.scene.preset_camera(crate::view::ViewPreset::Anterior);
             }
             Action::SelectModel(index) => {
                 self.selected_model = index.filter(|&i| i < self.scene.models.len());
@@ -491,6 +507,7 @@ impl CutawayApp {
                 self.pending_recovery = None;
                 self.recovery.discard();
             }
+            Action::View(command) => super::view_menu::apply(self, command),
         }
     }
 
@@ -531,15 +548,19 @@ impl CutawayApp {
     }
 
     /// Puts the scene state of an undo/redo step into effect (the editor follows the scene); the
-    /// camera is a view, not an edit, and stays where it is.
+    /// camera, the Rendering settings (anaglyph, background) and the orientation are views, not
+    /// edits, and stay as they are: an undo must not turn anaglyph back on.
     fn apply_history_step(&mut self, state: Option<Scene>, done: &str, nothing: &str) {
         let Some(state) = state else {
             self.say(nothing);
             return;
         };
-        let camera = self.scene.camera;
+        let (camera, render, orientation) =
+            (self.scene.camera, self.scene.render, self.scene.orientation);
         self.scene = state;
         self.scene.camera = camera;
+        self.scene.render = render;
+        self.scene.orientation = orientation;
         self.fix_selection();
         self.viewport.editor.sync_from_scene(&self.scene);
         self.recovery.mark_dirty();
@@ -835,18 +856,15 @@ impl CutawayApp {
         }
         let first_new = self.scene.models.len();
         let count = models.len();
-        let front = if crate::default_anatomy::is_default_scene(&models) {
-            crate::default_anatomy::FRONT
-        } else {
-            glam::DVec3::NEG_Y
-        };
+        let default_scene = crate::default_anatomy::is_default_scene(&models);
+        let from_volume = sources.iter().any(|p| crate::io::volume::is_volume(p));
         for (i, model) in models.into_iter().enumerate() {
             let color =
                 crate::anatomy_colors::structure_color(&model.name, model.color, first_new + i);
             self.scene.models.push(SceneModel::structure(model, color));
         }
         if replace {
-            self.scene.camera = self.scene.framing_camera_from(front);
+            super::view_menu::orient_new_scene(self, default_scene, from_volume);
             self.last_committed = self.scene.clone();
             self.recovery.mark_dirty();
         } else {
@@ -910,7 +928,7 @@ impl CutawayApp {
 
     /// In Preview, recompute the cut parts whenever the cutters or their targets changed.
     fn update_preview(&mut self, ctx: &egui::Context) {
-        if self.mode != Mode::Preview || self.scene.cutters.is_empty() {
+        if !super::cut_view::shows_cut(self.mode) || self.scene.cutters.is_empty() {
             return;
         }
         let key = super::bridge::PreviewKey::of(&self.scene);
@@ -1062,6 +1080,7 @@ impl eframe::App for CutawayApp {
         self.poll_jobs(&ctx);
 
         let mut actions = self.shortcuts(&ctx);
+        actions.extend(super::view_menu::view_shortcuts(&ctx));
         actions.extend(self.dropped_files(&ctx));
 
         egui::Panel::top("cutaway-menu").show(ui, |ui| {

@@ -238,9 +238,8 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
             });
         });
         ui.menu_button("View", |ui| {
-            if ui.button("Reset Camera").clicked() {
-                actions.push(Action::ResetCamera);
-            }
+            actions.extend(super::view_menu::view_items_ui(ui, app));
+            ui.separator();
             let label = if app.cutters_hidden {
                 "Show Current Cutters"
             } else {
