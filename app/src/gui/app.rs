@@ -1113,9 +1113,12 @@ impl eframe::App for CutawayApp {
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {
+                // Its own panel-coloured strip, so the reference never sits on the 3D view.
                 egui::Frame::NONE
+                    .fill(ui.visuals().panel_fill)
                     .inner_margin(egui::Margin::symmetric(8, 4))
                     .show(ui, |ui| {
+                        ui.set_width(ui.available_width());
                         super::key_reference::key_reference_ui(ui, self.mode);
                     });
                 actions.extend(super::viewport::viewport_ui(ui, self));

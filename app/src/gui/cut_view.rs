@@ -43,7 +43,7 @@ pub fn cut_without_views(app: &CutawayApp) -> Option<Arc<PreviewGeometry>> {
 /// The selected model's tint: a warm highlight that reads on every anatomy colour.
 const HIGHLIGHT: [f32; 3] = [1.0, 0.78, 0.22];
 /// How far the selected model's colour moves toward [`HIGHLIGHT`].
-const HIGHLIGHT_MIX: f32 = 0.45;
+const HIGHLIGHT_MIX: f32 = 0.3;
 
 /// Tints the selected model in the drawn copy of the scene (never in the scene itself, so
 /// exports and sessions keep its colour). Not in Edit mode, where the selection is the target

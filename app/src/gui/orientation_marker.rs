@@ -13,15 +13,20 @@ const RADIUS: f32 = 38.0;
 pub fn orientation_marker_ui(
     painter: &egui::Painter,
     rect: egui::Rect,
-    app_scene: &crate::scene::Scene,
+    scene: &crate::scene::Scene,
 ) {
-    let centre = egui::pos2(rect.left() + RADIUS + 18.0, rect.bottom() - RADIUS - 18.0);
+    // Room for the labels past the tips (see `reach` below) inside the view.
+    let margin = RADIUS * 0.7 + 8.0;
+    let centre = egui::pos2(
+        rect.left() + RADIUS + margin,
+        rect.bottom() - RADIUS - margin,
+    );
     painter.circle_filled(
         centre,
-        RADIUS + 12.0,
+        RADIUS + 14.0,
         egui::Color32::from_rgba_unmultiplied(20, 22, 26, 110),
     );
-    for axis in marker_axes(&app_scene.camera, &app_scene.orientation) {
+    for axis in marker_axes(&scene.camera, &scene.orientation) {
         let positive = matches!(axis.label, "R" | "A" | "S");
         let base = match axis.label {
             "R" | "L" => egui::Color32::from_rgb(230, 70, 60),
