@@ -417,3 +417,43 @@ fn the_hubmap_body_opens_upright_in_metres_and_the_knee_in_millimetres() {
     shot(&mut h, "knee-mm");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("browser");
+    let start = StartOptions {
+        paths: Vec::new(),
+        state_dir: dir.clone(),
+        offer_recovery: false,
+    };
+    // The browser crate draws folder and file icons that the default fonts lack (boxes).
+    let mut h = Harness::builder()
+        .wgpu()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .with_step_dt(1.0 / 60.0)
+        .with_accessibility_check(false)
+        .allow_missing_glyphs()
+        .build_eframe(move |cc| CutawayApp::new(cc, start));
+    settle(&mut h);
+    // As on a machine without a desktop portal or zenity.
+    h.state_mut().native_dialogs = false;
+    apply(
+        &mut h,
+        Action::Dialog(cutaway::gui::app::Purpose::OpenSession),
+    );
+    assert!(h.state().browser.is_some(), "no in-window browser");
+    assert!(!h.state().busy(), "a native dialog job was started");
+    h.run_steps(3);
+    shot(&mut h, "file-browser-fallback");
+    h.get_by_label("Cancel").click();
+    h.run_steps(3);
+    assert!(
+        h.state().browser.is_none(),
+        "Cancel did not close the browser"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

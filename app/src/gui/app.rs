@@ -85,7 +85,7 @@ pub enum Purpose {
 }
 
 impl Purpose {
-    fn title(self) -> &'static str {
+    pub fn title(self) -> &'static str {
         match self {
             Purpose::LoadModel => "Load Model",
             Purpose::LoadDirectory => "Load Directory",
@@ -224,9 +224,11 @@ pub struct CutawayApp {
     pub viewport: ViewportState,
     /// A recovery file found at start-up, offered until answered.
     pub pending_recovery: Option<PathBuf>,
-    /// Text of the manual path entry shown when no native file dialog is available.
-    pub manual_path: Option<(Purpose, String)>,
-    /// A path typed into the manual path entry, handled after the frame's panels.
+    /// The in-window file browser, open when no native file dialog is available.
+    pub browser: Option<super::file_browser::FileBrowser>,
+    /// A native file dialog can open (see [`super::file_browser::native_dialogs_available`]).
+    pub native_dialogs: bool,
+    /// What the in-window browser picked, handled after the frame's panels.
     pending_manual: Option<(Purpose, PathBuf)>,
     /// Export Image settings (width, height, transparent background).
     pub export_image: super::menus::ExportImageSettings,
@@ -274,7 +276,8 @@ impl CutawayApp {
             },
             viewport: ViewportState::new(cc.wgpu_render_state.as_ref()),
             pending_recovery,
-            manual_path: None,
+            browser: None,
+            native_dialogs: super::file_browser::native_dialogs_available(),
             pending_manual: None,
             export_image: Default::default(),
             export_meshes: Default::default(),
@@ -633,10 +636,6 @@ impl CutawayApp {
     }
 
     fn open_dialog(&mut self, ctx: &egui::Context, purpose: Purpose) {
-        if std::env::var_os("CUTAWAY_NO_DIALOGS").is_some() {
-            self.manual_path = Some((purpose, String::new()));
-            return;
-        }
         let start_dir = self
             .session_path
             .as_ref()
@@ -647,6 +646,10 @@ impl CutawayApp {
                     .first()
                     .and_then(|p| p.parent().map(Path::to_path_buf))
             });
+        if !self.native_dialogs {
+            self.browser = Some(super::file_browser::FileBrowser::new(purpose, start_dir));
+            return;
+        }
         self.spawn(ctx, purpose.title(), move |_| {
             let started = Instant::now();
             let mut dialog = rfd::AsyncFileDialog::new().set_title(purpose.title());
@@ -768,7 +771,8 @@ impl CutawayApp {
             } => {
                 // A dialog that "closes" within a blink never opened: no portal and no zenity.
                 if paths.is_empty() && took < std::time::Duration::from_millis(150) {
-                    self.manual_path = Some((purpose, String::new()));
+                    self.browser = Some(super::file_browser::FileBrowser::new(purpose, None));
+                    self.say("No native file dialog opened; choose in the window's browser");
                 } else {
                     self.picked(ctx, purpose, paths);
                 }
@@ -1041,30 +1045,13 @@ impl CutawayApp {
                 });
             });
         }
-        if let Some((purpose, mut text)) = self.manual_path.take() {
-            let mut keep = true;
-            egui::Window::new(purpose.title())
-                .id(egui::Id::unique("cutaway-manual-path"))
-                .collapsible(false)
-                .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
-                .show(ctx, |ui| {
-                    ui.label("No native file dialog is available (install xdg-desktop-portal or zenity). Type a path:");
-                    let edit = ui.add(egui::TextEdit::singleline(&mut text).desired_width(420.0).hint_text("/path/to/file"));
-                    let enter = edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                    ui.horizontal(|ui| {
-                        if ui.button("OK").clicked() || enter {
-                            keep = false;
-                            if !text.trim().is_empty() {
-                                self.pending_manual = Some((purpose, PathBuf::from(text.trim())));
-                            }
-                        }
-                        if ui.button("Cancel").clicked() {
-                            keep = false;
-                        }
-                    });
-                });
-            if keep {
-                self.manual_path = Some((purpose, text));
+        if let Some(browser) = &mut self.browser
+            && let Some(paths) = browser.ui(ctx)
+        {
+            let purpose = browser.purpose;
+            self.browser = None;
+            if let Some(path) = paths.into_iter().next() {
+                self.pending_manual = Some((purpose, path));
             }
         }
         actions

@@ -20,6 +20,7 @@ pub mod bridge;
 pub mod camera_controls;
 pub mod cut_view;
 pub mod cutter_panel;
+pub mod file_browser;
 pub mod help;
 pub mod jobs;
 pub mod key_reference;
