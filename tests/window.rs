@@ -6,7 +6,7 @@
 //! state, for a person to look at.
 //!
 //! Skipped, with the reason printed, when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with
-//! Mesa's lavapipe installed); the real-data test also needs `CUTAWAY_ANATOMY`.
+//! Mesa's lavapipe installed); the real-data test reads `CUTAWAY_ANATOMY` (default `../shared/anatomy`).
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -356,15 +356,17 @@ fn the_help_menu_opens_the_keyboard_and_mouse_reference() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// `CUTAWAY_ANATOMY/<folder>` or `None` (with the reason printed).
+/// `CUTAWAY_ANATOMY/<folder>` (default `../shared/anatomy`) or `None` with the reason printed.
 fn anatomy(folder: &str) -> Option<PathBuf> {
-    let Some(root) = std::env::var_os("CUTAWAY_ANATOMY") else {
-        println!("skipped: set CUTAWAY_ANATOMY to the anatomy folder");
-        return None;
-    };
-    let path = PathBuf::from(root).join(folder);
-    if !path.exists() {
-        println!("skipped: {} is missing", path.display());
+    let root = std::env::var_os("CUTAWAY_ANATOMY")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("../shared/anatomy"));
+    let path = root.join(folder);
+    if !path.is_dir() {
+        println!(
+            "skipped: {} not found (set CUTAWAY_ANATOMY)",
+            path.display()
+        );
         return None;
     }
     Some(path)

@@ -102,8 +102,10 @@ fn main() {
     println!("{{\"atlas_over_knee\":{:.2}}}", atlas_ms / knee_ms);
     // The HuBMAP female body (metres, Y up: opens upright), when the anatomy folder is there.
     let body = std::env::var_os("CUTAWAY_ANATOMY")
-        .map(|root| PathBuf::from(root).join("hubmap_vhf_body"))
-        .filter(|p| p.is_dir());
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("../shared/anatomy"))
+        .join("hubmap_vhf_body");
+    let body = body.is_dir().then_some(body);
     match body {
         Some(body) => {
             let body = std::path::absolute(&body).expect("absolute path");

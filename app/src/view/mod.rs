@@ -11,3 +11,6 @@ pub mod units;
 
 pub use orientation::{Orientation, ViewPreset};
 pub use units::{LengthUnit, SizeDefaults};
+
+#[cfg(test)]
+mod session_tests;
