@@ -77,8 +77,8 @@ pub fn apply(app: &mut CutawayApp, command: ViewCommand) {
     }
 }
 
-/// The View menu's view items (presets, zooms, up axis).
-pub fn view_items_ui(ui: &mut egui::Ui, app: &CutawayApp) -> Vec<Action> {
+/// The View menu's view items (presets, zooms, up axis, the orientation marker).
+pub fn view_items_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     let mut actions = Vec::new();
     for preset in ViewPreset::ALL {
         let button =
@@ -124,6 +124,7 @@ pub fn view_items_ui(ui: &mut egui::Ui, app: &CutawayApp) -> Vec<Action> {
             }
         }
     });
+    ui.checkbox(&mut app.viewport.show_marker, "Orientation Marker");
     ui.label(
         egui::RichText::new(format!("Units: {} (shown in mm)", app.scene.unit.name()))
             .small()

@@ -97,6 +97,8 @@ pub struct ViewportState {
     pub gpu: bool,
     /// The navigation drag (right or middle button, Alt+drag in Edit) in progress.
     pub nav: Option<super::navigation::NavDrag>,
+    /// View → Orientation Marker (a window overlay: exports do not draw it).
+    pub show_marker: bool,
 }
 
 impl ViewportState {
@@ -115,6 +117,7 @@ impl ViewportState {
             live: Default::default(),
             gpu: super::bridge::install_renderer(render_state),
             nav: None,
+            show_marker: true,
         }
     }
 
@@ -248,7 +251,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     if !super::bridge::paint_scene(ui, rect, app) {
         super::bridge::paint_fallback(&painter, rect, app);
     }
-    if !app.scene.models.is_empty() {
+    if app.viewport.show_marker && !app.scene.models.is_empty() {
         super::orientation_marker::orientation_marker_ui(&painter, rect, &app.scene);
     }
     if app.scene.models.is_empty() && !app.busy() {
