@@ -459,3 +459,62 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn edit_mode_orbits_with_the_right_button_and_zooms_off_the_cutter() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("navigate");
+    let mut h = harness(&dir, Vec::new());
+    settle(&mut h);
+    click_mode(&mut h, Mode::Edit);
+    let c = h.state().viewport.rect.center();
+    let before = h.state().scene.camera;
+    // Right-drag: the camera orbits, no cutter is made, no context menu stays open.
+    h.hover_at(c);
+    h.step();
+    for (pressed, at) in [(true, c), (false, c + egui::vec2(80.0, 10.0))] {
+        if !pressed {
+            for k in 1..=4 {
+                h.hover_at(c + egui::vec2(20.0 * k as f32, 2.5 * k as f32));
+                h.step();
+            }
+        }
+        h.event(egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Secondary,
+            pressed,
+            modifiers: Default::default(),
+        });
+        h.step();
+    }
+    h.run_steps(2);
+    let after = h.state().scene.camera;
+    assert!(
+        (after.eye - before.eye).length() > 1.0,
+        "right-drag did not orbit in Edit mode"
+    );
+    assert!((after.distance() - before.distance()).abs() < 1e-6);
+    assert!(
+        h.state().scene.cutters.is_empty(),
+        "right-drag made a cutter"
+    );
+    // The wheel off any cutter zooms.
+    h.hover_at(c + egui::vec2(0.0, -200.0));
+    h.step();
+    h.event(egui::Event::MouseWheel {
+        unit: egui::MouseWheelUnit::Line,
+        delta: egui::vec2(0.0, 2.0),
+        modifiers: Default::default(),
+        phase: egui::TouchPhase::Move,
+        source: egui::MouseWheelSource::Wheel,
+    });
+    h.run_steps(2);
+    assert!(
+        h.state().scene.camera.distance() < after.distance() * 0.95,
+        "the wheel did not zoom in Edit mode"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
