@@ -428,6 +428,7 @@ fn export_image_writes_the_viewport_picture_at_any_size() {
     let dir = temp_dir("export");
     let mut h = harness(&dir, Vec::new(), false);
     settle(&mut h);
+    h.state_mut().viewport.show_marker = false; // a window overlay, not part of the picture
     let ctx = h.ctx.clone();
     let size = h.state().viewport.size_px;
     let (w, h1) = (size.x as u32, size.y as u32);

@@ -3,12 +3,14 @@
 //! what a user waits for), and from File → Open Example to the first frame with it
 //! (`open_to_first_frame_ms`), for the default (the embedded head atlas) and, as the peer
 //! measured in the same run, the synthetic knee phantom that was the default before, with the
-//! ratio of the two. Best of five runs each.
+//! ratio of the two, and with `CUTAWAY_ANATOMY` set the HuBMAP female body opened from its folder.
+//! Best of five runs each.
 //!
 //! Run: `WGPU_BACKEND=vulkan cargo bench -p cutaway --bench first_open` (release; on a machine
 //! without a GPU, Mesa's lavapipe draws). Goal: the default scene's first frame within 1.5 s on
 //! two cores.
 
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use cutaway::gui::app::Action;
@@ -17,7 +19,8 @@ use egui_kittest::Harness;
 
 /// Milliseconds from building the window to the first frame after the load job finished, and
 /// the scene's triangle count. `example`: `None` for the default scene, else an example's name
-/// loaded right after start (its time measured from the click).
+/// or an absolute path of files to open, loaded right after start (its time measured from the
+/// click).
 fn first_frame_ms(example: Option<&str>) -> (f64, usize) {
     let state_dir = std::env::temp_dir().join(format!(
         "cutaway-bench-first-open-{}-{}",
@@ -42,8 +45,12 @@ fn first_frame_ms(example: Option<&str>) -> (f64, usize) {
         settle(&mut h);
         clock = Instant::now();
         let ctx = h.ctx.clone();
-        h.state_mut()
-            .apply(&ctx, Action::OpenExample(name.to_string()));
+        let action = if Path::new(name).is_absolute() {
+            Action::Open(vec![PathBuf::from(name)])
+        } else {
+            Action::OpenExample(name.to_string())
+        };
+        h.state_mut().apply(&ctx, action);
     }
     settle(&mut h);
     h.render().expect("render the first frame");
@@ -93,4 +100,21 @@ fn main() {
         "{{\"scene\":\"knee phantom (previous default)\",\"open_to_first_frame_ms\":{knee_ms:.1},\"triangles\":{knee_triangles},\"runs\":{runs}}}"
     );
     println!("{{\"atlas_over_knee\":{:.2}}}", atlas_ms / knee_ms);
+    // The HuBMAP female body (metres, Y up: opens upright), when the anatomy folder is there.
+    let body = std::env::var_os("CUTAWAY_ANATOMY")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("../shared/anatomy"))
+        .join("hubmap_vhf_body");
+    let body = body.is_dir().then_some(body);
+    match body {
+        Some(body) => {
+            let body = std::path::absolute(&body).expect("absolute path");
+            let (ms, triangles) = best(Some(body.to_str().expect("UTF-8 path")));
+            println!(
+                "{{\"scene\":\"HuBMAP female body\",\"open_to_first_frame_ms\":{ms:.1},\"triangles\":{triangles},\"runs\":{runs},\"over_atlas\":{:.2}}}",
+                ms / atlas_ms
+            );
+        }
+        None => println!("HuBMAP body skipped: set CUTAWAY_ANATOMY to the anatomy folder"),
+    }
 }

@@ -21,3 +21,4 @@ pub mod scene;
 pub mod session;
 pub mod session_limits;
 pub mod session_meshes;
+pub mod view;

@@ -314,6 +314,11 @@ pub struct Scene {
     pub cutters: Vec<SceneCutter>,
     pub camera: Camera,
     pub render: RenderSettings,
+    /// Which world directions are the patient's superior and anterior (guessed when files are
+    /// opened, saved in the session).
+    pub orientation: crate::view::Orientation,
+    /// What one file unit is (guessed from the data's size; not saved, guessed again on load).
+    pub unit: crate::view::LengthUnit,
 }
 
 impl Default for Scene {
@@ -328,6 +333,8 @@ impl Default for Scene {
                 fov_y_deg: 30.0,
             },
             render: RenderSettings::default(),
+            orientation: Default::default(),
+            unit: Default::default(),
         }
     }
 }
@@ -363,6 +370,17 @@ impl Scene {
         Camera::framing(&bbox, direction, DVec3::Z, 30.0)
     }
 
+    /// A camera framing every visible model from `preset`'s side of the patient
+    /// ([`Scene::orientation`]), superior up: the first view of opened files and the View menu.
+    pub fn preset_camera(&self, preset: crate::view::ViewPreset) -> Camera {
+        let bbox = self.bbox();
+        if bbox.is_empty() {
+            return Scene::default().camera;
+        }
+        let (toward_eye, up) = self.orientation.preset_axes(preset);
+        Camera::framing(&bbox, toward_eye, up, self.camera.fov_y_deg)
+    }
+
     /// Checks what the renderer and the cut code rely on: cutter targets in range, at least one
     /// plane per cutter, finite values, opacities in 0..=1. Returns a one-line description of the
     /// first problem.
@@ -372,6 +390,8 @@ impl Scene {
             cutters,
             camera,
             render,
+            orientation: _,
+            unit: _,
         } = self;
         for (i, m) in models.iter().enumerate() {
             if !(0.0..=1.0).contains(&m.opacity) {

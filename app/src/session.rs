@@ -63,6 +63,16 @@ pub struct SessionFile {
     pub camera: Option<CameraEntry>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub render: Option<RenderEntry>,
+    /// The patient's axes in world space; absent in older files (then guessed from the data).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<OrientationEntry>,
+}
+
+/// `orientation`: world directions of the patient's superior and anterior (unit, orthogonal).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct OrientationEntry {
+    pub superior: [f64; 3],
+    pub anterior: [f64; 3],
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -376,6 +386,17 @@ pub fn scene_from_file(
             },
         });
     }
+    scene.unit = crate::view::LengthUnit::guess(&scene.bbox(), false);
+    scene.orientation = match file.orientation {
+        Some(o) => crate::view::Orientation::checked(
+            DVec3::from_array(o.superior),
+            DVec3::from_array(o.anterior),
+        )
+        .ok_or_else(|| {
+            anyhow::anyhow!("orientation: superior and anterior must be orthogonal unit vectors")
+        })?,
+        None => crate::view::Orientation::guess(&scene.bbox(), false),
+    };
     scene.camera = match file.camera {
         Some(c) => Camera {
             eye: DVec3::from_array(c.eye),
@@ -468,6 +489,10 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
             background: scene.render.background,
             antialias: scene.render.antialias,
             stereo: scene.render.stereo.as_str().to_string(),
+        }),
+        orientation: Some(OrientationEntry {
+            superior: scene.orientation.superior.to_array(),
+            anterior: scene.orientation.anterior.to_array(),
         }),
     }
 }

@@ -85,7 +85,7 @@ pub enum Purpose {
 }
 
 impl Purpose {
-    fn title(self) -> &'static str {
+    pub fn title(self) -> &'static str {
         match self {
             Purpose::LoadModel => "Load Model",
             Purpose::LoadDirectory => "Load Directory",
@@ -135,6 +135,8 @@ pub enum Action {
     RemoveCutter(usize),
     RestoreRecovery,
     DiscardRecovery,
+    /// Turn, zoom or re-orient the view (View menu, view keys).
+    View(super::view_menu::ViewCommand),
 }
 
 /// Result of a background job.
@@ -186,11 +188,13 @@ pub struct StartOptions {
 }
 
 impl StartOptions {
+    /// Files named on the command line are what the user wants to see: no recovery prompt then
+    /// (the autosave stays on disk until the next autosave replaces it).
     pub fn new(paths: Vec<PathBuf>) -> StartOptions {
         StartOptions {
+            offer_recovery: paths.is_empty(),
             paths,
             state_dir: recovery::state_dir(),
-            offer_recovery: true,
         }
     }
 }
@@ -205,8 +209,10 @@ pub struct CutawayApp {
     pub selected_model: Option<usize>,
     /// Index of the cutter whose Visualization settings are shown.
     pub selected_cutter: usize,
-    /// "Hide/Show Current Cutters".
+    /// "Hide/Show Current Cutters": the first `hidden_cutters` scene cutters are hidden (those
+    /// that existed when the user hid them; cutters made afterwards show).
     pub cutters_hidden: bool,
+    pub hidden_cutters: usize,
     /// Undo snapshots are whole scenes (meshes shared); the camera is not part of undo.
     pub history: History<Scene>,
     pub jobs: Vec<Job<JobOutput>>,
@@ -218,9 +224,11 @@ pub struct CutawayApp {
     pub viewport: ViewportState,
     /// A recovery file found at start-up, offered until answered.
     pub pending_recovery: Option<PathBuf>,
-    /// Text of the manual path entry shown when no native file dialog is available.
-    pub manual_path: Option<(Purpose, String)>,
-    /// A path typed into the manual path entry, handled after the frame's panels.
+    /// The in-window file browser, open when no native file dialog is available.
+    pub browser: Option<super::file_browser::FileBrowser>,
+    /// A native file dialog can open (see [`super::file_browser::native_dialogs_available`]).
+    pub native_dialogs: bool,
+    /// What the in-window browser picked, handled after the frame's panels.
     pending_manual: Option<(Purpose, PathBuf)>,
     /// Export Image settings (width, height, transparent background).
     pub export_image: super::menus::ExportImageSettings,
@@ -256,6 +264,7 @@ impl CutawayApp {
             selected_model: None,
             selected_cutter: 0,
             cutters_hidden: false,
+            hidden_cutters: 0,
             history: History::default(),
             jobs: Vec::new(),
             recent: RecentFiles::load(&start.state_dir),
@@ -267,7 +276,8 @@ impl CutawayApp {
             },
             viewport: ViewportState::new(cc.wgpu_render_state.as_ref()),
             pending_recovery,
-            manual_path: None,
+            browser: None,
+            native_dialogs: super::file_browser::native_dialogs_available(),
             pending_manual: None,
             export_image: Default::default(),
             export_meshes: Default::default(),
@@ -403,6 +413,15 @@ impl CutawayApp {
             Action::RemoveAllCutGeometry => self.remove_all_cut_geometry(ctx),
             Action::ToggleCutters => {
                 self.cutters_hidden = !self.cutters_hidden;
+                self.hidden_cutters = if self.cutters_hidden {
+                    self.scene.cutters.len()
+                } else {
+                    0
+                };
+                if self.cutters_hidden {
+                    // The next drag makes a new, visible cutter instead of editing a hidden one.
+                    self.viewport.editor.finish();
+                }
                 self.say(if self.cutters_hidden {
                     "Cutters hidden"
                 } else {
@@ -410,7 +429,7 @@ impl CutawayApp {
                 });
             }
             Action::ResetCamera => {
-                self.scene.camera = self.scene.framing_camera();
+                self.scene.camera = self.scene.preset_camera(crate::view::ViewPreset::Anterior);
             }
             Action::SelectModel(index) => {
                 self.selected_model = index.filter(|&i| i < self.scene.models.len());
@@ -491,6 +510,7 @@ impl CutawayApp {
                 self.pending_recovery = None;
                 self.recovery.discard();
             }
+            Action::View(command) => super::view_menu::apply(self, command),
         }
     }
 
@@ -531,15 +551,19 @@ impl CutawayApp {
     }
 
     /// Puts the scene state of an undo/redo step into effect (the editor follows the scene); the
-    /// camera is a view, not an edit, and stays where it is.
+    /// camera, the Rendering settings (anaglyph, background) and the orientation are views, not
+    /// edits, and stay as they are: an undo must not turn anaglyph back on.
     fn apply_history_step(&mut self, state: Option<Scene>, done: &str, nothing: &str) {
         let Some(state) = state else {
             self.say(nothing);
             return;
         };
-        let camera = self.scene.camera;
+        let (camera, render, orientation) =
+            (self.scene.camera, self.scene.render, self.scene.orientation);
         self.scene = state;
         self.scene.camera = camera;
+        self.scene.render = render;
+        self.scene.orientation = orientation;
         self.fix_selection();
         self.viewport.editor.sync_from_scene(&self.scene);
         self.recovery.mark_dirty();
@@ -612,10 +636,6 @@ impl CutawayApp {
     }
 
     fn open_dialog(&mut self, ctx: &egui::Context, purpose: Purpose) {
-        if std::env::var_os("CUTAWAY_NO_DIALOGS").is_some() {
-            self.manual_path = Some((purpose, String::new()));
-            return;
-        }
         let start_dir = self
             .session_path
             .as_ref()
@@ -626,6 +646,10 @@ impl CutawayApp {
                     .first()
                     .and_then(|p| p.parent().map(Path::to_path_buf))
             });
+        if !self.native_dialogs {
+            self.browser = Some(super::file_browser::FileBrowser::new(purpose, start_dir));
+            return;
+        }
         self.spawn(ctx, purpose.title(), move |_| {
             let started = Instant::now();
             let mut dialog = rfd::AsyncFileDialog::new().set_title(purpose.title());
@@ -750,7 +774,8 @@ impl CutawayApp {
             } => {
                 // A dialog that "closes" within a blink never opened: no portal and no zenity.
                 if paths.is_empty() && took < std::time::Duration::from_millis(150) {
-                    self.manual_path = Some((purpose, String::new()));
+                    self.browser = Some(super::file_browser::FileBrowser::new(purpose, None));
+                    self.say("No native file dialog opened; choose in the window's browser");
                 } else {
                     self.picked(ctx, purpose, paths);
                 }
@@ -838,18 +863,15 @@ impl CutawayApp {
         }
         let first_new = self.scene.models.len();
         let count = models.len();
-        let front = if crate::default_anatomy::is_default_scene(&models) {
-            crate::default_anatomy::FRONT
-        } else {
-            glam::DVec3::NEG_Y
-        };
+        let default_scene = crate::default_anatomy::is_default_scene(&models);
+        let from_volume = sources.iter().any(|p| crate::io::volume::is_volume(p));
         for (i, model) in models.into_iter().enumerate() {
             let color =
                 crate::anatomy_colors::structure_color(&model.name, model.color, first_new + i);
             self.scene.models.push(SceneModel::structure(model, color));
         }
         if replace {
-            self.scene.camera = self.scene.framing_camera_from(front);
+            super::view_menu::orient_new_scene(self, default_scene, from_volume);
             self.last_committed = self.scene.clone();
             self.recovery.mark_dirty();
         } else {
@@ -913,7 +935,7 @@ impl CutawayApp {
 
     /// In Preview, recompute the cut parts whenever the cutters or their targets changed.
     fn update_preview(&mut self, ctx: &egui::Context) {
-        if self.mode != Mode::Preview || self.scene.cutters.is_empty() {
+        if !super::cut_view::shows_cut(self.mode) || self.scene.cutters.is_empty() {
             return;
         }
         let key = super::bridge::PreviewKey::of(&self.scene);
@@ -1026,30 +1048,13 @@ impl CutawayApp {
                 });
             });
         }
-        if let Some((purpose, mut text)) = self.manual_path.take() {
-            let mut keep = true;
-            egui::Window::new(purpose.title())
-                .id(egui::Id::unique("cutaway-manual-path"))
-                .collapsible(false)
-                .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
-                .show(ctx, |ui| {
-                    ui.label("No native file dialog is available (install xdg-desktop-portal or zenity). Type a path:");
-                    let edit = ui.add(egui::TextEdit::singleline(&mut text).desired_width(420.0).hint_text("/path/to/file"));
-                    let enter = edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                    ui.horizontal(|ui| {
-                        if ui.button("OK").clicked() || enter {
-                            keep = false;
-                            if !text.trim().is_empty() {
-                                self.pending_manual = Some((purpose, PathBuf::from(text.trim())));
-                            }
-                        }
-                        if ui.button("Cancel").clicked() {
-                            keep = false;
-                        }
-                    });
-                });
-            if keep {
-                self.manual_path = Some((purpose, text));
+        if let Some(browser) = &mut self.browser
+            && let Some(paths) = browser.ui(ctx)
+        {
+            let purpose = browser.purpose;
+            self.browser = None;
+            if let Some(path) = paths.into_iter().next() {
+                self.pending_manual = Some((purpose, path));
             }
         }
         actions
@@ -1065,6 +1070,7 @@ impl eframe::App for CutawayApp {
         self.poll_jobs(&ctx);
 
         let mut actions = self.shortcuts(&ctx);
+        actions.extend(super::view_menu::view_shortcuts(&ctx));
         actions.extend(self.dropped_files(&ctx));
 
         egui::Panel::top("cutaway-menu").show(ui, |ui| {
@@ -1097,9 +1103,12 @@ impl eframe::App for CutawayApp {
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {
+                // Its own panel-coloured strip, so the reference never sits on the 3D view.
                 egui::Frame::NONE
+                    .fill(ui.visuals().panel_fill)
                     .inner_margin(egui::Margin::symmetric(8, 4))
                     .show(ui, |ui| {
+                        ui.set_width(ui.available_width());
                         super::key_reference::key_reference_ui(ui, self.mode);
                     });
                 actions.extend(super::viewport::viewport_ui(ui, self));

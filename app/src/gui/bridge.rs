@@ -104,6 +104,12 @@ impl EditorSlot {
         a.editor.selected_plane().or(a.editor.hovered_plane())
     }
 
+    /// The active cutter's plane under the pointer after the last event (none: off the cutter).
+    pub fn hovered_plane(&self) -> Option<usize> {
+        let a = self.active.as_ref()?;
+        a.editor.cutter().and(a.editor.hovered_plane())
+    }
+
     /// The initial strip while the first drag is in progress.
     pub fn init_strip(&self) -> Option<[glam::DVec3; 4]> {
         self.active.as_ref()?.editor.init_strip()
@@ -364,15 +370,21 @@ impl egui_wgpu::CallbackTrait for ViewCallback {
 /// What the renderer draws for the window's current state.
 pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
     use super::app::Mode;
+    // Camera and Scalpel draw the cut (without the removed-piece views) as Preview does.
+    let cut = match app.mode {
+        Mode::Camera | Mode::Scalpel => super::cut_view::cut_without_views(app),
+        Mode::Preview => app.viewport.preview.clone(),
+        Mode::Edit => None,
+    };
     let mode = match app.mode {
         Mode::Edit => ViewMode::Edit,
         Mode::Preview => ViewMode::Preview,
+        Mode::Camera | Mode::Scalpel if cut.is_some() => ViewMode::Preview,
         Mode::Camera | Mode::Scalpel => ViewMode::Camera,
     };
     let mut inputs = FrameInputs::new(app.scene.clone(), size, mode);
-    if app.mode == Mode::Preview {
-        inputs.preview = app.viewport.preview.clone();
-    }
+    inputs.preview = cut;
+    super::cut_view::highlight_selection(app, &mut inputs.scene);
     if app.mode == Mode::Edit && app.viewport.live.enabled && !app.scene.cutters.is_empty() {
         inputs.preview = app.viewport.live.geometry();
         inputs.deltas = app.viewport.live.deltas();
@@ -380,13 +392,15 @@ pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
     if app.mode == Mode::Scalpel {
         inputs.deltas.extend(app.viewport.scalpel.delta());
     }
-    if app.mode == Mode::Edit && !app.cutters_hidden {
+    if app.mode == Mode::Edit {
         let active = app.viewport.editor.active_cutter();
+        let hidden = |i: usize| app.cutters_hidden && i < app.hidden_cutters && Some(i) != active;
         inputs.overlays = app
             .scene
             .cutters
             .iter()
             .enumerate()
+            .filter(|&(i, _)| !hidden(i))
             .map(|(i, c)| CutterOverlay {
                 planes: c.planes.clone(),
                 surface: overlay_surface(c),

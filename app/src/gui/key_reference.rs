@@ -9,16 +9,19 @@ pub fn commands(mode: Mode) -> &'static [(&'static str, &'static str)] {
     match mode {
         Mode::Camera | Mode::Preview => &[
             ("Drag", "orbit"),
-            ("Shift+Drag", "pan"),
+            ("Shift+Drag / Middle-drag", "pan"),
             ("Wheel", "zoom"),
             ("Double-click", "select & centre model"),
+            ("1 3 7 (Ctrl)", "views"),
             ("Right-click", "menu"),
         ],
         Mode::Edit => &[
             ("Drag on model", "new cutter"),
             ("Drag handle", "extrude (Shift: straight)"),
             ("Drag front vertex", "move edge"),
-            ("Wheel", "depth"),
+            ("Wheel on cutter", "depth"),
+            ("Wheel elsewhere", "zoom"),
+            ("Right/Alt+Drag", "orbit"),
             ("Ctrl+Wheel", "rotate plane"),
             ("Del", "remove last box"),
             ("Ctrl+Z", "undo"),

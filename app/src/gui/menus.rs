@@ -1,4 +1,4 @@
-//! The menu bar (File, Edit, Rendering, View, Debug), the mode toolbar, the export dialogs and the
+//! The menu bar (File, Edit, Rendering, View, Help; Debug only when asked for), the mode toolbar, the export dialogs and the
 //! window's visual style.
 //!
 //! Menus describe what the user asked for as [`Action`]s; only the Rendering menu's toggles change
@@ -238,9 +238,8 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
             });
         });
         ui.menu_button("View", |ui| {
-            if ui.button("Reset Camera").clicked() {
-                actions.push(Action::ResetCamera);
-            }
+            actions.extend(super::view_menu::view_items_ui(ui, app));
+            ui.separator();
             let label = if app.cutters_hidden {
                 "Show Current Cutters"
             } else {
@@ -253,29 +252,40 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
                 actions.push(Action::RemoveAllCutGeometry);
             }
         });
-        ui.menu_button("Debug", |ui| {
-            if app.viewport.recording.is_none() {
-                if ui
-                    .button("Record Gesture")
-                    .on_hover_text("Record Edit-mode input as a cutaway-gesture/1 file")
-                    .clicked()
-                {
-                    actions.push(Action::StartGesture);
-                }
-            } else if ui.button("Stop Recording and Save Gesture…").clicked() {
-                actions.push(Action::StopGesture);
-            }
-        });
+        if super::help::debug_menu_enabled() {
+            debug_menu_ui(ui, app, &mut actions);
+        }
         ui.menu_button("Help", |ui| {
+            if ui.button("Keyboard and Mouse…").clicked() {
+                super::help::open(ui.ctx());
+            }
             if ui.button("About Cutaway…").clicked() {
                 super::about::open(ui.ctx());
             }
         });
     });
     super::about::about_window_ui(ui.ctx());
+    super::help::help_window_ui(ui.ctx());
     actions.extend(export_image_window_ui(ui.ctx(), app));
     actions.extend(export_meshes_window_ui(ui.ctx(), app));
     actions
+}
+
+/// The Debug menu (only with the debug environment variable, see [`super::help::DEBUG_ENV`]).
+fn debug_menu_ui(ui: &mut egui::Ui, app: &CutawayApp, actions: &mut Vec<Action>) {
+    ui.menu_button("Debug", |ui| {
+        if app.viewport.recording.is_none() {
+            if ui
+                .button("Record Gesture")
+                .on_hover_text("Record Edit-mode input as a cutaway-gesture/1 file")
+                .clicked()
+            {
+                actions.push(Action::StartGesture);
+            }
+        } else if ui.button("Stop Recording and Save Gesture…").clicked() {
+            actions.push(Action::StopGesture);
+        }
+    });
 }
 
 fn to_u8(c: f32) -> u8 {

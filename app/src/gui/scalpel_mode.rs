@@ -1066,7 +1066,20 @@ pub fn finish_stroke(app: &mut CutawayApp) {
 /// The Scalpel panel: tool, depth and opening width of the next strokes.
 pub fn scalpel_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
     ui.heading("Scalpel");
+    // Lengths are edited in millimetres whatever the file's unit (metre-scale bodies too).
+    let unit = app.scene.unit;
     let s = &mut app.viewport.scalpel.settings;
+    let mm = |ui: &mut egui::Ui, length: &mut f64, tip: &str| {
+        let mut value = unit.to_mm(*length);
+        let edit = egui::DragValue::new(&mut value)
+            .speed(0.1)
+            .range(0.0..=1000.0)
+            .suffix(" mm")
+            .max_decimals(2);
+        if ui.add(edit).on_hover_text(tip).changed() {
+            *length = unit.from_mm(value);
+        }
+    };
     ui.horizontal(|ui| {
         ui.label("Tool");
         ui.selectable_value(&mut s.tool, Tool::Scalpel, "Scalpel")
@@ -1076,23 +1089,13 @@ pub fn scalpel_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
     });
     ui.horizontal(|ui| {
         ui.label("Depth");
-        ui.add(
-            egui::DragValue::new(&mut s.depth)
-                .speed(0.05)
-                .range(0.0..=1000.0)
-                .max_decimals(2),
-        )
-        .on_hover_text("Blade depth in model units; 0 cuts a slit, more cuts a groove with walls");
+        let tip = "Blade depth; 0 cuts a slit, more cuts a groove with walls";
+        mm(ui, &mut s.depth, tip);
     });
     ui.horizontal(|ui| {
         ui.label("Opening");
-        ui.add(
-            egui::DragValue::new(&mut s.opening)
-                .speed(0.05)
-                .range(0.0..=1000.0)
-                .max_decimals(2),
-        )
-        .on_hover_text("Width the incision opens to (DFFD), over a trailing window of the tool");
+        let tip = "Width the incision opens to (DFFD), over a trailing window of the tool";
+        mm(ui, &mut s.opening, tip);
     });
     ui.checkbox(&mut s.layers, "Cut layers below").on_hover_text(
         "A groove also cuts the other models the blade meets below the surface, down to its depth",

@@ -95,6 +95,10 @@ pub struct ViewportState {
     pub live: super::live_cut::LiveCut,
     /// The renderer is installed in egui's callback resources.
     pub gpu: bool,
+    /// The navigation drag (right or middle button, Alt+drag in Edit) in progress.
+    pub nav: Option<super::navigation::NavDrag>,
+    /// View → Orientation Marker (a window overlay: exports do not draw it).
+    pub show_marker: bool,
 }
 
 impl ViewportState {
@@ -112,11 +116,19 @@ impl ViewportState {
             preview_key: None,
             live: Default::default(),
             gpu: super::bridge::install_renderer(render_state),
+            nav: None,
+            show_marker: true,
         }
     }
 
     pub fn cancel_drag(&mut self) {
         self.drag = None;
+        self.nav = None;
+    }
+
+    /// True while a press went to the cutter editor and is not released yet.
+    pub fn editor_dragging(&self) -> bool {
+        self.drag == Some(Drag::Editor)
     }
 
     pub fn reset_editor(&mut self) {
@@ -175,7 +187,7 @@ impl Recording {
 
 /// Wheel notches of this frame (positive = wheel up, away from the user), and whether Ctrl/Cmd
 /// was held.
-fn wheel_notches(ui: &egui::Ui) -> (f64, bool) {
+pub fn wheel_notches(ui: &egui::Ui) -> (f64, bool) {
     ui.input(|i| {
         let mut notches = 0.0;
         let mut ctrl = false;
@@ -220,11 +232,15 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         )
     };
 
-    // Interact.
-    match app.mode {
-        Mode::Camera | Mode::Preview => camera_input(ui, &response, app, ppp, to_px, &mut actions),
-        Mode::Scalpel => super::scalpel_mode::scalpel_input(ui, &response, app, ppp, to_px),
-        Mode::Edit => edit_input(ui, &response, app, to_px),
+    // Interact: navigation and selection first (every mode), then the mode's own input.
+    let navigating =
+        super::navigation::navigation_input(ui, &response, app, ppp, to_px, &mut actions);
+    if !navigating {
+        match app.mode {
+            Mode::Camera | Mode::Preview => camera_input(ui, &response, app, ppp),
+            Mode::Scalpel => super::scalpel_mode::scalpel_input(ui, &response, app, ppp, to_px),
+            Mode::Edit => edit_input(ui, &response, app, to_px),
+        }
     }
     response.context_menu(|ui| {
         actions.extend(context_menu_ui(ui, app));
@@ -234,6 +250,9 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     let painter = ui.painter_at(rect);
     if !super::bridge::paint_scene(ui, rect, app) {
         super::bridge::paint_fallback(&painter, rect, app);
+    }
+    if app.viewport.show_marker && !app.scene.models.is_empty() {
+        super::orientation_marker::orientation_marker_ui(&painter, rect, &app.scene);
     }
     if app.scene.models.is_empty() && !app.busy() {
         painter.text(
@@ -267,14 +286,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     actions
 }
 
-fn camera_input(
-    ui: &egui::Ui,
-    response: &egui::Response,
-    app: &mut CutawayApp,
-    ppp: f64,
-    to_px: impl Fn(egui::Pos2) -> DVec2,
-    actions: &mut Vec<Action>,
-) {
+fn camera_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, ppp: f64) {
     let shift = ui.input(|i| i.modifiers.shift);
     if response.drag_started_by(egui::PointerButton::Primary) {
         app.viewport.drag = Some(if shift { Drag::Pan } else { Drag::Orbit });
@@ -300,19 +312,6 @@ fn camera_input(
         if notches != 0.0 {
             let min = app.scene.bbox().diagonal().max(1e-6) * 1e-3;
             camera_controls::zoom(&mut app.scene.camera, notches, min);
-        }
-    }
-    if response.double_clicked()
-        && let Some(pos) = response.interact_pointer_pos()
-    {
-        let pixel = to_px(pos);
-        let ray = app
-            .scene
-            .camera
-            .ray_through_pixel(app.viewport.size_px, pixel);
-        match pick(&app.scene, &ray) {
-            Some((index, _t)) => actions.push(Action::FocusModel(index)),
-            None => actions.push(Action::SelectModel(None)),
         }
     }
 }
@@ -354,6 +353,38 @@ fn edit_input(
     let released = ui.input(|i| i.pointer.primary_released());
     let mut changed = false;
 
+    if pressed && app.viewport.editor.is_active() && !app.viewport.editor_dragging() {
+        // Hover first so the press is judged where it happens; a press off the cutter being
+        // edited starts a new cutter instead of only deselecting its plane.
+        app.viewport.last_pointer = Some(px);
+        changed |= app.viewport.editor_event(
+            &mut app.scene,
+            EditorEvent::Move {
+                x: px.x,
+                y: px.y,
+                shift,
+                ctrl,
+            },
+        );
+        if app.viewport.editor.active_cutter().is_some()
+            && app.viewport.editor.hovered_plane().is_none()
+        {
+            let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, px);
+            let on_target = app
+                .selected_model
+                .and_then(|i| app.scene.models.get(i))
+                .is_some_and(|m| {
+                    camera_controls::ray_cast_mesh(&m.mesh, &m.mesh.bbox(), &ray).is_some()
+                });
+            let hit = pick(&app.scene, &ray).map(|(i, _)| i);
+            if on_target || hit.is_some() {
+                if !on_target {
+                    app.selected_model = hit;
+                }
+                app.viewport.editor.finish();
+            }
+        }
+    }
     if pressed && !app.viewport.editor.is_active() {
         // The first press decides the target: the selected model, else the one under the pointer.
         let target = app.selected_model.or_else(|| {
@@ -426,7 +457,7 @@ fn edit_input(
     }
     if response.hovered() {
         let (notches, wheel_ctrl) = wheel_notches(ui);
-        if notches != 0.0 {
+        if notches != 0.0 && super::navigation::wheel_goes_to_editor(app, wheel_ctrl) {
             changed |= app.viewport.editor_event(
                 &mut app.scene,
                 EditorEvent::Wheel {

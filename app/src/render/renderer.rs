@@ -645,7 +645,10 @@ impl Renderer {
                 let surface = GpuMesh::upload(device, "cutter overlay surface", &overlay.surface);
                 if surface.is_some() {
                     let opacity = if overlay.active { 0.35 } else { 0.22 };
-                    let u = push_uniform(CUTTER_FILL, opacity, true, 0.0, 0.0);
+                    // Pushed a little away from the eye: where the cutter coincides with the
+                    // walls it cut, the walls win (no z-fighting, the live cut looks like the
+                    // committed one); where it sticks out of the target it shows as a shell.
+                    let u = push_uniform(CUTTER_FILL, opacity, true, 0.0, -contour_bias);
                     list.transparent
                         .push(Draw::Mesh(Source::Overlay(self.overlay_meshes.len()), u));
                     self.overlay_meshes.push(surface);

@@ -14,7 +14,8 @@ struct Frame {
 struct Draw {
     // Linear RGB, straight opacity.
     color: vec4<f32>,
-    // x: back-face brightness; y: 1 lit / 0 flat; z: line width px; w: line offset toward the eye.
+    // x: back-face brightness; y: 1 lit / 0 flat; z: line width px; w: offset toward the eye in
+    // world units (negative: away; the cutter overlay yields to the walls it coincides with).
     params: vec4<f32>,
 };
 
@@ -36,7 +37,9 @@ struct VertexOut {
 @vertex
 fn vs_main(v: VertexIn) -> VertexOut {
     var out: VertexOut;
-    out.position_in_clip = frame.clip_from_world * vec4<f32>(v.position_in_world, 1.0);
+    let toward_eye = normalize(frame.eye_in_world.xyz - v.position_in_world);
+    let moved = v.position_in_world + toward_eye * draw.params.w;
+    out.position_in_clip = frame.clip_from_world * vec4<f32>(moved, 1.0);
     out.position_in_world = v.position_in_world;
     out.normal_in_world = v.normal_in_world;
     return out;

@@ -1,0 +1,114 @@
+//! The cut scene in every mode: Camera and Scalpel modes show the cuts the cutters make (the kept
+//! parts, the walls and the contour), Preview adds the removed-piece views (transparency,
+//! ribbons, slices), Edit shows the live cut under the cutters.
+//!
+//! The cut parts are the Preview computation's ([`crate::cutaway_geometry::PreviewGeometry`]);
+//! the outside-Preview picture is the same geometry without the removed-piece parts, derived once
+//! per computed preview and kept while the preview stays the same.
+
+use std::sync::{Arc, Weak};
+
+use crate::cutaway_geometry::{PartKind, PreviewGeometry};
+
+use super::app::{CutawayApp, Mode};
+
+/// True in the modes that show the computed cut (the preview job runs in them).
+pub fn shows_cut(mode: Mode) -> bool {
+    matches!(mode, Mode::Camera | Mode::Preview | Mode::Scalpel)
+}
+
+/// What Camera and Scalpel modes draw for the current preview: kept parts, walls and contours.
+pub fn cut_without_views(app: &CutawayApp) -> Option<Arc<PreviewGeometry>> {
+    let full = app.viewport.preview.as_ref()?;
+    if app.scene.cutters.is_empty() {
+        return None;
+    }
+    thread_local! {
+        static LAST: std::cell::RefCell<Option<(Weak<PreviewGeometry>, Arc<PreviewGeometry>)>> =
+            const { std::cell::RefCell::new(None) };
+    }
+    LAST.with(|last| {
+        let mut last = last.borrow_mut();
+        if let Some((source, derived)) = last.as_ref()
+            && source.upgrade().is_some_and(|s| Arc::ptr_eq(&s, full))
+        {
+            return Some(derived.clone());
+        }
+        let derived = Arc::new(without_views(full));
+        *last = Some((Arc::downgrade(full), derived.clone()));
+        Some(derived)
+    })
+}
+
+/// The selected model's tint: a warm highlight that reads on every anatomy colour.
+const HIGHLIGHT: [f32; 3] = [1.0, 0.78, 0.22];
+/// How far the selected model's colour moves toward [`HIGHLIGHT`].
+const HIGHLIGHT_MIX: f32 = 0.3;
+
+/// Tints the selected model in the drawn copy of the scene (never in the scene itself, so
+/// exports and sessions keep its colour). Not in Edit mode, where the selection is the target
+/// being painted and the live cut must look like the committed one.
+pub fn highlight_selection(app: &CutawayApp, drawn: &mut crate::scene::Scene) {
+    if app.mode == Mode::Edit {
+        return;
+    }
+    if let Some(model) = app.selected_model.and_then(|i| drawn.models.get_mut(i)) {
+        model.color = highlighted(model.color);
+    }
+}
+
+/// `color` moved toward the highlight colour.
+pub fn highlighted(color: [f32; 3]) -> [f32; 3] {
+    std::array::from_fn(|k| color[k] + (HIGHLIGHT[k] - color[k]) * HIGHLIGHT_MIX)
+}
+
+/// `full` without the removed-piece views: the parts a normal cut shows.
+pub fn without_views(full: &PreviewGeometry) -> PreviewGeometry {
+    PreviewGeometry {
+        replaced: full.replaced.clone(),
+        parts: full
+            .parts
+            .iter()
+            .filter(|p| matches!(p.kind, PartKind::Kept | PartKind::Wall))
+            .cloned()
+            .collect(),
+        contours: full.contours.clone(),
+        notes: full.notes.clone(),
+        reports: full.reports.clone(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cutaway_geometry::PreviewPart;
+
+    #[test]
+    fn only_kept_parts_and_walls_stay() {
+        let part = |kind| PreviewPart {
+            model: 0,
+            cutter: 0,
+            kind,
+            opacity: 1.0,
+            mesh: csg::Mesh::default(),
+        };
+        let full = PreviewGeometry {
+            replaced: vec![true],
+            parts: [
+                PartKind::Kept,
+                PartKind::Wall,
+                PartKind::Removed,
+                PartKind::Ribbon,
+                PartKind::SliceWall,
+            ]
+            .into_iter()
+            .map(part)
+            .collect(),
+            ..Default::default()
+        };
+        let cut = without_views(&full);
+        let kinds: Vec<PartKind> = cut.parts.iter().map(|p| p.kind).collect();
+        assert_eq!(kinds, vec![PartKind::Kept, PartKind::Wall]);
+        assert_eq!(cut.replaced, vec![true]);
+    }
+}

@@ -1,0 +1,96 @@
+//! The in-window file browser: used when no native file dialog can open (no desktop portal on
+//! D-Bus and no zenity, as on a bare X server or in a container), so File → Open never silently
+//! does nothing. Built on the `egui_file` crate; the purposes and extensions are the native
+//! dialog's.
+
+use std::path::{Path, PathBuf};
+
+use super::app::Purpose;
+
+/// True when a native dialog can be expected to open: not turned off with `CUTAWAY_NO_DIALOGS`,
+/// and a desktop portal (reached over the session D-Bus) or zenity is there. A native dialog
+/// that still closes at once is caught afterwards (see `finish_job`).
+pub fn native_dialogs_available() -> bool {
+    if std::env::var_os("CUTAWAY_NO_DIALOGS").is_some() {
+        return false;
+    }
+    let dbus = std::env::var_os("DBUS_SESSION_BUS_ADDRESS").is_some_and(|v| !v.is_empty());
+    dbus || on_path("zenity")
+}
+
+fn on_path(program: &str) -> bool {
+    std::env::var_os("PATH")
+        .is_some_and(|paths| std::env::split_paths(&paths).any(|dir| dir.join(program).is_file()))
+}
+
+/// An open in-window browser for one purpose.
+pub struct FileBrowser {
+    pub purpose: Purpose,
+    dialog: egui_file::FileDialog,
+}
+
+impl FileBrowser {
+    /// A browser for `purpose` starting in `start` (the home folder when `None`).
+    pub fn new(purpose: Purpose, start: Option<PathBuf>) -> FileBrowser {
+        let start = start
+            .or_else(|| std::env::var_os("HOME").map(PathBuf::from))
+            .unwrap_or_else(|| PathBuf::from("."));
+        let dialog = match purpose {
+            Purpose::LoadDirectory | Purpose::ExportMeshes => {
+                egui_file::FileDialog::select_folder()
+            }
+            Purpose::SaveSessionAs => {
+                egui_file::FileDialog::save_file().default_filename("session.json")
+            }
+            Purpose::ExportImage => {
+                egui_file::FileDialog::save_file().default_filename("cutaway.png")
+            }
+            Purpose::SaveGesture => {
+                egui_file::FileDialog::save_file().default_filename("gesture.json")
+            }
+            Purpose::LoadModel | Purpose::AddModel | Purpose::OpenSession => {
+                egui_file::FileDialog::open_file()
+            }
+        };
+        let mut dialog = dialog
+            .initial_path(start)
+            .title(purpose.title())
+            .id(egui::Id::unique("cutaway-file-browser"))
+            .default_size([640.0, 420.0])
+            .show_new_folder(false)
+            .show_rename(false);
+        if let Some(extensions) = extensions(purpose) {
+            dialog = dialog.show_files_filter(Box::new(move |path: &Path| {
+                path.extension()
+                    .and_then(|e| e.to_str())
+                    .is_some_and(|e| extensions.iter().any(|x| x.eq_ignore_ascii_case(e)))
+            }));
+        }
+        dialog.open();
+        FileBrowser { purpose, dialog }
+    }
+
+    /// Shows the browser. `Some(paths)` once it closed (empty when cancelled), `None` while open.
+    pub fn ui(&mut self, ctx: &egui::Context) -> Option<Vec<PathBuf>> {
+        self.dialog.show(ctx);
+        match self.dialog.state() {
+            egui_file::State::Open => None,
+            egui_file::State::Selected => Some(
+                self.dialog
+                    .path()
+                    .map(Path::to_path_buf)
+                    .into_iter()
+                    .collect(),
+            ),
+            egui_file::State::Closed | egui_file::State::Cancelled => Some(Vec::new()),
+        }
+    }
+}
+
+/// The files a purpose opens (`None`: anything; the readers say what they cannot read).
+fn extensions(purpose: Purpose) -> Option<&'static [&'static str]> {
+    match purpose {
+        Purpose::OpenSession => Some(&["json"]),
+        _ => None,
+    }
+}

@@ -1,0 +1,96 @@
+//! Camera navigation and selection that work the same in every mode, so the user never switches
+//! mode just to turn the model or pick another one:
+//!
+//! - right-drag orbits, middle-drag pans (Scalpel mode has the same drags of its own);
+//! - in Edit mode Alt+drag orbits too, and the wheel zooms unless the pointer is over the cutter
+//!   (there it sets the depth, as in the thesis) or Ctrl is held (rotates a plane);
+//! - a double-click selects the model under the pointer (Camera and Preview also centre on it);
+//!   on nothing it clears the selection.
+//!
+//! Camera and Preview keep their own left-drag orbit and Shift+drag pan in `viewport.rs`.
+
+use glam::DVec2;
+
+use super::app::{Action, CutawayApp, Mode};
+use super::camera_controls;
+
+/// What the navigation drag in progress does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NavDrag {
+    Orbit,
+    Pan,
+}
+
+/// Handles navigation for this frame. True when it owns the pointer (a navigation drag, or Alt
+/// held in Edit mode), so the mode's own input must not see it.
+pub fn navigation_input(
+    ui: &egui::Ui,
+    response: &egui::Response,
+    app: &mut CutawayApp,
+    ppp: f64,
+    to_px: impl Fn(egui::Pos2) -> DVec2,
+    actions: &mut Vec<Action>,
+) -> bool {
+    if response.double_clicked()
+        && let Some(pos) = response.interact_pointer_pos()
+    {
+        let ray = app
+            .scene
+            .camera
+            .ray_through_pixel(app.viewport.size_px, to_px(pos));
+        actions.push(match super::viewport::pick(&app.scene, &ray) {
+            Some((index, _)) if matches!(app.mode, Mode::Camera | Mode::Preview) => {
+                Action::FocusModel(index)
+            }
+            Some((index, _)) => Action::SelectModel(Some(index)),
+            None => Action::SelectModel(None),
+        });
+    }
+    if app.mode == Mode::Scalpel {
+        return false;
+    }
+    let alt = ui.input(|i| i.modifiers.alt);
+    let edit = app.mode == Mode::Edit;
+    if response.drag_started_by(egui::PointerButton::Secondary)
+        || (edit && alt && response.drag_started_by(egui::PointerButton::Primary))
+    {
+        app.viewport.nav = Some(NavDrag::Orbit);
+    } else if response.drag_started_by(egui::PointerButton::Middle) {
+        app.viewport.nav = Some(NavDrag::Pan);
+    }
+    let Some(nav) = app.viewport.nav else {
+        if edit && response.hovered() {
+            edit_wheel_zoom(ui, app);
+        }
+        return edit && alt && !app.viewport.editor_dragging();
+    };
+    if response.dragged() {
+        let delta = response.drag_delta();
+        let delta_px = DVec2::new(delta.x as f64 * ppp, delta.y as f64 * ppp);
+        match nav {
+            NavDrag::Orbit => camera_controls::orbit(&mut app.scene.camera, delta_px),
+            NavDrag::Pan => {
+                camera_controls::pan(&mut app.scene.camera, delta_px, app.viewport.size_px)
+            }
+        }
+    }
+    if response.drag_stopped() || !ui.input(|i| i.pointer.any_down()) {
+        app.viewport.nav = None;
+    }
+    true
+}
+
+/// True when the wheel in Edit mode goes to the cutter editor: over the active cutter, or with
+/// Ctrl (rotate the selected plane) while a cutter is edited.
+pub fn wheel_goes_to_editor(app: &CutawayApp, ctrl: bool) -> bool {
+    app.viewport.editor.hovered_plane().is_some()
+        || (ctrl && app.viewport.editor.active_cutter().is_some())
+}
+
+fn edit_wheel_zoom(ui: &egui::Ui, app: &mut CutawayApp) {
+    let (notches, ctrl) = super::viewport::wheel_notches(ui);
+    if notches != 0.0 && !wheel_goes_to_editor(app, ctrl) {
+        let min = crate::view::SizeDefaults::of(&app.scene.bbox()).min_camera_distance;
+        camera_controls::zoom(&mut app.scene.camera, notches, min);
+    }
+}

@@ -1,0 +1,520 @@
+//! The window a radiologist expects, driven headless by egui_kittest on the real wgpu renderer
+//! (lavapipe without a GPU) at 1280×800: the orientation marker and the view presets, the up axis
+//! and units of real data, selection and its highlight in every mode, the cut visible in Camera
+//! mode, the cutter overlay on a live cut, new cutters by dragging, Hide Current Cutters, and the
+//! Help menu. Screenshots go to the test's temporary folder (`CARGO_TARGET_TMPDIR`), one per
+//! state, for a person to look at.
+//!
+//! Skipped, with the reason printed, when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with
+//! Mesa's lavapipe installed); the real-data test reads `CUTAWAY_ANATOMY` (default `../shared/anatomy`).
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use cutaway::gui::app::Action;
+use cutaway::gui::bridge::frame_inputs;
+use cutaway::gui::view_menu::ViewCommand;
+use cutaway::gui::{CutawayApp, Mode, StartOptions};
+use cutaway::view::{LengthUnit, Orientation, ViewPreset};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use glam::DVec3;
+
+fn no_adapter() -> Option<String> {
+    let instance =
+        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default())) {
+        Ok(_) => None,
+        Err(e) => Some(format!(
+            "no wgpu adapter ({e}); install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan"
+        )),
+    }
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("cutaway-window-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+fn harness(state_dir: &Path, paths: Vec<PathBuf>) -> Harness<'static, CutawayApp> {
+    let start = StartOptions {
+        paths,
+        state_dir: state_dir.to_path_buf(),
+        offer_recovery: false,
+    };
+    Harness::builder()
+        .wgpu()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .with_max_steps(10_000)
+        // Real frame times, so two clicks a frame apart are a double-click.
+        .with_step_dt(1.0 / 60.0)
+        .with_accessibility_check(false)
+        .build_eframe(move |cc| CutawayApp::new(cc, start))
+}
+
+fn settle(h: &mut Harness<'_, CutawayApp>) {
+    let deadline = Instant::now() + Duration::from_secs(180);
+    while h.state().busy() {
+        assert!(Instant::now() < deadline, "background jobs did not finish");
+        h.step();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    h.run_steps(3);
+}
+
+/// Renders the window, saves it as `name` in the test's temporary folder, returns it.
+fn shot(h: &mut Harness<'_, CutawayApp>, name: &str) -> image::RgbaImage {
+    let image = h.render().expect("render the window");
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("window-{name}.png"));
+    image.save(&path).expect("save screenshot");
+    println!("screenshot: {}", path.display());
+    image
+}
+
+fn apply(h: &mut Harness<'_, CutawayApp>, action: Action) {
+    let ctx = h.ctx.clone();
+    h.state_mut().apply(&ctx, action);
+    h.run_steps(2);
+}
+
+fn click_mode(h: &mut Harness<'_, CutawayApp>, mode: Mode) {
+    apply(h, Action::SetMode(mode));
+}
+
+/// Mean absolute channel difference of two equally sized images inside `rect` (pixels).
+fn difference_in(a: &image::RgbaImage, b: &image::RgbaImage, rect: egui::Rect) -> f64 {
+    let (mut sum, mut n) = (0.0f64, 0.0f64);
+    for y in rect.min.y as u32..rect.max.y as u32 {
+        for x in rect.min.x as u32..rect.max.x as u32 {
+            let (p, q) = (a.get_pixel(x, y), b.get_pixel(x, y));
+            for k in 0..3 {
+                sum += (p[k] as f64 - q[k] as f64).abs();
+            }
+            n += 3.0;
+        }
+    }
+    sum / n.max(1.0)
+}
+
+/// Pixels in `rect` close to the colour `rgb` (within 40 per channel).
+fn count_colour(image: &image::RgbaImage, rect: egui::Rect, rgb: [u8; 3]) -> usize {
+    let mut n = 0;
+    for y in rect.min.y as u32..rect.max.y as u32 {
+        for x in rect.min.x as u32..rect.max.x as u32 {
+            let p = image.get_pixel(x, y);
+            if (0..3).all(|k| (p[k] as i32 - rgb[k] as i32).abs() < 40) {
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
+/// The pixel rectangle of the 3D view.
+fn view_px(h: &Harness<'_, CutawayApp>) -> egui::Rect {
+    let ppp = h.ctx.pixels_per_point();
+    let r = h.state().viewport.rect;
+    egui::Rect::from_min_max(
+        (r.min.to_vec2() * ppp).to_pos2(),
+        (r.max.to_vec2() * ppp).to_pos2(),
+    )
+}
+
+/// Press, drag through five steps and release from `a` to `b` (points).
+fn drag(h: &mut Harness<'_, CutawayApp>, a: egui::Pos2, b: egui::Pos2) {
+    h.hover_at(a);
+    h.step();
+    h.drag_at(a);
+    h.step();
+    for k in 1..=5 {
+        h.hover_at(a + (b - a) * (k as f32 / 5.0));
+        h.step();
+    }
+    h.drop_at(b);
+    h.run_steps(2);
+}
+
+#[test]
+fn the_first_frame_has_the_orientation_marker_and_every_preset_turns_the_view() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("presets");
+    let mut h = harness(&dir, Vec::new());
+    settle(&mut h);
+    assert_eq!(h.state().scene.orientation, Orientation::RAS);
+    let first = shot(&mut h, "default-first-frame");
+    // The marker sits in the view's lower-left corner: its red (R/L), green (A/P) and blue (S/I)
+    // axes are there, and not in the lower-right corner.
+    let view = view_px(&h);
+    let corner = egui::Rect::from_min_size(
+        egui::pos2(view.min.x, view.max.y - 120.0),
+        egui::vec2(120.0, 120.0),
+    );
+    let other = corner.translate(egui::vec2(view.width() - 120.0, 0.0));
+    for (name, rgb) in [
+        ("red", [230, 70, 60]),
+        ("green", [80, 200, 90]),
+        ("blue", [90, 140, 250]),
+    ] {
+        let n = count_colour(&first, corner, rgb);
+        assert!(n >= 15, "only {n} {name} marker pixels in the corner");
+        assert!(
+            count_colour(&first, other, rgb) < n / 4,
+            "{name} elsewhere too"
+        );
+    }
+    let mut previous = first;
+    for preset in ViewPreset::ALL {
+        apply(&mut h, Action::View(ViewCommand::Preset(preset)));
+        let camera = h.state().scene.camera;
+        let (toward_eye, up) = Orientation::RAS.preset_axes(preset);
+        assert!(
+            ((camera.eye - camera.target).normalize() - toward_eye).length() < 1e-9,
+            "{preset:?}: {camera:?}"
+        );
+        assert!(
+            camera.basis().1.dot(up) > 0.999,
+            "{preset:?}: up {:?}",
+            camera.up
+        );
+        let image = shot(&mut h, &format!("preset-{}", preset.label().to_lowercase()));
+        let d = difference_in(&image, &previous, view);
+        assert!(d > 1.0, "{preset:?} looks like the view before it ({d})");
+        previous = image;
+    }
+    // The number keys choose the same presets.
+    h.key_press(egui::Key::Num3);
+    h.run_steps(2);
+    let c = h.state().scene.camera;
+    assert!(
+        (c.eye - c.target).normalize().dot(DVec3::X) > 0.999,
+        "3: right view"
+    );
+    // Zoom to fit keeps the direction.
+    apply(&mut h, Action::View(ViewCommand::ZoomToFit));
+    let d = h.state().scene.camera;
+    assert!((d.forward() - c.forward()).length() < 1e-9);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_double_click_selects_and_highlights_in_every_mode() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("select");
+    let mut h = harness(&dir, Vec::new());
+    settle(&mut h);
+    let plain = shot(&mut h, "unselected");
+    let centre = h.state().viewport.rect.center();
+    for mode in [
+        Mode::Camera,
+        Mode::Preview,
+        Mode::Edit,
+        Mode::Scalpel,
+        Mode::Camera,
+    ] {
+        click_mode(&mut h, mode);
+        apply(&mut h, Action::SelectModel(None));
+        // Long enough after the last mode's clicks that these two are a double-click of their own.
+        h.run_steps(40);
+        h.hover_at(centre);
+        h.step();
+        for pressed in [true, false, true, false] {
+            h.event(egui::Event::PointerButton {
+                pos: centre,
+                button: egui::PointerButton::Primary,
+                pressed,
+                modifiers: Default::default(),
+            });
+        }
+        h.step();
+        h.run_steps(3);
+        let app = h.state();
+        assert_eq!(
+            app.selected_model,
+            Some(0),
+            "{mode:?}: the skin under the centre is not selected ({})",
+            app.status.message
+        );
+        assert_eq!(app.scene.cutters.len(), 0, "{mode:?}: a double-click cut");
+    }
+    // Camera mode centres on it; the list shows it selected; the view tints it.
+    let selected = shot(&mut h, "selected-highlighted");
+    let d = difference_in(&selected, &plain, view_px(&h));
+    assert!(d > 1.5, "the selected skin is not highlighted ({d})");
+    let inputs = frame_inputs(h.state(), [64, 48]);
+    assert_ne!(
+        inputs.scene.models[0].color,
+        h.state().scene.models[0].color
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_ones() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("cutters");
+    let mut h = harness(&dir, Vec::new());
+    settle(&mut h);
+    click_mode(&mut h, Mode::Edit);
+    let c = h.state().viewport.rect.center();
+    drag(
+        &mut h,
+        c + egui::vec2(-40.0, 40.0),
+        c + egui::vec2(30.0, 50.0),
+    );
+    assert_eq!(
+        h.state().scene.cutters.len(),
+        1,
+        "no first cutter ({})",
+        h.state().status.message
+    );
+    // Extrude it down the face by its handle (the middle of the leading plane's front edge):
+    // the live cut arrives under the translucent cutter.
+    let app = h.state();
+    let lead = *app.scene.cutters[0].planes.last().unwrap();
+    let px = app
+        .scene
+        .camera
+        .project(app.viewport.size_px, (lead[0] + lead[3]) * 0.5)
+        .expect("handle in view");
+    let ppp = h.ctx.pixels_per_point();
+    let handle = app.viewport.rect.min + egui::vec2(px.x as f32 / ppp, px.y as f32 / ppp);
+    drag(&mut h, handle, handle + egui::vec2(10.0, 90.0));
+    assert!(h.state().scene.cutters[0].planes.len() > 1, "no extrusion");
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while h.state().viewport.live.shown().is_none() || h.state().viewport.live.pending() {
+        assert!(Instant::now() < deadline, "no live cut");
+        h.step();
+    }
+    settle(&mut h);
+    shot(&mut h, "edit-overlay-live-cut");
+    // Hide the current cutter: its overlay goes, the next drag makes a visible one.
+    apply(&mut h, Action::ToggleCutters);
+    assert!(frame_inputs(h.state(), [64, 48]).overlays.is_empty());
+    drag(
+        &mut h,
+        c + egui::vec2(-40.0, -120.0),
+        c + egui::vec2(30.0, -110.0),
+    );
+    let app = h.state();
+    assert_eq!(
+        app.scene.cutters.len(),
+        2,
+        "the second drag did not start a new cutter ({})",
+        app.status.message
+    );
+    assert_eq!(app.scene.cutters[0].target, app.scene.cutters[1].target);
+    let overlays = frame_inputs(app, [64, 48]).overlays;
+    assert_eq!(overlays.len(), 1, "only the new cutter shows");
+    assert_eq!(overlays[0].planes, app.scene.cutters[1].planes);
+    // The cut stays visible in Camera mode: the preview is computed and drawn there too.
+    click_mode(&mut h, Mode::Camera);
+    settle(&mut h);
+    let inputs = frame_inputs(h.state(), [64, 48]);
+    let cut = inputs.preview.expect("Camera mode draws the cut");
+    assert!(
+        cut.parts
+            .iter()
+            .any(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall),
+        "no walls in Camera mode"
+    );
+    shot(&mut h, "camera-mode-shows-cut");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_help_menu_opens_the_keyboard_and_mouse_reference() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("help");
+    let mut h = harness(&dir, Vec::new());
+    settle(&mut h);
+    assert!(
+        h.query_by_label("Debug").is_none(),
+        "the Debug menu shows without being asked for"
+    );
+    h.get_by_label("Help").click();
+    h.run_steps(2);
+    h.get_by_label("Keyboard and Mouse…").click();
+    h.run_steps(3);
+    h.get_by_label("Every mode");
+    h.get_by_label("cut along the path");
+    h.get_by_label("superior / inferior view");
+    shot(&mut h, "help-keyboard-and-mouse");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `CUTAWAY_ANATOMY/<folder>` (default `../shared/anatomy`) or `None` with the reason printed.
+fn anatomy(folder: &str) -> Option<PathBuf> {
+    let root = std::env::var_os("CUTAWAY_ANATOMY")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("../shared/anatomy"));
+    let path = root.join(folder);
+    if !path.is_dir() {
+        println!(
+            "skipped: {} not found (set CUTAWAY_ANATOMY)",
+            path.display()
+        );
+        return None;
+    }
+    Some(path)
+}
+
+#[test]
+fn the_hubmap_body_opens_upright_in_metres_and_the_knee_in_millimetres() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let (Some(body), Some(knee)) = (anatomy("hubmap_vhf_body"), anatomy("knee_vhf_left_denver"))
+    else {
+        return;
+    };
+    let dir = temp_dir("hubmap");
+    let mut h = harness(&dir, vec![body]);
+    settle(&mut h);
+    let app = h.state();
+    assert!(!app.status.is_error, "{}", app.status.message);
+    assert_eq!(app.scene.orientation, Orientation::Y_UP);
+    assert_eq!(app.scene.unit, LengthUnit::Metre);
+    let camera = app.scene.camera;
+    assert!(
+        camera.basis().1.dot(DVec3::Y) > 0.999,
+        "not upright: {camera:?}"
+    );
+    assert!(
+        camera.eye.z > camera.target.z,
+        "not facing the body: {camera:?}"
+    );
+    let depth = app.viewport.scalpel.settings.depth;
+    assert!(depth > 0.01 && depth < 0.2, "scalpel depth {depth} m");
+    // Upright: the view's top third holds the head, so more of the body shows in the middle
+    // columns than at the sides, and the body is taller than wide on screen.
+    let bbox = app.scene.bbox();
+    let vp = app.viewport.size_px;
+    let top = camera.project(vp, DVec3::new(bbox.center().x, bbox.max.y, bbox.center().z));
+    let bottom = camera.project(vp, DVec3::new(bbox.center().x, bbox.min.y, bbox.center().z));
+    assert!(top.unwrap().y < bottom.unwrap().y, "head below the feet");
+    shot(&mut h, "hubmap-upright");
+
+    apply(&mut h, Action::Open(vec![knee]));
+    settle(&mut h);
+    let app = h.state();
+    assert_eq!(app.scene.unit, LengthUnit::Millimetre);
+    assert_eq!(app.scene.orientation, Orientation::RAS);
+    let depth = app.viewport.scalpel.settings.depth;
+    assert!(depth > 5.0 && depth < 50.0, "scalpel depth {depth} mm");
+    shot(&mut h, "knee-mm");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("browser");
+    let start = StartOptions {
+        paths: Vec::new(),
+        state_dir: dir.clone(),
+        offer_recovery: false,
+    };
+    // The browser crate draws folder and file icons that the default fonts lack (boxes).
+    let mut h = Harness::builder()
+        .wgpu()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .with_step_dt(1.0 / 60.0)
+        .with_accessibility_check(false)
+        .allow_missing_glyphs()
+        .build_eframe(move |cc| CutawayApp::new(cc, start));
+    settle(&mut h);
+    // As on a machine without a desktop portal or zenity.
+    h.state_mut().native_dialogs = false;
+    apply(
+        &mut h,
+        Action::Dialog(cutaway::gui::app::Purpose::OpenSession),
+    );
+    assert!(h.state().browser.is_some(), "no in-window browser");
+    assert!(!h.state().busy(), "a native dialog job was started");
+    h.run_steps(3);
+    shot(&mut h, "file-browser-fallback");
+    h.get_by_label("Cancel").click();
+    h.run_steps(3);
+    assert!(
+        h.state().browser.is_none(),
+        "Cancel did not close the browser"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn edit_mode_orbits_with_the_right_button_and_zooms_off_the_cutter() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("navigate");
+    let mut h = harness(&dir, Vec::new());
+    settle(&mut h);
+    click_mode(&mut h, Mode::Edit);
+    let c = h.state().viewport.rect.center();
+    let before = h.state().scene.camera;
+    // Right-drag: the camera orbits, no cutter is made, no context menu stays open.
+    h.hover_at(c);
+    h.step();
+    for (pressed, at) in [(true, c), (false, c + egui::vec2(80.0, 10.0))] {
+        if !pressed {
+            for k in 1..=4 {
+                h.hover_at(c + egui::vec2(20.0 * k as f32, 2.5 * k as f32));
+                h.step();
+            }
+        }
+        h.event(egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Secondary,
+            pressed,
+            modifiers: Default::default(),
+        });
+        h.step();
+    }
+    h.run_steps(2);
+    let after = h.state().scene.camera;
+    assert!(
+        (after.eye - before.eye).length() > 1.0,
+        "right-drag did not orbit in Edit mode"
+    );
+    assert!((after.distance() - before.distance()).abs() < 1e-6);
+    assert!(
+        h.state().scene.cutters.is_empty(),
+        "right-drag made a cutter"
+    );
+    // The wheel off any cutter zooms.
+    h.hover_at(c + egui::vec2(0.0, -200.0));
+    h.step();
+    h.event(egui::Event::MouseWheel {
+        unit: egui::MouseWheelUnit::Line,
+        delta: egui::vec2(0.0, 2.0),
+        modifiers: Default::default(),
+        phase: egui::TouchPhase::Move,
+        source: egui::MouseWheelSource::Wheel,
+    });
+    h.run_steps(2);
+    assert!(
+        h.state().scene.camera.distance() < after.distance() * 0.95,
+        "the wheel did not zoom in Edit mode"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
