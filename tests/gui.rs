@@ -594,9 +594,15 @@ fn a_two_million_triangle_load_and_index_never_block_the_window() {
         h.get_by_label("Cancel").click();
         h.run_steps(3);
         assert!(!h.state().busy());
-        assert!(
-            h.state().viewport.editor.index_for(&big).is_none(),
-            "a cancelled index was stored"
+        // The build may finish between the frame that showed Cancel and the click: then it
+        // was not cancelled and its index is kept.
+        let cancelled = h.state().status.message.contains("cancelled");
+        assert_eq!(
+            h.state().viewport.editor.index_for(&big).is_some(),
+            !cancelled,
+            "index stored: {}, status: {}",
+            h.state().viewport.editor.index_for(&big).is_some(),
+            h.state().status.message
         );
     } else {
         println!("the index build finished after {frames} frames, before Cancel showed");

@@ -6,7 +6,7 @@
 //! Cancelling sets a flag the worker checks between steps (files of a directory, models of a
 //! scene); work inside one step cannot be interrupted, so a cancelled job's late result is
 //! dropped rather than applied. The progress window appears only for jobs running longer than
-//! [`Job::SHOW_AFTER`], as the issue asks (quick loads never flash a dialog).
+//! [`Job::SHOW_AFTER`] (quick loads never flash a dialog).
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
