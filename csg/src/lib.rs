@@ -19,6 +19,7 @@ pub mod labels;
 pub mod lattice;
 pub mod mesh;
 pub mod output;
+pub mod pick;
 pub mod region_parts;
 pub mod regions;
 pub mod solids;
@@ -38,6 +39,7 @@ pub use boolean::{
 pub use glam::DVec3;
 pub use mesh::{Mesh, MeshError};
 pub use output::{Contour, CutOptions, CutResult, Part, Provenance, Removed, VertexSource};
+pub use pick::PickIndex;
 pub use region_parts::RegionParts;
 pub use spatial::{ClosestPoint, RayHit, SpatialIndex};
 pub use target::TargetIndex;
