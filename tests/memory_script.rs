@@ -98,6 +98,51 @@ fn status_kb(field: &str) -> u64 {
         .unwrap_or_else(|| panic!("no {field} in /proc/self/status"))
 }
 
+/// What the C allocator holds, from glibc's `mallinfo2`: bytes in live blocks (heap and
+/// mmapped) and bytes free inside its arenas (freed but kept, counted in the resident size only
+/// where touched). `None` off glibc.
+#[allow(unsafe_code)] // glibc's own report of its arenas; no safe binding exists
+pub fn heap() -> Option<(u64, u64, u64)> {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    {
+        #[repr(C)]
+        struct MallInfo2 {
+            arena: usize,
+            ordblks: usize,
+            smblks: usize,
+            hblks: usize,
+            hblkhd: usize,
+            usmblks: usize,
+            fsmblks: usize,
+            uordblks: usize,
+            fordblks: usize,
+            keepcost: usize,
+        }
+        unsafe extern "C" {
+            fn mallinfo2() -> MallInfo2;
+        }
+        // SAFETY: glibc's mallinfo2 takes no arguments and returns a plain struct.
+        let m = unsafe { mallinfo2() };
+        Some((m.uordblks as u64, m.hblkhd as u64, m.fordblks as u64))
+    }
+    #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+    None
+}
+
+/// Diagnostic only (`CUTAWAY_MEMORY_TRIM=1`): hands the allocator's free pages back before a
+/// reading, to tell memory the allocator keeps from memory in use. Never part of a pass.
+#[allow(unsafe_code)] // diagnostic only, see above
+fn trim_if_asked() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    if std::env::var_os("CUTAWAY_MEMORY_TRIM").is_some() {
+        unsafe extern "C" {
+            fn malloc_trim(pad: usize) -> i32;
+        }
+        // SAFETY: malloc_trim only releases free memory of glibc's arenas.
+        unsafe { malloc_trim(0) };
+    }
+}
+
 pub fn mb(bytes: u64) -> f64 {
     bytes as f64 / (1u64 << 20) as f64
 }
@@ -111,8 +156,19 @@ struct Trace {
 impl Trace {
     fn sample(&mut self, h: &mut Harness<'_, CutawayApp>, step: &str) -> u64 {
         h.render().expect("render the window");
+        trim_if_asked();
         let rss = rss();
-        eprintln!("  {step:<40} {:>8.1} MB", mb(rss));
+        match heap() {
+            Some((used, mapped, free)) => eprintln!(
+                "  {step:<40} {:>8.1} MB   malloc: in arenas {:>6.1} MB, mapped {:>6.1} MB, \
+                 free in arenas {:>6.1} MB",
+                mb(rss),
+                mb(used),
+                mb(mapped),
+                mb(free)
+            ),
+            None => eprintln!("  {step:<40} {:>8.1} MB", mb(rss)),
+        }
         self.steps.push((step.to_string(), rss));
         rss
     }

@@ -17,6 +17,7 @@ pub mod path_file;
 pub mod phantom;
 pub mod render;
 pub mod scene;
+pub mod scene_pick;
 pub mod session;
 pub mod session_limits;
 pub mod session_meshes;

@@ -95,6 +95,8 @@ pub struct ViewportState {
     pub live: super::live_cut::LiveCut,
     /// The renderer is installed in egui's callback resources.
     pub gpu: bool,
+    /// The models' ray-pick trees (double-click focus, the first press of a cutter).
+    pub picks: crate::scene_pick::ScenePicks,
 }
 
 impl ViewportState {
@@ -112,6 +114,7 @@ impl ViewportState {
             preview_key: None,
             live: Default::default(),
             gpu: super::bridge::install_renderer(render_state),
+            picks: Default::default(),
         }
     }
 
@@ -310,27 +313,11 @@ fn camera_input(
             .scene
             .camera
             .ray_through_pixel(app.viewport.size_px, pixel);
-        match pick(&app.scene, &ray) {
+        match app.viewport.picks.pick(&app.scene, &ray) {
             Some((index, _t)) => actions.push(Action::FocusModel(index)),
             None => actions.push(Action::SelectModel(None)),
         }
     }
-}
-
-/// The visible model hit first by `ray`, with the ray parameter.
-pub fn pick(scene: &crate::scene::Scene, ray: &cutter::Ray) -> Option<(usize, f64)> {
-    let mut best: Option<(usize, f64)> = None;
-    for (i, model) in scene.models.iter().enumerate() {
-        if !model.visible || model.opacity <= 0.0 {
-            continue;
-        }
-        if let Some(t) = camera_controls::ray_cast_mesh(&model.mesh, &model.mesh.bbox(), ray)
-            && best.is_none_or(|(_, b)| t < b)
-        {
-            best = Some((i, t));
-        }
-    }
-    best
 }
 
 fn edit_input(
@@ -358,7 +345,7 @@ fn edit_input(
         // The first press decides the target: the selected model, else the one under the pointer.
         let target = app.selected_model.or_else(|| {
             let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, px);
-            pick(&app.scene, &ray).map(|(i, _)| i)
+            app.viewport.picks.pick(&app.scene, &ray).map(|(i, _)| i)
         });
         let Some(target) = target else {
             app.say("Press on a model to start a cutter (or double-click one in Camera mode to make it the target)");
@@ -568,35 +555,6 @@ mod tests {
         assert_eq!(editor_sees(sent), handle);
         let later = DVec2::new(150.0, 180.0);
         assert_eq!(editor_sees(warp.observe(later)), later);
-    }
-
-    #[test]
-    fn pick_finds_the_front_model() {
-        use std::sync::Arc;
-        let mut scene = crate::scene::Scene::default();
-        let near =
-            super::super::app::box_mesh(DVec3::new(-1.0, -1.0, -1.0), DVec3::new(1.0, 1.0, 1.0));
-        let far =
-            super::super::app::box_mesh(DVec3::new(-1.0, 5.0, -1.0), DVec3::new(1.0, 7.0, 1.0));
-        scene.models.push(crate::scene::SceneModel::new(
-            "far",
-            "far.obj",
-            Arc::new(far),
-            [1.0; 3],
-        ));
-        scene.models.push(crate::scene::SceneModel::new(
-            "near",
-            "near.obj",
-            Arc::new(near),
-            [1.0; 3],
-        ));
-        let ray = cutter::Ray {
-            origin: DVec3::new(0.1, -10.0, 0.2),
-            direction: DVec3::Y,
-        };
-        assert_eq!(pick(&scene, &ray).map(|(i, _)| i), Some(1));
-        scene.models[1].visible = false;
-        assert_eq!(pick(&scene, &ray).map(|(i, _)| i), Some(0));
     }
 
     #[test]
