@@ -12,6 +12,7 @@ pub mod export;
 pub mod gesture;
 pub mod gui;
 pub mod io;
+pub mod large_blocks;
 pub mod metrics;
 pub mod path_file;
 pub mod phantom;
