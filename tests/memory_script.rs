@@ -143,6 +143,36 @@ fn trim_if_asked() {
     }
 }
 
+/// Resident bytes by kind of mapping, from `/proc/self/smaps`: anonymous writable (heap arenas,
+/// large blocks, driver memory), anonymous executable (JIT-compiled shaders), shared memory
+/// files (`memfd`, `/dev/shm`: driver buffers) and other files (code, data).
+pub fn resident_by_kind() -> [u64; 4] {
+    let mut out = [0u64; 4];
+    let Ok(smaps) = std::fs::read_to_string("/proc/self/smaps") else {
+        return out;
+    };
+    let mut kind = 0;
+    for line in smaps.lines() {
+        let mut words = line.split_whitespace();
+        let first = words.next().unwrap_or("");
+        if first.contains('-') && first.chars().next().is_some_and(|c| c.is_ascii_hexdigit()) {
+            let perms = words.next().unwrap_or("");
+            let name = line.split_whitespace().nth(5).unwrap_or("");
+            kind = if name.starts_with("/memfd:") || name.starts_with("/dev/shm") {
+                2
+            } else if name.is_empty() || name.starts_with('[') {
+                if perms.contains('x') { 1 } else { 0 }
+            } else {
+                3
+            };
+        } else if first == "Rss:" {
+            let kb: u64 = words.next().and_then(|v| v.parse().ok()).unwrap_or(0);
+            out[kind] += kb << 10;
+        }
+    }
+    out
+}
+
 pub fn mb(bytes: u64) -> f64 {
     bytes as f64 / (1u64 << 20) as f64
 }
@@ -169,6 +199,15 @@ impl Trace {
             ),
             None => eprintln!("  {step:<40} {:>8.1} MB", mb(rss)),
         }
+        let [anon, exec, shared, files] = resident_by_kind();
+        eprintln!(
+            "  {:<40} resident: anonymous {:>6.1} MB, executable {:>5.1} MB, shared memory {:>6.1} MB, files {:>6.1} MB",
+            "",
+            mb(anon),
+            mb(exec),
+            mb(shared),
+            mb(files)
+        );
         self.steps.push((step.to_string(), rss));
         rss
     }
@@ -288,8 +327,12 @@ pub fn run(options: Options) -> Report {
         state_dir: state_dir.clone(),
         offer_recovery: false,
     };
+    // The device the window opens: the test harness's adapter choice, the window's memory hints.
+    let setup = cutaway::render::device_memory::with_memory_hints(
+        egui_kittest::wgpu::default_wgpu_setup(),
+    );
     let mut h = Harness::builder()
-        .wgpu()
+        .wgpu_setup(setup)
         .with_size(egui::vec2(1024.0, 640.0))
         .with_max_steps(10_000)
         .with_accessibility_check(false)
