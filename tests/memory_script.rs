@@ -328,9 +328,8 @@ pub fn run(options: Options) -> Report {
         offer_recovery: false,
     };
     // The device the window opens: the test harness's adapter choice, the window's memory hints.
-    let setup = cutaway::render::device_memory::with_memory_hints(
-        egui_kittest::wgpu::default_wgpu_setup(),
-    );
+    let setup =
+        cutaway::render::device_memory::with_memory_hints(egui_kittest::wgpu::default_wgpu_setup());
     let mut h = Harness::builder()
         .wgpu_setup(setup)
         .with_size(egui::vec2(1024.0, 640.0))

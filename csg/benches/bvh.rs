@@ -267,8 +267,12 @@ fn print_side_by_side(mesh: &Mesh) {
     );
     let picks = PickIndex::build(mesh);
     for &(o, d) in &rays {
-        let a = ours.ray_cast(mesh, o, d, f64::INFINITY).map(|h| (h.face, h.t));
-        let b = picks.ray_cast(mesh, o, d, f64::INFINITY).map(|h| (h.face, h.t));
+        let a = ours
+            .ray_cast(mesh, o, d, f64::INFINITY)
+            .map(|h| (h.face, h.t));
+        let b = picks
+            .ray_cast(mesh, o, d, f64::INFINITY)
+            .map(|h| (h.face, h.t));
         assert_eq!(a, b, "PickIndex and SpatialIndex disagree");
     }
     line(

@@ -135,7 +135,11 @@ impl PickIndex {
         }
         let length = direction.length();
         let unit = direction / length;
-        let unit = DVec3::select(unit.abs().cmplt(DVec3::splat(TINY_DIRECTION)), DVec3::ZERO, unit);
+        let unit = DVec3::select(
+            unit.abs().cmplt(DVec3::splat(TINY_DIRECTION)),
+            DVec3::ZERO,
+            unit,
+        );
         let start = origin + direction * enter;
         // The f32 traversal's parameter s is a distance from `start`: t = enter + s / length.
         let to_s = |t: f64| ((t - enter) * length + 2.0 * self.pad) as f32;
@@ -240,7 +244,11 @@ mod tests {
             // From outside and from inside, aimed near the sphere, some with a short reach.
             let o = rng.vector() * 3.0;
             let d = rng.vector() * 0.2 - o * rng.next_f64();
-            let t_max = if rng.next_f64() < 0.2 { rng.next_f64() } else { f64::INFINITY };
+            let t_max = if rng.next_f64() < 0.2 {
+                rng.next_f64()
+            } else {
+                f64::INFINITY
+            };
             rays.push((o, d, t_max));
         }
         let hits = same_picks(&mesh, &rays);
@@ -263,7 +271,11 @@ mod tests {
         for k in 0..50 {
             let y = -0.9 + 0.036 * k as f64;
             rays.push((DVec3::new(-5.0, y, 0.1), DVec3::X, f64::INFINITY));
-            rays.push((DVec3::new(-5.0, y, 0.1), DVec3::new(1.0, 1e-12, -1e-9), f64::INFINITY));
+            rays.push((
+                DVec3::new(-5.0, y, 0.1),
+                DVec3::new(1.0, 1e-12, -1e-9),
+                f64::INFINITY,
+            ));
         }
         let hits = same_picks(&mesh, &rays);
         assert!(hits >= rays.len() - 10, "{hits} of {} rays hit", rays.len());

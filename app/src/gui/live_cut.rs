@@ -587,7 +587,8 @@ mod knee {
         let press = viewport * 0.5 + DVec2::new(-60.0, 0.0);
         let ray = scene.camera.ray_through_pixel(viewport, press);
         let (target, _) = crate::scene_pick::ScenePicks::default()
-            .pick(&scene, &ray).expect("the knee is in view");
+            .pick(&scene, &ray)
+            .expect("the knee is in view");
         let mut slot = EditorSlot::default();
         assert!(slot.ensure(&scene, target, viewport, &CutterInit::default()));
         for event in [
