@@ -221,10 +221,9 @@ impl Session {
         {
             return (mesh.clone(), pick.clone());
         }
-        let mesh = match &self.rest {
-            Some((revision, mesh, _)) if *revision == self.revision => mesh.clone(),
-            _ => Arc::new(self.scalpel.mesh()),
-        };
+        // The same rest mesh as [`Session::rest`]'s, taken before the stroke cuts it (the layers
+        // below are found from it when the stroke ends).
+        let (mesh, _) = self.rest();
         let pick = Arc::new(PickIndex::build(&mesh));
         self.pick = Some((self.revision, mesh.clone(), pick.clone()));
         (mesh, pick)
