@@ -589,3 +589,36 @@ fn runaway_gestures_stop_with_an_error() {
         "{e}"
     );
 }
+
+/// The box cap alone does not bound a replay: thousands of moves in the smallest viewport a
+/// gesture may have each re-fit a cutter of dozens of boxes while staying under the cap. The
+/// replay stops with an error at the time limit instead of running for tens of seconds.
+#[test]
+fn thousands_of_moves_in_a_tiny_viewport_stop_at_the_time_limit() {
+    let event = |kind: &str, x: f64, y: f64| serde_json::json!({"type": kind, "x": x, "y": y});
+    let mut events = vec![
+        event("press", 8.0, 10.0),
+        event("move", 8.0, 8.0),
+        event("release", 8.0, 5.0),
+        event("press", 8.0, 5.0),
+    ];
+    for i in 0..9990 {
+        let i = i as f64;
+        events.push(event(
+            "move",
+            8.0 + 7.0 * (i * 0.05).sin(),
+            8.0 + 7.0 * (i * 0.031).cos(),
+        ));
+    }
+    let gesture = serde_json::json!({
+        "format": "cutaway-gesture/1",
+        "viewport": [16, 16],
+        "camera": {"eye": [0, -300, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 30},
+        "cut": {"kind": "curving", "spacing": 20, "smooth": false},
+        "events": events,
+    });
+    let gesture = parse_gesture(&gesture.to_string()).unwrap();
+    let sphere = csg::testkit::icosphere(5, 50.0);
+    let e = format!("{:#}", replay(&sphere, &gesture).unwrap_err());
+    assert!(e.contains("the replay took longer than 1.5 s"), "{e}");
+}

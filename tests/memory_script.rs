@@ -98,6 +98,81 @@ fn status_kb(field: &str) -> u64 {
         .unwrap_or_else(|| panic!("no {field} in /proc/self/status"))
 }
 
+/// What the C allocator holds, from glibc's `mallinfo2`: bytes in live blocks (heap and
+/// mmapped) and bytes free inside its arenas (freed but kept, counted in the resident size only
+/// where touched). `None` off glibc.
+#[allow(unsafe_code)] // glibc's own report of its arenas; no safe binding exists
+pub fn heap() -> Option<(u64, u64, u64)> {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    {
+        #[repr(C)]
+        struct MallInfo2 {
+            arena: usize,
+            ordblks: usize,
+            smblks: usize,
+            hblks: usize,
+            hblkhd: usize,
+            usmblks: usize,
+            fsmblks: usize,
+            uordblks: usize,
+            fordblks: usize,
+            keepcost: usize,
+        }
+        unsafe extern "C" {
+            fn mallinfo2() -> MallInfo2;
+        }
+        // SAFETY: glibc's mallinfo2 takes no arguments and returns a plain struct.
+        let m = unsafe { mallinfo2() };
+        Some((m.uordblks as u64, m.hblkhd as u64, m.fordblks as u64))
+    }
+    #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+    None
+}
+
+/// Diagnostic only (`CUTAWAY_MEMORY_TRIM=1`): hands the allocator's free pages back before a
+/// reading, to tell memory the allocator keeps from memory in use. Never part of a pass.
+#[allow(unsafe_code)] // diagnostic only, see above
+fn trim_if_asked() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    if std::env::var_os("CUTAWAY_MEMORY_TRIM").is_some() {
+        unsafe extern "C" {
+            fn malloc_trim(pad: usize) -> i32;
+        }
+        // SAFETY: malloc_trim only releases free memory of glibc's arenas.
+        unsafe { malloc_trim(0) };
+    }
+}
+
+/// Resident bytes by kind of mapping, from `/proc/self/smaps`: anonymous writable (heap arenas,
+/// large blocks, driver memory), anonymous executable (JIT-compiled shaders), shared memory
+/// files (`memfd`, `/dev/shm`: driver buffers) and other files (code, data).
+pub fn resident_by_kind() -> [u64; 4] {
+    let mut out = [0u64; 4];
+    let Ok(smaps) = std::fs::read_to_string("/proc/self/smaps") else {
+        return out;
+    };
+    let mut kind = 0;
+    for line in smaps.lines() {
+        let mut words = line.split_whitespace();
+        let first = words.next().unwrap_or("");
+        if first.contains('-') && first.chars().next().is_some_and(|c| c.is_ascii_hexdigit()) {
+            let perms = words.next().unwrap_or("");
+            let name = line.split_whitespace().nth(5).unwrap_or("");
+            kind = if name.starts_with("/memfd:") || name.starts_with("/dev/shm") {
+                2
+            } else if name.is_empty() || name.starts_with('[') {
+                if perms.contains('x') { 1 } else { 0 }
+            } else {
+                3
+            };
+        } else if first == "Rss:" {
+            let kb: u64 = words.next().and_then(|v| v.parse().ok()).unwrap_or(0);
+            out[kind] += kb << 10;
+        }
+    }
+    out
+}
+
 pub fn mb(bytes: u64) -> f64 {
     bytes as f64 / (1u64 << 20) as f64
 }
@@ -111,8 +186,28 @@ struct Trace {
 impl Trace {
     fn sample(&mut self, h: &mut Harness<'_, CutawayApp>, step: &str) -> u64 {
         h.render().expect("render the window");
+        trim_if_asked();
         let rss = rss();
-        eprintln!("  {step:<40} {:>8.1} MB", mb(rss));
+        match heap() {
+            Some((used, mapped, free)) => eprintln!(
+                "  {step:<40} {:>8.1} MB   malloc: in arenas {:>6.1} MB, mapped {:>6.1} MB, \
+                 free in arenas {:>6.1} MB",
+                mb(rss),
+                mb(used),
+                mb(mapped),
+                mb(free)
+            ),
+            None => eprintln!("  {step:<40} {:>8.1} MB", mb(rss)),
+        }
+        let [anon, exec, shared, files] = resident_by_kind();
+        eprintln!(
+            "  {:<40} resident: anonymous {:>6.1} MB, executable {:>5.1} MB, shared memory {:>6.1} MB, files {:>6.1} MB",
+            "",
+            mb(anon),
+            mb(exec),
+            mb(shared),
+            mb(files)
+        );
         self.steps.push((step.to_string(), rss));
         rss
     }
@@ -232,8 +327,11 @@ pub fn run(options: Options) -> Report {
         state_dir: state_dir.clone(),
         offer_recovery: false,
     };
+    // The device the window opens: the test harness's adapter choice, the window's memory hints.
+    let setup =
+        cutaway::render::device_memory::with_memory_hints(egui_kittest::wgpu::default_wgpu_setup());
     let mut h = Harness::builder()
-        .wgpu()
+        .wgpu_setup(setup)
         .with_size(egui::vec2(1024.0, 640.0))
         .with_max_steps(10_000)
         .with_accessibility_check(false)

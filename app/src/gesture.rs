@@ -11,8 +11,8 @@
 //! [`MIN_VIEWPORT_PX`]..=[`MAX_VIEWPORT_PX`], more than [`MAX_EVENTS`] events, a pointer more
 //! than one viewport size outside the viewport, a wheel step beyond ±[`MAX_WHEEL_DELTA`], camera
 //! coordinates beyond ±[`crate::io::MAX_ABS_COORDINATE`]. The replay itself stops with an error
-//! once the cutter has more than [`MAX_REPLAY_BOXES`] boxes (see `cutaway extrude`), so every
-//! replay is bounded.
+//! once the cutter has more than [`MAX_REPLAY_BOXES`] boxes or its events took longer than
+//! [`MAX_REPLAY_TIME`] (see `cutaway extrude`), so every replay is bounded.
 
 use std::path::Path;
 
@@ -38,6 +38,12 @@ pub const MAX_WHEEL_DELTA: f64 = 1000.0;
 /// (the cutter is checked whole: the replay's cost grows about with the square of the box
 /// count), and 100 keep a replay well within 2 s.
 pub const MAX_REPLAY_BOXES: usize = 100;
+/// Longest a replay's events may take before it stops with an error. The box cap alone does not
+/// bound a replay: thousands of moves that each re-fit a cutter of many boxes (a 16-pixel
+/// viewport, each pixel a large step) stay under the cap and took 38 s; so the replay also
+/// stops at this deadline, which leaves room for reading the target, indexing it and writing
+/// the cutter within 2 s. Gestures a window records replay in well under a second.
+pub const MAX_REPLAY_TIME: std::time::Duration = std::time::Duration::from_millis(1500);
 
 /// Cut settings of a gesture (`cut` object).
 #[derive(Clone, Copy, Debug, PartialEq)]

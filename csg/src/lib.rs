@@ -21,6 +21,7 @@ pub mod lattice_bvh;
 pub mod mesh;
 pub mod output;
 pub(crate) mod phases;
+pub mod pick;
 pub(crate) mod polygon;
 pub mod region_parts;
 pub mod regions;
@@ -43,6 +44,7 @@ pub use boolean::{
 pub use glam::DVec3;
 pub use mesh::{Mesh, MeshError};
 pub use output::{Contour, CutOptions, CutResult, Part, Provenance, Removed, VertexSource};
+pub use pick::PickIndex;
 pub use region_parts::RegionParts;
 pub use spatial::{ClosestPoint, RayHit, SpatialIndex};
 pub use target::TargetIndex;

@@ -16,7 +16,7 @@ use glam::DVec2;
 use csg::{EdgeAdjacency, Mesh, SpatialIndex};
 use cutter::{Cutter, Editor, EditorEvent, EditorSettings};
 
-use crate::gesture::{Gesture, MAX_REPLAY_BOXES, read_gesture};
+use crate::gesture::{Gesture, MAX_REPLAY_BOXES, MAX_REPLAY_TIME, read_gesture};
 
 #[derive(Debug, clap::Args)]
 pub struct ExtrudeArgs {
@@ -65,6 +65,7 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
         delta,
     };
     let mut editor = Editor::new(mesh, index, gesture.camera, gesture.viewport, settings);
+    let started = std::time::Instant::now();
     for (i, &event) in gesture.events.iter().enumerate() {
         editor.handle(event);
         // One event adds a bounded number of boxes, so checking after each bounds the replay.
@@ -72,6 +73,14 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
         if boxes > MAX_REPLAY_BOXES {
             bail!(
                 "event {i}: the cutter has {boxes} boxes, more than the limit of {MAX_REPLAY_BOXES}; replay stopped (a tiny viewport or spacing makes each pixel of a drag a whole box)"
+            );
+        }
+        // One event costs at most a bounded re-fit, so checking after each bounds the time.
+        if started.elapsed() > MAX_REPLAY_TIME {
+            bail!(
+                "event {i} of {}: the replay took longer than {:.1} s and stopped (the cutter has {boxes} boxes; a tiny viewport makes every move re-fit many of them)",
+                gesture.events.len(),
+                MAX_REPLAY_TIME.as_secs_f64()
             );
         }
     }

@@ -250,6 +250,7 @@ pub struct CutawayApp {
 
 impl CutawayApp {
     pub fn new(cc: &eframe::CreationContext<'_>, start: StartOptions) -> CutawayApp {
+        crate::large_blocks::return_large_blocks_to_the_system();
         super::menus::apply_style(&cc.egui_ctx);
         let recovery = Recovery::new(start.state_dir.clone());
         let pending_recovery = if start.offer_recovery {

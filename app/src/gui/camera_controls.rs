@@ -1,4 +1,4 @@
-//! Camera manipulation of the viewport: orbit, pan, zoom, framing and picking.
+//! Camera manipulation of the viewport: orbit, pan, zoom and framing (picking: `crate::scene_pick`).
 //!
 //! Behaves like VTK's trackball-camera style that the thesis used (section 3.5, "Mode buttons"):
 //! a left drag orbits the eye around the target (horizontal motion about the camera's up axis,
@@ -9,8 +9,8 @@
 
 use glam::{DQuat, DVec2, DVec3};
 
-use csg::{Aabb, Mesh};
-use cutter::{Camera, Ray};
+use csg::Aabb;
+use cutter::Camera;
 
 /// Radians of orbit per pixel of drag.
 const ORBIT_RADIANS_PER_PIXEL: f64 = 0.008;
@@ -88,78 +88,6 @@ pub fn frame_all(bbox: &Aabb, fov_y_deg: f64) -> Camera {
     Camera::framing(bbox, DVec3::NEG_Y, DVec3::Z, fov_y_deg)
 }
 
-/// Nearest intersection of `ray` with `mesh` (Möller–Trumbore in f64), or `None`.
-///
-/// Brute force with a bounding-box early out: used for double-click picking only, where one ray
-/// per click over a few million triangles costs tens of milliseconds at most.
-pub fn ray_cast_mesh(mesh: &Mesh, bbox: &Aabb, ray: &Ray) -> Option<f64> {
-    if !ray_hits_box(ray, bbox) {
-        return None;
-    }
-    let mut best: Option<f64> = None;
-    for t in 0..mesh.triangle_count() {
-        let [a, b, c] = mesh.corners(t);
-        if let Some(hit) = ray_triangle(ray, a, b, c)
-            && best.is_none_or(|b| hit < b)
-        {
-            best = Some(hit);
-        }
-    }
-    best
-}
-
-/// Slab test of a ray against a box.
-fn ray_hits_box(ray: &Ray, bbox: &Aabb) -> bool {
-    if bbox.is_empty() {
-        return false;
-    }
-    let (lo, hi) = (bbox.min, bbox.max);
-    let mut t_near = 0.0_f64;
-    let mut t_far = f64::INFINITY;
-    for axis in 0..3 {
-        let o = ray.origin[axis];
-        let d = ray.direction[axis];
-        if d.abs() < 1e-300 {
-            if o < lo[axis] || o > hi[axis] {
-                return false;
-            }
-            continue;
-        }
-        let t0 = (lo[axis] - o) / d;
-        let t1 = (hi[axis] - o) / d;
-        t_near = t_near.max(t0.min(t1));
-        t_far = t_far.min(t0.max(t1));
-        if t_near > t_far {
-            return false;
-        }
-    }
-    true
-}
-
-/// Ray parameter of the hit with triangle `abc` (both sides), if in front of the origin.
-fn ray_triangle(ray: &Ray, a: DVec3, b: DVec3, c: DVec3) -> Option<f64> {
-    let e1 = b - a;
-    let e2 = c - a;
-    let p = ray.direction.cross(e2);
-    let det = e1.dot(p);
-    if det.abs() < 1e-300 {
-        return None;
-    }
-    let inv = 1.0 / det;
-    let s = ray.origin - a;
-    let u = s.dot(p) * inv;
-    if !(0.0..=1.0).contains(&u) {
-        return None;
-    }
-    let q = s.cross(e1);
-    let v = ray.direction.dot(q) * inv;
-    if v < 0.0 || u + v > 1.0 {
-        return None;
-    }
-    let t = e2.dot(q) * inv;
-    (t > 0.0).then_some(t)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -214,34 +142,5 @@ mod tests {
         zoom(&mut c, 1000.0, 2.0);
         assert!((c.distance() - 2.0).abs() < 1e-9);
         assert!(c.forward().dot(DVec3::Y) > 0.999);
-    }
-
-    #[test]
-    fn ray_cast_finds_the_nearest_triangle() {
-        // Two parallel squares at y = 0 and y = 10, viewed from -y.
-        let mut positions = Vec::new();
-        let mut triangles = Vec::new();
-        for y in [10.0, 0.0] {
-            let base = positions.len() as u32;
-            positions.extend([
-                DVec3::new(-1.0, y, -1.0),
-                DVec3::new(1.0, y, -1.0),
-                DVec3::new(1.0, y, 1.0),
-                DVec3::new(-1.0, y, 1.0),
-            ]);
-            triangles.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
-        }
-        let mesh = Mesh::new(positions, triangles).unwrap();
-        let ray = Ray {
-            origin: DVec3::new(0.2, -5.0, 0.3),
-            direction: DVec3::Y,
-        };
-        let t = ray_cast_mesh(&mesh, &mesh.bbox(), &ray).unwrap();
-        assert!((t - 5.0).abs() < 1e-12);
-        let miss = Ray {
-            origin: DVec3::new(3.0, -5.0, 0.0),
-            direction: DVec3::Y,
-        };
-        assert!(ray_cast_mesh(&mesh, &mesh.bbox(), &miss).is_none());
     }
 }

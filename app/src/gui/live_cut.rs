@@ -586,7 +586,9 @@ mod knee {
         let viewport = DVec2::new(1280.0, 800.0);
         let press = viewport * 0.5 + DVec2::new(-60.0, 0.0);
         let ray = scene.camera.ray_through_pixel(viewport, press);
-        let (target, _) = crate::gui::viewport::pick(&scene, &ray).expect("the knee is in view");
+        let (target, _) = crate::scene_pick::ScenePicks::default()
+            .pick(&scene, &ray)
+            .expect("the knee is in view");
         let mut slot = EditorSlot::default();
         assert!(slot.ensure(&scene, target, viewport, &CutterInit::default()));
         for event in [

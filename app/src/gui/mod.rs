@@ -50,6 +50,12 @@ pub fn run(paths: &[PathBuf]) -> anyhow::Result<()> {
             .with_min_inner_size([640.0, 400.0])
             .with_drag_and_drop(true),
         renderer: eframe::Renderer::Wgpu,
+        wgpu_options: egui_wgpu::WgpuConfiguration {
+            wgpu_setup: crate::render::device_memory::with_memory_hints(
+                egui_wgpu::WgpuSetup::without_display_handle(),
+            ),
+            ..Default::default()
+        },
         ..Default::default()
     };
     let start = StartOptions::new(paths.to_vec());

@@ -38,7 +38,7 @@ pub fn navigation_input(
             .scene
             .camera
             .ray_through_pixel(app.viewport.size_px, to_px(pos));
-        actions.push(match super::viewport::pick(&app.scene, &ray) {
+        actions.push(match app.viewport.picks.pick(&app.scene, &ray) {
             Some((index, _)) if matches!(app.mode, Mode::Camera | Mode::Preview) => {
                 Action::FocusModel(index)
             }

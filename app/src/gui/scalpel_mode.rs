@@ -51,7 +51,7 @@ use std::sync::Arc;
 
 use glam::{DVec2, DVec3};
 
-use csg::{Mesh, SpatialIndex};
+use csg::{Mesh, PickIndex, SpatialIndex};
 use cutter::Camera;
 use cutter::scalpel::{OpenOptions, Scalpel, ScalpelOptions, Tool, dffd};
 
@@ -122,6 +122,8 @@ struct Session {
     /// The rest mesh and its spatial index for projecting samples, with the `revision` they were
     /// built at. Splitting keeps the surface where it was, so one index serves a whole stroke.
     rest: Option<(u64, Arc<Mesh>, Arc<SpatialIndex>)>,
+    /// The rest mesh's ray-pick tree (see [`PickIndex`]), with the `revision` it was built at.
+    pick: Option<(u64, Arc<Mesh>, Arc<PickIndex>)>,
     /// The opening `shown` was made with (a stroke with another one redraws the whole mesh).
     shown_open: OpenOptions,
     /// The faces of each vertex of `shown`, for the deltas of a stroke; built on a thread of its
@@ -145,6 +147,7 @@ impl Session {
             before_strokes: Vec::new(),
             revision: 0,
             rest: None,
+            pick: None,
             shown_open: OpenOptions {
                 width: 0.0,
                 window: 0.0,
@@ -208,6 +211,22 @@ impl Session {
         let index = Arc::new(SpatialIndex::build(&mesh));
         self.rest = Some((self.revision, mesh.clone(), index.clone()));
         (mesh, index)
+    }
+
+    /// The rest mesh and its ray-pick tree (built when the rest mesh changed since the last
+    /// stroke): the pointer's ray finds the stroke's samples through it.
+    fn rest_pick(&mut self) -> (Arc<Mesh>, Arc<PickIndex>) {
+        if let Some((revision, mesh, pick)) = &self.pick
+            && *revision == self.revision
+        {
+            return (mesh.clone(), pick.clone());
+        }
+        // The same rest mesh as [`Session::rest`]'s, taken before the stroke cuts it (the layers
+        // below are found from it when the stroke ends).
+        let (mesh, _) = self.rest();
+        let pick = Arc::new(PickIndex::build(&mesh));
+        self.pick = Some((self.revision, mesh.clone(), pick.clone()));
+        (mesh, pick)
     }
 
     /// The delta of the stroke so far against `shown` (see the module documentation). Cost:
@@ -392,6 +411,8 @@ pub struct ScalpelSlot {
     /// Spatial indexes of the models cut as layers below a stroke, by mesh (weak: a replaced
     /// mesh invalidates its entry). Used when the editor has none cached for the mesh.
     layer_indexes: Vec<(std::sync::Weak<Mesh>, Arc<SpatialIndex>)>,
+    /// The models' ray-pick trees: which model a press starts on.
+    picks: crate::scene_pick::ScenePicks,
 }
 
 impl Default for ScalpelSlot {
@@ -404,6 +425,7 @@ impl Default for ScalpelSlot {
             rect: egui::Rect::NOTHING,
             last_report: None,
             off_surface: false,
+            picks: Default::default(),
             layer_indexes: Vec::new(),
         }
     }
@@ -471,7 +493,7 @@ impl ScalpelSlot {
     ) -> Result<Option<usize>, String> {
         self.stroke = None;
         let ray = scene.camera.ray_through_pixel(viewport, px);
-        let Some((model, t)) = super::viewport::pick(scene, &ray) else {
+        let Some((model, t)) = self.picks.pick(scene, &ray) else {
             return Ok(None);
         };
         let point = ray.at(t);
@@ -558,7 +580,7 @@ impl ScalpelSlot {
         stroke.last_px = px;
         let camera: Camera = scene.camera;
         let ray = camera.ray_through_pixel(viewport, px);
-        let (rest, index) = session.rest();
+        let (rest, index) = session.rest_pick();
         let q = match index.ray_cast(&rest, ray.origin, ray.direction, f64::INFINITY) {
             Some(hit) => hit.point,
             // Off the model: the view plane through the last point, so that the scalpel decides

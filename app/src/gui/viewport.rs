@@ -99,6 +99,8 @@ pub struct ViewportState {
     pub nav: Option<super::navigation::NavDrag>,
     /// View → Orientation Marker (a window overlay: exports do not draw it).
     pub show_marker: bool,
+    /// The models' ray-pick trees (double-click focus, the first press of a cutter).
+    pub picks: crate::scene_pick::ScenePicks,
 }
 
 impl ViewportState {
@@ -118,6 +120,7 @@ impl ViewportState {
             gpu: super::bridge::install_renderer(render_state),
             nav: None,
             show_marker: true,
+            picks: Default::default(),
         }
     }
 
@@ -316,22 +319,6 @@ fn camera_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, 
     }
 }
 
-/// The visible model hit first by `ray`, with the ray parameter.
-pub fn pick(scene: &crate::scene::Scene, ray: &cutter::Ray) -> Option<(usize, f64)> {
-    let mut best: Option<(usize, f64)> = None;
-    for (i, model) in scene.models.iter().enumerate() {
-        if !model.visible || model.opacity <= 0.0 {
-            continue;
-        }
-        if let Some(t) = camera_controls::ray_cast_mesh(&model.mesh, &model.mesh.bbox(), ray)
-            && best.is_none_or(|(_, b)| t < b)
-        {
-            best = Some((i, t));
-        }
-    }
-    best
-}
-
 fn edit_input(
     ui: &egui::Ui,
     response: &egui::Response,
@@ -370,13 +357,12 @@ fn edit_input(
             && app.viewport.editor.hovered_plane().is_none()
         {
             let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, px);
-            let on_target = app
+            let selected = app
                 .selected_model
                 .and_then(|i| app.scene.models.get(i))
-                .is_some_and(|m| {
-                    camera_controls::ray_cast_mesh(&m.mesh, &m.mesh.bbox(), &ray).is_some()
-                });
-            let hit = pick(&app.scene, &ray).map(|(i, _)| i);
+                .map(|m| m.mesh.clone());
+            let on_target = selected.is_some_and(|m| app.viewport.picks.hits(&m, &ray));
+            let hit = app.viewport.picks.pick(&app.scene, &ray).map(|(i, _)| i);
             if on_target || hit.is_some() {
                 if !on_target {
                     app.selected_model = hit;
@@ -389,7 +375,7 @@ fn edit_input(
         // The first press decides the target: the selected model, else the one under the pointer.
         let target = app.selected_model.or_else(|| {
             let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, px);
-            pick(&app.scene, &ray).map(|(i, _)| i)
+            app.viewport.picks.pick(&app.scene, &ray).map(|(i, _)| i)
         });
         let Some(target) = target else {
             app.say("Press on a model to start a cutter (or double-click one in Camera mode to make it the target)");
@@ -599,35 +585,6 @@ mod tests {
         assert_eq!(editor_sees(sent), handle);
         let later = DVec2::new(150.0, 180.0);
         assert_eq!(editor_sees(warp.observe(later)), later);
-    }
-
-    #[test]
-    fn pick_finds_the_front_model() {
-        use std::sync::Arc;
-        let mut scene = crate::scene::Scene::default();
-        let near =
-            super::super::app::box_mesh(DVec3::new(-1.0, -1.0, -1.0), DVec3::new(1.0, 1.0, 1.0));
-        let far =
-            super::super::app::box_mesh(DVec3::new(-1.0, 5.0, -1.0), DVec3::new(1.0, 7.0, 1.0));
-        scene.models.push(crate::scene::SceneModel::new(
-            "far",
-            "far.obj",
-            Arc::new(far),
-            [1.0; 3],
-        ));
-        scene.models.push(crate::scene::SceneModel::new(
-            "near",
-            "near.obj",
-            Arc::new(near),
-            [1.0; 3],
-        ));
-        let ray = cutter::Ray {
-            origin: DVec3::new(0.1, -10.0, 0.2),
-            direction: DVec3::Y,
-        };
-        assert_eq!(pick(&scene, &ray).map(|(i, _)| i), Some(1));
-        scene.models[1].visible = false;
-        assert_eq!(pick(&scene, &ray).map(|(i, _)| i), Some(0));
     }
 
     #[test]

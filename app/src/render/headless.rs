@@ -77,6 +77,7 @@ impl HeadlessRenderer {
         let limits = adapter.limits();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("cutaway headless device"),
+            memory_hints: super::device_memory::MEMORY_HINTS,
             required_limits: wgpu::Limits {
                 max_texture_dimension_2d: limits.max_texture_dimension_2d,
                 ..wgpu::Limits::downlevel_defaults()

@@ -64,6 +64,7 @@ use crate::cutaway_geometry::PreviewGeometry;
 use crate::scene::{CutterPlane, Scene};
 
 pub mod delta;
+pub mod device_memory;
 pub mod draw_data;
 pub mod gpu_data;
 pub mod headless;
