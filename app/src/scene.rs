@@ -314,6 +314,8 @@ pub struct Scene {
     pub cutters: Vec<SceneCutter>,
     pub camera: Camera,
     pub render: RenderSettings,
+    /// The intensity image shown on the walls, slices and ribbons (`None`: no image).
+    pub image: Option<crate::intensity::ImageLayer>,
 }
 
 impl Default for Scene {
@@ -328,6 +330,7 @@ impl Default for Scene {
                 fov_y_deg: 30.0,
             },
             render: RenderSettings::default(),
+            image: None,
         }
     }
 }
@@ -372,7 +375,17 @@ impl Scene {
             cutters,
             camera,
             render,
+            image,
         } = self;
+        if let Some(layer) = image {
+            let w = layer.window;
+            if !(w.level.is_finite() && w.width.is_finite() && w.width > 0.0) {
+                return Err(format!(
+                    "image window [{}, {}] needs a finite level and a positive width",
+                    w.level, w.width
+                ));
+            }
+        }
         for (i, m) in models.iter().enumerate() {
             if !(0.0..=1.0).contains(&m.opacity) {
                 return Err(format!(

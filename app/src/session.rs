@@ -63,6 +63,9 @@ pub struct SessionFile {
     pub camera: Option<CameraEntry>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub render: Option<RenderEntry>,
+    /// The intensity image on the walls ([`crate::session_image`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub image: Option<crate::session_image::ImageEntry>,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -397,6 +400,9 @@ pub fn scene_from_file(
             })?,
         };
     }
+    if let Some(entry) = &file.image {
+        scene.image = Some(crate::session_image::load(entry, folder, &scene)?);
+    }
     scene.sanity_check().map_err(anyhow::Error::msg)?;
     Ok(scene)
 }
@@ -469,6 +475,10 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
             antialias: scene.render.antialias,
             stereo: scene.render.stereo.as_str().to_string(),
         }),
+        image: scene
+            .image
+            .as_ref()
+            .map(|layer| crate::session_image::entry(layer, folder)),
     }
 }
 

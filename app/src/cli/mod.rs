@@ -10,6 +10,7 @@ use clap::{Parser, Subcommand};
 
 pub mod export;
 pub mod extrude;
+pub mod image_args;
 pub mod info;
 pub mod metrics;
 pub mod open;
