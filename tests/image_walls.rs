@@ -253,15 +253,18 @@ fn a_wrong_image_is_caught_and_colour_mode_ignores_the_image() {
     let rho = correlation(&pairs);
     assert!(rho.abs() < 0.5, "a ramp along z correlates {rho} with one along x");
 
-    // Structure colour: the wall is the same colour everywhere (no image).
+    // Structure colour: the picture is the one without an image, pixel for pixel.
     let mut scene = cube_scene(ras_image(0.5, |p| ramp(p) as f32), WINDOW);
     scene.image.as_mut().unwrap().display = WallDisplay::Color;
-    let picture = render(&mut r, &scene, "ramp_color_display");
-    let greys: Vec<f64> = wall_samples(&picture, &ramp, WINDOW)
-        .iter()
-        .map(|p| p.0)
-        .collect();
-    let spread = greys.iter().cloned().fold(f64::MIN, f64::max)
-        - greys.iter().cloned().fold(f64::MAX, f64::min);
-    assert!(spread < 0.05, "colour display varies by {spread}");
+    let color = render(&mut r, &scene, "ramp_color_display");
+    scene.image = None;
+    let plain = render(&mut r, &scene, "no_image");
+    assert_eq!(color.as_raw(), plain.as_raw(), "colour display differs from no image");
+    // Blend: between the two.
+    let mut scene = cube_scene(ras_image(0.5, |p| ramp(p) as f32), WINDOW);
+    scene.image.as_mut().unwrap().display = WallDisplay::Blend;
+    let blend = render(&mut r, &scene, "ramp_blend");
+    let pairs = wall_samples(&blend, &ramp, WINDOW);
+    assert!(correlation(&pairs) > 0.9, "blend still follows the ramp");
+    assert_ne!(blend.as_raw(), plain.as_raw());
 }
