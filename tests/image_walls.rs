@@ -268,3 +268,84 @@ fn a_wrong_image_is_caught_and_colour_mode_ignores_the_image() {
     assert!(correlation(&pairs) > 0.9, "blend still follows the ramp");
     assert_ne!(blend.as_raw(), plain.as_raw());
 }
+
+/// The chest CT folder of the real data (`$CUTAWAY_ANATOMY/volumes/slicerio_chest`, else
+/// `../shared/anatomy` beside the workspace), or `None` with the reason printed.
+fn chest_dir() -> Option<PathBuf> {
+    let root = std::env::var_os("CUTAWAY_ANATOMY")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/anatomy"));
+    let root = if root.is_relative() {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(root)
+    } else {
+        root
+    };
+    let dir = root.join("volumes/slicerio_chest");
+    if dir.join("CTChest4.nrrd").is_file() && dir.join("Segmentation.seg.nrrd").is_file() {
+        Some(dir)
+    } else {
+        println!("skipped: no chest CT in {}", dir.display());
+        None
+    }
+}
+
+/// The chest segmentation with a box cut from the front through the ribs and lungs, the CT on
+/// the walls, at 1280×800 through `cutaway render`: with the lung window the lungs are dark and
+/// the mediastinum bright; with the bone window the lungs are black and little is white.
+#[test]
+fn chest_ct_on_the_walls_with_lung_and_bone_windows() {
+    let Some(chest) = chest_dir() else { return };
+    if renderer().is_none() {
+        return;
+    }
+    let out = out_dir();
+    let plane = |x: f64| serde_json::json!([[x, 200, -90], [x, -10, -90], [x, -10, -290], [x, 200, -290]]);
+    let planes = serde_json::json!([plane(150.0), plane(0.0), plane(-150.0)]);
+    let cutters: Vec<serde_json::Value> = [0, 2, 3, 4, 5, 6]
+        .iter()
+        .map(|t| serde_json::json!({"target": t, "kind": "straight", "planes": planes}))
+        .collect();
+    let mut fractions = Vec::new();
+    for (name, window) in [("lung", [-600.0, 1500.0]), ("bone", [400.0, 1800.0])] {
+        let session = serde_json::json!({
+            "format": "cutaway-session/2",
+            "models": [{"path": chest.join("Segmentation.seg.nrrd")}],
+            "cutters": cutters,
+            "camera": {"eye": [160, 720, -20], "target": [0, 0, -190], "up": [0, 0, 1], "fov_y_deg": 30},
+            "image": {"path": chest.join("CTChest4.nrrd"), "window": window}
+        });
+        let path = out.join(format!("chest_{name}.json"));
+        std::fs::write(&path, serde_json::to_string_pretty(&session).unwrap()).unwrap();
+        let png = out.join(format!("chest_{name}.png"));
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
+            .args(["render"])
+            .arg(&path)
+            .arg("--out")
+            .arg(&png)
+            .status()
+            .unwrap();
+        assert!(status.success(), "cutaway render {name}");
+        let picture = image::open(&png).unwrap().to_rgba8();
+        assert_eq!(picture.dimensions(), (1280, 800));
+        // The wall: the cut's rectangle in the middle of the picture (grey pixels: r = g = b).
+        let (mut dark, mut bright, mut grey) = (0usize, 0usize, 0usize);
+        for y in 250..650 {
+            for x in 380..900 {
+                let p = picture.get_pixel(x, y).0;
+                if (p[0] as i32 - p[1] as i32).abs() <= 2 && (p[1] as i32 - p[2] as i32).abs() <= 2 {
+                    grey += 1;
+                    let v = p[0] as f64 / 255.0;
+                    dark += usize::from(v < 0.45);
+                    bright += usize::from(v > 0.85);
+                }
+            }
+        }
+        let (d, b) = (dark as f64 / grey as f64, bright as f64 / grey as f64);
+        println!("{name} window: {grey} grey wall pixels, {d:.2} dark, {b:.2} bright");
+        assert!(grey > 100_000, "{name}: the wall shows no image ({grey} grey pixels)");
+        fractions.push((d, b));
+    }
+    let (lung, bone) = (fractions[0], fractions[1]);
+    assert!(lung.0 > 0.15 && lung.1 > 0.15, "lung window: lungs dark, tissue bright: {lung:?}");
+    assert!(bone.0 > lung.0 + 0.2 && bone.1 < 0.05, "bone window: mostly dark: {bone:?}");
+}
