@@ -35,8 +35,7 @@ fn renderer() -> Option<HeadlessRenderer> {
 }
 
 fn out_dir() -> PathBuf {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../target/test-output/image_walls");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/test-output/image_walls");
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
@@ -138,7 +137,11 @@ fn ramp(p: DVec3) -> f64 {
 
 /// Bands 2 mm high along z, alternately 0 and 1000.
 fn checker(p: DVec3) -> f64 {
-    if (p.z / 2.0).floor() as i64 % 2 == 0 { 0.0 } else { 1000.0 }
+    if (p.z / 2.0).floor() as i64 % 2 == 0 {
+        0.0
+    } else {
+        1000.0
+    }
 }
 
 const WINDOW: Window = Window {
@@ -157,7 +160,10 @@ fn assert_follows(image: &image::RgbaImage, f: &dyn Fn(DVec3) -> f64, what: &str
         });
     }
     let r = correlation(&pairs);
-    println!("{what}: correlation {r:.4} over {} wall pixels", pairs.len());
+    println!(
+        "{what}: correlation {r:.4} over {} wall pixels",
+        pairs.len()
+    );
     assert!(r >= 0.95, "{what}: correlation {r} < 0.95");
     if ramp_in_x {
         // Along each row of constant z, the grey rises with x (ties allowed between neighbours
@@ -166,11 +172,17 @@ fn assert_follows(image: &image::RgbaImage, f: &dyn Fn(DVec3) -> f64, what: &str
         by_x.sort_by(|a, b| a.0.total_cmp(&b.0));
         let first = by_x[..29].iter().map(|v| v.1).sum::<f64>() / 29.0;
         let last = by_x[by_x.len() - 29..].iter().map(|v| v.1).sum::<f64>() / 29.0;
-        assert!(last > first + 0.4, "{what}: grey at high x {last} vs low x {first}");
+        assert!(
+            last > first + 0.4,
+            "{what}: grey at high x {last} vs low x {first}"
+        );
         for z in 0..=28 {
             let row: Vec<f64> = (0..=28).map(|x| pairs[x * 29 + z].0).collect();
             for w in row.windows(2) {
-                assert!(w[1] >= w[0] - 2.0 / 255.0, "{what}: not monotonic along x: {row:?}");
+                assert!(
+                    w[1] >= w[0] - 2.0 / 255.0,
+                    "{what}: not monotonic along x: {row:?}"
+                );
             }
         }
     }
@@ -215,7 +227,11 @@ fn lps_nrrd_image(dir: &Path, name: &str, f: impl Fn(DVec3) -> f64) -> Intensity
     let p = image
         .world_from_voxel
         .transform_point3(DVec3::new(3.0, 4.0, 5.0));
-    assert!((p - ras(3, 4, 5)).length() < 1e-9, "{p} vs {}", ras(3, 4, 5));
+    assert!(
+        (p - ras(3, 4, 5)).length() < 1e-9,
+        "{p} vs {}",
+        ras(3, 4, 5)
+    );
     image
 }
 
@@ -225,8 +241,18 @@ fn wall_pixels_follow_the_image_function() {
     let dir = out_dir();
     let cases: Vec<(&str, IntensityImage, &dyn Fn(DVec3) -> f64, bool)> = vec![
         ("ramp_ras", ras_image(0.5, |p| ramp(p) as f32), &ramp, true),
-        ("checker_ras", ras_image(0.25, |p| checker(p) as f32), &checker, false),
-        ("ramp_lps_permuted", lps_nrrd_image(&dir, "ramp_lps.nrrd", ramp), &ramp, true),
+        (
+            "checker_ras",
+            ras_image(0.25, |p| checker(p) as f32),
+            &checker,
+            false,
+        ),
+        (
+            "ramp_lps_permuted",
+            lps_nrrd_image(&dir, "ramp_lps.nrrd", ramp),
+            &ramp,
+            true,
+        ),
         (
             "checker_lps_permuted",
             lps_nrrd_image(&dir, "checker_lps.nrrd", checker),
@@ -234,7 +260,12 @@ fn wall_pixels_follow_the_image_function() {
             false,
         ),
         // A grid much coarser than the wall: the ramp is still exact under trilinear sampling.
-        ("ramp_coarse", ras_image(3.0, |p| ramp(p) as f32), &ramp, true),
+        (
+            "ramp_coarse",
+            ras_image(3.0, |p| ramp(p) as f32),
+            &ramp,
+            true,
+        ),
     ];
     for (name, image, f, in_x) in cases {
         let scene = cube_scene(image, WINDOW);
@@ -251,7 +282,10 @@ fn a_wrong_image_is_caught_and_colour_mode_ignores_the_image() {
     let picture = render(&mut r, &scene, "ramp_wrong_axis");
     let pairs = wall_samples(&picture, &ramp, WINDOW);
     let rho = correlation(&pairs);
-    assert!(rho.abs() < 0.5, "a ramp along z correlates {rho} with one along x");
+    assert!(
+        rho.abs() < 0.5,
+        "a ramp along z correlates {rho} with one along x"
+    );
 
     // Structure colour: the picture is the one without an image, pixel for pixel.
     let mut scene = cube_scene(ras_image(0.5, |p| ramp(p) as f32), WINDOW);
@@ -259,7 +293,11 @@ fn a_wrong_image_is_caught_and_colour_mode_ignores_the_image() {
     let color = render(&mut r, &scene, "ramp_color_display");
     scene.image = None;
     let plain = render(&mut r, &scene, "no_image");
-    assert_eq!(color.as_raw(), plain.as_raw(), "colour display differs from no image");
+    assert_eq!(
+        color.as_raw(),
+        plain.as_raw(),
+        "colour display differs from no image"
+    );
     // Blend: between the two.
     let mut scene = cube_scene(ras_image(0.5, |p| ramp(p) as f32), WINDOW);
     scene.image.as_mut().unwrap().display = WallDisplay::Blend;
@@ -299,7 +337,8 @@ fn chest_ct_on_the_walls_with_lung_and_bone_windows() {
         return;
     }
     let out = out_dir();
-    let plane = |x: f64| serde_json::json!([[x, 200, -90], [x, -10, -90], [x, -10, -290], [x, 200, -290]]);
+    let plane =
+        |x: f64| serde_json::json!([[x, 200, -90], [x, -10, -90], [x, -10, -290], [x, 200, -290]]);
     let planes = serde_json::json!([plane(150.0), plane(0.0), plane(-150.0)]);
     let cutters: Vec<serde_json::Value> = [0, 2, 3, 4, 5, 6]
         .iter()
@@ -332,7 +371,8 @@ fn chest_ct_on_the_walls_with_lung_and_bone_windows() {
         for y in 250..650 {
             for x in 380..900 {
                 let p = picture.get_pixel(x, y).0;
-                if (p[0] as i32 - p[1] as i32).abs() <= 2 && (p[1] as i32 - p[2] as i32).abs() <= 2 {
+                if (p[0] as i32 - p[1] as i32).abs() <= 2 && (p[1] as i32 - p[2] as i32).abs() <= 2
+                {
                     grey += 1;
                     let v = p[0] as f64 / 255.0;
                     dark += usize::from(v < 0.45);
@@ -342,10 +382,19 @@ fn chest_ct_on_the_walls_with_lung_and_bone_windows() {
         }
         let (d, b) = (dark as f64 / grey as f64, bright as f64 / grey as f64);
         println!("{name} window: {grey} grey wall pixels, {d:.2} dark, {b:.2} bright");
-        assert!(grey > 100_000, "{name}: the wall shows no image ({grey} grey pixels)");
+        assert!(
+            grey > 100_000,
+            "{name}: the wall shows no image ({grey} grey pixels)"
+        );
         fractions.push((d, b));
     }
     let (lung, bone) = (fractions[0], fractions[1]);
-    assert!(lung.0 > 0.15 && lung.1 > 0.15, "lung window: lungs dark, tissue bright: {lung:?}");
-    assert!(bone.0 > lung.0 + 0.2 && bone.1 < 0.05, "bone window: mostly dark: {bone:?}");
+    assert!(
+        lung.0 > 0.15 && lung.1 > 0.15,
+        "lung window: lungs dark, tissue bright: {lung:?}"
+    );
+    assert!(
+        bone.0 > lung.0 + 0.2 && bone.1 < 0.05,
+        "bone window: mostly dark: {bone:?}"
+    );
 }

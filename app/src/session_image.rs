@@ -117,12 +117,18 @@ mod tests {
         let mut m = layer();
         apply(&back, &mut m).unwrap();
         assert_eq!(m.window, l.window);
-        assert_eq!((m.on_walls, m.on_slices, m.display), (true, false, WallDisplay::Blend));
+        assert_eq!(
+            (m.on_walls, m.on_slices, m.display),
+            (true, false, WallDisplay::Blend)
+        );
 
         let minimal: ImageEntry = serde_json::from_str(r#"{"path": "CT.nrrd"}"#).unwrap();
         let mut m = layer();
         apply(&minimal, &mut m).unwrap();
-        assert_eq!((m.on_walls, m.on_slices, m.display), (true, true, WallDisplay::Image));
+        assert_eq!(
+            (m.on_walls, m.on_slices, m.display),
+            (true, true, WallDisplay::Image)
+        );
 
         for (bad, says) in [
             (r#"{"path": "a", "window": [0, 0]}"#, "positive width"),

@@ -34,9 +34,8 @@ pub fn apply(
             .with_context(|| layer.image.source.display().to_string())?;
     }
     if let Some(text) = display {
-        layer.display = WallDisplay::parse(text).ok_or_else(|| {
-            anyhow::anyhow!("--display {text:?} is not image, blend or color")
-        })?;
+        layer.display = WallDisplay::parse(text)
+            .ok_or_else(|| anyhow::anyhow!("--display {text:?} is not image, blend or color"))?;
     }
     Ok(())
 }

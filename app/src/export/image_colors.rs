@@ -80,7 +80,8 @@ mod tests {
 
     #[test]
     fn a_wall_is_split_to_about_a_voxel_and_coloured_by_the_image() {
-        let image = IntensityImage::from_fn([11, 11, 11], DAffine3::IDENTITY, |p| 100.0 * p.x as f32);
+        let image =
+            IntensityImage::from_fn([11, 11, 11], DAffine3::IDENTITY, |p| 100.0 * p.x as f32);
         let mut layer = ImageLayer::new(Arc::new(image));
         layer.window = Window {
             level: 500.0,
@@ -97,12 +98,21 @@ mod tests {
         };
         let (mesh, colors) = bake(&wall, &layer, [1.0, 0.0, 0.0]);
         assert_eq!(colors.len(), mesh.positions.len());
-        assert!(mesh.triangles.len() >= 64, "{} triangles", mesh.triangles.len());
-        let area: f64 = (0..mesh.triangles.len()).map(|t| mesh.face_normal_scaled(t).length() / 2.0).sum();
+        assert!(
+            mesh.triangles.len() >= 64,
+            "{} triangles",
+            mesh.triangles.len()
+        );
+        let area: f64 = (0..mesh.triangles.len())
+            .map(|t| mesh.face_normal_scaled(t).length() / 2.0)
+            .sum();
         assert!((area - 32.0).abs() < 1e-9, "area {area}");
         for (p, c) in mesh.positions.iter().zip(&colors) {
             let expected = (p.x / 10.0) as f32;
-            assert!((c[0] - expected).abs() < 1e-4 && (c[1] - expected).abs() < 1e-4, "{p}: {c:?}");
+            assert!(
+                (c[0] - expected).abs() < 1e-4 && (c[1] - expected).abs() < 1e-4,
+                "{p}: {c:?}"
+            );
         }
     }
 }

@@ -132,7 +132,8 @@ impl IntensityImage {
         for k in 0..dims[2] {
             for j in 0..dims[1] {
                 for i in 0..dims[0] {
-                    let p = world_from_voxel.transform_point3(DVec3::new(i as f64, j as f64, k as f64));
+                    let p =
+                        world_from_voxel.transform_point3(DVec3::new(i as f64, j as f64, k as f64));
                     bytes.extend_from_slice(&f(p).to_le_bytes());
                 }
             }
@@ -220,10 +221,26 @@ impl IntensityImage {
         }
         let v = |i: usize, j: usize, k: usize| self.value(i, j, k);
         let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
-        let x00 = lerp(v(base[0], base[1], base[2]), v(next[0], base[1], base[2]), t[0]);
-        let x10 = lerp(v(base[0], next[1], base[2]), v(next[0], next[1], base[2]), t[0]);
-        let x01 = lerp(v(base[0], base[1], next[2]), v(next[0], base[1], next[2]), t[0]);
-        let x11 = lerp(v(base[0], next[1], next[2]), v(next[0], next[1], next[2]), t[0]);
+        let x00 = lerp(
+            v(base[0], base[1], base[2]),
+            v(next[0], base[1], base[2]),
+            t[0],
+        );
+        let x10 = lerp(
+            v(base[0], next[1], base[2]),
+            v(next[0], next[1], base[2]),
+            t[0],
+        );
+        let x01 = lerp(
+            v(base[0], base[1], next[2]),
+            v(next[0], base[1], next[2]),
+            t[0],
+        );
+        let x11 = lerp(
+            v(base[0], next[1], next[2]),
+            v(next[0], next[1], next[2]),
+            t[0],
+        );
         Some(lerp(lerp(x00, x10, t[1]), lerp(x01, x11, t[1]), t[2]))
     }
 
@@ -232,9 +249,21 @@ impl IntensityImage {
         let mut b = csg::Aabb::EMPTY;
         for corner in 0..8 {
             let q = DVec3::new(
-                if corner & 1 == 0 { -0.5 } else { self.dims[0] as f64 - 0.5 },
-                if corner & 2 == 0 { -0.5 } else { self.dims[1] as f64 - 0.5 },
-                if corner & 4 == 0 { -0.5 } else { self.dims[2] as f64 - 0.5 },
+                if corner & 1 == 0 {
+                    -0.5
+                } else {
+                    self.dims[0] as f64 - 0.5
+                },
+                if corner & 2 == 0 {
+                    -0.5
+                } else {
+                    self.dims[1] as f64 - 0.5
+                },
+                if corner & 4 == 0 {
+                    -0.5
+                } else {
+                    self.dims[2] as f64 - 0.5
+                },
             );
             b.grow(self.world_from_voxel.transform_point3(q));
         }
@@ -266,7 +295,10 @@ impl IntensityImage {
         if lo > hi {
             return (0.0, 0.0);
         }
-        let (a, b) = (lo * self.scale.0 + self.scale.1, hi * self.scale.0 + self.scale.1);
+        let (a, b) = (
+            lo * self.scale.0 + self.scale.1,
+            hi * self.scale.0 + self.scale.1,
+        );
         (a.min(b), a.max(b))
     }
 }

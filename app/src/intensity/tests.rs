@@ -26,9 +26,21 @@ fn trilinear_sampling_reproduces_a_linear_function_in_world_space() {
         assert!((got - f(p) as f64).abs() < 1e-3, "{q}: {got} vs {}", f(p));
     }
     // Half a voxel past the last centre still samples (edge value), further out does not.
-    assert!(image.sample_world(m.transform_point3(DVec3::new(-0.49, 0.0, 0.0))).is_some());
-    assert!(image.sample_world(m.transform_point3(DVec3::new(-0.51, 0.0, 0.0))).is_none());
-    assert!(image.sample_world(m.transform_point3(DVec3::new(0.0, 8.6, 0.0))).is_none());
+    assert!(
+        image
+            .sample_world(m.transform_point3(DVec3::new(-0.49, 0.0, 0.0)))
+            .is_some()
+    );
+    assert!(
+        image
+            .sample_world(m.transform_point3(DVec3::new(-0.51, 0.0, 0.0)))
+            .is_none()
+    );
+    assert!(
+        image
+            .sample_world(m.transform_point3(DVec3::new(0.0, 8.6, 0.0)))
+            .is_none()
+    );
 }
 
 #[test]

@@ -104,10 +104,12 @@ impl Window {
             .collect::<Result<_, _>>()
             .map_err(|_| anyhow::anyhow!("window {text:?} is not a preset (soft-tissue, lung, bone, brain, auto) or LEVEL,WIDTH"))?;
         match numbers.as_slice() {
-            [level, width] if level.is_finite() && width.is_finite() && *width > 0.0 => Ok(Window {
-                level: *level,
-                width: *width,
-            }),
+            [level, width] if level.is_finite() && width.is_finite() && *width > 0.0 => {
+                Ok(Window {
+                    level: *level,
+                    width: *width,
+                })
+            }
             _ => anyhow::bail!("window {text:?} needs LEVEL,WIDTH with a positive width"),
         }
     }
@@ -157,14 +159,22 @@ mod tests {
         let ct = IntensityImage::from_fn([8, 8, 8], DAffine3::IDENTITY, |p| {
             if p.x < 4.0 { -1000.0 } else { 60.0 }
         });
-        assert_eq!(Window::default_for(&ct), WindowPreset::SoftTissue.window(&ct));
+        assert_eq!(
+            Window::default_for(&ct),
+            WindowPreset::SoftTissue.window(&ct)
+        );
         assert_eq!(WindowPreset::Lung.window(&ct).level, -600.0);
         assert_eq!(WindowPreset::parse("bone"), Some(WindowPreset::Bone));
         assert_eq!(WindowPreset::parse("liver"), None);
         assert_eq!(Window::parse("lung", &ct).unwrap().width, 1500.0);
         assert_eq!(Window::parse("-500, 1000", &ct).unwrap().level, -500.0);
         assert!(Window::parse("1,0", &ct).is_err());
-        assert!(Window::parse("wide", &ct).unwrap_err().to_string().contains("preset"));
+        assert!(
+            Window::parse("wide", &ct)
+                .unwrap_err()
+                .to_string()
+                .contains("preset")
+        );
         // An MR-like ramp 0..=999 along x: the auto window spans about its 1st..99th percentile.
         let mr = IntensityImage::from_fn([1000, 2, 2], DAffine3::IDENTITY, |p| p.x as f32);
         let w = Window::default_for(&mr);

@@ -112,10 +112,11 @@ impl ImageRenderer {
         if self.pipeline.is_none() {
             self.pipeline = Some(pipeline(device, pipelines, &layout));
         }
-        let fresh = self
-            .uploaded
-            .as_ref()
-            .is_some_and(|u| u.image.upgrade().is_some_and(|i| Arc::ptr_eq(&i, &layer.image)));
+        let fresh = self.uploaded.as_ref().is_some_and(|u| {
+            u.image
+                .upgrade()
+                .is_some_and(|i| Arc::ptr_eq(&i, &layer.image))
+        });
         if !fresh {
             // The old texture goes first, so two scans are never on the GPU together.
             self.uploaded = None;

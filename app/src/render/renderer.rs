@@ -265,7 +265,9 @@ impl Renderer {
         // Phase 1: uploads (mutable caches).
         let image = frame.scene.image.as_ref();
         let image_ready = self.image.prepare(device, queue, &self.pipelines, image);
-        let on = |walls: bool| image_ready && image.is_some_and(|l| if walls { l.on_walls } else { l.on_slices });
+        let on = |walls: bool| {
+            image_ready && image.is_some_and(|l| if walls { l.on_walls } else { l.on_slices })
+        };
         let draws = self.upload_and_list(device, frame, [on(true), on(false)]);
         let (draws, uniforms) = draws;
         self.apply_patches(device, encoder);
@@ -625,12 +627,21 @@ impl Renderer {
                     },
                     PartKind::Wall | PartKind::SliceWall => {
                         let u = push_uniform(wall, 1.0, true, 0.0, 0.0);
-                        let image = image_walls || (part.kind == PartKind::SliceWall && image_slices);
-                        list.opaque.push(if image { Draw::ImageMesh(Source::Part(i), u) } else { Draw::Mesh(Source::Part(i), u) });
+                        let image =
+                            image_walls || (part.kind == PartKind::SliceWall && image_slices);
+                        list.opaque.push(if image {
+                            Draw::ImageMesh(Source::Part(i), u)
+                        } else {
+                            Draw::Mesh(Source::Part(i), u)
+                        });
                     }
                     PartKind::Ribbon => {
                         let u = push_uniform(model.color, 1.0, true, 0.0, 0.0);
-                        list.opaque.push(if image_slices { Draw::ImageMesh(Source::Part(i), u) } else { Draw::Mesh(Source::Part(i), u) });
+                        list.opaque.push(if image_slices {
+                            Draw::ImageMesh(Source::Part(i), u)
+                        } else {
+                            Draw::Mesh(Source::Part(i), u)
+                        });
                     }
                     PartKind::Removed => {
                         let u = push_uniform(model.color, part.opacity, true, 0.0, 0.0);

@@ -156,7 +156,9 @@ mod tests {
             assert_eq!(img.value(1, 1, 1), 3000.0);
             assert_eq!(img.value(0, 1, 0), 0.0);
             // LPS (10, 20, 30) is RAS (-10, -20, 30); i runs toward -x in RAS.
-            let p = img.world_from_voxel.transform_point3(DVec3::new(1.0, 0.0, 1.0));
+            let p = img
+                .world_from_voxel
+                .transform_point3(DVec3::new(1.0, 0.0, 1.0));
             assert_eq!(p, DVec3::new(-11.0, -20.0, 32.0));
             assert_eq!(img.sample_world(p), Some(1000.0));
         }

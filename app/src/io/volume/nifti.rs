@@ -13,8 +13,8 @@ use std::path::Path;
 
 use glam::{DMat3, DQuat, DVec3};
 
-use super::{RawSamples, RawVolume};
 use super::samples::{Endian, SampleType};
+use super::{RawSamples, RawVolume};
 
 /// Whether `bytes` start with an uncompressed NIfTI-1/2 header.
 pub fn sniff(bytes: &[u8]) -> bool {

@@ -346,7 +346,9 @@ fn volume(h: &Header, data: Vec<u8>) -> anyhow::Result<RawVolume> {
     let raw = samples(h, data)?;
     let dims = raw.dims;
     let layers_data = if raw.layers == 1 {
-        vec![super::samples::decode(&raw.bytes, raw.sample, raw.endian, dims)?]
+        vec![super::samples::decode(
+            &raw.bytes, raw.sample, raw.endian, dims,
+        )?]
     } else {
         deinterleave(&raw.bytes, raw.layers, raw.sample.size())
             .iter()
