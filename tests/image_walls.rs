@@ -131,6 +131,9 @@ fn correlation(pairs: &[(f64, f64, DVec3)]) -> f64 {
     ab / (aa * bb).sqrt().max(1e-12)
 }
 
+/// The function of world position an image holds.
+type WallFunction = dyn Fn(DVec3) -> f64;
+
 fn ramp(p: DVec3) -> f64 {
     100.0 * p.x
 }
@@ -239,7 +242,7 @@ fn lps_nrrd_image(dir: &Path, name: &str, f: impl Fn(DVec3) -> f64) -> Intensity
 fn wall_pixels_follow_the_image_function() {
     let Some(mut r) = renderer() else { return };
     let dir = out_dir();
-    let cases: Vec<(&str, IntensityImage, &dyn Fn(DVec3) -> f64, bool)> = vec![
+    let cases: Vec<(&str, IntensityImage, &WallFunction, bool)> = vec![
         ("ramp_ras", ras_image(0.5, |p| ramp(p) as f32), &ramp, true),
         (
             "checker_ras",

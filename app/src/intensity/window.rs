@@ -85,7 +85,7 @@ impl Window {
     /// air near -1000), else the percentile window.
     pub fn default_for(image: &IntensityImage) -> Window {
         let (lo, hi) = image.range();
-        if lo <= -900.0 && lo >= -3100.0 && hi >= 0.0 {
+        if (-3100.0..=-900.0).contains(&lo) && hi >= 0.0 {
             WindowPreset::SoftTissue.window(image)
         } else {
             WindowPreset::Auto.window(image)
