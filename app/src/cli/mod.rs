@@ -75,6 +75,7 @@ where
     match cli.command {
         None => open::run(&open::OpenArgs {
             paths: Vec::<PathBuf>::new(),
+            image: None,
         }),
         Some(Command::Open(a)) => open::run(&a),
         Some(Command::Info(a)) => info::run(&a),

@@ -220,8 +220,10 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         )
     };
 
-    // Interact.
+    // Interact (Shift + right drag sets the image window in every mode).
+    let windowing = super::image_panel::window_drag(app, &response, ui);
     match app.mode {
+        _ if windowing => {}
         Mode::Camera | Mode::Preview => camera_input(ui, &response, app, ppp, to_px, &mut actions),
         Mode::Scalpel => super::scalpel_mode::scalpel_input(ui, &response, app, ppp, to_px),
         Mode::Edit => edit_input(ui, &response, app, to_px),
