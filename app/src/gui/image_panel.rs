@@ -85,7 +85,7 @@ pub fn image_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
                         .range(crate::intensity::Window::MIN_WIDTH..=f64::MAX),
                 );
             });
-            ui.weak("Shift + right drag on the view: width ↔, level ↕");
+            ui.weak("Shift + right drag on the view: sideways width, up and down level");
             remove = ui.button("Remove Image").clicked();
         });
     if remove {
@@ -107,4 +107,117 @@ pub fn window_drag(app: &mut CutawayApp, response: &egui::Response, ui: &egui::U
     let scale = ((hi - lo) / 1000.0).max(1e-3);
     layer.window = layer.window.dragged(delta.x as f64, delta.y as f64, scale);
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable as _;
+    use glam::DVec3;
+
+    use super::super::app::Action;
+    use super::super::{CutawayApp, StartOptions};
+
+    /// An int16 NRRD ramp along x over [-1, 3]³ (RAS), `shift` mm along x.
+    fn write_image(path: &std::path::Path, shift: f64) {
+        let n = 5;
+        let mut bytes = format!(
+            "NRRD0004\ntype: short\ndimension: 3\nspace: RAS\nsizes: {n} {n} {n}\nspace directions: (1,0,0) (0,1,0) (0,0,1)\nendian: little\nencoding: raw\nspace origin: ({},-1,-1)\n\n",
+            shift - 1.0
+        )
+        .into_bytes();
+        for _k in 0..n {
+            for _j in 0..n {
+                for i in 0..n {
+                    bytes.extend_from_slice(&(i as i16 * 500 - 1000).to_le_bytes());
+                }
+            }
+        }
+        std::fs::write(path, bytes).unwrap();
+    }
+
+    #[test]
+    fn open_image_presets_and_the_session_keep_the_window() {
+        let dir = std::env::temp_dir().join(format!("cutaway-image-panel-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let cube = dir.join("cube.ply");
+        crate::io::write_mesh(
+            &cube,
+            &super::super::app::box_mesh(DVec3::ZERO, DVec3::splat(2.0)),
+        )
+        .unwrap();
+        let (near, far) = (dir.join("ct.nrrd"), dir.join("far.nrrd"));
+        write_image(&near, 0.0);
+        write_image(&far, 500.0);
+        let start = StartOptions {
+            paths: vec![cube],
+            state_dir: dir.join("state"),
+            offer_recovery: false,
+        };
+        let mut h = Harness::builder()
+            .with_size(egui::vec2(1024.0, 900.0))
+            .with_max_steps(10_000)
+            .with_accessibility_check(false)
+            .build_eframe(move |cc| CutawayApp::new(cc, start));
+        let settle = |h: &mut Harness<'_, CutawayApp>| {
+            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+            while h.state().busy() {
+                assert!(std::time::Instant::now() < deadline, "a job did not finish");
+                h.step();
+                std::thread::sleep(std::time::Duration::from_millis(5));
+            }
+            h.run_steps(2);
+        };
+        settle(&mut h);
+        let ctx = h.ctx.clone();
+        // An image beside the models, not on them, is refused with the reason.
+        h.state_mut().apply(&ctx, Action::OpenImage(far));
+        settle(&mut h);
+        assert!(h.state().scene.image.is_none());
+        assert!(
+            h.state().status.message.contains("disjoint"),
+            "{}",
+            h.state().status.message
+        );
+
+        h.state_mut().apply(&ctx, Action::OpenImage(near.clone()));
+        settle(&mut h);
+        let layer = h
+            .state()
+            .scene
+            .image
+            .clone()
+            .expect("the image is in the scene");
+        // Values -1000..=1000, air included: a CT, so soft tissue first.
+        assert_eq!(layer.window.level, 40.0);
+        h.get_by_label("Lung").click();
+        h.run_steps(2);
+        assert_eq!(h.state().scene.image.as_ref().unwrap().window.level, -600.0);
+        h.get_by_label("Blend").click();
+        h.run_steps(2);
+        let layer = h.state().scene.image.clone().unwrap();
+        assert_eq!(layer.display, crate::intensity::WallDisplay::Blend);
+
+        let session = dir.join("s.json");
+        h.state_mut()
+            .apply(&ctx, Action::SaveSessionTo(session.clone()));
+        let back = crate::session::load(&session).unwrap();
+        let image = back.image.expect("the session keeps the image");
+        assert_eq!(image.window, layer.window);
+        assert_eq!(image.display, layer.display);
+        assert_eq!(
+            std::fs::canonicalize(&image.image.source).unwrap(),
+            std::fs::canonicalize(&near).unwrap()
+        );
+        let text = std::fs::read_to_string(&session).unwrap();
+        assert!(
+            text.contains("\"path\": \"ct.nrrd\""),
+            "relative path: {text}"
+        );
+
+        h.get_by_label("Remove Image").click();
+        h.run_steps(2);
+        assert!(h.state().scene.image.is_none());
+    }
 }
