@@ -401,3 +401,44 @@ fn chest_ct_on_the_walls_with_lung_and_bone_windows() {
         "bone window: mostly dark: {bone:?}"
     );
 }
+
+/// The glTF export bakes the image into the walls' vertex colours: every coloured vertex on the
+/// back wall has the grey of the ramp there (linear light, as glTF stores it).
+#[test]
+fn gltf_walls_carry_the_image_as_vertex_colours() {
+    let scene = cube_scene(ras_image(0.5, |p| ramp(p) as f32), WINDOW);
+    let (bytes, summary) = cutaway::export::glb_of_scene(&scene).unwrap();
+    assert!(summary.exact, "{:?}", summary.notes);
+    let gltf = gltf::Gltf::from_slice(&bytes).unwrap();
+    let blob = gltf.blob.clone().expect("a BIN chunk");
+    let mut checked = 0;
+    for mesh in gltf.meshes() {
+        for primitive in mesh.primitives() {
+            let reader = primitive.reader(|_| Some(&blob));
+            let Some(colors) = reader.read_colors(0) else {
+                continue;
+            };
+            assert_eq!(primitive.material().name(), Some("image"));
+            let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+            let colors: Vec<[f32; 4]> = colors.into_rgba_f32().collect();
+            assert_eq!(positions.len(), colors.len());
+            for (p, c) in positions.iter().zip(&colors) {
+                if (p[1] - 5.0).abs() > 1e-4 {
+                    continue;
+                }
+                let grey = WINDOW.map(ramp(DVec3::new(p[0] as f64, 5.0, p[2] as f64)));
+                let linear = if grey <= 0.04045 {
+                    grey / 12.92
+                } else {
+                    ((grey + 0.055) / 1.055).powf(2.4)
+                };
+                assert!(
+                    (c[0] as f64 - linear).abs() < 1e-3,
+                    "{p:?}: {c:?} vs {linear}"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 100, "{checked} baked vertices on the back wall");
+}
