@@ -319,6 +319,8 @@ pub struct Scene {
     pub orientation: crate::view::Orientation,
     /// What one file unit is (guessed from the data's size; not saved, guessed again on load).
     pub unit: crate::view::LengthUnit,
+    /// The intensity image shown on the walls, slices and ribbons (`None`: no image).
+    pub image: Option<crate::intensity::ImageLayer>,
 }
 
 impl Default for Scene {
@@ -335,6 +337,7 @@ impl Default for Scene {
             render: RenderSettings::default(),
             orientation: Default::default(),
             unit: Default::default(),
+            image: None,
         }
     }
 }
@@ -392,7 +395,17 @@ impl Scene {
             render,
             orientation: _,
             unit: _,
+            image,
         } = self;
+        if let Some(layer) = image {
+            let w = layer.window;
+            if !(w.level.is_finite() && w.width.is_finite() && w.width > 0.0) {
+                return Err(format!(
+                    "image window [{}, {}] needs a finite level and a positive width",
+                    w.level, w.width
+                ));
+            }
+        }
         for (i, m) in models.iter().enumerate() {
             if !(0.0..=1.0).contains(&m.opacity) {
                 return Err(format!(

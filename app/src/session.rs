@@ -66,6 +66,9 @@ pub struct SessionFile {
     /// The patient's axes in world space; absent in older files (then guessed from the data).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub orientation: Option<OrientationEntry>,
+    /// The intensity image on the walls ([`crate::session_image`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub image: Option<crate::session_image::ImageEntry>,
 }
 
 /// `orientation`: world directions of the patient's superior and anterior (unit, orthogonal).
@@ -418,6 +421,9 @@ pub fn scene_from_file(
             })?,
         };
     }
+    if let Some(entry) = &file.image {
+        scene.image = Some(crate::session_image::load(entry, folder, &scene)?);
+    }
     scene.sanity_check().map_err(anyhow::Error::msg)?;
     Ok(scene)
 }
@@ -494,6 +500,10 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
             superior: scene.orientation.superior.to_array(),
             anterior: scene.orientation.anterior.to_array(),
         }),
+        image: scene
+            .image
+            .as_ref()
+            .map(|layer| crate::session_image::entry(layer, folder)),
     }
 }
 

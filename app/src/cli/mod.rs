@@ -12,6 +12,7 @@ pub use crate::errors::error_line;
 
 pub mod export;
 pub mod extrude;
+pub mod image_args;
 pub mod info;
 pub mod metrics;
 pub mod open;
@@ -76,6 +77,7 @@ where
     match cli.command {
         None => open::run(&open::OpenArgs {
             paths: Vec::<PathBuf>::new(),
+            image: None,
         }),
         Some(Command::Open(a)) => open::run(&a),
         Some(Command::Info(a)) => info::run(&a),

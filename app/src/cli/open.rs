@@ -1,4 +1,4 @@
-//! `cutaway [open PATH…]`: the GUI.
+//! `cutaway [open PATH… [--image CT.nrrd]]`: the GUI, with the scan shown on the cut walls.
 //!
 //! Paths are checked before the window opens, so a typo gives the usual one-line error instead of
 //! a window with an error in its status line.
@@ -9,6 +9,9 @@ use std::path::PathBuf;
 pub struct OpenArgs {
     /// Meshes, directories of meshes, or one session file. None: the embedded default scene.
     pub paths: Vec<PathBuf>,
+    /// The intensity image (CT, MR) the segmentation was drawn on, shown on the cut walls.
+    #[arg(long)]
+    pub image: Option<PathBuf>,
 }
 
 pub fn run(args: &OpenArgs) -> anyhow::Result<()> {
@@ -28,5 +31,10 @@ pub fn run(args: &OpenArgs) -> anyhow::Result<()> {
             args.paths[0].display()
         );
     }
-    crate::gui::run(&args.paths)
+    if let Some(image) = &args.image
+        && !image.is_file()
+    {
+        anyhow::bail!("{}: no such image file", image.display());
+    }
+    crate::gui::run_with_image(&args.paths, args.image.clone())
 }

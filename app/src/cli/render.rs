@@ -1,5 +1,7 @@
-//! `cutaway render SESSION.json --out IMG.png [--width W] [--height H] [--json]`: the session's
-//! picture, headless (no window, no display), with the same renderer as the GUI.
+//! `cutaway render SESSION.json --out IMG.png [--width W] [--height H] [--json] [--image CT.nrrd]
+//! [--window lung|LEVEL,WIDTH] [--display image|blend|color]`: the session's picture, headless
+//! (no window, no display), with the same renderer as the GUI; the image options replace or
+//! adjust the session's `"image"`.
 //!
 //! Every cut is made by the exact boolean; there is no approximate stand-in. A cutter the boolean
 //! refuses makes the command fail (no image is written) with the reason, after `--json` has
@@ -35,6 +37,15 @@ pub struct RenderArgs {
     /// Print whether each cut was exact and the times as one JSON object.
     #[arg(long)]
     pub json: bool,
+    /// Show this intensity image (NRRD or NIfTI) on the walls instead of the session's.
+    #[arg(long)]
+    pub image: Option<PathBuf>,
+    /// Window of the image: soft-tissue, lung, bone, brain, auto, or LEVEL,WIDTH.
+    #[arg(long, allow_hyphen_values = true)]
+    pub window: Option<String>,
+    /// What walls show: image, blend or color.
+    #[arg(long)]
+    pub display: Option<String>,
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
@@ -43,7 +54,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             anyhow::bail!("{}: --{what} {v} is outside 1..16384", args.out.display());
         }
     }
-    let scene = crate::session::load(&args.session)?;
+    let mut scene = crate::session::load(&args.session)?;
+    crate::cli::image_args::apply(
+        &mut scene,
+        args.image.as_deref(),
+        args.window.as_deref(),
+        args.display.as_deref(),
+    )?;
     let mut options = RenderPngOptions::new(args.width, args.height);
     options.transparent_background = args.transparent;
     let mut renderer =

@@ -22,6 +22,10 @@
 //! on glTF's +Y up, anterior on +Z (the front of a glTF asset faces +Z) and the patient's right on
 //! −X (glTF's right side of the asset).
 //!
+//! With an image on the walls (the scene's [`crate::intensity::ImageLayer`]), walls, slices and
+//! ribbons that show it are subdivided and carry the image as `COLOR_0` on a white `image`
+//! material ([`super::image_colors`]).
+//!
 //! Colours: the scene's colours are sRGB; glTF's `baseColorFactor` is linear, so they are
 //! converted. Materials are dielectric (metallic 0) with a matte roughness.
 
@@ -81,6 +85,8 @@ enum MaterialKey {
     Removed(usize, u32),
     Ribbon(usize),
     Contour,
+    /// Walls, slices and ribbons showing the image in their vertex colours.
+    Image,
 }
 
 /// Builds the document of `scene` as drawn with `geometry` (its [`crate::cutaway_geometry::preview_geometry`]).
@@ -97,6 +103,14 @@ pub fn scene_document(scene: &Scene, geometry: &PreviewGeometry) -> Document {
             primitives.extend(builder.surface(scene, m, &model.mesh, MaterialKey::Surface(m)));
         }
         for part in geometry.parts.iter().filter(|p| p.model == m) {
+            if let Some(layer) = image_on(scene, part.kind) {
+                let base = match part.kind {
+                    PartKind::Ribbon => model.color,
+                    _ => mix(model.color, WALL_TINT, WALL_MIX),
+                };
+                primitives.extend(builder.image_surface(scene, &part.mesh, layer, base));
+                continue;
+            }
             let key = match part.kind {
                 PartKind::Kept => MaterialKey::Surface(m),
                 PartKind::Wall | PartKind::SliceWall => MaterialKey::Wall(m),
@@ -163,6 +177,18 @@ pub fn scene_document(scene: &Scene, geometry: &PreviewGeometry) -> Document {
     }
 }
 
+/// The image layer a part of `kind` shows, if any (walls; slices and ribbons).
+fn image_on(scene: &Scene, kind: PartKind) -> Option<&crate::intensity::ImageLayer> {
+    let layer = scene.image.as_ref()?;
+    let shown = match kind {
+        PartKind::Wall => layer.on_walls,
+        PartKind::SliceWall => layer.on_walls || layer.on_slices,
+        PartKind::Ribbon => layer.on_slices,
+        PartKind::Kept | PartKind::Removed => false,
+    };
+    (shown && layer.display != crate::intensity::WallDisplay::Color).then_some(layer)
+}
+
 /// Accumulates the JSON objects and the binary buffer.
 #[derive(Default)]
 struct Builder {
@@ -201,6 +227,52 @@ impl Builder {
             material,
             json::mesh::Mode::Triangles,
         ))
+    }
+
+    /// A wall showing the image: subdivided, the image baked into `COLOR_0` (linear, as glTF
+    /// wants), on a white material ([`super::image_colors`]).
+    fn image_surface(
+        &mut self,
+        scene: &Scene,
+        mesh: &Mesh,
+        layer: &crate::intensity::ImageLayer,
+        base: [f32; 3],
+    ) -> Option<json::mesh::Primitive> {
+        if mesh.triangles.is_empty() {
+            return None;
+        }
+        let (mesh, colors) = super::image_colors::bake(mesh, layer, base);
+        let positions = self.positions(&mesh.positions);
+        let normals = self.normals(&mesh);
+        let linear: Vec<[f32; 3]> = colors
+            .iter()
+            .map(|c| c.map(|v| srgb_to_linear(v.clamp(0.0, 1.0))))
+            .collect();
+        let view = self.view(
+            bytemuck::cast_slice(&linear),
+            json::buffer::Target::ArrayBuffer,
+        );
+        let colors = self.root.push(accessor(
+            view,
+            linear.len(),
+            json::accessor::ComponentType::F32,
+            json::accessor::Type::Vec3,
+            None,
+        ));
+        let indices = self.indices(mesh.triangles.iter().flatten().copied());
+        self.stats.triangles += mesh.triangles.len();
+        let material = self.material(scene, MaterialKey::Image);
+        let mut primitive = primitive(
+            positions,
+            Some(normals),
+            indices,
+            material,
+            json::mesh::Mode::Triangles,
+        );
+        primitive
+            .attributes
+            .insert(Valid(json::mesh::Semantic::Colors(0)), colors);
+        Some(primitive)
     }
 
     /// `LINES` of the unique edges of `mesh`.
@@ -385,6 +457,8 @@ impl Builder {
                 true,
             ),
             MaterialKey::Contour => ("contour".to_string(), CONTOUR_COLOR, 1.0, false),
+            // White: the vertex colours are the image.
+            MaterialKey::Image => ("image".to_string(), [1.0; 3], 1.0, false),
         };
         let opacity = opacity.clamp(0.0, 1.0);
         let [r, g, b] = srgb.map(|c| srgb_to_linear(c.clamp(0.0, 1.0)));

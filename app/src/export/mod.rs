@@ -3,10 +3,12 @@
 //!
 //! - [`gltf`]: the scene as Preview draws it (kept parts, walls, removed pieces, ribbons, slices,
 //!   contours; one named node per structure) as a glTF 2.0 document;
-//! - [`glb`]: the binary container it is written in.
+//! - [`glb`]: the binary container it is written in;
+//! - [`image_colors`]: the intensity image baked into wall vertex colours.
 
 pub mod glb;
 pub mod gltf;
+pub mod image_colors;
 
 use std::path::Path;
 

@@ -82,6 +82,7 @@ pub enum Purpose {
     ExportImage,
     ExportMeshes,
     SaveGesture,
+    OpenImage,
 }
 
 impl Purpose {
@@ -95,6 +96,7 @@ impl Purpose {
             Purpose::ExportImage => "Export Image",
             Purpose::ExportMeshes => "Export Cut Meshes to Folder",
             Purpose::SaveGesture => "Save Gesture",
+            Purpose::OpenImage => "Open Image",
         }
     }
 }
@@ -110,6 +112,8 @@ pub enum Action {
     Add(Vec<PathBuf>),
     SaveSession,
     SaveSessionTo(PathBuf),
+    /// Read this intensity image and show it on the walls.
+    OpenImage(PathBuf),
     ExportImageTo(PathBuf),
     ExportMeshesTo(PathBuf),
     Exit,
@@ -155,6 +159,8 @@ pub enum JobOutput {
     },
     /// A session was read (models included).
     Session { path: PathBuf, scene: Scene },
+    /// An intensity image was read, to show on the walls.
+    Image(crate::intensity::ImageLayer),
     /// A target's spatial index was built.
     Index {
         model: usize,
@@ -389,6 +395,15 @@ impl CutawayApp {
             Action::Dialog(purpose) => self.open_dialog(ctx, purpose),
             Action::Open(paths) => self.open_paths(ctx, paths, true),
             Action::Add(paths) => self.open_paths(ctx, paths, false),
+            Action::OpenImage(path) => {
+                let label = format!("Loading image {}", file_label(&path));
+                self.spawn(ctx, label, move |_| {
+                    let image = crate::io::volume::intensity::read_image(&path)?;
+                    Ok(JobOutput::Image(crate::intensity::ImageLayer::new(
+                        Arc::new(image),
+                    )))
+                });
+            }
             Action::SaveSession => match self.session_path.clone() {
                 Some(path) => self.apply(ctx, Action::SaveSessionTo(path)),
                 None => self.open_dialog(ctx, Purpose::SaveSessionAs),
@@ -675,6 +690,12 @@ impl CutawayApp {
                         .await
                         .map(|f| vec![f.path().to_path_buf()])
                         .unwrap_or_default(),
+                    Purpose::OpenImage => dialog
+                        .add_filter("Image volume", &["nrrd", "nhdr", "nii", "gz"])
+                        .pick_file()
+                        .await
+                        .map(|f| vec![f.path().to_path_buf()])
+                        .unwrap_or_default(),
                     Purpose::OpenSession => dialog
                         .add_filter("Cutaway session", &["json"])
                         .pick_file()
@@ -728,6 +749,7 @@ impl CutawayApp {
                 self.apply(ctx, Action::ExportImageTo(with_extension(first, "png")))
             }
             Purpose::ExportMeshes => self.apply(ctx, Action::ExportMeshesTo(first)),
+            Purpose::OpenImage => self.apply(ctx, Action::OpenImage(first)),
             Purpose::SaveGesture => {
                 let path = with_extension(first, "json");
                 match self.viewport.save_recording(&path) {
@@ -807,6 +829,7 @@ impl CutawayApp {
                     self.scene.cutters.len()
                 ));
             }
+            JobOutput::Image(layer) => super::image_panel::image_loaded(self, layer),
             JobOutput::Index { model, mesh, index } => {
                 self.viewport.editor.store_index(mesh, index);
                 self.say(format!(
@@ -1095,6 +1118,7 @@ impl eframe::App for CutawayApp {
                     actions.extend(super::models_panel::models_panel_ui(ui, self));
                     ui.add_space(10.0);
                     actions.extend(super::cutter_panel::cutter_panel_ui(ui, self));
+                    super::image_panel::image_panel_ui(ui, self);
                     if self.mode == Mode::Scalpel {
                         ui.add_space(10.0);
                         super::scalpel_mode::scalpel_panel_ui(ui, self);

@@ -48,7 +48,7 @@ impl FileBrowser {
             Purpose::SaveGesture => {
                 egui_file::FileDialog::save_file().default_filename("gesture.json")
             }
-            Purpose::LoadModel | Purpose::AddModel | Purpose::OpenSession => {
+            Purpose::LoadModel | Purpose::AddModel | Purpose::OpenSession | Purpose::OpenImage => {
                 egui_file::FileDialog::open_file()
             }
         };

@@ -110,6 +110,9 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
             if item(ui, "Add Model…", "") {
                 actions.push(Action::Dialog(Purpose::AddModel));
             }
+            if item(ui, "Open Image…", "") {
+                actions.push(Action::Dialog(Purpose::OpenImage));
+            }
             ui.separator();
             if item(ui, "Open Session…", "") {
                 actions.push(Action::Dialog(Purpose::OpenSession));

@@ -22,6 +22,7 @@ pub mod cut_view;
 pub mod cutter_panel;
 pub mod file_browser;
 pub mod help;
+pub mod image_panel;
 pub mod jobs;
 pub mod key_reference;
 pub mod live_cut;
@@ -42,6 +43,11 @@ pub use app::{CutawayApp, Mode, StartOptions};
 /// Opens the window on `paths` (meshes, directories of meshes, or one session file); no paths
 /// opens the embedded default scene. Returns when the window is closed.
 pub fn run(paths: &[PathBuf]) -> anyhow::Result<()> {
+    run_with_image(paths, None)
+}
+
+/// [`run`], with an intensity image shown on the walls once it is read.
+pub fn run_with_image(paths: &[PathBuf], image: Option<PathBuf>) -> anyhow::Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("Cutaway")
@@ -62,7 +68,13 @@ pub fn run(paths: &[PathBuf]) -> anyhow::Result<()> {
     eframe::run_native(
         "Cutaway",
         options,
-        Box::new(move |cc| Ok(Box::new(CutawayApp::new(cc, start)))),
+        Box::new(move |cc| {
+            let mut app = CutawayApp::new(cc, start);
+            if let Some(image) = image {
+                app.apply(&cc.egui_ctx, app::Action::OpenImage(image));
+            }
+            Ok(Box::new(app))
+        }),
     )
     .map_err(|e| anyhow::anyhow!("could not open the window: {e}"))
 }

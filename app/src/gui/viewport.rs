@@ -235,9 +235,11 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         )
     };
 
-    // Interact: navigation and selection first (every mode), then the mode's own input.
-    let navigating =
-        super::navigation::navigation_input(ui, &response, app, ppp, to_px, &mut actions);
+    // Interact: the image window drag (Shift + right drag, every mode), then navigation and
+    // selection (every mode), then the mode's own input.
+    let windowing = super::image_panel::window_drag(app, &response, ui);
+    let navigating = windowing
+        || super::navigation::navigation_input(ui, &response, app, ppp, to_px, &mut actions);
     if !navigating {
         match app.mode {
             Mode::Camera | Mode::Preview => camera_input(ui, &response, app, ppp),

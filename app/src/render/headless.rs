@@ -80,6 +80,8 @@ impl HeadlessRenderer {
             memory_hints: super::device_memory::MEMORY_HINTS,
             required_limits: wgpu::Limits {
                 max_texture_dimension_2d: limits.max_texture_dimension_2d,
+                // Intensity images are 3-D textures at their own grid size (up to 2048 a side).
+                max_texture_dimension_3d: limits.max_texture_dimension_3d,
                 ..wgpu::Limits::downlevel_defaults()
             },
             ..Default::default()

@@ -68,6 +68,7 @@ pub mod device_memory;
 pub mod draw_data;
 pub mod gpu_data;
 pub mod headless;
+pub mod image_layer;
 mod pipelines;
 mod renderer;
 
@@ -216,13 +217,20 @@ pub mod shaders {
     pub const COMPOSITE: &str = include_str!("shaders/composite.wgsl");
     pub const BLIT: &str = include_str!("shaders/blit.wgsl");
     pub const SCATTER: &str = include_str!("shaders/scatter.wgsl");
+    /// `mesh.wgsl` with the image fragment stage of `image.wgsl` appended (walls showing the
+    /// intensity image; WGSL has no includes).
+    pub const MESH_IMAGE: &str = concat!(
+        include_str!("shaders/mesh.wgsl"),
+        include_str!("shaders/image.wgsl")
+    );
     /// Every shader with its file name.
-    pub const ALL: [(&str, &str); 5] = [
+    pub const ALL: [(&str, &str); 6] = [
         ("mesh.wgsl", MESH),
         ("lines.wgsl", LINES),
         ("composite.wgsl", COMPOSITE),
         ("blit.wgsl", BLIT),
         ("scatter.wgsl", SCATTER),
+        ("mesh.wgsl + image.wgsl", MESH_IMAGE),
     ];
 }
 

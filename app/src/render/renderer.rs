@@ -130,6 +130,8 @@ enum Source {
 #[derive(Clone, Copy)]
 enum Draw {
     Mesh(Source, u32),
+    /// A mesh showing the intensity image ([`super::image_layer`]).
+    ImageMesh(Source, u32),
     Edges(Source, u32),
     Contour(usize, u32),
     Lines(usize, u32),
@@ -161,6 +163,7 @@ pub struct Renderer {
     /// This frame's [`Scene::bbox`](crate::scene::Scene::bbox), the deltas' patches included.
     scene_bbox: csg::Aabb,
     frame_index: u64,
+    image: super::image_layer::ImageRenderer,
 }
 
 impl Renderer {
@@ -208,6 +211,7 @@ impl Renderer {
             bboxes: HashMap::new(),
             scene_bbox: csg::Aabb::EMPTY,
             frame_index: 0,
+            image: Default::default(),
         }
     }
 
@@ -259,7 +263,12 @@ impl Renderer {
         self.scene_bbox = self.scene_bbox(frame);
 
         // Phase 1: uploads (mutable caches).
-        let draws = self.upload_and_list(device, frame);
+        let image = frame.scene.image.as_ref();
+        let image_ready = self.image.prepare(device, queue, &self.pipelines, image);
+        let on = |walls: bool| {
+            image_ready && image.is_some_and(|l| if walls { l.on_walls } else { l.on_slices })
+        };
+        let draws = self.upload_and_list(device, frame, [on(true), on(false)]);
         let (draws, uniforms) = draws;
         self.apply_patches(device, encoder);
 
@@ -407,11 +416,14 @@ impl Renderer {
     }
 
     /// Uploads what is missing and lists the draws of the frame with their uniforms.
+    /// `image_on`: whether walls, and slices and ribbons, show the image.
     fn upload_and_list(
         &mut self,
         device: &wgpu::Device,
         frame: &FrameInputs,
+        image_on: [bool; 2],
     ) -> (DrawList, Vec<DrawUniform>) {
+        let [image_walls, image_slices] = image_on;
         let scene = &frame.scene;
         let mut list = DrawList::default();
         let mut uniforms: Vec<DrawUniform> = Vec::new();
@@ -615,11 +627,21 @@ impl Renderer {
                     },
                     PartKind::Wall | PartKind::SliceWall => {
                         let u = push_uniform(wall, 1.0, true, 0.0, 0.0);
-                        list.opaque.push(Draw::Mesh(Source::Part(i), u));
+                        let image =
+                            image_walls || (part.kind == PartKind::SliceWall && image_slices);
+                        list.opaque.push(if image {
+                            Draw::ImageMesh(Source::Part(i), u)
+                        } else {
+                            Draw::Mesh(Source::Part(i), u)
+                        });
                     }
                     PartKind::Ribbon => {
                         let u = push_uniform(model.color, 1.0, true, 0.0, 0.0);
-                        list.opaque.push(Draw::Mesh(Source::Part(i), u));
+                        list.opaque.push(if image_slices {
+                            Draw::ImageMesh(Source::Part(i), u)
+                        } else {
+                            Draw::Mesh(Source::Part(i), u)
+                        });
                     }
                     PartKind::Removed => {
                         let u = push_uniform(model.color, part.opacity, true, 0.0, 0.0);
@@ -710,7 +732,7 @@ impl Renderer {
             Draw::Edges(source, _) => self.mesh(source)?.edges.as_ref(),
             Draw::Contour(model, _) => self.preview.as_ref()?.contours.get(&model),
             Draw::Lines(i, _) => self.overlay_lines.get(i)?.as_ref(),
-            Draw::Mesh(..) => None,
+            Draw::Mesh(..) | Draw::ImageMesh(..) => None,
         }
     }
 
@@ -830,15 +852,18 @@ impl Renderer {
     fn draw_all(&self, pass: &mut wgpu::RenderPass<'_>, draws: &[Draw], transparent: bool) {
         for &draw in draws {
             match draw {
-                Draw::Mesh(source, u) => {
+                Draw::Mesh(source, u) | Draw::ImageMesh(source, u) => {
                     let Some(mesh) = self.mesh(source) else {
                         continue;
                     };
-                    pass.set_pipeline(if transparent {
-                        &self.pipelines.mesh_oit
-                    } else {
-                        &self.pipelines.mesh_opaque
-                    });
+                    let image = matches!(draw, Draw::ImageMesh(..)) && self.image.bind(pass);
+                    if !image {
+                        pass.set_pipeline(if transparent {
+                            &self.pipelines.mesh_oit
+                        } else {
+                            &self.pipelines.mesh_opaque
+                        });
+                    }
                     pass.set_bind_group(
                         1,
                         &self.draw_bind_group,

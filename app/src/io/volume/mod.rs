@@ -37,6 +37,7 @@ use glam::{DAffine3, DMat3, DVec3};
 
 pub mod color_table;
 mod gzip;
+pub mod intensity;
 mod masks;
 mod nifti;
 mod nrrd;
@@ -155,6 +156,20 @@ pub(crate) struct RawVolume {
     pub names: Vec<LabelInfo>,
 }
 
+/// What a reader hands over for an intensity image: the grid and its samples at their own type,
+/// decompressed but not decoded (the file's byte order), one layer after another.
+#[derive(Debug)]
+pub(crate) struct RawSamples {
+    pub dims: [usize; 3],
+    pub world_from_voxel: DAffine3,
+    pub layers: usize,
+    pub sample: samples::SampleType,
+    pub endian: samples::Endian,
+    pub bytes: Vec<u8>,
+    /// Stored value → real value: `value * scale.0 + scale.1` (NIfTI `scl_slope`/`scl_inter`).
+    pub scale: (f64, f64),
+}
+
 /// The volume formats, by how the file is read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum VolumeFormat {
@@ -254,17 +269,19 @@ pub fn read_volume(path: &Path, labels: Option<&Path>) -> anyhow::Result<LabelVo
 }
 
 fn read_file(path: &Path) -> anyhow::Result<RawVolume> {
-    let format = match VolumeFormat::from_path(path) {
-        Some(format) => format,
-        None => sniff_file(path).ok_or_else(|| {
-            anyhow::anyhow!(
-                "not a label volume (expected .nrrd, .nhdr, .seg.nrrd, .nii or .nii.gz)"
-            )
-        })?,
-    };
-    match format {
+    match file_format(path)? {
         VolumeFormat::Nrrd => nrrd::read(path),
         VolumeFormat::Nifti => nifti::read(path),
+    }
+}
+
+/// The format of a volume file, by its name or else its first bytes.
+fn file_format(path: &Path) -> anyhow::Result<VolumeFormat> {
+    match VolumeFormat::from_path(path) {
+        Some(format) => Ok(format),
+        None => sniff_file(path).ok_or_else(|| {
+            anyhow::anyhow!("not a volume (expected .nrrd, .nhdr, .seg.nrrd, .nii or .nii.gz)")
+        }),
     }
 }
 

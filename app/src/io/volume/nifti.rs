@@ -13,8 +13,8 @@ use std::path::Path;
 
 use glam::{DMat3, DQuat, DVec3};
 
-use super::RawVolume;
 use super::samples::{Endian, SampleType};
+use super::{RawSamples, RawVolume};
 
 /// Whether `bytes` start with an uncompressed NIfTI-1/2 header.
 pub fn sniff(bytes: &[u8]) -> bool {
@@ -90,6 +90,8 @@ struct Header {
     qoffset: [f64; 3],
     srow: [[f64; 4]; 3],
     xyzt_units: i64,
+    scl_slope: f64,
+    scl_inter: f64,
 }
 
 fn parse_header(bytes: &[u8], version: u8, endian: Endian) -> Header {
@@ -107,6 +109,8 @@ fn parse_header(bytes: &[u8], version: u8, endian: Endian) -> Header {
             qoffset: std::array::from_fn(|i| f.f32(268 + 4 * i)),
             srow: std::array::from_fn(|r| std::array::from_fn(|c| f.f32(280 + 16 * r + 4 * c))),
             xyzt_units: bytes[123] as i64,
+            scl_slope: f.f32(112),
+            scl_inter: f.f32(116),
         }
     } else {
         Header {
@@ -121,11 +125,27 @@ fn parse_header(bytes: &[u8], version: u8, endian: Endian) -> Header {
             qoffset: std::array::from_fn(|i| f.f64(376 + 8 * i)),
             srow: std::array::from_fn(|r| std::array::from_fn(|c| f.f64(400 + 32 * r + 8 * c))),
             xyzt_units: f.i32(500),
+            scl_slope: f.f64(176),
+            scl_inter: f.f64(184),
         }
     }
 }
 
 pub(crate) fn read(path: &Path) -> anyhow::Result<RawVolume> {
+    let raw = read_samples(path)?;
+    let layer = super::samples::decode(&raw.bytes, raw.sample, raw.endian, raw.dims)?;
+    Ok(RawVolume {
+        dims: raw.dims,
+        world_from_voxel: raw.world_from_voxel,
+        layers: vec![layer],
+        names: Vec::new(),
+    })
+}
+
+/// The samples of a NIfTI file at their own type with the file's `scl_slope`/`scl_inter`
+/// (intensity images; label maps ignore the scaling): the same header, geometry and size checks
+/// as label maps, no decoding.
+pub(crate) fn read_samples(path: &Path) -> anyhow::Result<RawSamples> {
     let file = crate::io::bounded::read_bytes(path, crate::io::bounded::VOLUME_MAX_BYTES)?;
     let gz = file.starts_with(&[0x1f, 0x8b]);
     let mut reader: Box<dyn Read> = if gz {
@@ -171,6 +191,15 @@ pub(crate) fn read(path: &Path) -> anyhow::Result<RawVolume> {
             sample.name()
         );
     }
+    if !gz {
+        // Uncompressed: the voxels are the file's own buffer, the header drained off in place,
+        // so a large image is held once.
+        drop(reader);
+        let mut data = file;
+        data.drain(..offset);
+        data.truncate(expected);
+        return Ok(samples_of(&h, dims, world_from_voxel, sample, data));
+    }
     // Skip the extensions between the header and the voxels.
     let mut skipped = head.len();
     let mut sink = [0u8; 4096];
@@ -196,13 +225,33 @@ pub(crate) fn read(path: &Path) -> anyhow::Result<RawVolume> {
     } else {
         super::gzip::read_exact_limited(&mut reader, expected, file.len(), "voxel data")?
     };
-    let layer = super::samples::decode(&data, sample, h.endian, dims.map(|d| d as usize))?;
-    Ok(RawVolume {
+    drop(reader);
+    drop(file);
+    Ok(samples_of(&h, dims, world_from_voxel, sample, data))
+}
+
+fn samples_of(
+    h: &Header,
+    dims: [u64; 3],
+    world_from_voxel: glam::DAffine3,
+    sample: SampleType,
+    bytes: Vec<u8>,
+) -> RawSamples {
+    // A slope of 0 means "no scaling" (NIfTI-1 standard).
+    let scale = if h.scl_slope.is_finite() && h.scl_slope != 0.0 && h.scl_inter.is_finite() {
+        (h.scl_slope, h.scl_inter)
+    } else {
+        (1.0, 0.0)
+    };
+    RawSamples {
         dims: dims.map(|d| d as usize),
         world_from_voxel,
-        layers: vec![layer],
-        names: Vec::new(),
-    })
+        layers: 1,
+        sample,
+        endian: h.endian,
+        bytes,
+        scale,
+    }
 }
 
 fn sample_type(datatype: i64) -> anyhow::Result<SampleType> {

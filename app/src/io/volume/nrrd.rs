@@ -17,7 +17,7 @@ use anyhow::Context as _;
 use glam::DVec3;
 
 use super::samples::{Endian, SampleType};
-use super::{LabelData, RawVolume};
+use super::{LabelData, RawSamples, RawVolume};
 
 /// Largest header we look for the blank line in (Slicer writes a few hundred bytes per segment).
 const MAX_HEADER: usize = 64 << 20;
@@ -53,7 +53,21 @@ enum Encoding {
 }
 
 pub(crate) fn read(path: &Path) -> anyhow::Result<RawVolume> {
-    let bytes = crate::io::bounded::read_bytes(path, crate::io::bounded::VOLUME_MAX_BYTES)?;
+    let (header, data) = read_header_and_data(path)?;
+    volume(&header, data)
+}
+
+/// The samples of a NRRD file at their own type (intensity images): the same header, geometry
+/// and size checks as label maps, no decoding.
+pub(crate) fn read_samples(path: &Path) -> anyhow::Result<RawSamples> {
+    let (header, data) = read_header_and_data(path)?;
+    samples(&header, data)
+}
+
+/// The parsed header and the still-encoded data bytes. The attached data is the file's buffer
+/// with the header drained off in place, so a large file is held once.
+fn read_header_and_data(path: &Path) -> anyhow::Result<(Header, Vec<u8>)> {
+    let mut bytes = crate::io::bounded::read_bytes(path, crate::io::bounded::VOLUME_MAX_BYTES)?;
     let (text, data_start) = split_header(&bytes)?;
     let header = parse_header(text)?;
     let data = match &header.data_file {
@@ -62,9 +76,12 @@ pub(crate) fn read(path: &Path) -> anyhow::Result<RawVolume> {
             crate::io::bounded::read_bytes(&file, crate::io::bounded::VOLUME_MAX_BYTES)
                 .with_context(|| format!("data file {}", file.display()))?
         }
-        None => bytes[data_start..].to_vec(),
+        None => {
+            bytes.drain(..data_start);
+            bytes
+        }
     };
-    volume(&header, &data)
+    Ok((header, data))
 }
 
 /// The header text (up to the first empty line) and where the data starts.
@@ -325,7 +342,36 @@ fn data_file_path(header_path: &Path, name: &str) -> anyhow::Result<PathBuf> {
 }
 
 /// Builds the volume from a parsed header and its data bytes (still encoded).
-fn volume(h: &Header, data: &[u8]) -> anyhow::Result<RawVolume> {
+fn volume(h: &Header, data: Vec<u8>) -> anyhow::Result<RawVolume> {
+    let raw = samples(h, data)?;
+    let dims = raw.dims;
+    let layers_data = if raw.layers == 1 {
+        vec![super::samples::decode(
+            &raw.bytes, raw.sample, raw.endian, dims,
+        )?]
+    } else {
+        deinterleave(&raw.bytes, raw.layers, raw.sample.size())
+            .iter()
+            .enumerate()
+            .map(|(l, layer)| {
+                super::samples::decode(layer, raw.sample, raw.endian, dims)
+                    .with_context(|| format!("layer {l}"))
+            })
+            .collect::<anyhow::Result<Vec<LabelData>>>()?
+    };
+    let names = super::segments::from_keys(&h.keys, raw.layers)?;
+    Ok(RawVolume {
+        dims,
+        world_from_voxel: raw.world_from_voxel,
+        layers: layers_data,
+        names,
+    })
+}
+
+/// Checks a parsed header against its data bytes (still encoded) and returns exactly the
+/// samples, decompressed, at their own type: the data buffer itself with skipped bytes drained
+/// off, so raw data is never copied.
+fn samples(h: &Header, mut data: Vec<u8>) -> anyhow::Result<RawSamples> {
     let sample = h
         .sample
         .ok_or_else(|| anyhow::anyhow!("the header has no 'type' field"))?;
@@ -362,15 +408,19 @@ fn volume(h: &Header, data: &[u8]) -> anyhow::Result<RawVolume> {
 
     let sample_size = sample.size();
     let expected = voxels * layers as usize * sample_size;
-    let data = skip_lines(data, h.line_skip)?;
-    let bytes: std::borrow::Cow<[u8]> = match encoding {
+    let skipped = data.len() - skip_lines(&data, h.line_skip)?.len();
+    data.drain(..skipped);
+    let bytes = match encoding {
         Encoding::Raw => {
             let start = match h.byte_skip {
                 -1 => data.len().checked_sub(expected),
                 skip => Some(skip as usize),
             };
-            match start.and_then(|s| data.get(s..)) {
-                Some(rest) if rest.len() == expected => std::borrow::Cow::Borrowed(rest),
+            match start {
+                Some(s) if data.len().checked_sub(s) == Some(expected) => {
+                    data.drain(..s);
+                    data
+                }
                 _ => anyhow::bail!(
                     "voxel data is {} bytes, but sizes {} × {} need {expected}",
                     data.len().saturating_sub(h.byte_skip.max(0) as usize),
@@ -384,29 +434,20 @@ fn volume(h: &Header, data: &[u8]) -> anyhow::Result<RawVolume> {
                 anyhow::bail!("byte skip -1 is only meaningful for raw encoding");
             }
             let skip = h.byte_skip as usize;
-            let inflated = super::gzip::inflate_exact(data, expected + skip, "voxel data")?;
-            std::borrow::Cow::Owned(inflated[skip..].to_vec())
+            let mut inflated = super::gzip::inflate_exact(&data, expected + skip, "voxel data")?;
+            drop(data);
+            inflated.drain(..skip);
+            inflated
         }
     };
-    let endian = h.endian.unwrap_or(Endian::Little);
-    let layers_data = if layers == 1 {
-        vec![super::samples::decode(&bytes, sample, endian, dims)?]
-    } else {
-        deinterleave(&bytes, layers as usize, sample_size)
-            .iter()
-            .enumerate()
-            .map(|(l, layer)| {
-                super::samples::decode(layer, sample, endian, dims)
-                    .with_context(|| format!("layer {l}"))
-            })
-            .collect::<anyhow::Result<Vec<LabelData>>>()?
-    };
-    let names = super::segments::from_keys(&h.keys, layers as usize)?;
-    Ok(RawVolume {
+    Ok(RawSamples {
         dims,
         world_from_voxel,
-        layers: layers_data,
-        names,
+        layers: layers as usize,
+        sample,
+        endian: h.endian.unwrap_or(Endian::Little),
+        bytes,
+        scale: (1.0, 0.0),
     })
 }
 
@@ -555,7 +596,7 @@ mod tests {
     use super::*;
 
     fn parse(text: &str, data: &[u8]) -> anyhow::Result<RawVolume> {
-        volume(&parse_header(text)?, data)
+        volume(&parse_header(text)?, data.to_vec())
     }
 
     #[test]

@@ -56,7 +56,11 @@ fn face_normal(p: vec3<f32>) -> vec3<f32> {
 // a software rasterizer (lavapipe) compiles a shader variant per value of a uniform that decides
 // a branch, and with one draw uniform per model those variants pile up frame after frame.
 fn shade(in: VertexOut, front_facing: bool, flat_normal: vec3<f32>) -> vec3<f32> {
-    let base = draw.color.rgb;
+    return shade_color(draw.color.rgb, in, front_facing, flat_normal);
+}
+
+// `shade` with a base colour of the fragment's own (the image on a wall, image.wgsl).
+fn shade_color(base: vec3<f32>, in: VertexOut, front_facing: bool, flat_normal: vec3<f32>) -> vec3<f32> {
     let to_eye = normalize(frame.eye_in_world.xyz - in.position_in_world);
     var n = in.normal_in_world;
     var brightness = 1.0;

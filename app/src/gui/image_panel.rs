@@ -1,0 +1,223 @@
+//! The Image section of the side panel: what the walls show (structure colour, image, blend),
+//! where (walls, slices and ribbons), the window/level with its presets, and removing the image.
+//! The image itself is read on a worker (`Action::OpenImage`); [`image_loaded`] puts it in the
+//! scene.
+
+use crate::intensity::{ImageLayer, WallDisplay, WindowPreset};
+
+use super::CutawayApp;
+
+/// A freshly read image joins the scene, unless it lies outside the models.
+pub fn image_loaded(app: &mut CutawayApp, layer: ImageLayer) {
+    if let Err(e) = crate::intensity::check_overlap(&layer.image, app.scene.bbox()) {
+        app.complain(&e.context(layer.image.source.display().to_string()));
+        return;
+    }
+    let (lo, hi) = layer.image.range();
+    app.say(format!(
+        "Image {}: {} × {} × {} {} voxels, values {lo} to {hi}",
+        layer.image.source.display(),
+        layer.image.dims[0],
+        layer.image.dims[1],
+        layer.image.dims[2],
+        layer.image.kind().name()
+    ));
+    app.scene.image = Some(layer);
+}
+
+fn preset_label(preset: WindowPreset) -> &'static str {
+    match preset {
+        WindowPreset::SoftTissue => "Soft tissue",
+        WindowPreset::Lung => "Lung",
+        WindowPreset::Bone => "Bone",
+        WindowPreset::Brain => "Brain",
+        WindowPreset::Auto => "Auto",
+    }
+}
+
+/// The Image section (nothing without an image).
+pub fn image_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
+    let Some(layer) = app.scene.image.as_mut() else {
+        return;
+    };
+    ui.add_space(10.0);
+    let mut remove = false;
+    egui::CollapsingHeader::new("Image")
+        .default_open(true)
+        .show(ui, |ui| {
+            let name = layer
+                .image
+                .source
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            ui.label(name);
+            ui.horizontal(|ui| {
+                for display in WallDisplay::ALL {
+                    let label = match display {
+                        WallDisplay::Color => "Colour",
+                        WallDisplay::Image => "Image",
+                        WallDisplay::Blend => "Blend",
+                    };
+                    ui.selectable_value(&mut layer.display, display, label);
+                }
+            });
+            ui.horizontal(|ui| {
+                ui.checkbox(&mut layer.on_walls, "Walls");
+                ui.checkbox(&mut layer.on_slices, "Slices and ribbons");
+            });
+            ui.horizontal_wrapped(|ui| {
+                for preset in WindowPreset::ALL {
+                    if ui.button(preset_label(preset)).clicked() {
+                        layer.window = preset.window(&layer.image);
+                    }
+                }
+            });
+            let (lo, hi) = layer.image.range();
+            let speed = ((hi - lo) / 500.0).max(0.01);
+            ui.horizontal(|ui| {
+                ui.label("Level");
+                ui.add(egui::DragValue::new(&mut layer.window.level).speed(speed));
+                ui.label("Width");
+                ui.add(
+                    egui::DragValue::new(&mut layer.window.width)
+                        .speed(speed)
+                        .range(crate::intensity::Window::MIN_WIDTH..=f64::MAX),
+                );
+            });
+            ui.weak("Shift + right drag on the view: sideways width, up and down level");
+            remove = ui.button("Remove Image").clicked();
+        });
+    if remove {
+        app.scene.image = None;
+    }
+}
+
+/// Shift + secondary-button drag anywhere on the view adjusts the window like a radiology
+/// viewer: right widens, down raises the level. Returns true when it took the drag.
+pub fn window_drag(app: &mut CutawayApp, response: &egui::Response, ui: &egui::Ui) -> bool {
+    let Some(layer) = app.scene.image.as_mut() else {
+        return false;
+    };
+    if !(response.dragged_by(egui::PointerButton::Secondary) && ui.input(|i| i.modifiers.shift)) {
+        return false;
+    }
+    let delta = response.drag_delta();
+    let (lo, hi) = layer.image.range();
+    let scale = ((hi - lo) / 1000.0).max(1e-3);
+    layer.window = layer.window.dragged(delta.x as f64, delta.y as f64, scale);
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable as _;
+    use glam::DVec3;
+
+    use super::super::app::Action;
+    use super::super::{CutawayApp, StartOptions};
+
+    /// An int16 NRRD ramp along x over [-1, 3]³ (RAS), `shift` mm along x.
+    fn write_image(path: &std::path::Path, shift: f64) {
+        let n = 5;
+        let mut bytes = format!(
+            "NRRD0004\ntype: short\ndimension: 3\nspace: RAS\nsizes: {n} {n} {n}\nspace directions: (1,0,0) (0,1,0) (0,0,1)\nendian: little\nencoding: raw\nspace origin: ({},-1,-1)\n\n",
+            shift - 1.0
+        )
+        .into_bytes();
+        for _k in 0..n {
+            for _j in 0..n {
+                for i in 0..n {
+                    bytes.extend_from_slice(&(i as i16 * 500 - 1000).to_le_bytes());
+                }
+            }
+        }
+        std::fs::write(path, bytes).unwrap();
+    }
+
+    #[test]
+    fn open_image_presets_and_the_session_keep_the_window() {
+        let dir = std::env::temp_dir().join(format!("cutaway-image-panel-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let cube = dir.join("cube.ply");
+        crate::io::write_mesh(
+            &cube,
+            &super::super::app::box_mesh(DVec3::ZERO, DVec3::splat(2.0)),
+        )
+        .unwrap();
+        let (near, far) = (dir.join("ct.nrrd"), dir.join("far.nrrd"));
+        write_image(&near, 0.0);
+        write_image(&far, 500.0);
+        let start = StartOptions {
+            paths: vec![cube],
+            state_dir: dir.join("state"),
+            offer_recovery: false,
+        };
+        let mut h = Harness::builder()
+            .with_size(egui::vec2(1024.0, 900.0))
+            .with_max_steps(10_000)
+            .with_accessibility_check(false)
+            .build_eframe(move |cc| CutawayApp::new(cc, start));
+        let settle = |h: &mut Harness<'_, CutawayApp>| {
+            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+            while h.state().busy() {
+                assert!(std::time::Instant::now() < deadline, "a job did not finish");
+                h.step();
+                std::thread::sleep(std::time::Duration::from_millis(5));
+            }
+            h.run_steps(2);
+        };
+        settle(&mut h);
+        let ctx = h.ctx.clone();
+        // An image beside the models, not on them, is refused with the reason.
+        h.state_mut().apply(&ctx, Action::OpenImage(far));
+        settle(&mut h);
+        assert!(h.state().scene.image.is_none());
+        assert!(
+            h.state().status.message.contains("disjoint"),
+            "{}",
+            h.state().status.message
+        );
+
+        h.state_mut().apply(&ctx, Action::OpenImage(near.clone()));
+        settle(&mut h);
+        let layer = h
+            .state()
+            .scene
+            .image
+            .clone()
+            .expect("the image is in the scene");
+        // Values -1000..=1000, air included: a CT, so soft tissue first.
+        assert_eq!(layer.window.level, 40.0);
+        h.get_by_label("Lung").click();
+        h.run_steps(2);
+        assert_eq!(h.state().scene.image.as_ref().unwrap().window.level, -600.0);
+        h.get_by_label("Blend").click();
+        h.run_steps(2);
+        let layer = h.state().scene.image.clone().unwrap();
+        assert_eq!(layer.display, crate::intensity::WallDisplay::Blend);
+
+        let session = dir.join("s.json");
+        h.state_mut()
+            .apply(&ctx, Action::SaveSessionTo(session.clone()));
+        let back = crate::session::load(&session).unwrap();
+        let image = back.image.expect("the session keeps the image");
+        assert_eq!(image.window, layer.window);
+        assert_eq!(image.display, layer.display);
+        assert_eq!(
+            std::fs::canonicalize(&image.image.source).unwrap(),
+            std::fs::canonicalize(&near).unwrap()
+        );
+        let text = std::fs::read_to_string(&session).unwrap();
+        assert!(
+            text.contains("\"path\": \"ct.nrrd\""),
+            "relative path: {text}"
+        );
+
+        h.get_by_label("Remove Image").click();
+        h.run_steps(2);
+        assert!(h.state().scene.image.is_none());
+    }
+}

@@ -1,0 +1,444 @@
+//! The intensity image on the cut walls: rendered wall pixels follow a known function of world
+//! position (ramp along x, checkerboard by z), for an image on an axis-aligned RAS grid, on a
+//! permuted and flipped LPS grid read from a NRRD file, and on a grid coarser than the cut; and
+//! the real chest CT beside its segmentation, rendered with a lung and a bone window.
+//!
+//! GPU tests run on `WGPU_BACKEND` (lavapipe with `vulkan`); without an adapter they print
+//! "skipped: <why>" and pass. Renders are written to `target/test-output/image_walls/` to be
+//! looked at.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use cutaway::intensity::{ImageLayer, IntensityImage, WallDisplay, Window};
+use cutaway::render::headless::{HeadlessRenderer, render_with};
+use cutaway::render::{RenderPngOptions, ViewMode};
+use cutaway::scene::{CutKind, CutterPlane, CutterViews, Scene, SceneCutter, SceneModel};
+use cutter::Camera;
+use glam::{DAffine3, DMat3, DVec2, DVec3};
+
+const WIDTH: u32 = 320;
+const HEIGHT: u32 = 240;
+
+fn renderer() -> Option<HeadlessRenderer> {
+    let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+    match HeadlessRenderer::with_backends(backends) {
+        Ok(r) => {
+            println!("adapter: {}", r.adapter_name());
+            Some(r)
+        }
+        Err(e) => {
+            println!("skipped: {e:#}");
+            None
+        }
+    }
+}
+
+fn out_dir() -> PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/test-output/image_walls");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn box_planes(x0: f64, x1: f64, y0: f64, y1: f64, z0: f64, z1: f64) -> Vec<CutterPlane> {
+    let plane = |x: f64| {
+        [
+            DVec3::new(x, y0, z1),
+            DVec3::new(x, y1, z1),
+            DVec3::new(x, y1, z0),
+            DVec3::new(x, y0, z0),
+        ]
+    };
+    vec![plane(x0), plane((x0 + x1) * 0.5), plane(x1)]
+}
+
+/// The 10 mm cube [0, 10]³ with a box cut x, z in 1..9 from the front to y = 5: the back wall
+/// at y = 5 faces the camera, which looks along +y.
+fn cube_scene(image: IntensityImage, window: Window) -> Scene {
+    let mut scene = Scene::default();
+    let cube = csg::testkit::cube(DVec3::ZERO, DVec3::splat(10.0));
+    scene.models.push(SceneModel::new(
+        "cube",
+        "cube.obj",
+        Arc::new(cube),
+        [0.8, 0.3, 0.3],
+    ));
+    scene.cutters.push(SceneCutter {
+        target: 0,
+        kind: CutKind::Straight,
+        smooth: false,
+        planes: box_planes(1.0, 9.0, -5.0, 5.0, 1.0, 9.0),
+        views: CutterViews::default(),
+    });
+    scene.camera = camera();
+    scene.render.antialias = false;
+    let mut layer = ImageLayer::new(Arc::new(image));
+    layer.window = window;
+    layer.display = WallDisplay::Image;
+    scene.image = Some(layer);
+    scene
+}
+
+fn camera() -> Camera {
+    Camera {
+        eye: DVec3::new(5.0, -40.0, 5.0),
+        target: DVec3::new(5.0, 5.0, 5.0),
+        up: DVec3::Z,
+        fov_y_deg: 20.0,
+    }
+}
+
+fn render(r: &mut HeadlessRenderer, scene: &Scene, name: &str) -> image::RgbaImage {
+    let mut options = RenderPngOptions::new(WIDTH, HEIGHT);
+    options.deterministic = true;
+    options.mode = Some(ViewMode::Preview);
+    let image = render_with(r, scene, &options).unwrap();
+    image.save(out_dir().join(format!("{name}.png"))).unwrap();
+    image
+}
+
+/// The grey of the pixel showing wall point (x, 5, z), and the expected grey.
+fn wall_samples(
+    image: &image::RgbaImage,
+    f: &dyn Fn(DVec3) -> f64,
+    window: Window,
+) -> Vec<(f64, f64, DVec3)> {
+    let viewport = DVec2::new(WIDTH as f64, HEIGHT as f64);
+    let mut out = Vec::new();
+    for xi in 0..=28 {
+        for zi in 0..=28 {
+            let p = DVec3::new(1.4 + xi as f64 * 0.25, 5.0, 1.4 + zi as f64 * 0.25);
+            let px = camera().project(viewport, p).unwrap();
+            let pixel = image.get_pixel(px.x as u32, px.y as u32).0;
+            let grey = (pixel[0] as f64 + pixel[1] as f64 + pixel[2] as f64) / (3.0 * 255.0);
+            out.push((grey, window.map(f(p)), p));
+        }
+    }
+    out
+}
+
+fn correlation(pairs: &[(f64, f64, DVec3)]) -> f64 {
+    let n = pairs.len() as f64;
+    let (ma, mb) = pairs
+        .iter()
+        .fold((0.0, 0.0), |(a, b), p| (a + p.0 / n, b + p.1 / n));
+    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
+    for p in pairs {
+        ab += (p.0 - ma) * (p.1 - mb);
+        aa += (p.0 - ma).powi(2);
+        bb += (p.1 - mb).powi(2);
+    }
+    ab / (aa * bb).sqrt().max(1e-12)
+}
+
+/// The function of world position an image holds.
+type WallFunction = dyn Fn(DVec3) -> f64;
+
+fn ramp(p: DVec3) -> f64 {
+    100.0 * p.x
+}
+
+/// Bands 2 mm high along z, alternately 0 and 1000.
+fn checker(p: DVec3) -> f64 {
+    if (p.z / 2.0).floor() as i64 % 2 == 0 {
+        0.0
+    } else {
+        1000.0
+    }
+}
+
+const WINDOW: Window = Window {
+    level: 500.0,
+    width: 1000.0,
+};
+
+/// Checks that the wall follows `f`: correlation ≥ 0.95, and for the ramp, greys increase with x.
+fn assert_follows(image: &image::RgbaImage, f: &dyn Fn(DVec3) -> f64, what: &str, ramp_in_x: bool) {
+    let mut pairs = wall_samples(image, f, WINDOW);
+    if !ramp_in_x {
+        // Away from the band edges, where interpolation blends the bands.
+        pairs.retain(|(_, _, p)| {
+            let t = (p.z / 2.0).fract();
+            (0.2..=0.8).contains(&t)
+        });
+    }
+    let r = correlation(&pairs);
+    println!(
+        "{what}: correlation {r:.4} over {} wall pixels",
+        pairs.len()
+    );
+    assert!(r >= 0.95, "{what}: correlation {r} < 0.95");
+    if ramp_in_x {
+        // Along each row of constant z, the grey rises with x (ties allowed between neighbours
+        // closer than a grey level).
+        let mut by_x: Vec<(f64, f64)> = pairs.iter().map(|(g, _, p)| (p.x, *g)).collect();
+        by_x.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let first = by_x[..29].iter().map(|v| v.1).sum::<f64>() / 29.0;
+        let last = by_x[by_x.len() - 29..].iter().map(|v| v.1).sum::<f64>() / 29.0;
+        assert!(
+            last > first + 0.4,
+            "{what}: grey at high x {last} vs low x {first}"
+        );
+        for z in 0..=28 {
+            let row: Vec<f64> = (0..=28).map(|x| pairs[x * 29 + z].0).collect();
+            for w in row.windows(2) {
+                assert!(
+                    w[1] >= w[0] - 2.0 / 255.0,
+                    "{what}: not monotonic along x: {row:?}"
+                );
+            }
+        }
+    }
+}
+
+fn ras_image(spacing: f64, f: impl Fn(DVec3) -> f32) -> IntensityImage {
+    let n = (12.0 / spacing).round() as usize + 1;
+    let m = DAffine3::from_mat3_translation(
+        DMat3::from_diagonal(DVec3::splat(spacing)),
+        DVec3::splat(-1.0),
+    );
+    IntensityImage::from_fn([n; 3], m, f)
+}
+
+/// The same function on a permuted, flipped grid in LPS space, written as an int16 NRRD and read
+/// back through the reader: i runs along +z, j along RAS -x, k along RAS +y.
+fn lps_nrrd_image(dir: &Path, name: &str, f: impl Fn(DVec3) -> f64) -> IntensityImage {
+    let n = 25usize;
+    let s = 0.5;
+    // LPS origin (-11, 1, -1) is RAS (11, -1, -1).
+    let origin_ras = DVec3::new(11.0, -1.0, -1.0);
+    let ras = |i: usize, j: usize, k: usize| {
+        origin_ras + DVec3::new(-s * j as f64, s * k as f64, s * i as f64)
+    };
+    let mut data = Vec::with_capacity(n * n * n * 2);
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                data.extend_from_slice(&(f(ras(i, j, k)).round() as i16).to_le_bytes());
+            }
+        }
+    }
+    let header = format!(
+        "NRRD0004\ntype: short\ndimension: 3\nspace: left-posterior-superior\nsizes: {n} {n} {n}\nspace directions: (0,0,{s}) ({s},0,0) (0,-{s},0)\nkinds: domain domain domain\nendian: little\nencoding: raw\nspace origin: (-11,1,-1)\n\n"
+    );
+    let path = dir.join(name);
+    let mut bytes = header.into_bytes();
+    bytes.extend(data);
+    std::fs::write(&path, bytes).unwrap();
+    let image = cutaway::io::volume::intensity::read_image(&path).unwrap();
+    // The reader put voxel (i, j, k) where it was written.
+    let p = image
+        .world_from_voxel
+        .transform_point3(DVec3::new(3.0, 4.0, 5.0));
+    assert!(
+        (p - ras(3, 4, 5)).length() < 1e-9,
+        "{p} vs {}",
+        ras(3, 4, 5)
+    );
+    image
+}
+
+#[test]
+fn wall_pixels_follow_the_image_function() {
+    let Some(mut r) = renderer() else { return };
+    let dir = out_dir();
+    let cases: Vec<(&str, IntensityImage, &WallFunction, bool)> = vec![
+        ("ramp_ras", ras_image(0.5, |p| ramp(p) as f32), &ramp, true),
+        (
+            "checker_ras",
+            ras_image(0.25, |p| checker(p) as f32),
+            &checker,
+            false,
+        ),
+        (
+            "ramp_lps_permuted",
+            lps_nrrd_image(&dir, "ramp_lps.nrrd", ramp),
+            &ramp,
+            true,
+        ),
+        (
+            "checker_lps_permuted",
+            lps_nrrd_image(&dir, "checker_lps.nrrd", checker),
+            &checker,
+            false,
+        ),
+        // A grid much coarser than the wall: the ramp is still exact under trilinear sampling.
+        (
+            "ramp_coarse",
+            ras_image(3.0, |p| ramp(p) as f32),
+            &ramp,
+            true,
+        ),
+    ];
+    for (name, image, f, in_x) in cases {
+        let scene = cube_scene(image, WINDOW);
+        let picture = render(&mut r, &scene, name);
+        assert_follows(&picture, f, name, in_x);
+    }
+}
+
+#[test]
+fn a_wrong_image_is_caught_and_colour_mode_ignores_the_image() {
+    let Some(mut r) = renderer() else { return };
+    // The ramp along z instead of x does not pass as a ramp along x: the test can fail.
+    let scene = cube_scene(ras_image(0.5, |p| 100.0 * p.z as f32), WINDOW);
+    let picture = render(&mut r, &scene, "ramp_wrong_axis");
+    let pairs = wall_samples(&picture, &ramp, WINDOW);
+    let rho = correlation(&pairs);
+    assert!(
+        rho.abs() < 0.5,
+        "a ramp along z correlates {rho} with one along x"
+    );
+
+    // Structure colour: the picture is the one without an image, pixel for pixel.
+    let mut scene = cube_scene(ras_image(0.5, |p| ramp(p) as f32), WINDOW);
+    scene.image.as_mut().unwrap().display = WallDisplay::Color;
+    let color = render(&mut r, &scene, "ramp_color_display");
+    scene.image = None;
+    let plain = render(&mut r, &scene, "no_image");
+    assert_eq!(
+        color.as_raw(),
+        plain.as_raw(),
+        "colour display differs from no image"
+    );
+    // Blend: between the two.
+    let mut scene = cube_scene(ras_image(0.5, |p| ramp(p) as f32), WINDOW);
+    scene.image.as_mut().unwrap().display = WallDisplay::Blend;
+    let blend = render(&mut r, &scene, "ramp_blend");
+    let pairs = wall_samples(&blend, &ramp, WINDOW);
+    assert!(correlation(&pairs) > 0.9, "blend still follows the ramp");
+    assert_ne!(blend.as_raw(), plain.as_raw());
+}
+
+/// The chest CT folder of the real data (`$CUTAWAY_ANATOMY/volumes/slicerio_chest`, else
+/// `../shared/anatomy` beside the workspace), or `None` with the reason printed.
+fn chest_dir() -> Option<PathBuf> {
+    let root = std::env::var_os("CUTAWAY_ANATOMY")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/anatomy"));
+    let root = if root.is_relative() {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(root)
+    } else {
+        root
+    };
+    let dir = root.join("volumes/slicerio_chest");
+    if dir.join("CTChest4.nrrd").is_file() && dir.join("Segmentation.seg.nrrd").is_file() {
+        Some(dir)
+    } else {
+        println!("skipped: no chest CT in {}", dir.display());
+        None
+    }
+}
+
+/// The chest segmentation with a box cut from the front through the ribs and lungs, the CT on
+/// the walls, at 1280×800 through `cutaway render`: with the lung window the lungs are dark and
+/// the mediastinum bright; with the bone window the lungs are black and little is white.
+#[test]
+fn chest_ct_on_the_walls_with_lung_and_bone_windows() {
+    let Some(chest) = chest_dir() else { return };
+    if renderer().is_none() {
+        return;
+    }
+    let out = out_dir();
+    let plane =
+        |x: f64| serde_json::json!([[x, 200, -90], [x, -10, -90], [x, -10, -290], [x, 200, -290]]);
+    let planes = serde_json::json!([plane(150.0), plane(0.0), plane(-150.0)]);
+    let cutters: Vec<serde_json::Value> = [0, 2, 3, 4, 5, 6]
+        .iter()
+        .map(|t| serde_json::json!({"target": t, "kind": "straight", "planes": planes}))
+        .collect();
+    let mut fractions = Vec::new();
+    for (name, window) in [("lung", [-600.0, 1500.0]), ("bone", [400.0, 1800.0])] {
+        let session = serde_json::json!({
+            "format": "cutaway-session/2",
+            "models": [{"path": chest.join("Segmentation.seg.nrrd")}],
+            "cutters": cutters,
+            "camera": {"eye": [160, 720, -20], "target": [0, 0, -190], "up": [0, 0, 1], "fov_y_deg": 30},
+            "image": {"path": chest.join("CTChest4.nrrd"), "window": window}
+        });
+        let path = out.join(format!("chest_{name}.json"));
+        std::fs::write(&path, serde_json::to_string_pretty(&session).unwrap()).unwrap();
+        let png = out.join(format!("chest_{name}.png"));
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
+            .args(["render"])
+            .arg(&path)
+            .arg("--out")
+            .arg(&png)
+            .status()
+            .unwrap();
+        assert!(status.success(), "cutaway render {name}");
+        let picture = image::open(&png).unwrap().to_rgba8();
+        assert_eq!(picture.dimensions(), (1280, 800));
+        // The wall: the cut's rectangle in the middle of the picture (grey pixels: r = g = b).
+        let (mut dark, mut bright, mut grey) = (0usize, 0usize, 0usize);
+        for y in 250..650 {
+            for x in 380..900 {
+                let p = picture.get_pixel(x, y).0;
+                if (p[0] as i32 - p[1] as i32).abs() <= 2 && (p[1] as i32 - p[2] as i32).abs() <= 2
+                {
+                    grey += 1;
+                    let v = p[0] as f64 / 255.0;
+                    dark += usize::from(v < 0.45);
+                    bright += usize::from(v > 0.85);
+                }
+            }
+        }
+        let (d, b) = (dark as f64 / grey as f64, bright as f64 / grey as f64);
+        println!("{name} window: {grey} grey wall pixels, {d:.2} dark, {b:.2} bright");
+        assert!(
+            grey > 100_000,
+            "{name}: the wall shows no image ({grey} grey pixels)"
+        );
+        fractions.push((d, b));
+    }
+    let (lung, bone) = (fractions[0], fractions[1]);
+    assert!(
+        lung.0 > 0.15 && lung.1 > 0.15,
+        "lung window: lungs dark, tissue bright: {lung:?}"
+    );
+    assert!(
+        bone.0 > lung.0 + 0.2 && bone.1 < 0.05,
+        "bone window: mostly dark: {bone:?}"
+    );
+}
+
+/// The glTF export bakes the image into the walls' vertex colours: every coloured vertex on the
+/// back wall has the grey of the ramp there (linear light, as glTF stores it).
+#[test]
+fn gltf_walls_carry_the_image_as_vertex_colours() {
+    let scene = cube_scene(ras_image(0.5, |p| ramp(p) as f32), WINDOW);
+    let (bytes, summary) = cutaway::export::glb_of_scene(&scene).unwrap();
+    assert!(summary.exact, "{:?}", summary.notes);
+    let gltf = gltf::Gltf::from_slice(&bytes).unwrap();
+    let blob = gltf.blob.clone().expect("a BIN chunk");
+    let mut checked = 0;
+    for mesh in gltf.meshes() {
+        for primitive in mesh.primitives() {
+            let reader = primitive.reader(|_| Some(&blob));
+            let Some(colors) = reader.read_colors(0) else {
+                continue;
+            };
+            assert_eq!(primitive.material().name(), Some("image"));
+            let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+            let colors: Vec<[f32; 4]> = colors.into_rgba_f32().collect();
+            assert_eq!(positions.len(), colors.len());
+            for (p, c) in positions.iter().zip(&colors) {
+                if (p[1] - 5.0).abs() > 1e-4 {
+                    continue;
+                }
+                let grey = WINDOW.map(ramp(DVec3::new(p[0] as f64, 5.0, p[2] as f64)));
+                let linear = if grey <= 0.04045 {
+                    grey / 12.92
+                } else {
+                    ((grey + 0.055) / 1.055).powf(2.4)
+                };
+                assert!(
+                    (c[0] as f64 - linear).abs() < 1e-3,
+                    "{p:?}: {c:?} vs {linear}"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 100, "{checked} baked vertices on the back wall");
+}
