@@ -3,9 +3,11 @@
 //! The CLI (clap), file formats, the scene and session, the egui UI and the wgpu renderer. The
 //! mesh core (`csg`) and the tools (`cutter`) never see any of these.
 
+pub mod annotate;
 pub mod anatomy_colors;
 pub mod assets;
 pub mod cli;
+pub mod compare;
 pub mod cutaway_geometry;
 pub mod default_anatomy;
 pub mod export;
@@ -20,3 +22,5 @@ pub mod scene;
 pub mod session;
 pub mod session_limits;
 pub mod session_meshes;
+pub mod session_variants;
+pub mod variants;

@@ -314,6 +314,8 @@ pub struct Scene {
     pub cutters: Vec<SceneCutter>,
     pub camera: Camera,
     pub render: RenderSettings,
+    /// Named cutter sets; `cutters` are those of the active one ([`crate::variants`]).
+    pub variants: crate::variants::Variants,
 }
 
 impl Default for Scene {
@@ -328,6 +330,7 @@ impl Default for Scene {
                 fov_y_deg: 30.0,
             },
             render: RenderSettings::default(),
+            variants: crate::variants::Variants::default(),
         }
     }
 }
@@ -372,6 +375,7 @@ impl Scene {
             cutters,
             camera,
             render,
+            variants: _,
         } = self;
         for (i, m) in models.iter().enumerate() {
             if !(0.0..=1.0).contains(&m.opacity) {
@@ -438,7 +442,7 @@ impl Scene {
         if render.background.iter().any(|c| !(0.0..=1.0).contains(c)) {
             return Err("render: background components must lie in 0..1".to_string());
         }
-        Ok(())
+        crate::variants::check(self)
     }
 }
 

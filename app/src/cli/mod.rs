@@ -8,6 +8,7 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
 
+pub mod compare;
 pub mod export;
 pub mod extrude;
 pub mod info;
@@ -47,6 +48,9 @@ pub enum Command {
     Export(export::ExportArgs),
     /// Measure the cuts of a session: removed volume and area, exposure, distances.
     Metrics(metrics::MetricsArgs),
+    /// Render and measure every cut variant of a session: pictures, a side-by-side sheet with
+    /// the metrics table, metrics as JSON and CSV.
+    Compare(compare::CompareArgs),
     /// Regenerate the embedded synthetic anatomy phantoms into a folder (maintainers only).
     #[command(hide = true)]
     Phantom(phantom::PhantomArgs),
@@ -84,6 +88,7 @@ where
         Some(Command::Surfaces(a)) => surfaces::run(&a),
         Some(Command::Export(a)) => export::run(&a),
         Some(Command::Metrics(a)) => metrics::run(&a),
+        Some(Command::Compare(a)) => compare::run(&a),
         Some(Command::Phantom(a)) => phantom::run(&a),
     }
 }

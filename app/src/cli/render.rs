@@ -1,5 +1,7 @@
-//! `cutaway render SESSION.json --out IMG.png [--width W] [--height H] [--json]`: the session's
-//! picture, headless (no window, no display), with the same renderer as the GUI.
+//! `cutaway render SESSION.json --out IMG.png [--width W] [--height H] [--labels [NAME…]]
+//! [--json]`: the session's picture, headless (no window, no display), with the same renderer as
+//! the GUI. `--labels` draws structure names with leader lines (every opaque visible structure,
+//! or the ones named), a scale bar in mm and the orientation marker ([`crate::annotate`]).
 //!
 //! Every cut is made by the exact boolean; there is no approximate stand-in. A cutter the boolean
 //! refuses makes the command fail (no image is written) with the reason, after `--json` has
@@ -35,6 +37,10 @@ pub struct RenderArgs {
     /// Print whether each cut was exact and the times as one JSON object.
     #[arg(long)]
     pub json: bool,
+    /// Label structures (all opaque visible ones, or the NAMEs given) with leader lines, and
+    /// draw a scale bar in mm and the orientation marker (R/L, A/P, S/I).
+    #[arg(long, num_args = 0.., value_name = "NAME")]
+    pub labels: Option<Vec<String>>,
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
@@ -44,6 +50,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
     }
     let scene = crate::session::load(&args.session)?;
+    let labelled = match &args.labels {
+        Some(names) => Some(
+            crate::annotate::labelled::chosen(&scene, names)
+                .with_context(|| format!("{}", args.session.display()))?,
+        ),
+        None => None,
+    };
     let mut options = RenderPngOptions::new(args.width, args.height);
     options.transparent_background = args.transparent;
     let mut renderer =
@@ -51,9 +64,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
     let preview = (render_mode(&scene, &options) == ViewMode::Preview)
         .then(|| Arc::new(preview_geometry(&scene)));
-    let image =
+    let mut image =
         crate::render::render_with_preview(&mut renderer, &scene, &options, preview.clone())
             .with_context(|| format!("{}", args.session.display()))?;
+    if let Some(models) = &labelled {
+        crate::annotate::labelled::annotate(&mut image, &scene, preview.as_deref(), models);
+    }
     let render_ms = started.elapsed().as_secs_f64() * 1000.0;
     let reports: Vec<CutReport> = (0..scene.cutters.len())
         .map(|c| {
