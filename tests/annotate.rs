@@ -63,6 +63,8 @@ fn leaders_end_on_their_structure_s_visible_pixels() {
     assert_eq!(models, [0, 1]);
     let mut labelled = picture.clone();
     let drawn = annotate(&mut labelled, &scene, Some(&preview), &models);
+    labelled.save(dir.join("labelled.png")).unwrap();
+    picture.save(dir.join("picture.png")).unwrap();
     assert_eq!(drawn.labels.len(), 2, "unlabelled: {:?}", drawn.unlabelled);
     for (m, label) in &drawn.labels {
         let end = label.leader[1];
@@ -112,7 +114,7 @@ fn render_labels_on_the_command_line() {
         return;
     }
     assert!(plain.status.success(), "{stderr}");
-    let one = run(&["--labels", "cube"], "one.png");
+    let one = run(&["--labels", "cube 1"], "one.png");
     assert!(one.status.success(), "{}", String::from_utf8_lossy(&one.stderr));
     let all = run(&["--labels"], "all.png");
     assert!(all.status.success(), "{}", String::from_utf8_lossy(&all.stderr));

@@ -21,6 +21,10 @@ pub struct VisibleGrid {
     pub rows: u32,
     /// Row-major; the index into `Scene::models` of the model hit first, or `None`.
     pub cells: Vec<Option<u32>>,
+    /// Row-major; whether the hit is on a cut face (a wall or slice wall) rather than on the
+    /// structure's own surface. The contour line is drawn where the two meet, so an anchor keeps
+    /// away from that border too.
+    pub cut_face: Vec<bool>,
 }
 
 impl VisibleGrid {
@@ -55,10 +59,10 @@ pub fn visible_grid(
     let step = step.max(1);
     let mut all = Mesh::default();
     // Per triangle of `all`: the model it belongs to.
-    let mut owner: Vec<u32> = Vec::new();
-    let mut add = |mesh: &Mesh, m: usize| {
+    let mut owner: Vec<(u32, bool)> = Vec::new();
+    let mut add = |mesh: &Mesh, m: usize, cut: bool| {
         all.append(mesh);
-        owner.resize(all.triangle_count(), m as u32);
+        owner.resize(all.triangle_count(), (m as u32, cut));
     };
     for m in 0..scene.models.len() {
         if !is_opaque(scene, m) {
@@ -68,11 +72,12 @@ pub fn visible_grid(
             Some(p) if p.replaced.get(m).copied().unwrap_or(false) => {
                 for part in p.parts.iter().filter(|p| p.model == m) {
                     if part.kind != PartKind::Removed {
-                        add(&part.mesh, m);
+                        let cut = matches!(part.kind, PartKind::Wall | PartKind::SliceWall);
+                        add(&part.mesh, m, cut);
                     }
                 }
             }
-            _ => add(&scene.models[m].mesh, m),
+            _ => add(&scene.models[m].mesh, m, false),
         }
     }
     let columns = size[0].div_ceil(step);
@@ -83,12 +88,13 @@ pub fn visible_grid(
             columns,
             rows,
             cells: vec![None; (columns * rows) as usize],
+            cut_face: vec![false; (columns * rows) as usize],
         };
     }
     let index = SpatialIndex::build(&all);
     let viewport = DVec2::new(size[0] as f64, size[1] as f64);
     let far = scene.camera.distance() * 1e3 + scene.bbox().diagonal().max(1.0) * 10.0;
-    let cells = (0..columns * rows)
+    let hits: Vec<Option<(u32, bool)>> = (0..columns * rows)
         .into_par_iter()
         .map(|i| {
             let (c, r) = (i % columns, i / columns);
@@ -106,48 +112,61 @@ pub fn visible_grid(
         step,
         columns,
         rows,
-        cells,
+        cells: hits.iter().map(|h| h.map(|(m, _)| m)).collect(),
+        cut_face: hits.iter().map(|h| h.is_some_and(|(_, cut)| cut)).collect(),
     }
 }
 
-/// The point where model `m` is most surely visible: among the cells that see it, the one with
-/// the most cells of `m` around it (within two cells), ties broken by nearness to the centroid
-/// of its cells; `None` when no cell sees it.
+/// The point where model `m` is most surely visible: the cell of `m` farthest from any cell
+/// that does not see the same part of `m` (its own surface, or its cut faces, between which the
+/// contour line is drawn) or lies outside the image, ties broken by nearness to the centroid of
+/// its cells; `None` when no cell sees it.
 pub fn anchor(grid: &VisibleGrid, m: u32) -> Option<[f32; 2]> {
-    let cells: Vec<(u32, u32)> = (0..grid.rows)
-        .flat_map(|r| (0..grid.columns).map(move |c| (c, r)))
-        .filter(|&(c, r)| grid.at(c, r) == Some(m))
-        .collect();
-    if cells.is_empty() {
+    let (columns, rows) = (grid.columns as usize, grid.rows as usize);
+    let class = |i: usize| (grid.cells[i] == Some(m)).then_some(grid.cut_face[i]);
+    if !(0..columns * rows).any(|i| class(i).is_some()) {
         return None;
     }
-    let n = cells.len() as f64;
-    let cx = cells.iter().map(|&(c, _)| c as f64).sum::<f64>() / n;
-    let cy = cells.iter().map(|&(_, r)| r as f64).sum::<f64>() / n;
-    let interior = |c: u32, r: u32| {
-        let mut count = 0;
-        for dr in -2i64..=2 {
-            for dc in -2i64..=2 {
-                let (cc, rr) = (c as i64 + dc, r as i64 + dr);
-                if cc >= 0
-                    && rr >= 0
-                    && cc < grid.columns as i64
-                    && rr < grid.rows as i64
-                    && grid.at(cc as u32, rr as u32) == Some(m)
-                {
-                    count += 1;
-                }
-            }
+    // Chamfer distance (3-4 weights) to the nearest cell of another class or the image's edge.
+    let mut distance = vec![u32::MAX / 2; columns * rows];
+    for i in 0..columns * rows {
+        if class(i).is_none() {
+            distance[i] = 0;
         }
-        count
+    }
+    let neighbours_before = [(-1i64, 0i64, 3u32), (-1, -1, 4), (0, -1, 3), (1, -1, 4)];
+    let pass = |distance: &mut Vec<u32>, order: &mut dyn Iterator<Item = usize>, sign: i64| {
+        for i in order {
+            if distance[i] == 0 {
+                continue;
+            }
+            let (c, r) = ((i % columns) as i64, (i / columns) as i64);
+            let mut best = distance[i];
+            for &(dc, dr, w) in &neighbours_before {
+                let (cc, rr) = (c + sign * dc, r + sign * dr);
+                let d = if cc < 0 || rr < 0 || cc >= columns as i64 || rr >= rows as i64 {
+                    0
+                } else {
+                    let j = rr as usize * columns + cc as usize;
+                    if class(j) != class(i) { 0 } else { distance[j] }
+                };
+                best = best.min(d + w);
+            }
+            distance[i] = best;
+        }
     };
-    let best = cells.iter().copied().max_by(|&(a, b), &(c, d)| {
-        let far = |x: u32, y: u32| -((x as f64 - cx).powi(2) + (y as f64 - cy).powi(2));
-        interior(a, b)
-            .cmp(&interior(c, d))
-            .then(far(a, b).total_cmp(&far(c, d)))
-    })?;
-    Some(grid.pixel(best.0, best.1))
+    pass(&mut distance, &mut (0..columns * rows), 1);
+    pass(&mut distance, &mut (0..columns * rows).rev(), -1);
+    let cells: Vec<usize> = (0..columns * rows).filter(|&i| class(i).is_some()).collect();
+    let n = cells.len() as f64;
+    let cx = cells.iter().map(|&i| (i % columns) as f64).sum::<f64>() / n;
+    let cy = cells.iter().map(|&i| (i / columns) as f64).sum::<f64>() / n;
+    let near = |i: usize| -(((i % columns) as f64 - cx).powi(2) + ((i / columns) as f64 - cy).powi(2));
+    let best = cells
+        .iter()
+        .copied()
+        .max_by(|&a, &b| distance[a].cmp(&distance[b]).then(near(a).total_cmp(&near(b))))?;
+    Some(grid.pixel((best % columns) as u32, (best / columns) as u32))
 }
 
 #[cfg(test)]
@@ -177,6 +196,7 @@ mod tests {
             columns,
             rows,
             cells,
+            cut_face: vec![false; (columns * rows) as usize],
         };
         for m in [0, 1] {
             let [x, y] = anchor(&grid, m).unwrap();
