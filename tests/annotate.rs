@@ -115,9 +115,17 @@ fn render_labels_on_the_command_line() {
     }
     assert!(plain.status.success(), "{stderr}");
     let one = run(&["--labels", "cube 1"], "one.png");
-    assert!(one.status.success(), "{}", String::from_utf8_lossy(&one.stderr));
+    assert!(
+        one.status.success(),
+        "{}",
+        String::from_utf8_lossy(&one.stderr)
+    );
     let all = run(&["--labels"], "all.png");
-    assert!(all.status.success(), "{}", String::from_utf8_lossy(&all.stderr));
+    assert!(
+        all.status.success(),
+        "{}",
+        String::from_utf8_lossy(&all.stderr)
+    );
     let a = image::open(dir.join("plain.png")).unwrap().to_rgba8();
     let b = image::open(dir.join("all.png")).unwrap().to_rgba8();
     assert_eq!(a.dimensions(), b.dimensions());

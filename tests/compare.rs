@@ -29,7 +29,14 @@ fn cutaway(args: &[&str], session: &Path, extra: &[&str]) -> Output {
 
 /// Runs `cutaway compare` into `out`; `None` (after printing why) when there is no GPU adapter.
 fn compare(session: &Path, out: &Path, extra: &[&str]) -> Option<serde_json::Value> {
-    let mut args = vec!["--out", out.to_str().unwrap(), "--width", "96", "--height", "72"];
+    let mut args = vec![
+        "--out",
+        out.to_str().unwrap(),
+        "--width",
+        "96",
+        "--height",
+        "72",
+    ];
     args.extend_from_slice(extra);
     args.push("--json");
     let run = cutaway(&["compare"], session, &args);
@@ -104,7 +111,10 @@ fn each_variant_removes_what_metrics_measures_on_its_cutters_alone() {
         return;
     };
     let variants = json["variants"].as_array().unwrap();
-    let names: Vec<&str> = variants.iter().map(|v| v["name"].as_str().unwrap()).collect();
+    let names: Vec<&str> = variants
+        .iter()
+        .map(|v| v["name"].as_str().unwrap())
+        .collect();
     assert_eq!(names, ["corner", "slot", "both, \"A\"+B"]);
     let cutters = [vec![corner()], vec![slot()], vec![corner(), slot()]];
     let analytic = [125.0, 60.0, 170.0];
@@ -127,7 +137,12 @@ fn each_variant_removes_what_metrics_measures_on_its_cutters_alone() {
         let expected = metrics(&alone, &["--critical", "side 1"]);
         let got = &variant["metrics"];
         for s in 0..2 {
-            for field in ["removed_volume", "removed_area", "wall_area", "min_distance"] {
+            for field in [
+                "removed_volume",
+                "removed_area",
+                "wall_area",
+                "min_distance",
+            ] {
                 assert_eq!(
                     got["structures"][s][field], expected["structures"][s][field],
                     "variant {k}, structure {s}, {field}"
@@ -149,9 +164,16 @@ fn each_variant_removes_what_metrics_measures_on_its_cutters_alone() {
     }
     // The variants draw different pictures: the corner cut and the slot cut differ.
     let picture = |k: usize| image::open(dir.join("out/variants").join(format!("variant-{k}.png")));
-    assert_ne!(picture(1).unwrap().to_rgba8(), picture(2).unwrap().to_rgba8());
+    assert_ne!(
+        picture(1).unwrap().to_rgba8(),
+        picture(2).unwrap().to_rgba8()
+    );
     let sheet = image::open(dir.join("out/compare.png")).unwrap().to_rgba8();
-    assert!(sheet.width() > 3 * 96 && sheet.height() > 72, "{:?}", sheet.dimensions());
+    assert!(
+        sheet.width() > 3 * 96 && sheet.height() > 72,
+        "{:?}",
+        sheet.dimensions()
+    );
     // The files hold what was printed.
     let written: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("out/metrics.json")).unwrap())
@@ -182,7 +204,14 @@ fn csv_fields(line: &str) -> Vec<String> {
 fn metrics_json_and_csv_agree_number_for_number() {
     let dir = scratch("compare-csv");
     let session = cube_with_variants(&dir);
-    let extra = ["--focus", "side 1", "--critical", "side 1", "--samples", "400"];
+    let extra = [
+        "--focus",
+        "side 1",
+        "--critical",
+        "side 1",
+        "--samples",
+        "400",
+    ];
     let Some(json) = compare(&session, &dir.join("out"), &extra) else {
         return;
     };
@@ -202,7 +231,10 @@ fn metrics_json_and_csv_agree_number_for_number() {
         let variant = &variants[r / 2];
         let structure = &variant["metrics"]["structures"][r % 2];
         assert_eq!(row[column("variant")], variant["name"].as_str().unwrap());
-        assert_eq!(row[column("structure")], structure["name"].as_str().unwrap());
+        assert_eq!(
+            row[column("structure")],
+            structure["name"].as_str().unwrap()
+        );
         for (csv_name, json_name) in [
             ("removed_volume_mm3", "removed_volume"),
             ("removed_area_mm2", "removed_area"),
@@ -287,9 +319,10 @@ fn bad_requests_are_one_error_line_and_write_nothing() {
         assert!(!out.join("compare.png").exists());
     }
     // A variant whose cutter aims at a model that does not exist: the file and the variant named.
-    let text = std::fs::read_to_string(&session)
-        .unwrap()
-        .replacen("\"target\": 0", "\"target\": 9", 1);
+    let text =
+        std::fs::read_to_string(&session)
+            .unwrap()
+            .replacen("\"target\": 0", "\"target\": 9", 1);
     std::fs::write(&session, text).unwrap();
     let run = cutaway(&["compare"], &session, &["--out", out.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&run.stderr);

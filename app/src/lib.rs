@@ -3,8 +3,8 @@
 //! The CLI (clap), file formats, the scene and session, the egui UI and the wgpu renderer. The
 //! mesh core (`csg`) and the tools (`cutter`) never see any of these.
 
-pub mod annotate;
 pub mod anatomy_colors;
+pub mod annotate;
 pub mod assets;
 pub mod cli;
 pub mod compare;

@@ -200,9 +200,7 @@ pub fn check_name(name: &str) -> Result<(), String> {
         ));
     }
     if name.chars().any(char::is_control) {
-        return Err(format!(
-            "variant name {name:?} holds a control character"
-        ));
+        return Err(format!("variant name {name:?} holds a control character"));
     }
     Ok(())
 }
@@ -309,7 +307,10 @@ mod tests {
         create(&mut s, "b").unwrap();
         s.variants.list[0].cutters[0].target = 5;
         let e = check(&s).unwrap_err();
-        assert!(e.contains("variant 0 ('current'): cutter 0: target 5"), "{e}");
+        assert!(
+            e.contains("variant 0 ('current'): cutter 0: target 5"),
+            "{e}"
+        );
         s.variants.list[0].cutters[0].target = 0;
         s.variants.list[0].name = "b".into();
         assert!(check(&s).unwrap_err().contains("used twice"));

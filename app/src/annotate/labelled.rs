@@ -185,7 +185,10 @@ pub fn annotate(
     for axis in &axes {
         let d = [axis.screen[0] as f32, axis.screen[1] as f32];
         let tip = [centre[0] + d[0] * marker_arm, centre[1] + d[1] * marker_arm];
-        let tail = [centre[0] - d[0] * marker_arm * 0.6, centre[1] - d[1] * marker_arm * 0.6];
+        let tail = [
+            centre[0] - d[0] * marker_arm * 0.6,
+            centre[1] - d[1] * marker_arm * 0.6,
+        ];
         let c = colour(axis.positive);
         let faint = [c[0], c[1], c[2], 110];
         line_segment(image, centre, tail, (px / 9.0).max(1.0), faint);
@@ -199,16 +202,15 @@ pub fn annotate(
                 continue;
             }
             let s = letter.to_string();
-            let lx = centre[0] + d[0] * marker_arm * at - painter.width(Face::Sans, px * 0.8, &s) / 2.0;
-            let ly = centre[1] + d[1] * marker_arm * at - painter.line_height(Face::Sans, px * 0.8) / 2.0;
+            let lx =
+                centre[0] + d[0] * marker_arm * at - painter.width(Face::Sans, px * 0.8, &s) / 2.0;
+            let ly = centre[1] + d[1] * marker_arm * at
+                - painter.line_height(Face::Sans, px * 0.8) / 2.0;
             painter.draw(image, Face::Sans, px * 0.8, lx, ly, &s, ink);
         }
     }
     Annotations {
-        labels: placed
-            .into_iter()
-            .map(|p| (owners[p.request], p))
-            .collect(),
+        labels: placed.into_iter().map(|p| (owners[p.request], p)).collect(),
         unlabelled,
         scale_bar: bar,
         scale_bar_at,

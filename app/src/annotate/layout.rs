@@ -130,7 +130,10 @@ mod tests {
         let mut state = 7;
         for round in 0..200 {
             let count = 1 + round % 25;
-            let size = [400.0 + 600.0 * lcg(&mut state), 300.0 + 500.0 * lcg(&mut state)];
+            let size = [
+                400.0 + 600.0 * lcg(&mut state),
+                300.0 + 500.0 * lcg(&mut state),
+            ];
             let requests: Vec<LabelRequest> = (0..count)
                 .map(|i| LabelRequest {
                     text: format!("s{i}"),
@@ -142,7 +145,10 @@ mod tests {
             for (a, p) in placed.iter().enumerate() {
                 let r = p.rect;
                 assert!(r.x >= 8.0 - 1e-3 && r.x + r.w <= size[0] - 8.0 + 1e-3);
-                assert!(r.y >= 8.0 - 1e-3 && r.y + r.h <= size[1] - 68.0 + 1e-3, "{r:?}");
+                assert!(
+                    r.y >= 8.0 - 1e-3 && r.y + r.h <= size[1] - 68.0 + 1e-3,
+                    "{r:?}"
+                );
                 assert_eq!(p.leader[1], requests[p.request].anchor);
                 for q in &placed[a + 1..] {
                     assert!(!p.rect.overlaps(&q.rect), "{:?} {:?}", p.rect, q.rect);
@@ -170,8 +176,24 @@ mod tests {
             },
         ];
         let placed = place(&requests, [800.0, 600.0], 10.0, 4.0, 0.0);
-        assert_eq!(placed[0].rect, Rect { x: 10.0, y: 190.0, w: 60.0, h: 20.0 });
-        assert_eq!(placed[1].rect, Rect { x: 730.0, y: 290.0, w: 60.0, h: 20.0 });
+        assert_eq!(
+            placed[0].rect,
+            Rect {
+                x: 10.0,
+                y: 190.0,
+                w: 60.0,
+                h: 20.0
+            }
+        );
+        assert_eq!(
+            placed[1].rect,
+            Rect {
+                x: 730.0,
+                y: 290.0,
+                w: 60.0,
+                h: 20.0
+            }
+        );
         assert_eq!(placed[0].leader[0], [70.0, 200.0]);
         assert_eq!(placed[1].leader[0], [730.0, 300.0]);
     }

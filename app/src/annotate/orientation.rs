@@ -51,7 +51,11 @@ mod tests {
             fov_y_deg: 30.0,
         };
         let [x, y, z] = screen_axes(&camera);
-        assert!(x.screen[0] < -0.99, "R points to the image left: {:?}", x.screen);
+        assert!(
+            x.screen[0] < -0.99,
+            "R points to the image left: {:?}",
+            x.screen
+        );
         assert!(z.screen[1] < -0.99, "S points up: {:?}", z.screen);
         assert!(y.screen[0].abs() < 1e-9 && y.screen[1].abs() < 1e-9);
         assert!(y.toward_viewer > 0.99, "A points at the viewer");

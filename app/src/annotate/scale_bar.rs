@@ -69,10 +69,21 @@ mod tests {
         let b = camera
             .project(size, camera.target + DVec3::X * bar.millimetres)
             .unwrap();
-        assert!(((b - a).length() - bar.pixels).abs() < 1e-6, "{} {}", (b - a).length(), bar.pixels);
+        assert!(
+            ((b - a).length() - bar.pixels).abs() < 1e-6,
+            "{} {}",
+            (b - a).length(),
+            bar.pixels
+        );
         assert_eq!(caption(&bar), "50 mm");
         let tiny = scale_bar(&camera, 800, 1.0).unwrap();
         assert!(tiny.millimetres < 1.0 && tiny.pixels <= 1.0);
-        assert_eq!(caption(&ScaleBar { millimetres: 0.5, pixels: 1.0 }), "0.5 mm");
+        assert_eq!(
+            caption(&ScaleBar {
+                millimetres: 0.5,
+                pixels: 1.0
+            }),
+            "0.5 mm"
+        );
     }
 }

@@ -146,7 +146,15 @@ mod tests {
         let mut image = RgbaImage::from_pixel(200, 40, image::Rgba([255, 255, 255, 255]));
         let width = painter.width(Face::Sans, 20.0, "Cutaway 12 mm");
         assert!((80.0..200.0).contains(&width), "{width}");
-        painter.draw(&mut image, Face::Sans, 20.0, 10.0, 5.0, "Cutaway 12 mm", [0, 0, 0, 255]);
+        painter.draw(
+            &mut image,
+            Face::Sans,
+            20.0,
+            10.0,
+            5.0,
+            "Cutaway 12 mm",
+            [0, 0, 0, 255],
+        );
         let pixels = ink(&image);
         assert!(pixels.len() > 100, "{} dark pixels", pixels.len());
         let line = painter.line_height(Face::Sans, 20.0);
@@ -156,7 +164,15 @@ mod tests {
         }
         // Different text draws different pixels.
         let mut other = RgbaImage::from_pixel(200, 40, image::Rgba([255, 255, 255, 255]));
-        painter.draw(&mut other, Face::Sans, 20.0, 10.0, 5.0, "Cutaway 13 mm", [0, 0, 0, 255]);
+        painter.draw(
+            &mut other,
+            Face::Sans,
+            20.0,
+            10.0,
+            5.0,
+            "Cutaway 13 mm",
+            [0, 0, 0, 255],
+        );
         assert_ne!(ink(&other), pixels);
     }
 
@@ -168,7 +184,23 @@ mod tests {
         assert!((a - b).abs() < 1e-3, "{a} {b}");
         assert!(painter.width(Face::Sans, 14.0, "iiii") < painter.width(Face::Sans, 14.0, "WWWW"));
         let mut image = RgbaImage::from_pixel(20, 20, image::Rgba([255, 255, 255, 255]));
-        painter.draw(&mut image, Face::Sans, 30.0, -50.0, -5.0, "far away text", [0, 0, 0, 255]);
-        painter.draw(&mut image, Face::Sans, 30.0, 500.0, 500.0, "far", [0, 0, 0, 255]);
+        painter.draw(
+            &mut image,
+            Face::Sans,
+            30.0,
+            -50.0,
+            -5.0,
+            "far away text",
+            [0, 0, 0, 255],
+        );
+        painter.draw(
+            &mut image,
+            Face::Sans,
+            30.0,
+            500.0,
+            500.0,
+            "far",
+            [0, 0, 0, 255],
+        );
     }
 }

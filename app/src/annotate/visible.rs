@@ -157,15 +157,19 @@ pub fn anchor(grid: &VisibleGrid, m: u32) -> Option<[f32; 2]> {
     };
     pass(&mut distance, &mut (0..columns * rows), 1);
     pass(&mut distance, &mut (0..columns * rows).rev(), -1);
-    let cells: Vec<usize> = (0..columns * rows).filter(|&i| class(i).is_some()).collect();
+    let cells: Vec<usize> = (0..columns * rows)
+        .filter(|&i| class(i).is_some())
+        .collect();
     let n = cells.len() as f64;
     let cx = cells.iter().map(|&i| (i % columns) as f64).sum::<f64>() / n;
     let cy = cells.iter().map(|&i| (i / columns) as f64).sum::<f64>() / n;
-    let near = |i: usize| -(((i % columns) as f64 - cx).powi(2) + ((i / columns) as f64 - cy).powi(2));
-    let best = cells
-        .iter()
-        .copied()
-        .max_by(|&a, &b| distance[a].cmp(&distance[b]).then(near(a).total_cmp(&near(b))))?;
+    let near =
+        |i: usize| -(((i % columns) as f64 - cx).powi(2) + ((i / columns) as f64 - cy).powi(2));
+    let best = cells.iter().copied().max_by(|&a, &b| {
+        distance[a]
+            .cmp(&distance[b])
+            .then(near(a).total_cmp(&near(b)))
+    })?;
     Some(grid.pixel((best % columns) as u32, (best / columns) as u32))
 }
 

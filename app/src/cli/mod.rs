@@ -19,6 +19,7 @@ pub mod render;
 pub mod scalpel;
 pub mod subtract;
 pub mod surfaces;
+pub mod turntable;
 
 /// Context-preserving cutaways of segmented anatomy.
 #[derive(Debug, Parser)]
@@ -51,6 +52,8 @@ pub enum Command {
     /// Render and measure every cut variant of a session: pictures, a side-by-side sheet with
     /// the metrics table, metrics as JSON and CSV.
     Compare(compare::CompareArgs),
+    /// Render an orbit around the cut scene: a PNG sequence and optionally an animated GIF.
+    Turntable(turntable::TurntableArgs),
     /// Regenerate the embedded synthetic anatomy phantoms into a folder (maintainers only).
     #[command(hide = true)]
     Phantom(phantom::PhantomArgs),
@@ -89,6 +92,7 @@ where
         Some(Command::Export(a)) => export::run(&a),
         Some(Command::Metrics(a)) => metrics::run(&a),
         Some(Command::Compare(a)) => compare::run(&a),
+        Some(Command::Turntable(a)) => turntable::run(&a),
         Some(Command::Phantom(a)) => phantom::run(&a),
     }
 }

@@ -151,7 +151,11 @@ mod tests {
         };
         assert!((orbit(&camera, 0, 8).eye - camera.eye).length() < 1e-12);
         let quarter = orbit(&camera, 2, 8);
-        assert!((quarter.eye - DVec3::new(100.0, 0.0, 30.0)).length() < 1e-9, "{:?}", quarter.eye);
+        assert!(
+            (quarter.eye - DVec3::new(100.0, 0.0, 30.0)).length() < 1e-9,
+            "{:?}",
+            quarter.eye
+        );
         for k in 0..8 {
             let c = orbit(&camera, k, 8);
             assert!((c.distance() - camera.distance()).abs() < 1e-9);

@@ -80,9 +80,7 @@ impl Layout {
 /// Draws the sheet: `pictures` (all of one size) titled by `names`, and `rows` under them.
 /// Fails when the sheet would be larger than [`MAX_SIDE`] on a side.
 pub fn draw(names: &[String], pictures: &[RgbaImage], rows: &[Row]) -> anyhow::Result<RgbaImage> {
-    let picture = pictures
-        .first()
-        .map_or([1, 1], |p| [p.width(), p.height()]);
+    let picture = pictures.first().map_or([1, 1], |p| [p.width(), p.height()]);
     let label_chars = rows
         .iter()
         .map(|r| r.label.chars().count())
@@ -107,7 +105,8 @@ pub fn draw(names: &[String], pictures: &[RgbaImage], rows: &[Row]) -> anyhow::R
     for (k, (name, picture)) in names.iter().zip(pictures).enumerate() {
         let x = layout.column_x(k as u32);
         let title = fit(&text, Face::Sans, px * 1.1, name, picture.width() as f32);
-        let title_x = x as f32 + (picture.width() as f32 - text.width(Face::Sans, px * 1.1, &title)) / 2.0;
+        let title_x =
+            x as f32 + (picture.width() as f32 - text.width(Face::Sans, px * 1.1, &title)) / 2.0;
         text.draw(
             &mut sheet,
             Face::Sans,
@@ -135,7 +134,13 @@ pub fn draw(names: &[String], pictures: &[RgbaImage], rows: &[Row]) -> anyhow::R
             }
         }
         let top = y as f32 + (layout.row_height as f32 - line) / 2.0;
-        let label = fit(&text, Face::Sans, px, &row.label, layout.label_width as f32 - px * 0.5);
+        let label = fit(
+            &text,
+            Face::Sans,
+            px,
+            &row.label,
+            layout.label_width as f32 - px * 0.5,
+        );
         text.draw(
             &mut sheet,
             Face::Sans,
@@ -237,7 +242,13 @@ mod tests {
     #[test]
     fn long_text_is_shortened_to_fit() {
         let painter = TextPainter::new();
-        let short = fit(&painter, Face::Sans, 14.0, "a very long structure name indeed", 80.0);
+        let short = fit(
+            &painter,
+            Face::Sans,
+            14.0,
+            "a very long structure name indeed",
+            80.0,
+        );
         assert!(short.ends_with('…'), "{short}");
         assert!(painter.width(Face::Sans, 14.0, &short) <= 80.0);
     }

@@ -89,13 +89,16 @@ pub fn rows(variants: &[VariantMetrics]) -> Vec<Row> {
         .collect();
     cut.sort_by(|&a, &b| removed(b).total_cmp(&removed(a)));
     for &s in cut.iter().take(MAX_STRUCTURE_ROWS) {
-        rows.push(row(format!("  {}", first.metrics.structures[s].name), &|m| {
-            let st = &m.structures[s];
-            match st.removed_volume {
-                Some(v) => mm3(v),
-                None => mm2(st.removed_area),
-            }
-        }));
+        rows.push(row(
+            format!("  {}", first.metrics.structures[s].name),
+            &|m| {
+                let st = &m.structures[s];
+                match st.removed_volume {
+                    Some(v) => mm3(v),
+                    None => mm2(st.removed_area),
+                }
+            },
+        ));
     }
     if cut.len() > MAX_STRUCTURE_ROWS {
         rows.push(Row {
