@@ -1,6 +1,7 @@
-//! Labelled images end to end: the leader of each label ends on a pixel where the picture shows
-//! that structure, labels do not overlap, and `cutaway render --labels` draws them (and refuses
-//! an unknown name with one line).
+//! Teaching exports end to end. Labelled images: the leader of each label ends on a pixel where
+//! the picture shows that structure, labels do not overlap, and `cutaway render --labels` draws
+//! them (and refuses an unknown name with one line). Turntables: `cutaway turntable` writes one
+//! frame per step of the orbit and a GIF holding them all.
 //!
 //! Rendering needs a GPU adapter (lavapipe with `WGPU_BACKEND=vulkan`); without one the tests
 //! print "skipped: …" and pass.
@@ -138,4 +139,57 @@ fn render_labels_on_the_command_line() {
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("no structure named 'liver'"), "{stderr}");
     assert!(!dir.join("bad.png").exists());
+}
+
+#[test]
+fn turntable_writes_every_frame_and_a_gif_of_them() {
+    let dir = scratch("annotate-turntable");
+    let session = two_boxes(&dir);
+    let out = dir.join("turn");
+    let run = Command::new(env!("CARGO_BIN_EXE_cutaway"))
+        .arg("turntable")
+        .arg(&session)
+        .args(["--out", out.to_str().unwrap()])
+        .args(["--frames", "4", "--width", "64", "--height", "48", "--gif"])
+        .env(
+            "WGPU_BACKEND",
+            std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
+        )
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    if !run.status.success() && stderr.contains("no GPU adapter") {
+        println!("skipped: {stderr}");
+        return;
+    }
+    assert!(run.status.success(), "{stderr}");
+    let frames: Vec<image::RgbaImage> = (1..=4)
+        .map(|k| {
+            image::open(out.join(format!("frames/frame-{k:04}.png")))
+                .unwrap()
+                .to_rgba8()
+        })
+        .collect();
+    assert!(!out.join("frames/frame-0005.png").exists());
+    // The view turns: a quarter turn shows another picture than the start.
+    assert_ne!(frames[0], frames[1]);
+    use image::AnimationDecoder as _;
+    let gif = std::fs::File::open(out.join("turntable.gif")).unwrap();
+    let decoded = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(gif))
+        .unwrap()
+        .into_frames()
+        .collect_frames()
+        .unwrap();
+    assert_eq!(decoded.len(), 4);
+    assert_eq!(decoded[0].buffer().dimensions(), (64, 48));
+    let bad = Command::new(env!("CARGO_BIN_EXE_cutaway"))
+        .arg("turntable")
+        .arg(&session)
+        .args(["--out", out.to_str().unwrap(), "--frames", "0"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&bad.stderr);
+    assert!(!bad.status.success());
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("--frames 0"), "{stderr}");
 }
