@@ -155,7 +155,7 @@ pub fn draw(names: &[String], pictures: &[RgbaImage], rows: &[Row]) -> anyhow::R
             let room = layout.picture[0] as f32 - px;
             let cell = fit(&text, Face::Mono, px, cell, room);
             let w = text.width(Face::Mono, px, &cell);
-            // Right-aligned so the digits of one row's numbers line up down the column.
+            // Centred under the column's picture.
             text.draw(
                 &mut sheet,
                 Face::Mono,
