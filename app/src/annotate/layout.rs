@@ -72,21 +72,32 @@ pub fn place(
             }
             column.pop();
         }
-        // Down: each label at its anchor's height or just below the previous one.
-        let mut ys: Vec<f32> = Vec::with_capacity(column.len());
-        let mut next_free = top;
-        for &i in &column {
-            let r = &requests[i];
-            let y = (r.anchor[1] - r.size[1] * 0.5).max(next_free);
-            ys.push(y);
-            next_free = y + r.size[1] + gap;
-        }
-        // Up: labels pushed past the bottom move up just enough, keeping the gap.
-        let mut limit = bottom;
-        for k in (0..column.len()).rev() {
-            let h = requests[column[k]].size[1];
-            ys[k] = ys[k].min(limit - h);
-            limit = ys[k] - gap;
+        let mut ys = stack(requests, &column, top, bottom, gap);
+        // Leaders of neighbouring labels that cross: swap the two labels' places (anchors at
+        // different depths into the image can cross when sorted by height alone).
+        let x_of = |i: usize| {
+            if left {
+                margin + requests[i].size[0]
+            } else {
+                size[0] - margin - requests[i].size[0]
+            }
+        };
+        for _ in 0..4 * column.len() {
+            let mut swapped = false;
+            for k in 0..column.len().saturating_sub(1) {
+                let (a, b) = (column[k], column[k + 1]);
+                let leader = |i: usize, y: f32| {
+                    [[x_of(i), y + requests[i].size[1] * 0.5], requests[i].anchor]
+                };
+                if segments_cross(leader(a, ys[k]), leader(b, ys[k + 1])) {
+                    column.swap(k, k + 1);
+                    ys = stack(requests, &column, top, bottom, gap);
+                    swapped = true;
+                }
+            }
+            if !swapped {
+                break;
+            }
         }
         for (k, &i) in column.iter().enumerate() {
             let r = &requests[i];
@@ -111,6 +122,38 @@ pub fn place(
     }
     placed.sort_by_key(|p| p.request);
     placed
+}
+
+/// Heights of the labels of `column` (in that order): each at its anchor's height or just below
+/// the previous one, then those pushed past `bottom` moved up just enough, keeping `gap`.
+fn stack(requests: &[LabelRequest], column: &[usize], top: f32, bottom: f32, gap: f32) -> Vec<f32> {
+    let mut ys: Vec<f32> = Vec::with_capacity(column.len());
+    let mut next_free = top;
+    for &i in column {
+        let r = &requests[i];
+        let y = (r.anchor[1] - r.size[1] * 0.5).max(next_free);
+        ys.push(y);
+        next_free = y + r.size[1] + gap;
+    }
+    let mut limit = bottom;
+    for k in (0..column.len()).rev() {
+        let h = requests[column[k]].size[1];
+        ys[k] = ys[k].min(limit - h);
+        limit = ys[k] - gap;
+    }
+    ys
+}
+
+/// Whether segments `p` and `q` cross at a point inside both.
+fn segments_cross(p: [[f32; 2]; 2], q: [[f32; 2]; 2]) -> bool {
+    let side = |a: [f32; 2], b: [f32; 2], c: [f32; 2]| {
+        (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    };
+    let d1 = side(q[0], q[1], p[0]);
+    let d2 = side(q[0], q[1], p[1]);
+    let d3 = side(p[0], p[1], q[0]);
+    let d4 = side(p[0], p[1], q[1]);
+    d1 * d2 < 0.0 && d3 * d4 < 0.0
 }
 
 #[cfg(test)]
@@ -196,5 +239,36 @@ mod tests {
         );
         assert_eq!(placed[0].leader[0], [70.0, 200.0]);
         assert_eq!(placed[1].leader[0], [730.0, 300.0]);
+    }
+
+    #[test]
+    fn leaders_that_would_cross_swap_places() {
+        // Right column. C sits by the column and pushes A's label down; A's anchor is deep in
+        // the image and a little above B's: in height order A's leader would cross B's.
+        let request = |anchor: [f32; 2]| LabelRequest {
+            text: String::new(),
+            size: [80.0, 20.0],
+            anchor,
+        };
+        let requests = vec![
+            request([705.0, 290.0]),
+            request([400.0, 300.0]),
+            request([600.0, 305.0]),
+        ];
+        let placed = place(&requests, [800.0, 600.0], 10.0, 4.0, 0.0);
+        assert_eq!(placed.len(), 3);
+        for a in 0..3 {
+            for b in a + 1..3 {
+                assert!(
+                    !segments_cross(placed[a].leader, placed[b].leader),
+                    "{a} {b}"
+                );
+                assert!(!placed[a].rect.overlaps(&placed[b].rect));
+            }
+        }
+        assert!(
+            placed[1].rect.y > placed[2].rect.y,
+            "the deep anchor's label went below"
+        );
     }
 }
