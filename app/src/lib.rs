@@ -4,8 +4,10 @@
 //! mesh core (`csg`) and the tools (`cutter`) never see any of these.
 
 pub mod anatomy_colors;
+pub mod annotate;
 pub mod assets;
 pub mod cli;
+pub mod compare;
 pub mod cutaway_geometry;
 pub mod default_anatomy;
 pub mod errors;
@@ -26,3 +28,5 @@ pub mod session_image;
 pub mod session_limits;
 pub mod session_meshes;
 pub mod view;
+pub mod session_variants;
+pub mod variants;

@@ -321,6 +321,8 @@ pub struct Scene {
     pub unit: crate::view::LengthUnit,
     /// The intensity image shown on the walls, slices and ribbons (`None`: no image).
     pub image: Option<crate::intensity::ImageLayer>,
+    /// Named cutter sets; `cutters` are those of the active one ([`crate::variants`]).
+    pub variants: crate::variants::Variants,
 }
 
 impl Default for Scene {
@@ -338,6 +340,7 @@ impl Default for Scene {
             orientation: Default::default(),
             unit: Default::default(),
             image: None,
+            variants: crate::variants::Variants::default(),
         }
     }
 }
@@ -396,6 +399,7 @@ impl Scene {
             orientation: _,
             unit: _,
             image,
+            variants: _,
         } = self;
         if let Some(layer) = image {
             let w = layer.window;
@@ -471,7 +475,7 @@ impl Scene {
         if render.background.iter().any(|c| !(0.0..=1.0).contains(c)) {
             return Err("render: background components must lie in 0..1".to_string());
         }
-        Ok(())
+        crate::variants::check(self)
     }
 }
 

@@ -69,6 +69,12 @@ pub struct SessionFile {
     /// The intensity image on the walls ([`crate::session_image`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub image: Option<crate::session_image::ImageEntry>,
+    /// Named cutter sets ([`crate::session_variants`]); `cutters` are the active one's.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub variants: Vec<crate::session_variants::VariantEntry>,
+    /// Index into `variants` of the variant `cutters` belong to.
+    #[serde(default, skip_serializing_if = "crate::session_variants::is_zero")]
+    pub active_variant: usize,
 }
 
 /// `orientation`: world directions of the patient's superior and anterior (unit, orthogonal).
@@ -355,39 +361,7 @@ pub fn scene_from_file(
         }
     }
     for (i, c) in file.cutters.iter().enumerate() {
-        let kind = CutKind::parse(&c.kind).ok_or_else(|| {
-            anyhow::anyhow!(
-                "cutter {i}: kind {:?} is not curving, straight or wedge",
-                c.kind
-            )
-        })?;
-        let sub = |what: &str, v: &Option<SubCutterEntry>| -> anyhow::Result<_> {
-            let Some(v) = v else { return Ok(None) };
-            let placement = Placement::from_name(&v.placement).ok_or_else(|| {
-                anyhow::anyhow!(
-                    "cutter {i}: {what} placement {:?} is not even, planes or horizontal",
-                    v.placement
-                )
-            })?;
-            Ok(Some(SubCutterView {
-                count: v.count,
-                width: v.width,
-                placement,
-                relative: v.relative,
-            }))
-        };
-        scene.cutters.push(SceneCutter {
-            target: c.target,
-            kind,
-            smooth: c.smooth,
-            planes: c.planes.iter().map(|p| p.map(DVec3::from_array)).collect(),
-            views: CutterViews {
-                cut: c.views.cut,
-                transparency: c.views.transparency,
-                ribbons: sub("ribbons", &c.views.ribbons)?,
-                slices: sub("slices", &c.views.slices)?,
-            },
-        });
+        scene.cutters.push(cutter_from_entry(i, c)?);
     }
     scene.unit = crate::view::LengthUnit::guess(&scene.bbox(), false);
     scene.orientation = match file.orientation {
@@ -400,6 +374,7 @@ pub fn scene_from_file(
         })?,
         None => crate::view::Orientation::guess(&scene.bbox(), false),
     };
+    scene.variants = crate::session_variants::from_entries(file)?;
     scene.camera = match file.camera {
         Some(c) => Camera {
             eye: DVec3::from_array(c.eye),
@@ -454,32 +429,8 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
             name: (m.unit == ModelUnit::Structure).then(|| m.name.clone()),
         })
         .collect();
-    let cutters = scene
-        .cutters
-        .iter()
-        .map(|c| {
-            let sub = |v: Option<SubCutterView>| {
-                v.map(|v| SubCutterEntry {
-                    count: v.count,
-                    width: v.width,
-                    placement: v.placement.name().to_string(),
-                    relative: v.relative,
-                })
-            };
-            CutterEntry {
-                target: c.target,
-                kind: c.kind.as_str().to_string(),
-                smooth: c.smooth,
-                planes: c.planes.iter().map(|p| p.map(|v| v.to_array())).collect(),
-                views: ViewsEntry {
-                    cut: c.views.cut,
-                    transparency: c.views.transparency,
-                    ribbons: sub(c.views.ribbons),
-                    slices: sub(c.views.slices),
-                },
-            }
-        })
-        .collect();
+    let cutters = scene.cutters.iter().map(cutter_entry).collect();
+    let (variants, active_variant) = crate::session_variants::entries(scene);
     let c = scene.camera;
     SessionFile {
         format: if structures_format { FORMAT } else { FORMAT_V1 }.to_string(),
@@ -504,6 +455,69 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
             .image
             .as_ref()
             .map(|layer| crate::session_image::entry(layer, folder)),
+        variants,
+        active_variant,
+    }
+}
+
+/// The scene cutter a session entry describes; errors name cutter `i`.
+pub fn cutter_from_entry(i: usize, c: &CutterEntry) -> anyhow::Result<SceneCutter> {
+    let kind = CutKind::parse(&c.kind).ok_or_else(|| {
+        anyhow::anyhow!(
+            "cutter {i}: kind {:?} is not curving, straight or wedge",
+            c.kind
+        )
+    })?;
+    let sub = |what: &str, v: &Option<SubCutterEntry>| -> anyhow::Result<_> {
+        let Some(v) = v else { return Ok(None) };
+        let placement = Placement::from_name(&v.placement).ok_or_else(|| {
+            anyhow::anyhow!(
+                "cutter {i}: {what} placement {:?} is not even, planes or horizontal",
+                v.placement
+            )
+        })?;
+        Ok(Some(SubCutterView {
+            count: v.count,
+            width: v.width,
+            placement,
+            relative: v.relative,
+        }))
+    };
+    Ok(SceneCutter {
+        target: c.target,
+        kind,
+        smooth: c.smooth,
+        planes: c.planes.iter().map(|p| p.map(DVec3::from_array)).collect(),
+        views: CutterViews {
+            cut: c.views.cut,
+            transparency: c.views.transparency,
+            ribbons: sub("ribbons", &c.views.ribbons)?,
+            slices: sub("slices", &c.views.slices)?,
+        },
+    })
+}
+
+/// The session entry of a scene cutter.
+pub fn cutter_entry(c: &SceneCutter) -> CutterEntry {
+    let sub = |v: Option<SubCutterView>| {
+        v.map(|v| SubCutterEntry {
+            count: v.count,
+            width: v.width,
+            placement: v.placement.name().to_string(),
+            relative: v.relative,
+        })
+    };
+    CutterEntry {
+        target: c.target,
+        kind: c.kind.as_str().to_string(),
+        smooth: c.smooth,
+        planes: c.planes.iter().map(|p| p.map(|v| v.to_array())).collect(),
+        views: ViewsEntry {
+            cut: c.views.cut,
+            transparency: c.views.transparency,
+            ribbons: sub(c.views.ribbons),
+            slices: sub(c.views.slices),
+        },
     }
 }
 

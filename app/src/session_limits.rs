@@ -9,6 +9,7 @@
 //! |---|---|
 //! | `models` entries | [`MAX_MODELS`] |
 //! | `cutters` | [`MAX_CUTTERS`] |
+//! | `variants` | [`MAX_VARIANTS`], each with at most [`MAX_CUTTERS`] cutters checked as `cutters` |
 //! | `planes` of one cutter | [`MAX_PLANES_PER_CUTTER`] |
 //! | `views.ribbons.count`, `views.slices.count` | [`MAX_SUB_CUTTERS`] |
 //! | `views.*.width`, plane and camera coordinates | finite, magnitude ≤ [`crate::io::MAX_ABS_COORDINATE`] |
@@ -23,6 +24,8 @@ use crate::session::{SessionFile, SubCutterEntry};
 pub const MAX_MODELS: usize = 10_000;
 /// Most cutters in one session.
 pub const MAX_CUTTERS: usize = 1_000;
+/// Most cut variants in one session (the window compares up to four side by side).
+pub const MAX_VARIANTS: usize = 64;
 /// Most planes of one cutter (a cutter gains one per ω·δ of extrusion).
 pub const MAX_PLANES_PER_CUTTER: usize = 10_000;
 /// Most ribbons or slices of one cutter.
@@ -42,16 +45,47 @@ pub fn check(file: &SessionFile) -> anyhow::Result<()> {
             file.cutters.len()
         );
     }
-    for (i, cutter) in file.cutters.iter().enumerate() {
+    check_cutters(&file.cutters, "")?;
+    if file.variants.len() > MAX_VARIANTS {
+        anyhow::bail!(
+            "variants: {} variants, more than the limit of {MAX_VARIANTS}",
+            file.variants.len()
+        );
+    }
+    for (k, variant) in file.variants.iter().enumerate() {
+        if variant.cutters.len() > MAX_CUTTERS {
+            anyhow::bail!(
+                "variant {k}: cutters: {} cutters, more than the limit of {MAX_CUTTERS}",
+                variant.cutters.len()
+            );
+        }
+        check_cutters(&variant.cutters, &format!("variant {k}: "))?;
+    }
+    if let Some(camera) = &file.camera {
+        for (what, point) in [
+            ("eye", camera.eye),
+            ("target", camera.target),
+            ("up", camera.up),
+        ] {
+            check_coordinate(&point, || format!("camera.{what}"))?;
+        }
+    }
+    Ok(())
+}
+
+/// Checks plane counts, coordinates and sub-cutter counts of `cutters`; errors start with
+/// `prefix` (which variant).
+fn check_cutters(cutters: &[crate::session::CutterEntry], prefix: &str) -> anyhow::Result<()> {
+    for (i, cutter) in cutters.iter().enumerate() {
         if cutter.planes.len() > MAX_PLANES_PER_CUTTER {
             anyhow::bail!(
-                "cutter {i}: planes: {} planes, more than the limit of {MAX_PLANES_PER_CUTTER}",
+                "{prefix}cutter {i}: planes: {} planes, more than the limit of {MAX_PLANES_PER_CUTTER}",
                 cutter.planes.len()
             );
         }
         for (p, plane) in cutter.planes.iter().enumerate() {
             for corner in plane {
-                check_coordinate(corner, || format!("cutter {i}: planes[{p}]"))?;
+                check_coordinate(corner, || format!("{prefix}cutter {i}: planes[{p}]"))?;
             }
         }
         for (what, view) in [
@@ -68,24 +102,15 @@ pub fn check(file: &SessionFile) -> anyhow::Result<()> {
             {
                 if count > MAX_SUB_CUTTERS {
                     anyhow::bail!(
-                        "cutter {i}: views.{what}.count {count} is more than the limit of {MAX_SUB_CUTTERS}"
+                        "{prefix}cutter {i}: views.{what}.count {count} is more than the limit of {MAX_SUB_CUTTERS}"
                     );
                 }
                 if !(width.is_finite() && width > 0.0 && width <= MAX_ABS_COORDINATE) {
                     anyhow::bail!(
-                        "cutter {i}: views.{what}.width {width} must be positive and at most {MAX_ABS_COORDINATE:e}"
+                        "{prefix}cutter {i}: views.{what}.width {width} must be positive and at most {MAX_ABS_COORDINATE:e}"
                     );
                 }
             }
-        }
-    }
-    if let Some(camera) = &file.camera {
-        for (what, point) in [
-            ("eye", camera.eye),
-            ("target", camera.target),
-            ("up", camera.up),
-        ] {
-            check_coordinate(&point, || format!("camera.{what}"))?;
         }
     }
     Ok(())

@@ -10,6 +10,7 @@ use clap::{Parser, Subcommand};
 
 pub use crate::errors::error_line;
 
+pub mod compare;
 pub mod export;
 pub mod extrude;
 pub mod image_args;
@@ -21,6 +22,7 @@ pub mod render;
 pub mod scalpel;
 pub mod subtract;
 pub mod surfaces;
+pub mod turntable;
 
 /// Context-preserving cutaways of segmented anatomy.
 #[derive(Debug, Parser)]
@@ -50,6 +52,11 @@ pub enum Command {
     Export(export::ExportArgs),
     /// Measure the cuts of a session: removed volume and area, exposure, distances.
     Metrics(metrics::MetricsArgs),
+    /// Render and measure every cut variant of a session: pictures, a side-by-side sheet with
+    /// the metrics table, metrics as JSON and CSV.
+    Compare(compare::CompareArgs),
+    /// Render an orbit around the cut scene: a PNG sequence and optionally an animated GIF.
+    Turntable(turntable::TurntableArgs),
     /// Regenerate the embedded synthetic anatomy phantoms into a folder (maintainers only).
     #[command(hide = true)]
     Phantom(phantom::PhantomArgs),
@@ -88,6 +95,8 @@ where
         Some(Command::Surfaces(a)) => surfaces::run(&a),
         Some(Command::Export(a)) => export::run(&a),
         Some(Command::Metrics(a)) => metrics::run(&a),
+        Some(Command::Compare(a)) => compare::run(&a),
+        Some(Command::Turntable(a)) => turntable::run(&a),
         Some(Command::Phantom(a)) => phantom::run(&a),
     }
 }

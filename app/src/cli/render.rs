@@ -1,7 +1,9 @@
-//! `cutaway render SESSION.json --out IMG.png [--width W] [--height H] [--json] [--image CT.nrrd]
-//! [--window lung|LEVEL,WIDTH] [--display image|blend|color]`: the session's picture, headless
-//! (no window, no display), with the same renderer as the GUI; the image options replace or
-//! adjust the session's `"image"`.
+//! `cutaway render SESSION.json --out IMG.png [--width W] [--height H] [--labels [NAME…]]
+//! [--json] [--image CT.nrrd] [--window lung|LEVEL,WIDTH] [--display image|blend|color]`: the
+//! session's picture, headless (no window, no display), with the same renderer as the GUI.
+//! `--labels` draws structure names with leader lines (every opaque visible structure, or the ones
+//! named), a scale bar in mm and the orientation marker ([`crate::annotate`]); the image options
+//! replace or adjust the session's `"image"`.
 //!
 //! Every cut is made by the exact boolean; there is no approximate stand-in. A cutter the boolean
 //! refuses makes the command fail (no image is written) with the reason, after `--json` has
@@ -46,6 +48,10 @@ pub struct RenderArgs {
     /// What walls show: image, blend or color.
     #[arg(long)]
     pub display: Option<String>,
+    /// Label structures (all opaque visible ones, or the NAMEs given) with leader lines, and
+    /// draw a scale bar in mm and the orientation marker (R/L, A/P, S/I).
+    #[arg(long, num_args = 0.., value_name = "NAME")]
+    pub labels: Option<Vec<String>>,
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
@@ -61,6 +67,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         args.window.as_deref(),
         args.display.as_deref(),
     )?;
+    let labelled = match &args.labels {
+        Some(names) => Some(
+            crate::annotate::labelled::chosen(&scene, names)
+                .with_context(|| format!("{}", args.session.display()))?,
+        ),
+        None => None,
+    };
     let mut options = RenderPngOptions::new(args.width, args.height);
     options.transparent_background = args.transparent;
     let mut renderer =
@@ -68,9 +81,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
     let preview = (render_mode(&scene, &options) == ViewMode::Preview)
         .then(|| Arc::new(preview_geometry(&scene)));
-    let image =
+    let mut image =
         crate::render::render_with_preview(&mut renderer, &scene, &options, preview.clone())
             .with_context(|| format!("{}", args.session.display()))?;
+    if let Some(models) = &labelled {
+        crate::annotate::labelled::annotate(&mut image, &scene, preview.as_deref(), models);
+    }
     let render_ms = started.elapsed().as_secs_f64() * 1000.0;
     let reports: Vec<CutReport> = (0..scene.cutters.len())
         .map(|c| {

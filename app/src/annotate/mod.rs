@@ -1,0 +1,12 @@
+//! Annotations drawn into exported images, egui-free so the CLI and the window's exports draw
+//! the same: text from a real font renderer ([`text`]), structure labels placed without overlap
+//! ([`layout`]) with leaders ending where the structure is seen ([`visible`]), the scale bar
+//! ([`scale_bar`]) and the orientation marker's geometry ([`orientation`]), put together by
+//! [`labelled`].
+
+pub mod labelled;
+pub mod layout;
+pub mod orientation;
+pub mod scale_bar;
+pub mod text;
+pub mod visible;

@@ -1,0 +1,68 @@
+//! Cut variants compared: each variant measured ([`crate::metrics`]) and drawn from the same
+//! camera, one sheet with the pictures side by side and the metrics table under them
+//! ([`sheet`]), and the measures as JSON and CSV ([`table`]). `cutaway compare` writes all of it
+//! as one output set; the window's compare view shows the same measures under its viewports.
+//! Egui-free.
+
+pub mod sheet;
+pub mod table;
+
+use std::sync::Arc;
+
+use crate::cutaway_geometry::preview_geometry;
+use crate::metrics::{Metrics, MetricsOptions, measure};
+use crate::render::{HeadlessRenderer, RenderPngOptions};
+use crate::scene::Scene;
+
+/// One variant's measures.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VariantMetrics {
+    pub name: String,
+    pub metrics: Metrics,
+}
+
+/// Measures every variant of `scene` ([`crate::variants::all`]) with the same options; errors
+/// name the variant.
+pub fn measure_variants(
+    scene: &Scene,
+    options: &MetricsOptions,
+) -> anyhow::Result<Vec<VariantMetrics>> {
+    let names = crate::variants::names(scene);
+    names
+        .iter()
+        .enumerate()
+        .map(|(k, name)| {
+            let shown = crate::variants::variant_scene(scene, k).expect("k < variant count");
+            let metrics =
+                measure(&shown, options).map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
+            Ok(VariantMetrics {
+                name: name.clone(),
+                metrics,
+            })
+        })
+        .collect()
+}
+
+/// Renders every variant of `scene` from the scene camera at `width` × `height` (cuts executed,
+/// as `cutaway render` draws them). A cut the boolean refuses is an error naming the variant.
+pub fn render_variants(
+    renderer: &mut HeadlessRenderer,
+    scene: &Scene,
+    width: u32,
+    height: u32,
+) -> anyhow::Result<Vec<image::RgbaImage>> {
+    let names = crate::variants::names(scene);
+    let mut images = Vec::with_capacity(names.len());
+    for (k, name) in names.iter().enumerate() {
+        let shown = crate::variants::variant_scene(scene, k).expect("k < variant count");
+        let options = RenderPngOptions::new(width, height);
+        let preview = Arc::new(preview_geometry(&shown));
+        if let Some(note) = preview.notes.first() {
+            anyhow::bail!("variant '{name}': {note}");
+        }
+        let image = crate::render::render_with_preview(renderer, &shown, &options, Some(preview))
+            .map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
+        images.push(image);
+    }
+    Ok(images)
+}
