@@ -27,6 +27,6 @@ pub mod session;
 pub mod session_image;
 pub mod session_limits;
 pub mod session_meshes;
-pub mod view;
 pub mod session_variants;
 pub mod variants;
+pub mod view;

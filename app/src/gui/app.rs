@@ -158,7 +158,7 @@ pub enum JobOutput {
         sources: Vec<PathBuf>,
     },
     /// A session was read (models included).
-    Session { path: PathBuf, scene: Scene },
+    Session { path: PathBuf, scene: Box<Scene> },
     /// An intensity image was read, to show on the walls.
     Image(crate::intensity::ImageLayer),
     /// A target's spatial index was built.
@@ -809,7 +809,7 @@ impl CutawayApp {
                 sources,
             } => self.add_models(models, replace, &sources),
             JobOutput::Session { path, scene } => {
-                self.scene = scene;
+                self.scene = *scene;
                 // A restored autosave has no file of its own: Save asks where to put it.
                 let restored = path == self.recovery.session_path();
                 self.session_path = (!restored).then(|| path.clone());
@@ -923,7 +923,10 @@ impl CutawayApp {
             format!("Opening {}", file_label(&path)),
             move |progress| {
                 let scene = super::bridge::load_session(&path, progress)?;
-                Ok(JobOutput::Session { path, scene })
+                Ok(JobOutput::Session {
+                    path,
+                    scene: Box::new(scene),
+                })
             },
         );
     }
