@@ -24,6 +24,7 @@ pub mod render;
 pub mod scene;
 pub mod scene_pick;
 pub mod session;
+pub mod session_cutters;
 pub mod session_image;
 pub mod session_limits;
 pub mod session_meshes;

@@ -40,10 +40,10 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::scene::{
-    CutKind, CutterViews, MeshOrigin, ModelStyle, ModelUnit, RenderSettings, Scene, SceneCutter,
-    SceneModel, Stereo, SubCutterView, distinct_colors,
+    MeshOrigin, ModelStyle, ModelUnit, RenderSettings, Scene, SceneModel, Stereo, distinct_colors,
 };
-use cutter::subcutters::Placement;
+
+pub use crate::session_cutters::{cutter_entry, cutter_from_entry};
 
 /// The `format` value of the structure-based version, written whenever a scene holds structures.
 pub const FORMAT: &str = "cutaway-session/2";
@@ -457,67 +457,6 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
             .map(|layer| crate::session_image::entry(layer, folder)),
         variants,
         active_variant,
-    }
-}
-
-/// The scene cutter a session entry describes; errors name cutter `i`.
-pub fn cutter_from_entry(i: usize, c: &CutterEntry) -> anyhow::Result<SceneCutter> {
-    let kind = CutKind::parse(&c.kind).ok_or_else(|| {
-        anyhow::anyhow!(
-            "cutter {i}: kind {:?} is not curving, straight or wedge",
-            c.kind
-        )
-    })?;
-    let sub = |what: &str, v: &Option<SubCutterEntry>| -> anyhow::Result<_> {
-        let Some(v) = v else { return Ok(None) };
-        let placement = Placement::from_name(&v.placement).ok_or_else(|| {
-            anyhow::anyhow!(
-                "cutter {i}: {what} placement {:?} is not even, planes or horizontal",
-                v.placement
-            )
-        })?;
-        Ok(Some(SubCutterView {
-            count: v.count,
-            width: v.width,
-            placement,
-            relative: v.relative,
-        }))
-    };
-    Ok(SceneCutter {
-        target: c.target,
-        kind,
-        smooth: c.smooth,
-        planes: c.planes.iter().map(|p| p.map(DVec3::from_array)).collect(),
-        views: CutterViews {
-            cut: c.views.cut,
-            transparency: c.views.transparency,
-            ribbons: sub("ribbons", &c.views.ribbons)?,
-            slices: sub("slices", &c.views.slices)?,
-        },
-    })
-}
-
-/// The session entry of a scene cutter.
-pub fn cutter_entry(c: &SceneCutter) -> CutterEntry {
-    let sub = |v: Option<SubCutterView>| {
-        v.map(|v| SubCutterEntry {
-            count: v.count,
-            width: v.width,
-            placement: v.placement.name().to_string(),
-            relative: v.relative,
-        })
-    };
-    CutterEntry {
-        target: c.target,
-        kind: c.kind.as_str().to_string(),
-        smooth: c.smooth,
-        planes: c.planes.iter().map(|p| p.map(|v| v.to_array())).collect(),
-        views: ViewsEntry {
-            cut: c.views.cut,
-            transparency: c.views.transparency,
-            ribbons: sub(c.views.ribbons),
-            slices: sub(c.views.slices),
-        },
     }
 }
 

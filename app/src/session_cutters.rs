@@ -1,0 +1,69 @@
+//! A session's cutter entries and the scene's cutters, converted both ways (the top-level
+//! `cutters` and every variant's use the same conversion).
+
+use glam::DVec3;
+
+use crate::scene::{CutKind, CutterViews, SceneCutter, SubCutterView};
+use crate::session::{CutterEntry, SubCutterEntry, ViewsEntry};
+use cutter::subcutters::Placement;
+
+/// The scene cutter a session entry describes; errors name cutter `i`.
+pub fn cutter_from_entry(i: usize, c: &CutterEntry) -> anyhow::Result<SceneCutter> {
+    let kind = CutKind::parse(&c.kind).ok_or_else(|| {
+        anyhow::anyhow!(
+            "cutter {i}: kind {:?} is not curving, straight or wedge",
+            c.kind
+        )
+    })?;
+    let sub = |what: &str, v: &Option<SubCutterEntry>| -> anyhow::Result<_> {
+        let Some(v) = v else { return Ok(None) };
+        let placement = Placement::from_name(&v.placement).ok_or_else(|| {
+            anyhow::anyhow!(
+                "cutter {i}: {what} placement {:?} is not even, planes or horizontal",
+                v.placement
+            )
+        })?;
+        Ok(Some(SubCutterView {
+            count: v.count,
+            width: v.width,
+            placement,
+            relative: v.relative,
+        }))
+    };
+    Ok(SceneCutter {
+        target: c.target,
+        kind,
+        smooth: c.smooth,
+        planes: c.planes.iter().map(|p| p.map(DVec3::from_array)).collect(),
+        views: CutterViews {
+            cut: c.views.cut,
+            transparency: c.views.transparency,
+            ribbons: sub("ribbons", &c.views.ribbons)?,
+            slices: sub("slices", &c.views.slices)?,
+        },
+    })
+}
+
+/// The session entry of a scene cutter.
+pub fn cutter_entry(c: &SceneCutter) -> CutterEntry {
+    let sub = |v: Option<SubCutterView>| {
+        v.map(|v| SubCutterEntry {
+            count: v.count,
+            width: v.width,
+            placement: v.placement.name().to_string(),
+            relative: v.relative,
+        })
+    };
+    CutterEntry {
+        target: c.target,
+        kind: c.kind.as_str().to_string(),
+        smooth: c.smooth,
+        planes: c.planes.iter().map(|p| p.map(|v| v.to_array())).collect(),
+        views: ViewsEntry {
+            cut: c.views.cut,
+            transparency: c.views.transparency,
+            ribbons: sub(c.views.ribbons),
+            slices: sub(c.views.slices),
+        },
+    }
+}
