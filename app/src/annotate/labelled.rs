@@ -175,7 +175,7 @@ pub fn annotate(
         margin + marker_arm + px * 0.6,
         size[1] as f32 - margin - marker_arm - px * 0.6,
     ];
-    let mut axes = screen_axes(&scene.camera);
+    let mut axes = screen_axes(&scene.camera, &scene.orientation);
     axes.sort_by(|a, b| a.toward_viewer.total_cmp(&b.toward_viewer));
     let colour = |letter: char| match letter {
         'R' => [200, 40, 40, 255],

@@ -1,11 +1,12 @@
-//! The orientation marker's geometry: where the world axes point on screen. The world is RAS
-//! millimetres (x toward the patient's Right, y Anterior, z Superior), so each axis is drawn
-//! with the letter of its positive end (R, A, S) and the opposite one (L, P, I) at its negative
-//! end. Egui-free and drawing-free, so the window's marker and the exported images' marker share
-//! it.
+//! The orientation marker's axes for exported images: the patient's axes (where the scene's
+//! orientation puts them: RAS for volumes, Y-up for such meshes), each drawn with the letter of
+//! its positive end (R, A, S) and the opposite one (L, P, I) at its negative end. The geometry is the window's ([`crate::view::marker`]); this only
+//! regroups it by axis for the export's drawing.
 
 use cutter::Camera;
-use glam::DVec3;
+
+use crate::view::Orientation;
+use crate::view::marker::marker_axes;
 
 /// One world axis as the camera sees it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,25 +22,31 @@ pub struct ScreenAxis {
     pub toward_viewer: f64,
 }
 
-/// The three world axes (x, y, z) as `camera` shows them.
-pub fn screen_axes(camera: &Camera) -> [ScreenAxis; 3] {
-    let (right, up, forward) = camera.basis();
-    let axis = |d: DVec3, positive, negative| ScreenAxis {
-        positive,
-        negative,
-        screen: [d.dot(right), -d.dot(up)],
-        toward_viewer: -d.dot(forward),
+/// The patient's three axes (right, anterior, superior, as `orientation` places them in the
+/// world) as `camera` shows them: the window's marker geometry ([`crate::view::marker`]), taken
+/// by positive end, so an exported image and the window agree for Z-up and Y-up scenes alike.
+pub fn screen_axes(camera: &Camera, orientation: &Orientation) -> [ScreenAxis; 3] {
+    let axes = marker_axes(camera, orientation);
+    let axis = |positive: char, negative: char| {
+        let label = positive.to_string();
+        let a = axes
+            .iter()
+            .find(|a| a.label == label)
+            .expect("the marker has all six axes");
+        ScreenAxis {
+            positive,
+            negative,
+            screen: [a.screen.x, a.screen.y],
+            toward_viewer: a.depth,
+        }
     };
-    [
-        axis(DVec3::X, 'R', 'L'),
-        axis(DVec3::Y, 'A', 'P'),
-        axis(DVec3::Z, 'S', 'I'),
-    ]
+    [axis('R', 'L'), axis('A', 'P'), axis('S', 'I')]
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
 
     #[test]
     fn an_anterior_view_shows_the_patient_s_right_on_the_image_left() {
@@ -50,7 +57,7 @@ mod tests {
             up: DVec3::Z,
             fov_y_deg: 30.0,
         };
-        let [x, y, z] = screen_axes(&camera);
+        let [x, y, z] = screen_axes(&camera, &Orientation::RAS);
         assert!(
             x.screen[0] < -0.99,
             "R points to the image left: {:?}",
