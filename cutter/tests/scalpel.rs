@@ -1369,7 +1369,7 @@ fn through_cut_far_side_follows_the_far_surface() {
     );
 }
 
-/// Issue 6 element budget for grooves: new triangles (walls included) per triangle crossed, on a
+/// The element budget of grooves: new triangles (walls included) per triangle crossed, on a
 /// spiral like the benchmark's (turns 3 h apart) on a geodesic sphere: at most 3 on average per
 /// triangle the stroke crossed, never more than 4 in one. What "new in one crossed triangle"
 /// counts is defined at `survey::element_budget`: its surface pieces minus one, plus the lip

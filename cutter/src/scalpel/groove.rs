@@ -10,7 +10,7 @@
 //! surface is closed.
 //!
 //! ## Element budget
-//! Issue 6 asks for at most 4 new triangles in one triangle the cut crosses (counted as in
+//! A groove adds at most 4 new triangles in one triangle the cut crosses (counted as in
 //! [`super::survey::element_budget`]: surface pieces minus one, plus the lip walls of the
 //! segments cut through it, plus half of each floor triangle at either end of those segments).
 //! A segment from an edge split to an edge split leaves 3 pieces and 2 lip walls: 4, no room. So
