@@ -25,31 +25,6 @@ use obvhs::BvhBuildParams;
 use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
 
-/// Deterministic SplitMix64 stream (no RNG dependency for a bench).
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// A uniformly random unit vector.
-    fn direction(&mut self) -> DVec3 {
-        loop {
-            let v = DVec3::new(self.next_f64(), self.next_f64(), self.next_f64()) * 2.0 - 1.0;
-            let l = v.length();
-            if l > 0.1 && l <= 1.0 {
-                return v / l;
-            }
-        }
-    }
-}
-
 /// Largest `f32` not above `x`.
 fn round_down(x: f64) -> f32 {
     let f = x as f32;
@@ -163,10 +138,10 @@ fn median_time<T>(runs: usize, mut f: impl FnMut() -> T) -> Duration {
 
 /// Cutter-sized query boxes (a tenth of the radius) centred on the sphere's surface.
 fn query_boxes(count: usize) -> Vec<Aabb> {
-    let mut rng = SplitMix(7);
+    let mut rng = testkit::SplitMix(7);
     (0..count)
         .map(|_| {
-            let c = rng.direction();
+            let c = rng.unit_vector();
             Aabb {
                 min: c - DVec3::splat(0.05),
                 max: c + DVec3::splat(0.05),
@@ -177,11 +152,11 @@ fn query_boxes(count: usize) -> Vec<Aabb> {
 
 /// Rays from three radii out, towards random points of the unit sphere.
 fn rays(count: usize) -> Vec<(DVec3, DVec3)> {
-    let mut rng = SplitMix(11);
+    let mut rng = testkit::SplitMix(11);
     (0..count)
         .map(|_| {
-            let origin = rng.direction() * 3.0;
-            let target = rng.direction();
+            let origin = rng.unit_vector() * 3.0;
+            let target = rng.unit_vector();
             (origin, (target - origin).normalize())
         })
         .collect()

@@ -13,25 +13,6 @@ use csg::regions::Regions;
 use csg::weld::weld_soup;
 use csg::{Aabb, DVec3, Mesh, SpatialIndex, testkit};
 
-/// Deterministic SplitMix64 stream (no RNG dependency for a bench).
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in the cube `[-r, r]³`.
-    fn in_cube(&mut self, r: f64) -> DVec3 {
-        DVec3::new(self.next_f64(), self.next_f64(), self.next_f64()) * (2.0 * r) - DVec3::splat(r)
-    }
-}
-
 /// CPU time this thread has run, from `/proc/thread-self/schedstat` (Linux; None elsewhere).
 ///
 /// The development machines are shared by several builds at once, so wall-clock figures swing
@@ -134,7 +115,7 @@ fn query_benches(c: &mut Criterion) {
     for (label, frequency) in SIZES {
         let mesh = sphere(frequency);
         let index = SpatialIndex::build(&mesh);
-        let mut rng = SplitMix(7);
+        let mut rng = testkit::SplitMix(7);
         // Rays from outside through a random point near the centre: each hits the sphere.
         let rays: Vec<(DVec3, DVec3)> = (0..4096)
             .map(|_| {

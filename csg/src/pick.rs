@@ -203,24 +203,6 @@ mod tests {
     use crate::SpatialIndex;
     use crate::testkit;
 
-    /// Deterministic SplitMix64 stream.
-    struct SplitMix(u64);
-
-    impl SplitMix {
-        fn next_f64(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^= z >> 31;
-            (z >> 11) as f64 / (1u64 << 53) as f64
-        }
-
-        fn vector(&mut self) -> DVec3 {
-            DVec3::new(self.next_f64(), self.next_f64(), self.next_f64()) * 2.0 - 1.0
-        }
-    }
-
     /// Both trees give the same face and `t` for `rays`; returns how many hit.
     fn same_picks(mesh: &Mesh, rays: &[(DVec3, DVec3, f64)]) -> usize {
         let ours = PickIndex::build(mesh);
@@ -238,12 +220,12 @@ mod tests {
     #[test]
     fn random_rays_pick_what_the_spatial_index_picks() {
         let mesh = testkit::icosphere(4, 1.0);
-        let mut rng = SplitMix(7);
+        let mut rng = testkit::SplitMix(7);
         let mut rays = Vec::new();
         for _ in 0..2000 {
             // From outside and from inside, aimed near the sphere, some with a short reach.
-            let o = rng.vector() * 3.0;
-            let d = rng.vector() * 0.2 - o * rng.next_f64();
+            let o = rng.in_cube(1.0) * 3.0;
+            let d = rng.in_cube(1.0) * 0.2 - o * rng.next_f64();
             let t_max = if rng.next_f64() < 0.2 {
                 rng.next_f64()
             } else {
@@ -289,11 +271,11 @@ mod tests {
             *p += DVec3::new(1e5, -2e5, 3e4);
         }
         let centre = DVec3::new(1e5, -2e5, 3e4);
-        let mut rng = SplitMix(11);
+        let mut rng = testkit::SplitMix(11);
         let rays: Vec<_> = (0..500)
             .map(|_| {
-                let o = centre + rng.vector() * 4.0;
-                (o, centre + rng.vector() * 0.5 - o, f64::INFINITY)
+                let o = centre + rng.in_cube(1.0) * 4.0;
+                (o, centre + rng.in_cube(1.0) * 0.5 - o, f64::INFINITY)
             })
             .collect();
         assert!(same_picks(&mesh, &rays) > 400);

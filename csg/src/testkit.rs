@@ -402,3 +402,36 @@ mod tests {
         assert_eq!(to_soup(&c).len(), 36);
     }
 }
+
+/// A deterministic SplitMix64 stream (Steele, Lea and Flood 2014) for tests and benchmarks that
+/// need reproducible random points and rays without an RNG dependency.
+#[derive(Clone, Debug)]
+pub struct SplitMix(pub u64);
+
+impl SplitMix {
+    /// The next value, uniform in `[0, 1)` with 53 random bits.
+    pub fn next_f64(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// A point uniform in the cube `[-r, r]³`.
+    pub fn in_cube(&mut self, r: f64) -> DVec3 {
+        DVec3::new(self.next_f64(), self.next_f64(), self.next_f64()) * (2.0 * r) - DVec3::splat(r)
+    }
+
+    /// A uniformly random unit vector (rejection sampling in the unit ball).
+    pub fn unit_vector(&mut self) -> DVec3 {
+        loop {
+            let v = self.in_cube(1.0);
+            let l = v.length();
+            if l > 0.1 && l <= 1.0 {
+                return v / l;
+            }
+        }
+    }
+}
