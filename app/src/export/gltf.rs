@@ -248,17 +248,14 @@ impl Builder {
             .iter()
             .map(|c| c.map(|v| srgb_to_linear(v.clamp(0.0, 1.0))))
             .collect();
-        let view = self.view(
+        let colors = self.accessor(
             bytemuck::cast_slice(&linear),
             json::buffer::Target::ArrayBuffer,
-        );
-        let colors = self.root.push(accessor(
-            view,
             linear.len(),
             json::accessor::ComponentType::F32,
             json::accessor::Type::Vec3,
             None,
-        ));
+        );
         let indices = self.indices(mesh.triangles.iter().flatten().copied());
         self.stats.triangles += mesh.triangles.len();
         let material = self.material(scene, MaterialKey::Image);
@@ -345,17 +342,14 @@ impl Builder {
                 max[k] = max[k].max(p[k]);
             }
         }
-        let view = self.view(
+        self.accessor(
             bytemuck::cast_slice(&data),
             json::buffer::Target::ArrayBuffer,
-        );
-        self.root.push(accessor(
-            view,
             data.len(),
             json::accessor::ComponentType::F32,
             json::accessor::Type::Vec3,
             Some((min, max)),
-        ))
+        )
     }
 
     /// Area-weighted unit vertex normals of `mesh` (+Z for a vertex whose faces have no area).
@@ -375,33 +369,55 @@ impl Builder {
                 unit.try_normalize().unwrap_or(glam::Vec3::Z).to_array()
             })
             .collect();
-        let view = self.view(
+        self.accessor(
             bytemuck::cast_slice(&data),
             json::buffer::Target::ArrayBuffer,
-        );
-        self.root.push(accessor(
-            view,
             data.len(),
             json::accessor::ComponentType::F32,
             json::accessor::Type::Vec3,
             None,
-        ))
+        )
     }
 
     /// A `u32` index accessor.
     fn indices(&mut self, indices: impl Iterator<Item = u32>) -> json::Index<json::Accessor> {
         let data: Vec<u32> = indices.collect();
-        let view = self.view(
+        self.accessor(
             bytemuck::cast_slice(&data),
             json::buffer::Target::ElementArrayBuffer,
-        );
-        self.root.push(accessor(
-            view,
             data.len(),
             json::accessor::ComponentType::U32,
             json::accessor::Type::Scalar,
             None,
-        ))
+        )
+    }
+
+    /// Appends `bytes` as a buffer view and an accessor over it: `count` elements of
+    /// `component` × `type_`, with `bounds` (min, max) where the format requires them.
+    fn accessor(
+        &mut self,
+        bytes: &[u8],
+        target: json::buffer::Target,
+        count: usize,
+        component: json::accessor::ComponentType,
+        type_: json::accessor::Type,
+        bounds: Option<([f32; 3], [f32; 3])>,
+    ) -> json::Index<json::Accessor> {
+        let view = self.view(bytes, target);
+        self.root.push(json::Accessor {
+            buffer_view: Some(view),
+            byte_offset: None,
+            count: USize64::from(count),
+            component_type: Valid(json::accessor::GenericComponentType(component)),
+            extensions: None,
+            extras: Default::default(),
+            type_: Valid(type_),
+            min: bounds.map(|(min, _)| serde_json::json!(min)),
+            max: bounds.map(|(_, max)| serde_json::json!(max)),
+            name: None,
+            normalized: false,
+            sparse: None,
+        })
     }
 
     /// Appends `bytes` to the buffer (every view starts on a 4-byte boundary) as a buffer view.
@@ -485,29 +501,6 @@ impl Builder {
 
 fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
     [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t)
-}
-
-fn accessor(
-    view: json::Index<json::buffer::View>,
-    count: usize,
-    component: json::accessor::ComponentType,
-    type_: json::accessor::Type,
-    bounds: Option<([f32; 3], [f32; 3])>,
-) -> json::Accessor {
-    json::Accessor {
-        buffer_view: Some(view),
-        byte_offset: None,
-        count: USize64::from(count),
-        component_type: Valid(json::accessor::GenericComponentType(component)),
-        extensions: None,
-        extras: Default::default(),
-        type_: Valid(type_),
-        min: bounds.map(|(min, _)| serde_json::json!(min)),
-        max: bounds.map(|(_, max)| serde_json::json!(max)),
-        name: None,
-        normalized: false,
-        sparse: None,
-    }
 }
 
 fn primitive(
