@@ -43,7 +43,9 @@ use crate::scene::{
     MeshOrigin, ModelStyle, ModelUnit, RenderSettings, Scene, SceneModel, Stereo, distinct_colors,
 };
 
-pub use crate::session_cutters::{cutter_entry, cutter_from_entry};
+pub use crate::session_cutters::{
+    CutterEntry, SubCutterEntry, ViewsEntry, cutter_entry, cutter_from_entry,
+};
 
 /// The `format` value of the structure-based version, written whenever a scene holds structures.
 pub const FORMAT: &str = "cutaway-session/2";
@@ -118,61 +120,6 @@ pub struct ModelEntry {
     pub name: Option<String>,
 }
 
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct CutterEntry {
-    pub target: usize,
-    /// `curving`, `straight` or `wedge`.
-    #[serde(default = "curving")]
-    pub kind: String,
-    #[serde(default)]
-    pub smooth: bool,
-    pub planes: Vec<[[f64; 3]; 4]>,
-    #[serde(default)]
-    pub views: ViewsEntry,
-}
-
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct ViewsEntry {
-    #[serde(default = "yes")]
-    pub cut: bool,
-    #[serde(default)]
-    pub transparency: Option<f32>,
-    #[serde(default)]
-    pub ribbons: Option<SubCutterEntry>,
-    #[serde(default)]
-    pub slices: Option<SubCutterEntry>,
-}
-
-impl Default for ViewsEntry {
-    fn default() -> ViewsEntry {
-        ViewsEntry {
-            cut: true,
-            transparency: None,
-            ribbons: None,
-            slices: None,
-        }
-    }
-}
-
-/// Ribbons or slices. `placement` and `relative` were added later: a file without them means
-/// evenly spaced sub-cutters of an absolute width, as before.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct SubCutterEntry {
-    pub count: u32,
-    pub width: f64,
-    /// `even` (regular intervals along the path), `planes` (centred on each cutting plane) or
-    /// `horizontal` (layers parallel to the surface at depth steps).
-    #[serde(default = "even")]
-    pub placement: String,
-    /// `width` is the fraction of the spacing each sub-cutter fills instead of model units.
-    #[serde(default)]
-    pub relative: bool,
-}
-
-fn even() -> String {
-    "even".to_string()
-}
-
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CameraEntry {
     pub eye: [f64; 3],
@@ -200,9 +147,6 @@ fn yes() -> bool {
 }
 fn solid() -> String {
     "solid".to_string()
-}
-fn curving() -> String {
-    "curving".to_string()
 }
 fn none() -> String {
     "none".to_string()
@@ -374,7 +318,7 @@ pub fn scene_from_file(
         })?,
         None => crate::view::Orientation::guess(&scene.bbox(), false),
     };
-    scene.variants = crate::session_variants::from_entries(file)?;
+    scene.variants = crate::session_variants::from_entries(&file.variants, file.active_variant)?;
     scene.camera = match file.camera {
         Some(c) => Camera {
             eye: DVec3::from_array(c.eye),

@@ -2,9 +2,9 @@
 //! `cutters` and every variant's use the same conversion).
 
 use glam::DVec3;
+use serde::{Deserialize, Serialize};
 
 use crate::scene::{CutKind, CutterViews, SceneCutter, SubCutterView};
-use crate::session::{CutterEntry, SubCutterEntry, ViewsEntry};
 use cutter::subcutters::Placement;
 
 /// The scene cutter a session entry describes; errors name cutter `i`.
@@ -66,4 +66,67 @@ pub fn cutter_entry(c: &SceneCutter) -> CutterEntry {
             slices: sub(c.views.slices),
         },
     }
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CutterEntry {
+    pub target: usize,
+    /// `curving`, `straight` or `wedge`.
+    #[serde(default = "curving")]
+    pub kind: String,
+    #[serde(default)]
+    pub smooth: bool,
+    pub planes: Vec<[[f64; 3]; 4]>,
+    #[serde(default)]
+    pub views: ViewsEntry,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ViewsEntry {
+    #[serde(default = "yes")]
+    pub cut: bool,
+    #[serde(default)]
+    pub transparency: Option<f32>,
+    #[serde(default)]
+    pub ribbons: Option<SubCutterEntry>,
+    #[serde(default)]
+    pub slices: Option<SubCutterEntry>,
+}
+
+impl Default for ViewsEntry {
+    fn default() -> ViewsEntry {
+        ViewsEntry {
+            cut: true,
+            transparency: None,
+            ribbons: None,
+            slices: None,
+        }
+    }
+}
+
+/// Ribbons or slices. `placement` and `relative` were added later: a file without them means
+/// evenly spaced sub-cutters of an absolute width, as before.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SubCutterEntry {
+    pub count: u32,
+    pub width: f64,
+    /// `even` (regular intervals along the path), `planes` (centred on each cutting plane) or
+    /// `horizontal` (layers parallel to the surface at depth steps).
+    #[serde(default = "even")]
+    pub placement: String,
+    /// `width` is the fraction of the spacing each sub-cutter fills instead of model units.
+    #[serde(default)]
+    pub relative: bool,
+}
+
+fn even() -> String {
+    "even".to_string()
+}
+
+fn curving() -> String {
+    "curving".to_string()
+}
+
+fn yes() -> bool {
+    true
 }

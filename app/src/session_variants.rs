@@ -19,7 +19,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::scene::Scene;
-use crate::session::{CutterEntry, SessionFile, cutter_entry, cutter_from_entry};
+use crate::session_cutters::{CutterEntry, cutter_entry, cutter_from_entry};
 use crate::variants::{Variant, Variants};
 
 /// One variant as stored.
@@ -37,26 +37,26 @@ pub fn is_zero(value: &usize) -> bool {
 
 /// The variants a parsed session describes (empty when it has none). The active variant's
 /// cutters are the top-level `cutters`, which the caller has loaded into the scene.
-pub fn from_entries(file: &SessionFile) -> anyhow::Result<Variants> {
-    if file.variants.is_empty() {
-        if file.active_variant != 0 {
+pub fn from_entries(variants: &[VariantEntry], active: usize) -> anyhow::Result<Variants> {
+    if variants.is_empty() {
+        if active != 0 {
             anyhow::bail!(
                 "active_variant {} given but the session has no variants",
-                file.active_variant
+                active
             );
         }
         return Ok(Variants::default());
     }
-    if file.active_variant >= file.variants.len() {
+    if active >= variants.len() {
         anyhow::bail!(
             "active_variant {} does not exist (there are {} variants)",
-            file.active_variant,
-            file.variants.len()
+            active,
+            variants.len()
         );
     }
-    let mut list = Vec::with_capacity(file.variants.len());
-    for (k, entry) in file.variants.iter().enumerate() {
-        let cutters = if k == file.active_variant {
+    let mut list = Vec::with_capacity(variants.len());
+    for (k, entry) in variants.iter().enumerate() {
+        let cutters = if k == active {
             Vec::new()
         } else {
             entry
@@ -72,10 +72,7 @@ pub fn from_entries(file: &SessionFile) -> anyhow::Result<Variants> {
             cutters,
         });
     }
-    Ok(Variants {
-        list,
-        active: file.active_variant,
-    })
+    Ok(Variants { list, active })
 }
 
 /// The `variants` and `active_variant` fields describing `scene`'s variants (none when it
