@@ -13,9 +13,9 @@
 
 use glam::DVec3;
 
-use super::cases::{self, EDGE_CORNERS};
+use super::cases;
 use super::scan::LabelStats;
-use super::{LabelGrid, LabelValue, VoxelSurface};
+use super::{Constraint, LabelGrid, LabelValue, VoxelSurface};
 
 /// No vertex yet on this edge.
 const NONE: u32 = u32::MAX;
@@ -23,6 +23,27 @@ const NONE: u32 = u32::MAX;
 /// How far an edge vertex stays from the voxel centres at the ends of its edge (in voxels), so
 /// that smoothing cannot collapse a triangle onto a voxel centre.
 pub const EDGE_MARGIN: f64 = 0.05;
+
+/// Midpoint of each cube edge in the unit cube (as [`cases::edge_midpoint`]).
+const EDGE_MIDPOINTS: [DVec3; 12] = {
+    let mut mids = [DVec3::ZERO; 12];
+    let mut e = 0;
+    while e < 12 {
+        let [a, b] = cases::EDGE_CORNERS[e];
+        mids[e] = DVec3::new(
+            half(a, 0) + half(b, 0),
+            half(a, 1) + half(b, 1),
+            half(a, 2) + half(b, 2),
+        );
+        e += 1;
+    }
+    mids
+};
+
+/// Half the `bit`-th coordinate of corner `c`.
+const fn half(c: usize, bit: usize) -> f64 {
+    ((c >> bit) & 1) as f64 * 0.5
+}
 
 /// Edge vertex ids of the current layer of cubes: x- and y-edges of its low and high slices (the
 /// x-edge of local voxel `(u, v)` at `2 * (u + width * v)`, its y-edge at the next index), and the
@@ -143,8 +164,10 @@ pub fn extract_label<T: LabelValue>(
                     }
                     let centre = out.positions.len() as u32;
                     out.positions.push(cube + polygon.centre);
-                    out.lo.push(cube + polygon.lo);
-                    out.hi.push(cube + polygon.hi);
+                    out.constraint
+                        .push(Constraint::centre(out.centre_boxes.len()));
+                    out.centre_boxes
+                        .push([cube + polygon.lo, cube + polygon.hi]);
                     for &[from, to] in &polygon.segments {
                         let (a, b) = (vertex(&mut out, from), vertex(&mut out, to));
                         out.triangles.push([centre, a, b]);
@@ -164,18 +187,11 @@ pub fn extract_label<T: LabelValue>(
     Some(out)
 }
 
-/// Appends the vertex of cube edge `e` at its midpoint, constrained to the edge less
+/// Appends the vertex of cube edge `e` at its midpoint; smoothing keeps it on the edge less
 /// [`EDGE_MARGIN`] at each end.
 fn push_edge_vertex(out: &mut VoxelSurface, cube: DVec3, e: usize) {
-    let [a, b] = EDGE_CORNERS[e].map(|c| cube + cases::corner(c));
-    let axis = e / 4;
-    let mut lo = a.min(b);
-    let mut hi = a.max(b);
-    lo[axis] += EDGE_MARGIN;
-    hi[axis] -= EDGE_MARGIN;
-    out.positions.push((a + b) * 0.5);
-    out.lo.push(lo);
-    out.hi.push(hi);
+    out.positions.push(cube + EDGE_MIDPOINTS[e]);
+    out.constraint.push(Constraint::edge(e / 4));
 }
 
 /// Fills `mask` with 1 where local slice `w` holds `value`, 0 elsewhere (outside the grid too).
