@@ -39,6 +39,7 @@
 //! staircase.
 
 mod cases;
+mod decimate;
 mod extract;
 mod scan;
 mod smooth;
@@ -154,8 +155,10 @@ pub struct SurfaceOptions {
     /// 0 = raw marching-cubes surface of the voxels, 1 = strongest smoothing; default 0.5.
     /// Values outside 0..=1 are an error.
     pub smoothing: f64,
-    /// Target fraction of triangles kept. Decimation is not implemented: `Some` is an error
-    /// ([`LabelSurfaceError::DecimateUnsupported`]), never silently ignored. Default `None`.
+    /// Fraction of each surface's triangles kept by quadric edge-collapse decimation
+    /// (0 < fraction ≤ 1; `None` = no decimation, the default). Each decimated surface is checked
+    /// with the boolean's exact cutter check (closed, oriented, free of self-intersection) and
+    /// refused with [`LabelSurfaceError::DecimateRefused`] when it fails.
     pub decimate: Option<f64>,
     /// Extract only these label values (`None` = every non-zero label present; values not
     /// present, and 0, are skipped). Default `None`.
@@ -217,9 +220,12 @@ pub enum LabelSurfaceError {
     /// `smoothing` is outside 0..=1.
     #[error("smoothing {smoothing} is outside 0..=1")]
     BadSmoothing { smoothing: f64 },
-    /// Decimation was asked for; it is not implemented.
-    #[error("decimation is not supported (asked to keep {fraction} of the triangles)")]
-    DecimateUnsupported { fraction: f64 },
+    /// The decimation fraction is not in 0 < fraction ≤ 1.
+    #[error("decimation fraction {fraction} is outside 0 < fraction <= 1")]
+    BadDecimate { fraction: f64 },
+    /// A decimated surface failed the exact cutter check; ask for a larger fraction.
+    #[error("label {value}: the decimated surface is not a valid closed surface ({reason}); keep a larger fraction")]
+    DecimateRefused { value: u32, reason: String },
     /// One label's surface would need more vertices than a `u32` index can name.
     #[error("the surface of label {value} needs more than u32::MAX vertices")]
     TooManyVertices { value: u32 },
@@ -277,8 +283,10 @@ pub fn label_surfaces_timed<T: LabelValue>(
             smoothing: options.smoothing,
         });
     }
-    if let Some(fraction) = options.decimate {
-        return Err(LabelSurfaceError::DecimateUnsupported { fraction });
+    if let Some(fraction) = options.decimate
+        && !(fraction > 0.0 && fraction <= 1.0)
+    {
+        return Err(LabelSurfaceError::BadDecimate { fraction });
     }
     let scan_start = Instant::now();
     let mut labels = label_stats(grid);
@@ -316,8 +324,19 @@ pub fn label_surfaces_timed<T: LabelValue>(
             lap(&mut t.extract_s);
             smooth::smooth(&mut surface, options.smoothing);
             lap(&mut t.smooth_s);
-            let mesh = surface.into_world(&grid.world_from_voxel, flip);
+            let mut mesh = surface.into_world(&grid.world_from_voxel, flip);
             lap(&mut t.world_s);
+            if let Some(fraction) = options.decimate
+                && fraction < 1.0
+            {
+                mesh = decimate::decimate_checked(&mesh, fraction).map_err(|reason| {
+                    LabelSurfaceError::DecimateRefused {
+                        value: stats.value,
+                        reason,
+                    }
+                })?;
+                lap(&mut t.decimate_s);
+            }
             let finished =
                 done.fetch_add(stats.box_voxels(), Ordering::Relaxed) + stats.box_voxels();
             if !progress(finished as f32 / total as f32) {
