@@ -348,36 +348,65 @@ impl Work {
         self.triangles[t as usize].map(|v| self.positions[v as usize])
     }
 
-    /// Whether a triangle around the merged vertex at `p` would touch a triangle nearby that
-    /// shares no vertex with it.
+    /// Whether a triangle around the merged vertex at `p` would touch another triangle anywhere
+    /// but along what they share: a triangle sharing no vertex must stay [`Work::margin`] away;
+    /// of two sharing one vertex, neither may reach the other with its opposite side (two
+    /// triangles sharing a side are left to the normal check).
     fn would_touch(&self, a: u32, b: u32, p: DVec3) -> bool {
-        let mut near = Vec::new();
+        let merged = |w: u32| if w == b { a } else { w };
+        let at = |w: u32| if w == a { p } else { self.positions[w as usize] };
+        // The triangles that stay around the merged vertex, after the collapse.
+        let mut fan: Vec<(u32, [u32; 3], [DVec3; 3])> = Vec::new();
         for &v in &[a, b] {
             for &t in &self.around[v as usize] {
                 let tri = self.triangles[t as usize];
                 if tri.contains(&a) && tri.contains(&b) {
                     continue;
                 }
-                let moved = tri.map(|w| if w == a || w == b { a } else { w });
-                let corners = moved.map(|w| if w == a { p } else { self.positions[w as usize] });
-                let (lo, hi) = bounds(corners, self.margin);
-                near.clear();
-                self.cells.near(lo, hi, &mut near);
-                for &u in &near {
-                    if !self.alive[u as usize] {
-                        continue;
-                    }
-                    let other = self.triangles[u as usize];
-                    if other.iter().any(|w| moved.contains(w) || *w == b) {
-                        continue;
-                    }
-                    if triangles_touch(corners, self.corners(u), self.margin) {
-                        return true;
-                    }
+                let ids = tri.map(merged);
+                fan.push((t, ids, ids.map(at)));
+            }
+        }
+        let mut near = Vec::new();
+        for (k, &(_, ids, corners)) in fan.iter().enumerate() {
+            for &(_, other_ids, other) in &fan[k + 1..] {
+                if self.pair_touches((ids, corners), (other_ids, other)) {
+                    return true;
+                }
+            }
+            let (lo, hi) = bounds(corners, self.margin);
+            near.clear();
+            self.cells.near(lo, hi, &mut near);
+            for &u in &near {
+                let tri = self.triangles[u as usize];
+                if !self.alive[u as usize] || tri.contains(&a) || tri.contains(&b) {
+                    continue;
+                }
+                if self.pair_touches((ids, corners), (tri, self.corners(u))) {
+                    return true;
                 }
             }
         }
         false
+    }
+
+    /// Whether two triangles (vertex ids and corners) touch beyond what they share.
+    fn pair_touches(&self, (pi, p): ([u32; 3], [DVec3; 3]), (qi, q): ([u32; 3], [DVec3; 3])) -> bool {
+        let shared: Vec<usize> = (0..3).filter(|&k| qi.contains(&pi[k])).collect();
+        match shared[..] {
+            [] => triangles_touch(p, q, self.margin),
+            [k] => {
+                let w = pi[k];
+                let opposite = |ids: [u32; 3], c: [DVec3; 3]| {
+                    let j = ids.iter().position(|&x| x == w).expect("shared vertex");
+                    let (x, y) = (c[(j + 1) % 3], c[(j + 2) % 3]);
+                    [x, y, y]
+                };
+                triangles_touch(opposite(pi, p), q, self.margin)
+                    || triangles_touch(opposite(qi, q), p, self.margin)
+            }
+            _ => false,
+        }
     }
 
     fn into_mesh(self) -> Mesh {
