@@ -319,7 +319,11 @@ fn surfaces_decimate_keeps_a_fraction_of_closed_triangles() {
         // Quadric placement does not preserve volume: thin tubes (the ribs, a few voxels
         // across) lose about a quarter of theirs at a quarter of the triangles (measured 27 %).
         let (vf, vq) = (f["volume"].as_f64().unwrap(), q["volume"].as_f64().unwrap());
-        assert!((vq - vf).abs() < 0.35 * vf, "{}: volume {vq} vs {vf}", q["name"]);
+        assert!(
+            (vq - vf).abs() < 0.35 * vf,
+            "{}: volume {vq} vs {vf}",
+            q["name"]
+        );
     }
     // A fraction outside 0 < F <= 1 is one error line.
     for bad in ["0", "1.5", "nan"] {

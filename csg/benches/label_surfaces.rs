@@ -49,7 +49,9 @@ fn main() {
         let (surfaces, phases) =
             label_surfaces_timed(&grid, &SurfaceOptions::default(), &|_| true).unwrap();
         let total_s = start.elapsed().as_secs_f64();
-        let cpu_s = process_cpu_seconds().zip(cpu_start).map(|(end, start)| end - start);
+        let cpu_s = process_cpu_seconds()
+            .zip(cpu_start)
+            .map(|(end, start)| end - start);
         runs.push((total_s, read_s, phases, cpu_s));
         last = Some((volume, surfaces));
     }

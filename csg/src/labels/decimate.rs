@@ -295,7 +295,13 @@ impl Work {
                     continue;
                 }
                 let old = tri.map(|w| self.positions[w as usize]);
-                let new = tri.map(|w| if w == a || w == b { p } else { self.positions[w as usize] });
+                let new = tri.map(|w| {
+                    if w == a || w == b {
+                        p
+                    } else {
+                        self.positions[w as usize]
+                    }
+                });
                 let n_old = (old[1] - old[0]).cross(old[2] - old[0]);
                 let n_new = (new[1] - new[0]).cross(new[2] - new[0]);
                 let longest = (new[1] - new[0])
@@ -354,7 +360,13 @@ impl Work {
     /// triangles sharing a side are left to the normal check).
     fn would_touch(&self, a: u32, b: u32, p: DVec3) -> bool {
         let merged = |w: u32| if w == b { a } else { w };
-        let at = |w: u32| if w == a { p } else { self.positions[w as usize] };
+        let at = |w: u32| {
+            if w == a {
+                p
+            } else {
+                self.positions[w as usize]
+            }
+        };
         // The triangles that stay around the merged vertex, after the collapse.
         let mut fan: Vec<(u32, [u32; 3], [DVec3; 3])> = Vec::new();
         for &v in &[a, b] {
@@ -391,7 +403,11 @@ impl Work {
     }
 
     /// Whether two triangles (vertex ids and corners) touch beyond what they share.
-    fn pair_touches(&self, (pi, p): ([u32; 3], [DVec3; 3]), (qi, q): ([u32; 3], [DVec3; 3])) -> bool {
+    fn pair_touches(
+        &self,
+        (pi, p): ([u32; 3], [DVec3; 3]),
+        (qi, q): ([u32; 3], [DVec3; 3]),
+    ) -> bool {
         let shared: Vec<usize> = (0..3).filter(|&k| qi.contains(&pi[k])).collect();
         match shared[..] {
             [] => triangles_touch(p, q, self.margin),

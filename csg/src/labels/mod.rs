@@ -30,13 +30,19 @@
 //! boundary it came from; the tests check the result with the boolean's exact self-intersection
 //! check.
 //!
+//! ## Decimation (optional)
+//! [`SurfaceOptions::decimate`] keeps a fraction of each surface's triangles by quadric edge
+//! collapse (`decimate.rs`); every collapse keeps the surface closed and edge-manifold, and the
+//! result passes the boolean's exact cutter check or is decimated less (see that file).
+//!
 //! ## Cost
 //! One pass over the grid finds each label's voxel count and bounding box ([`scan`]); each label
-//! is then extracted inside its box padded by one voxel, two voxel slices at a time, so no
-//! buffer of the full grid is allocated per label. Labels run in parallel, largest first.
-//! Smoothing is the dominant cost: it runs over as few vertices as the surface needs (no centre
-//! vertex where a cube holds one triangle or quadrilateral) and as few passes as remove the
-//! staircase.
+//! is then extracted inside its box padded by one voxel, two voxel slices at a time, visiting only
+//! the cubes between each row's first and last inside voxel, so no buffer of the full grid is
+//! allocated per label. Labels run in parallel, largest first. Smoothing is the dominant cost: it
+//! runs over as few vertices as the surface needs (no centre vertex where a cube holds one
+//! triangle or quadrilateral), as few passes as remove the staircase, and reads one coordinate per
+//! neighbour for the edge vertices. [`label_surfaces_timed`] says where the time went.
 
 mod cases;
 mod decimate;
@@ -224,7 +230,9 @@ pub enum LabelSurfaceError {
     #[error("decimation fraction {fraction} is outside 0 < fraction <= 1")]
     BadDecimate { fraction: f64 },
     /// A decimated surface failed the exact cutter check; ask for a larger fraction.
-    #[error("label {value}: the decimated surface is not a valid closed surface ({reason}); keep a larger fraction")]
+    #[error(
+        "label {value}: the decimated surface is not a valid closed surface ({reason}); keep a larger fraction"
+    )]
     DecimateRefused { value: u32, reason: String },
     /// One label's surface would need more vertices than a `u32` index can name.
     #[error("the surface of label {value} needs more than u32::MAX vertices")]
