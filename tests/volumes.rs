@@ -297,7 +297,7 @@ fn surfaces_decimate_keeps_a_fraction_of_closed_triangles() {
             out.as_os_str(),
             "--json".as_ref(),
         ];
-        args.extend(extra.iter().map(|a| std::ffi::OsStr::new(a)));
+        args.extend(extra.iter().map(std::ffi::OsStr::new));
         let json = run_json(&args);
         std::fs::remove_dir_all(&out).ok();
         json
