@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use csg::DVec3;
-use csg::labels::{LabelGrid, LabelSurface, SurfaceOptions, label_surfaces};
+use csg::labels::{LabelGrid, LabelSurface, PhaseTimes, SurfaceOptions, label_surfaces_timed};
 use serde_json::{Value, json};
 
 const ATLAS: &str = "volumes/spl_head_atlas/hncma-atlas.nrrd";
@@ -42,16 +42,21 @@ fn main() {
         // The previous run's volume and surfaces go first, so the peak below is one run's.
         drop(last.take());
         let start = Instant::now();
+        let cpu_start = process_cpu_seconds();
         let volume = nrrd::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let read_s = start.elapsed().as_secs_f64();
         let grid = LabelGrid::new(volume.dims, &volume.data, volume.world_from_voxel).unwrap();
-        let surfaces = label_surfaces(&grid, &SurfaceOptions::default(), &|_| true).unwrap();
+        let (surfaces, phases) =
+            label_surfaces_timed(&grid, &SurfaceOptions::default(), &|_| true).unwrap();
         let total_s = start.elapsed().as_secs_f64();
-        runs.push((total_s, read_s));
+        let cpu_s = process_cpu_seconds()
+            .zip(cpu_start)
+            .map(|(end, start)| end - start);
+        runs.push((total_s, read_s, phases, cpu_s));
         last = Some((volume, surfaces));
     }
     runs.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let (total_s, read_s) = runs[RUNS / 2];
+    let (total_s, read_s, phases, cpu_s) = runs[RUNS / 2];
     let (volume, surfaces) = last.expect("at least one run");
     let peak = peak_resident_bytes();
     let triangles: usize = surfaces.iter().map(|s| s.mesh.triangle_count()).sum();
@@ -70,6 +75,13 @@ fn main() {
         surfaces.len(),
         triangles
     );
+    if let Some(cpu) = cpu_s {
+        println!(
+            "cpu      {:.1} ms of CPU time in that run (all threads; less sensitive to the machine's load than wall time)",
+            cpu * 1e3
+        );
+    }
+    print_phases(&phases);
     let budget = volume_bytes + 2 * mesh_bytes;
     match peak {
         Some(peak) => println!(
@@ -93,10 +105,18 @@ fn main() {
         "threads": rayon::current_num_threads(),
         "read_s": read_s,
         "total_s": total_s,
+        "cpu_s": cpu_s,
         "peak_resident_bytes": peak,
         "volume_bytes": volume_bytes,
         "mesh_bytes": mesh_bytes,
         "errors": errors,
+        "phases": {
+            "scan_s": phases.scan_s,
+            "extract_cpu_s": phases.extract_s,
+            "smooth_cpu_s": phases.smooth_s,
+            "decimate_cpu_s": phases.decimate_s,
+            "world_cpu_s": phases.world_s,
+        },
     });
     match peer {
         Ok(peer) => {
@@ -127,6 +147,32 @@ fn main() {
         std::fs::write(&out, serde_json::to_string_pretty(&report).unwrap())
             .unwrap_or_else(|e| panic!("{}: {e}", out.display()));
     }
+}
+
+/// Prints where the time went: the scan is wall time, the per-label phases CPU time summed over
+/// the labels (they run in parallel on every thread).
+fn print_phases(p: &PhaseTimes) {
+    println!(
+        "phases   scan {:.1} ms wall; per label, CPU summed over {} threads: extract {:.1} ms, smooth {:.1} ms, decimate {:.1} ms, world {:.1} ms",
+        p.scan_s * 1e3,
+        rayon::current_num_threads(),
+        p.extract_s * 1e3,
+        p.smooth_s * 1e3,
+        p.decimate_s * 1e3,
+        p.world_s * 1e3
+    );
+}
+
+/// CPU time used by this process so far (user + system, all threads), where the system reports
+/// it (`/proc/self/stat`, in clock ticks of 10 ms).
+fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the command name (which is in parentheses and may hold spaces).
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    let ticks = |i: usize| fields.get(i)?.parse::<f64>().ok();
+    // utime and stime are fields 14 and 15 of the line, 12 and 13 after the name.
+    Some((ticks(11)? + ticks(12)?) / 100.0)
 }
 
 /// The process's peak resident set size (`VmHWM`), where the system reports it. It includes

@@ -1,5 +1,5 @@
-//! `cutaway surfaces VOLUME --out DIR [--labels TABLE] [--smoothing F] [--format ply|obj|stl]
-//! --json`: one closed surface per label of a segmentation volume, written as
+//! `cutaway surfaces VOLUME --out DIR [--labels TABLE] [--smoothing F] [--decimate F]
+//! [--format ply|obj|stl] --json`: one closed surface per label of a segmentation volume, written as
 //! `DIR/<value>_<name>.<ext>` (see `../shared/CONTRACT.md`).
 //!
 //! The files are written as one output set (`io::atomic`): an error (a full disk, a bad label)
@@ -32,6 +32,10 @@ pub struct SurfacesArgs {
     /// Smoothing, 0 (voxel surface) to 1 (strongest); default that of `csg::labels`.
     #[arg(long)]
     pub smoothing: Option<f64>,
+    /// Keep this fraction of each surface's triangles (0 < F <= 1) by quadric edge collapse;
+    /// each decimated surface is checked to stay closed and free of self-intersection.
+    #[arg(long)]
+    pub decimate: Option<f64>,
     /// Mesh file format.
     #[arg(long, value_enum, default_value_t = MeshFormat::Ply)]
     pub format: MeshFormat,
@@ -111,8 +115,18 @@ pub fn surfaces(args: &SurfacesArgs) -> anyhow::Result<SurfacesReport> {
     {
         anyhow::bail!("--smoothing {s} is outside 0..=1");
     }
+    if let Some(f) = args.decimate
+        && !(f > 0.0 && f <= 1.0)
+    {
+        anyhow::bail!("--decimate {f} is outside 0 < F <= 1");
+    }
     let volume = volume::read_volume(&args.volume, args.labels.as_deref())?;
-    let surfaces = volume::surfaces(&volume, args.smoothing, &|_| true)
+    let mut options = csg::labels::SurfaceOptions::default();
+    if let Some(smoothing) = args.smoothing {
+        options.smoothing = smoothing;
+    }
+    options.decimate = args.decimate;
+    let surfaces = volume::surfaces_with(&volume, options, &|_| true)
         .with_context(|| args.volume.display().to_string())?;
     let names = file_names(&surfaces, args.format.extension());
     let files: Vec<PathBuf> = names.iter().map(|n| args.out.join(n)).collect();

@@ -13,9 +13,9 @@
 
 use glam::DVec3;
 
-use super::cases::{self, EDGE_CORNERS};
+use super::cases;
 use super::scan::LabelStats;
-use super::{LabelGrid, LabelValue, VoxelSurface};
+use super::{Constraint, LabelGrid, LabelValue, VoxelSurface};
 
 /// No vertex yet on this edge.
 const NONE: u32 = u32::MAX;
@@ -23,6 +23,27 @@ const NONE: u32 = u32::MAX;
 /// How far an edge vertex stays from the voxel centres at the ends of its edge (in voxels), so
 /// that smoothing cannot collapse a triangle onto a voxel centre.
 pub const EDGE_MARGIN: f64 = 0.05;
+
+/// Midpoint of each cube edge in the unit cube (as [`cases::edge_midpoint`]).
+const EDGE_MIDPOINTS: [DVec3; 12] = {
+    let mut mids = [DVec3::ZERO; 12];
+    let mut e = 0;
+    while e < 12 {
+        let [a, b] = cases::EDGE_CORNERS[e];
+        mids[e] = DVec3::new(
+            half(a, 0) + half(b, 0),
+            half(a, 1) + half(b, 1),
+            half(a, 2) + half(b, 2),
+        );
+        e += 1;
+    }
+    mids
+};
+
+/// Half the `bit`-th coordinate of corner `c`.
+const fn half(c: usize, bit: usize) -> f64 {
+    ((c >> bit) & 1) as f64 * 0.5
+}
 
 /// Edge vertex ids of the current layer of cubes: x- and y-edges of its low and high slices (the
 /// x-edge of local voxel `(u, v)` at `2 * (u + width * v)`, its y-edge at the next index), and the
@@ -89,7 +110,9 @@ pub fn extract_label<T: LabelValue>(
 
     let mut mask_lo = vec![0u8; plane];
     let mut mask_hi = vec![0u8; plane];
-    read_slice(grid, value, origin, size, 0, &mut mask_lo);
+    let mut rows_lo = vec![EMPTY_ROW; height];
+    let mut rows_hi = vec![EMPTY_ROW; height];
+    read_slice(grid, value, origin, size, 0, &mut mask_lo, &mut rows_lo);
     let mut edges = LayerEdges {
         width,
         xy_lo: vec![NONE; 2 * plane],
@@ -103,18 +126,27 @@ pub fn extract_label<T: LabelValue>(
     let mut overflow = false;
 
     for w in 0..depth - 1 {
-        read_slice(grid, value, origin, size, w + 1, &mut mask_hi);
+        read_slice(grid, value, origin, size, w + 1, &mut mask_hi, &mut rows_hi);
         for v in 0..height - 1 {
-            for u in 0..width - 1 {
-                let at = |mask: &[u8], du: usize, dv: usize| mask[u + du + width * (v + dv)];
-                let config = at(&mask_lo, 0, 0)
-                    | at(&mask_lo, 1, 0) << 1
-                    | at(&mask_lo, 0, 1) << 2
-                    | at(&mask_lo, 1, 1) << 3
-                    | at(&mask_hi, 0, 0) << 4
-                    | at(&mask_hi, 1, 0) << 5
-                    | at(&mask_hi, 0, 1) << 6
-                    | at(&mask_hi, 1, 1) << 7;
+            // Cubes with an inside corner: from one left of the first inside voxel of the four
+            // rows they touch to the last one (the box's padding keeps both in range).
+            let rows = [rows_lo[v], rows_lo[v + 1], rows_hi[v], rows_hi[v + 1]];
+            let first = rows.iter().map(|r| r.0).min().unwrap_or(usize::MAX);
+            let last = rows.iter().map(|r| r.1).max().unwrap_or(0);
+            if first > last {
+                continue;
+            }
+            let (row0, row1) = (width * v..width * (v + 1), width * (v + 1)..width * (v + 2));
+            let (lo0, lo1) = (&mask_lo[row0.clone()], &mask_lo[row1.clone()]);
+            let (hi0, hi1) = (&mask_hi[row0], &mask_hi[row1]);
+            // The four corners of column u of the cube row, in the config bits of its low
+            // corners (dx = 0); the next column's shifted by one are the high corners.
+            let column = |u: usize| lo0[u] | lo1[u] << 2 | hi0[u] << 4 | hi1[u] << 6;
+            let mut left = column(first - 1);
+            for u in first - 1..last + 1 {
+                let right = column(u + 1);
+                let config = left | right << 1;
+                left = right;
                 if config == 0 || config == 255 {
                     continue;
                 }
@@ -143,8 +175,10 @@ pub fn extract_label<T: LabelValue>(
                     }
                     let centre = out.positions.len() as u32;
                     out.positions.push(cube + polygon.centre);
-                    out.lo.push(cube + polygon.lo);
-                    out.hi.push(cube + polygon.hi);
+                    out.constraint
+                        .push(Constraint::centre(out.centre_boxes.len()));
+                    out.centre_boxes
+                        .push([cube + polygon.lo, cube + polygon.hi]);
                     for &[from, to] in &polygon.segments {
                         let (a, b) = (vertex(&mut out, from), vertex(&mut out, to));
                         out.triangles.push([centre, a, b]);
@@ -159,26 +193,27 @@ pub fn extract_label<T: LabelValue>(
             }
         }
         std::mem::swap(&mut mask_lo, &mut mask_hi);
+        std::mem::swap(&mut rows_lo, &mut rows_hi);
         edges.advance();
     }
     Some(out)
 }
 
-/// Appends the vertex of cube edge `e` at its midpoint, constrained to the edge less
+/// Appends the vertex of cube edge `e` at its midpoint; smoothing keeps it on the edge less
 /// [`EDGE_MARGIN`] at each end.
 fn push_edge_vertex(out: &mut VoxelSurface, cube: DVec3, e: usize) {
-    let [a, b] = EDGE_CORNERS[e].map(|c| cube + cases::corner(c));
-    let axis = e / 4;
-    let mut lo = a.min(b);
-    let mut hi = a.max(b);
-    lo[axis] += EDGE_MARGIN;
-    hi[axis] -= EDGE_MARGIN;
-    out.positions.push((a + b) * 0.5);
-    out.lo.push(lo);
-    out.hi.push(hi);
+    out.positions.push(cube + EDGE_MIDPOINTS[e]);
+    out.constraint.push(Constraint::edge(e / 4));
 }
 
-/// Fills `mask` with 1 where local slice `w` holds `value`, 0 elsewhere (outside the grid too).
+/// `(first, last)` local u of the inside voxels of a mask row; `first > last` when there are none.
+type RowSpan = (usize, usize);
+
+/// The span of a row with no inside voxel.
+const EMPTY_ROW: RowSpan = (usize::MAX, 0);
+
+/// Fills `mask` with 1 where local slice `w` holds `value`, 0 elsewhere (outside the grid too),
+/// and `rows` with each row's span of inside voxels.
 fn read_slice<T: LabelValue>(
     grid: &LabelGrid<T>,
     value: u32,
@@ -186,8 +221,10 @@ fn read_slice<T: LabelValue>(
     size: [usize; 3],
     w: usize,
     mask: &mut [u8],
+    rows: &mut [RowSpan],
 ) {
     mask.fill(0);
+    rows.fill(EMPTY_ROW);
     let [nx, ny, nz] = grid.dims.map(|d| d as i64);
     let z = w as i64 + origin[2];
     if z < 0 || z >= nz {
@@ -205,9 +242,16 @@ fn read_slice<T: LabelValue>(
         let row_start = (nx * (y + ny * z)) as usize;
         let row = &grid.data[row_start..row_start + nx as usize];
         let out = &mut mask[width * v..width * (v + 1)];
+        let (mut first, mut last) = EMPTY_ROW;
         for u in u0..u1 {
             let x = (u as i64 + origin[0]) as usize;
-            out[u] = (row[x].to_u32() == value) as u8;
+            let inside = row[x].to_u32() == value;
+            out[u] = inside as u8;
+            if inside {
+                first = first.min(u);
+                last = u;
+            }
         }
+        rows[v] = (first, last);
     }
 }

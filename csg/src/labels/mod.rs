@@ -30,15 +30,22 @@
 //! boundary it came from; the tests check the result with the boolean's exact self-intersection
 //! check.
 //!
+//! ## Decimation (optional)
+//! [`SurfaceOptions::decimate`] keeps a fraction of each surface's triangles by quadric edge
+//! collapse (`decimate.rs`); every collapse keeps the surface closed and edge-manifold, and the
+//! result passes the boolean's exact cutter check or is decimated less (see that file).
+//!
 //! ## Cost
 //! One pass over the grid finds each label's voxel count and bounding box ([`scan`]); each label
-//! is then extracted inside its box padded by one voxel, two voxel slices at a time, so no
-//! buffer of the full grid is allocated per label. Labels run in parallel, largest first.
-//! Smoothing is the dominant cost: it runs over as few vertices as the surface needs (no centre
-//! vertex where a cube holds one triangle or quadrilateral) and as few passes as remove the
-//! staircase.
+//! is then extracted inside its box padded by one voxel, two voxel slices at a time, visiting only
+//! the cubes between each row's first and last inside voxel, so no buffer of the full grid is
+//! allocated per label. Labels run in parallel, largest first. Smoothing is the dominant cost: it
+//! runs over as few vertices as the surface needs (no centre vertex where a cube holds one
+//! triangle or quadrilateral), as few passes as remove the staircase, and reads one coordinate per
+//! neighbour for the edge vertices. [`label_surfaces_timed`] says where the time went.
 
 mod cases;
+mod decimate;
 mod extract;
 mod scan;
 mod smooth;
@@ -46,6 +53,7 @@ mod smooth;
 mod tests;
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::time::Instant;
 
 use glam::{DAffine3, DVec3};
 use rayon::prelude::*;
@@ -153,8 +161,10 @@ pub struct SurfaceOptions {
     /// 0 = raw marching-cubes surface of the voxels, 1 = strongest smoothing; default 0.5.
     /// Values outside 0..=1 are an error.
     pub smoothing: f64,
-    /// Target fraction of triangles kept. Decimation is not implemented: `Some` is an error
-    /// ([`LabelSurfaceError::DecimateUnsupported`]), never silently ignored. Default `None`.
+    /// Fraction of each surface's triangles kept by quadric edge-collapse decimation
+    /// (0 < fraction ≤ 1; `None` = no decimation, the default). Each decimated surface is checked
+    /// with the boolean's exact cutter check (closed, oriented, free of self-intersection) and
+    /// refused with [`LabelSurfaceError::DecimateRefused`] when it fails.
     pub decimate: Option<f64>,
     /// Extract only these label values (`None` = every non-zero label present; values not
     /// present, and 0, are skipped). Default `None`.
@@ -216,9 +226,14 @@ pub enum LabelSurfaceError {
     /// `smoothing` is outside 0..=1.
     #[error("smoothing {smoothing} is outside 0..=1")]
     BadSmoothing { smoothing: f64 },
-    /// Decimation was asked for; it is not implemented.
-    #[error("decimation is not supported (asked to keep {fraction} of the triangles)")]
-    DecimateUnsupported { fraction: f64 },
+    /// The decimation fraction is not in 0 < fraction ≤ 1.
+    #[error("decimation fraction {fraction} is outside 0 < fraction <= 1")]
+    BadDecimate { fraction: f64 },
+    /// A decimated surface failed the exact cutter check; ask for a larger fraction.
+    #[error(
+        "label {value}: the decimated surface is not a valid closed surface ({reason}); keep a larger fraction"
+    )]
+    DecimateRefused { value: u32, reason: String },
     /// One label's surface would need more vertices than a `u32` index can name.
     #[error("the surface of label {value} needs more than u32::MAX vertices")]
     TooManyVertices { value: u32 },
@@ -235,16 +250,58 @@ pub fn label_surfaces<T: LabelValue>(
     options: &SurfaceOptions,
     progress: &(dyn Fn(f32) -> bool + Sync),
 ) -> Result<Vec<LabelSurface>, LabelSurfaceError> {
+    label_surfaces_timed(grid, options, progress).map(|(surfaces, _)| surfaces)
+}
+
+/// Where [`label_surfaces`] spent its time (seconds). `scan_s` is wall time; the per-label phases
+/// are summed over the labels, which run in parallel, so they add up to CPU time, not wall time.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PhaseTimes {
+    /// The pass over the grid that finds each label's voxel count and box.
+    pub scan_s: f64,
+    /// Marching cubes over each label's box.
+    pub extract_s: f64,
+    /// Constrained Taubin smoothing.
+    pub smooth_s: f64,
+    /// Decimation (0 when not asked for).
+    pub decimate_s: f64,
+    /// Quadrilateral splitting and the transform to world coordinates.
+    pub world_s: f64,
+}
+
+impl PhaseTimes {
+    fn add(&mut self, o: &PhaseTimes) {
+        self.scan_s += o.scan_s;
+        self.extract_s += o.extract_s;
+        self.smooth_s += o.smooth_s;
+        self.decimate_s += o.decimate_s;
+        self.world_s += o.world_s;
+    }
+}
+
+/// [`label_surfaces`], also saying where the time went (for benches and `--json` reports).
+pub fn label_surfaces_timed<T: LabelValue>(
+    grid: &LabelGrid<T>,
+    options: &SurfaceOptions,
+    progress: &(dyn Fn(f32) -> bool + Sync),
+) -> Result<(Vec<LabelSurface>, PhaseTimes), LabelSurfaceError> {
     grid.sanity_check()?;
     if !(0.0..=1.0).contains(&options.smoothing) {
         return Err(LabelSurfaceError::BadSmoothing {
             smoothing: options.smoothing,
         });
     }
-    if let Some(fraction) = options.decimate {
-        return Err(LabelSurfaceError::DecimateUnsupported { fraction });
+    if let Some(fraction) = options.decimate
+        && !(fraction > 0.0 && fraction <= 1.0)
+    {
+        return Err(LabelSurfaceError::BadDecimate { fraction });
     }
+    let scan_start = Instant::now();
     let mut labels = label_stats(grid);
+    let mut times = PhaseTimes {
+        scan_s: scan_start.elapsed().as_secs_f64(),
+        ..PhaseTimes::default()
+    };
     if let Some(only) = &options.only {
         labels.retain(|s| only.contains(&s.value));
     }
@@ -257,35 +314,64 @@ pub fn label_surfaces<T: LabelValue>(
         return Err(LabelSurfaceError::Cancelled);
     }
     let flip = grid.world_from_voxel.matrix3.determinant() < 0.0;
-    let mut surfaces = labels
+    let results = labels
         .par_iter()
         .map(|stats| {
             if cancelled.load(Ordering::Relaxed) {
                 return Err(LabelSurfaceError::Cancelled);
             }
+            let mut t = PhaseTimes::default();
+            let mut clock = Instant::now();
+            let mut lap = |into: &mut f64| {
+                let now = Instant::now();
+                *into += (now - clock).as_secs_f64();
+                clock = now;
+            };
             let mut surface = extract::extract_label(grid, stats)
                 .ok_or(LabelSurfaceError::TooManyVertices { value: stats.value })?;
+            lap(&mut t.extract_s);
             smooth::smooth(&mut surface, options.smoothing);
-            let mesh = surface.into_world(&grid.world_from_voxel, flip);
+            lap(&mut t.smooth_s);
+            let mut mesh = surface.into_world(&grid.world_from_voxel, flip);
+            lap(&mut t.world_s);
+            if let Some(fraction) = options.decimate
+                && fraction < 1.0
+            {
+                mesh = decimate::decimate_checked(&mesh, fraction).map_err(|reason| {
+                    LabelSurfaceError::DecimateRefused {
+                        value: stats.value,
+                        reason,
+                    }
+                })?;
+                lap(&mut t.decimate_s);
+            }
             let finished =
                 done.fetch_add(stats.box_voxels(), Ordering::Relaxed) + stats.box_voxels();
             if !progress(finished as f32 / total as f32) {
                 cancelled.store(true, Ordering::Relaxed);
             }
-            Ok(LabelSurface {
-                value: stats.value,
-                voxels: stats.voxels,
-                mesh,
-            })
+            Ok((
+                LabelSurface {
+                    value: stats.value,
+                    voxels: stats.voxels,
+                    mesh,
+                },
+                t,
+            ))
         })
         .collect::<Result<Vec<_>, _>>()?;
     if cancelled.load(Ordering::Relaxed) {
         return Err(LabelSurfaceError::Cancelled);
     }
+    let mut surfaces = Vec::with_capacity(results.len());
+    for (surface, t) in results {
+        times.add(&t);
+        surfaces.push(surface);
+    }
     surfaces.sort_by_key(|s| s.value);
     // The workers report in whatever order they finish; the last word is "done".
     progress(1.0);
-    Ok(surfaces)
+    Ok((surfaces, times))
 }
 
 /// Voxel count per label value in one pass (for `info`): ascending `(value, count)`, 0 excluded.
@@ -297,7 +383,7 @@ pub fn label_counts<T: LabelValue>(grid: &LabelGrid<T>) -> Vec<(u32, u64)> {
 }
 
 /// A surface under construction, in the label box's voxel coordinates, with each vertex's
-/// constraint box. `f64` like the rest of `csg`: with `f32` the roundings of a grid and of the
+/// constraint. `f64` like the rest of `csg`: with `f32` the roundings of a grid and of the
 /// same grid with an axis flipped differ by about 10⁻⁵ voxel, and the surfaces must be the same.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct VoxelSurface {
@@ -305,15 +391,36 @@ pub(crate) struct VoxelSurface {
     pub origin: DVec3,
     /// Vertex positions in local voxel coordinates.
     pub positions: Vec<DVec3>,
-    /// Per vertex, the lowest corner of the box it must stay in. Same length as `positions`.
-    pub lo: Vec<DVec3>,
-    /// Per vertex, the highest corner of that box. Same length as `positions`.
-    pub hi: Vec<DVec3>,
+    /// Per vertex, where it may move (same length as `positions`): [`Constraint::edge`] for a
+    /// vertex on a voxel edge along that axis (it moves along the edge only, away from its
+    /// ends), [`Constraint::centre`] for a centre vertex (it stays in `centre_boxes[c]`).
+    /// Edge vertices need no stored bounds (their edge is the unit segment around them), which
+    /// keeps the smoothing's memory traffic down.
+    pub constraint: Vec<Constraint>,
+    /// Lowest and highest corner of each centre vertex's box.
+    pub centre_boxes: Vec<[DVec3; 2]>,
     /// Triangles, counter-clockwise seen from outside in voxel index space.
     pub triangles: Vec<[u32; 3]>,
     /// Quadrilaterals (a cube's only polygon with four sides), counter-clockwise seen from
     /// outside; each becomes two triangles in [`VoxelSurface::into_world`].
     pub quads: Vec<[u32; 4]>,
+}
+
+/// Where one vertex may move during smoothing: `0..3` = along that axis on its voxel edge,
+/// `3 + c` = inside centre box `c`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Constraint(pub u32);
+
+impl Constraint {
+    /// On a voxel edge along `axis`.
+    pub fn edge(axis: usize) -> Constraint {
+        Constraint(axis as u32)
+    }
+
+    /// Inside centre box `index`.
+    pub fn centre(index: usize) -> Constraint {
+        Constraint(3 + index as u32)
+    }
 }
 
 impl VoxelSurface {

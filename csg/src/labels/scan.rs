@@ -51,25 +51,35 @@ impl LabelStats {
 /// Below this a value is tallied in the dense table.
 const DENSE: usize = 1 << 16;
 
-/// Per-value tallies of one slab.
+/// Per-value tallies of one slab: values below [`DENSE`] find their entry through a table of
+/// indices (4 bytes per value, so each slab's table is small to create and merge), larger ones
+/// through a map.
 struct Tally {
-    dense: Vec<Option<LabelStats>>,
+    index: Vec<u32>,
+    stats: Vec<LabelStats>,
     sparse: HashMap<u32, LabelStats>,
 }
+
+/// No entry for this value yet.
+const ABSENT: u32 = u32::MAX;
 
 impl Tally {
     fn new() -> Tally {
         Tally {
-            dense: vec![None; DENSE],
+            index: vec![ABSENT; DENSE],
+            stats: Vec::new(),
             sparse: HashMap::new(),
         }
     }
 
     fn add(&mut self, s: LabelStats) {
         if (s.value as usize) < DENSE {
-            match &mut self.dense[s.value as usize] {
-                Some(t) => t.merge(&s),
-                slot => *slot = Some(s),
+            let slot = &mut self.index[s.value as usize];
+            if *slot == ABSENT {
+                *slot = self.stats.len() as u32;
+                self.stats.push(s);
+            } else {
+                self.stats[*slot as usize].merge(&s);
             }
         } else {
             self.sparse
@@ -80,7 +90,7 @@ impl Tally {
     }
 
     fn merge(mut self, other: Tally) -> Tally {
-        for s in other.dense.into_iter().flatten() {
+        for s in other.stats {
             self.add(s);
         }
         for (_, s) in other.sparse {
@@ -89,6 +99,9 @@ impl Tally {
         self
     }
 }
+
+/// Voxels compared at once while following a run.
+const RUN_BLOCK: usize = 16;
 
 /// Count and bounding box of every non-zero label present, ascending by value.
 pub fn label_stats<T: LabelValue>(grid: &LabelGrid<T>) -> Vec<LabelStats> {
@@ -107,6 +120,15 @@ pub fn label_stats<T: LabelValue>(grid: &LabelGrid<T>) -> Vec<LabelStats> {
                 while i < nx {
                     let v = row[i];
                     let start = i;
+                    // Whole blocks first (compared without branches, so vectorised), then
+                    // one voxel at a time.
+                    while i + RUN_BLOCK <= nx
+                        && row[i..i + RUN_BLOCK]
+                            .iter()
+                            .fold(true, |same, &x| same & (x == v))
+                    {
+                        i += RUN_BLOCK;
+                    }
                     while i < nx && row[i] == v {
                         i += 1;
                     }
@@ -121,7 +143,7 @@ pub fn label_stats<T: LabelValue>(grid: &LabelGrid<T>) -> Vec<LabelStats> {
             tally
         })
         .reduce(Tally::new, Tally::merge);
-    let mut out: Vec<LabelStats> = tally.dense.into_iter().flatten().collect();
+    let mut out: Vec<LabelStats> = tally.stats;
     out.extend(tally.sparse.into_values());
     out.sort_by_key(|s| s.value);
     out

@@ -438,6 +438,16 @@ pub fn surfaces(
     if let Some(smoothing) = smoothing {
         options.smoothing = smoothing;
     }
+    surfaces_with(volume, options, progress)
+}
+
+/// [`surfaces`] with every option of `csg::labels` (smoothing, decimation); `options.only` is
+/// replaced by each layer's structures.
+pub fn surfaces_with(
+    volume: &LabelVolume,
+    mut options: csg::labels::SurfaceOptions,
+    progress: &(dyn Fn(f32) -> bool + Sync),
+) -> anyhow::Result<Vec<StructureSurface>> {
     let layers = volume.layers.len();
     let mut out = Vec::with_capacity(volume.structures.len());
     for (layer, data) in volume.layers.iter().enumerate() {
