@@ -20,7 +20,7 @@
 use glam::DVec3;
 
 use super::cut_point::{
-    CutPoint, classify, classify_on_edges, closest_face, closest_face_near, side,
+    CutPoint, classify, classify_on_edges, closest_face_near, side,
 };
 use super::dyn_mesh::{DynMesh, Mark, NO_TWIN, NONMANIFOLD, is_real, next, prev};
 use super::groove::{Groove, GrooveBackup};
@@ -457,6 +457,25 @@ impl Scalpel {
                 .saturating_sub(stroke.triangles_before),
             detached,
         })
+    }
+
+    /// One whole stroke through `samples` (begin, a step per sample, end): the strokes the
+    /// window and the command line replay without a tool in between (the layers below a
+    /// stroke). Atomic: the first refused sample is the error, with the stroke undone.
+    pub fn cut_stroke(&mut self, samples: &[DVec3]) -> Result<StrokeReport, ScalpelError> {
+        let Some((&first, rest)) = samples.split_first() else {
+            return Err(ScalpelError::NoStroke);
+        };
+        let result = self.begin_stroke(first).and_then(|_| {
+            for &q in rest {
+                self.step(q)?;
+            }
+            self.end_stroke()
+        });
+        if result.is_err() && self.stroke.is_some() {
+            self.undo_stroke();
+        }
+        result
     }
 
     /// Undoes the last committed stroke (or the one in progress). Returns false when there is
