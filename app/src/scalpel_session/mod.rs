@@ -62,6 +62,8 @@ pub mod model_cut;
 pub mod prepare;
 pub mod replay;
 #[cfg(test)]
+mod parity_tests;
+#[cfg(test)]
 pub(crate) mod tests;
 
 use std::collections::HashSet;
@@ -156,6 +158,9 @@ pub struct ScalpelSession {
     view: bool,
     /// Summary of the last committed stroke, for the panel.
     pub last_report: Option<String>,
+    /// The points the last released stroke fed to the scalpel (its press point first): what a
+    /// `cutaway-path/1` file replays.
+    pub last_points: Vec<DVec3>,
     /// What the last committed stroke did (on the touched model and the layers below).
     pub last_stroke: Option<cutter::scalpel::StrokeReport>,
     /// The last step left the surface (the blade is in the air; the cut ended there).
@@ -177,6 +182,7 @@ impl Default for ScalpelSession {
             view: true,
             last_report: None,
             last_stroke: None,
+            last_points: Vec::new(),
             off_surface: false,
             picks: Default::default(),
             layer_indexes: Vec::new(),
@@ -345,6 +351,7 @@ impl ScalpelSession {
             touched: HashSet::new(),
             delta: None,
             samples: Vec::new(),
+            points: Vec::new(),
         });
         Ok(())
     }
@@ -359,6 +366,7 @@ impl ScalpelSession {
             return Ok(());
         }
         stroke.begun = true;
+        stroke.points.push(stroke.press_point);
         match session.scalpel.begin_stroke(stroke.press_point) {
             Ok(report) => {
                 stroke
@@ -438,6 +446,7 @@ impl ScalpelSession {
         if stroke.failed || !stroke.begun {
             return Ok(false);
         }
+        stroke.points.push(q);
         let report = session.scalpel.step(q).map_err(|e| e.to_string())?;
         self.off_surface = !report.on_mesh;
         stroke.samples.push(report.on_mesh.then_some(q));
@@ -485,6 +494,7 @@ impl ScalpelSession {
         let Some(stroke) = self.stroke.take() else {
             return Released::Nothing;
         };
+        self.last_points = stroke.points.clone();
         let Some(session) = self.session.as_mut() else {
             return Released::Nothing;
         };

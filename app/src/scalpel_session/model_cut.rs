@@ -333,5 +333,7 @@ pub(crate) struct Stroke {
     /// The samples fed to the scalpel that landed on the surface, in order; `None` marks a step
     /// off the surface (it splits the strokes on the layers below).
     pub(crate) samples: Vec<Option<DVec3>>,
+    /// Every point fed to the scalpel in this stroke (the press point first), in order.
+    pub(crate) points: Vec<DVec3>,
 }
 
