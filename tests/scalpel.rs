@@ -109,7 +109,10 @@ fn slit_on_a_sheet_reports_the_contract_json() {
     assert!(v["step_us_p50"].as_f64().unwrap() > 0.0);
     assert!(v["step_us_max"].as_f64().unwrap() >= v["step_us_p50"].as_f64().unwrap());
     let first = v["step_us_first"].as_f64().unwrap();
-    assert!(first > 0.0 && first <= v["step_us_max"].as_f64().unwrap(), "{v}");
+    assert!(
+        first > 0.0 && first <= v["step_us_max"].as_f64().unwrap(),
+        "{v}"
+    );
     assert_eq!(face_count(&out), 800 + created as usize);
     for key in [
         "steps",

@@ -72,8 +72,8 @@ pub fn run(args: &ScalpelArgs) -> anyhow::Result<()> {
     let mut scene = region_scene(&mesh, &args.target);
     let mut session = ScalpelSession::headless(path_settings(&path_file));
     let file = args.path.display();
-    let done = replay(&mut session, &mut scene, &path_file.strokes)
-        .map_err(|e| anyhow!("{file}: {e}"))?;
+    let done =
+        replay(&mut session, &mut scene, &path_file.strokes).map_err(|e| anyhow!("{file}: {e}"))?;
     let mut out = csg::Mesh::default();
     let (mut closed, mut manifold) = (true, true);
     for m in &scene.models {

@@ -222,7 +222,6 @@ pub fn scalpel_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
     }
 }
 
-
 #[cfg(test)]
 #[path = "scalpel_mode_tests.rs"]
 mod tests;

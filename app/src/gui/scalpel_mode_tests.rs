@@ -365,8 +365,8 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
 #[cfg(test)]
 mod view {
     use super::*;
-    use crate::render::delta::MeshDelta;
     use crate::gui::live_cut::view::differing_pixels;
+    use crate::render::delta::MeshDelta;
     use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
 
     #[test]

@@ -120,4 +120,3 @@ pub(crate) fn without_pieces(mesh: &Mesh, pieces: &[Mesh]) -> Mesh {
 pub(crate) fn piece_colour(c: [f32; 3]) -> [f32; 3] {
     c.map(|x| (x * 0.6 + 0.4).min(1.0))
 }
-

@@ -56,13 +56,12 @@
 //! scene is then not touched and the reason goes to the status line. The stroke goes on with the
 //! next move. A loop that cannot close is discarded whole.
 
-
 pub mod below;
 pub mod model_cut;
-pub mod prepare;
-pub mod replay;
 #[cfg(test)]
 mod parity_tests;
+pub mod prepare;
+pub mod replay;
 #[cfg(test)]
 pub(crate) mod tests;
 
@@ -83,7 +82,6 @@ pub use prepare::Prepared;
 
 /// A press must move this many pixels before it cuts (a click does nothing).
 const START_PIXELS: f64 = 3.0;
-
 
 /// The blade the next stroke uses (the panel's controls).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -221,9 +219,11 @@ impl ScalpelSession {
         self.prepared.start(model, mesh);
     }
 
-    /// Makes (or waits for) the scalpel for what the scene shows of `model` now.
+    /// Makes (or waits for) the scalpel for what the scene shows of `model` now, with its rest
+    /// mesh's indexes (the command line, so that no step shares the machine with their build).
     pub fn ready(&mut self, scene: &Scene, model: usize) -> Result<(), String> {
-        self.session_for(scene, model).map(|_| ())
+        self.session_for(scene, model)?.rest_indexes();
+        Ok(())
     }
 
     /// Whether the scalpel for `model` is still being made (the window says so).
@@ -666,4 +666,3 @@ impl ScalpelSession {
         self.prepared = Prepared::default();
     }
 }
-

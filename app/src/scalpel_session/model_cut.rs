@@ -167,9 +167,9 @@ impl ModelCut {
         let built = match self.rest.take() {
             Some((revision, job)) if revision == self.revision => match job {
                 RestJob::Built(r) => r,
-                RestJob::Building(handle, mesh) => handle
-                    .join()
-                    .unwrap_or_else(|_| RestIndexes::build(mesh)),
+                RestJob::Building(handle, mesh) => {
+                    handle.join().unwrap_or_else(|_| RestIndexes::build(mesh))
+                }
             },
             _ => RestIndexes::build(Arc::new(self.scalpel.mesh())),
         };
@@ -191,7 +191,11 @@ impl ModelCut {
 
     /// The delta of the stroke so far against `shown` (see the module documentation). Cost:
     /// the stroke's segments, their fans and the opening's displaced vertices; never the mesh.
-    pub(crate) fn stroke_delta(&mut self, open: &OpenOptions, stroke: &mut Stroke) -> Arc<MeshDelta> {
+    pub(crate) fn stroke_delta(
+        &mut self,
+        open: &OpenOptions,
+        stroke: &mut Stroke,
+    ) -> Arc<MeshDelta> {
         let faces = self.faces();
         let base = self.shown.clone();
         let mesh = self.scalpel.dyn_mesh();
@@ -300,7 +304,6 @@ impl ModelCut {
     }
 }
 
-
 /// The stroke in progress.
 pub(crate) struct Stroke {
     /// The scene before the stroke: the undo snapshot.
@@ -336,4 +339,3 @@ pub(crate) struct Stroke {
     /// Every point fed to the scalpel in this stroke (the press point first), in order.
     pub(crate) points: Vec<DVec3>,
 }
-

@@ -82,7 +82,12 @@ fn a_stroke_replayed_by_the_command_line_gives_the_windows_meshes_bit_for_bit() 
     // Two grooves, the second crossing the first.
     let strokes = vec![line(0.5, 0.38, 0.62), {
         let mut v: Vec<DVec2> = (0..=24)
-            .map(|i| DVec2::new(400.0 + 20.0 * (i as f64 / 24.0 - 0.5), 600.0 * (0.4 + 0.2 * i as f64 / 24.0)))
+            .map(|i| {
+                DVec2::new(
+                    400.0 + 20.0 * (i as f64 / 24.0 - 0.5),
+                    600.0 * (0.4 + 0.2 * i as f64 / 24.0),
+                )
+            })
             .collect();
         v.dedup();
         v
@@ -110,7 +115,10 @@ fn a_stroke_replayed_by_the_command_line_gives_the_windows_meshes_bit_for_bit() 
     let path = dir.join("path.json");
     std::fs::write(&path, json.to_string()).unwrap();
     let parsed = crate::path_file::read_path_file(&path).unwrap();
-    assert_eq!(parsed.strokes, fed, "the path file holds the window's points exactly");
+    assert_eq!(
+        parsed.strokes, fed,
+        "the path file holds the window's points exactly"
+    );
     assert_eq!(path_settings(&parsed), settings);
     let out = dir.join("out.obj");
     crate::cli::scalpel::run(&ScalpelArgs {

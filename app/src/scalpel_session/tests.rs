@@ -118,12 +118,7 @@ fn across(viewport: DVec2, from: f64, to: f64, steps: usize) -> Vec<DVec2> {
         .collect()
 }
 
-fn stroke(
-    slot: &mut ScalpelSession,
-    scene: &mut Scene,
-    viewport: DVec2,
-    px: &[DVec2],
-) -> Released {
+fn stroke(slot: &mut ScalpelSession, scene: &mut Scene, viewport: DVec2, px: &[DVec2]) -> Released {
     assert_eq!(slot.press(scene, viewport, px[0]), Ok(Some(0)));
     for &p in &px[1..] {
         if slot.drag(scene, viewport, p).expect("step") && slot.delta().is_some() {
@@ -459,7 +454,6 @@ fn a_detached_piece_is_saved_to_its_own_file_and_reopens_as_its_own_model() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-
 /// Two nested spheres, each a model: skin (radius 10, model 0) over muscle (radius 9.7,
 /// model 1, tessellated differently so their vertices never line up).
 fn nested_scene() -> Scene {
@@ -625,8 +619,7 @@ fn layers_below_follow_the_samples_whose_blade_reaches_a_model() {
 fn a_refused_layer_is_left_alone_and_reported() {
     let mut scene = Scene::default();
     let plate = Arc::new(
-        csg::testkit::cube(DVec3::new(-3.0, -1.0, 0.5), DVec3::new(3.0, 1.0, 1.0))
-            .compacted(),
+        csg::testkit::cube(DVec3::new(-3.0, -1.0, 0.5), DVec3::new(3.0, 1.0, 1.0)).compacted(),
     );
     let bow_tie = Arc::new(csg::testkit::bow_tie());
     // A big sphere whose top is at z = -0.3 under the plate.
@@ -702,7 +695,6 @@ fn a_session_saves_and_reopens_both_cut_layers_bit_for_bit() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
-
 
 #[test]
 fn removing_pieces_matches_triangles_by_their_corners() {

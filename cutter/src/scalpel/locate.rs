@@ -37,6 +37,8 @@ pub struct Locator {
     component: Arc<Vec<u32>>,
     /// Whether each component was closed (no boundary edge) in the input.
     closed_input: Arc<Vec<bool>>,
+    /// How far inside the surface the blade's ray starts (relative to the mesh's size).
+    ray_start: f64,
 }
 
 impl fmt::Debug for Locator {
@@ -81,6 +83,7 @@ impl Locator {
             closed.push(is_closed);
         }
         Locator {
+            ray_start: 1e-7 * mesh.bbox().diagonal().max(f64::MIN_POSITIVE),
             input: Arc::new(mesh.clone()),
             index: Arc::new(csg::SpatialIndex::build(mesh)),
             component: Arc::new(component),
@@ -132,7 +135,7 @@ impl Locator {
         max_distance: f64,
     ) -> Option<(u32, DVec3, f64)> {
         // Start just inside the surface so the triangles around `v` are not hit at distance 0.
-        let eps = 1e-7 * self.input.bbox().diagonal().max(f64::MIN_POSITIVE);
+        let eps = self.ray_start;
         let hit = self
             .index
             .ray_cast(&self.input, origin + dir * eps, dir, max_distance)?;
@@ -141,16 +144,11 @@ impl Locator {
         }
         let s = hit.t + eps;
         for w in self.corners_by_weight(hit.face, hit.bary) {
-            if let Some(found) = super::through::ray_hit_near(
-                mesh,
-                w,
-                origin,
-                dir,
-                s,
-                super::step::RESTART_SEARCH,
-            ) && !mesh.triangles()[found.0 as usize]
-                .iter()
-                .any(|&x| mesh.same_point(x, v))
+            if let Some(found) =
+                super::through::ray_hit_near(mesh, w, origin, dir, s, super::step::RESTART_SEARCH)
+                && !mesh.triangles()[found.0 as usize]
+                    .iter()
+                    .any(|&x| mesh.same_point(x, v))
             {
                 return Some(found);
             }

@@ -19,9 +19,7 @@
 
 use glam::DVec3;
 
-use super::cut_point::{
-    CutPoint, classify, classify_on_edges, closest_face_near, side,
-};
+use super::cut_point::{CutPoint, classify, classify_on_edges, closest_face_near, side};
 use super::dyn_mesh::{DynMesh, Mark, NO_TWIN, NONMANIFOLD, is_real, next, prev};
 use super::groove::{Groove, GrooveBackup};
 use super::locate::Locator;
