@@ -64,8 +64,6 @@ enum CameraDrag {
     Pan,
 }
 
-/// What ended a stroke.
-
 /// Viewport input in Scalpel mode: primary drag cuts; Alt+drag or right drag orbits,
 /// Shift+drag or middle drag pans, the wheel zooms (the camera stays usable while cutting).
 pub fn scalpel_input(
