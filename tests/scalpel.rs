@@ -108,6 +108,11 @@ fn slit_on_a_sheet_reports_the_contract_json() {
     assert!(created <= 2 * cut + 4, "{v}");
     assert!(v["step_us_p50"].as_f64().unwrap() > 0.0);
     assert!(v["step_us_max"].as_f64().unwrap() >= v["step_us_p50"].as_f64().unwrap());
+    let first = v["step_us_first"].as_f64().unwrap();
+    assert!(
+        first > 0.0 && first <= v["step_us_max"].as_f64().unwrap(),
+        "{v}"
+    );
     assert_eq!(face_count(&out), 800 + created as usize);
     for key in [
         "steps",
@@ -115,12 +120,13 @@ fn slit_on_a_sheet_reports_the_contract_json() {
         "triangles_created",
         "step_us_p50",
         "step_us_max",
+        "step_us_first",
         "closed",
         "manifold",
     ] {
         assert!(v.get(key).is_some(), "missing {key}");
     }
-    assert_eq!(v.as_object().unwrap().len(), 7);
+    assert_eq!(v.as_object().unwrap().len(), 8);
 }
 
 #[test]

@@ -21,6 +21,7 @@ pub mod metrics;
 pub mod path_file;
 pub mod phantom;
 pub mod render;
+pub mod scalpel_session;
 pub mod scene;
 pub mod scene_pick;
 pub mod session;

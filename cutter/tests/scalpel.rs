@@ -567,49 +567,66 @@ fn s21_grooves_keep_a_sphere_closed() {
 
 #[test]
 fn multi_layer_blade_grooves_every_surface_it_reaches() {
-    use cutter::scalpel::layers::layer_strokes;
-    // "Skin" (radius 10) over "muscle" (radius 9): one file, two closed regions.
-    let mut mesh = csg::testkit::icosphere(4, 10.0);
-    mesh.append(&csg::testkit::icosphere(4, 9.0));
-    let index = csg::SpatialIndex::build(&mesh);
-    let regions = csg::regions::Regions::build(&mesh, &csg::EdgeAdjacency::build(&mesh));
-    assert_eq!(regions.count, 2);
-    let pts: Vec<DVec3> = (0..=30)
+    use cutter::scalpel::OpenOptions;
+    use cutter::scalpel::layers::{Surface, cut_layer, reach, strokes_below};
+    // "Skin" (radius 10) over "muscle" (radius 9): two surfaces.
+    let skin = csg::testkit::icosphere(4, 10.0);
+    let muscle = csg::testkit::icosphere(4, 9.0);
+    let skin_index = csg::SpatialIndex::build(&skin);
+    let muscle_index = csg::SpatialIndex::build(&muscle);
+    let below = [Surface {
+        id: 7,
+        mesh: &muscle,
+        index: &muscle_index,
+    }];
+    let pts: Vec<Option<DVec3>> = (0..=30)
         .map(|i| {
             let a = 0.1 + 1.0 * i as f64 / 30.0;
-            DVec3::new(a.cos(), a.sin(), 0.05).normalize() * 10.0
+            Some(DVec3::new(a.cos(), a.sin(), 0.05).normalize() * 10.0)
         })
         .collect();
     let depth = 1.6;
-    let layers = layer_strokes(&mesh, &index, &regions, &pts, depth);
+    assert!(reach(&pts, depth).is_some_and(|b| b.overlaps(&muscle.bbox())));
+    let layers = strokes_below(&skin, &skin_index, &pts, depth, &below);
     assert_eq!(layers.len(), 1, "{layers:?}");
-    assert_eq!(layers[0].region, 1);
+    assert_eq!(layers[0].region, 7);
     assert!(
         (layers[0].depth - 0.6).abs() < 0.05,
         "depth left {}",
         layers[0].depth
     );
     // A shallow blade does not reach the muscle.
-    assert!(layer_strokes(&mesh, &index, &regions, &pts, 0.8).is_empty());
+    assert!(strokes_below(&skin, &skin_index, &pts, 0.8, &below).is_empty());
+    // A sample off the surface splits the stroke below it in two.
+    let mut gap = pts.clone();
+    gap[15] = None;
+    let split = strokes_below(&skin, &skin_index, &gap, depth, &below);
+    assert_eq!(split.len(), 2, "{split:?}");
 
-    let mut s = Scalpel::new(&mesh, ScalpelOptions::default().with_depth(depth)).unwrap();
-    let inner_vertices_before = s.dyn_mesh().vertex_count();
-    cut_strokes(&mut s, &[pts], false, 0.0);
-    let after_top = s.dyn_mesh().vertex_count();
-    s.set_options(ScalpelOptions::default().with_depth(layers[0].depth));
-    cut_strokes(&mut s, &[layers[0].samples.clone()], false, 0.0);
+    let closed = OpenOptions {
+        width: 0.0,
+        window: 0.0,
+    };
+    let options = ScalpelOptions::default().with_depth(depth);
+    let (cut, report) = cut_layer(&muscle, &[&layers[0]], options, &closed)
+        .unwrap()
+        .expect("the muscle is cut");
+    assert!(report.triangles_created > 0);
+    let s = Scalpel::new(&cut, ScalpelOptions::default()).unwrap();
     let t = topo(&s);
-    assert!(t.closed && t.manifold && t.components == 2, "{t:?}");
-    // The second stroke cut the inner sphere: its new vertices lie near radius 9.
-    let m = s.dyn_mesh();
-    assert!(after_top > inner_vertices_before);
-    let near_inner = (after_top..m.vertex_count())
-        .filter(|&v| (m.pos(v as u32).length() - 9.0).abs() < 0.05)
-        .count();
-    assert!(
-        near_inner > 10,
-        "{near_inner} new vertices on the inner surface"
-    );
+    assert!(t.closed && t.manifold && t.components == 1, "{t:?}");
+    // The stroke cut the muscle: its new vertices lie near radius 9, some below it (the groove).
+    let new: Vec<DVec3> = cut.positions[muscle.positions.len()..].to_vec();
+    assert!(new.len() > 10, "{} new vertices", new.len());
+    assert!(new.iter().all(|p| p.length() > 8.0 && p.length() < 9.05));
+    assert!(new.iter().any(|p| p.length() < 8.9));
+    // A stroke the scalpel refuses (off the surface) leaves the layer alone: an error, no mesh.
+    let off = cutter::scalpel::layers::LayerStroke {
+        region: 7,
+        samples: vec![DVec3::new(50.0, 0.0, 0.0), DVec3::new(51.0, 0.0, 0.0)],
+        depth: 0.5,
+    };
+    assert!(cut_layer(&muscle, &[&off], options, &closed).is_err());
 }
 
 #[test]

@@ -79,6 +79,7 @@ pub mod dyn_mesh;
 pub mod groove;
 pub mod invariants;
 pub mod layers;
+pub mod locate;
 pub mod loop_tool;
 pub mod step;
 pub mod survey;

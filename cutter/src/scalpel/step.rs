@@ -19,11 +19,10 @@
 
 use glam::DVec3;
 
-use super::cut_point::{
-    CutPoint, classify, classify_on_edges, closest_face, closest_face_near, side,
-};
+use super::cut_point::{CutPoint, classify, classify_on_edges, closest_face_near, side};
 use super::dyn_mesh::{DynMesh, Mark, NO_TWIN, NONMANIFOLD, is_real, next, prev};
 use super::groove::{Groove, GrooveBackup};
+use super::locate::Locator;
 use super::{ScalpelError, ScalpelOptions, Tool};
 
 mod edits;
@@ -39,6 +38,9 @@ const THROUGH_SNAP_END: f64 = 0.02;
 /// At most this many triangles examined when a cut restarts inside a stroke (see
 /// `Scalpel::start_cut`).
 pub const RESTART_SEARCH: usize = 4096;
+
+/// Triangles reserved for cuts when a scalpel is made (at least; more on large meshes).
+const RESERVED_TRIANGLES: usize = 65_536;
 
 /// A cut that cannot leave its anchor is stuck (see `Scalpel::stuck`) once the blade is this
 /// many of the anchor's longest surface edges away.
@@ -173,6 +175,8 @@ struct Stroke {
     /// Whether the surface where the stroke first touched the mesh is closed (the one global
     /// scan of a stroke; a restart in the stroke is on the same surface and reuses it).
     surface_closed: bool,
+    /// The connected component (of the input, see [`Locator`]) the stroke started on.
+    component: Option<u32>,
 }
 
 /// A scalpel working on one mesh.
@@ -182,8 +186,13 @@ pub struct Scalpel {
     options: ScalpelOptions,
     tolerance: f64,
     stroke: Option<Stroke>,
-    /// Mesh state, segment count and fixed-vertex count before each committed stroke (undo).
-    undo: Vec<(Mark, usize, usize)>,
+    /// Mesh state, segment count and fixed-vertex count before each committed stroke, and the
+    /// component the stroke opened (left a boundary edge on) if it was closed before (undo).
+    undo: Vec<(Mark, usize, usize, Option<u32>)>,
+    /// Finds where a stroke starts without a pass over the mesh ([`super::locate`]).
+    pub(crate) locator: Locator,
+    /// Whether each input component (see [`Locator`]) is closed now.
+    pub(crate) closed_components: Vec<bool>,
     /// Every cut segment so far (rest pose), in cutting order.
     pub(crate) segments: Vec<CutSegment>,
     /// Vertices the opening must not move (groove bottoms).
@@ -221,8 +230,15 @@ impl Scalpel {
         let tolerance = options
             .max_surface_distance
             .unwrap_or(options.depth + 0.05 * mesh.bbox().diagonal());
+        let mut dyn_mesh = DynMesh::from_mesh(mesh);
+        let locator = Locator::build(mesh, &dyn_mesh);
+        // Room for the cuts of a session, so that no step pays for growing the arrays
+        // (notes/scalpel.md §2: one reallocation of a 2M-element array costs 26–37 ms).
+        dyn_mesh.reserve(RESERVED_TRIANGLES.max(mesh.triangles.len() / 16));
         Ok(Scalpel {
-            mesh: DynMesh::from_mesh(mesh),
+            closed_components: locator.closed_input(),
+            locator,
+            mesh: dyn_mesh,
             options,
             tolerance,
             stroke: None,
@@ -301,6 +317,7 @@ impl Scalpel {
             thickness: 0.0,
             last_end: None,
             surface_closed: false,
+            component: None,
         });
         let segments = self.segments.len();
         let fixed = self.fixed.len();
@@ -415,8 +432,21 @@ impl Scalpel {
         if let Some(g) = stroke.cut.as_ref().and_then(|c| c.groove.as_ref()) {
             self.fixed.extend_from_slice(&g.bottom_vertices);
         }
+        // A stroke that left a boundary edge on a closed component opened it (only the
+        // triangles it touched can have one: cost proportional to the stroke).
+        let opened = stroke.component.filter(|&c| {
+            self.closed_components.get(c as usize) == Some(&true)
+                && self
+                    .mesh
+                    .touched_since(stroke.mark)
+                    .iter()
+                    .any(|&t| (0..3).any(|k| !is_real(self.mesh.twin(3 * t + k))))
+        });
+        if let Some(c) = opened {
+            self.closed_components[c as usize] = false;
+        }
         self.undo
-            .push((stroke.mark, stroke.records.0, stroke.records.1));
+            .push((stroke.mark, stroke.records.0, stroke.records.1, opened));
         Ok(StrokeReport {
             triangles_cut: stroke.crossed,
             triangles_created: self
@@ -427,16 +457,38 @@ impl Scalpel {
         })
     }
 
+    /// One whole stroke through `samples` (begin, a step per sample, end): the strokes the
+    /// window and the command line replay without a tool in between (the layers below a
+    /// stroke). Atomic: the first refused sample is the error, with the stroke undone.
+    pub fn cut_stroke(&mut self, samples: &[DVec3]) -> Result<StrokeReport, ScalpelError> {
+        let Some((&first, rest)) = samples.split_first() else {
+            return Err(ScalpelError::NoStroke);
+        };
+        let result = self.begin_stroke(first).and_then(|_| {
+            for &q in rest {
+                self.step(q)?;
+            }
+            self.end_stroke()
+        });
+        if result.is_err() && self.stroke.is_some() {
+            self.undo_stroke();
+        }
+        result
+    }
+
     /// Undoes the last committed stroke (or the one in progress). Returns false when there is
     /// nothing to undo.
     pub fn undo_stroke(&mut self) -> bool {
-        let (mark, segments, fixed) = match self.stroke.take() {
-            Some(s) => (s.mark, s.records.0, s.records.1),
+        let (mark, segments, fixed, opened) = match self.stroke.take() {
+            Some(s) => (s.mark, s.records.0, s.records.1, None),
             None => match self.undo.pop() {
                 Some(u) => u,
                 None => return false,
             },
         };
+        if let Some(c) = opened {
+            self.closed_components[c as usize] = true;
+        }
         self.mesh.rollback(mark);
         self.segments.truncate(segments);
         self.fixed.truncate(fixed);

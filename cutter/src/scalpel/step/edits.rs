@@ -21,7 +21,13 @@ impl Scalpel {
         let found = match restart {
             Some(v) => closest_face_near(&self.mesh, v, q, RESTART_SEARCH),
             None if stroke.touched => None,
-            None => closest_face(&self.mesh, q),
+            None => self
+                .locator
+                .closest_face(&self.mesh, q)
+                .map(|(t, w, d, component)| {
+                    stroke.component = Some(component);
+                    (t, w, d)
+                }),
         };
         let (t, bary, dist) = match found {
             Some(f) => f,
@@ -40,7 +46,10 @@ impl Scalpel {
             });
         }
         if !stroke.touched {
-            stroke.surface_closed = self.component_closed(t);
+            stroke.surface_closed = stroke
+                .component
+                .and_then(|c| self.closed_components.get(c as usize).copied())
+                .unwrap_or_else(|| self.component_closed(t));
         }
         let groove_mode =
             self.options.depth > 0.0 && self.options.tool == Tool::Scalpel && stroke.surface_closed;

@@ -213,7 +213,9 @@ impl Scalpel {
         }
         let pv = self.mesh.pos(v);
         let hit = match near {
-            None => crate::scalpel::through::ray_first_hit(&self.mesh, pv, -n, v),
+            None => self
+                .locator
+                .far_side(&self.mesh, v, pv, -n, self.options.depth),
             Some(expected) => crate::scalpel::through::ray_hit_near(
                 &self.mesh,
                 v,
