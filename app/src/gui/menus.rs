@@ -243,6 +243,8 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         ui.menu_button("View", |ui| {
             actions.extend(super::view_menu::view_items_ui(ui, app));
             ui.separator();
+            super::metrics_panel::view_menu_items(ui, app);
+            ui.separator();
             let label = if app.cutters_hidden {
                 "Show Current Cutters"
             } else {
