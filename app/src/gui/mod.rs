@@ -21,6 +21,7 @@ pub mod camera_controls;
 pub mod compare_view;
 pub mod cut_view;
 pub mod cutter_panel;
+pub mod export_labels;
 pub mod file_browser;
 pub mod help;
 pub mod image_panel;
