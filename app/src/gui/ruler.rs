@@ -116,7 +116,7 @@ pub fn rulers_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
     ui.heading("Rulers");
     let mut active = app.ruler.active;
     if ui
-        .toggle_value(&mut active, "📏 Ruler tool")
+        .toggle_value(&mut active, "Ruler tool")
         .on_hover_text("Click two points on surfaces to measure the distance between them")
         .changed()
     {
@@ -134,7 +134,7 @@ pub fn rulers_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
             ui.label(format!("{}.", i + 1));
             ui.label(ruler.caption(app.scene.unit));
             if ui
-                .small_button("✕")
+                .small_button("Remove")
                 .on_hover_text("Remove this ruler")
                 .clicked()
             {
