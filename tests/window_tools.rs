@@ -19,7 +19,9 @@ use cutaway::gui::{CutawayApp, StartOptions};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::{DVec2, DVec3};
-use scene_files::{box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session};
+use scene_files::{
+    box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
+};
 
 fn no_adapter() -> Option<String> {
     let instance =
@@ -184,18 +186,35 @@ fn the_metrics_panel_shows_what_cutaway_metrics_prints_and_draws_the_closest_poi
     let mut h = harness(&dir, vec![session.clone()]);
     h.run_steps(2);
     settle(&mut h);
-    assert_eq!(h.state().scene.cutters.len(), 2, "{}", h.state().status.message);
-    let names: Vec<String> = h.state().scene.models.iter().map(|m| m.name.clone()).collect();
+    assert_eq!(
+        h.state().scene.cutters.len(),
+        2,
+        "{}",
+        h.state().status.message
+    );
+    let names: Vec<String> = h
+        .state()
+        .scene
+        .models
+        .iter()
+        .map(|m| m.name.clone())
+        .collect();
     let (cube, ball) = (names[0].clone(), names[1].clone());
 
     view_switch(&mut h, "Metrics");
-    assert!(h.state().metrics.open, "View → Metrics did not open the panel");
+    assert!(
+        h.state().metrics.open,
+        "View → Metrics did not open the panel"
+    );
     h.state_mut().metrics.focus = Some(cube.clone());
     h.state_mut().metrics.set_critical(&ball, true);
     h.run_steps(2);
     settle(&mut h);
     let app = h.state();
-    assert!(app.metrics.is_current(&app.scene), "the panel is not up to date");
+    assert!(
+        app.metrics.is_current(&app.scene),
+        "the panel is not up to date"
+    );
     let measured = match &app.metrics.shown {
         Some(Ok(m)) => m,
         Some(Err(e)) => panic!("measuring failed: {e}"),
@@ -232,7 +251,9 @@ fn the_metrics_panel_shows_what_cutaway_metrics_prints_and_draws_the_closest_poi
     // The numbers are on screen: the cube loses 125 + 45 mm³.
     assert!((measured.metrics.structures[0].removed_volume.unwrap() - 170.0).abs() < 1e-9);
     h.get_by_label("170.0");
-    let distance = measured.metrics.structures[1].min_distance.expect("distance");
+    let distance = measured.metrics.structures[1]
+        .min_distance
+        .expect("distance");
     assert!(distance > 0.5 && distance < 5.0, "distance {distance}");
     h.get_by_label(&format!("{distance:.1} mm"));
 
@@ -263,14 +284,20 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
     // Duplicate the cuts, then take the slot away from the copy.
     h.get_by_label("Duplicate").click();
     h.run_steps(2);
-    assert_eq!(cutaway::variants::names(&h.state().scene), ["current", "current 2"]);
+    assert_eq!(
+        cutaway::variants::names(&h.state().scene),
+        ["current", "current 2"]
+    );
     assert_eq!(h.state().scene.variants.active, 1);
     apply(&mut h, Action::RemoveCutter(1));
     assert_eq!(h.state().scene.cutters.len(), 1);
     // Rename the active variant through the name field.
     cutaway::gui::variants_panel::apply(h.state_mut(), VariantCommand::Rename("corner".into()));
     h.run_steps(2);
-    assert_eq!(cutaway::variants::names(&h.state().scene), ["current", "corner"]);
+    assert_eq!(
+        cutaway::variants::names(&h.state().scene),
+        ["current", "corner"]
+    );
 
     // Switch back by clicking the first variant: its two cutters return.
     h.get_by_label("current  (2 cutters)").click();
@@ -289,7 +316,10 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
     h.run_steps(2);
     h.get_by_label("Delete").click();
     h.run_steps(2);
-    assert_eq!(cutaway::variants::names(&h.state().scene), ["current", "corner"]);
+    assert_eq!(
+        cutaway::variants::names(&h.state().scene),
+        ["current", "corner"]
+    );
 
     // Saved in the session and read back.
     let saved = dir.join("variants.json");
@@ -309,7 +339,11 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
         None => panic!("nothing compared"),
     };
     assert_eq!(compared.images.len(), 2);
-    let volume = |k: usize| compared.variants[k].metrics.structures[0].removed_volume.unwrap();
+    let volume = |k: usize| {
+        compared.variants[k].metrics.structures[0]
+            .removed_volume
+            .unwrap()
+    };
     assert!((volume(0) - 170.0).abs() < 1e-9 && (volume(1) - 125.0).abs() < 1e-9);
     println!("compare view update: {:.1} ms (2 variants)", compared.ms);
     let differ = compared.images[0]
@@ -317,10 +351,16 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
         .zip(compared.images[1].pixels())
         .filter(|(a, b)| a != b)
         .count();
-    assert!(differ > 100, "the two variants look the same ({differ} pixels differ)");
+    assert!(
+        differ > 100,
+        "the two variants look the same ({differ} pixels differ)"
+    );
     let before = compared.images[0].clone();
     for shown in ["170.0 mm³", "125.0 mm³"] {
-        assert!(h.query_all_by_label(shown).count() > 0, "{shown} is not shown");
+        assert!(
+            h.query_all_by_label(shown).count() > 0,
+            "{shown} is not shown"
+        );
     }
     shot(&mut h, "compare-view");
 
@@ -337,14 +377,24 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
     }
     h.drop_at(centre + egui::vec2(60.0, 0.0));
     h.run_steps(3);
-    assert!((h.state().scene.camera.eye - eye).length() > 1e-6, "the drag did not orbit");
+    assert!(
+        (h.state().scene.camera.eye - eye).length() > 1e-6,
+        "the drag did not orbit"
+    );
     settle(&mut h);
     let after = match &h.state().compare.shown {
         Some(Ok(c)) => c.images[0].clone(),
         _ => panic!("compare failed after turning"),
     };
-    let changed = before.pixels().zip(after.pixels()).filter(|(a, b)| a != b).count();
-    assert!(changed > 100, "the viewports were not drawn again ({changed} pixels changed)");
+    let changed = before
+        .pixels()
+        .zip(after.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        changed > 100,
+        "the viewports were not drawn again ({changed} pixels changed)"
+    );
     shot(&mut h, "compare-view-turned");
 }
 
@@ -375,7 +425,11 @@ fn the_ruler_measures_a_cube_in_millimetres_and_is_saved() {
     let (a, b) = (DVec3::new(1.0, 0.0, 1.0), DVec3::new(9.0, 6.0, 10.0));
     let (pa, pb) = (screen_pos(&h, a), screen_pos(&h, b));
     click_at(&mut h, pa);
-    assert!(h.state().ruler.first.is_some(), "{}", h.state().status.message);
+    assert!(
+        h.state().ruler.first.is_some(),
+        "{}",
+        h.state().status.message
+    );
     click_at(&mut h, pb);
     let rulers = h.state().scene.rulers.clone();
     assert_eq!(rulers.len(), 1, "{}", h.state().status.message);
@@ -386,7 +440,10 @@ fn the_ruler_measures_a_cube_in_millimetres_and_is_saved() {
     let caption = format!("{expected:.1} mm");
     h.get_by_label(&caption);
     let image = shot(&mut h, "ruler");
-    assert!(count_colour(&h, &image, [255, 200, 0]) > 50, "the ruler is not drawn");
+    assert!(
+        count_colour(&h, &image, [255, 200, 0]) > 50,
+        "the ruler is not drawn"
+    );
 
     // Kept in the session; a removed ruler is an undo step.
     let saved = dir.join("ruler.json");
@@ -449,7 +506,12 @@ fn export_image_with_labels_writes_the_labelled_picture() {
             .filter(|p| p[0] < 40 && p[1] < 40 && p[2] < 45)
             .count()
     };
-    assert!(ink(&b) > ink(&a) + 200, "no annotations: {} vs {}", ink(&b), ink(&a));
+    assert!(
+        ink(&b) > ink(&a) + 200,
+        "no annotations: {} vs {}",
+        ink(&b),
+        ink(&a)
+    );
 
     // The same choice through the shared code: both structures labelled, then the ball off.
     let scene = h.state().scene.clone();

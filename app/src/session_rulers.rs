@@ -88,7 +88,13 @@ mod tests {
         }];
         let e = from_entries(&bad).unwrap_err().to_string();
         assert!(e.starts_with("ruler 0: b"), "{e}");
-        let many = vec![RulerEntry { a: [0.0; 3], b: [1.0; 3] }; MAX_RULERS + 1];
+        let many = vec![
+            RulerEntry {
+                a: [0.0; 3],
+                b: [1.0; 3]
+            };
+            MAX_RULERS + 1
+        ];
         assert!(check(&many).unwrap_err().to_string().contains("limit"));
     }
 }

@@ -48,8 +48,8 @@ pub fn render_annotated(
     choice: &AnnotationChoice,
 ) -> anyhow::Result<(RgbaImage, Option<Annotations>)> {
     let mut renderer = HeadlessRenderer::new()?;
-    let preview =
-        (render_mode(scene, options) == ViewMode::Preview).then(|| Arc::new(preview_geometry(scene)));
+    let preview = (render_mode(scene, options) == ViewMode::Preview)
+        .then(|| Arc::new(preview_geometry(scene)));
     let mut image =
         crate::render::render_with_preview(&mut renderer, scene, options, preview.clone())?;
     if !choice.any() {

@@ -940,7 +940,8 @@ impl CutawayApp {
 
     fn export_image_to(&mut self, ctx: &egui::Context, path: PathBuf) {
         let scene = self.scene.clone();
-        let preview = self.mode == Mode::Preview;
+        // Camera and Scalpel modes show the cut too: the picture shows it as well.
+        let preview = super::cut_view::shows_cut(self.mode) && !self.scene.cutters.is_empty();
         let settings = self.export_image.clone();
         self.spawn(
             ctx,

@@ -158,7 +158,12 @@ fn compare_one(
         worker.cache[at].metrics = Some((options.clone(), camera, metrics));
     }
     let geometry = worker.cache[at].geometry.clone();
-    let metrics = worker.cache[at].metrics.as_ref().expect("measured").2.clone();
+    let metrics = worker.cache[at]
+        .metrics
+        .as_ref()
+        .expect("measured")
+        .2
+        .clone();
     if worker.renderer.is_none() {
         worker.renderer = Some(HeadlessRenderer::new()?);
     }
@@ -223,7 +228,9 @@ pub fn update(app: &mut CutawayApp, ctx: &egui::Context) {
         move || repaint.request_repaint(),
         move |progress| {
             let started = Instant::now();
-            let mut worker = worker.lock().map_err(|_| anyhow::anyhow!("compare worker"))?;
+            let mut worker = worker
+                .lock()
+                .map_err(|_| anyhow::anyhow!("compare worker"))?;
             let mut images = Vec::new();
             let mut variants = Vec::new();
             for (k, name) in names.iter().enumerate() {
@@ -250,6 +257,16 @@ pub fn update(app: &mut CutawayApp, ctx: &egui::Context) {
 /// The view, in place of the 3D view: the viewports in a row, each with its name and its column
 /// of the metrics table under it.
 pub fn compare_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
+    egui::Frame::NONE
+        .fill(ui.visuals().panel_fill)
+        .inner_margin(egui::Margin::same(8))
+        .show(ui, |ui| {
+            ui.set_min_size(ui.available_size());
+            compare_contents(ui, app);
+        });
+}
+
+fn compare_contents(ui: &mut egui::Ui, app: &mut CutawayApp) {
     let names = crate::variants::names(&app.scene);
     let shown = names.len().min(MAX_SHOWN);
     ui.horizontal(|ui| {
@@ -274,17 +291,14 @@ pub fn compare_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
     }
     let ppp = ui.ctx().pixels_per_point();
     let gap = 8.0;
-    let table_height = 170.0;
-    let width = ((ui.available_width() - gap * (shown as f32 - 1.0)) / shown as f32).max(32.0);
-    let height = (ui.available_height() - table_height - 24.0).max(32.0);
-    app.compare.tile = [
-        (width * ppp).round() as u32,
-        (height * ppp).round() as u32,
-    ];
     let rows = match &app.compare.shown {
         Some(Ok(c)) => crate::compare::table::rows(&c.variants),
         _ => Vec::new(),
     };
+    let table_height = 22.0 * rows.len().max(5) as f32 + 16.0;
+    let width = ((ui.available_width() - gap * (shown as f32 - 1.0)) / shown as f32).max(32.0);
+    let height = (ui.available_height() - table_height - 24.0).max(32.0);
+    app.compare.tile = [(width * ppp).round() as u32, (height * ppp).round() as u32];
     if let Some(Err(e)) = &app.compare.shown {
         ui.colored_label(ui.visuals().error_fg_color, e.clone());
     }
@@ -311,19 +325,23 @@ pub fn compare_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
                         );
                     }
                     None => {
-                        ui.painter().rect_filled(rect, 0.0, egui::Color32::from_gray(60));
+                        ui.painter()
+                            .rect_filled(rect, 0.0, egui::Color32::from_gray(60));
                     }
                 }
+                ui.painter().rect_stroke(
+                    rect,
+                    0.0,
+                    ui.visuals().widgets.noninteractive.bg_stroke,
+                    egui::StrokeKind::Outside,
+                );
                 camera_input(ui, &response, app, ppp as f64);
                 egui::Grid::new(("compare-metrics", k))
                     .striped(true)
                     .show(ui, |ui| {
                         for row in &rows {
-                            ui.label(egui::RichText::new(row.label.trim()).small());
-                            ui.label(
-                                egui::RichText::new(row.cells.get(k).cloned().unwrap_or_default())
-                                    .small(),
-                            );
+                            ui.label(row.label.trim());
+                            ui.label(row.cells.get(k).cloned().unwrap_or_default());
                             ui.end_row();
                         }
                     });

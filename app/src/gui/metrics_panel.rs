@@ -229,7 +229,11 @@ pub fn metrics_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
         ui.label("Cut");
         ui.selectable_value(&mut panel.scope, Scope::Scene, "whole scene");
         for i in 0..cutters {
-            ui.selectable_value(&mut panel.scope, Scope::Cutter(i), format!("cutter {}", i + 1));
+            ui.selectable_value(
+                &mut panel.scope,
+                Scope::Cutter(i),
+                format!("cutter {}", i + 1),
+            );
         }
     });
     ui.separator();
@@ -325,19 +329,27 @@ fn cutter_table(ui: &mut egui::Ui, metrics: &Metrics, index: usize) {
         ui.label("This cutter removes nothing.");
         return;
     };
-    egui::Grid::new("metrics-cutter").striped(true).show(ui, |ui| {
-        for (what, value) in [
-            ("structure", c.target.clone()),
-            ("removed volume", format!("{} mm³", number(c.removed_volume))),
-            ("removed area", format!("{} mm²", number(Some(c.removed_area)))),
-            ("wall area", format!("{} mm²", number(Some(c.wall_area)))),
-            ("cut depth", format!("{:.1} mm", c.depth)),
-        ] {
-            ui.label(what);
-            ui.label(value);
-            ui.end_row();
-        }
-    });
+    egui::Grid::new("metrics-cutter")
+        .striped(true)
+        .show(ui, |ui| {
+            for (what, value) in [
+                ("structure", c.target.clone()),
+                (
+                    "removed volume",
+                    format!("{} mm³", number(c.removed_volume)),
+                ),
+                (
+                    "removed area",
+                    format!("{} mm²", number(Some(c.removed_area))),
+                ),
+                ("wall area", format!("{} mm²", number(Some(c.wall_area)))),
+                ("cut depth", format!("{:.1} mm", c.depth)),
+            ] {
+                ui.label(what);
+                ui.label(value);
+                ui.end_row();
+            }
+        });
 }
 
 /// Draws, for each critical structure, its closest point and the nearest wall point joined by a
@@ -353,10 +365,7 @@ pub fn paint_closest_points(painter: &egui::Painter, rect: egui::Rect, app: &Cut
     let ppp = painter.ctx().pixels_per_point() as f64;
     let size = app.viewport.size_px;
     let to_screen = |p: [f64; 3]| -> Option<egui::Pos2> {
-        let px: DVec2 = app
-            .scene
-            .camera
-            .project(size, glam::DVec3::from_array(p))?;
+        let px: DVec2 = app.scene.camera.project(size, glam::DVec3::from_array(p))?;
         Some(rect.min + egui::vec2((px.x / ppp) as f32, (px.y / ppp) as f32))
     };
     let colour = egui::Color32::from_rgb(230, 30, 120);
@@ -374,13 +383,18 @@ pub fn paint_closest_points(painter: &egui::Painter, rect: egui::Rect, app: &Cut
         painter.line_segment([a, b], egui::Stroke::new(2.0, colour));
         painter.circle(a, 5.0, colour, egui::Stroke::new(1.5, egui::Color32::WHITE));
         painter.circle_filled(b, 3.5, colour);
-        painter.text(
-            a + egui::vec2(8.0, -8.0),
-            egui::Align2::LEFT_BOTTOM,
+        let galley = painter.layout_no_wrap(
             format!("{}: {d:.1} mm", s.name),
             egui::FontId::proportional(13.0),
+            egui::Color32::WHITE,
+        );
+        let at = a + egui::vec2(8.0, -8.0 - galley.size().y);
+        painter.rect_filled(
+            egui::Rect::from_min_size(at, galley.size()).expand(3.0),
+            3.0,
             colour,
         );
+        painter.galley(at, galley, egui::Color32::WHITE);
     }
 }
 
@@ -391,7 +405,11 @@ pub fn side_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
         .show(ui, |ui| {
             super::variants_panel::variants_ui(ui, app);
             ui.separator();
-            metrics_panel_ui(ui, app);
+            if app.metrics.open {
+                metrics_panel_ui(ui, app);
+            } else if ui.button("Show Metrics").clicked() {
+                app.metrics.open = true;
+            }
             ui.separator();
             super::ruler::rulers_ui(ui, app);
         });

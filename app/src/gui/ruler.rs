@@ -24,10 +24,7 @@ pub struct RulerTool {
 
 /// The surface point under pixel `px` of the 3D view, if any.
 pub fn surface_point(app: &mut CutawayApp, px: DVec2) -> Option<DVec3> {
-    let ray = app
-        .scene
-        .camera
-        .ray_through_pixel(app.viewport.size_px, px);
+    let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, px);
     let (_, t) = app.viewport.picks.pick(&app.scene, &ray)?;
     Some(ray.at(t))
 }
@@ -92,11 +89,8 @@ pub fn paint_rulers(painter: &egui::Painter, rect: egui::Rect, app: &CutawayApp)
         painter.circle(b, 4.0, ink, outline);
         let middle = a + (b - a) * 0.5;
         let text = ruler.caption(app.scene.unit);
-        let galley = painter.layout_no_wrap(
-            text,
-            egui::FontId::proportional(14.0),
-            egui::Color32::BLACK,
-        );
+        let galley =
+            painter.layout_no_wrap(text, egui::FontId::proportional(14.0), egui::Color32::BLACK);
         let at = middle + egui::vec2(6.0, -6.0 - galley.size().y);
         let back = egui::Rect::from_min_size(at, galley.size()).expand(3.0);
         painter.rect_filled(back, 3.0, ink);

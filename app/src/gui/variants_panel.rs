@@ -26,7 +26,9 @@ pub fn apply(app: &mut CutawayApp, command: VariantCommand) {
     let before = app.scene.clone();
     let active = app.scene.variants.active;
     let result = match &command {
-        VariantCommand::Switch(k) => variants::switch(&mut app.scene, *k).map(|()| "switch variant"),
+        VariantCommand::Switch(k) => {
+            variants::switch(&mut app.scene, *k).map(|()| "switch variant")
+        }
         VariantCommand::New(name) => variants::create(&mut app.scene, name).map(|_| {
             app.scene.cutters.clear();
             "new variant"
@@ -37,7 +39,9 @@ pub fn apply(app: &mut CutawayApp, command: VariantCommand) {
         VariantCommand::Rename(name) => {
             variants::rename(&mut app.scene, active, name).map(|()| "rename variant")
         }
-        VariantCommand::Delete => variants::remove(&mut app.scene, active).map(|()| "delete variant"),
+        VariantCommand::Delete => {
+            variants::remove(&mut app.scene, active).map(|()| "delete variant")
+        }
     };
     match result {
         Ok(label) => {
@@ -75,9 +79,7 @@ pub fn variants_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
     let active = app.scene.variants.active;
     let mut commands = Vec::new();
     for (k, name) in names.iter().enumerate() {
-        let cutters = variants::all(&app.scene)
-            .get(k)
-            .map_or(0, |(_, c)| c.len());
+        let cutters = variants::all(&app.scene).get(k).map_or(0, |(_, c)| c.len());
         if ui
             .selectable_label(k == active, format!("{name}  ({cutters} cutters)"))
             .on_hover_text("Click to work on this variant")
