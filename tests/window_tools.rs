@@ -453,6 +453,27 @@ fn the_ruler_measures_a_cube_in_millimetres_and_is_saved() {
     let reread = cutaway::session::load(&saved).unwrap();
     assert_eq!(reread.rulers.len(), 1);
     assert!((reread.rulers[0].length() - rulers[0].length()).abs() < 1e-12);
+    // `cutaway render` draws saved rulers too.
+    let png = dir.join("ruler-render.png");
+    let output = Command::new(env!("CARGO_BIN_EXE_cutaway"))
+        .args(["render"])
+        .arg(&saved)
+        .arg("--out")
+        .arg(&png)
+        .args(["--width", "480", "--height", "360"])
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let rendered = image::open(&png).unwrap().to_rgba8();
+    let yellow = rendered
+        .pixels()
+        .filter(|p| p[0] > 220 && p[1] > 170 && p[1] < 230 && p[2] < 60)
+        .count();
+    assert!(yellow > 50, "render drew no ruler ({yellow} pixels)");
     h.get_by_label("Remove").click();
     h.run_steps(2);
     assert!(h.state().scene.rulers.is_empty());

@@ -251,7 +251,7 @@ pub fn annotate_with(
 }
 
 /// Blends `color` over the rectangle.
-fn fill_rect(image: &mut RgbaImage, rect: Rect, color: [u8; 4]) {
+pub(super) fn fill_rect(image: &mut RgbaImage, rect: Rect, color: [u8; 4]) {
     let x0 = rect.x.max(0.0).round() as u32;
     let y0 = rect.y.max(0.0).round() as u32;
     let x1 = ((rect.x + rect.w).round().max(0.0) as u32).min(image.width());
@@ -269,7 +269,13 @@ fn coverage(d: f32) -> f32 {
 }
 
 /// A segment `width` pixels wide from `a` to `b`, anti-aliased.
-fn line_segment(image: &mut RgbaImage, a: [f32; 2], b: [f32; 2], width: f32, color: [u8; 4]) {
+pub(super) fn line_segment(
+    image: &mut RgbaImage,
+    a: [f32; 2],
+    b: [f32; 2],
+    width: f32,
+    color: [u8; 4],
+) {
     let half = width * 0.5;
     let x0 = (a[0].min(b[0]) - half - 1.0).floor().max(0.0) as u32;
     let y0 = (a[1].min(b[1]) - half - 1.0).floor().max(0.0) as u32;
@@ -292,7 +298,7 @@ fn line_segment(image: &mut RgbaImage, a: [f32; 2], b: [f32; 2], width: f32, col
 }
 
 /// A filled disc, anti-aliased.
-fn disc(image: &mut RgbaImage, centre: [f32; 2], radius: f32, color: [u8; 4]) {
+pub(super) fn disc(image: &mut RgbaImage, centre: [f32; 2], radius: f32, color: [u8; 4]) {
     line_segment(image, centre, centre, radius * 2.0, color);
 }
 

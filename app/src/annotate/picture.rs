@@ -40,7 +40,7 @@ impl AnnotationChoice {
     }
 }
 
-/// Renders `scene` with `options` and draws `choice` over it; returns the picture and what was
+/// Renders `scene` with `options` and draws its rulers and `choice` over it; returns the picture and what was
 /// drawn (`None` when nothing was asked for).
 pub fn render_annotated(
     scene: &Scene,
@@ -52,6 +52,7 @@ pub fn render_annotated(
         .then(|| Arc::new(preview_geometry(scene)));
     let mut image =
         crate::render::render_with_preview(&mut renderer, scene, options, preview.clone())?;
+    super::rulers::draw_rulers(&mut image, scene);
     if !choice.any() {
         return Ok((image, None));
     }
