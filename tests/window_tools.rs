@@ -482,6 +482,37 @@ fn the_ruler_measures_a_cube_in_millimetres_and_is_saved() {
 }
 
 #[test]
+fn a_ruler_end_lands_on_the_cut_wall_seen_through_the_opening() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = scratch("window-ruler-cut");
+    let session = cube_and_ball(&dir);
+    let mut h = harness(&dir, vec![session]);
+    h.run_steps(2);
+    settle(&mut h);
+    assert!(h.state().viewport.preview.is_some(), "the cut is not shown");
+    view_switch(&mut h, "Ruler");
+    // The corner cut opens the cube's front (y = 0) for x, z > 5: through it the camera sees the
+    // notch's back wall y = 5. Without the cut the ray would stop on the front face.
+    let wall = DVec3::new(8.0, 5.0, 8.0);
+    let at = screen_pos(&h, wall);
+    click_at(&mut h, at);
+    let first = h.state().ruler.first.expect("no surface picked");
+    assert!(
+        (first - wall).length() < 0.01,
+        "picked {first} instead of the wall {wall}"
+    );
+    let front = DVec3::new(2.0, 0.0, 2.0);
+    let at = screen_pos(&h, front);
+    click_at(&mut h, at);
+    let ruler = h.state().scene.rulers[0];
+    assert!((ruler.length() - (front - wall).length()).abs() < 0.02);
+    shot(&mut h, "ruler-into-cut");
+}
+
+#[test]
 fn export_image_with_labels_writes_the_labelled_picture() {
     if let Some(reason) = no_adapter() {
         println!("skipped: {reason}");

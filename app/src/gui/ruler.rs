@@ -4,8 +4,8 @@
 //! Drags keep turning the camera, so both ends can be picked from the best side. Adding and
 //! removing rulers are undo steps.
 //!
-//! Points are picked on the structures as loaded (the ray's first hit on a visible model,
-//! through [`crate::scene_pick`]), the surface the user sees outside the cut.
+//! Points are picked on the scene as the view draws it ([`crate::ruler::first_hit`]): where the
+//! cut is shown, on its walls and kept parts, so a ruler can measure into the opening.
 
 use glam::{DVec2, DVec3};
 
@@ -22,11 +22,22 @@ pub struct RulerTool {
     pub first: Option<DVec3>,
 }
 
-/// The surface point under pixel `px` of the 3D view, if any.
+/// The surface point under pixel `px` of the 3D view as drawn (the cut's walls and kept parts
+/// where the view shows the cut), if any.
 pub fn surface_point(app: &mut CutawayApp, px: DVec2) -> Option<DVec3> {
     let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, px);
-    let (_, t) = app.viewport.picks.pick(&app.scene, &ray)?;
-    Some(ray.at(t))
+    let current =
+        app.viewport.preview_key.as_ref() == Some(&super::bridge::PreviewKey::of(&app.scene));
+    let preview =
+        (super::cut_view::shows_cut(app.mode) && current && !app.scene.cutters.is_empty())
+            .then(|| app.viewport.preview.clone())
+            .flatten();
+    crate::ruler::first_hit(
+        &mut app.viewport.picks,
+        &app.scene,
+        preview.as_deref(),
+        &ray,
+    )
 }
 
 /// Places a ruler end at the clicked pixel `px`: the first click starts a ruler, the second
