@@ -396,6 +396,10 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
         "the viewports were not drawn again ({changed} pixels changed)"
     );
     shot(&mut h, "compare-view-turned");
+    // Closing gives the pictures and the renderer back; the 3D view returns.
+    h.get_by_label("Close").click();
+    h.run_steps(3);
+    assert!(!h.state().compare.open && h.state().compare.shown.is_none());
 }
 
 #[test]

@@ -204,6 +204,15 @@ pub fn update(app: &mut CutawayApp, ctx: &egui::Context) {
         view.shown_request = Some(request.clone());
         view.job = None;
     }
+    if !view.open && view.job.is_none() && view.shown.is_some() {
+        // Closed: give back the renderer's device, the cached cuts and the pictures.
+        if let Ok(mut worker) = view.worker.try_lock() {
+            *worker = Worker::default();
+        }
+        view.textures.clear();
+        view.shown = None;
+        view.shown_request = None;
+    }
     if !view.open
         || view.job.is_some()
         || view.tile[0] < 16

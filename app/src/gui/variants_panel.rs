@@ -46,8 +46,12 @@ pub fn apply(app: &mut CutawayApp, command: VariantCommand) {
     match result {
         Ok(label) => {
             if app.scene.cutters != before.cutters {
-                // The editor's cutter belongs to the variant left.
+                // The editor's cutter, the hidden cutters and the cutter shown in the Cutter
+                // panel belong to the variant left.
                 app.viewport.editor.finish();
+                app.cutters_hidden = false;
+                app.hidden_cutters = 0;
+                app.selected_cutter = 0;
             }
             app.record(label, before);
             let name = variants::names(&app.scene)
