@@ -584,3 +584,99 @@ fn export_image_with_labels_writes_the_labelled_picture() {
         cutaway::annotate::picture::render_annotated(&scene, &options, &without_ball).unwrap();
     assert_eq!(drawn.expect("annotations").labels.len(), 1);
 }
+
+/// A box cutter through `min`..`max` on model `target`: three planes across x.
+fn box_cutter(target: usize, min: DVec3, max: DVec3) -> cutaway::scene::SceneCutter {
+    let plane = |x: f64| {
+        [
+            DVec3::new(x, min.y, max.z),
+            DVec3::new(x, max.y, max.z),
+            DVec3::new(x, max.y, min.z),
+            DVec3::new(x, min.y, min.z),
+        ]
+    };
+    cutaway::scene::SceneCutter {
+        target,
+        kind: cutaway::scene::CutKind::Curving,
+        smooth: false,
+        planes: vec![plane(min.x), plane((min.x + max.x) * 0.5), plane(max.x)],
+        views: Default::default(),
+    }
+}
+
+/// Cuts the skin of the window's scene with a box from outside its front to its middle, marks
+/// `focus` and `critical` in the Metrics panel, and returns the panel's measurement time after
+/// checking its numbers against a measurement of the same scene.
+fn measure_real_scene(h: &mut Harness<'_, CutawayApp>, name: &str, focus: &str, critical: &str) {
+    let find = |h: &Harness<'_, CutawayApp>, part: &str| {
+        h.state()
+            .scene
+            .models
+            .iter()
+            .position(|m| m.name.contains(part))
+            .unwrap_or_else(|| panic!("{name}: no structure like '{part}'"))
+    };
+    let skin = find(h, "skin");
+    let (focus, critical) = (find(h, focus), find(h, critical));
+    {
+        let app = h.state_mut();
+        let b = app.scene.models[skin].mesh.bbox();
+        let (c, e) = (b.center(), b.max - b.min);
+        // From outside the face (the patient's anterior, along ±y) to the middle.
+        let (y0, y1) = if app.scene.orientation.anterior.y >= 0.0 {
+            (c.y, b.max.y + e.y * 0.1)
+        } else {
+            (b.min.y - e.y * 0.1, c.y)
+        };
+        let min = DVec3::new(c.x - e.x / 6.0, y0, c.z - e.z / 6.0);
+        let max = DVec3::new(c.x + e.x / 6.0, y1, c.z + e.z / 6.0);
+        app.scene.cutters = vec![box_cutter(skin, min, max)];
+        app.metrics.open = true;
+        app.metrics.focus = Some(app.scene.models[focus].name.clone());
+        let critical = app.scene.models[critical].name.clone();
+        app.metrics.set_critical(&critical, true);
+    }
+    h.run_steps(2);
+    settle(h);
+    let app = h.state();
+    assert!(app.metrics.is_current(&app.scene));
+    let measured = match &app.metrics.shown {
+        Some(Ok(m)) => m,
+        other => panic!("{name}: {:?}", other.as_ref().map(|r| r.as_ref().err())),
+    };
+    let again = cutaway::metrics::measure(&app.scene, &app.metrics.options()).unwrap();
+    assert_eq!(
+        measured.metrics, again,
+        "{name}: the panel differs from a fresh measurement"
+    );
+    let removed: f64 = measured
+        .metrics
+        .structures
+        .iter()
+        .filter_map(|s| s.removed_volume)
+        .sum();
+    assert!(removed > 0.0, "{name}: the box removed nothing");
+    println!(
+        "{name}: metrics panel update {:.0} ms in the window ({} structures, removed {removed:.0} mm³)",
+        measured.ms,
+        app.scene.models.len()
+    );
+}
+
+#[test]
+fn the_metrics_panel_measures_cuts_of_the_spl_head_and_the_knee() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = scratch("window-metrics-real");
+    let mut h = harness(&dir, Vec::new());
+    h.run_steps(2);
+    settle(&mut h);
+    measure_real_scene(&mut h, "SPL head", "left lateral ventricle", "optic chiasm");
+    shot(&mut h, "metrics-spl-head");
+    apply(&mut h, Action::OpenExample("knee".into()));
+    settle(&mut h);
+    measure_real_scene(&mut h, "knee", "femur", "popliteal");
+    shot(&mut h, "metrics-knee");
+}

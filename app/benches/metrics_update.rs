@@ -1,6 +1,6 @@
 //! How long the window's Metrics panel takes to update after a drag is released: one
 //! [`cutaway::metrics::measure`] (the code `cutaway metrics` runs) on the embedded knee and on the
-//! SPL head atlas, each cut by a box through its skin, with a focus structure (exposure from the
+//! SPL head atlas, each cut by a box from the front of its skin to its middle, with a focus structure (exposure from the
 //! camera) and one critical structure. The peer is the Preview cut of the same scene
 //! ([`cutaway::cutaway_geometry::preview_geometry`]), which the window computes anyway: the
 //! ratio says what measuring costs on top of cutting.
@@ -33,8 +33,8 @@ fn box_cutter(target: usize, min: DVec3, max: DVec3) -> SceneCutter {
     }
 }
 
-/// A scene of `models` cut by a box reaching from outside the front (−y) of the skin to its
-/// middle, a third of its width and height, seen from the front.
+/// A scene of `models` cut by a box reaching from outside the front of the skin to its middle, a
+/// third of its width and height, seen from the front.
 fn cut_scene(models: Vec<cutaway::io::Model>) -> Scene {
     let mut scene = Scene::default();
     for (i, model) in models.into_iter().enumerate() {
@@ -48,10 +48,19 @@ fn cut_scene(models: Vec<cutaway::io::Model>) -> Scene {
         .expect("a skin");
     let b = scene.models[skin].mesh.bbox();
     let (c, e) = (b.center(), b.max - b.min);
-    let min = DVec3::new(c.x - e.x / 6.0, b.min.y - e.y * 0.1, c.z - e.z / 6.0);
-    let max = DVec3::new(c.x + e.x / 6.0, c.y, c.z + e.z / 6.0);
+    // The window's guess of the patient's axes: the box reaches from outside the front (anterior,
+    // along ±y) to the middle, and the camera looks at the front.
+    scene.orientation = cutaway::view::Orientation::guess(&scene.bbox(), false);
+    let front = scene.orientation.anterior.y.signum();
+    let (y0, y1) = if front >= 0.0 {
+        (c.y, b.max.y + e.y * 0.1)
+    } else {
+        (b.min.y - e.y * 0.1, c.y)
+    };
+    let min = DVec3::new(c.x - e.x / 6.0, y0, c.z - e.z / 6.0);
+    let max = DVec3::new(c.x + e.x / 6.0, y1, c.z + e.z / 6.0);
     scene.cutters.push(box_cutter(skin, min, max));
-    let (toward_eye, up) = (DVec3::NEG_Y, DVec3::Z);
+    let (toward_eye, up) = (DVec3::Y * front, DVec3::Z);
     scene.camera = cutter::Camera::framing(&b, toward_eye, up, scene.camera.fov_y_deg);
     scene
 }
