@@ -323,6 +323,8 @@ pub struct Scene {
     pub image: Option<crate::intensity::ImageLayer>,
     /// Named cutter sets; `cutters` are those of the active one ([`crate::variants`]).
     pub variants: crate::variants::Variants,
+    /// Distances measured between surface points ([`crate::ruler`]).
+    pub rulers: Vec<crate::ruler::Ruler>,
 }
 
 impl Default for Scene {
@@ -341,6 +343,7 @@ impl Default for Scene {
             unit: Default::default(),
             image: None,
             variants: crate::variants::Variants::default(),
+            rulers: Vec::new(),
         }
     }
 }
@@ -400,7 +403,14 @@ impl Scene {
             unit: _,
             image,
             variants: _,
+            rulers,
         } = self;
+        if let Some(i) = rulers
+            .iter()
+            .position(|r| !(r.a.is_finite() && r.b.is_finite()))
+        {
+            return Err(format!("ruler {i}: an end is not finite"));
+        }
         if let Some(layer) = image {
             let w = layer.window;
             if !(w.level.is_finite() && w.width.is_finite() && w.width > 0.0) {

@@ -77,6 +77,9 @@ pub struct SessionFile {
     /// Index into `variants` of the variant `cutters` belong to.
     #[serde(default, skip_serializing_if = "crate::session_variants::is_zero")]
     pub active_variant: usize,
+    /// Measured distances ([`crate::session_rulers`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub rulers: Vec<crate::session_rulers::RulerEntry>,
 }
 
 /// `orientation`: world directions of the patient's superior and anterior (unit, orthogonal).
@@ -319,6 +322,7 @@ pub fn scene_from_file(
         None => crate::view::Orientation::guess(&scene.bbox(), false),
     };
     scene.variants = crate::session_variants::from_entries(&file.variants, file.active_variant)?;
+    scene.rulers = crate::session_rulers::from_entries(&file.rulers)?;
     scene.camera = match file.camera {
         Some(c) => Camera {
             eye: DVec3::from_array(c.eye),
@@ -401,6 +405,7 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
             .map(|layer| crate::session_image::entry(layer, folder)),
         variants,
         active_variant,
+        rulers: crate::session_rulers::entries(&scene.rulers),
     }
 }
 

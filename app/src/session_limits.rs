@@ -46,6 +46,7 @@ pub fn check(file: &SessionFile) -> anyhow::Result<()> {
         );
     }
     check_cutters(&file.cutters, "")?;
+    crate::session_rulers::check(&file.rulers)?;
     if file.variants.len() > MAX_VARIANTS {
         anyhow::bail!(
             "variants: {} variants, more than the limit of {MAX_VARIANTS}",

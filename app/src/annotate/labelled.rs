@@ -62,6 +62,22 @@ fn text_px(image: &RgbaImage) -> f32 {
     (image.height().min(image.width()) as f32 / 45.0).clamp(11.0, 28.0)
 }
 
+/// Which of the scale bar and the orientation marker to draw besides the labels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Extras {
+    pub scale_bar: bool,
+    pub marker: bool,
+}
+
+impl Default for Extras {
+    fn default() -> Extras {
+        Extras {
+            scale_bar: true,
+            marker: true,
+        }
+    }
+}
+
 /// Draws labels for `models`, the scale bar and the orientation marker over `image`, a picture
 /// of `scene` drawn with `preview` (the cut parts, or `None` for whole models).
 pub fn annotate(
@@ -69,6 +85,18 @@ pub fn annotate(
     scene: &Scene,
     preview: Option<&PreviewGeometry>,
     models: &[usize],
+) -> Annotations {
+    annotate_with(image, scene, preview, models, Extras::default())
+}
+
+/// [`annotate`] drawing the scale bar and the marker only where `extras` asks (the window's
+/// export dialog offers each).
+pub fn annotate_with(
+    image: &mut RgbaImage,
+    scene: &Scene,
+    preview: Option<&PreviewGeometry>,
+    models: &[usize],
+    extras: Extras,
 ) -> Annotations {
     let size = [image.width(), image.height()];
     let px = text_px(image);
@@ -129,7 +157,7 @@ pub fn annotate(
         );
     }
     // Scale bar, bottom right: the bar over its caption.
-    let bar = scale_bar(&scene.camera, size[1], size[0] as f64 * 0.25);
+    let bar = scale_bar(&scene.camera, size[1], size[0] as f64 * 0.25).filter(|_| extras.scale_bar);
     let mut scale_bar_at = None;
     if let Some(bar) = bar {
         let text = caption(&bar);
@@ -175,7 +203,11 @@ pub fn annotate(
         margin + marker_arm + px * 0.6,
         size[1] as f32 - margin - marker_arm - px * 0.6,
     ];
-    let mut axes = screen_axes(&scene.camera, &scene.orientation);
+    let mut axes = if extras.marker {
+        screen_axes(&scene.camera, &scene.orientation).to_vec()
+    } else {
+        Vec::new()
+    };
     axes.sort_by(|a, b| a.toward_viewer.total_cmp(&b.toward_viewer));
     let colour = |letter: char| match letter {
         'R' => [200, 40, 40, 255],
@@ -219,7 +251,7 @@ pub fn annotate(
 }
 
 /// Blends `color` over the rectangle.
-fn fill_rect(image: &mut RgbaImage, rect: Rect, color: [u8; 4]) {
+pub(super) fn fill_rect(image: &mut RgbaImage, rect: Rect, color: [u8; 4]) {
     let x0 = rect.x.max(0.0).round() as u32;
     let y0 = rect.y.max(0.0).round() as u32;
     let x1 = ((rect.x + rect.w).round().max(0.0) as u32).min(image.width());
@@ -237,7 +269,13 @@ fn coverage(d: f32) -> f32 {
 }
 
 /// A segment `width` pixels wide from `a` to `b`, anti-aliased.
-fn line_segment(image: &mut RgbaImage, a: [f32; 2], b: [f32; 2], width: f32, color: [u8; 4]) {
+pub(super) fn line_segment(
+    image: &mut RgbaImage,
+    a: [f32; 2],
+    b: [f32; 2],
+    width: f32,
+    color: [u8; 4],
+) {
     let half = width * 0.5;
     let x0 = (a[0].min(b[0]) - half - 1.0).floor().max(0.0) as u32;
     let y0 = (a[1].min(b[1]) - half - 1.0).floor().max(0.0) as u32;
@@ -260,7 +298,7 @@ fn line_segment(image: &mut RgbaImage, a: [f32; 2], b: [f32; 2], width: f32, col
 }
 
 /// A filled disc, anti-aliased.
-fn disc(image: &mut RgbaImage, centre: [f32; 2], radius: f32, color: [u8; 4]) {
+pub(super) fn disc(image: &mut RgbaImage, centre: [f32; 2], radius: f32, color: [u8; 4]) {
     line_segment(image, centre, centre, radius * 2.0, color);
 }
 

@@ -2,11 +2,14 @@
 //! the same: text from a real font renderer ([`text`]), structure labels placed without overlap
 //! ([`layout`]) with leaders ending where the structure is seen ([`visible`]), the scale bar
 //! ([`scale_bar`]) and the orientation marker's geometry ([`orientation`]), put together by
-//! [`labelled`].
+//! [`labelled`]; [`picture`] renders a scene and draws the annotations chosen over it;
+//! [`rulers`] draws the scene's saved rulers.
 
 pub mod labelled;
 pub mod layout;
 pub mod orientation;
+pub mod picture;
+pub mod rulers;
 pub mod scale_bar;
 pub mod text;
 pub mod visible;

@@ -3,7 +3,8 @@
 //! session's picture, headless (no window, no display), with the same renderer as the GUI.
 //! `--labels` draws structure names with leader lines (every opaque visible structure, or the ones
 //! named), a scale bar in mm and the orientation marker ([`crate::annotate`]); the image options
-//! replace or adjust the session's `"image"`.
+//! replace or adjust the session's `"image"`. The session's rulers are drawn over the picture
+//! ([`crate::annotate::rulers`]).
 //!
 //! Every cut is made by the exact boolean; there is no approximate stand-in. A cutter the boolean
 //! refuses makes the command fail (no image is written) with the reason, after `--json` has
@@ -84,6 +85,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let mut image =
         crate::render::render_with_preview(&mut renderer, &scene, &options, preview.clone())
             .with_context(|| format!("{}", args.session.display()))?;
+    crate::annotate::rulers::draw_rulers(&mut image, &scene);
     if let Some(models) = &labelled {
         crate::annotate::labelled::annotate(&mut image, &scene, preview.as_deref(), models);
     }

@@ -244,6 +244,10 @@ pub struct CutawayApp {
     pub wgpu: Option<egui_wgpu::RenderState>,
     /// Which cutter tab is shown.
     pub cutter_tab: super::cutter_panel::CutterTab,
+    /// The Metrics panel, the Ruler tool and the Compare view.
+    pub metrics: super::metrics_panel::MetricsPanel,
+    pub ruler: super::ruler::RulerTool,
+    pub compare: super::compare_view::CompareView,
     /// The scene as of the last committed undo step (the "before" of editor-made changes).
     last_committed: Scene,
     /// A scene edit in progress (slider or colour drag): its label and the scene before it.
@@ -290,6 +294,9 @@ impl CutawayApp {
             export_meshes: Default::default(),
             wgpu: cc.wgpu_render_state.clone(),
             cutter_tab: Default::default(),
+            metrics: Default::default(),
+            ruler: Default::default(),
+            compare: Default::default(),
             pending_edit: None,
             last_committed: new_scene(),
             exiting: false,
@@ -305,7 +312,7 @@ impl CutawayApp {
 
     /// True while any background job runs (tests wait on this).
     pub fn busy(&self) -> bool {
-        self.jobs.iter().any(Job::is_running)
+        self.jobs.iter().any(Job::is_running) || self.metrics.busy() || self.compare.busy()
     }
 
     /// Sets the status message.
@@ -933,7 +940,8 @@ impl CutawayApp {
 
     fn export_image_to(&mut self, ctx: &egui::Context, path: PathBuf) {
         let scene = self.scene.clone();
-        let preview = self.mode == Mode::Preview;
+        // Camera and Scalpel modes show the cut too: the picture shows it as well.
+        let preview = super::cut_view::shows_cut(self.mode) && !self.scene.cutters.is_empty();
         let settings = self.export_image.clone();
         self.spawn(
             ctx,
@@ -1128,9 +1136,19 @@ impl eframe::App for CutawayApp {
                     }
                 });
             });
+        if super::metrics_panel::side_panel_open(self) {
+            egui::Panel::right("cutaway-metrics")
+                .resizable(true)
+                .default_size(300.0)
+                .show(ui, |ui| super::metrics_panel::side_panel_ui(ui, self));
+        }
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {
+                if self.compare.open {
+                    super::compare_view::compare_ui(ui, self);
+                    return;
+                }
                 // Its own panel-coloured strip, so the reference never sits on the 3D view.
                 egui::Frame::NONE
                     .fill(ui.visuals().panel_fill)
@@ -1157,6 +1175,8 @@ impl eframe::App for CutawayApp {
         self.commit_edit_if_idle(&ctx);
         self.update_preview(&ctx);
         super::live_cut::update_live(self, &ctx);
+        super::metrics_panel::update(self, &ctx);
+        super::compare_view::update(self, &ctx);
 
         if !self.exiting && self.recovery.due() {
             let result = self

@@ -554,8 +554,9 @@ pub fn export_image(
     } else {
         ViewMode::Camera
     });
-    let image = crate::render::render_png(scene, &options)
-        .map_err(|e| anyhow::anyhow!("{}: {e:#}", path.display()))?;
+    let (image, _) =
+        crate::annotate::picture::render_annotated(scene, &options, &settings.annotations)
+            .map_err(|e| anyhow::anyhow!("{}: {e:#}", path.display()))?;
     let mut png = Vec::new();
     image
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)

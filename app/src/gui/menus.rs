@@ -20,6 +20,8 @@ pub struct ExportImageSettings {
     pub height: u32,
     /// Write a transparent background instead of the scene's background colour.
     pub transparent: bool,
+    /// Labels, scale bar and orientation marker drawn over the picture (none by default).
+    pub annotations: crate::annotate::picture::AnnotationChoice,
 }
 
 impl Default for ExportImageSettings {
@@ -29,6 +31,13 @@ impl Default for ExportImageSettings {
             width: 3840,
             height: 2160,
             transparent: false,
+            annotations: crate::annotate::picture::AnnotationChoice {
+                extras: crate::annotate::labelled::Extras {
+                    scale_bar: false,
+                    marker: false,
+                },
+                ..Default::default()
+            },
         }
     }
 }
@@ -243,6 +252,8 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         ui.menu_button("View", |ui| {
             actions.extend(super::view_menu::view_items_ui(ui, app));
             ui.separator();
+            super::metrics_panel::view_menu_items(ui, app);
+            ui.separator();
             let label = if app.cutters_hidden {
                 "Show Current Cutters"
             } else {
@@ -422,6 +433,8 @@ fn export_image_window_ui(ctx: &egui::Context, app: &mut CutawayApp) -> Vec<Acti
                 }
             });
             ui.checkbox(&mut s.transparent, "Transparent background");
+            ui.separator();
+            super::export_labels::annotation_ui(ui, &mut s.annotations, &app.scene);
             ui.add_space(6.0);
             if ui.button("Export…").clicked() {
                 actions.push(Action::Dialog(Purpose::ExportImage));

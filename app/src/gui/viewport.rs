@@ -240,7 +240,12 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     let windowing = super::image_panel::window_drag(app, &response, ui);
     let navigating = windowing
         || super::navigation::navigation_input(ui, &response, app, ppp, to_px, &mut actions);
-    if !navigating {
+    if !navigating && app.ruler.active {
+        // The Ruler tool takes clicks; drags keep turning the camera.
+        if !super::ruler::ruler_input(&response, app, to_px) {
+            camera_input(ui, &response, app, ppp);
+        }
+    } else if !navigating {
         match app.mode {
             Mode::Camera | Mode::Preview => camera_input(ui, &response, app, ppp),
             Mode::Scalpel => super::scalpel_mode::scalpel_input(ui, &response, app, ppp, to_px),
@@ -256,6 +261,8 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     if !super::bridge::paint_scene(ui, rect, app) {
         super::bridge::paint_fallback(&painter, rect, app);
     }
+    super::ruler::paint_rulers(&painter, rect, app);
+    super::metrics_panel::paint_closest_points(&painter, rect, app);
     if app.viewport.show_marker && !app.scene.models.is_empty() {
         super::orientation_marker::orientation_marker_ui(&painter, rect, &app.scene);
     }
