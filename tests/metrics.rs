@@ -100,6 +100,43 @@ fn removed_volume_and_area_of_box_cuts_match_the_analytic_answer() {
     assert!(json["focus"].is_null());
 }
 
+/// The same cube and cutters in metres (a 10 mm cube is 0.01 m): a scene small enough to be
+/// guessed as metres is measured in mm, mm² and mm³ all the same.
+#[test]
+fn a_scene_in_metres_is_measured_in_millimetres() {
+    let dir = scratch("metrics-cube-metres");
+    let m = 0.001;
+    let session = write_session(
+        &dir,
+        &[("cube.obj", box_obj([0.0; 3], [10.0 * m; 3]))],
+        vec![model("cube.obj", [0.8, 0.6, 0.5])],
+        vec![
+            cutter(
+                0,
+                box_planes(5.0 * m, 15.0 * m, -5.0 * m, 5.0 * m, 5.0 * m, 15.0 * m),
+                cut_view(),
+            ),
+            cutter(
+                0,
+                box_planes(4.0 * m, 6.0 * m, -5.0 * m, 3.0 * m, -5.0 * m, 15.0 * m),
+                cut_view(),
+            ),
+        ],
+        [0.0, -100.0 * m, 5.0 * m],
+    );
+    let json = metrics(&session, &[]);
+    let cutters = json["cutters"].as_array().unwrap();
+    assert_close(f(&cutters[0]["removed_volume"]), 125.0, 1e-4, "A volume");
+    assert_close(f(&cutters[0]["removed_area"]), 75.0, 1e-4, "A area");
+    assert_close(f(&cutters[0]["depth"]), 5.0, 1e-4, "A depth");
+    assert_close(
+        f(&json["structures"][0]["removed_volume"]),
+        170.0,
+        1e-4,
+        "total volume",
+    );
+}
+
 #[test]
 fn removed_volume_equals_the_boolean_s_removed_piece_closed_by_its_walls() {
     // A sphere cut by a box: no simple analytic answer for the polyhedron, so compare with the

@@ -1,6 +1,8 @@
 //! Measures of a session's cuts, for comparing cut variants: what each cut removes, how much of a
 //! focus structure the camera sees with and without the cuts, and how close the cut walls come
-//! to critical structures. Units are the scene's: mm, mm², mm³.
+//! to critical structures. Units are mm, mm² and mm³: a scene in metres (guessed from its size by
+//! [`LengthUnit::guess`], as the window does) is converted, so a body in metres and the same body
+//! in millimetres measure the same.
 //!
 //! - [`removal`]: removed volume and area, wall area and depth, per cutter and per structure,
 //!   from the exact boolean (the same cuts Preview draws);
@@ -18,6 +20,7 @@ use csg::Mesh;
 
 use crate::cutaway_geometry::{PartKind, preview_geometry};
 use crate::scene::{ModelStyle, Scene};
+use crate::view::LengthUnit;
 
 /// What to measure besides the removal of every cut.
 #[derive(Clone, Debug)]
@@ -143,11 +146,37 @@ pub fn measure(scene: &Scene, options: &MetricsOptions) -> anyhow::Result<Metric
         Some(f) => Some(focus_measures(scene, f, options.samples)?),
         None => None,
     };
-    Ok(Metrics {
+    let mut metrics = Metrics {
         cutters,
         structures,
         focus,
-    })
+    };
+    metrics.scale_to_mm(LengthUnit::guess(&scene.bbox(), false).mm_per_unit());
+    Ok(metrics)
+}
+
+impl Metrics {
+    /// Converts lengths, areas and volumes from file units to mm, mm² and mm³ (`mm` millimetres
+    /// per file unit: 1000 for a body in metres). Points stay in file coordinates, where the
+    /// window draws them.
+    fn scale_to_mm(&mut self, mm: f64) {
+        if mm == 1.0 {
+            return;
+        }
+        let (area, volume) = (mm * mm, mm * mm * mm);
+        for c in &mut self.cutters {
+            c.removed_volume = c.removed_volume.map(|v| v * volume);
+            c.removed_area *= area;
+            c.wall_area *= area;
+            c.depth *= mm;
+        }
+        for s in &mut self.structures {
+            s.removed_volume = s.removed_volume.map(|v| v * volume);
+            s.removed_area *= area;
+            s.wall_area *= area;
+            s.min_distance = s.min_distance.map(|d| d * mm);
+        }
+    }
 }
 
 /// Exposure of model `focus` without and with the cuts.
