@@ -16,6 +16,7 @@ pub mod plane;
 pub mod scalpel;
 pub mod subcutters;
 pub mod subdivision;
+pub mod wedge;
 pub mod surface;
 
 pub use camera::{Camera, Ray};
