@@ -16,8 +16,8 @@ pub mod plane;
 pub mod scalpel;
 pub mod subcutters;
 pub mod subdivision;
-pub mod wedge;
 pub mod surface;
+pub mod wedge;
 
 pub use camera::{Camera, Ray};
 pub use cutter::{CutKind, Cutter, CutterError, QuadMesh};

@@ -138,7 +138,11 @@ pub(crate) fn wedge_move(
         while pushes < 50 {
             let l = cutter.planes[n - 1];
             if !surface.triangle_intersects(
-                &[l.front_top, cutter.planes[n - 2].front_bottom, l.front_bottom],
+                &[
+                    l.front_top,
+                    cutter.planes[n - 2].front_bottom,
+                    l.front_bottom,
+                ],
                 &mut scratch,
             ) {
                 break;
@@ -188,7 +192,10 @@ pub fn share_inside(cutter: &Cutter, inside: impl Fn(DVec3) -> bool) -> f64 {
         for i in 0..N {
             for j in 0..N - i {
                 // Cell centres of a barycentric grid on the front triangle.
-                let (u, v) = ((i as f64 + 1.0 / 3.0) / N as f64, (j as f64 + 1.0 / 3.0) / N as f64);
+                let (u, v) = (
+                    (i as f64 + 1.0 / 3.0) / N as f64,
+                    (j as f64 + 1.0 / 3.0) / N as f64,
+                );
                 let p = a + (d0 - a) * u + (d1 - a) * v;
                 for k in 0..N {
                     let q = p + back * ((k as f64 + 0.5) / N as f64);
@@ -224,8 +231,17 @@ mod tests {
         // Press near the centre, drag 120 px up: the pie's first radius.
         let a = DVec2::new(650.0, 410.0);
         let b = DVec2::new(650.0, 290.0);
-        let mut cutter =
-            initialize(&surface, &camera, viewport, a, b, delta, CutKind::Wedge, false).unwrap();
+        let mut cutter = initialize(
+            &surface,
+            &camera,
+            viewport,
+            a,
+            b,
+            delta,
+            CutKind::Wedge,
+            false,
+        )
+        .unwrap();
         // Sweep the rim a quarter turn about the press point.
         let settings = RollSettings {
             delta,
@@ -235,7 +251,12 @@ mod tests {
         for k in 1..=30 {
             let ang = (k as f64 * 3.0).to_radians();
             let m = a + DVec2::new(ang.sin(), -ang.cos()) * 120.0;
-            extrude_move(&mut cutter, &surface, &camera.ray_through_pixel(viewport, m), &settings);
+            extrude_move(
+                &mut cutter,
+                &surface,
+                &camera.ray_through_pixel(viewport, m),
+                &settings,
+            );
         }
         cutter.sanity_check().unwrap();
         assert!(cutter.planes.len() >= 4, "{} planes", cutter.planes.len());
@@ -244,15 +265,29 @@ mod tests {
         let apex = cutter.planes[0].front_top;
         assert!(!inside(apex));
         let gap = surface.distance(apex);
-        assert!(gap < 4.0 * delta, "apex {:.1}δ above the surface", gap / delta);
+        assert!(
+            gap < 4.0 * delta,
+            "apex {:.1}δ above the surface",
+            gap / delta
+        );
         // The back lies below the surface points under the front: the shared axis's back end and
         // every plane's back-bottom corner are inside the sphere.
-        assert!(inside(cutter.planes[0].back_top), "the axis does not reach in");
+        assert!(
+            inside(cutter.planes[0].back_top),
+            "the axis does not reach in"
+        );
         for (i, p) in cutter.planes.iter().enumerate() {
-            assert!(inside(p.back_bottom), "plane {i}'s back corner is in the air");
+            assert!(
+                inside(p.back_bottom),
+                "plane {i}'s back corner is in the air"
+            );
         }
         // Most of the wedge cuts the target, not the air.
         let share = share_inside(&cutter, inside);
-        assert!(share > 0.5, "only {:.0} % of the wedge is inside", share * 100.0);
+        assert!(
+            share > 0.5,
+            "only {:.0} % of the wedge is inside",
+            share * 100.0
+        );
     }
 }
