@@ -518,3 +518,96 @@ fn edit_mode_orbits_with_the_right_button_and_zooms_off_the_cutter() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A file the windowing system reports as dropped on the window.
+#[derive(Debug)]
+struct Dropped(PathBuf);
+
+impl egui::DroppedFile for Dropped {
+    fn path(&self) -> &Path {
+        &self.0
+    }
+
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+/// Drops `paths` on the window as the windowing system does (one frame's `dropped_files`).
+fn drop_files(h: &mut Harness<'_, CutawayApp>, paths: Vec<PathBuf>) {
+    for path in paths {
+        h.input_mut()
+            .dropped_files
+            .push(std::sync::Arc::new(Dropped(path)));
+    }
+    h.step();
+}
+
+#[test]
+fn dropped_folders_and_sessions_open_and_messages_stay_in_the_status_bar() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("drop");
+    let mut h = harness(&dir, Vec::new());
+    settle(&mut h);
+    let before = h.state().scene.models.len();
+    // A folder of two meshes, dropped on a scene with models: added, one model per file.
+    let folder = dir.join("parts");
+    std::fs::create_dir_all(&folder).unwrap();
+    let small = |x: f64| {
+        cutaway::gui::app::box_mesh(DVec3::new(x, 0.0, 0.0), DVec3::new(x + 10.0, 10.0, 10.0))
+    };
+    cutaway::io::write_mesh(&folder.join("left_block.obj"), &small(0.0)).unwrap();
+    cutaway::io::write_mesh(&folder.join("right_block.stl"), &small(20.0)).unwrap();
+    drop_files(&mut h, vec![folder.clone()]);
+    settle(&mut h);
+    let app = h.state();
+    assert!(!app.status.is_error, "{}", app.status.message);
+    assert_eq!(
+        app.scene.models.len(),
+        before + 2,
+        "the folder's two files were not added ({})",
+        app.status.message
+    );
+    let names: Vec<&str> = app.scene.models.iter().map(|m| m.name.as_str()).collect();
+    assert!(names.iter().any(|n| n.contains("left block")), "{names:?}");
+    // The message that says so sits in the status bar under the view, not on the model.
+    let message = app.status.message.clone();
+    assert!(!message.is_empty());
+    let view = app.viewport.rect;
+    let label = h.get_by_label(&message).rect();
+    assert!(
+        label.min.y >= view.max.y - 0.5 && label.max.y <= 800.0,
+        "the status text {label:?} is not under the view {view:?}"
+    );
+    shot(&mut h, "dropped-folder-status-bar");
+    // A session dropped with a mesh: the session opens (its one model replaces the scene).
+    let mut one = cutaway::scene::Scene::default();
+    let model = cutaway::io::load_models(&folder.join("left_block.obj"))
+        .unwrap()
+        .remove(0);
+    one.models.push(cutaway::scene::SceneModel::new(
+        model.name,
+        model.source,
+        std::sync::Arc::new(model.mesh),
+        [0.8, 0.3, 0.3],
+    ));
+    let session = dir.join("one.json");
+    cutaway::session::save(&session, &one).unwrap();
+    drop_files(
+        &mut h,
+        vec![folder.join("right_block.stl"), session.clone()],
+    );
+    settle(&mut h);
+    let app = h.state();
+    assert!(!app.status.is_error, "{}", app.status.message);
+    assert_eq!(
+        app.scene.models.len(),
+        1,
+        "the dropped session did not open"
+    );
+    assert_eq!(app.session_path.as_deref(), Some(session.as_path()));
+    let _ = std::fs::remove_dir_all(&dir);
+}
