@@ -634,10 +634,8 @@ fn files_given_skip_the_recovery_prompt_and_an_undo_keeps_anaglyph_off() {
     let folder = dir.join("blocks");
     std::fs::create_dir_all(&folder).unwrap();
     for (name, x) in [("a_block.obj", 0.0), ("b_block.obj", 20.0)] {
-        let mesh = cutaway::gui::app::box_mesh(
-            DVec3::new(x, 0.0, 0.0),
-            DVec3::new(x + 10.0, 10.0, 10.0),
-        );
+        let mesh =
+            cutaway::gui::app::box_mesh(DVec3::new(x, 0.0, 0.0), DVec3::new(x + 10.0, 10.0, 10.0));
         cutaway::io::write_mesh(&folder.join(name), &mesh).unwrap();
     }
     assert!(StartOptions::new(Vec::new()).offer_recovery);
@@ -654,7 +652,12 @@ fn files_given_skip_the_recovery_prompt_and_an_undo_keeps_anaglyph_off() {
     settle(&mut h);
     assert!(h.state().pending_recovery.is_none());
     assert!(h.query_by_label("Restore the previous session?").is_none());
-    assert_eq!(h.state().scene.models.len(), 2, "{}", h.state().status.message);
+    assert_eq!(
+        h.state().scene.models.len(),
+        2,
+        "{}",
+        h.state().status.message
+    );
 
     // Anaglyph on from the Rendering menu, an edit, anaglyph off, undo: the view stays plain.
     let toggle = |h: &mut Harness<'_, CutawayApp>| {
@@ -666,13 +669,20 @@ fn files_given_skip_the_recovery_prompt_and_an_undo_keeps_anaglyph_off() {
         h.run_steps(2);
     };
     toggle(&mut h);
-    assert_eq!(h.state().scene.render.stereo, cutaway::scene::Stereo::Anaglyph);
+    assert_eq!(
+        h.state().scene.render.stereo,
+        cutaway::scene::Stereo::Anaglyph
+    );
     apply(&mut h, Action::RemoveModel(1));
     assert_eq!(h.state().scene.models.len(), 1);
     toggle(&mut h);
     assert_eq!(h.state().scene.render.stereo, cutaway::scene::Stereo::None);
     apply(&mut h, Action::Undo);
-    assert_eq!(h.state().scene.models.len(), 2, "the removal was not undone");
+    assert_eq!(
+        h.state().scene.models.len(),
+        2,
+        "the removal was not undone"
+    );
     assert_eq!(
         h.state().scene.render.stereo,
         cutaway::scene::Stereo::None,
