@@ -1133,6 +1133,8 @@ impl eframe::App for CutawayApp {
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {
+                // No gap between the strip and the view (the window's clear colour showed there).
+                ui.spacing_mut().item_spacing.y = 0.0;
                 // Its own panel-coloured strip, so the reference never sits on the 3D view.
                 egui::Frame::NONE
                     .fill(ui.visuals().panel_fill)
