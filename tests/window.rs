@@ -432,13 +432,13 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
         state_dir: dir.clone(),
         offer_recovery: false,
     };
-    // The browser crate draws folder and file icons that the default fonts lack (boxes).
+    // The browser crate marks folders and files with emoji glyphs: the harness fails on any
+    // glyph the window's fonts lack (drawn as an empty box).
     let mut h = Harness::builder()
         .wgpu()
         .with_size(egui::vec2(1280.0, 800.0))
         .with_step_dt(1.0 / 60.0)
         .with_accessibility_check(false)
-        .allow_missing_glyphs()
         .build_eframe(move |cc| CutawayApp::new(cc, start));
     settle(&mut h);
     // As on a machine without a desktop portal or zenity.
@@ -449,7 +449,17 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
     );
     assert!(h.state().browser.is_some(), "no in-window browser");
     assert!(!h.state().busy(), "a native dialog job was started");
+    // In a folder with a subfolder and a session: both listed with their glyph markers.
+    let listed = dir.join("listed");
+    std::fs::create_dir_all(listed.join("models")).unwrap();
+    std::fs::write(listed.join("one.json"), "{}").unwrap();
+    h.state_mut().browser = Some(cutaway::gui::file_browser::FileBrowser::new(
+        cutaway::gui::app::Purpose::OpenSession,
+        Some(listed),
+    ));
     h.run_steps(3);
+    h.get_by_label("\u{1F5C0} models");
+    h.get_by_label("\u{1F5CB} one.json");
     shot(&mut h, "file-browser-fallback");
     h.get_by_label("Cancel").click();
     h.run_steps(3);
@@ -516,5 +526,180 @@ fn edit_mode_orbits_with_the_right_button_and_zooms_off_the_cutter() {
         h.state().scene.camera.distance() < after.distance() * 0.95,
         "the wheel did not zoom in Edit mode"
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A file the windowing system reports as dropped on the window.
+#[derive(Debug)]
+struct Dropped(PathBuf);
+
+impl egui::DroppedFile for Dropped {
+    fn path(&self) -> &Path {
+        &self.0
+    }
+
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+/// Drops `paths` on the window as the windowing system does (one frame's `dropped_files`).
+fn drop_files(h: &mut Harness<'_, CutawayApp>, paths: Vec<PathBuf>) {
+    for path in paths {
+        h.input_mut()
+            .dropped_files
+            .push(std::sync::Arc::new(Dropped(path)));
+    }
+    h.step();
+}
+
+#[test]
+fn dropped_folders_and_sessions_open_and_messages_stay_in_the_status_bar() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("drop");
+    let mut h = harness(&dir, Vec::new());
+    settle(&mut h);
+    let before = h.state().scene.models.len();
+    // A folder of two meshes, dropped on a scene with models: added, one model per file.
+    let folder = dir.join("parts");
+    std::fs::create_dir_all(&folder).unwrap();
+    let small = |x: f64| {
+        cutaway::gui::app::box_mesh(DVec3::new(x, 0.0, 0.0), DVec3::new(x + 10.0, 10.0, 10.0))
+    };
+    cutaway::io::write_mesh(&folder.join("left_block.obj"), &small(0.0)).unwrap();
+    cutaway::io::write_mesh(&folder.join("right_block.stl"), &small(20.0)).unwrap();
+    drop_files(&mut h, vec![folder.clone()]);
+    settle(&mut h);
+    let app = h.state();
+    assert!(!app.status.is_error, "{}", app.status.message);
+    assert_eq!(
+        app.scene.models.len(),
+        before + 2,
+        "the folder's two files were not added ({})",
+        app.status.message
+    );
+    let names: Vec<&str> = app.scene.models.iter().map(|m| m.name.as_str()).collect();
+    assert!(names.iter().any(|n| n.contains("left block")), "{names:?}");
+    // The message that says so sits in the status bar under the view, not on the model.
+    let message = app.status.message.clone();
+    assert!(!message.is_empty());
+    let view = app.viewport.rect;
+    let label = h.get_by_label(&message).rect();
+    assert!(
+        label.min.y >= view.max.y - 0.5 && label.max.y <= 800.0,
+        "the status text {label:?} is not under the view {view:?}"
+    );
+    shot(&mut h, "dropped-folder-status-bar");
+    // A session dropped with a mesh: the session opens (its one model replaces the scene).
+    let mut one = cutaway::scene::Scene::default();
+    let model = cutaway::io::load_models(&folder.join("left_block.obj"))
+        .unwrap()
+        .remove(0);
+    one.models.push(cutaway::scene::SceneModel::new(
+        model.name,
+        model.source,
+        std::sync::Arc::new(model.mesh),
+        [0.8, 0.3, 0.3],
+    ));
+    let session = dir.join("one.json");
+    cutaway::session::save(&session, &one).unwrap();
+    drop_files(
+        &mut h,
+        vec![folder.join("right_block.stl"), session.clone()],
+    );
+    settle(&mut h);
+    let app = h.state();
+    assert!(!app.status.is_error, "{}", app.status.message);
+    assert_eq!(
+        app.scene.models.len(),
+        1,
+        "the dropped session did not open"
+    );
+    assert_eq!(app.session_path.as_deref(), Some(session.as_path()));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn files_given_skip_the_recovery_prompt_and_an_undo_keeps_anaglyph_off() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("prompt");
+    // An autosave left by a crash, and two meshes named on the command line.
+    std::fs::write(dir.join("recovery-session.json"), "{}").unwrap();
+    let folder = dir.join("blocks");
+    std::fs::create_dir_all(&folder).unwrap();
+    for (name, x) in [("a_block.obj", 0.0), ("b_block.obj", 20.0)] {
+        let mesh =
+            cutaway::gui::app::box_mesh(DVec3::new(x, 0.0, 0.0), DVec3::new(x + 10.0, 10.0, 10.0));
+        cutaway::io::write_mesh(&folder.join(name), &mesh).unwrap();
+    }
+    assert!(StartOptions::new(Vec::new()).offer_recovery);
+    let mut start = StartOptions::new(vec![folder]);
+    assert!(!start.offer_recovery, "files given, yet recovery offered");
+    start.state_dir = dir.clone();
+    let mut h = Harness::builder()
+        .wgpu()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .with_max_steps(10_000)
+        .with_step_dt(1.0 / 60.0)
+        .with_accessibility_check(false)
+        .build_eframe(move |cc| CutawayApp::new(cc, start));
+    settle(&mut h);
+    assert!(h.state().pending_recovery.is_none());
+    assert!(h.query_by_label("Restore the previous session?").is_none());
+    assert_eq!(
+        h.state().scene.models.len(),
+        2,
+        "{}",
+        h.state().status.message
+    );
+
+    // Anaglyph on from the Rendering menu, an edit, anaglyph off, undo: the view stays plain.
+    let toggle = |h: &mut Harness<'_, CutawayApp>| {
+        h.get_by_label("Rendering").click();
+        h.run_steps(2);
+        h.get_by_label("Red/Blue Stereoscopic 3D").click();
+        h.run_steps(2);
+        h.key_press(egui::Key::Escape);
+        h.run_steps(2);
+    };
+    toggle(&mut h);
+    assert_eq!(
+        h.state().scene.render.stereo,
+        cutaway::scene::Stereo::Anaglyph
+    );
+    apply(&mut h, Action::RemoveModel(1));
+    assert_eq!(h.state().scene.models.len(), 1);
+    toggle(&mut h);
+    assert_eq!(h.state().scene.render.stereo, cutaway::scene::Stereo::None);
+    apply(&mut h, Action::Undo);
+    assert_eq!(
+        h.state().scene.models.len(),
+        2,
+        "the removal was not undone"
+    );
+    assert_eq!(
+        h.state().scene.render.stereo,
+        cutaway::scene::Stereo::None,
+        "the undo turned anaglyph back on"
+    );
+    let plain = shot(&mut h, "anaglyph-off-after-undo");
+    // No red/blue fringes: the view has no pixel whose green is far below both red and blue.
+    let view = view_px(&h);
+    let mut fringe = 0;
+    for y in view.min.y as u32..view.max.y as u32 {
+        for x in view.min.x as u32..view.max.x as u32 {
+            let p = plain.get_pixel(x, y);
+            if p[1] == 0 && (p[0] > 60 || p[2] > 60) {
+                fringe += 1;
+            }
+        }
+    }
+    assert!(fringe < 50, "{fringe} anaglyph pixels after turning it off");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -10,6 +10,7 @@ pub mod cli;
 pub mod compare;
 pub mod cutaway_geometry;
 pub mod default_anatomy;
+pub mod dropped;
 pub mod errors;
 pub mod export;
 pub mod gesture;

@@ -50,7 +50,7 @@ const MAX_INWARD_DEG: f64 = 60.0;
 pub const REST_GAP: f64 = 1.0;
 
 /// Largest number of boxes one mouse move may lock (a far jump of the mouse).
-const MAX_BOXES_PER_MOVE: usize = 16;
+pub(crate) const MAX_BOXES_PER_MOVE: usize = 16;
 /// Below this |cos| between the mouse ray and the front plane's normal (about 75°), the front
 /// plane counts as seen edge-on.
 const GRAZING: f64 = 0.25;
@@ -160,7 +160,8 @@ fn min_depth_behind(
 /// Initialises a cutter from a drag A→B in pixels (thesis 3.3.1): the strip is built in the view
 /// plane, pushed along the view direction onto the closest surface point behind it, and given a
 /// back face 5δ deeper. Plane 0 is `ABCD` with A the press point; plane 1, 10δ to the
-/// screen-right of A→B, is the leading plane. Returns None for a drag shorter than 2 pixels.
+/// screen-right of A→B, is the leading plane. A wedge's back instead reaches into the target
+/// ([`crate::wedge::reach_into_surface`]). Returns None for a drag shorter than 2 pixels.
 ///
 /// When the strip sees no surface at all (a surrounding cut started off the object), the strip is
 /// pushed to the depth of the surface point nearest to the view ray through its centre.
@@ -229,11 +230,15 @@ pub fn initialize(
         }
         _ => BoundedPlane::from_front_edge(a3 + w3 * width, d3 + w3 * width, f, depth),
     };
-    let cutter = Cutter {
+    let mut cutter = Cutter {
         kind,
         smooth,
         planes: vec![p0, p1],
     };
+    if kind == CutKind::Wedge {
+        // The pie rests on the surface; its back reaches into the target (wedge.rs).
+        crate::wedge::reach_into_surface(&mut cutter, surface, delta);
+    }
     cutter.sanity_check().ok()?;
     Some(cutter)
 }
@@ -262,7 +267,7 @@ pub fn extrude_move(
         return false;
     }
     if cutter.kind == CutKind::Wedge {
-        return wedge_move(cutter, surface, ray, settings);
+        return crate::wedge::wedge_move(cutter, surface, ray, settings);
     }
     let mut scratch = Vec::new();
     let lock_width = (settings.spacing * settings.delta).max(2.0 * MIN_WIDTH * settings.delta);
@@ -626,105 +631,6 @@ fn level(
     } else {
         (e3, h3)
     }
-}
-
-/// Wedge extrusion (thesis 3.3.2.3): E' stays on the shared axis, M sets the rotation, and on a
-/// collision the whole cutter moves 2δ along BA (out of the object) until the new front triangle
-/// is clear.
-fn wedge_move(cutter: &mut Cutter, surface: &Surface, ray: &Ray, settings: &RollSettings) -> bool {
-    let mut scratch = Vec::new();
-    let delta = settings.delta;
-    let lock = (settings.spacing * delta).max(2.0 * MIN_WIDTH * delta);
-    let mut changed = false;
-    for _ in 0..MAX_BOXES_PER_MOVE {
-        let n = cutter.planes.len();
-        let p0 = cutter.planes[0];
-        let prev = cutter.planes[n - 2];
-        let lead = cutter.planes[n - 1];
-        let a = p0.front_top;
-        let axis_back = p0.back_top - p0.front_top;
-        let Some(normal) = (cutter.planes[0].front_bottom - a)
-            .cross(cutter.planes[1].front_bottom - a)
-            .try_normalize()
-        else {
-            break;
-        };
-        // Rotation sense: from plane 0 toward plane 1 about `normal`.
-        let Some(t) = geom::line_plane(ray.origin, ray.direction, a, normal) else {
-            break;
-        };
-        if t <= 0.0 {
-            break;
-        }
-        let m = ray.at(t);
-        let radius = (prev.front_bottom - a).length();
-        let u0 = prev.front_bottom - a;
-        let Some(um) = (m - a).try_normalize() else {
-            break;
-        };
-        let mut phi = normal.dot(u0.cross(um)).atan2(u0.dot(um));
-        let min_phi = MIN_WIDTH * delta / radius;
-        let lock_phi = 2.0 * (lock / (2.0 * radius)).min(1.0).asin();
-        let locking = phi > lock_phi + min_phi;
-        if locking {
-            phi = lock_phi;
-        }
-        phi = phi.max(min_phi).min(90f64.to_radians());
-        let h = a + DQuat::from_axis_angle(normal, phi) * u0;
-        let new_lead = BoundedPlane {
-            front_top: a,
-            back_top: p0.back_top,
-            back_bottom: h + axis_back,
-            front_bottom: h,
-        };
-        let previous_planes = cutter.planes.clone();
-        cutter.planes[n - 1] = new_lead;
-        // Collision: push the whole cutter out along BA in 2δ steps.
-        let out = (-axis_back).normalize_or_zero() * ROTATION_STEP * delta;
-        let mut pushes = 0;
-        while pushes < 50 {
-            let l = cutter.planes[n - 1];
-            if !surface.triangle_intersects(
-                &[l.front_top, prev_front_bottom(cutter, n), l.front_bottom],
-                &mut scratch,
-            ) {
-                break;
-            }
-            for p in &mut cutter.planes {
-                *p = p.translated(out);
-            }
-            pushes += 1;
-        }
-        if locking {
-            let l = cutter.planes[n - 1];
-            let turn = DQuat::from_axis_angle(normal, min_phi);
-            let fb = a_of(cutter) + turn * (l.front_bottom - a_of(cutter));
-            let shared = cutter.planes[0];
-            cutter.planes.push(BoundedPlane {
-                front_top: shared.front_top,
-                back_top: shared.back_top,
-                back_bottom: fb + (shared.back_top - shared.front_top),
-                front_bottom: fb,
-            });
-        }
-        if cutter.sanity_check().is_err() {
-            cutter.planes = previous_planes;
-            break;
-        }
-        changed |= cutter.planes[n - 1] != lead || locking;
-        if !locking {
-            break;
-        }
-    }
-    changed
-}
-
-fn a_of(cutter: &Cutter) -> DVec3 {
-    cutter.planes[0].front_top
-}
-
-fn prev_front_bottom(cutter: &Cutter, n: usize) -> DVec3 {
-    cutter.planes[n - 2].front_bottom
 }
 
 /// Largest distance from a plane's front-edge midpoint to the surface (the `max_surface_gap` of

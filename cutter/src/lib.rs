@@ -17,6 +17,7 @@ pub mod scalpel;
 pub mod subcutters;
 pub mod subdivision;
 pub mod surface;
+pub mod wedge;
 
 pub use camera::{Camera, Ray};
 pub use cutter::{CutKind, Cutter, CutterError, QuadMesh};

@@ -20,6 +20,7 @@ use super::recovery::{self, RecentFiles, Recovery};
 use super::status_bar::StatusInfo;
 use super::undo::{Apply, History};
 use super::viewport::ViewportState;
+use crate::dropped::DropIntent;
 
 /// What the mouse does in the viewport (thesis 3.5 C).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -1053,11 +1054,12 @@ impl CutawayApp {
         if dropped.is_empty() {
             return Vec::new();
         }
-        // Dropping one session opens it; dropping meshes adds them to what is there.
-        if dropped.len() == 1 && is_session_path(&dropped[0]) || self.scene.models.is_empty() {
-            vec![Action::Open(dropped)]
-        } else {
-            vec![Action::Add(dropped)]
+        // The rule lives in `dropped.rs`: a session opens, the rest opens or is added.
+        match crate::dropped::intent_of_drop(dropped, self.scene.models.is_empty()) {
+            Some(DropIntent::Session(path)) => vec![Action::Open(vec![path])],
+            Some(DropIntent::Open(paths)) => vec![Action::Open(paths)],
+            Some(DropIntent::Add(paths)) => vec![Action::Add(paths)],
+            None => Vec::new(),
         }
     }
 
@@ -1149,6 +1151,8 @@ impl eframe::App for CutawayApp {
                     super::compare_view::compare_ui(ui, self);
                     return;
                 }
+                // No gap between the strip and the view (the window's clear colour showed there).
+                ui.spacing_mut().item_spacing.y = 0.0;
                 // Its own panel-coloured strip, so the reference never sits on the 3D view.
                 egui::Frame::NONE
                     .fill(ui.visuals().panel_fill)
@@ -1244,11 +1248,7 @@ pub fn new_scene() -> Scene {
 /// Label of the preview job (at most one runs).
 const PREVIEW_JOB: &str = "Cutting (Preview)";
 
-/// True for `.json` files (sessions); everything else is a mesh or a directory.
-pub fn is_session_path(path: &Path) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
-}
+pub use crate::dropped::is_session_path;
 
 fn with_extension(path: PathBuf, ext: &str) -> PathBuf {
     if path.extension().is_some() {

@@ -270,7 +270,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         painter.text(
             rect.center(),
             egui::Align2::CENTER_CENTER,
-            "Drop mesh files here, or use File > Load Model",
+            "Drop meshes, folders or a session here, or use File > Load Model",
             egui::FontId::proportional(18.0),
             egui::Color32::from_gray(90),
         );
