@@ -178,6 +178,42 @@ pub fn resident_by_kind() -> [u64; 4] {
     out
 }
 
+/// Diagnostic only (`CUTAWAY_MEMORY_MAPS=1`): the resident anonymous mappings over 1 MB
+/// (address, size, resident), to see which kind of memory a step added.
+fn print_large_anonymous_mappings() {
+    if std::env::var_os("CUTAWAY_MEMORY_MAPS").is_none() {
+        return;
+    }
+    let Ok(smaps) = std::fs::read_to_string("/proc/self/smaps") else {
+        return;
+    };
+    let mut current: Option<(String, u64, bool)> = None;
+    let mut small = 0u64;
+    for line in smaps.lines() {
+        let mut words = line.split_whitespace();
+        let first = words.next().unwrap_or("");
+        if first.contains('-') && first.chars().next().is_some_and(|c| c.is_ascii_hexdigit()) {
+            let name = line.split_whitespace().nth(5).unwrap_or("");
+            current = Some((first.to_string(), 0, name.is_empty() || name.starts_with('[')));
+            let _ = &current;
+        } else if first == "Size:" {
+            if let Some(c) = current.as_mut() {
+                c.1 = words.next().and_then(|v| v.parse().ok()).unwrap_or(0);
+            }
+        } else if first == "Rss:" {
+            let kb: u64 = words.next().and_then(|v| v.parse().ok()).unwrap_or(0);
+            if let Some((range, size, true)) = &current {
+                if kb >= 1024 {
+                    eprintln!("    map {range} size {size:>8} kB rss {kb:>8} kB");
+                } else {
+                    small += kb;
+                }
+            }
+        }
+    }
+    eprintln!("    small anonymous mappings: {small} kB");
+}
+
 pub fn mb(bytes: u64) -> f64 {
     bytes as f64 / (1u64 << 20) as f64
 }
@@ -213,6 +249,7 @@ impl Trace {
             mb(shared),
             mb(files)
         );
+        print_large_anonymous_mappings();
         self.steps.push((step.to_string(), rss));
         rss
     }
