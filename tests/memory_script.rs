@@ -193,7 +193,11 @@ fn print_large_anonymous_mappings() {
         let first = words.next().unwrap_or("");
         if first.contains('-') && first.chars().next().is_some_and(|c| c.is_ascii_hexdigit()) {
             let name = line.split_whitespace().nth(5).unwrap_or("");
-            current = Some((first.to_string(), 0, name.is_empty() || name.starts_with('[')));
+            current = Some((
+                first.to_string(),
+                0,
+                name.is_empty() || name.starts_with('['),
+            ));
             let _ = &current;
         } else if first == "Size:" {
             if let Some(c) = current.as_mut() {
