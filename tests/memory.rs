@@ -4,8 +4,10 @@
 //! 300 MB, or when, once every cutter's every view, every model style and every mode was shown,
 //! any later step (undo and redo of everything, each state drawn again) is more than 10 % above
 //! that level: repeating work must not pile memory up. It prints the level after the first cut and
-//! the highest level after it, for the stricter target of +10 % over the whole session (not met
-//! yet: the first Preview and the first showing of every view still add about a third, once).
+//! the highest level after it, against the issue's stricter target of +10 % over the whole
+//! session, which is not met yet: the first showing of ribbons, slices and transparent views
+//! still adds about a fifth, once (pages of render targets and allocator arenas touched for the
+//! first time; run with `CUTAWAY_MEMORY_MAPS=1` to see the mappings per step).
 //!
 //! It is the only test of this binary, so no other test allocates in the process while it
 //! measures. Skipped, with the reason printed, when no wgpu adapter exists (install
@@ -32,7 +34,7 @@ fn window_memory_stays_flat_over_a_scripted_session() {
     println!(
         "{} triangles ({:.1} MB): after loading {:.1} MB (bound {:.1} MB); after the first cut \
          {:.1} MB, highest later {:.1} MB at \"{}\" (+10 % target {:.1} MB); everything shown \
-         {:.1} MB, highest after {:.1} MB at \"{}\" (limit {:.1} MB); peak {:.1} MB; {:.0} s",
+         {:.1} MB, highest after {:.1} MB at \"{}\" (limit +10 %: {:.1} MB); peak {:.1} MB; {:.0} s",
         report.triangles,
         mb(report.data_bytes),
         mb(report.loaded),
@@ -61,7 +63,7 @@ fn window_memory_stays_flat_over_a_scripted_session() {
     );
     assert!(
         report.worst_after_all_shown.1 <= report.repeat_limit(),
-        "memory grew to {:.1} MB at \"{}\", over the {:.1} MB once every view, style and mode was shown + 25 %",
+        "memory grew to {:.1} MB at \"{}\", over the {:.1} MB once every view, style and mode was shown + 10 %",
         mb(report.worst_after_all_shown.1),
         report.worst_after_all_shown.0,
         mb(report.all_shown)
