@@ -442,3 +442,68 @@ fn gltf_walls_carry_the_image_as_vertex_colours() {
     }
     assert!(checked >= 100, "{checked} baked vertices on the back wall");
 }
+
+/// A volume whose values are not labels is described by `info` as an intensity image (type,
+/// value range, grid, the reason), for a synthetic CT and for the real chest CT.
+#[test]
+fn info_of_a_ct_says_it_is_an_intensity_image() {
+    let dir = out_dir();
+    let ct = dir.join("info_ct.nrrd");
+    let mut bytes = b"NRRD0004\ntype: short\ndimension: 3\nspace: RAS\nsizes: 4 3 2\nspace directions: (2,0,0) (0,1,0) (0,0,1)\nendian: little\nencoding: raw\nspace origin: (0,0,0)\n\n".to_vec();
+    for v in 0..24i16 {
+        bytes.extend_from_slice(&(v * 100 - 1000).to_le_bytes());
+    }
+    std::fs::write(&ct, bytes).unwrap();
+    let mut files = vec![ct];
+    if let Some(chest) = chest_dir() {
+        files.push(chest.join("CTChest4.nrrd"));
+    }
+    for file in &files {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
+            .arg("info")
+            .arg(file)
+            .arg("--json")
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let intensity = &json["intensity"];
+        println!("{}: {intensity}", file.display());
+        assert!(
+            intensity["reason"]
+                .as_str()
+                .unwrap()
+                .starts_with("negative"),
+            "{json}"
+        );
+        assert!(intensity["min"].as_f64().unwrap() <= -1000.0, "{json}");
+        assert!(intensity["max"].as_f64().unwrap() > 0.0, "{json}");
+        assert_eq!(json["triangles"], 0);
+        assert!(json.get("labels").is_none());
+        let text = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
+            .arg("info")
+            .arg(file)
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&text.stdout);
+        assert!(text.contains("intensity image (negative"), "{text}");
+    }
+    let json: serde_json::Value = serde_json::from_slice(
+        &std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
+            .arg("info")
+            .arg(&files[0])
+            .arg("--json")
+            .output()
+            .unwrap()
+            .stdout,
+    )
+    .unwrap();
+    assert_eq!(json["intensity"]["type"], "int16");
+    assert_eq!(json["dims"], serde_json::json!([4, 3, 2]));
+    assert_eq!(json["spacing"], serde_json::json!([2.0, 1.0, 1.0]));
+    assert_eq!(json["bbox_min"], serde_json::json!([-1.0, -0.5, -0.5]));
+}

@@ -14,8 +14,13 @@ pub fn image_loaded(app: &mut CutawayApp, layer: ImageLayer) {
         return;
     }
     let (lo, hi) = layer.image.range();
+    let alone = if app.scene.models.is_empty() {
+        "; no segmentation yet: open it with Open… in the File menu to cut it and see the image on the walls"
+    } else {
+        ""
+    };
     app.say(format!(
-        "Image {}: {} × {} × {} {} voxels, values {lo} to {hi}",
+        "Image {}: {} × {} × {} {} voxels, values {lo} to {hi}{alone}",
         layer.image.source.display(),
         layer.image.dims[0],
         layer.image.dims[1],
@@ -23,6 +28,14 @@ pub fn image_loaded(app: &mut CutawayApp, layer: ImageLayer) {
         layer.image.kind().name()
     ));
     app.scene.image = Some(layer);
+}
+
+/// The image to keep when files replace the scene: the scene's image when the scene has no
+/// models (an image opened alone waits for its segmentation), else none.
+pub fn image_kept(app: &CutawayApp, replace: bool) -> Option<ImageLayer> {
+    (replace && app.scene.models.is_empty())
+        .then(|| app.scene.image.clone())
+        .flatten()
 }
 
 fn preset_label(preset: WindowPreset) -> &'static str {
@@ -134,6 +147,74 @@ mod tests {
             }
         }
         std::fs::write(path, bytes).unwrap();
+    }
+
+    /// A CT opened as structures (File → Open, a dropped file, `cutaway open CT.nrrd`) becomes
+    /// the image of a scene without models; the segmentation opened next keeps it.
+    #[test]
+    fn a_ct_opened_alone_is_the_image_and_waits_for_its_segmentation() {
+        let dir = std::env::temp_dir().join(format!("cutaway-image-alone-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let cube = dir.join("cube.ply");
+        crate::io::write_mesh(
+            &cube,
+            &super::super::app::box_mesh(DVec3::ZERO, DVec3::splat(2.0)),
+        )
+        .unwrap();
+        let ct = dir.join("ct.nrrd");
+        write_image(&ct, 0.0);
+        let start = StartOptions {
+            paths: vec![ct.clone()],
+            state_dir: dir.join("state"),
+            offer_recovery: false,
+        };
+        let mut h = Harness::builder()
+            .with_size(egui::vec2(1024.0, 900.0))
+            .with_max_steps(10_000)
+            .with_accessibility_check(false)
+            .build_eframe(move |cc| CutawayApp::new(cc, start));
+        let settle = |h: &mut Harness<'_, CutawayApp>| {
+            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+            while h.state().busy() {
+                assert!(std::time::Instant::now() < deadline, "a job did not finish");
+                h.step();
+                std::thread::sleep(std::time::Duration::from_millis(5));
+            }
+            h.run_steps(2);
+        };
+        settle(&mut h);
+        let message = h.state().status.message.clone();
+        assert!(h.state().scene.models.is_empty(), "{message}");
+        let layer = h.state().scene.image.clone().expect("the CT is the image");
+        assert_eq!(layer.image.kind(), crate::intensity::SampleKind::I16);
+        assert!(message.contains("no segmentation yet"), "{message}");
+
+        // The segmentation, opened next, replaces the empty scene and keeps the image.
+        let ctx = h.ctx.clone();
+        h.state_mut().apply(&ctx, Action::Open(vec![cube.clone()]));
+        settle(&mut h);
+        assert_eq!(h.state().scene.models.len(), 1);
+        let kept = h.state().scene.image.clone().expect("the image stays");
+        assert!(std::sync::Arc::ptr_eq(&kept.image, &layer.image));
+
+        // Opening another segmentation over models drops the image with the old scene; both
+        // together in one open give both.
+        h.state_mut().apply(&ctx, Action::Open(vec![cube.clone()]));
+        settle(&mut h);
+        assert!(h.state().scene.image.is_none());
+        h.state_mut()
+            .apply(&ctx, Action::Open(vec![ct.clone(), cube]));
+        settle(&mut h);
+        assert_eq!(h.state().scene.models.len(), 1);
+        assert!(h.state().scene.image.is_some());
+        // Two images in one open are refused with both names.
+        let ct2 = dir.join("ct2.nrrd");
+        write_image(&ct2, 0.0);
+        h.state_mut().apply(&ctx, Action::Open(vec![ct, ct2]));
+        settle(&mut h);
+        let message = h.state().status.message.clone();
+        assert!(message.contains("a second intensity image"), "{message}");
     }
 
     #[test]

@@ -20,6 +20,7 @@ use std::sync::Arc;
 use glam::{DAffine3, DVec3};
 
 pub mod layer;
+pub mod open;
 pub mod window;
 
 pub use layer::{ImageLayer, WallDisplay};
