@@ -21,6 +21,7 @@ use glam::{DAffine3, DVec3};
 
 pub mod layer;
 pub mod open;
+pub mod wall_pick;
 pub mod window;
 
 pub use layer::{ImageLayer, WallDisplay};
