@@ -507,3 +507,29 @@ fn info_of_a_ct_says_it_is_an_intensity_image() {
     assert_eq!(json["spacing"], serde_json::json!([2.0, 1.0, 1.0]));
     assert_eq!(json["bbox_min"], serde_json::json!([-1.0, -0.5, -0.5]));
 }
+
+/// An image wider than the device's 3-D texture limit is not dropped: it is drawn at reduced
+/// resolution (the ramp along x still shows on the wall) and `render` has a message for it.
+#[test]
+fn an_image_over_the_texture_limit_is_shown_reduced() {
+    let Some(mut r) = renderer() else { return };
+    let limit = r.max_texture_dimension_3d() as usize;
+    if limit > 16384 {
+        println!("skipped: the 3-D texture limit {limit} is too large for a small test image");
+        return;
+    }
+    let n = limit + 1;
+    let dx = 12.0 / (n - 1) as f64;
+    let m = DAffine3::from_mat3_translation(
+        DMat3::from_diagonal(DVec3::new(dx, 1.0, 1.0)),
+        DVec3::splat(-1.0),
+    );
+    let image = IntensityImage::from_fn([n, 13, 13], m, |p| ramp(p) as f32);
+    let notice = cutaway::intensity::fit::notice(&image, limit).expect("over the limit");
+    println!("{notice}");
+    assert!(notice.contains(&format!("exceeds the GPU's 3-D texture limit {limit}")));
+    assert!(notice.contains("half resolution"), "{notice}");
+    let scene = cube_scene(image, WINDOW);
+    let picture = render(&mut r, &scene, "ramp_over_texture_limit");
+    assert_follows(&picture, &ramp, "ramp over the texture limit", true);
+}

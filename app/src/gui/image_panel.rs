@@ -19,8 +19,16 @@ pub fn image_loaded(app: &mut CutawayApp, layer: ImageLayer) {
     } else {
         ""
     };
+    // The renderer shows an image over the GPU's 3-D texture limit at reduced resolution: say so.
+    let reduced = app
+        .wgpu
+        .as_ref()
+        .map(|rs| rs.device.limits().max_texture_dimension_3d as usize)
+        .and_then(|limit| crate::intensity::fit::notice(&layer.image, limit))
+        .map(|notice| format!("; {notice}"))
+        .unwrap_or_default();
     app.say(format!(
-        "Image {}: {} × {} × {} {} voxels, values {lo} to {hi}{alone}",
+        "Image {}: {} × {} × {} {} voxels, values {lo} to {hi}{reduced}{alone}",
         layer.image.source.display(),
         layer.image.dims[0],
         layer.image.dims[1],
