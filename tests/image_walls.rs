@@ -330,9 +330,11 @@ fn chest_dir() -> Option<PathBuf> {
     }
 }
 
-/// The chest segmentation with a box cut from the front through the ribs and lungs, the CT on
-/// the walls, at 1280×800 through `cutaway render`: with the lung window the lungs are dark and
-/// the mediastinum bright; with the bone window the lungs are black and little is white.
+/// The chest segmentation with a box cut from the front through the ribs and lungs to behind
+/// the spine, the CT on the walls, at 1280×800 through `cutaway render`, with a lung window, a
+/// bone window, and the structure colours (`--display color`) that say which structure each
+/// wall pixel belongs to. With the lung window the lungs are darker than the soft tissue; with
+/// the bone window the vertebrae and ribs are brighter than the soft tissue, the lungs black.
 #[test]
 fn chest_ct_on_the_walls_with_lung_and_bone_windows() {
     let Some(chest) = chest_dir() else { return };
@@ -340,15 +342,25 @@ fn chest_ct_on_the_walls_with_lung_and_bone_windows() {
         return;
     }
     let out = out_dir();
-    let plane =
-        |x: f64| serde_json::json!([[x, 200, -90], [x, -10, -90], [x, -10, -290], [x, 200, -290]]);
+    let plane = |x: f64| {
+        serde_json::json!([
+            [x, 200, -90],
+            [x, -100, -90],
+            [x, -100, -290],
+            [x, 200, -290]
+        ])
+    };
     let planes = serde_json::json!([plane(150.0), plane(0.0), plane(-150.0)]);
     let cutters: Vec<serde_json::Value> = [0, 2, 3, 4, 5, 6]
         .iter()
         .map(|t| serde_json::json!({"target": t, "kind": "straight", "planes": planes}))
         .collect();
-    let mut fractions = Vec::new();
-    for (name, window) in [("lung", [-600.0, 1500.0]), ("bone", [400.0, 1800.0])] {
+    let mut pictures = Vec::new();
+    for (name, window, display) in [
+        ("lung", [-600.0, 1500.0], "image"),
+        ("bone", [400.0, 1800.0], "image"),
+        ("structures", [400.0, 1800.0], "color"),
+    ] {
         let session = serde_json::json!({
             "format": "cutaway-session/2",
             "models": [{"path": chest.join("Segmentation.seg.nrrd")}],
@@ -364,41 +376,80 @@ fn chest_ct_on_the_walls_with_lung_and_bone_windows() {
             .arg(&path)
             .arg("--out")
             .arg(&png)
+            .args(["--display", display])
             .status()
             .unwrap();
         assert!(status.success(), "cutaway render {name}");
         let picture = image::open(&png).unwrap().to_rgba8();
         assert_eq!(picture.dimensions(), (1280, 800));
-        // The wall: the cut's rectangle in the middle of the picture (grey pixels: r = g = b).
-        let (mut dark, mut bright, mut grey) = (0usize, 0usize, 0usize);
-        for y in 250..650 {
-            for x in 380..900 {
-                let p = picture.get_pixel(x, y).0;
-                if (p[0] as i32 - p[1] as i32).abs() <= 2 && (p[1] as i32 - p[2] as i32).abs() <= 2
-                {
-                    grey += 1;
-                    let v = p[0] as f64 / 255.0;
-                    dark += usize::from(v < 0.45);
-                    bright += usize::from(v > 0.85);
-                }
-            }
-        }
-        let (d, b) = (dark as f64 / grey as f64, bright as f64 / grey as f64);
-        println!("{name} window: {grey} grey wall pixels, {d:.2} dark, {b:.2} bright");
-        assert!(
-            grey > 100_000,
-            "{name}: the wall shows no image ({grey} grey pixels)"
-        );
-        fractions.push((d, b));
+        pictures.push(picture);
     }
-    let (lung, bone) = (fractions[0], fractions[1]);
-    assert!(
-        lung.0 > 0.15 && lung.1 > 0.15,
-        "lung window: lungs dark, tissue bright: {lung:?}"
+    // Which structure each wall pixel shows, from its structure colour: the lungs are green and
+    // pink, bone tan (red over green over blue), soft tissue grey-green.
+    let mut classes: [Vec<(u32, u32)>; 3] = Default::default();
+    let (lung, bone, tissue) = (0, 1, 2);
+    for y in 220..690 {
+        for x in 340..940 {
+            let [r, g, b, _] = pictures[2].get_pixel(x, y).0.map(i32::from);
+            if r + g + b < 200 || r.min(g).min(b) > 245 {
+                continue; // contour lines, background
+            }
+            let class = if g > r + 30 || (r > g + 40 && b >= g - 10) {
+                lung
+            } else if r > g + 5 && g > b + 25 {
+                bone
+            } else if g >= r {
+                tissue
+            } else {
+                continue;
+            };
+            classes[class].push((x, y));
+        }
+    }
+    let mean_grey = |picture: &image::RgbaImage, class: usize| {
+        let greys: Vec<f64> = classes[class]
+            .iter()
+            .map(|&(x, y)| picture.get_pixel(x, y).0)
+            .filter(|p| {
+                (p[0] as i32 - p[1] as i32).abs() <= 2 && (p[1] as i32 - p[2] as i32).abs() <= 2
+            })
+            .map(|p| p[0] as f64 / 255.0)
+            .collect();
+        assert!(
+            greys.len() * 10 > classes[class].len() * 9,
+            "wall pixels without the image"
+        );
+        greys.iter().sum::<f64>() / greys.len() as f64
+    };
+    let counts = classes.each_ref().map(Vec::len);
+    println!(
+        "wall pixels: {} lung, {} bone, {} soft tissue",
+        counts[0], counts[1], counts[2]
     );
     assert!(
-        bone.0 > lung.0 + 0.2 && bone.1 < 0.05,
-        "bone window: mostly dark: {bone:?}"
+        counts[lung] > 20_000 && counts[bone] > 5_000 && counts[tissue] > 50_000,
+        "{counts:?}"
+    );
+    let [l, b] = [0, 1].map(|w| [lung, bone, tissue].map(|c| mean_grey(&pictures[w], c)));
+    println!(
+        "lung window grey: lung {:.3}, bone {:.3}, tissue {:.3}",
+        l[0], l[1], l[2]
+    );
+    println!(
+        "bone window grey: lung {:.3}, bone {:.3}, tissue {:.3}",
+        b[0], b[1], b[2]
+    );
+    assert!(
+        l[lung] < l[tissue] - 0.25,
+        "lung window: lungs not dark: {l:?}"
+    );
+    assert!(
+        b[bone] > b[tissue] + 0.08,
+        "bone window: bone not bright: {b:?}"
+    );
+    assert!(
+        b[lung] < 0.05 && b[bone] > b[lung] + 0.3,
+        "bone window: {b:?}"
     );
 }
 
