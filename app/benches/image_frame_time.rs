@@ -31,8 +31,14 @@ fn main() {
         println!("image_frame_time: skipped: no chest CT (set CUTAWAY_ANATOMY)");
         return;
     };
-    let plane =
-        |x: f64| serde_json::json!([[x, 200, -90], [x, -100, -90], [x, -100, -290], [x, 200, -290]]);
+    let plane = |x: f64| {
+        serde_json::json!([
+            [x, 200, -90],
+            [x, -100, -90],
+            [x, -100, -290],
+            [x, 200, -290]
+        ])
+    };
     let planes = serde_json::json!([plane(150.0), plane(0.0), plane(-150.0)]);
     let cutters: Vec<serde_json::Value> = [0, 2, 3, 4, 5, 6]
         .iter()
@@ -45,7 +51,8 @@ fn main() {
         "camera": {"eye": [160, 720, -20], "target": [0, 0, -190], "up": [0, 0, 1], "fov_y_deg": 30},
         "image": {"path": chest.join("CTChest4.nrrd"), "window": [-600.0, 1500.0]}
     });
-    let path = std::env::temp_dir().join(format!("cutaway-bench-image-{}.json", std::process::id()));
+    let path =
+        std::env::temp_dir().join(format!("cutaway-bench-image-{}.json", std::process::id()));
     std::fs::write(&path, session.to_string()).expect("write the session");
     let with_image = cutaway::session::load(&path).expect("load the chest session");
     let _ = std::fs::remove_file(&path);

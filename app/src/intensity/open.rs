@@ -29,7 +29,7 @@ pub fn read_file_into(
                     first.image.source.display()
                 );
             }
-            *image = Some(ImageLayer::new(Arc::new(read)));
+            *image = Some(ImageLayer::new(Arc::new(*read)));
         }
     }
     Ok(())

@@ -38,7 +38,7 @@ pub enum VolumeContent {
     Labels(LabelVolume),
     /// An intensity image, with the reason it is not a label map (for messages).
     Image {
-        image: IntensityImage,
+        image: Box<IntensityImage>,
         reason: String,
     },
 }
@@ -62,7 +62,10 @@ pub fn read_content(path: &Path, labels: Option<&Path>) -> anyhow::Result<Volume
         RawContent::Image(raw, reason) => {
             let image = super::intensity::from_samples(path, raw)
                 .with_context(|| path.display().to_string())?;
-            Ok(VolumeContent::Image { image, reason })
+            Ok(VolumeContent::Image {
+                image: Box::new(image),
+                reason,
+            })
         }
     }
 }
