@@ -330,9 +330,11 @@ fn chest_dir() -> Option<PathBuf> {
     }
 }
 
-/// The chest segmentation with a box cut from the front through the ribs and lungs, the CT on
-/// the walls, at 1280×800 through `cutaway render`: with the lung window the lungs are dark and
-/// the mediastinum bright; with the bone window the lungs are black and little is white.
+/// The chest segmentation with a box cut from the front through the ribs and lungs to behind
+/// the spine, the CT on the walls, at 1280×800 through `cutaway render`, with a lung window, a
+/// bone window, and the structure colours (`--display color`) that say which structure each
+/// wall pixel belongs to. With the lung window the lungs are darker than the soft tissue; with
+/// the bone window the vertebrae and ribs are brighter than the soft tissue, the lungs black.
 #[test]
 fn chest_ct_on_the_walls_with_lung_and_bone_windows() {
     let Some(chest) = chest_dir() else { return };
@@ -340,15 +342,25 @@ fn chest_ct_on_the_walls_with_lung_and_bone_windows() {
         return;
     }
     let out = out_dir();
-    let plane =
-        |x: f64| serde_json::json!([[x, 200, -90], [x, -10, -90], [x, -10, -290], [x, 200, -290]]);
+    let plane = |x: f64| {
+        serde_json::json!([
+            [x, 200, -90],
+            [x, -100, -90],
+            [x, -100, -290],
+            [x, 200, -290]
+        ])
+    };
     let planes = serde_json::json!([plane(150.0), plane(0.0), plane(-150.0)]);
     let cutters: Vec<serde_json::Value> = [0, 2, 3, 4, 5, 6]
         .iter()
         .map(|t| serde_json::json!({"target": t, "kind": "straight", "planes": planes}))
         .collect();
-    let mut fractions = Vec::new();
-    for (name, window) in [("lung", [-600.0, 1500.0]), ("bone", [400.0, 1800.0])] {
+    let mut pictures = Vec::new();
+    for (name, window, display) in [
+        ("lung", [-600.0, 1500.0], "image"),
+        ("bone", [400.0, 1800.0], "image"),
+        ("structures", [400.0, 1800.0], "color"),
+    ] {
         let session = serde_json::json!({
             "format": "cutaway-session/2",
             "models": [{"path": chest.join("Segmentation.seg.nrrd")}],
@@ -364,41 +376,80 @@ fn chest_ct_on_the_walls_with_lung_and_bone_windows() {
             .arg(&path)
             .arg("--out")
             .arg(&png)
+            .args(["--display", display])
             .status()
             .unwrap();
         assert!(status.success(), "cutaway render {name}");
         let picture = image::open(&png).unwrap().to_rgba8();
         assert_eq!(picture.dimensions(), (1280, 800));
-        // The wall: the cut's rectangle in the middle of the picture (grey pixels: r = g = b).
-        let (mut dark, mut bright, mut grey) = (0usize, 0usize, 0usize);
-        for y in 250..650 {
-            for x in 380..900 {
-                let p = picture.get_pixel(x, y).0;
-                if (p[0] as i32 - p[1] as i32).abs() <= 2 && (p[1] as i32 - p[2] as i32).abs() <= 2
-                {
-                    grey += 1;
-                    let v = p[0] as f64 / 255.0;
-                    dark += usize::from(v < 0.45);
-                    bright += usize::from(v > 0.85);
-                }
-            }
-        }
-        let (d, b) = (dark as f64 / grey as f64, bright as f64 / grey as f64);
-        println!("{name} window: {grey} grey wall pixels, {d:.2} dark, {b:.2} bright");
-        assert!(
-            grey > 100_000,
-            "{name}: the wall shows no image ({grey} grey pixels)"
-        );
-        fractions.push((d, b));
+        pictures.push(picture);
     }
-    let (lung, bone) = (fractions[0], fractions[1]);
-    assert!(
-        lung.0 > 0.15 && lung.1 > 0.15,
-        "lung window: lungs dark, tissue bright: {lung:?}"
+    // Which structure each wall pixel shows, from its structure colour: the lungs are green and
+    // pink, bone tan (red over green over blue), soft tissue grey-green.
+    let mut classes: [Vec<(u32, u32)>; 3] = Default::default();
+    let (lung, bone, tissue) = (0, 1, 2);
+    for y in 220..690 {
+        for x in 340..940 {
+            let [r, g, b, _] = pictures[2].get_pixel(x, y).0.map(i32::from);
+            if r + g + b < 200 || r.min(g).min(b) > 245 {
+                continue; // contour lines, background
+            }
+            let class = if g > r + 30 || (r > g + 40 && b >= g - 10) {
+                lung
+            } else if r > g + 5 && g > b + 25 {
+                bone
+            } else if g >= r {
+                tissue
+            } else {
+                continue;
+            };
+            classes[class].push((x, y));
+        }
+    }
+    let mean_grey = |picture: &image::RgbaImage, class: usize| {
+        let greys: Vec<f64> = classes[class]
+            .iter()
+            .map(|&(x, y)| picture.get_pixel(x, y).0)
+            .filter(|p| {
+                (p[0] as i32 - p[1] as i32).abs() <= 2 && (p[1] as i32 - p[2] as i32).abs() <= 2
+            })
+            .map(|p| p[0] as f64 / 255.0)
+            .collect();
+        assert!(
+            greys.len() * 4 > classes[class].len() * 3,
+            "wall pixels without the image"
+        );
+        greys.iter().sum::<f64>() / greys.len() as f64
+    };
+    let counts = classes.each_ref().map(Vec::len);
+    println!(
+        "wall pixels: {} lung, {} bone, {} soft tissue",
+        counts[0], counts[1], counts[2]
     );
     assert!(
-        bone.0 > lung.0 + 0.2 && bone.1 < 0.05,
-        "bone window: mostly dark: {bone:?}"
+        counts[lung] > 20_000 && counts[bone] > 5_000 && counts[tissue] > 50_000,
+        "{counts:?}"
+    );
+    let [l, b] = [0, 1].map(|w| [lung, bone, tissue].map(|c| mean_grey(&pictures[w], c)));
+    println!(
+        "lung window grey: lung {:.3}, bone {:.3}, tissue {:.3}",
+        l[0], l[1], l[2]
+    );
+    println!(
+        "bone window grey: lung {:.3}, bone {:.3}, tissue {:.3}",
+        b[0], b[1], b[2]
+    );
+    assert!(
+        l[lung] < l[tissue] - 0.25,
+        "lung window: lungs not dark: {l:?}"
+    );
+    assert!(
+        b[bone] > b[tissue] + 0.08,
+        "bone window: bone not bright: {b:?}"
+    );
+    assert!(
+        b[lung] < 0.05 && b[bone] > b[lung] + 0.3,
+        "bone window: {b:?}"
     );
 }
 
@@ -441,4 +492,95 @@ fn gltf_walls_carry_the_image_as_vertex_colours() {
         }
     }
     assert!(checked >= 100, "{checked} baked vertices on the back wall");
+}
+
+/// A volume whose values are not labels is described by `info` as an intensity image (type,
+/// value range, grid, the reason), for a synthetic CT and for the real chest CT.
+#[test]
+fn info_of_a_ct_says_it_is_an_intensity_image() {
+    let dir = out_dir();
+    let ct = dir.join("info_ct.nrrd");
+    let mut bytes = b"NRRD0004\ntype: short\ndimension: 3\nspace: RAS\nsizes: 4 3 2\nspace directions: (2,0,0) (0,1,0) (0,0,1)\nendian: little\nencoding: raw\nspace origin: (0,0,0)\n\n".to_vec();
+    for v in 0..24i16 {
+        bytes.extend_from_slice(&(v * 100 - 1000).to_le_bytes());
+    }
+    std::fs::write(&ct, bytes).unwrap();
+    let mut files = vec![ct];
+    if let Some(chest) = chest_dir() {
+        files.push(chest.join("CTChest4.nrrd"));
+    }
+    for file in &files {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
+            .arg("info")
+            .arg(file)
+            .arg("--json")
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let intensity = &json["intensity"];
+        println!("{}: {intensity}", file.display());
+        assert!(
+            intensity["reason"]
+                .as_str()
+                .unwrap()
+                .starts_with("negative"),
+            "{json}"
+        );
+        assert!(intensity["min"].as_f64().unwrap() <= -1000.0, "{json}");
+        assert!(intensity["max"].as_f64().unwrap() > 0.0, "{json}");
+        assert_eq!(json["triangles"], 0);
+        assert!(json.get("labels").is_none());
+        let text = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
+            .arg("info")
+            .arg(file)
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&text.stdout);
+        assert!(text.contains("intensity image (negative"), "{text}");
+    }
+    let json: serde_json::Value = serde_json::from_slice(
+        &std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
+            .arg("info")
+            .arg(&files[0])
+            .arg("--json")
+            .output()
+            .unwrap()
+            .stdout,
+    )
+    .unwrap();
+    assert_eq!(json["intensity"]["type"], "int16");
+    assert_eq!(json["dims"], serde_json::json!([4, 3, 2]));
+    assert_eq!(json["spacing"], serde_json::json!([2.0, 1.0, 1.0]));
+    assert_eq!(json["bbox_min"], serde_json::json!([-1.0, -0.5, -0.5]));
+}
+
+/// An image wider than the device's 3-D texture limit is not dropped: it is drawn at reduced
+/// resolution (the ramp along x still shows on the wall) and `render` has a message for it.
+#[test]
+fn an_image_over_the_texture_limit_is_shown_reduced() {
+    let Some(mut r) = renderer() else { return };
+    let limit = r.max_texture_dimension_3d() as usize;
+    if limit > 16384 {
+        println!("skipped: the 3-D texture limit {limit} is too large for a small test image");
+        return;
+    }
+    let n = limit + 1;
+    let dx = 12.0 / (n - 1) as f64;
+    let m = DAffine3::from_mat3_translation(
+        DMat3::from_diagonal(DVec3::new(dx, 1.0, 1.0)),
+        DVec3::splat(-1.0),
+    );
+    let image = IntensityImage::from_fn([n, 13, 13], m, |p| ramp(p) as f32);
+    let notice = cutaway::intensity::fit::notice(&image, limit).expect("over the limit");
+    println!("{notice}");
+    assert!(notice.contains(&format!("exceeds the GPU's 3-D texture limit {limit}")));
+    assert!(notice.contains("half resolution"), "{notice}");
+    let scene = cube_scene(image, WINDOW);
+    let picture = render(&mut r, &scene, "ramp_over_texture_limit");
+    assert_follows(&picture, &ramp, "ramp over the texture limit", true);
 }

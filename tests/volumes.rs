@@ -609,25 +609,9 @@ fn malformed_volumes_are_one_line_errors() {
             &["spacing NaN on spatial axis 1"],
         ),
         (
-            "float.nrrd",
-            nrrd(
-                &HEADER.replace("unsigned char", "float"),
-                &gzip(&float_data),
-            ),
-            &["non-integer value 0.25", "not a label map"],
-        ),
-        (
             "empty.nrrd",
             nrrd(HEADER, &gzip(&[0; 4096])),
             &["empty label map"],
-        ),
-        (
-            "negative.nrrd",
-            nrrd(
-                &HEADER.replace("unsigned char", "signed char"),
-                &gzip(&[0xffu8; 4096]),
-            ),
-            &["negative value -1"],
         ),
         (
             "encoding.nrrd",
@@ -652,6 +636,52 @@ fn malformed_volumes_are_one_line_errors() {
         ),
         ("not-nifti.nii", vec![0u8; 400], &["not a NIfTI-1/2 file"]),
     ];
+    // Values that are not labels (fractions, negatives) make an intensity image, which `info`
+    // describes and `surfaces` refuses with the reason.
+    let not_labels = [
+        (
+            "float.nrrd",
+            nrrd(
+                &HEADER.replace("unsigned char", "float"),
+                &gzip(&float_data),
+            ),
+            "float32 values with fractions, such as 0.25",
+        ),
+        (
+            "negative.nrrd",
+            nrrd(
+                &HEADER.replace("unsigned char", "signed char"),
+                &gzip(&[0xffu8; 4096]),
+            ),
+            "negative int8 values, such as -1",
+        ),
+    ];
+    for (name, bytes, reason) in &not_labels {
+        let path = dir.join(name);
+        std::fs::write(&path, bytes).unwrap();
+        let out = cutaway()
+            .arg("info")
+            .arg(&path)
+            .arg("--json")
+            .output()
+            .unwrap();
+        let json = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{name}: {json}");
+        assert!(json.contains(reason), "{name}: {json}");
+        let out = cutaway()
+            .arg("surfaces")
+            .arg(&path)
+            .arg("--out")
+            .arg(dir.join("out"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{name}");
+        assert!(
+            err.contains("an intensity image") && err.contains(reason),
+            "{name}: {err}"
+        );
+    }
     for (name, bytes, needles) in &cases {
         let path = dir.join(name);
         std::fs::write(&path, bytes).unwrap();
@@ -691,6 +721,19 @@ fn malformed_volumes_are_one_line_errors() {
     float[70..72].copy_from_slice(&16i16.to_le_bytes());
     float.extend_from_slice(&[0; 24]);
     float[352..356].copy_from_slice(&0.5f32.to_le_bytes());
+    let float_nii = dir.join("float.nii");
+    std::fs::write(&float_nii, &float).unwrap();
+    let out = cutaway()
+        .arg("info")
+        .arg(&float_nii)
+        .arg("--json")
+        .output()
+        .unwrap();
+    let json = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && json.contains("float32 values with fractions, such as 0.5"),
+        "{json}"
+    );
     let mut complex = nii.clone();
     complex[70..72].copy_from_slice(&32i16.to_le_bytes());
     let gz = gzip(&nii);
@@ -698,7 +741,6 @@ fn malformed_volumes_are_one_line_errors() {
         ("cut.nii", nii[..356].to_vec(), "voxel data is 4 bytes"),
         ("cut.nii.gz", gz[..gz.len() - 12].to_vec(), "gzip"),
         ("time.nii", time_series, "dim[4] = 3"),
-        ("float.nii", float, "non-integer value 0.5"),
         ("complex.nii", complex, "datatype 32 is not a label type"),
     ];
     for (name, bytes, needle) in &nifti_cases {

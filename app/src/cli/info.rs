@@ -47,6 +47,21 @@ pub struct Info {
     /// Label volumes only: the labels present, ascending.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub labels: Option<Vec<LabelInfo>>,
+    /// Intensity images only (a volume whose values are not labels).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub intensity: Option<IntensityInfo>,
+}
+
+/// What an intensity image holds, in `info --json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct IntensityInfo {
+    /// The stored sample type (`int16`, `float32`, …).
+    #[serde(rename = "type")]
+    pub sample: &'static str,
+    pub min: f64,
+    pub max: f64,
+    /// Why it is not a label map.
+    pub reason: String,
 }
 
 /// One label of a volume in `info --json`.
@@ -74,7 +89,11 @@ pub fn info_with_labels(path: &Path, labels: Option<&Path>) -> anyhow::Result<In
 }
 
 fn volume_info(path: &Path, labels: Option<&Path>) -> anyhow::Result<Info> {
-    let volume = crate::io::volume::read_volume(path, labels)?;
+    use crate::io::volume::content::{VolumeContent, read_content};
+    let volume = match read_content(path, labels)? {
+        VolumeContent::Labels(volume) => volume,
+        VolumeContent::Image { image, reason } => return Ok(image_info(&image, reason)),
+    };
     let surfaces = crate::io::volume::surfaces(&volume, None, &|_| true)
         .with_context(|| path.display().to_string())?;
     let mut mesh = csg::Mesh::default();
@@ -99,6 +118,33 @@ fn volume_info(path: &Path, labels: Option<&Path>) -> anyhow::Result<Info> {
     Ok(info)
 }
 
+/// An intensity image: no surfaces (the mesh fields are zero, the box is the grid's world box),
+/// its grid, and what it holds.
+fn image_info(image: &crate::intensity::IntensityImage, reason: String) -> Info {
+    let bbox = image.world_bbox();
+    let m = image.world_from_voxel.matrix3;
+    let (min, max) = image.range();
+    Info {
+        vertices: 0,
+        triangles: 0,
+        regions: 0,
+        closed: false,
+        manifold: false,
+        bbox_min: bbox.min.to_array(),
+        bbox_max: bbox.max.to_array(),
+        volume: 0.0,
+        dims: Some(image.dims),
+        spacing: Some([m.x_axis.length(), m.y_axis.length(), m.z_axis.length()]),
+        labels: None,
+        intensity: Some(IntensityInfo {
+            sample: image.kind().name(),
+            min,
+            max,
+            reason,
+        }),
+    }
+}
+
 fn mesh_info(mesh: &csg::Mesh) -> Info {
     let report = mesh.report();
     let bbox = mesh.bbox();
@@ -114,6 +160,7 @@ fn mesh_info(mesh: &csg::Mesh) -> Info {
         dims: None,
         spacing: None,
         labels: None,
+        intensity: None,
     }
 }
 
@@ -142,6 +189,24 @@ fn table(path: &Path, info: &Info) -> String {
     } else {
         format!("{} (not meaningful: the mesh is open)", info.volume)
     };
+    if let Some(image) = &info.intensity {
+        let mut text = format!("{:<10} {}\n", "file", path.display());
+        text += &format!(
+            "{:<10} intensity image ({}), not labels: open it with --image or on its own\n",
+            "content", image.reason
+        );
+        text += &format!(
+            "{:<10} {}, {} to {}\n",
+            "values", image.sample, image.min, image.max
+        );
+        if let (Some(dims), Some(spacing)) = (info.dims, info.spacing) {
+            text += &format!("{:<10} {} {} {}\n", "dims", dims[0], dims[1], dims[2]);
+            text += &format!("{:<10} {}\n", "spacing", xyz(spacing));
+        }
+        text += &format!("{:<10} {}\n", "bbox min", xyz(info.bbox_min));
+        text += &format!("{:<10} {}\n", "bbox max", xyz(info.bbox_max));
+        return text;
+    }
     let rows = [
         ("file", path.display().to_string()),
         ("vertices", info.vertices.to_string()),
@@ -190,6 +255,7 @@ mod tests {
             dims: None,
             spacing: None,
             labels: None,
+            intensity: None,
         };
         assert_eq!(
             serde_json::to_string(&info).unwrap(),
@@ -219,6 +285,7 @@ mod tests {
                 color: [225, 190, 150],
                 voxels: 42,
             }]),
+            intensity: None,
         };
         let json = serde_json::to_string(&info).unwrap();
         assert!(

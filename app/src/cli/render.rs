@@ -79,6 +79,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     options.transparent_background = args.transparent;
     let mut renderer =
         HeadlessRenderer::new().with_context(|| format!("{}", args.session.display()))?;
+    if let Some(layer) = &scene.image {
+        let limit = renderer.max_texture_dimension_3d() as usize;
+        if let Some(notice) = crate::intensity::fit::notice(&layer.image, limit) {
+            eprintln!("{}: {notice}", layer.image.source.display());
+        }
+    }
     let started = std::time::Instant::now();
     let preview = (render_mode(&scene, &options) == ViewMode::Preview)
         .then(|| Arc::new(preview_geometry(&scene)));

@@ -157,6 +157,8 @@ pub enum JobOutput {
         models: Vec<crate::io::Model>,
         replace: bool,
         sources: Vec<PathBuf>,
+        /// A volume among the files that holds an intensity image, not labels.
+        image: Option<crate::intensity::ImageLayer>,
     },
     /// A session was read (models included).
     Session { path: PathBuf, scene: Box<Scene> },
@@ -346,6 +348,7 @@ impl CutawayApp {
                 models,
                 replace: true,
                 sources: Vec::new(),
+                image: None,
             })
         });
     }
@@ -360,6 +363,7 @@ impl CutawayApp {
                     models,
                     replace: true,
                     sources: Vec::new(),
+                    image: None,
                 })
             },
         );
@@ -787,11 +791,12 @@ impl CutawayApp {
         };
         let sources = paths.clone();
         self.spawn(ctx, label, move |progress| {
-            let models = load_paths(&paths, progress)?;
+            let (models, image) = load_paths(&paths, progress)?;
             Ok(JobOutput::Models {
                 models,
                 replace,
                 sources,
+                image,
             })
         });
     }
@@ -815,7 +820,14 @@ impl CutawayApp {
                 models,
                 replace,
                 sources,
-            } => self.add_models(models, replace, &sources),
+                image,
+            } => {
+                let image = image.or_else(|| super::image_panel::image_kept(self, replace));
+                self.add_models(models, replace, &sources);
+                if let Some(layer) = image {
+                    super::image_panel::image_loaded(self, layer);
+                }
+            }
             JobOutput::Session { path, scene } => {
                 self.scene = *scene;
                 // A restored autosave has no file of its own: Save asks where to put it.
@@ -1266,8 +1278,12 @@ fn file_label(path: &Path) -> String {
 
 /// Reads files and folders (recursively) as structures, one file at a time, reporting progress
 /// per file and stopping between files when cancelled. A folder's files are grouped by the
-/// folders between it and them, its own name first.
-pub fn load_paths(paths: &[PathBuf], progress: &Progress) -> anyhow::Result<Vec<crate::io::Model>> {
+/// folders between it and them, its own name first. A volume file whose values are not labels
+/// becomes the scene's image.
+pub fn load_paths(
+    paths: &[PathBuf],
+    progress: &Progress,
+) -> anyhow::Result<(Vec<crate::io::Model>, Option<crate::intensity::ImageLayer>)> {
     let mut files: Vec<(PathBuf, String)> = Vec::new();
     for path in paths {
         if path.is_dir() {
@@ -1288,15 +1304,16 @@ pub fn load_paths(paths: &[PathBuf], progress: &Progress) -> anyhow::Result<Vec<
         }
     }
     let mut models = Vec::new();
+    let mut image = None;
     let total = files.len() as u64;
     for (i, (file, group)) in files.iter().enumerate() {
         progress.check()?;
         progress.set(i as u64, total);
         progress.set_message(file_label(file));
-        models.extend(crate::io::structures_of_file(file, group)?);
+        crate::intensity::open::read_file_into(file, group, &mut models, &mut image)?;
     }
     progress.set(total, total);
-    Ok(models)
+    Ok((models, image))
 }
 
 /// A small mesh for tests of the window's state handling: a closed box.

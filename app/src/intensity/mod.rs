@@ -19,7 +19,10 @@ use std::sync::Arc;
 
 use glam::{DAffine3, DVec3};
 
+pub mod fit;
 pub mod layer;
+pub mod open;
+pub mod wall_pick;
 pub mod window;
 
 pub use layer::{ImageLayer, WallDisplay};
@@ -178,7 +181,7 @@ impl IntensityImage {
     }
 
     /// The stored value at flat index `index` (x fastest), unscaled.
-    fn raw(&self, index: usize) -> f64 {
+    pub(crate) fn raw(&self, index: usize) -> f64 {
         let b = &self.bytes;
         match self.kind {
             SampleKind::U8 => b[index] as f64,

@@ -56,6 +56,34 @@ pub fn structures_of_file(file: &Path, group: &str) -> anyhow::Result<Vec<Model>
     Ok(structures_of_parts(file, parts, group))
 }
 
+/// What one opened file is: its structures, or the intensity image it holds (a volume whose values
+/// are not labels, see `super::volume::content`).
+#[derive(Debug)]
+pub enum FileContent {
+    Structures(Vec<Model>),
+    Image {
+        image: Box<crate::intensity::IntensityImage>,
+        /// Why it is not a label map.
+        reason: String,
+    },
+}
+
+/// [`structures_of_file`], except that a volume file holding an intensity image is returned as
+/// that image (read once) instead of failing as a bad label map.
+pub fn content_of_file(file: &Path, group: &str) -> anyhow::Result<FileContent> {
+    use super::volume::content::{VolumeContent, read_content};
+    if !(file.is_file() && super::volume::is_volume(file)) {
+        return structures_of_file(file, group).map(FileContent::Structures);
+    }
+    Ok(match read_content(file, None)? {
+        VolumeContent::Labels(volume) => {
+            let parts = super::volume::parts_of(&volume)?;
+            FileContent::Structures(structures_of_parts(file, parts, group))
+        }
+        VolumeContent::Image { image, reason } => FileContent::Image { image, reason },
+    })
+}
+
 /// The structures of one file: for a mesh file the whole file (all parts, welded each on its own,
 /// in file order) as one model named by [`structure_name`]; for a label volume (or a folder of
 /// masks) one model per label, in ascending label order, with the label's name and colour, in a

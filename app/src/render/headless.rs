@@ -106,6 +106,12 @@ impl HeadlessRenderer {
         format!("{} ({:?})", self.adapter.name, self.adapter.backend)
     }
 
+    /// The device's largest 3-D texture side: an intensity image larger than this is shown at
+    /// reduced resolution (`crate::intensity::fit`).
+    pub fn max_texture_dimension_3d(&self) -> u32 {
+        self.device.limits().max_texture_dimension_3d
+    }
+
     /// True for software rasterizers (lavapipe, llvmpipe).
     pub fn is_software(&self) -> bool {
         self.adapter.device_type == wgpu::DeviceType::Cpu

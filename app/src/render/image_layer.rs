@@ -69,6 +69,9 @@ impl ImageUniform {
 
 struct Uploaded {
     image: Weak<IntensityImage>,
+    /// The reduced grid on the GPU when the image is over the texture limit: its size and
+    /// world → voxel matrix (the reduced values live only in the texture).
+    grid: Option<([usize; 3], glam::DAffine3)>,
     bind_group: wgpu::BindGroup,
     uniform: wgpu::Buffer,
     /// Kept alive for the bind group.
@@ -83,6 +86,9 @@ pub struct ImageRenderer {
     uploaded: Option<Uploaded>,
     /// Bytes of image data sent this frame (0 when the texture was already there).
     pub uploaded_bytes: u64,
+    /// Set while the image on the GPU is a reduced copy because the scan is larger than the
+    /// device's 3-D texture limit (`crate::intensity::fit::notice`).
+    pub notice: Option<String>,
 }
 
 impl ImageRenderer {
@@ -99,12 +105,10 @@ impl ImageRenderer {
         self.uploaded_bytes = 0;
         let Some(layer) = layer else {
             self.uploaded = None;
+            self.notice = None;
             return false;
         };
         let limit = device.limits().max_texture_dimension_3d as usize;
-        if layer.image.dims.iter().any(|&d| d > limit) {
-            return false;
-        }
         let layout = self
             .layout
             .get_or_insert_with(|| bind_group_layout(device))
@@ -120,11 +124,21 @@ impl ImageRenderer {
         if !fresh {
             // The old texture goes first, so two scans are never on the GPU together.
             self.uploaded = None;
-            self.uploaded = Some(upload(device, queue, &layout, &layer.image));
-            self.uploaded_bytes = layer.image.bytes().len() as u64;
+            // Larger than the texture limit: a block-averaged copy, only while it is uploaded.
+            let fitted = crate::intensity::fit::fit_to_limit(&layer.image, limit);
+            self.notice = crate::intensity::fit::notice(&layer.image, limit);
+            self.uploaded = Some(upload(device, queue, &layout, &layer.image, &fitted));
+            self.uploaded_bytes = fitted.bytes().len() as u64;
         }
         if let Some(u) = &self.uploaded {
-            queue.write_buffer(&u.uniform, 0, bytemuck::bytes_of(&ImageUniform::new(layer)));
+            let mut uniform = ImageUniform::new(layer);
+            if let Some((dims, voxel_from_world)) = u.grid {
+                // The shader samples the reduced grid: its size and world → voxel matrix.
+                let m = glam::DMat4::from(voxel_from_world).as_mat4();
+                uniform.voxel_from_world = m.to_cols_array_2d();
+                uniform.dims[..3].copy_from_slice(&dims.map(|d| d as f32));
+            }
+            queue.write_buffer(&u.uniform, 0, bytemuck::bytes_of(&uniform));
         }
         true
     }
@@ -224,6 +238,7 @@ fn upload(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     layout: &wgpu::BindGroupLayout,
+    source: &Arc<IntensityImage>,
     image: &Arc<IntensityImage>,
 ) -> Uploaded {
     let format = match image.kind().size() {
@@ -302,7 +317,8 @@ fn upload(
         ],
     });
     Uploaded {
-        image: Arc::downgrade(image),
+        image: Arc::downgrade(source),
+        grid: (!Arc::ptr_eq(source, image)).then(|| (image.dims, image.voxel_from_world())),
         bind_group,
         uniform,
         _texture: texture,

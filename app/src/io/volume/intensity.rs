@@ -28,10 +28,11 @@ fn read(path: &Path) -> anyhow::Result<IntensityImage> {
         VolumeFormat::Nrrd => super::nrrd::read_samples(path)?,
         VolumeFormat::Nifti => super::nifti::read_samples(path)?,
     };
-    image(path, raw)
+    from_samples(path, raw)
 }
 
-fn image(path: &Path, raw: RawSamples) -> anyhow::Result<IntensityImage> {
+/// An image from samples a reader has handed over (no second read of the file).
+pub(crate) fn from_samples(path: &Path, raw: RawSamples) -> anyhow::Result<IntensityImage> {
     if raw.layers != 1 {
         anyhow::bail!(
             "{} layers: an intensity image has one 3-D volume (this looks like a segmentation)",
@@ -193,7 +194,7 @@ mod tests {
             bytes: be,
             scale: (1.0, 0.0),
         };
-        let img = image(Path::new("be.nrrd"), raw).unwrap();
+        let img = from_samples(Path::new("be.nrrd"), raw).unwrap();
         assert_eq!(img.value(0, 1, 0), 65535.0);
         let doubles: Vec<u8> = [0.5f64, 1.0, 2.0, 3.0]
             .iter()
@@ -208,7 +209,7 @@ mod tests {
             bytes: doubles,
             scale: (1.0, 0.0),
         };
-        let img = image(Path::new("d.nii"), raw).unwrap();
+        let img = from_samples(Path::new("d.nii"), raw).unwrap();
         assert_eq!((img.kind(), img.value(0, 0, 0)), (SampleKind::F32, 0.5));
     }
 

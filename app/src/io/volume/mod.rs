@@ -36,6 +36,7 @@ use anyhow::Context as _;
 use glam::{DAffine3, DMat3, DVec3};
 
 pub mod color_table;
+pub mod content;
 mod gzip;
 pub mod intensity;
 mod masks;
@@ -247,7 +248,24 @@ fn sniff_file(path: &Path) -> Option<VolumeFormat> {
 
 /// Reads a volume file or mask directory with its names and colours (`labels`: a colour table
 /// that overrides all other sources). Errors name the file.
+/// A file that holds an intensity image rather than labels ([`content`]) is an error that says so.
 pub fn read_volume(path: &Path, labels: Option<&Path>) -> anyhow::Result<LabelVolume> {
+    match content::read_content(path, labels)? {
+        content::VolumeContent::Labels(volume) => Ok(volume),
+        content::VolumeContent::Image { reason, .. } => anyhow::bail!(
+            "{}: an intensity image ({reason}), not a segmentation: open it as the image (--image, or Open Image… in the File menu)",
+            path.display()
+        ),
+    }
+}
+
+/// [`read_volume`] of a label map, from the reader's `raw` volume when the caller has read it
+/// already (files), else read here (mask folders).
+fn read_volume_labels(
+    path: &Path,
+    labels: Option<&Path>,
+    raw: Option<RawVolume>,
+) -> anyhow::Result<LabelVolume> {
     let table = match labels {
         Some(table) => color_table::read(table)?,
         None => Vec::new(),
@@ -256,7 +274,10 @@ pub fn read_volume(path: &Path, labels: Option<&Path>) -> anyhow::Result<LabelVo
     let (raw, beside) = if metadata.is_dir() {
         (masks::read(path)?, Vec::new())
     } else {
-        let raw = read_file(path).with_context(|| path.display().to_string())?;
+        let raw = match raw {
+            Some(raw) => raw,
+            None => read_file(path).with_context(|| path.display().to_string())?,
+        };
         // A file that names its own structures needs no table from the folder.
         let beside = if raw.names.is_empty() && labels.is_none() {
             color_table::find_beside(path)?
@@ -492,9 +513,13 @@ fn layer_surfaces<T: csg::labels::LabelValue>(
 /// A volume as mesh parts: one per structure, named and coloured (what
 /// [`super::read_parts`] returns for a volume).
 pub fn read_parts(path: &Path) -> anyhow::Result<Vec<super::Part>> {
-    let volume = read_volume(path, None)?;
-    let surfaces =
-        surfaces(&volume, None, &|_| true).with_context(|| path.display().to_string())?;
+    parts_of(&read_volume(path, None)?)
+}
+
+/// A label volume's structures as mesh parts (see [`read_parts`]).
+pub fn parts_of(volume: &LabelVolume) -> anyhow::Result<Vec<super::Part>> {
+    let path = &volume.source;
+    let surfaces = surfaces(volume, None, &|_| true).with_context(|| path.display().to_string())?;
     Ok(surfaces
         .into_iter()
         .map(|s| super::Part {

@@ -132,7 +132,19 @@ fn parse_header(bytes: &[u8], version: u8, endian: Endian) -> Header {
 }
 
 pub(crate) fn read(path: &Path) -> anyhow::Result<RawVolume> {
+    labels_of(read_samples(path)?)
+}
+
+/// The file as labels or as an intensity image (`super::content`), read once.
+pub(crate) fn read_content(path: &Path) -> anyhow::Result<super::content::RawContent> {
     let raw = read_samples(path)?;
+    Ok(match super::content::intensity_reason(&raw) {
+        Some(reason) => super::content::RawContent::Image(raw, reason),
+        None => super::content::RawContent::Labels(labels_of(raw)?),
+    })
+}
+
+fn labels_of(raw: RawSamples) -> anyhow::Result<RawVolume> {
     let layer = super::samples::decode(&raw.bytes, raw.sample, raw.endian, raw.dims)?;
     Ok(RawVolume {
         dims: raw.dims,

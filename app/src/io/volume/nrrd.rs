@@ -341,9 +341,23 @@ fn data_file_path(header_path: &Path, name: &str) -> anyhow::Result<PathBuf> {
     Ok(dir.join(name))
 }
 
+/// The file as labels or as an intensity image (`super::content`), read once.
+pub(crate) fn read_content(path: &Path) -> anyhow::Result<super::content::RawContent> {
+    let (header, data) = read_header_and_data(path)?;
+    let raw = samples(&header, data)?;
+    Ok(match super::content::intensity_reason(&raw) {
+        Some(reason) => super::content::RawContent::Image(raw, reason),
+        None => super::content::RawContent::Labels(labels_of(&header, raw)?),
+    })
+}
+
 /// Builds the volume from a parsed header and its data bytes (still encoded).
 fn volume(h: &Header, data: Vec<u8>) -> anyhow::Result<RawVolume> {
-    let raw = samples(h, data)?;
+    labels_of(h, samples(h, data)?)
+}
+
+/// Decodes the samples of a label map and its segment names.
+fn labels_of(h: &Header, raw: RawSamples) -> anyhow::Result<RawVolume> {
     let dims = raw.dims;
     let layers_data = if raw.layers == 1 {
         vec![super::samples::decode(
