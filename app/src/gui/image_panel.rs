@@ -206,21 +206,7 @@ mod tests {
             state_dir: dir.join("state"),
             offer_recovery: false,
         };
-        let mut h = Harness::builder()
-            .with_size(egui::vec2(1024.0, 900.0))
-            .with_max_steps(10_000)
-            .with_accessibility_check(false)
-            .build_eframe(move |cc| CutawayApp::new(cc, start));
-        let settle = |h: &mut Harness<'_, CutawayApp>| {
-            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
-            while h.state().busy() {
-                assert!(std::time::Instant::now() < deadline, "a job did not finish");
-                h.step();
-                std::thread::sleep(std::time::Duration::from_millis(5));
-            }
-            h.run_steps(2);
-        };
-        settle(&mut h);
+        let mut h = crate::gui::test_window::open(start, 1024.0, 900.0);
         let message = h.state().status.message.clone();
         assert!(h.state().scene.models.is_empty(), "{message}");
         let layer = h.state().scene.image.clone().expect("the CT is the image");
@@ -230,7 +216,7 @@ mod tests {
         // The segmentation, opened next, replaces the empty scene and keeps the image.
         let ctx = h.ctx.clone();
         h.state_mut().apply(&ctx, Action::Open(vec![cube.clone()]));
-        settle(&mut h);
+        crate::gui::test_window::settle(&mut h);
         assert_eq!(h.state().scene.models.len(), 1);
         let kept = h.state().scene.image.clone().expect("the image stays");
         assert!(std::sync::Arc::ptr_eq(&kept.image, &layer.image));
@@ -238,18 +224,18 @@ mod tests {
         // Opening another segmentation over models drops the image with the old scene; both
         // together in one open give both.
         h.state_mut().apply(&ctx, Action::Open(vec![cube.clone()]));
-        settle(&mut h);
+        crate::gui::test_window::settle(&mut h);
         assert!(h.state().scene.image.is_none());
         h.state_mut()
             .apply(&ctx, Action::Open(vec![ct.clone(), cube]));
-        settle(&mut h);
+        crate::gui::test_window::settle(&mut h);
         assert_eq!(h.state().scene.models.len(), 1);
         assert!(h.state().scene.image.is_some());
         // Two images in one open are refused with both names.
         let ct2 = dir.join("ct2.nrrd");
         write_image(&ct2, 0.0);
         h.state_mut().apply(&ctx, Action::Open(vec![ct, ct2]));
-        settle(&mut h);
+        crate::gui::test_window::settle(&mut h);
         let message = h.state().status.message.clone();
         assert!(message.contains("a second intensity image"), "{message}");
     }
@@ -300,22 +286,7 @@ mod tests {
             state_dir: dir.join("state"),
             offer_recovery: false,
         };
-        let mut h = Harness::builder()
-            .with_size(egui::vec2(1024.0, 800.0))
-            .with_max_steps(10_000)
-            .with_accessibility_check(false)
-            .build_eframe(move |cc| CutawayApp::new(cc, start));
-        let settle = |h: &mut Harness<'_, CutawayApp>| {
-            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
-            h.run_steps(2);
-            while h.state().busy() {
-                assert!(std::time::Instant::now() < deadline, "a job did not finish");
-                h.step();
-                std::thread::sleep(std::time::Duration::from_millis(5));
-            }
-            h.run_steps(2);
-        };
-        settle(&mut h);
+        let mut h = crate::gui::test_window::open(start, 1024.0, 800.0);
         assert!(
             h.state().scene.image.is_some(),
             "{}",
@@ -338,7 +309,7 @@ mod tests {
                 fov_y_deg: 20.0,
             };
         }
-        settle(&mut h);
+        crate::gui::test_window::settle(&mut h);
         assert!(h.state().viewport.preview.is_some(), "no cut preview");
         let undo_before = h.state().history.undo_label().map(str::to_owned);
         let window = h.state().scene.image.as_ref().unwrap().window;
@@ -390,25 +361,11 @@ mod tests {
             state_dir: dir.join("state"),
             offer_recovery: false,
         };
-        let mut h = Harness::builder()
-            .with_size(egui::vec2(1024.0, 900.0))
-            .with_max_steps(10_000)
-            .with_accessibility_check(false)
-            .build_eframe(move |cc| CutawayApp::new(cc, start));
-        let settle = |h: &mut Harness<'_, CutawayApp>| {
-            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
-            while h.state().busy() {
-                assert!(std::time::Instant::now() < deadline, "a job did not finish");
-                h.step();
-                std::thread::sleep(std::time::Duration::from_millis(5));
-            }
-            h.run_steps(2);
-        };
-        settle(&mut h);
+        let mut h = crate::gui::test_window::open(start, 1024.0, 900.0);
         let ctx = h.ctx.clone();
         // An image beside the models, not on them, is refused with the reason.
         h.state_mut().apply(&ctx, Action::OpenImage(far));
-        settle(&mut h);
+        crate::gui::test_window::settle(&mut h);
         assert!(h.state().scene.image.is_none());
         assert!(
             h.state().status.message.contains("disjoint"),
@@ -417,7 +374,7 @@ mod tests {
         );
 
         h.state_mut().apply(&ctx, Action::OpenImage(near.clone()));
-        settle(&mut h);
+        crate::gui::test_window::settle(&mut h);
         let layer = h
             .state()
             .scene

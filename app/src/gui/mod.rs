@@ -38,6 +38,8 @@ pub mod recovery;
 pub mod ruler;
 pub mod scalpel_mode;
 pub mod status_bar;
+#[cfg(test)]
+pub mod test_window;
 pub mod undo;
 pub mod variants_panel;
 pub mod view_menu;

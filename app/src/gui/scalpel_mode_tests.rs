@@ -20,7 +20,6 @@ fn session_dir(name: &str) -> std::path::PathBuf {
 /// edited, and Save Session writes the cut mesh, which the session then reopens.
 #[test]
 fn the_window_saves_the_mesh_left_by_remove_all_cut_geometry() {
-    use egui_kittest::Harness;
 
     let dir = session_dir("remove-all");
     let cube = dir.join("cube.ply");
@@ -34,21 +33,7 @@ fn the_window_saves_the_mesh_left_by_remove_all_cut_geometry() {
         state_dir: dir.join("state"),
         offer_recovery: false,
     };
-    let mut h = Harness::builder()
-        .with_size(egui::vec2(1024.0, 700.0))
-        .with_max_steps(10_000)
-        .with_accessibility_check(false)
-        .build_eframe(move |cc| crate::gui::CutawayApp::new(cc, start));
-    let settle = |h: &mut Harness<'_, crate::gui::CutawayApp>| {
-        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
-        while h.state().busy() {
-            assert!(std::time::Instant::now() < deadline, "a job did not finish");
-            h.step();
-            std::thread::sleep(std::time::Duration::from_millis(5));
-        }
-        h.run_steps(2);
-    };
-    settle(&mut h);
+    let mut h = crate::gui::test_window::open(start, 1024.0, 700.0);
     assert_eq!(h.state().scene.models.len(), 1);
     assert_eq!(h.state().scene.models[0].origin, MeshOrigin::Region);
     let cutter = crate::cutaway_geometry::tests::scene_with_cube_cut(Default::default())
@@ -58,7 +43,7 @@ fn the_window_saves_the_mesh_left_by_remove_all_cut_geometry() {
     let ctx = h.ctx.clone();
     h.state_mut()
         .apply(&ctx, crate::gui::app::Action::RemoveAllCutGeometry);
-    settle(&mut h);
+    crate::gui::test_window::settle(&mut h);
     let state = h.state();
     assert!(state.scene.cutters.is_empty(), "{}", state.status.message);
     assert_eq!(state.scene.models[0].origin, MeshOrigin::Edited);
@@ -76,7 +61,7 @@ fn the_window_saves_the_mesh_left_by_remove_all_cut_geometry() {
     h.state_mut().scene = crate::gui::app::new_scene();
     h.state_mut()
         .apply(&ctx, crate::gui::app::Action::Open(vec![path.clone()]));
-    settle(&mut h);
+    crate::gui::test_window::settle(&mut h);
     let reopened = &h.state().scene.models;
     assert_eq!(reopened.len(), 1, "{}", h.state().status.message);
     assert_eq!(reopened[0].origin, MeshOrigin::Exact);
@@ -102,18 +87,8 @@ fn the_window_cuts_the_layer_below_and_undoes_both_in_one_step() {
         state_dir: dir.join("state"),
         offer_recovery: false,
     };
-    let mut h = Harness::builder()
-        .with_size(egui::vec2(1280.0, 800.0))
-        .with_max_steps(10_000)
-        .with_accessibility_check(false)
-        .build_eframe(move |cc| crate::gui::CutawayApp::new(cc, start));
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
-    while h.state().busy() {
-        assert!(std::time::Instant::now() < deadline, "load did not finish");
-        h.step();
-        std::thread::sleep(std::time::Duration::from_millis(5));
-    }
-    h.run_steps(3);
+    let mut h = crate::gui::test_window::open(start, 1280.0, 800.0);
+    h.run_steps(1);
     let models = &h.state().scene.models;
     assert_eq!(models.len(), 2, "{}", h.state().status.message);
     let outer_i = if models[0].mesh.bbox().diagonal() > models[1].mesh.bbox().diagonal() {
@@ -234,18 +209,8 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
         state_dir: dir.clone(),
         offer_recovery: false,
     };
-    let mut h = Harness::builder()
-        .with_size(egui::vec2(1280.0, 800.0))
-        .with_max_steps(10_000)
-        .with_accessibility_check(false)
-        .build_eframe(move |cc| crate::gui::CutawayApp::new(cc, start));
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
-    while h.state().busy() {
-        assert!(std::time::Instant::now() < deadline, "load did not finish");
-        h.step();
-        std::thread::sleep(std::time::Duration::from_millis(5));
-    }
-    h.run_steps(3);
+    let mut h = crate::gui::test_window::open(start, 1280.0, 800.0);
+    h.run_steps(1);
     assert_eq!(
         h.state().scene.models.len(),
         1,
