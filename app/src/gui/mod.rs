@@ -38,6 +38,7 @@ pub mod recovery;
 pub mod ruler;
 pub mod scalpel_mode;
 pub mod status_bar;
+pub mod turntable_export;
 pub mod undo;
 pub mod variants_panel;
 pub mod view_menu;
