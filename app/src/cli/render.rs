@@ -162,7 +162,13 @@ fn turntable(
             );
         }
     }
-    let turn = crate::cli::turntable::checked_options(&args.out, frames, args.gif, args.delay_ms)?;
+    let turn = crate::cli::turntable::checked_options(
+        &args.out,
+        "--turntable",
+        frames,
+        args.gif,
+        args.delay_ms,
+    )?;
     let decorate = |image: &mut image::RgbaImage,
                     frame: &crate::scene::Scene,
                     preview: Option<&crate::cutaway_geometry::PreviewGeometry>| {

@@ -72,15 +72,17 @@ impl TurntableProgress for TerminalProgress {
 }
 
 /// The turntable options of the command line, refused in one line naming the flag.
+/// `frames_flag` is the flag that gave `frames` (`--frames` or `--turntable`).
 pub fn checked_options(
     out: &Path,
+    frames_flag: &str,
     frames: u32,
     gif: bool,
     delay_ms: u32,
 ) -> anyhow::Result<TurntableOptions> {
     if !(1..=MAX_FRAMES).contains(&frames) {
         anyhow::bail!(
-            "{}: --frames {frames} is outside 1..{MAX_FRAMES}",
+            "{}: {frames_flag} {frames} is outside 1..{MAX_FRAMES}",
             out.display()
         );
     }
@@ -105,7 +107,7 @@ pub fn run(args: &TurntableArgs) -> anyhow::Result<()> {
             anyhow::bail!("{}: --{what} {v} is outside 1..4096", args.out.display());
         }
     }
-    let options = checked_options(&args.out, args.frames, args.gif, args.delay_ms)?;
+    let options = checked_options(&args.out, "--frames", args.frames, args.gif, args.delay_ms)?;
     let scene = crate::session::load(&args.session)?;
     let progress = TerminalProgress::new();
     let result = export_turntable(
