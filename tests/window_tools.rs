@@ -610,7 +610,7 @@ fn export_turntable_shows_progress_cancels_without_output_and_writes_the_frames(
     shot(&mut h, "export-turntable-dialog");
     {
         let s = &mut h.state_mut().export_turntable;
-        (s.width, s.height, s.options.frames, s.options.gif) = (96, 64, 400, true);
+        (s.width, s.height, s.options.frames, s.options.gif) = (160, 120, 720, true);
     }
 
     // A long turntable, cancelled from the progress window once frames are being written.
@@ -665,7 +665,7 @@ fn export_turntable_shows_progress_cancels_without_output_and_writes_the_frames(
                 .to_rgba8()
         })
         .collect();
-    assert_eq!(frames[0].dimensions(), (96, 64));
+    assert_eq!(frames[0].dimensions(), (160, 120));
     assert_ne!(frames[0], frames[1]);
     assert_ne!(frames[1], frames[2]);
     assert!(done.join("turntable.gif").is_file());
