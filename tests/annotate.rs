@@ -1,7 +1,8 @@
 //! Teaching exports end to end. Labelled images: the leader of each label ends on a pixel where
 //! the picture shows that structure, labels do not overlap, and `cutaway render --labels` draws
-//! them (and refuses an unknown name with one line). Turntables: `cutaway turntable` writes one
-//! frame per step of the orbit and a GIF holding them all.
+//! them (and refuses an unknown name with one line). Turntables: `cutaway turntable` and
+//! `cutaway render --turntable N` write one frame per step of the orbit (each a different view)
+//! and a GIF holding them all, with no progress noise when stderr is not a terminal.
 //!
 //! Rendering needs a GPU adapter (lavapipe with `WGPU_BACKEND=vulkan`); without one the tests
 //! print "skipped: …" and pass.
@@ -192,4 +193,86 @@ fn turntable_writes_every_frame_and_a_gif_of_them() {
     assert!(!bad.status.success());
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("--frames 0"), "{stderr}");
+}
+
+#[test]
+fn render_turntable_writes_n_different_frames_a_gif_and_clean_json() {
+    let dir = scratch("annotate-render-turntable");
+    let session = two_boxes(&dir);
+    let out = dir.join("orbit");
+    let run = Command::new(env!("CARGO_BIN_EXE_cutaway"))
+        .arg("render")
+        .arg(&session)
+        .args(["--out", out.to_str().unwrap()])
+        .args(["--turntable", "5", "--width", "64", "--height", "48"])
+        .args(["--gif", "--delay-ms", "120", "--json", "--labels"])
+        .env(
+            "WGPU_BACKEND",
+            std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
+        )
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    if !run.status.success() && stderr.contains("no GPU adapter") {
+        println!("skipped: {stderr}");
+        return;
+    }
+    assert!(run.status.success(), "{stderr}");
+    assert!(
+        !stderr.contains("frame 1/5"),
+        "progress printed to a stderr that is not a terminal: {stderr}"
+    );
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert_eq!(stdout.lines().count(), 1, "{stdout}");
+    let report: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+    assert_eq!(report["frames"], 5);
+    assert_eq!(report["gif"], true);
+    assert!(report["render_ms"].as_f64().unwrap() > 0.0);
+    let frames: Vec<image::RgbaImage> = (1..=5)
+        .map(|k| {
+            image::open(out.join(format!("frames/frame-{k:04}.png")))
+                .unwrap()
+                .to_rgba8()
+        })
+        .collect();
+    assert!(!out.join("frames/frame-0006.png").exists());
+    for a in 0..5 {
+        for b in a + 1..5 {
+            assert_ne!(
+                frames[a],
+                frames[b],
+                "frames {} and {} are equal",
+                a + 1,
+                b + 1
+            );
+        }
+    }
+    use image::AnimationDecoder as _;
+    let gif = std::fs::File::open(out.join("turntable.gif")).unwrap();
+    let decoded = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(gif))
+        .unwrap()
+        .into_frames()
+        .collect_frames()
+        .unwrap();
+    assert_eq!(decoded.len(), 5);
+    assert_eq!(decoded[4].delay().numer_denom_ms(), (120, 1));
+    // Only the set's files are left (no staging folder).
+    let mut top: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    top.sort();
+    assert_eq!(top, ["frames", "turntable.gif"]);
+    let bad = Command::new(env!("CARGO_BIN_EXE_cutaway"))
+        .arg("render")
+        .arg(&session)
+        .args(["--out", dir.join("none").to_str().unwrap()])
+        .args(["--turntable", "0"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&bad.stderr);
+    assert!(!bad.status.success());
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("--turntable 0"), "{stderr}");
+    assert!(!dir.join("none").exists());
 }

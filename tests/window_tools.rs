@@ -1,7 +1,8 @@
 //! The window's measuring and comparing tools, driven headless by egui_kittest on the real wgpu
 //! renderer (lavapipe without a GPU) at 1280×800: the Metrics panel against `cutaway metrics` on
 //! the same session (and the closest point it draws), variants made, switched and compared side
-//! by side, the Ruler on a cube of known size, and Export Image with labels. Screenshots go to the
+//! by side, the Ruler on a cube of known size, Export Image with labels, and Export Turntable with
+//! its progress and Cancel. Screenshots go to the
 //! test's temporary folder (`CARGO_TARGET_TMPDIR`), one per state, for a person to look at.
 //!
 //! Skipped, with the reason printed, when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with
@@ -583,6 +584,92 @@ fn export_image_with_labels_writes_the_labelled_picture() {
     let (_, drawn) =
         cutaway::annotate::picture::render_annotated(&scene, &options, &without_ball).unwrap();
     assert_eq!(drawn.expect("annotations").labels.len(), 1);
+}
+
+#[test]
+fn export_turntable_shows_progress_cancels_without_output_and_writes_the_frames() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = scratch("window-turntable");
+    let session = cube_and_ball(&dir);
+    let mut h = harness(&dir, vec![session]);
+    h.run_steps(2);
+    settle(&mut h);
+    h.get_by_label("File").click();
+    h.run_steps(2);
+    // A menu item's label ends in its (empty) shortcut text.
+    h.query_all_by_label_contains("Export Turntable…")
+        .next()
+        .expect("no File → Export Turntable…")
+        .click();
+    h.run_steps(3);
+    assert!(h.state().export_turntable.open, "the dialog did not open");
+    h.get_by_label("Animated GIF (turntable.gif)");
+    shot(&mut h, "export-turntable-dialog");
+    {
+        let s = &mut h.state_mut().export_turntable;
+        (s.width, s.height, s.options.frames, s.options.gif) = (160, 120, 720, true);
+    }
+
+    // A long turntable, cancelled from the progress window once frames are being written.
+    let cancelled = dir.join("cancelled");
+    apply(&mut h, Action::ExportTurntableTo(cancelled.clone()));
+    let deadline = Instant::now() + Duration::from_secs(240);
+    loop {
+        let started =
+            h.state().jobs.iter().any(|j| {
+                j.wants_progress_window() && j.progress.fraction().is_some_and(|f| f > 0.0)
+            });
+        if started {
+            break;
+        }
+        assert!(
+            h.state().busy(),
+            "the export ended before it could be cancelled"
+        );
+        assert!(Instant::now() < deadline, "no frame was reported");
+        h.step();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    h.run_steps(2);
+    h.get_by_label("Working…");
+    shot(&mut h, "export-turntable-progress");
+    h.get_by_label("Cancel").click();
+    settle(&mut h);
+    let status = h.state().status.message.clone();
+    assert!(status.contains("cancelled"), "{status}");
+    // The window lets go of a cancelled job at once; its worker stops after the frame it is
+    // drawing and drops the uncommitted set, removing the folder it created.
+    let gone = Instant::now() + Duration::from_secs(60);
+    while cancelled.exists() && Instant::now() < gone {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert!(
+        !cancelled.exists(),
+        "a cancelled export left {}",
+        cancelled.display()
+    );
+
+    // A short one runs to the end: N frames, each another view, and the GIF.
+    h.state_mut().export_turntable.options.frames = 3;
+    let done = dir.join("done");
+    apply(&mut h, Action::ExportTurntableTo(done.clone()));
+    settle(&mut h);
+    assert!(!h.state().status.is_error, "{}", h.state().status.message);
+    let frames: Vec<image::RgbaImage> = (1..=3)
+        .map(|k| {
+            image::open(done.join(format!("frames/frame-{k:04}.png")))
+                .unwrap()
+                .to_rgba8()
+        })
+        .collect();
+    assert_eq!(frames[0].dimensions(), (160, 120));
+    assert_ne!(frames[0], frames[1]);
+    assert_ne!(frames[1], frames[2]);
+    assert!(done.join("turntable.gif").is_file());
+    assert!(!done.join("frames/frame-0004.png").exists());
 }
 
 /// A box cutter through `min`..`max` on model `target`: three planes across x.

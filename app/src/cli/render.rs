@@ -6,6 +6,13 @@
 //! replace or adjust the session's `"image"`. The session's rulers are drawn over the picture
 //! ([`crate::annotate::rulers`]).
 //!
+//! `--turntable N` writes an orbit instead of one picture: `--out` is then a folder that gets
+//! `frames/frame-0001.png` … `frame-000N.png` (and `turntable.gif` with `--gif`) as one output
+//! set, by [`crate::export::turntable`] (the same code as `cutaway turntable` and the window's
+//! File → Export Turntable…), with rulers and `--labels` drawn on every frame; sides up to 4096.
+//! Progress goes to stderr only when stderr is a terminal; `--json` then prints
+//! `{"frames":N,"gif":bool,"render_ms":f}`.
+//!
 //! Every cut is made by the exact boolean; there is no approximate stand-in. A cutter the boolean
 //! refuses makes the command fail (no image is written) with the reason, after `--json` has
 //! printed the report: `{"cutters":[{"exact":bool,"cut_ms":f}],"render_ms":f}`, one entry per
@@ -53,6 +60,15 @@ pub struct RenderArgs {
     /// draw a scale bar in mm and the orientation marker (R/L, A/P, S/I).
     #[arg(long, num_args = 0.., value_name = "NAME")]
     pub labels: Option<Vec<String>>,
+    /// Write an orbit of N frames into the folder `--out` instead of one PNG (1..=720).
+    #[arg(long, value_name = "N")]
+    pub turntable: Option<u32>,
+    /// With `--turntable`: also write `turntable.gif`, an animated GIF of the frames.
+    #[arg(long, requires = "turntable")]
+    pub gif: bool,
+    /// With `--turntable`: time each GIF frame is shown, in milliseconds.
+    #[arg(long, default_value_t = 80, requires = "turntable")]
+    pub delay_ms: u32,
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
@@ -77,6 +93,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     };
     let mut options = RenderPngOptions::new(args.width, args.height);
     options.transparent_background = args.transparent;
+    if let Some(frames) = args.turntable {
+        return turntable(args, frames, &scene, &options, labelled.as_deref());
+    }
     let mut renderer =
         HeadlessRenderer::new().with_context(|| format!("{}", args.session.display()))?;
     if let Some(layer) = &scene.image {
@@ -131,4 +150,52 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         )
         .with_context(|| format!("{}: could not encode the PNG", args.out.display()))?;
     crate::io::write_file(&args.out, &bytes)
+}
+
+/// `--turntable N`: the orbit written into the folder `--out`, rulers and labels on every frame.
+fn turntable(
+    args: &RenderArgs,
+    frames: u32,
+    scene: &crate::scene::Scene,
+    options: &RenderPngOptions,
+    labelled: Option<&[usize]>,
+) -> anyhow::Result<()> {
+    for (what, v) in [("width", args.width), ("height", args.height)] {
+        if v > 4096 {
+            anyhow::bail!(
+                "{}: --{what} {v} is over 4096 (the largest turntable frame)",
+                args.out.display()
+            );
+        }
+    }
+    let turn = crate::cli::turntable::checked_options(
+        &args.out,
+        "--turntable",
+        frames,
+        args.gif,
+        args.delay_ms,
+    )?;
+    let decorate = |image: &mut image::RgbaImage,
+                    frame: &crate::scene::Scene,
+                    preview: Option<&crate::cutaway_geometry::PreviewGeometry>| {
+        crate::annotate::rulers::draw_rulers(image, frame);
+        if let Some(models) = labelled {
+            crate::annotate::labelled::annotate(image, frame, preview, models);
+        }
+    };
+    let progress = crate::cli::turntable::TerminalProgress::new();
+    let result = crate::export::turntable::export_turntable(
+        scene,
+        options,
+        &turn,
+        &args.out,
+        &progress,
+        Some(&decorate),
+    );
+    progress.finish();
+    let summary = result?;
+    if args.json {
+        println!("{}", serde_json::to_string(&summary)?);
+    }
+    Ok(())
 }

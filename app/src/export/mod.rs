@@ -5,10 +5,13 @@
 //!   contours; one named node per structure) as a glTF 2.0 document;
 //! - [`glb`]: the binary container it is written in;
 //! - [`image_colors`]: the intensity image baked into wall vertex colours.
+//! - [`turntable`]: an orbit around the cut as a PNG sequence and a looping GIF, with progress
+//!   and cancel.
 
 pub mod glb;
 pub mod gltf;
 pub mod image_colors;
+pub mod turntable;
 
 use std::path::Path;
 

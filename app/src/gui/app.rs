@@ -82,6 +82,7 @@ pub enum Purpose {
     SaveSessionAs,
     ExportImage,
     ExportMeshes,
+    ExportTurntable,
     SaveGesture,
     OpenImage,
 }
@@ -96,6 +97,7 @@ impl Purpose {
             Purpose::SaveSessionAs => "Save Session As",
             Purpose::ExportImage => "Export Image",
             Purpose::ExportMeshes => "Export Cut Meshes to Folder",
+            Purpose::ExportTurntable => "Export Turntable to Folder",
             Purpose::SaveGesture => "Save Gesture",
             Purpose::OpenImage => "Open Image",
         }
@@ -117,6 +119,8 @@ pub enum Action {
     OpenImage(PathBuf),
     ExportImageTo(PathBuf),
     ExportMeshesTo(PathBuf),
+    /// Write the turntable of the Export Turntable dialog into this folder.
+    ExportTurntableTo(PathBuf),
     Exit,
     Undo,
     Redo,
@@ -243,6 +247,8 @@ pub struct CutawayApp {
     pub export_image: super::menus::ExportImageSettings,
     /// Which cut parts Export Cut Meshes writes, and the format.
     pub export_meshes: super::menus::ExportMeshSettings,
+    /// Export Turntable settings (frames, frame size, GIF).
+    pub export_turntable: super::turntable_export::TurntableSettings,
     /// The GPU, when the window runs on wgpu (None under a non-wgpu test harness).
     pub wgpu: Option<egui_wgpu::RenderState>,
     /// Which cutter tab is shown.
@@ -295,6 +301,7 @@ impl CutawayApp {
             pending_manual: None,
             export_image: Default::default(),
             export_meshes: Default::default(),
+            export_turntable: Default::default(),
             wgpu: cc.wgpu_render_state.clone(),
             cutter_tab: Default::default(),
             metrics: Default::default(),
@@ -430,6 +437,7 @@ impl CutawayApp {
             },
             Action::ExportImageTo(path) => self.export_image_to(ctx, path),
             Action::ExportMeshesTo(dir) => self.export_meshes_to(ctx, dir),
+            Action::ExportTurntableTo(dir) => self.export_turntable_to(ctx, dir),
             Action::Exit => {
                 self.exiting = true;
                 self.recovery.discard();
@@ -697,11 +705,13 @@ impl CutawayApp {
                         .await
                         .map(|files| files.iter().map(|f| f.path().to_path_buf()).collect())
                         .unwrap_or_default(),
-                    Purpose::LoadDirectory | Purpose::ExportMeshes => dialog
-                        .pick_folder()
-                        .await
-                        .map(|f| vec![f.path().to_path_buf()])
-                        .unwrap_or_default(),
+                    Purpose::LoadDirectory | Purpose::ExportMeshes | Purpose::ExportTurntable => {
+                        dialog
+                            .pick_folder()
+                            .await
+                            .map(|f| vec![f.path().to_path_buf()])
+                            .unwrap_or_default()
+                    }
                     Purpose::OpenImage => dialog
                         .add_filter("Image volume", &["nrrd", "nhdr", "nii", "gz"])
                         .pick_file()
@@ -761,6 +771,7 @@ impl CutawayApp {
                 self.apply(ctx, Action::ExportImageTo(with_extension(first, "png")))
             }
             Purpose::ExportMeshes => self.apply(ctx, Action::ExportMeshesTo(first)),
+            Purpose::ExportTurntable => self.apply(ctx, Action::ExportTurntableTo(first)),
             Purpose::OpenImage => self.apply(ctx, Action::OpenImage(first)),
             Purpose::SaveGesture => {
                 let path = with_extension(first, "json");
@@ -978,6 +989,21 @@ impl CutawayApp {
                 files.len(),
                 dir.display()
             )))
+        });
+    }
+
+    fn export_turntable_to(&mut self, ctx: &egui::Context, dir: PathBuf) {
+        let scene = self.scene.clone();
+        let preview = super::cut_view::shows_cut(self.mode) && !self.scene.cutters.is_empty();
+        let settings = self.export_turntable.clone();
+        let label = format!(
+            "Exporting a turntable of {} frames",
+            settings.options.frames
+        );
+        self.spawn(ctx, label, move |progress| {
+            let message =
+                super::turntable_export::export(&scene, preview, &settings, &dir, progress)?;
+            Ok(JobOutput::Done(message))
         });
     }
 

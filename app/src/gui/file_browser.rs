@@ -36,7 +36,7 @@ impl FileBrowser {
             .or_else(|| std::env::var_os("HOME").map(PathBuf::from))
             .unwrap_or_else(|| PathBuf::from("."));
         let dialog = match purpose {
-            Purpose::LoadDirectory | Purpose::ExportMeshes => {
+            Purpose::LoadDirectory | Purpose::ExportMeshes | Purpose::ExportTurntable => {
                 egui_file::FileDialog::select_folder()
             }
             Purpose::SaveSessionAs => {

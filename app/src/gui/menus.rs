@@ -139,6 +139,9 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
             if item(ui, "Export Cut Meshes…", "") {
                 app.export_meshes.open = true;
             }
+            if item(ui, "Export Turntable…", "") {
+                app.export_turntable.open = true;
+            }
             ui.menu_button("Open Example", |ui| {
                 let atlas = crate::default_anatomy::NAME;
                 if ui.button(format!("{atlas} (real anatomy)")).clicked() {
@@ -282,6 +285,7 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     super::help::help_window_ui(ui.ctx());
     actions.extend(export_image_window_ui(ui.ctx(), app));
     actions.extend(export_meshes_window_ui(ui.ctx(), app));
+    actions.extend(super::turntable_export::window_ui(ui.ctx(), app));
     actions
 }
 

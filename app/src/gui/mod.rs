@@ -40,6 +40,7 @@ pub mod scalpel_mode;
 pub mod status_bar;
 #[cfg(test)]
 pub mod test_window;
+pub mod turntable_export;
 pub mod undo;
 pub mod variants_panel;
 pub mod view_menu;

@@ -20,7 +20,6 @@ fn session_dir(name: &str) -> std::path::PathBuf {
 /// edited, and Save Session writes the cut mesh, which the session then reopens.
 #[test]
 fn the_window_saves_the_mesh_left_by_remove_all_cut_geometry() {
-
     let dir = session_dir("remove-all");
     let cube = dir.join("cube.ply");
     crate::io::write_mesh(
