@@ -1,0 +1,101 @@
+//! Tests of [`super`] (`live_cut.rs`), kept in their own file.
+
+use super::*;
+use crate::cutaway_geometry::tests::box_cutter;
+use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
+use crate::scene::{SceneCutter, SceneModel};
+
+pub(crate) fn median_max(v: &[f64]) -> (f64, f64) {
+    let mut s = v.to_vec();
+    s.sort_by(f64::total_cmp);
+    (s[s.len() / 2], s[s.len() - 1])
+}
+
+/// Per re-cut, the window's way (the live cut drawn from its delta) and the way before it
+/// (the whole kept part cut, materialized and uploaded, as `preview_geometry_with` gives
+/// it), each with a renderer of its own, in the same run.
+#[test]
+fn live_recut_ui_thread_cost_on_two_million_triangles() {
+    if std::env::var_os("CUTAWAY_UI_TIMINGS").is_none() {
+        println!("skipped: set CUTAWAY_UI_TIMINGS=1 to measure");
+        return;
+    }
+    let (mut renderer, mut whole) = match (HeadlessRenderer::new(), HeadlessRenderer::new()) {
+        (Ok(a), Ok(b)) => (a, b),
+        (Err(e), _) | (_, Err(e)) => {
+            println!("skipped: {e}");
+            return;
+        }
+    };
+    let sphere = Arc::new(csg::testkit::geodesic_sphere(316, 100.0));
+    let mut scene = crate::gui::app::new_scene();
+    scene.models.push(SceneModel::new(
+        "sphere",
+        "sphere.ply",
+        sphere.clone(),
+        [0.9, 0.7, 0.6],
+    ));
+    scene.camera = scene.framing_camera();
+    let mut frame = FrameInputs::new(scene.clone(), [640, 400], ViewMode::Camera);
+    frame.deterministic = true;
+    let first = renderer.time_prepare(&frame).expect("first frame");
+    let base_bytes = renderer.last_frame_uploads().bytes;
+    whole.time_prepare(&frame).expect("first frame");
+    let mut live = LiveCut::default();
+    let mut whole_cache = CutCache::default();
+    let (mut cut_ms, mut ui_ms, mut bytes) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut whole_cut_ms, mut whole_ui_ms, mut whole_bytes) = (Vec::new(), Vec::new(), Vec::new());
+    for k in 0..=10 {
+        let x1 = -20.0 + 5.0 * k as f64;
+        let planes = box_cutter(-60.0, x1, -120.0, -70.0, -8.0, 8.0);
+        scene.cutters = vec![SceneCutter {
+            target: 0,
+            kind: crate::scene::CutKind::Curving,
+            smooth: false,
+            planes,
+            views: CutterViews::default(),
+        }];
+        assert!(live.request(&scene, None));
+        assert!(live.wait(Duration::from_secs(600)), "no live cut");
+        let mut frame = FrameInputs::new(scene.clone(), [640, 400], ViewMode::Edit);
+        frame.deterministic = true;
+        frame.preview = live.geometry();
+        frame.deltas = live.deltas();
+        let ms = renderer.time_prepare(&frame).expect("frame");
+        let uploaded = renderer.last_frame_uploads().bytes as f64 / 1e6;
+        // The same re-cut the way before: whole kept part, uploaded whole.
+        let started = Instant::now();
+        let geometry = preview_geometry_with(&live_scene(&scene), &mut whole_cache);
+        let whole_cut = started.elapsed().as_secs_f64() * 1000.0;
+        frame.preview = Some(Arc::new(geometry));
+        frame.deltas.clear();
+        let whole_frame = whole.time_prepare(&frame).expect("frame");
+        if k > 0 {
+            cut_ms.push(live.shown().unwrap().ms);
+            ui_ms.push(ms);
+            bytes.push(uploaded);
+            whole_cut_ms.push(whole_cut);
+            whole_ui_ms.push(whole_frame);
+            whole_bytes.push(whole.last_frame_uploads().bytes as f64 / 1e6);
+        }
+    }
+    let f = |v: &[f64]| {
+        let (med, max) = median_max(v);
+        format!("median {med:.2} (max {max:.2})")
+    };
+    println!(
+        "live re-cut on {} triangles ({}): first frame {first:.1} ms ({:.1} MB); {} re-cuts:\n  \
+         delta: worker ms {}, UI thread ms {}, MB uploaded {}\n  \
+         whole: worker ms {}, UI thread ms {}, MB uploaded {}",
+        sphere.triangle_count(),
+        renderer.adapter_name(),
+        base_bytes as f64 / 1e6,
+        ui_ms.len(),
+        f(&cut_ms),
+        f(&ui_ms),
+        f(&bytes),
+        f(&whole_cut_ms),
+        f(&whole_ui_ms),
+        f(&whole_bytes),
+    );
+}
