@@ -65,7 +65,7 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
         delta,
     };
     let mut editor = Editor::new(mesh, index, gesture.camera, gesture.viewport, settings);
-    let started = std::time::Instant::now();
+    let started = crate::thread_time::thread_cpu_time();
     for (i, &event) in gesture.events.iter().enumerate() {
         editor.handle(event);
         // One event adds a bounded number of boxes, so checking after each bounds the replay.
@@ -76,9 +76,9 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
             );
         }
         // One event costs at most a bounded re-fit, so checking after each bounds the time.
-        if started.elapsed() > MAX_REPLAY_TIME {
+        if crate::thread_time::thread_cpu_time() - started > MAX_REPLAY_TIME {
             bail!(
-                "event {i} of {}: the replay took longer than {:.1} s and stopped (the cutter has {boxes} boxes; a tiny viewport makes every move re-fit many of them)",
+                "event {i} of {}: the replay used more than {:.1} s of CPU time and stopped (the cutter has {boxes} boxes; a tiny viewport makes every move re-fit many of them)",
                 gesture.events.len(),
                 MAX_REPLAY_TIME.as_secs_f64()
             );
