@@ -15,12 +15,15 @@
 use std::path::PathBuf;
 
 pub mod about;
+pub mod action;
 pub mod app;
+pub mod app_jobs;
 pub mod bridge;
 pub mod camera_controls;
 pub mod compare_view;
 pub mod cut_view;
 pub mod cutter_panel;
+pub mod dialogs;
 pub mod export_labels;
 pub mod file_browser;
 pub mod help;
