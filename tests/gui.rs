@@ -358,7 +358,7 @@ fn painting_in_edit_mode_shows_the_live_cut() {
             .geometry
             .parts
             .iter()
-            .any(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall),
+            .any(|p| p.kind == cutaway::cutting::cut_scene::PartKind::Wall),
         "the live cut has no walls: {:?}",
         shown.geometry.notes
     );
@@ -367,7 +367,7 @@ fn painting_in_edit_mode_shows_the_live_cut() {
         .geometry
         .parts
         .iter()
-        .filter(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall)
+        .filter(|p| p.kind == cutaway::cutting::cut_scene::PartKind::Wall)
         .map(|p| p.mesh.triangle_count())
         .sum();
     assert_eq!(app.status.last_cut_ms, Some(shown.ms));
@@ -394,10 +394,10 @@ fn painting_in_edit_mode_shows_the_live_cut() {
         .expect("preview geometry");
     let live = h.state().viewport.live.shown().map(|r| r.geometry.clone());
     assert!(live.is_none(), "the live cut is kept outside Edit mode");
-    let walls = |g: &cutaway::cutaway_geometry::PreviewGeometry| -> usize {
+    let walls = |g: &cutaway::cutting::cut_scene::PreviewGeometry| -> usize {
         g.parts
             .iter()
-            .filter(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall)
+            .filter(|p| p.kind == cutaway::cutting::cut_scene::PartKind::Wall)
             .map(|p| p.mesh.triangle_count())
             .sum()
     };

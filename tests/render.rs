@@ -426,13 +426,13 @@ fn rounded_knee_scene() -> Scene {
 fn golden_rounded_cut_on_the_knee_overlay_is_the_wall() {
     let scene = rounded_knee_scene();
     assert_eq!(scene.models.len(), 3, "skin, patella and femur");
-    let preview = cutaway::cutaway_geometry::preview_geometry(&scene);
+    let preview = cutaway::cutting::cut_scene::preview_geometry(&scene);
     assert!(preview.notes.is_empty(), "{:?}", preview.notes);
     assert!(preview.reports[0].1.exact);
     // The walls lie on the overlay's surface (the one surface that cuts and is drawn), and that
     // surface is the rounded one, not the boxes.
-    let surface = cutaway::cutaway_geometry::cutter_mesh(&scene.cutters[0]);
-    let boxes = cutaway::cutaway_geometry::to_cutter(&scene.cutters[0])
+    let surface = cutaway::cutting::cut_scene::cutter_mesh(&scene.cutters[0]);
+    let boxes = cutaway::cutting::cut_scene::to_cutter(&scene.cutters[0])
         .quad_mesh()
         .triangulate();
     let on_surface = csg::SpatialIndex::build(&surface);
@@ -440,7 +440,7 @@ fn golden_rounded_cut_on_the_knee_overlay_is_the_wall() {
     let mut off_boxes: f64 = 0.0;
     let mut wall_vertices = 0;
     for part in &preview.parts {
-        if part.kind != cutaway::cutaway_geometry::PartKind::Wall {
+        if part.kind != cutaway::cutting::cut_scene::PartKind::Wall {
             continue;
         }
         for &p in &part.mesh.positions {

@@ -11,7 +11,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use csg::Mesh;
-use cutaway::cutaway_geometry::{PartKind, preview_geometry};
+use cutaway::cutting::cut_scene::{PartKind, preview_geometry};
 use cutaway::render::headless::{HeadlessRenderer, render_with_preview};
 use cutaway::render::{RenderPngOptions, ViewMode};
 use cutaway::scene::{CutKind, CutterViews, Scene, SceneCutter, SceneModel};

@@ -325,7 +325,7 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
     assert!(
         cut.parts
             .iter()
-            .any(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall),
+            .any(|p| p.kind == cutaway::cutting::cut_scene::PartKind::Wall),
         "no walls in Camera mode"
     );
     shot(&mut h, "camera-mode-shows-cut");

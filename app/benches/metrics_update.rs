@@ -2,7 +2,7 @@
 //! [`cutaway::metrics::measure`] (the code `cutaway metrics` runs) on the embedded knee and on the
 //! SPL head atlas, each cut by a box from the front of its skin to its middle, with a focus structure (exposure from the
 //! camera) and one critical structure. The peer is the Preview cut of the same scene
-//! ([`cutaway::cutaway_geometry::preview_geometry`]), which the window computes anyway: the
+//! ([`cutaway::cutting::cut_scene::preview_geometry`]), which the window computes anyway: the
 //! ratio says what measuring costs on top of cutting.
 //!
 //! Run: `cargo bench -p cutaway --bench metrics_update` (add `--profile dev` for the figure of a
@@ -97,7 +97,7 @@ fn bench(name: &str, scene: &Scene, focus: &str, critical: &str) {
         std::hint::black_box(measure(scene, &options).expect("measure"));
     });
     let cut_ms = median_ms(|| {
-        std::hint::black_box(cutaway::cutaway_geometry::preview_geometry(scene));
+        std::hint::black_box(cutaway::cutting::cut_scene::preview_geometry(scene));
     });
     let removed: f64 = metrics
         .structures

@@ -11,7 +11,8 @@ use glam::DVec3;
 
 use csg::Mesh;
 
-use crate::scene::{CutKind, Scene};
+use crate::cutting::editing::CutterInit;
+use crate::scene::Scene;
 
 use super::jobs::{self, Job};
 use super::recovery::{self, RecentFiles, Recovery};
@@ -21,27 +22,6 @@ use super::viewport::ViewportState;
 
 pub use super::action::{Action, Mode, Purpose};
 pub use super::app_jobs::{JobOutput, load_paths};
-
-/// Cut settings applied to the next cutter (thesis 3.5 E, Initialization tab).
-#[derive(Clone, Debug, PartialEq)]
-pub struct CutterInit {
-    /// Segment spacing ω: a new box starts each ω·δ of extrusion.
-    pub spacing: f64,
-    /// Curving (freeform path) or wedge; Shift while extruding gives the straight path.
-    pub kind: CutKind,
-    /// Rounded (subdivided) cutter.
-    pub smooth: bool,
-}
-
-impl Default for CutterInit {
-    fn default() -> Self {
-        CutterInit {
-            spacing: 20.0,
-            kind: CutKind::Curving,
-            smooth: false,
-        }
-    }
-}
 
 /// Triangles of all models of `scene`.
 pub fn triangle_count(scene: &Scene) -> usize {
@@ -370,7 +350,7 @@ impl CutawayApp {
             self.status.cut_triangles = 0;
         }
         // A cut that could not be made is said in the status bar, never drawn as something else.
-        let notes = |g: Option<&crate::cutaway_geometry::PreviewGeometry>| {
+        let notes = |g: Option<&crate::cutting::cut_scene::PreviewGeometry>| {
             g.and_then(|g| g.notes.first().cloned())
         };
         self.status.cut_problem = match self.mode {

@@ -42,14 +42,14 @@ pub enum JobOutput {
     },
     /// Preview cut parts for the scene state `key`, and the wall time of the cut in ms.
     Preview {
-        geometry: Arc<crate::cutaway_geometry::PreviewGeometry>,
-        key: super::bridge::PreviewKey,
+        geometry: Arc<crate::cutting::cut_scene::PreviewGeometry>,
+        key: crate::cutting::scene_cuts::PreviewKey,
         ms: f64,
     },
     /// "Remove All Cut Geometry": new meshes for the cut models, for the scene state `key`.
     CutsApplied {
         meshes: Vec<(usize, Arc<csg::Mesh>)>,
-        key: super::bridge::PreviewKey,
+        key: crate::cutting::scene_cuts::PreviewKey,
     },
     /// Something finished that only needs a message.
     Done(String),
@@ -101,9 +101,9 @@ impl CutawayApp {
             return;
         }
         let scene = self.scene.clone();
-        let key = super::bridge::PreviewKey::of(&scene);
+        let key = crate::cutting::scene_cuts::PreviewKey::of(&scene);
         self.spawn(ctx, "Removing all cut geometry", move |progress| {
-            let meshes = super::bridge::apply_all_cuts(&scene, progress)?;
+            let meshes = crate::cutting::scene_cuts::apply_all_cuts(&scene, progress)?;
             Ok(JobOutput::CutsApplied { meshes, key })
         });
     }
@@ -120,7 +120,11 @@ impl CutawayApp {
         let name = model.name.clone();
         self.say(format!("Indexing {name} for editing…"));
         self.spawn(ctx, format!("Indexing {name}"), move |progress| {
-            let (weak, index) = super::bridge::build_index(&mesh, progress)?;
+            progress.set_message(format!(
+                "{} triangles",
+                super::status_bar::grouped(mesh.triangle_count())
+            ));
+            let (weak, index) = crate::cutting::editing::build_index(&mesh, progress)?;
             Ok(JobOutput::Index {
                 model: target,
                 mesh: weak,
@@ -219,7 +223,7 @@ impl CutawayApp {
                 ));
             }
             JobOutput::Preview { geometry, key, ms } => {
-                if key == super::bridge::PreviewKey::of(&self.scene) {
+                if key == crate::cutting::scene_cuts::PreviewKey::of(&self.scene) {
                     self.status.last_cut_ms = Some(ms);
                     self.status.cut_triangles = geometry.triangle_count();
                     self.viewport.preview = Some(geometry);
@@ -227,7 +231,7 @@ impl CutawayApp {
                 }
             }
             JobOutput::CutsApplied { meshes, key } => {
-                if key != super::bridge::PreviewKey::of(&self.scene) {
+                if key != crate::cutting::scene_cuts::PreviewKey::of(&self.scene) {
                     self.say("The cutters changed while cutting; Remove All Cut Geometry was not applied");
                     return;
                 }
@@ -363,7 +367,7 @@ impl CutawayApp {
         if !super::cut_view::shows_cut(self.mode) || self.scene.cutters.is_empty() {
             return;
         }
-        let key = super::bridge::PreviewKey::of(&self.scene);
+        let key = crate::cutting::scene_cuts::PreviewKey::of(&self.scene);
         if self.viewport.preview_key.as_ref() == Some(&key)
             || self.jobs.iter().any(|j| j.label == PREVIEW_JOB)
         {
@@ -371,7 +375,7 @@ impl CutawayApp {
         }
         let scene = self.scene.clone();
         self.spawn(ctx, PREVIEW_JOB, move |_| {
-            let (geometry, ms) = super::bridge::compute_preview(&scene);
+            let (geometry, ms) = crate::cutting::scene_cuts::compute_preview(&scene);
             Ok(JobOutput::Preview { geometry, key, ms })
         });
     }

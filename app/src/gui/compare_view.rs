@@ -15,7 +15,7 @@ use std::time::Instant;
 use glam::DVec2;
 
 use crate::compare::VariantMetrics;
-use crate::cutaway_geometry::{PreviewGeometry, preview_geometry};
+use crate::cutting::cut_scene::{PreviewGeometry, preview_geometry};
 use crate::metrics::MetricsOptions;
 use crate::render::{HeadlessRenderer, RenderPngOptions};
 use crate::scene::{Scene, SceneCutter};

@@ -27,7 +27,7 @@ use std::sync::Arc;
 use csg::Mesh;
 use glam::DVec3;
 
-use crate::cutaway_geometry::{CutCache, SURFACE, cut_in_turn};
+use crate::cutting::cut_scene::{CutCache, SURFACE, cut_in_turn};
 use crate::scene::{Scene, SceneCutter};
 
 /// The measures of one cutter.
@@ -64,7 +64,7 @@ pub struct ModelCut {
 impl ModelCut {
     /// All walls left by the cuts (every triangle not of the model's own surface).
     pub fn walls(&self) -> Mesh {
-        crate::cutaway_geometry::select(&self.closed, |t| self.tags[t] != SURFACE)
+        crate::cutting::cut_scene::select(&self.closed, |t| self.tags[t] != SURFACE)
     }
 }
 

@@ -1,7 +1,7 @@
 //! Tests of [`super`] (`live_cut.rs`), kept in their own file.
 
 use super::*;
-use crate::cutaway_geometry::tests::box_cutter;
+use crate::cutting::cut_scene::tests::box_cutter;
 use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
 use crate::scene::{SceneCutter, SceneModel};
 

@@ -1,9 +1,9 @@
 //! Tests of [`super`] (`live_cut.rs`), kept in their own file.
 
 use super::*;
-use crate::cutaway_geometry::PartKind;
-use crate::gui::app::CutterInit;
-use crate::gui::bridge::EditorSlot;
+use crate::cutting::cut_scene::PartKind;
+use crate::cutting::editing::CutterInit;
+use crate::cutting::editing::EditorSlot;
 use cutter::EditorEvent;
 use glam::DVec2;
 
@@ -24,7 +24,7 @@ fn live_cut_follows_the_editor_on_the_knee() {
     let viewport = DVec2::new(1280.0, 800.0);
     let press = viewport * 0.5 + DVec2::new(-60.0, 0.0);
     let ray = scene.camera.ray_through_pixel(viewport, press);
-    let (target, _) = crate::scene_pick::ScenePicks::default()
+    let (target, _) = crate::cutting::pick::ScenePicks::default()
         .pick(&scene, &ray)
         .expect("the knee is in view");
     let mut slot = EditorSlot::default();

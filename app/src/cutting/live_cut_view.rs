@@ -1,7 +1,7 @@
 //! Tests of [`super`] (`live_cut.rs`), kept in their own file.
 
 use super::*;
-use crate::cutaway_geometry::tests::box_cutter;
+use crate::cutting::cut_scene::tests::box_cutter;
 use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
 use crate::scene::{SceneCutter, SceneModel};
 
@@ -55,7 +55,7 @@ fn the_live_cut_from_its_delta_looks_as_the_whole_kept_part_and_uploads_little()
         );
         // The way before: the whole kept part as a preview part.
         let mut whole = frame(&scene);
-        whole.preview = Some(Arc::new(crate::cutaway_geometry::preview_geometry(
+        whole.preview = Some(Arc::new(crate::cutting::cut_scene::preview_geometry(
             &live_scene(&scene),
         )));
         let expected = renderer.render(&whole).expect("render");
