@@ -11,24 +11,27 @@
 use std::time::Instant;
 
 use cutaway::metrics::{MetricsOptions, measure};
-use cutaway::scene::{CutKind, CutterViews, Scene, SceneCutter, SceneModel};
+use cutaway::scene::{CutterViews, Scene, SceneCutter, SceneModel};
+use cutter::CutKind;
 use glam::DVec3;
 
 /// A box cutter through `min`..`max`: three planes across x, each spanning y and z.
 fn box_cutter(target: usize, min: DVec3, max: DVec3) -> SceneCutter {
     let plane = |x: f64| {
-        [
+        cutter::BoundedPlane::from_corners([
             DVec3::new(x, min.y, max.z),
             DVec3::new(x, max.y, max.z),
             DVec3::new(x, max.y, min.z),
             DVec3::new(x, min.y, min.z),
-        ]
+        ])
     };
     SceneCutter {
         target,
-        kind: CutKind::Curving,
-        smooth: false,
-        planes: vec![plane(min.x), plane((min.x + max.x) * 0.5), plane(max.x)],
+        cutter: cutter::Cutter {
+            kind: CutKind::Curving,
+            smooth: false,
+            planes: vec![plane(min.x), plane((min.x + max.x) * 0.5), plane(max.x)],
+        },
         views: CutterViews::default(),
     }
 }

@@ -11,27 +11,19 @@ use glam::DVec3;
 use super::cut_scene::{CutParts, PartKind, PreviewGeometry, PreviewPart, SURFACE, Step, select};
 use crate::scene::SceneCutter;
 
-/// The `cutter` crate's cutter for a scene cutter.
-pub fn to_cutter(cutter: &SceneCutter) -> cutter::Cutter {
-    cutter::Cutter {
-        kind: cutter::CutKind::from_name(cutter.kind.as_str()).unwrap_or(cutter::CutKind::Curving),
-        smooth: cutter.smooth,
-        planes: cutter
-            .planes
-            .iter()
-            .map(|p| cutter::BoundedPlane::from_corners(*p))
-            .collect(),
-    }
-}
-
-/// The closed surface the boolean cuts with and the Edit overlay draws
+/// The closed triangulated cutter: the surface the boolean cuts with and the Edit overlay draws
 /// ([`cutter::Cutter::surface`]: subdivided when the cutter is smooth). Empty for fewer than two
-/// planes.
-pub fn cutter_mesh(cutter: &SceneCutter) -> Mesh {
+/// planes. Every cut and every overlay of the application takes its cutter surface from here.
+pub fn cutter_surface(cutter: &cutter::Cutter) -> Mesh {
     if cutter.planes.len() < 2 {
         return Mesh::default();
     }
-    to_cutter(cutter).surface()
+    cutter.surface()
+}
+
+/// [`cutter_surface`] of a scene cutter.
+pub fn cutter_mesh(cutter: &SceneCutter) -> Mesh {
+    cutter_surface(&cutter.cutter)
 }
 
 /// The exact cut of `cutter` out of the indexed target.
@@ -85,12 +77,12 @@ pub fn sub_cuts(
     with_walls: bool,
 ) -> Result<(Mesh, Mesh), csg::CutError> {
     use cutter::subcutters::Placement;
-    if cutter.planes.len() < 2 {
+    let whole = &cutter.cutter;
+    if whole.planes.len() < 2 {
         return Ok((Mesh::default(), Mesh::default()));
     }
-    let whole = to_cutter(cutter);
     let clip = whole.smooth;
-    let mut subs = cutter::subcutters::sub_cutters(&whole, &view.spec());
+    let mut subs = cutter::subcutters::sub_cutters(whole, &view.spec());
     if clip && view.placement != Placement::Horizontal {
         for sub in &mut subs {
             for p in &mut sub.planes {

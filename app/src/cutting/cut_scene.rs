@@ -32,10 +32,10 @@ use std::sync::Arc;
 use csg::{Mesh, TargetIndex};
 use glam::DVec3;
 
-use crate::scene::{CutterPlane, Scene, SceneCutter};
+use crate::scene::{Scene, SceneCutter};
 
 use super::cut_parts::{chain_edges, push_part};
-pub use super::cut_parts::{contour_polylines, cut_exact, cutter_mesh, sub_cuts, to_cutter};
+pub use super::cut_parts::{contour_polylines, cut_exact, cutter_mesh, cutter_surface, sub_cuts};
 
 /// The three surfaces and the contour of one cut of a target by a closed cutter.
 #[derive(Clone, Debug, Default)]
@@ -164,10 +164,7 @@ struct Stage {
 }
 
 /// The geometry of the cutters cutting a model, as a cache key (views left out).
-type PrefixKey = (
-    usize,
-    Vec<(usize, crate::scene::CutKind, bool, Vec<CutterPlane>)>,
-);
+type PrefixKey = (usize, Vec<(usize, cutter::Cutter)>);
 
 /// One model's preview, as a cache key: the mesh and its cutters with their views.
 type ModelKey = (usize, Vec<(usize, SceneCutter)>);
@@ -297,7 +294,7 @@ fn prefix_key(mesh: &Arc<Mesh>, cutters: &[(usize, &SceneCutter)]) -> PrefixKey 
         Arc::as_ptr(mesh) as usize,
         cutters
             .iter()
-            .map(|(i, c)| (*i, c.kind, c.smooth, c.planes.clone()))
+            .map(|(i, c)| (*i, c.cutter.clone()))
             .collect(),
     )
 }

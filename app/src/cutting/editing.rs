@@ -11,10 +11,11 @@ use std::sync::{Arc, Weak};
 use glam::DVec2;
 
 use csg::{Mesh, SpatialIndex};
-use cutter::{BoundedPlane, Cutter, Editor, EditorEvent, EditorSettings};
+use cutter::{Editor, EditorEvent, EditorSettings};
 
 use crate::jobs::Progress;
-use crate::scene::{CutKind, Scene, SceneCutter};
+use crate::scene::{Scene, SceneCutter};
+use cutter::CutKind;
 
 /// Cut settings applied to the next cutter (thesis 3.5 E, Initialization tab).
 #[derive(Clone, Debug, PartialEq)]
@@ -40,24 +41,6 @@ impl Default for CutterInit {
 /// Targets up to this many triangles get their spatial index built on the UI thread (a few
 /// milliseconds); bigger ones in a background job with progress.
 const SYNC_INDEX_TRIANGLES: usize = 150_000;
-
-/// Scene cut kind → editor cut kind.
-pub fn editor_kind(kind: CutKind) -> cutter::CutKind {
-    match kind {
-        CutKind::Curving => cutter::CutKind::Curving,
-        CutKind::Straight => cutter::CutKind::Straight,
-        CutKind::Wedge => cutter::CutKind::Wedge,
-    }
-}
-
-/// Editor cut kind → scene cut kind.
-pub fn scene_kind(kind: cutter::CutKind) -> CutKind {
-    match kind {
-        cutter::CutKind::Curving => CutKind::Curving,
-        cutter::CutKind::Straight => CutKind::Straight,
-        cutter::CutKind::Wedge => CutKind::Wedge,
-    }
-}
 
 /// The editor working on one cutter of the scene.
 struct Active {
@@ -165,7 +148,7 @@ impl EditorSlot {
         self.indexes
             .retain(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, &model.mesh)));
         let settings = EditorSettings::for_scene(&scene.bbox(), scene.camera.fov_y_deg)
-            .with_kind(editor_kind(init.kind))
+            .with_kind(init.kind)
             .with_spacing(init.spacing)
             .with_smooth(init.smooth);
         let editor = Editor::new(model.mesh.clone(), index, scene.camera, viewport, settings);
@@ -192,15 +175,7 @@ impl EditorSlot {
         if !self.ensure(scene, c.target, viewport, init) {
             return false;
         }
-        let cutter = Cutter {
-            kind: editor_kind(c.kind),
-            smooth: c.smooth,
-            planes: c
-                .planes
-                .iter()
-                .map(|p| BoundedPlane::from_corners(*p))
-                .collect(),
-        };
+        let cutter = c.cutter.clone();
         let Some(active) = &mut self.active else {
             return false;
         };
@@ -235,7 +210,7 @@ impl EditorSlot {
         let Some(active) = &mut self.active else {
             return false;
         };
-        active.editor.set_kind(editor_kind(init.kind));
+        active.editor.set_kind(init.kind);
         active.editor.set_spacing(init.spacing);
         if active.editor.set_smooth(init.smooth) {
             self.mirror_into(scene);
@@ -251,19 +226,12 @@ impl EditorSlot {
         };
         match (active.editor.cutter(), active.cutter) {
             (Some(c), Some(i)) if i < scene.cutters.len() => {
-                let entry = &mut scene.cutters[i];
-                entry.kind = scene_kind(c.kind);
-                entry.smooth = c.smooth;
-                entry.planes = c.planes.iter().map(BoundedPlane::corners).collect();
+                scene.cutters[i].cutter = c.clone();
             }
             (Some(c), _) => {
-                scene.cutters.push(SceneCutter {
-                    target: active.target,
-                    kind: scene_kind(c.kind),
-                    smooth: c.smooth,
-                    planes: c.planes.iter().map(BoundedPlane::corners).collect(),
-                    views: Default::default(),
-                });
+                scene
+                    .cutters
+                    .push(SceneCutter::new(active.target, c.clone()));
                 active.cutter = Some(scene.cutters.len() - 1);
             }
             (None, Some(i)) if i < scene.cutters.len() => {
@@ -291,22 +259,10 @@ impl EditorSlot {
             .cutter
             .and_then(|i| scene.cutters.get(i))
             .filter(|c| c.target == active.target);
-        let current: Option<Vec<[glam::DVec3; 4]>> = active
-            .editor
-            .cutter()
-            .map(|c| c.planes.iter().map(BoundedPlane::corners).collect());
+        let current = active.editor.cutter().map(|c| &c.planes);
         match wanted {
-            Some(c) if current.as_ref() != Some(&c.planes) => {
-                let cutter = Cutter {
-                    kind: editor_kind(c.kind),
-                    smooth: c.smooth,
-                    planes: c
-                        .planes
-                        .iter()
-                        .map(|p| BoundedPlane::from_corners(*p))
-                        .collect(),
-                };
-                if !active.editor.set_cutter(Some(cutter)) {
+            Some(c) if current != Some(&c.cutter.planes) => {
+                if !active.editor.set_cutter(Some(c.cutter.clone())) {
                     self.active = None;
                 }
             }

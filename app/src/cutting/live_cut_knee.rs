@@ -62,13 +62,13 @@ fn live_cut_follows_the_editor_on_the_knee() {
     };
     let first = request(&scene, &mut live);
     // Grab the handle (the middle of the leading plane's front edge) and paint downwards.
-    let lead = *scene.cutters[0].planes.last().unwrap();
+    let lead = scene.cutters[0].cutter.planes.last().unwrap().corners();
     let handle = scene
         .camera
         .project(viewport, (lead[0] + lead[3]) * 0.5)
         .expect("handle in view");
     slot.handle(&mut scene, viewport, EditorEvent::press(handle.x, handle.y));
-    let planes_before = scene.cutters[0].planes.clone();
+    let planes_before = scene.cutters[0].cutter.planes.clone();
     for k in 1..=12 {
         let p = handle + DVec2::new(3.0 * k as f64, 6.0 * k as f64);
         if slot.handle(&mut scene, viewport, EditorEvent::move_to(p.x, p.y)) {
@@ -81,7 +81,7 @@ fn live_cut_follows_the_editor_on_the_knee() {
         EditorEvent::release(handle.x, handle.y),
     );
     assert_ne!(
-        scene.cutters[0].planes, planes_before,
+        scene.cutters[0].cutter.planes, planes_before,
         "the drag did not extrude"
     );
     assert!(!times.is_empty());

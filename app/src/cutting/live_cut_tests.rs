@@ -49,7 +49,7 @@ fn stale_requests_are_dropped_and_the_newest_wins() {
     let mut last_x = 0.0;
     for k in 0..40 {
         let x = 1.0 + 0.01 * k as f64;
-        scene.cutters[0].planes =
+        scene.cutters[0].cutter.planes =
             crate::cutting::cut_scene::tests::box_cutter(x, 3.0, -1.0, 1.0, 1.0, 3.0);
         live.request(&scene, None);
         last_x = x;

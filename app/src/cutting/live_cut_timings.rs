@@ -50,9 +50,11 @@ fn live_recut_ui_thread_cost_on_two_million_triangles() {
         let planes = box_cutter(-60.0, x1, -120.0, -70.0, -8.0, 8.0);
         scene.cutters = vec![SceneCutter {
             target: 0,
-            kind: crate::scene::CutKind::Curving,
-            smooth: false,
-            planes,
+            cutter: cutter::Cutter {
+                kind: cutter::CutKind::Curving,
+                smooth: false,
+                planes,
+            },
             views: CutterViews::default(),
         }];
         assert!(live.request(&scene, None));

@@ -40,9 +40,11 @@ fn the_live_cut_from_its_delta_looks_as_the_whole_kept_part_and_uploads_little()
     for (k, x1) in [1.0, 4.0, 2.5].into_iter().enumerate() {
         scene.cutters = vec![SceneCutter {
             target: 0,
-            kind: crate::scene::CutKind::Curving,
-            smooth: false,
-            planes: box_cutter(-4.0, x1, -12.0, -8.0, -2.0, 3.0),
+            cutter: cutter::Cutter {
+                kind: cutter::CutKind::Curving,
+                smooth: false,
+                planes: box_cutter(-4.0, x1, -12.0, -8.0, -2.0, 3.0),
+            },
             views: CutterViews::default(),
         }];
         assert!(live.request(&scene, None));

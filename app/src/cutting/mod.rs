@@ -13,11 +13,13 @@
 //!   exports) and the key that says when a result is stale.
 //! - [`editing`]: the editor slot around `cutter::Editor` and the settings a new cutter starts
 //!   with.
+//! - [`overlay`]: the cutter as Edit mode draws it, the surface the boolean cuts with.
 //! - [`pick`]: which model a ray meets first, through each model's BVH.
 
 pub mod cut_parts;
 pub mod cut_scene;
 pub mod editing;
 pub mod live_cut;
+pub mod overlay;
 pub mod pick;
 pub mod scene_cuts;

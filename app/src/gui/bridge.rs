@@ -3,18 +3,15 @@
 //! geometry. Kept in one file so the panels never depend on those APIs directly.
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 use glam::DVec2;
-
-use csg::Mesh;
 
 use super::app::CutawayApp;
 use super::jobs::Progress;
 use crate::cutting::cut_scene as cutaway_geometry;
 use crate::cutting::scene_cuts::cut_each_in_turn;
 use crate::render::{CutterOverlay, FrameInputs, OutputTarget, Renderer, ViewMode};
-use crate::scene::{Scene, SceneCutter};
+use crate::scene::Scene;
 
 /// Whether the scalpel mode exists in this build (its button is disabled otherwise).
 pub const SCALPEL_AVAILABLE: bool = true;
@@ -94,42 +91,17 @@ pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
             .enumerate()
             .filter(|&(i, _)| !hidden(i))
             .map(|(i, c)| CutterOverlay {
-                planes: c.planes.clone(),
-                surface: overlay_surface(c),
                 highlighted_plane: if Some(i) == active {
                     app.viewport.editor.highlighted_plane()
                 } else {
                     None
                 },
                 active: Some(i) == active,
+                ..crate::cutting::overlay::cutter_overlay(c)
             })
             .collect();
     }
     inputs
-}
-
-/// The cutter surface the overlay draws: the very mesh the boolean cuts with
-/// ([`cutaway_geometry::cutter_mesh`]). A smooth cutter's surface costs a subdivision and its
-/// exact check, so the surfaces of the last few cutters drawn are kept between frames.
-fn overlay_surface(cutter: &SceneCutter) -> Arc<Mesh> {
-    type Key = (crate::scene::CutKind, bool, Vec<crate::scene::CutterPlane>);
-    thread_local! {
-        static SURFACES: std::cell::RefCell<std::collections::VecDeque<(Key, Arc<Mesh>)>> =
-            Default::default();
-    }
-    let key: Key = (cutter.kind, cutter.smooth, cutter.planes.clone());
-    SURFACES.with(|cache| {
-        let mut cache = cache.borrow_mut();
-        if let Some((_, mesh)) = cache.iter().find(|(k, _)| *k == key) {
-            return mesh.clone();
-        }
-        let mesh = Arc::new(cutaway_geometry::cutter_mesh(cutter));
-        if cache.len() >= 8 {
-            cache.pop_front();
-        }
-        cache.push_back((key, mesh.clone()));
-        mesh
-    })
 }
 
 /// Draws the scene with the GPU renderer into `rect`; false when no renderer is installed.

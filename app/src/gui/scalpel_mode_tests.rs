@@ -217,26 +217,29 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
         h.state().status.message
     );
     // A cutter on the model: a scalpel stroke and its undo must never lose it.
-    let cutter = crate::scene::SceneCutter {
-        target: 0,
-        kind: crate::scene::CutKind::Curving,
-        smooth: false,
-        planes: vec![
-            [
-                DVec3::new(0.0, -11.0, 1.0),
-                DVec3::new(0.0, -9.0, 1.0),
-                DVec3::new(0.0, -9.0, -1.0),
-                DVec3::new(0.0, -11.0, -1.0),
-            ],
-            [
-                DVec3::new(1.0, -11.0, 1.0),
-                DVec3::new(1.0, -9.0, 1.0),
-                DVec3::new(1.0, -9.0, -1.0),
-                DVec3::new(1.0, -11.0, -1.0),
-            ],
-        ],
-        views: Default::default(),
-    };
+    let cutter = crate::scene::SceneCutter::new(
+        0,
+        cutter::Cutter {
+            kind: cutter::CutKind::Curving,
+            smooth: false,
+            planes: [
+                [
+                    DVec3::new(0.0, -11.0, 1.0),
+                    DVec3::new(0.0, -9.0, 1.0),
+                    DVec3::new(0.0, -9.0, -1.0),
+                    DVec3::new(0.0, -11.0, -1.0),
+                ],
+                [
+                    DVec3::new(1.0, -11.0, 1.0),
+                    DVec3::new(1.0, -9.0, 1.0),
+                    DVec3::new(1.0, -9.0, -1.0),
+                    DVec3::new(1.0, -11.0, -1.0),
+                ],
+            ]
+            .map(cutter::BoundedPlane::from_corners)
+            .to_vec(),
+        },
+    );
     h.state_mut().scene.cutters.push(cutter.clone());
 
     h.query_all_by_label("Scalpel")

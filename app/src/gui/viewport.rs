@@ -180,7 +180,7 @@ impl Recording {
             viewport: self.viewport,
             camera: self.camera,
             cut: crate::gesture::CutSettings {
-                kind: crate::cutting::editing::editor_kind(self.init.kind),
+                kind: self.init.kind,
                 spacing: self.init.spacing,
                 smooth: self.init.smooth,
             },

@@ -144,7 +144,8 @@ mod tests {
     use super::*;
     use crate::cutting::cut_scene::tests::{box_cutter, cube};
     use crate::intensity::{ImageLayer, IntensityImage, WallDisplay};
-    use crate::scene::{CutKind, CutterViews, SceneCutter, SceneModel};
+    use crate::scene::{CutterViews, SceneCutter, SceneModel};
+    use cutter::CutKind;
 
     /// The cube [0, 10]³ cut by a box x, z in 2..8 from the front to y = 5, with an image.
     fn scene() -> Scene {
@@ -157,9 +158,11 @@ mod tests {
         ));
         scene.cutters.push(SceneCutter {
             target: 0,
-            kind: CutKind::Straight,
-            smooth: false,
-            planes: box_cutter(2.0, 8.0, -5.0, 5.0, 2.0, 8.0),
+            cutter: cutter::Cutter {
+                kind: CutKind::Straight,
+                smooth: false,
+                planes: box_cutter(2.0, 8.0, -5.0, 5.0, 2.0, 8.0),
+            },
             views: CutterViews::default(),
         });
         let image = IntensityImage::from_fn([11, 11, 11], glam::DAffine3::IDENTITY, |p| p.x as f32);

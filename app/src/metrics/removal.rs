@@ -135,11 +135,10 @@ pub fn cut_models(scene: &Scene) -> anyhow::Result<Vec<ModelCut>> {
 /// model surface it took) to the deepest point of `removed` and `walls` (0 when it took none).
 fn cut_depth(cutter: &SceneCutter, removed: &Mesh, walls: impl Iterator<Item = DVec3>) -> f64 {
     let direction = cutter
+        .cutter
         .planes
         .iter()
-        .map(|[front_top, back_top, back_bottom, front_bottom]| {
-            (*back_top - *front_top) + (*back_bottom - *front_bottom)
-        })
+        .map(|p| (p.back_top - p.front_top) + (p.back_bottom - p.front_bottom))
         .sum::<DVec3>()
         .try_normalize();
     let Some(direction) = direction else {

@@ -341,11 +341,7 @@ pub fn render_with_preview(
             .scene
             .cutters
             .iter()
-            .map(|c| super::CutterOverlay {
-                planes: c.planes.clone(),
-                surface: Arc::new(crate::cutting::cut_scene::cutter_mesh(c)),
-                ..Default::default()
-            })
+            .map(crate::cutting::overlay::cutter_overlay)
             .collect();
     }
     renderer.render(&frame)

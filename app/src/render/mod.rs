@@ -61,7 +61,7 @@ use std::sync::Arc;
 use cutter::Camera;
 
 use crate::cutting::cut_scene::PreviewGeometry;
-use crate::scene::{CutterPlane, Scene};
+use crate::scene::Scene;
 
 pub mod delta;
 pub mod device_memory;
@@ -93,8 +93,9 @@ pub enum ViewMode {
 /// A cutter as the editor shows it in Edit mode.
 #[derive(Clone, Debug, Default)]
 pub struct CutterOverlay {
-    /// The bounded cutting planes (front-top, back-top, back-bottom, front-bottom).
-    pub planes: Vec<CutterPlane>,
+    /// The corners of each bounded cutting plane (front-top, back-top, back-bottom,
+    /// front-bottom), for the outline and the highlighted plane.
+    pub planes: Vec<[glam::DVec3; 4]>,
     /// The closed cutter surface, exactly the one the boolean cuts with
     /// ([`crate::cutting::cut_scene::cutter_mesh`], smooth cutters subdivided).
     pub surface: Arc<csg::Mesh>,
