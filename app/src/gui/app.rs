@@ -238,6 +238,8 @@ impl eframe::App for CutawayApp {
         self.frame_started = Instant::now();
         self.status.frame_ms = 0.9 * self.status.frame_ms + 0.1 * frame_ms;
         self.poll_jobs(&ctx);
+        // Pick trees of new or replaced meshes are built on a worker, not at the first press.
+        self.viewport.picks.prepare(&self.scene);
 
         let mut actions = self.shortcuts(&ctx);
         actions.extend(super::view_menu::view_shortcuts(&ctx));

@@ -26,6 +26,8 @@ pub mod cutter_panel;
 pub mod dialogs;
 pub mod export_labels;
 pub mod file_browser;
+#[cfg(test)]
+mod first_press_tests;
 pub mod help;
 pub mod image_panel;
 pub mod jobs;
