@@ -1,6 +1,7 @@
 //! Where the window meets the other parts of the application: the renderer (paint callback and
-//! headless export), the session file, the embedded default scene, the cutter editor and the cut
-//! geometry. Kept in one file so the panels never depend on those APIs directly.
+//! headless export), the session file, the embedded default scene and the mesh export. Kept in
+//! one file so the panels never depend on those APIs directly. Cutting itself (the editor slot,
+//! the whole-scene cut, the live cut, picks) is egui-free in [`crate::cutting`].
 
 use std::path::{Path, PathBuf};
 
