@@ -13,8 +13,8 @@ use crate::scene::Scene;
 
 use super::app::CutawayApp;
 use super::app_jobs::{JobOutput, file_label};
-use super::camera_controls;
 use super::undo::Apply;
+use crate::view::camera_controls;
 
 /// What the mouse does in the viewport (thesis 3.5 C).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

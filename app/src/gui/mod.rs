@@ -20,7 +20,6 @@ pub mod action;
 pub mod app;
 pub mod app_jobs;
 pub mod bridge;
-pub mod camera_controls;
 pub mod compare_view;
 pub mod cut_view;
 pub mod cutter_panel;

@@ -16,8 +16,8 @@ use cutter::Camera;
 use cutter::events::{EditorEvent, Key};
 
 use super::app::{Action, CutawayApp, Mode};
-use super::camera_controls;
 use crate::cutting::editing::CutterInit;
+use crate::view::camera_controls;
 
 /// What the primary-button drag in progress does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
