@@ -28,7 +28,7 @@ fn live_recut_ui_thread_cost_on_two_million_triangles() {
         }
     };
     let sphere = Arc::new(csg::testkit::geodesic_sphere(316, 100.0));
-    let mut scene = crate::gui::app::new_scene();
+    let mut scene = crate::scene::Scene::default();
     scene.models.push(SceneModel::new(
         "sphere",
         "sphere.ply",

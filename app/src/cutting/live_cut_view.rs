@@ -21,7 +21,7 @@ fn the_live_cut_from_its_delta_looks_as_the_whole_kept_part_and_uploads_little()
         }
     };
     let sphere = Arc::new(csg::testkit::icosphere(6, 10.0));
-    let mut scene = crate::gui::app::new_scene();
+    let mut scene = crate::scene::Scene::default();
     scene.models.push(SceneModel::new(
         "sphere",
         "sphere.obj",
