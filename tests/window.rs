@@ -281,7 +281,7 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
     // Extrude it down the face by its handle (the middle of the leading plane's front edge):
     // the live cut arrives under the translucent cutter.
     let app = h.state();
-    let lead = *app.scene.cutters[0].planes.last().unwrap();
+    let lead = app.scene.cutters[0].cutter.planes.last().unwrap().corners();
     let px = app
         .scene
         .camera
@@ -290,7 +290,10 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
     let ppp = h.ctx.pixels_per_point();
     let handle = app.viewport.rect.min + egui::vec2(px.x as f32 / ppp, px.y as f32 / ppp);
     drag(&mut h, handle, handle + egui::vec2(10.0, 90.0));
-    assert!(h.state().scene.cutters[0].planes.len() > 1, "no extrusion");
+    assert!(
+        h.state().scene.cutters[0].cutter.planes.len() > 1,
+        "no extrusion"
+    );
     let deadline = Instant::now() + Duration::from_secs(120);
     while h.state().viewport.live.shown().is_none() || h.state().viewport.live.pending() {
         assert!(Instant::now() < deadline, "no live cut");
@@ -316,7 +319,15 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
     assert_eq!(app.scene.cutters[0].target, app.scene.cutters[1].target);
     let overlays = frame_inputs(app, [64, 48]).overlays;
     assert_eq!(overlays.len(), 1, "only the new cutter shows");
-    assert_eq!(overlays[0].planes, app.scene.cutters[1].planes);
+    assert_eq!(
+        overlays[0].planes,
+        app.scene.cutters[1]
+            .cutter
+            .planes
+            .iter()
+            .map(|p| p.corners())
+            .collect::<Vec<_>>()
+    );
     // The cut stays visible in Camera mode: the preview is computed and drawn there too.
     click_mode(&mut h, Mode::Camera);
     settle(&mut h);
@@ -325,7 +336,7 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
     assert!(
         cut.parts
             .iter()
-            .any(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall),
+            .any(|p| p.kind == cutaway::cutting::cut_scene::PartKind::Wall),
         "no walls in Camera mode"
     );
     shot(&mut h, "camera-mode-shows-cut");

@@ -675,18 +675,20 @@ fn export_turntable_shows_progress_cancels_without_output_and_writes_the_frames(
 /// A box cutter through `min`..`max` on model `target`: three planes across x.
 fn box_cutter(target: usize, min: DVec3, max: DVec3) -> cutaway::scene::SceneCutter {
     let plane = |x: f64| {
-        [
+        cutter::BoundedPlane::from_corners([
             DVec3::new(x, min.y, max.z),
             DVec3::new(x, max.y, max.z),
             DVec3::new(x, max.y, min.z),
             DVec3::new(x, min.y, min.z),
-        ]
+        ])
     };
     cutaway::scene::SceneCutter {
         target,
-        kind: cutaway::scene::CutKind::Curving,
-        smooth: false,
-        planes: vec![plane(min.x), plane((min.x + max.x) * 0.5), plane(max.x)],
+        cutter: cutter::Cutter {
+            kind: cutter::CutKind::Curving,
+            smooth: false,
+            planes: vec![plane(min.x), plane((min.x + max.x) * 0.5), plane(max.x)],
+        },
         views: Default::default(),
     }
 }

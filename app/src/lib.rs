@@ -8,7 +8,7 @@ pub mod annotate;
 pub mod assets;
 pub mod cli;
 pub mod compare;
-pub mod cutaway_geometry;
+pub mod cutting;
 pub mod default_anatomy;
 pub mod dropped;
 pub mod errors;
@@ -17,6 +17,7 @@ pub mod gesture;
 pub mod gui;
 pub mod intensity;
 pub mod io;
+pub mod jobs;
 pub mod large_blocks;
 pub mod metrics;
 pub mod path_file;
@@ -25,7 +26,6 @@ pub mod render;
 pub mod ruler;
 pub mod scalpel_session;
 pub mod scene;
-pub mod scene_pick;
 pub mod session;
 pub mod session_cutters;
 pub mod session_image;
@@ -36,3 +36,7 @@ pub mod session_variants;
 pub mod thread_time;
 pub mod variants;
 pub mod view;
+
+/// The scene-cutting model under its earlier name, for code written before it moved to
+/// [`cutting::cut_scene`].
+pub use cutting::cut_scene as cutaway_geometry;

@@ -22,7 +22,7 @@ use super::pipelines::{
     SCATTER_ROW_GROUPS,
 };
 use super::{FrameInputs, OutputTarget, ViewMode, srgb_to_linear};
-use crate::cutaway_geometry::{PartKind, PreviewGeometry};
+use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
 use crate::scene::{ModelStyle, Stereo};
 
 /// Wall colour (sRGB) that the cut surfaces lean toward: a pale cream, distinct from anatomy
