@@ -54,7 +54,10 @@ fn opened_wavy_groove(w: f64) -> (Scalpel, Vec<DVec3>) {
         .collect();
     s.cut_stroke(&path).unwrap();
     s.advance_clock(1.0);
-    let open = OpenOptions { width: w, window: 0.5 };
+    let open = OpenOptions {
+        width: w,
+        window: 0.5,
+    };
     let shown = open_positions(&s, &open, s.clock());
     (s, shown)
 }
@@ -123,5 +126,9 @@ fn groove_opening_has_two_clean_lips_along_the_whole_path() {
         }
     }
     println!("wall area facing out: {:.3}", up / all);
-    assert!(up >= 0.9 * all, "only {:.2} of the wall area faces out", up / all);
+    assert!(
+        up >= 0.9 * all,
+        "only {:.2} of the wall area faces out",
+        up / all
+    );
 }
