@@ -5,9 +5,10 @@
 //! any later step (undo and redo of everything, each state drawn again) is more than 10 % above
 //! that level: repeating work must not pile memory up. It prints the level after the first cut and
 //! the highest level after it, against the stricter target of +10 % over the whole
-//! session, which is not met yet: the highest later level is about a quarter above the first
-//! cut's (205 → 259 MB measured with free arena pages handed back; capping glibc at two arenas
-//! changed nothing), and most of the difference is memory in use, not kept by the allocator —
+//! session, which is not met yet: with free arena pages handed back the highest later level was
+//! 16 % to 26 % above the first cut's in three runs (215 → 251 MB, 205 → 259 MB; capping glibc
+//! at two arenas changed nothing), and most of the difference is memory in use, not kept by the
+//! allocator —
 //! the cut indexes and previews of the nine models cut after the first, wireframe edges (run with
 //! `CUTAWAY_MEMORY_MAPS=1` to see the mappings per step).
 //!
