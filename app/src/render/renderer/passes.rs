@@ -121,12 +121,7 @@ impl Renderer {
         }
     }
 
-    fn draw_all(
-        &self,
-        pass: &mut wgpu::RenderPass<'_>,
-        draws: &[Draw],
-        transparent: bool,
-    ) {
+    fn draw_all(&self, pass: &mut wgpu::RenderPass<'_>, draws: &[Draw], transparent: bool) {
         for &draw in draws {
             match draw {
                 Draw::Mesh(source, u) | Draw::ImageMesh(source, u) => {
