@@ -13,6 +13,7 @@ pub mod default_anatomy;
 pub mod dropped;
 pub mod errors;
 pub mod export;
+pub mod free_pages;
 pub mod gesture;
 pub mod gui;
 pub mod intensity;
