@@ -163,13 +163,11 @@ pub fn extract_label<T: LabelValue>(
                     match polygon.direct[..] {
                         [a, b, c] => {
                             let t = [a, b, c].map(|e| vertex(&mut out, e));
-                            out.link_loop(&t, false);
                             out.triangles.push(t);
                             continue;
                         }
                         [a, b, c, d] => {
                             let q = [a, b, c, d].map(|e| vertex(&mut out, e));
-                            out.link_loop(&q, true);
                             out.quads.push(q);
                             continue;
                         }
@@ -181,21 +179,10 @@ pub fn extract_label<T: LabelValue>(
                         .push(Constraint::centre(out.centre_boxes.len()));
                     out.centre_boxes
                         .push([cube + polygon.lo, cube + polygon.hi]);
-                    out.rings.push_vertex();
-                    let first = out.triangles.len();
                     for &[from, to] in &polygon.segments {
                         let (a, b) = (vertex(&mut out, from), vertex(&mut out, to));
                         out.triangles.push([centre, a, b]);
                     }
-                    // The fan's sides: a → b along the loop and b → centre; the centre's ring is
-                    // the loop.
-                    for t in first..out.triangles.len() {
-                        let [_, a, b] = out.triangles[t];
-                        out.rings.link(a, b, &out.constraint, &out.positions);
-                        out.rings.link(b, centre, &out.constraint, &out.positions);
-                    }
-                    let fan = &out.triangles[first..];
-                    out.rings.push_centre(fan.iter().map(|t| t[1]));
                 }
                 if out.positions.len() >= NONE as usize - 64 {
                     overflow = true;
@@ -217,7 +204,6 @@ pub fn extract_label<T: LabelValue>(
 fn push_edge_vertex(out: &mut VoxelSurface, cube: DVec3, e: usize) {
     out.positions.push(cube + EDGE_MIDPOINTS[e]);
     out.constraint.push(Constraint::edge(e / 4));
-    out.rings.push_vertex();
 }
 
 /// `(first, last)` local u of the inside voxels of a mask row; `first > last` when there are none.

@@ -47,7 +47,6 @@
 mod cases;
 mod decimate;
 mod extract;
-mod rings;
 mod scan;
 mod smooth;
 #[cfg(test)]
@@ -405,8 +404,6 @@ pub(crate) struct VoxelSurface {
     /// Quadrilaterals (a cube's only polygon with four sides), counter-clockwise seen from
     /// outside; each becomes two triangles in [`VoxelSurface::into_world`].
     pub quads: Vec<[u32; 4]>,
-    /// Each vertex's smoothing neighbours, recorded with its polygons.
-    pub rings: rings::Rings,
 }
 
 /// Where one vertex may move during smoothing: `0..3` = along that axis on its voxel edge,

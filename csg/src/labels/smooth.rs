@@ -14,17 +14,10 @@
 //! and a quadrilateral is pulled flat; a diagonal joins edges of one cube on no common face, which
 //! no other polygon joins).
 //!
-//! ## Why it is fast
-//! Smoothing is most of the work of a label map, and it is bound by memory access:
-//! - the neighbourhoods are recorded while the surface is extracted ([`super::rings`]), so no
-//!   pass over the finished polygons builds them;
-//! - the coordinates are held as three separate arrays while smoothing: an edge vertex (most
-//!   vertices) moves along one axis only, so a step reads one coordinate of each neighbour and
-//!   writes one number; the two coordinates it keeps are the same in both step buffers from the
-//!   start;
-//! - a neighbour on an edge of another axis never moves along this vertex's axis: its part of the
-//!   sum was added up once at extraction, so a step reads only the neighbours that move (about
-//!   half).
+//! Cost: smoothing is most of the work of a label map, and it is bound by memory access. The
+//! coordinates are held as three separate arrays while smoothing: an edge vertex (most vertices)
+//! moves along one axis only, so a step reads one coordinate of each neighbour and writes one
+//! number; the two coordinates it keeps are the same in both step buffers from the start.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -55,12 +48,17 @@ pub fn smooth(surface: &mut VoxelSurface, smoothing: f64) {
         return;
     }
     let mu = 1.0 / (PASS_BAND - 1.0 / LAMBDA);
+    let (offsets, neighbours) = neighbours(surface);
     let mut now: [Vec<f64>; 3] =
         std::array::from_fn(|a| surface.positions.iter().map(|p| p[a]).collect());
     let mut next = now.clone();
+    let rings = Rings {
+        offsets: &offsets,
+        neighbours: &neighbours,
+    };
     for _ in 0..pairs {
         for factor in [LAMBDA, mu] {
-            step(surface, factor, &now, &mut next);
+            step(surface, &rings, factor, &now, &mut next);
             std::mem::swap(&mut now, &mut next);
         }
     }
@@ -69,12 +67,29 @@ pub fn smooth(surface: &mut VoxelSurface, smoothing: f64) {
     }
 }
 
+/// Compressed neighbour lists (see [`neighbours`]).
+struct Rings<'a> {
+    offsets: &'a [u32],
+    neighbours: &'a [u32],
+}
+
+impl Rings<'_> {
+    fn of(&self, i: usize) -> &[u32] {
+        &self.neighbours[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+}
+
 /// One Laplacian step with `factor` from `now` into `next` (coordinates by axis), clamped to the
-/// constraints: an edge vertex moves along its axis only (so only that coordinate of its moving
-/// neighbours is read) and stays [`EDGE_MARGIN`] away from the voxel centres at the ends of its
-/// edge; a centre vertex stays in its box.
-fn step(surface: &VoxelSurface, factor: f64, now: &[Vec<f64>; 3], next: &mut [Vec<f64>; 3]) {
-    let rings = &surface.rings;
+/// constraints: an edge vertex moves along its axis only (so only that coordinate of its
+/// neighbours' mean is needed) and stays [`EDGE_MARGIN`] away from the voxel centres at the
+/// ends of its edge; a centre vertex stays in its box.
+fn step(
+    surface: &VoxelSurface,
+    rings: &Rings,
+    factor: f64,
+    now: &[Vec<f64>; 3],
+    next: &mut [Vec<f64>; 3],
+) {
     let [nx, ny, nz] = next;
     nx.par_chunks_mut(CHUNK)
         .zip(ny.par_chunks_mut(CHUNK))
@@ -85,27 +100,21 @@ fn step(surface: &VoxelSurface, factor: f64, now: &[Vec<f64>; 3], next: &mut [Ve
             let out = [ox, oy, oz];
             for k in 0..out[0].len() {
                 let i = first + k;
+                let ring = rings.of(i);
+                if ring.is_empty() {
+                    continue;
+                }
                 let c = surface.constraint[i].0 as usize;
                 if c < 3 {
-                    let ring = &rings.edge[i];
-                    if ring.count == 0 {
-                        continue;
-                    }
                     let axis = &now[c];
-                    let moving = &ring.moving[..ring.len as usize];
-                    let sum: f64 = moving.iter().map(|&n| axis[n as usize]).sum();
+                    let sum: f64 = ring.iter().map(|&n| axis[n as usize]).sum();
                     let x = axis[i];
-                    let mean = (rings.fixed[i] + sum) / ring.count as f64;
-                    let moved = x + (mean - x) * factor;
+                    let moved = x + (sum / ring.len() as f64 - x) * factor;
                     // Local coordinates are positive, so truncation is the floor: the edge's
                     // low end, which the vertex never leaves.
                     let end = (x as u32) as f64;
                     out[c][k] = moved.clamp(end + EDGE_MARGIN, end + (1.0 - EDGE_MARGIN));
                 } else {
-                    let ring = rings.of_centre(c - 3);
-                    if ring.is_empty() {
-                        continue;
-                    }
                     let [lo, hi] = surface.centre_boxes[c - 3];
                     for a in 0..3 {
                         let axis = &now[a];
@@ -121,3 +130,40 @@ fn step(surface: &VoxelSurface, factor: f64, now: &[Vec<f64>; 3], next: &mut [Ve
 
 /// Vertices per parallel work item of one step.
 const CHUNK: usize = 8192;
+
+/// Compressed neighbour lists: vertex `i`'s neighbours are
+/// `neighbours[offsets[i]..offsets[i + 1]]`.
+fn neighbours(surface: &VoxelSurface) -> (Vec<u32>, Vec<u32>) {
+    let n = surface.positions.len();
+    let mut offsets = vec![0u32; n + 1];
+    for &v in surface.triangles.iter().flatten() {
+        offsets[v as usize + 1] += 1;
+    }
+    for &v in surface.quads.iter().flatten() {
+        offsets[v as usize + 1] += 2;
+    }
+    for i in 0..n {
+        offsets[i + 1] += offsets[i];
+    }
+    let mut fill = offsets.clone();
+    let mut neighbours = vec![0u32; offsets[n] as usize];
+    let mut side = |from: u32, to: u32| {
+        neighbours[fill[from as usize] as usize] = to;
+        fill[from as usize] += 1;
+    };
+    for &[a, b, c] in &surface.triangles {
+        side(a, b);
+        side(b, c);
+        side(c, a);
+    }
+    for &[a, b, c, d] in &surface.quads {
+        for (from, to) in [(a, b), (b, c), (c, d), (d, a)] {
+            side(from, to);
+        }
+        // Both diagonals, both ways.
+        for (from, to) in [(a, c), (c, a), (b, d), (d, b)] {
+            side(from, to);
+        }
+    }
+    (offsets, neighbours)
+}
