@@ -273,9 +273,14 @@ impl Cutter {
     pub fn validated_smoothing(&self) -> Result<crate::subdivision::Smoothing, CutterError> {
         self.sanity_check()?;
         let smoothing = self.smoothing(crate::subdivision::DEFAULT_LEVELS);
-        csg::check_cutter(&smoothing.mesh.triangulate()).map_err(|e| CutterError::Refused {
-            reason: e.to_string(),
-        })?;
+        // A level is kept only once `csg::cutter_self_intersections` (the same preparation and
+        // predicate as `csg::check_cutter`) found nothing in it, so a subdivided mesh has passed
+        // the exact check already; the boxes (no level kept) are checked here.
+        if smoothing.levels == 0 {
+            csg::check_cutter(&smoothing.mesh.triangulate()).map_err(|e| CutterError::Refused {
+                reason: e.to_string(),
+            })?;
+        }
         Ok(smoothing)
     }
 
