@@ -30,11 +30,12 @@
 //!
 //! Every completed action (a whole drag, one wheel event, one key) is one undo step; undo and
 //! redo restore whole snapshots, so an undo can never lose or corrupt a cutter. An edit that
-//! would make the cutter invalid is refused and leaves it unchanged: every completed action, and
-//! every pointer move of a drag (extrusion, wedge sweep, edge drag), is checked with
-//! [`Cutter::validate`], the exact check the boolean makes of the very surface it cuts with
-//! (smooth cutters subdivided), so the editor never hands over a cutter the exact cut would
-//! refuse, not even for one frame of the live cut. A refused move leaves the cutter where the
+//! would make the cutter invalid is refused and leaves it unchanged: every completed action is
+//! checked with [`Cutter::validate`], the exact check the boolean makes of the very surface it
+//! cuts with (smooth cutters subdivided), so the editor never hands over a cutter the exact cut
+//! would refuse. Every pointer move of a drag (extrusion, wedge sweep, edge drag) is checked
+//! too, before the live cut sees it: the whole cutter by [`Cutter::sanity_check`], the boxes
+//! around the planes it changed by the exact check. A refused move leaves the cutter where the
 //! last valid move put it and the drag goes on from there. A refusal, or smoothing that had to be
 //! reduced so the smooth cutter does not fold, leaves a one-line [`Editor::note`] for the status
 //! bar.
@@ -489,19 +490,23 @@ impl Editor {
             let surface = Surface::new(&self.target, &self.index);
             extrude::extrude_move(&mut cutter, &surface, &ray, &settings)
         };
-        let kept = !changed || self.accepts_move(&cutter, "the extrusion");
+        let kept = !changed || self.accepts_move(&before, &cutter, "the extrusion");
         let cutter = if kept { cutter } else { before };
         self.selected = Some(cutter.planes.len() - 1);
         self.cutter = Some(cutter);
         changed && kept
     }
 
-    /// True when `cutter`, the result of one pointer move of a drag, passes the exact check
-    /// ([`Cutter::validate_boxes`], which implies [`Cutter::validate`] and costs a fraction of
-    /// it on a smooth cutter); otherwise the move is refused (the cutter stays as it was, so the
-    /// live cut never sees an invalid one) and the reason is kept for [`Editor::note`].
-    fn accepts_move(&mut self, cutter: &Cutter, what: &str) -> bool {
-        match cutter.validate_boxes() {
+    /// True when `cutter`, the result of one pointer move of a drag from `before`, passes the
+    /// exact check where the move changed it; otherwise the move is refused (the cutter stays as
+    /// it was, so the live cut does not get it) and the reason is kept for [`Editor::note`].
+    ///
+    /// The move itself ([`extrude::extrude_move`], [`edits::move_edge`]) made sure the whole
+    /// cutter passes [`Cutter::sanity_check`]; here the boxes on either side of every changed
+    /// plane get the exact check ([`Cutter::validate_boxes`]), which keeps a drag over a long
+    /// cutter as fast as the pointer (the whole cutter is checked exactly when the drag ends).
+    fn accepts_move(&mut self, before: &Cutter, cutter: &Cutter, what: &str) -> bool {
+        match changed_span(before, cutter).validate_boxes() {
             Ok(()) => true,
             Err(e) => {
                 let refusal = format!("{what} was stopped here: {e}");
@@ -513,7 +518,7 @@ impl Editor {
     }
 
     fn drag_vertex(&mut self, plane: usize, top: bool, px: DVec2) -> bool {
-        let Some(cutter) = &self.cutter else {
+        let Some(cutter) = self.cutter.clone() else {
             return false;
         };
         let Some(p) = cutter.planes.get(plane) else {
@@ -531,9 +536,9 @@ impl Editor {
         if t <= 0.0 {
             return false;
         }
-        match edits::move_edge(cutter, plane, top, ray.at(t)) {
+        match edits::move_edge(&cutter, plane, top, ray.at(t)) {
             Some(c) => {
-                if !self.accepts_move(&c, "the edge") {
+                if !self.accepts_move(&cutter, &c, "the edge") {
                     return false;
                 }
                 self.cutter = Some(c);
@@ -592,10 +597,10 @@ impl Editor {
     }
 
     /// Ends a drag that started from `before`: a valid, different result is one undo step. Every
-    /// move of the drag was checked by the exact [`Cutter::validate`] (a move that failed it was
-    /// refused, and [`Editor::note`] says where the drag stopped), so the result is valid; should
-    /// it not be, it loses boxes from its end until it is, else falls back to `before`, and the
-    /// note says so.
+    /// move of the drag was checked where it changed the cutter (a move that failed was refused,
+    /// and [`Editor::note`] says where the drag stopped); the whole result gets the exact
+    /// [`Cutter::validate`] here, and should it fail, it loses boxes from its end until it
+    /// passes, else falls back to `before`, and the note says so.
     fn finish_drag(&mut self, before: Cutter) {
         let valid = match self.cutter.clone() {
             Some(c) => self.accepts(&c, "the drag"),
@@ -703,5 +708,23 @@ impl Editor {
     pub fn max_surface_gap(&self) -> Option<f64> {
         let c = self.cutter.as_ref()?;
         Some(extrude::max_surface_gap(c, &self.surface()))
+    }
+}
+
+/// The planes of `after` that differ from `before`, with one unchanged plane on either side,
+/// as a cutter of its own (at least one box; the whole of `after` when nothing differs).
+fn changed_span(before: &Cutter, after: &Cutter) -> Cutter {
+    let n = after.planes.len();
+    let differs = |i: usize| before.planes.get(i) != Some(&after.planes[i]);
+    let (Some(first), Some(last)) = ((0..n).find(|&i| differs(i)), (0..n).rfind(|&i| differs(i)))
+    else {
+        return after.clone();
+    };
+    let lo = first.saturating_sub(1).min(n.saturating_sub(2));
+    let hi = (last + 1).min(n - 1).max(lo + 1).min(n - 1);
+    Cutter {
+        kind: after.kind,
+        smooth: false,
+        planes: after.planes[lo..=hi].to_vec(),
     }
 }
