@@ -99,6 +99,9 @@ pub struct Editor {
     note: Option<String>,
     /// Why a move of the drag in progress was refused (kept for the note when the drag ends).
     drag_refusal: Option<String>,
+    /// Set when the last action was accepted: what smoothing gave up, worked out when
+    /// [`Editor::note`] is first read (a replay that never reads it never subdivides).
+    smoothing_note: Option<std::sync::OnceLock<Option<String>>>,
     undo_stack: Vec<Option<Cutter>>,
     redo_stack: Vec<Option<Cutter>>,
     drag: Drag,
@@ -137,6 +140,7 @@ impl Editor {
             cutter: None,
             note: None,
             drag_refusal: None,
+            smoothing_note: None,
             undo_stack: Vec::new(),
             redo_stack: Vec::new(),
             drag: Drag::None,
@@ -154,7 +158,18 @@ impl Editor {
     /// What the last completed action refused or corrected (one line for the status bar), if
     /// anything.
     pub fn note(&self) -> Option<&str> {
-        self.note.as_deref()
+        if self.note.is_some() {
+            return self.note.as_deref();
+        }
+        let pending = self.smoothing_note.as_ref()?;
+        pending.get_or_init(|| self.smoothing_note_now()).as_deref()
+    }
+
+    /// What smoothing the current cutter had to give up, if anything.
+    fn smoothing_note_now(&self) -> Option<String> {
+        self.cutter
+            .as_ref()
+            .and_then(|c| c.smoothing(crate::subdivision::DEFAULT_LEVELS).note())
     }
 
     /// Replaces the cutter (e.g. loaded from a session) as an undoable action. Refused (false)
@@ -169,16 +184,19 @@ impl Editor {
         true
     }
 
-    /// True when `cutter` passes [`Cutter::validate`]; sets [`Editor::note`] either way (the
-    /// refusal, or what smoothing had to give up).
+    /// True when `cutter` passes [`Cutter::validate`] (checked as [`Cutter::validate_boxes`],
+    /// which implies it without subdividing); sets [`Editor::note`] either way (the refusal, or
+    /// what smoothing had to give up, worked out when the note is first read).
     fn accepts(&mut self, cutter: &Cutter, what: &str) -> bool {
-        match cutter.validated_smoothing() {
-            Ok(smoothing) => {
-                self.note = smoothing.note();
+        match cutter.validate_boxes() {
+            Ok(()) => {
+                self.note = None;
+                self.smoothing_note = Some(std::sync::OnceLock::new());
                 true
             }
             Err(e) => {
                 self.note = Some(format!("{what} was refused: {e}"));
+                self.smoothing_note = None;
                 false
             }
         }
@@ -609,7 +627,7 @@ impl Editor {
         if let Some(stopped) = self.drag_refusal.take()
             && valid
         {
-            self.note = Some(match self.note.take() {
+            self.note = Some(match self.smoothing_note_now() {
                 Some(smoothing) => format!("{stopped}; {smoothing}"),
                 None => stopped,
             });
@@ -621,7 +639,7 @@ impl Editor {
             if let Some(c) = &mut trimmed {
                 while c.planes.len() > 2 && !kept {
                     c.planes.pop();
-                    kept = c.validate().is_ok();
+                    kept = c.validate_boxes().is_ok();
                 }
             }
             if kept && let Some(c) = trimmed {
