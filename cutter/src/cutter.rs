@@ -256,14 +256,31 @@ impl Cutter {
         self.validated_smoothing().map(|_| ())
     }
 
+    /// [`Cutter::sanity_check`] plus the exact check of [`Cutter::validate`] on the box mesh
+    /// alone (for a smooth cutter, before subdivision). Cheap enough for every pointer move of a
+    /// drag. A smooth cutter that passes it passes [`Cutter::validate`] too: the smoothing keeps
+    /// a level only once it is free of self-intersections, inserts planes in turns only when the
+    /// box mesh they make passes the exact check, and otherwise keeps the boxes.
+    pub fn validate_boxes(&self) -> Result<(), CutterError> {
+        self.sanity_check()?;
+        csg::check_cutter(&self.quad_mesh().triangulate()).map_err(|e| CutterError::Refused {
+            reason: e.to_string(),
+        })
+    }
+
     /// [`Cutter::validate`], returning the smoothing it checked (what the repair gave up is in
     /// it, see [`crate::subdivision::Smoothing::note`]).
     pub fn validated_smoothing(&self) -> Result<crate::subdivision::Smoothing, CutterError> {
         self.sanity_check()?;
         let smoothing = self.smoothing(crate::subdivision::DEFAULT_LEVELS);
-        csg::check_cutter(&smoothing.mesh.triangulate()).map_err(|e| CutterError::Refused {
-            reason: e.to_string(),
-        })?;
+        // A level is kept only once `csg::cutter_self_intersections` (the same preparation and
+        // predicate as `csg::check_cutter`) found nothing in it, so a subdivided mesh has passed
+        // the exact check already; the boxes (no level kept) are checked here.
+        if smoothing.levels == 0 {
+            csg::check_cutter(&smoothing.mesh.triangulate()).map_err(|e| CutterError::Refused {
+                reason: e.to_string(),
+            })?;
+        }
         Ok(smoothing)
     }
 

@@ -28,6 +28,10 @@ pub struct ExtrudeArgs {
     /// Where to write the cutter (OBJ quads).
     #[arg(long)]
     pub out: PathBuf,
+    /// Subdivision levels of a smooth (rounded/freeform) cutter, 0 to 4 (default 2); each level
+    /// splits every quad in four. Not used when the gesture's cutter is not smooth.
+    #[arg(long)]
+    pub levels: Option<u32>,
     /// Print one JSON object (see CONTRACT.md).
     #[arg(long)]
     pub json: bool,
@@ -137,10 +141,25 @@ fn painted_region(target: &Mesh, gesture: &Gesture) -> usize {
 }
 
 pub fn run(args: &ExtrudeArgs) -> anyhow::Result<()> {
+    let levels = args.levels.unwrap_or(cutter::subdivision::DEFAULT_LEVELS);
+    if levels > cutter::subdivision::MAX_LEVELS {
+        bail!(
+            "--levels {levels}: at most {} subdivision levels",
+            cutter::subdivision::MAX_LEVELS
+        );
+    }
     let target = crate::io::read_mesh(&args.target)?;
     let gesture = read_gesture(&args.gesture)?;
     let result = replay(&target, &gesture).with_context(|| args.gesture.display().to_string())?;
-    let mesh = result.cutter.display_mesh();
+    let smoothing = result.cutter.smoothing(levels);
+    let mesh = &smoothing.mesh;
+    // The editor checked the cutter at the default levels; other levels are checked here.
+    csg::check_cutter(&mesh.triangulate()).map_err(|e| {
+        anyhow::anyhow!(
+            "{}: the cutter with {levels} subdivision levels is not a valid cutter: {e}",
+            args.gesture.display()
+        )
+    })?;
     crate::io::write_obj_polygons(&args.out, &mesh.positions, &mesh.faces)?;
     let closed = mesh.check_closed().is_ok() && mesh.volume() > 0.0;
     if args.json {
@@ -153,6 +172,7 @@ pub fn run(args: &ExtrudeArgs) -> anyhow::Result<()> {
             "delta": result.delta,
             "smooth": result.cutter.smooth,
             "region": result.region,
+            "levels": smoothing.levels,
         });
         println!("{json}");
     } else {
