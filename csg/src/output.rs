@@ -479,6 +479,17 @@ impl CutResult {
     }
 }
 
+/// A position's bits (`-0.0` as `0.0`), as a key for "the same rounded position". A tuple, not
+/// an array: arrays hash as one byte slice, which the integer hasher digests byte by byte.
+pub(crate) type PositionBits = (u64, u64, u64);
+
+/// See [`PositionBits`].
+#[inline]
+pub(crate) fn position_bits(p: DVec3) -> PositionBits {
+    let b = p.to_array().map(|c| (c + 0.0).to_bits());
+    (b[0], b[1], b[2])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -549,15 +560,4 @@ mod tests {
         assert_eq!(kept.positions.len(), nv as usize + 1);
         assert_eq!(r.materialize(&target), kept);
     }
-}
-
-/// A position's bits (`-0.0` as `0.0`), as a key for "the same rounded position". A tuple, not
-/// an array: arrays hash as one byte slice, which the integer hasher digests byte by byte.
-pub(crate) type PositionBits = (u64, u64, u64);
-
-/// See [`PositionBits`].
-#[inline]
-pub(crate) fn position_bits(p: DVec3) -> PositionBits {
-    let b = p.to_array().map(|c| (c + 0.0).to_bits());
-    (b[0], b[1], b[2])
 }
