@@ -45,7 +45,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use crate::cutter::QuadMesh;
+use crate::quad_mesh::QuadMesh;
 
 /// Subdivision levels of a smooth cutter unless told otherwise: each level splits every quad in
 /// four, so two levels draw a box side as 16 quads.
