@@ -37,7 +37,3 @@ pub mod session_variants;
 pub mod thread_time;
 pub mod variants;
 pub mod view;
-
-/// The scene-cutting model under its earlier name, for code written before it moved to
-/// [`cutting::cut_scene`].
-pub use cutting::cut_scene as cutaway_geometry;

@@ -1,4 +1,4 @@
-//! Tests of [`super`] (`cutaway_geometry.rs`), kept in their own file.
+//! Tests of [`super`] (`cut_scene.rs`), kept in their own file.
 
 use super::*;
 

@@ -6,11 +6,11 @@ use std::time::Instant;
 
 use csg::Mesh;
 
-use super::cut_scene::{self as cutaway_geometry, PreviewGeometry};
+use super::cut_scene::{self, PreviewGeometry};
 use crate::jobs::Progress;
 use crate::scene::{Scene, SceneCutter, SceneModel};
 
-/// Cuts every model by its cutters in turn ([`cutaway_geometry::cut_in_turn`]: each cutter cuts
+/// Cuts every model by its cutters in turn ([`cut_scene::cut_in_turn`]: each cutter cuts
 /// the closed result of the ones before it, so overlapping cutters give T ∖ (K1 ∪ … ∪ Kn), with
 /// no wall of one cutter left inside another). `visit(step, model)` sees every cutter's step
 /// (its `after` is kept part and walls so far, closed). Returns per model the closed result (None
@@ -18,10 +18,10 @@ use crate::scene::{Scene, SceneCutter, SceneModel};
 pub fn cut_each_in_turn(
     scene: &Scene,
     progress: &Progress,
-    mut visit: impl FnMut(&cutaway_geometry::Step, &SceneModel) -> anyhow::Result<()>,
+    mut visit: impl FnMut(&cut_scene::Step, &SceneModel) -> anyhow::Result<()>,
 ) -> anyhow::Result<Vec<Option<Arc<Mesh>>>> {
     let mut out = vec![None; scene.models.len()];
-    let mut cache = cutaway_geometry::CutCache::default();
+    let mut cache = cut_scene::CutCache::default();
     let total = scene.cutters.len() as u64;
     let mut done = 0u64;
     for (m, model) in scene.models.iter().enumerate() {
@@ -36,7 +36,7 @@ pub fn cut_each_in_turn(
         }
         progress.check()?;
         let mut failure = None;
-        let sequence = cutaway_geometry::cut_in_turn(
+        let sequence = cut_scene::cut_in_turn(
             &mut cache,
             &model.mesh,
             &cutters,
@@ -63,7 +63,7 @@ pub fn cut_each_in_turn(
 /// The cut parts Preview shows, computed in a worker; returns them with the wall time in ms.
 pub fn compute_preview(scene: &Scene) -> (Arc<PreviewGeometry>, f64) {
     let started = Instant::now();
-    let geometry = cutaway_geometry::preview_geometry(scene);
+    let geometry = cut_scene::preview_geometry(scene);
     (Arc::new(geometry), started.elapsed().as_secs_f64() * 1000.0)
 }
 

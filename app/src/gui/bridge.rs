@@ -9,7 +9,7 @@ use glam::DVec2;
 
 use super::app::CutawayApp;
 use super::jobs::Progress;
-use crate::cutting::cut_scene as cutaway_geometry;
+use crate::cutting::cut_scene;
 use crate::cutting::scene_cuts::cut_each_in_turn;
 use crate::render::{CutterOverlay, FrameInputs, OutputTarget, Renderer, ViewMode};
 use crate::scene::Scene;
@@ -253,7 +253,7 @@ pub fn export_meshes(
     let ext = settings.format.extension();
     let mut written = Vec::new();
     cut_each_in_turn(scene, progress, |step, model| {
-        use cutaway_geometry::{SURFACE, select};
+        use cut_scene::{SURFACE, select};
         let stem = sanitize(&format!("cutter{}_{}", step.cutter + 1, model.name));
         let tags = step.after_tags;
         for (wanted, part) in [
