@@ -8,6 +8,8 @@
 //! Skipped, with the reason printed, when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with
 //! Mesa's lavapipe installed); the real-data test reads `CUTAWAY_ANATOMY` (default `../shared/anatomy`).
 
+mod window_harness;
+
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -19,39 +21,13 @@ use cutaway::view::{LengthUnit, Orientation, ViewPreset};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::DVec3;
-
-fn no_adapter() -> Option<String> {
-    let instance =
-        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-    match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default())) {
-        Ok(_) => None,
-        Err(e) => Some(format!(
-            "no wgpu adapter ({e}); install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan"
-        )),
-    }
-}
+use window_harness::{apply, harness, no_adapter, shot};
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("cutaway-window-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir
-}
-
-fn harness(state_dir: &Path, paths: Vec<PathBuf>) -> Harness<'static, CutawayApp> {
-    let start = StartOptions {
-        paths,
-        state_dir: state_dir.to_path_buf(),
-        offer_recovery: false,
-    };
-    Harness::builder()
-        .wgpu()
-        .with_size(egui::vec2(1280.0, 800.0))
-        .with_max_steps(10_000)
-        // Real frame times, so two clicks a frame apart are a double-click.
-        .with_step_dt(1.0 / 60.0)
-        .with_accessibility_check(false)
-        .build_eframe(move |cc| CutawayApp::new(cc, start))
 }
 
 fn settle(h: &mut Harness<'_, CutawayApp>) {
@@ -62,21 +38,6 @@ fn settle(h: &mut Harness<'_, CutawayApp>) {
         std::thread::sleep(Duration::from_millis(5));
     }
     h.run_steps(3);
-}
-
-/// Renders the window, saves it as `name` in the test's temporary folder, returns it.
-fn shot(h: &mut Harness<'_, CutawayApp>, name: &str) -> image::RgbaImage {
-    let image = h.render().expect("render the window");
-    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("window-{name}.png"));
-    image.save(&path).expect("save screenshot");
-    println!("screenshot: {}", path.display());
-    image
-}
-
-fn apply(h: &mut Harness<'_, CutawayApp>, action: Action) {
-    let ctx = h.ctx.clone();
-    h.state_mut().apply(&ctx, action);
-    h.run_steps(2);
 }
 
 fn click_mode(h: &mut Harness<'_, CutawayApp>, mode: Mode) {
