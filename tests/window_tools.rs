@@ -15,9 +15,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
+use cutaway::gui::CutawayApp;
 use cutaway::gui::app::Action;
 use cutaway::gui::variants_panel::VariantCommand;
-use cutaway::gui::{CutawayApp, StartOptions};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::{DVec2, DVec3};
