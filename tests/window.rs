@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 use cutaway::gui::app::Action;
 use cutaway::gui::bridge::frame_inputs;
 use cutaway::gui::view_menu::ViewCommand;
-use cutaway::gui::{CutawayApp, Mode};
+use cutaway::gui::{CutawayApp, Mode, StartOptions};
 use cutaway::view::{LengthUnit, Orientation, ViewPreset};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
