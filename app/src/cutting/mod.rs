@@ -14,10 +14,12 @@
 //! - [`editing`]: the editor slot around `cutter::Editor` and the settings a new cutter starts
 //!   with.
 //! - [`overlay`]: the cutter as Edit mode draws it, the surface the boolean cuts with.
-//! - [`pick`]: which model a ray meets first, through each model's BVH.
+//! - [`pick`]: which model a ray meets first, through each model's BVH; [`drawn_hit`]: the point
+//!   a ray meets on the scene as drawn (cut walls and kept parts where a cut is shown).
 
 pub mod cut_parts;
 pub mod cut_scene;
+pub mod drawn_hit;
 pub mod editing;
 pub mod live_cut;
 pub mod overlay;

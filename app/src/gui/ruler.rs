@@ -4,7 +4,7 @@
 //! Drags keep turning the camera, so both ends can be picked from the best side. Adding and
 //! removing rulers are undo steps.
 //!
-//! Points are picked on the scene as the view draws it ([`crate::ruler::first_hit`]): where the
+//! Points are picked on the scene as the view draws it ([`crate::cutting::drawn_hit::first_hit`]): where the
 //! cut is shown, on its walls and kept parts, so a ruler can measure into the opening.
 
 use glam::{DVec2, DVec3};
@@ -32,7 +32,7 @@ pub fn surface_point(app: &mut CutawayApp, px: DVec2) -> Option<DVec3> {
         (super::cut_view::shows_cut(app.mode) && current && !app.scene.cutters.is_empty())
             .then(|| app.viewport.preview.clone())
             .flatten();
-    crate::ruler::first_hit(
+    crate::cutting::drawn_hit::first_hit(
         &mut app.viewport.picks,
         &app.scene,
         preview.as_deref(),
