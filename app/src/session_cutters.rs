@@ -33,11 +33,19 @@ pub fn cutter_from_entry(i: usize, c: &CutterEntry) -> anyhow::Result<SceneCutte
             relative: v.relative,
         }))
     };
+    let levels = c.levels.unwrap_or(cutter::subdivision::DEFAULT_LEVELS);
+    if levels > cutter::subdivision::MAX_LEVELS {
+        anyhow::bail!(
+            "cutter {i}: levels {levels} is more than the {} subdivision levels a smooth cutter can have",
+            cutter::subdivision::MAX_LEVELS
+        );
+    }
     Ok(SceneCutter {
         target: c.target,
         cutter: Cutter {
             kind,
             smooth: c.smooth,
+            levels,
             planes: c
                 .planes
                 .iter()
@@ -67,6 +75,7 @@ pub fn cutter_entry(c: &SceneCutter) -> CutterEntry {
         target: c.target,
         kind: c.cutter.kind.name().to_string(),
         smooth: c.cutter.smooth,
+        levels: Some(c.cutter.levels),
         planes: c
             .cutter
             .planes
@@ -90,6 +99,10 @@ pub struct CutterEntry {
     pub kind: String,
     #[serde(default)]
     pub smooth: bool,
+    /// Subdivision levels of a smooth cutter, 0 to 4 (the window's "Smoothness"); added later:
+    /// a file without it means the default, 2.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub levels: Option<u32>,
     pub planes: Vec<[[f64; 3]; 4]>,
     #[serde(default)]
     pub views: ViewsEntry,
