@@ -284,9 +284,15 @@ fn extrude_levels_option_sets_the_subdivision() {
         assert_eq!(json["closed"], true);
         let cutter = read_obj(&out);
         csg::check_cutter(&cutter).unwrap_or_else(|e| panic!("--levels {levels}: {e}"));
-        faces.push(cutter.triangle_count());
+        // The written cutter is the adaptive surface: as many faces as the JSON says, at most
+        // those of the uniform subdivision.
+        let written = json["faces"].as_u64().unwrap() as usize;
+        let uniform = json["uniform_faces"].as_u64().unwrap() as usize;
+        assert!(cutter.triangle_count() >= written && written <= uniform, "{json}");
+        faces.push(uniform);
     }
-    // Each level splits every quad in four.
+    // Each level splits every quad in four (uniformly; adaptive subdivision then joins the
+    // rings of straight runs).
     assert_eq!(faces[1], 4 * faces[0], "{faces:?}");
     assert_eq!(faces[2], 16 * faces[1], "{faces:?}");
 
@@ -360,4 +366,59 @@ fn render_json_reports_every_smooth_gesture_exact() {
         );
         assert!(png.exists(), "{name}");
     }
+}
+
+/// Adaptive subdivision: for every gesture's smooth cutter at 2 and 3 levels, the cutter's surface
+/// has fewer triangles than the uniform subdivision at the same level, stays a valid closed
+/// cutter, and every point of the uniform surface is within the adaptive tolerance of it. Prints
+/// the triangle counts and the deviation per gesture.
+#[test]
+fn adaptive_subdivision_keeps_the_uniform_surface_with_fewer_triangles() {
+    let target = sphere();
+    let (mut uniform_total, mut adaptive_total) = (0usize, 0usize);
+    for file in gestures() {
+        let name = file.file_stem().unwrap().to_string_lossy().into_owned();
+        let mut gesture = read_gesture(&file).expect("gesture");
+        gesture.cut.smooth = true;
+        let r = replay(&target, &gesture).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+        let corners: Vec<[glam::DVec3; 4]> = r.cutter.planes.iter().map(|p| p.corners()).collect();
+        let tolerance =
+            cutter::adaptive::ADAPTIVE_TOLERANCE * cutter::adaptive::cross_section(&corners);
+        for levels in [2, 3] {
+            let uniform = r.cutter.uniform_smoothing(levels).mesh.triangulate();
+            let smoothing = r.cutter.smoothing(levels);
+            assert_eq!(smoothing.levels, levels, "{name}: levels given up");
+            smoothing.mesh.check_closed().unwrap();
+            let adaptive = smoothing.mesh.triangulate();
+            csg::check_cutter(&adaptive).unwrap_or_else(|e| panic!("{name} {levels}: {e}"));
+            assert!(adaptive.triangle_count() <= uniform.triangle_count());
+            let index = csg::SpatialIndex::build(&adaptive);
+            let deviation = uniform
+                .positions
+                .iter()
+                .map(|&p| index.closest_point(&adaptive, p).unwrap().distance)
+                .fold(0.0, f64::max);
+            assert!(
+                deviation <= tolerance * 1.0001,
+                "{name} {levels}: deviation {deviation} > {tolerance}"
+            );
+            let volume_change = adaptive.volume() / uniform.volume() - 1.0;
+            println!(
+                "{name} {}, levels {levels}: {} → {} triangles ({:.0}%), max deviation {deviation:.2e} ({:.2}% of the cross-section), volume {:+.3}%",
+                r.cutter.kind.name(),
+                uniform.triangle_count(),
+                adaptive.triangle_count(),
+                100.0 * adaptive.triangle_count() as f64 / uniform.triangle_count() as f64,
+                100.0 * deviation / cutter::adaptive::cross_section(&corners),
+                100.0 * volume_change,
+            );
+            uniform_total += uniform.triangle_count();
+            adaptive_total += adaptive.triangle_count();
+        }
+    }
+    println!("all gestures: {uniform_total} → {adaptive_total} triangles");
+    assert!(
+        (adaptive_total as f64) < 0.9 * uniform_total as f64,
+        "adaptive subdivision saved less than 10%: {uniform_total} → {adaptive_total}"
+    );
 }
