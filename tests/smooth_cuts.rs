@@ -422,3 +422,77 @@ fn adaptive_subdivision_keeps_the_uniform_surface_with_fewer_triangles() {
         "adaptive subdivision saved less than 10%: {uniform_total} → {adaptive_total}"
     );
 }
+
+/// `cutaway render --json` of a session whose smooth cutter has `levels` (the window's
+/// Smoothness): the cut uses that many levels (reported with the cutter surface's triangles), and
+/// a session without the field gets the default.
+#[test]
+fn render_json_of_a_session_uses_its_cutter_levels() {
+    let dir = scratch("render-levels");
+    let target = dir.join("sphere.obj");
+    cutaway::io::write_mesh(&target, &sphere()).expect("write sphere");
+    let gesture = gestures()
+        .into_iter()
+        .find(|p| p.ends_with("sphere_s.json"))
+        .expect("S gesture");
+    let mut gesture = read_gesture(&gesture).unwrap();
+    gesture.cut.smooth = true;
+    let r = replay(&sphere(), &gesture).unwrap();
+    let planes: Vec<serde_json::Value> = r
+        .cutter
+        .planes
+        .iter()
+        .map(|p| serde_json::json!(p.corners().map(|c| c.to_array())))
+        .collect();
+    let mut triangles = Vec::new();
+    for levels in [None, Some(0), Some(1), Some(3)] {
+        let mut entry = serde_json::json!({"target": 0, "kind": "curving", "smooth": true,
+                                           "planes": planes, "views": {"cut": true}});
+        if let Some(l) = levels {
+            entry["levels"] = serde_json::json!(l);
+        }
+        let session = serde_json::json!({
+            "format": "cutaway-session/2",
+            "models": [{"path": "sphere.obj", "color": [0.9, 0.7, 0.6]}],
+            "cutters": [entry],
+            "camera": {"eye": [0, -300, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 30}
+        });
+        let session_path = dir.join(format!("levels{levels:?}.json"));
+        std::fs::write(&session_path, session.to_string()).unwrap();
+        let png = dir.join(format!("levels{levels:?}.png"));
+        let (ok, out, err) = cutaway(&[
+            "render".as_ref(),
+            session_path.as_os_str(),
+            "--out".as_ref(),
+            png.as_os_str(),
+            "--width".as_ref(),
+            "64".as_ref(),
+            "--height".as_ref(),
+            "48".as_ref(),
+            "--json".as_ref(),
+        ]);
+        if !ok && err.contains("adapter") {
+            eprintln!("skipped: no GPU adapter ({err})");
+            return;
+        }
+        assert!(ok, "levels {levels:?}: render failed: {err}");
+        let json: serde_json::Value = serde_json::from_str(out.trim()).expect("render JSON");
+        let c = &json["cutters"][0];
+        assert_eq!(c["exact"], true, "{json}");
+        let expected = levels.unwrap_or(cutter::subdivision::DEFAULT_LEVELS);
+        assert_eq!(c["levels"], expected, "{json}");
+        let mut with_levels = r.cutter.clone();
+        with_levels.levels = expected;
+        assert_eq!(
+            c["triangles"].as_u64().unwrap() as usize,
+            with_levels.surface().triangle_count(),
+            "{json}"
+        );
+        triangles.push(c["triangles"].as_u64().unwrap());
+    }
+    // No field means the default (2 levels): between 1 and 3 levels in size.
+    assert!(
+        triangles[1] < triangles[2] && triangles[2] < triangles[0] && triangles[0] < triangles[3],
+        "{triangles:?}"
+    );
+}
