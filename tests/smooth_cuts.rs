@@ -288,7 +288,10 @@ fn extrude_levels_option_sets_the_subdivision() {
         // those of the uniform subdivision.
         let written = json["faces"].as_u64().unwrap() as usize;
         let uniform = json["uniform_faces"].as_u64().unwrap() as usize;
-        assert!(cutter.triangle_count() >= written && written <= uniform, "{json}");
+        assert!(
+            cutter.triangle_count() >= written && written <= uniform,
+            "{json}"
+        );
         faces.push(uniform);
     }
     // Each level splits every quad in four (uniformly; adaptive subdivision then joins the

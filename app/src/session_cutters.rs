@@ -194,8 +194,8 @@ mod tests {
         // Every level a user can pick survives a save and a load.
         for levels in 0..=cutter::subdivision::MAX_LEVELS {
             let text = session(&format!(r#", "levels": {levels}"#));
-            let mut c = cutter_from_entry(0, &crate::session::parse(&text).unwrap().cutters[0])
-                .unwrap();
+            let mut c =
+                cutter_from_entry(0, &crate::session::parse(&text).unwrap().cutters[0]).unwrap();
             assert_eq!(c.cutter.levels, levels);
             c.views.cut = false;
             let saved = serde_json::to_string(&cutter_entry(&c)).unwrap();
@@ -206,8 +206,14 @@ mod tests {
         // More than a smooth cutter can have: one error naming the cutter and the value.
         let err = levels_of(&session(r#", "levels": 9"#)).unwrap_err();
         let msg = format!("{err:#}");
-        assert!(msg.contains("cutter 0") && msg.contains("levels 9"), "{msg}");
+        assert!(
+            msg.contains("cutter 0") && msg.contains("levels 9"),
+            "{msg}"
+        );
         let err = levels_of(&session(r#", "levels": -1"#)).unwrap_err();
-        assert!(format!("{err:#}").contains("not a valid session"), "{err:#}");
+        assert!(
+            format!("{err:#}").contains("not a valid session"),
+            "{err:#}"
+        );
     }
 }

@@ -124,7 +124,11 @@ pub fn drop_flat_rings(fine: &QuadMesh, t: &[f64], tolerance: f64) -> Option<Qua
     };
     let mut faces = Vec::with_capacity(fine.faces.len());
     for f in &fine.faces {
-        let low = f.iter().map(|&v| ring(v)).min().expect("faces have corners");
+        let low = f
+            .iter()
+            .map(|&v| ring(v))
+            .min()
+            .expect("faces have corners");
         if !kept[low] {
             continue;
         }
