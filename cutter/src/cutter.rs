@@ -238,7 +238,8 @@ impl Cutter {
     /// alone (for a smooth cutter, before subdivision). Cheap enough for every pointer move of a
     /// drag. A smooth cutter that passes it passes [`Cutter::validate`] too: the smoothing keeps
     /// a level only once it is free of self-intersections, inserts planes in turns only when the
-    /// box mesh they make passes the exact check, and otherwise keeps the boxes.
+    /// box mesh they make passes the exact check, keeps the adaptive surface only when it passes
+    /// it too, and otherwise keeps the boxes.
     pub fn validate_boxes(&self) -> Result<(), CutterError> {
         self.sanity_check()?;
         csg::check_cutter(&self.quad_mesh().triangulate()).map_err(|e| CutterError::Refused {
