@@ -151,6 +151,7 @@ fn with_cutter(mut scene: Scene, views: CutterViews) -> Scene {
         cutter: cutter::Cutter {
             kind: CutKind::Straight,
             smooth: false,
+            levels: cutter::subdivision::DEFAULT_LEVELS,
             planes: corner_planes(),
         },
         views,
@@ -411,6 +412,7 @@ fn rounded_knee_scene() -> Scene {
         cutter: cutter::Cutter {
             kind: CutKind::Curving,
             smooth: true,
+            levels: cutter::subdivision::DEFAULT_LEVELS,
             planes,
         },
         views: CutterViews::default(),
@@ -590,6 +592,7 @@ mod sessions {
             cutter: cutter::Cutter {
                 kind: CutKind::Wedge,
                 smooth: true,
+                levels: cutter::subdivision::DEFAULT_LEVELS,
                 planes: corner_planes(),
             },
             views: CutterViews {

@@ -284,9 +284,18 @@ fn extrude_levels_option_sets_the_subdivision() {
         assert_eq!(json["closed"], true);
         let cutter = read_obj(&out);
         csg::check_cutter(&cutter).unwrap_or_else(|e| panic!("--levels {levels}: {e}"));
-        faces.push(cutter.triangle_count());
+        // The written cutter is the adaptive surface: as many faces as the JSON says, at most
+        // those of the uniform subdivision.
+        let written = json["faces"].as_u64().unwrap() as usize;
+        let uniform = json["uniform_faces"].as_u64().unwrap() as usize;
+        assert!(
+            cutter.triangle_count() >= written && written <= uniform,
+            "{json}"
+        );
+        faces.push(uniform);
     }
-    // Each level splits every quad in four.
+    // Each level splits every quad in four (uniformly; adaptive subdivision then joins the
+    // rings of straight runs).
     assert_eq!(faces[1], 4 * faces[0], "{faces:?}");
     assert_eq!(faces[2], 16 * faces[1], "{faces:?}");
 
@@ -360,4 +369,133 @@ fn render_json_reports_every_smooth_gesture_exact() {
         );
         assert!(png.exists(), "{name}");
     }
+}
+
+/// Adaptive subdivision: for every gesture's smooth cutter at 2 and 3 levels, the cutter's surface
+/// has fewer triangles than the uniform subdivision at the same level, stays a valid closed
+/// cutter, and every point of the uniform surface is within the adaptive tolerance of it. Prints
+/// the triangle counts and the deviation per gesture.
+#[test]
+fn adaptive_subdivision_keeps_the_uniform_surface_with_fewer_triangles() {
+    let target = sphere();
+    let (mut uniform_total, mut adaptive_total) = (0usize, 0usize);
+    for file in gestures() {
+        let name = file.file_stem().unwrap().to_string_lossy().into_owned();
+        let mut gesture = read_gesture(&file).expect("gesture");
+        gesture.cut.smooth = true;
+        let r = replay(&target, &gesture).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+        let corners: Vec<[glam::DVec3; 4]> = r.cutter.planes.iter().map(|p| p.corners()).collect();
+        let tolerance =
+            cutter::adaptive::ADAPTIVE_TOLERANCE * cutter::adaptive::cross_section(&corners);
+        for levels in [2, 3] {
+            let uniform = r.cutter.uniform_smoothing(levels).mesh.triangulate();
+            let smoothing = r.cutter.smoothing(levels);
+            assert_eq!(smoothing.levels, levels, "{name}: levels given up");
+            smoothing.mesh.check_closed().unwrap();
+            let adaptive = smoothing.mesh.triangulate();
+            csg::check_cutter(&adaptive).unwrap_or_else(|e| panic!("{name} {levels}: {e}"));
+            assert!(adaptive.triangle_count() <= uniform.triangle_count());
+            let index = csg::SpatialIndex::build(&adaptive);
+            let deviation = uniform
+                .positions
+                .iter()
+                .map(|&p| index.closest_point(&adaptive, p).unwrap().distance)
+                .fold(0.0, f64::max);
+            assert!(
+                deviation <= tolerance * 1.0001,
+                "{name} {levels}: deviation {deviation} > {tolerance}"
+            );
+            let volume_change = adaptive.volume() / uniform.volume() - 1.0;
+            println!(
+                "{name} {}, levels {levels}: {} → {} triangles ({:.0}%), max deviation {deviation:.2e} ({:.2}% of the cross-section), volume {:+.3}%",
+                r.cutter.kind.name(),
+                uniform.triangle_count(),
+                adaptive.triangle_count(),
+                100.0 * adaptive.triangle_count() as f64 / uniform.triangle_count() as f64,
+                100.0 * deviation / cutter::adaptive::cross_section(&corners),
+                100.0 * volume_change,
+            );
+            uniform_total += uniform.triangle_count();
+            adaptive_total += adaptive.triangle_count();
+        }
+    }
+    println!("all gestures: {uniform_total} → {adaptive_total} triangles");
+    assert!(
+        (adaptive_total as f64) < 0.9 * uniform_total as f64,
+        "adaptive subdivision saved less than 10%: {uniform_total} → {adaptive_total}"
+    );
+}
+
+/// `cutaway render --json` of a session whose smooth cutter has `levels` (the window's
+/// Smoothness): the cut uses that many levels (reported with the cutter surface's triangles), and
+/// a session without the field gets the default.
+#[test]
+fn render_json_of_a_session_uses_its_cutter_levels() {
+    let dir = scratch("render-levels");
+    let target = dir.join("sphere.obj");
+    cutaway::io::write_mesh(&target, &sphere()).expect("write sphere");
+    let gesture = gestures()
+        .into_iter()
+        .find(|p| p.ends_with("sphere_s.json"))
+        .expect("S gesture");
+    let mut gesture = read_gesture(&gesture).unwrap();
+    gesture.cut.smooth = true;
+    let r = replay(&sphere(), &gesture).unwrap();
+    let planes: Vec<serde_json::Value> = r
+        .cutter
+        .planes
+        .iter()
+        .map(|p| serde_json::json!(p.corners().map(|c| c.to_array())))
+        .collect();
+    let mut triangles = Vec::new();
+    for levels in [None, Some(0), Some(1), Some(3)] {
+        let mut entry = serde_json::json!({"target": 0, "kind": "curving", "smooth": true,
+                                           "planes": planes, "views": {"cut": true}});
+        if let Some(l) = levels {
+            entry["levels"] = serde_json::json!(l);
+        }
+        let session = serde_json::json!({
+            "format": "cutaway-session/2",
+            "models": [{"path": "sphere.obj", "color": [0.9, 0.7, 0.6]}],
+            "cutters": [entry],
+            "camera": {"eye": [0, -300, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 30}
+        });
+        let session_path = dir.join(format!("levels{levels:?}.json"));
+        std::fs::write(&session_path, session.to_string()).unwrap();
+        let png = dir.join(format!("levels{levels:?}.png"));
+        let (ok, out, err) = cutaway(&[
+            "render".as_ref(),
+            session_path.as_os_str(),
+            "--out".as_ref(),
+            png.as_os_str(),
+            "--width".as_ref(),
+            "64".as_ref(),
+            "--height".as_ref(),
+            "48".as_ref(),
+            "--json".as_ref(),
+        ]);
+        if !ok && err.contains("adapter") {
+            eprintln!("skipped: no GPU adapter ({err})");
+            return;
+        }
+        assert!(ok, "levels {levels:?}: render failed: {err}");
+        let json: serde_json::Value = serde_json::from_str(out.trim()).expect("render JSON");
+        let c = &json["cutters"][0];
+        assert_eq!(c["exact"], true, "{json}");
+        let expected = levels.unwrap_or(cutter::subdivision::DEFAULT_LEVELS);
+        assert_eq!(c["levels"], expected, "{json}");
+        let mut with_levels = r.cutter.clone();
+        with_levels.levels = expected;
+        assert_eq!(
+            c["triangles"].as_u64().unwrap() as usize,
+            with_levels.surface().triangle_count(),
+            "{json}"
+        );
+        triangles.push(c["triangles"].as_u64().unwrap());
+    }
+    // No field means the default (2 levels): between 1 and 3 levels in size.
+    assert!(
+        triangles[1] < triangles[2] && triangles[2] < triangles[0] && triangles[0] < triangles[3],
+        "{triangles:?}"
+    );
 }

@@ -139,6 +139,7 @@ fn cut_and_render(scene: &mut Scene, wedge: &Cutter, camera: Camera, name: &str)
         0,
         Cutter {
             smooth: false,
+            levels: cutter::subdivision::DEFAULT_LEVELS,
             ..wedge.clone()
         },
     ));

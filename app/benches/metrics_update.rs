@@ -30,6 +30,7 @@ fn box_cutter(target: usize, min: DVec3, max: DVec3) -> SceneCutter {
         cutter: cutter::Cutter {
             kind: CutKind::Curving,
             smooth: false,
+            levels: cutter::subdivision::DEFAULT_LEVELS,
             planes: vec![plane(min.x), plane((min.x + max.x) * 0.5), plane(max.x)],
         },
         views: CutterViews::default(),

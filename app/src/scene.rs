@@ -603,6 +603,7 @@ mod tests {
             cutter::Cutter {
                 kind: cutter::CutKind::Curving,
                 smooth: false,
+                levels: cutter::subdivision::DEFAULT_LEVELS,
                 planes: vec![cutter::BoundedPlane::from_corners([
                     DVec3::ZERO,
                     DVec3::X,

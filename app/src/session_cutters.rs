@@ -33,11 +33,19 @@ pub fn cutter_from_entry(i: usize, c: &CutterEntry) -> anyhow::Result<SceneCutte
             relative: v.relative,
         }))
     };
+    let levels = c.levels.unwrap_or(cutter::subdivision::DEFAULT_LEVELS);
+    if levels > cutter::subdivision::MAX_LEVELS {
+        anyhow::bail!(
+            "cutter {i}: levels {levels} is more than the {} subdivision levels a smooth cutter can have",
+            cutter::subdivision::MAX_LEVELS
+        );
+    }
     Ok(SceneCutter {
         target: c.target,
         cutter: Cutter {
             kind,
             smooth: c.smooth,
+            levels,
             planes: c
                 .planes
                 .iter()
@@ -67,6 +75,7 @@ pub fn cutter_entry(c: &SceneCutter) -> CutterEntry {
         target: c.target,
         kind: c.cutter.kind.name().to_string(),
         smooth: c.cutter.smooth,
+        levels: Some(c.cutter.levels),
         planes: c
             .cutter
             .planes
@@ -90,6 +99,10 @@ pub struct CutterEntry {
     pub kind: String,
     #[serde(default)]
     pub smooth: bool,
+    /// Subdivision levels of a smooth cutter, 0 to 4 (the window's "Smoothness"); added later:
+    /// a file without it means the default, 2.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub levels: Option<u32>,
     pub planes: Vec<[[f64; 3]; 4]>,
     #[serde(default)]
     pub views: ViewsEntry,
@@ -143,4 +156,64 @@ fn curving() -> String {
 
 fn yes() -> bool {
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn session(levels: &str) -> String {
+        format!(
+            r#"{{
+          "format": "cutaway-session/2",
+          "models": [],
+          "cutters": [{{"target": 0, "kind": "curving", "smooth": true{levels},
+                       "planes": [[[0,0,0],[0,1,0],[0,1,-1],[0,0,-1]],
+                                  [[1,0,0],[1,1,0],[1,1,-1],[1,0,-1]]]}}]
+        }}"#
+        )
+    }
+
+    fn levels_of(text: &str) -> anyhow::Result<u32> {
+        let file = crate::session::parse(text)?;
+        cutter_from_entry(0, &file.cutters[0]).map(|c| c.cutter.levels)
+    }
+
+    #[test]
+    fn session_cutter_levels_round_trip_and_old_files_get_the_default() {
+        // A file written before the field: the default levels, written out from then on.
+        let old = session("");
+        assert_eq!(
+            levels_of(&old).unwrap(),
+            cutter::subdivision::DEFAULT_LEVELS
+        );
+        let file = crate::session::parse(&old).unwrap();
+        let scene_cutter = cutter_from_entry(0, &file.cutters[0]).unwrap();
+        let entry = cutter_entry(&scene_cutter);
+        assert_eq!(entry.levels, Some(cutter::subdivision::DEFAULT_LEVELS));
+        // Every level a user can pick survives a save and a load.
+        for levels in 0..=cutter::subdivision::MAX_LEVELS {
+            let text = session(&format!(r#", "levels": {levels}"#));
+            let mut c =
+                cutter_from_entry(0, &crate::session::parse(&text).unwrap().cutters[0]).unwrap();
+            assert_eq!(c.cutter.levels, levels);
+            c.views.cut = false;
+            let saved = serde_json::to_string(&cutter_entry(&c)).unwrap();
+            assert!(saved.contains(&format!(r#""levels":{levels}"#)), "{saved}");
+            let back: CutterEntry = serde_json::from_str(&saved).unwrap();
+            assert_eq!(cutter_from_entry(0, &back).unwrap(), c);
+        }
+        // More than a smooth cutter can have: one error naming the cutter and the value.
+        let err = levels_of(&session(r#", "levels": 9"#)).unwrap_err();
+        let msg = format!("{err:#}");
+        assert!(
+            msg.contains("cutter 0") && msg.contains("levels 9"),
+            "{msg}"
+        );
+        let err = levels_of(&session(r#", "levels": -1"#)).unwrap_err();
+        assert!(
+            format!("{err:#}").contains("not a valid session"),
+            "{err:#}"
+        );
+    }
 }

@@ -188,6 +188,7 @@ mod tests {
             cutter: cutter::Cutter {
                 kind: CutKind::Straight,
                 smooth: false,
+                levels: cutter::subdivision::DEFAULT_LEVELS,
                 planes: vec![cutter::BoundedPlane::from_corners([
                     DVec3::X * x,
                     DVec3::Y,

@@ -96,6 +96,10 @@ pub struct Cutter {
     pub kind: CutKind,
     /// Render and cut the subdivided (rounded/freeform) mesh instead of the boxes.
     pub smooth: bool,
+    /// Subdivision levels of the smooth surface, the user's "Smoothness" (0 to
+    /// [`crate::subdivision::MAX_LEVELS`], more is clamped; default
+    /// [`crate::subdivision::DEFAULT_LEVELS`]). Ignored when not `smooth`.
+    pub levels: u32,
     /// The bounded cutting planes in extrusion order. At least 2; each planar; consecutive planes
     /// never cross; for `Wedge`, every plane's `front_top`/`back_top` equal plane 0's. The last
     /// plane is the leading plane (the paint roller's handle). Checked by [`Cutter::sanity_check`].
@@ -132,10 +136,10 @@ impl Cutter {
     }
 
     /// The closed polygon mesh the cutter is: the boxes, or when `smooth` their interpolating
-    /// subdivision ([`crate::subdivision::smooth`], [`crate::subdivision::DEFAULT_LEVELS`],
-    /// repaired so that it never folds).
+    /// subdivision with [`Cutter::levels`] levels ([`Cutter::smoothing`]: repaired so that it
+    /// never folds, adaptive along the path).
     pub fn display_mesh(&self) -> QuadMesh {
-        self.smoothing(crate::subdivision::DEFAULT_LEVELS).mesh
+        self.smoothing(self.levels).mesh
     }
 
     /// The closed, outward, triangulated cutter surface: what the boolean cuts with and what the
@@ -144,16 +148,43 @@ impl Cutter {
         self.display_mesh().triangulate()
     }
 
-    /// [`Cutter::surface`] with `levels` subdivision levels when smooth (ignored when not).
+    /// [`Cutter::surface`] with `levels` subdivision levels instead of [`Cutter::levels`] when
+    /// smooth (ignored when not).
     pub fn surface_with_levels(&self, levels: u32) -> csg::Mesh {
         self.smoothing(levels).mesh.triangulate()
     }
 
     /// The smoothing of the box mesh with `levels` levels (none when the cutter is not smooth),
-    /// with what its repair gave up. A curving or straight cutter's tight turns get planes
-    /// inserted first ([`crate::subdivision::refine_path`]) when the box mesh they make passes
-    /// the exact check.
+    /// with what its repair gave up: [`Cutter::uniform_smoothing`] made adaptive along the path
+    /// for curving and straight cutters ([`crate::adaptive`]: the rings of straight runs that
+    /// carry no shape removed), kept only when it passes the exact check.
     pub fn smoothing(&self, levels: u32) -> crate::subdivision::Smoothing {
+        let mut s = self.uniform_smoothing(levels);
+        if s.levels == 0 || self.kind == CutKind::Wedge {
+            return s;
+        }
+        let Some(chain) = s.chain.take() else {
+            return s;
+        };
+        let t = crate::adaptive::path_parameters(&chain, s.levels);
+        let tolerance = crate::adaptive::ADAPTIVE_TOLERANCE
+            * crate::adaptive::cross_section(
+                &self.planes.iter().map(|p| p.corners()).collect::<Vec<_>>(),
+            );
+        if let Some(adaptive) = crate::adaptive::drop_flat_rings(&s.mesh, &t, tolerance)
+            && adaptive.faces.len() < s.mesh.faces.len()
+            && csg::check_cutter(&adaptive.triangulate()).is_ok()
+        {
+            s.uniform_faces = s.mesh.faces.len();
+            s.mesh = adaptive;
+        }
+        s
+    }
+
+    /// [`Cutter::smoothing`] without the adaptive step: every level everywhere. A curving or
+    /// straight cutter's tight turns get planes inserted first
+    /// ([`crate::subdivision::refine_path`]) when the box mesh they make passes the exact check.
+    pub fn uniform_smoothing(&self, levels: u32) -> crate::subdivision::Smoothing {
         let q = self.quad_mesh();
         if self.smooth {
             let mut base = q;
@@ -166,6 +197,7 @@ impl Cutter {
                     let chain = Cutter {
                         kind: self.kind,
                         smooth: false,
+                        levels: 0,
                         planes: refined
                             .iter()
                             .map(|c| BoundedPlane::from_corners(*c))
@@ -180,15 +212,12 @@ impl Cutter {
             }
             let mut s = crate::subdivision::smooth(&base, levels);
             s.inserted = inserted;
+            if self.kind != CutKind::Wedge {
+                s.chain = Some(base);
+            }
             s
         } else {
-            crate::subdivision::Smoothing {
-                mesh: q,
-                asked: 0,
-                levels: 0,
-                inserted: 0,
-                damped: 0,
-            }
+            crate::subdivision::Smoothing::none(q)
         }
     }
 
@@ -209,7 +238,8 @@ impl Cutter {
     /// alone (for a smooth cutter, before subdivision). Cheap enough for every pointer move of a
     /// drag. A smooth cutter that passes it passes [`Cutter::validate`] too: the smoothing keeps
     /// a level only once it is free of self-intersections, inserts planes in turns only when the
-    /// box mesh they make passes the exact check, and otherwise keeps the boxes.
+    /// box mesh they make passes the exact check, keeps the adaptive surface only when it passes
+    /// it too, and otherwise keeps the boxes.
     pub fn validate_boxes(&self) -> Result<(), CutterError> {
         self.sanity_check()?;
         csg::check_cutter(&self.quad_mesh().triangulate()).map_err(|e| CutterError::Refused {
@@ -221,7 +251,7 @@ impl Cutter {
     /// it, see [`crate::subdivision::Smoothing::note`]).
     pub fn validated_smoothing(&self) -> Result<crate::subdivision::Smoothing, CutterError> {
         self.sanity_check()?;
-        let smoothing = self.smoothing(crate::subdivision::DEFAULT_LEVELS);
+        let smoothing = self.smoothing(self.levels);
         // A level is kept only once `csg::cutter_self_intersections` (the same preparation and
         // predicate as `csg::check_cutter`) found nothing in it, so a subdivided mesh has passed
         // the exact check already; the boxes (no level kept) are checked here.
@@ -281,6 +311,7 @@ impl Cutter {
         let c = Cutter {
             kind: self.kind,
             smooth: false,
+            levels: 0,
             planes: self.planes[index..index + 2].to_vec(),
         };
         let m = if c.kind == CutKind::Wedge {
@@ -298,6 +329,7 @@ impl Cutter {
         let Cutter {
             kind,
             smooth: _,
+            levels: _,
             planes,
         } = self;
         if planes.len() < 2 {
@@ -452,6 +484,7 @@ mod tests {
         Cutter {
             kind: CutKind::Curving,
             smooth: false,
+            levels: crate::subdivision::DEFAULT_LEVELS,
             planes,
         }
     }
@@ -505,6 +538,7 @@ mod tests {
         let c = Cutter {
             kind: CutKind::Wedge,
             smooth: false,
+            levels: crate::subdivision::DEFAULT_LEVELS,
             planes,
         };
         c.sanity_check().unwrap();

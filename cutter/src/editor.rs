@@ -169,7 +169,7 @@ impl Editor {
     fn smoothing_note_now(&self) -> Option<String> {
         self.cutter
             .as_ref()
-            .and_then(|c| c.smoothing(crate::subdivision::DEFAULT_LEVELS).note())
+            .and_then(|c| c.smoothing(c.levels).note())
     }
 
     /// Replaces the cutter (e.g. loaded from a session) as an undoable action. Refused (false)
@@ -256,6 +256,26 @@ impl Editor {
                 let mut c = c.clone();
                 c.smooth = smooth;
                 if !self.accepts(&c, "smoothing") {
+                    return false;
+                }
+                self.commit(Some(c));
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// Sets the subdivision levels of a smooth cutter ("Smoothness", clamped to
+    /// [`crate::subdivision::MAX_LEVELS`]) for the current cutter (an undoable action, checked
+    /// like every edit) and the next ones. Returns true when the cutter changed.
+    pub fn set_levels(&mut self, levels: u32) -> bool {
+        let levels = levels.min(crate::subdivision::MAX_LEVELS);
+        self.settings.levels = levels;
+        match &self.cutter {
+            Some(c) if c.levels != levels => {
+                let mut c = c.clone();
+                c.levels = levels;
+                if !self.accepts(&c, "the smoothness") {
                     return false;
                 }
                 self.commit(Some(c));
@@ -592,6 +612,8 @@ impl Editor {
                         self.settings.kind,
                         self.settings.smooth,
                     );
+                    let levels = self.settings.levels;
+                    let created = created.map(|c| Cutter { levels, ..c });
                     if let Some(c) = created.filter(|c| self.accepts(c, "the new cutter")) {
                         self.selected = Some(c.planes.len() - 1);
                         self.commit(Some(c));
@@ -743,6 +765,7 @@ fn changed_span(before: &Cutter, after: &Cutter) -> Cutter {
     Cutter {
         kind: after.kind,
         smooth: false,
+        levels: 0,
         planes: after.planes[lo..=hi].to_vec(),
     }
 }

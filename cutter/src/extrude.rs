@@ -224,6 +224,7 @@ pub fn initialize(
     let mut cutter = Cutter {
         kind,
         smooth,
+        levels: crate::subdivision::DEFAULT_LEVELS,
         planes: vec![p0, p1],
     };
     if kind == CutKind::Wedge {
@@ -549,6 +550,7 @@ fn roll(
         let pair = Cutter {
             kind: CutKind::Curving,
             smooth: false,
+            levels: crate::subdivision::DEFAULT_LEVELS,
             planes: vec![*prev, lead],
         };
         pair.sanity_check().ok().map(|_| lead)

@@ -5,6 +5,7 @@
 //! CLI and the tests all drive with the same events, and the scalpel mode. Depends on `csg` only:
 //! no egui, no wgpu, no file formats.
 
+pub mod adaptive;
 pub mod camera;
 pub mod cutter;
 pub mod editor;

@@ -122,6 +122,7 @@ pub fn horizontal(cutter: &Cutter, count: usize, width: f64, relative: bool) -> 
             let c = Cutter {
                 kind: cutter.kind,
                 smooth: cutter.smooth,
+                levels: cutter.levels,
                 planes,
             };
             c.sanity_check().ok().map(|_| c)
@@ -203,6 +204,7 @@ fn thin_box(plane: &BoundedPlane, dir: DVec3, width: f64) -> Option<Cutter> {
     let c = Cutter {
         kind: CutKind::Straight,
         smooth: false,
+        levels: crate::subdivision::DEFAULT_LEVELS,
         planes: vec![plane.translated(-half), plane.translated(half)],
     };
     c.sanity_check().ok().map(|_| c)
@@ -227,6 +229,7 @@ mod tests {
         Cutter {
             kind: CutKind::Curving,
             smooth: false,
+            levels: crate::subdivision::DEFAULT_LEVELS,
             planes,
         }
     }
@@ -294,6 +297,7 @@ mod tests {
         // A smooth cutter's layers are smooth.
         let smooth = Cutter {
             smooth: true,
+            levels: crate::subdivision::DEFAULT_LEVELS,
             ..c.clone()
         };
         assert!(horizontal(&smooth, 2, 0.5, true).iter().all(|l| l.smooth));

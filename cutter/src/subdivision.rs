@@ -77,6 +77,18 @@ pub fn subdivide(mesh: &QuadMesh, levels: u32) -> QuadMesh {
     m
 }
 
+/// `levels` rounds of the same refinement with every new point at its linear position (edge
+/// midpoints, face centroids): the same faces and vertex numbering as [`subdivide`], used to
+/// carry a quantity (such as the path parameter of [`crate::adaptive`]) through the levels.
+pub fn subdivide_linear(mesh: &QuadMesh, levels: u32) -> QuadMesh {
+    let mut m = mesh.clone();
+    for _ in 0..levels {
+        let r = refine(&m);
+        m = r.with_weights(&vec![0.0; r.linear.len()]);
+    }
+    m
+}
+
 /// A smooth cutter mesh and what its repair gave up (see the module doc).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Smoothing {
@@ -90,9 +102,28 @@ pub struct Smoothing {
     pub inserted: usize,
     /// New points whose smoothing displacement was reduced to stay free of self-intersections.
     pub damped: usize,
+    /// Faces the uniform subdivision had when [`crate::Cutter::smoothing`] made `mesh` adaptive
+    /// (fewer faces where the path runs straight, [`crate::adaptive`]); 0 when it did not.
+    pub uniform_faces: usize,
+    /// The box chain that was subdivided (planes inserted in turns included), for the adaptive
+    /// step; `None` for a wedge and when nothing was subdivided.
+    pub chain: Option<QuadMesh>,
 }
 
 impl Smoothing {
+    /// No smoothing: `mesh` as it is.
+    pub fn none(mesh: QuadMesh) -> Smoothing {
+        Smoothing {
+            mesh,
+            asked: 0,
+            levels: 0,
+            inserted: 0,
+            damped: 0,
+            uniform_faces: 0,
+            chain: None,
+        }
+    }
+
     /// A one-line note for the status bar when smoothing was reduced, else `None`.
     pub fn note(&self) -> Option<String> {
         let asked = self.asked;
@@ -116,11 +147,8 @@ impl Smoothing {
 /// that the mesh never intersects itself (see the module doc). `mesh` must be closed and outward.
 pub fn smooth(mesh: &QuadMesh, levels: u32) -> Smoothing {
     let mut out = Smoothing {
-        mesh: mesh.clone(),
         asked: levels.min(MAX_LEVELS),
-        levels: 0,
-        inserted: 0,
-        damped: 0,
+        ..Smoothing::none(mesh.clone())
     };
     for _ in 0..levels.min(MAX_LEVELS) {
         let step = refine(&out.mesh);
@@ -394,6 +422,7 @@ mod tests {
         let c = Cutter {
             kind: CutKind::Curving,
             smooth: false,
+            levels: crate::subdivision::DEFAULT_LEVELS,
             planes,
         };
         let q = c.quad_mesh();
@@ -424,6 +453,7 @@ mod tests {
         Cutter {
             kind: CutKind::Curving,
             smooth: true,
+            levels: crate::subdivision::DEFAULT_LEVELS,
             planes,
         }
     }
@@ -538,6 +568,7 @@ mod tests {
         Cutter {
             kind: CutKind::Curving,
             smooth: true,
+            levels: crate::subdivision::DEFAULT_LEVELS,
             planes,
         }
     }
@@ -609,6 +640,7 @@ mod tests {
             let c = Cutter {
                 kind: CutKind::Curving,
                 smooth: true,
+                levels: crate::subdivision::DEFAULT_LEVELS,
                 planes,
             };
             c.validate().unwrap();
@@ -625,6 +657,7 @@ mod tests {
         let c = Cutter {
             kind: CutKind::Curving,
             smooth: false,
+            levels: crate::subdivision::DEFAULT_LEVELS,
             planes: vec![
                 BoundedPlane::from_front_edge(DVec3::new(0., 0., 1.), DVec3::ZERO, DVec3::Y, 1.0),
                 BoundedPlane::from_front_edge(DVec3::new(1., 0., 1.), DVec3::X, DVec3::Y, 1.0),

@@ -66,6 +66,7 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
         kind: gesture.cut.kind,
         spacing: gesture.cut.spacing,
         smooth: gesture.cut.smooth,
+        levels: cutter::subdivision::DEFAULT_LEVELS,
         delta,
     };
     let mut editor = Editor::new(mesh, index, gesture.camera, gesture.viewport, settings);
@@ -173,6 +174,8 @@ pub fn run(args: &ExtrudeArgs) -> anyhow::Result<()> {
             "smooth": result.cutter.smooth,
             "region": result.region,
             "levels": smoothing.levels,
+            "faces": mesh.faces.len(),
+            "uniform_faces": if smoothing.uniform_faces > 0 { smoothing.uniform_faces } else { mesh.faces.len() },
         });
         println!("{json}");
     } else {

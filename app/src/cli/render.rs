@@ -15,9 +15,10 @@
 //!
 //! Every cut is made by the exact boolean; there is no approximate stand-in. A cutter the boolean
 //! refuses makes the command fail (no image is written) with the reason, after `--json` has
-//! printed the report: `{"cutters":[{"exact":bool,"cut_ms":f}],"render_ms":f}`, one entry per
-//! cutter of the session in order (`exact` false for a refused cut; a cutter with no view shown
-//! is not cut: `exact` true, `cut_ms` 0). `render_ms` is the wall time from the loaded scene to
+//! printed the report: `{"cutters":[{"exact":bool,"cut_ms":f,"levels":n,"triangles":n}],
+//! "render_ms":f}`, one entry per cutter of the session in order (`exact` false for a refused
+//! cut; a cutter with no view shown is not cut: `exact` true, `cut_ms` 0; `levels` the
+//! subdivision levels its surface has, 0 for boxes, and `triangles` that surface's size). `render_ms` is the wall time from the loaded scene to
 //! the finished image (cuts and drawing; reading the files and writing the PNG excluded).
 
 use std::path::PathBuf;
@@ -132,7 +133,22 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if args.json {
         let cutters: Vec<serde_json::Value> = reports
             .iter()
-            .map(|r| serde_json::json!({"exact": r.exact, "cut_ms": r.cut_ms}))
+            .zip(&scene.cutters)
+            .map(|(r, c)| {
+                // The surface this cutter cuts with: its subdivision levels and size.
+                let (levels, triangles) = if c.cutter.planes.len() < 2 {
+                    (0, 0)
+                } else {
+                    let s = c.cutter.smoothing(c.cutter.levels);
+                    (s.levels, s.mesh.triangulate().triangle_count())
+                };
+                serde_json::json!({
+                    "exact": r.exact,
+                    "cut_ms": r.cut_ms,
+                    "levels": levels,
+                    "triangles": triangles,
+                })
+            })
             .collect();
         println!(
             "{}",

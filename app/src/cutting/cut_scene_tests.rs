@@ -67,6 +67,7 @@ pub(crate) fn scene_with_cube_cut(views: crate::scene::CutterViews) -> Scene {
         cutter: cutter::Cutter {
             kind: cutter::CutKind::Straight,
             smooth: false,
+            levels: cutter::subdivision::DEFAULT_LEVELS,
             planes: box_cutter(1.0, 3.0, -1.0, 1.0, 1.0, 3.0),
         },
         views,
@@ -155,6 +156,7 @@ fn sphere_scene(boxes: &[[f64; 6]]) -> Scene {
             cutter: cutter::Cutter {
                 kind: cutter::CutKind::Straight,
                 smooth: false,
+                levels: cutter::subdivision::DEFAULT_LEVELS,
                 planes: box_cutter(b[0], b[1], b[2], b[3], b[4], b[5]),
             },
             views: crate::scene::CutterViews::default(),
@@ -175,6 +177,7 @@ fn nested_shells_are_each_cut_closed_and_a_cavity_stays_hollow() {
         cutter: cutter::Cutter {
             kind: cutter::CutKind::Straight,
             smooth: false,
+            levels: cutter::subdivision::DEFAULT_LEVELS,
             planes,
         },
         views: crate::scene::CutterViews::default(),
@@ -361,6 +364,7 @@ fn ribbons_of_a_smooth_cutter_lie_inside_its_surface() {
             cutter: cutter::Cutter {
                 kind: cutter::CutKind::Curving,
                 smooth: true,
+                levels: cutter::subdivision::DEFAULT_LEVELS,
                 planes: box_cutter(-0.6, 0.6, -0.5, 0.5, 0.3, 1.5),
             },
             views: crate::scene::CutterViews {

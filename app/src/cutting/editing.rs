@@ -26,6 +26,9 @@ pub struct CutterInit {
     pub kind: CutKind,
     /// Rounded (subdivided) cutter.
     pub smooth: bool,
+    /// Subdivision levels of a rounded cutter ("Smoothness", 0 to
+    /// [`cutter::subdivision::MAX_LEVELS`]).
+    pub levels: u32,
 }
 
 impl Default for CutterInit {
@@ -34,6 +37,7 @@ impl Default for CutterInit {
             spacing: 20.0,
             kind: CutKind::Curving,
             smooth: false,
+            levels: cutter::subdivision::DEFAULT_LEVELS,
         }
     }
 }
@@ -150,7 +154,8 @@ impl EditorSlot {
         let settings = EditorSettings::for_scene(&scene.bbox(), scene.camera.fov_y_deg)
             .with_kind(init.kind)
             .with_spacing(init.spacing)
-            .with_smooth(init.smooth);
+            .with_smooth(init.smooth)
+            .with_levels(init.levels);
         let editor = Editor::new(model.mesh.clone(), index, scene.camera, viewport, settings);
         self.active = Some(Active {
             editor,
@@ -212,7 +217,10 @@ impl EditorSlot {
         };
         active.editor.set_kind(init.kind);
         active.editor.set_spacing(init.spacing);
-        if active.editor.set_smooth(init.smooth) {
+        // Both run: each sets the next cutters' setting, and either may change the cutter.
+        let smooth = active.editor.set_smooth(init.smooth);
+        let levels = active.editor.set_levels(init.levels);
+        if smooth || levels {
             self.mirror_into(scene);
             return true;
         }

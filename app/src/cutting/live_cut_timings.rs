@@ -53,6 +53,7 @@ fn live_recut_ui_thread_cost_on_two_million_triangles() {
             cutter: cutter::Cutter {
                 kind: cutter::CutKind::Curving,
                 smooth: false,
+                levels: cutter::subdivision::DEFAULT_LEVELS,
                 planes,
             },
             views: CutterViews::default(),

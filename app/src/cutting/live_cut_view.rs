@@ -43,6 +43,7 @@ fn the_live_cut_from_its_delta_looks_as_the_whole_kept_part_and_uploads_little()
             cutter: cutter::Cutter {
                 kind: cutter::CutKind::Curving,
                 smooth: false,
+                levels: cutter::subdivision::DEFAULT_LEVELS,
                 planes: box_cutter(-4.0, x1, -12.0, -8.0, -2.0, 3.0),
             },
             views: CutterViews::default(),

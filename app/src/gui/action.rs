@@ -231,6 +231,12 @@ impl CutawayApp {
                 ) {
                     self.selected_model = self.viewport.editor.target();
                     self.selected_cutter = i;
+                    // The Initialization tab shows the edited cutter's smoothing.
+                    let c = &self.scene.cutters[i].cutter;
+                    (self.cutter_init.smooth, self.cutter_init.levels) = (c.smooth, c.levels);
+                    self.viewport
+                        .editor
+                        .apply_settings(&mut self.scene, &self.cutter_init);
                     self.set_mode(Mode::Edit);
                     self.say(format!("Editing cutter {}", i + 1));
                 } else if let Some(target) = self.scene.cutters.get(i).map(|c| c.target) {

@@ -1,5 +1,5 @@
 //! The cutter tabs (thesis 3.5 E): Initialization (segment spacing ω, type Freeform/Wedge,
-//! smoothing) for the next cutter, and Visualization per cutter (Normal Cut, Transparency with
+//! smoothing and its Smoothness levels) for the next cutter and the one being edited, and Visualization per cutter (Normal Cut, Transparency with
 //! its opacity, Slices, Ribbons with count and width) for Preview mode, and the "Live cut" toggle
 //! (the cut shown while painting in Edit mode, see [`super::live_cut`]).
 
@@ -76,6 +76,20 @@ fn initialization_ui(ui: &mut egui::Ui, app: &mut CutawayApp, actions: &mut Vec<
             ui.label("Smoothing");
             ui.checkbox(&mut app.cutter_init.smooth, "Rounded (subdivided) cutter");
             ui.end_row();
+            if app.cutter_init.smooth {
+                let label = ui.label("Smoothness");
+                ui.add(egui::Slider::new(
+                    &mut app.cutter_init.levels,
+                    0..=cutter::subdivision::MAX_LEVELS,
+                ))
+                .labelled_by(label.id)
+                .on_hover_text(
+                    "Subdivision levels of the rounded cutter: 0 draws and cuts the boxes, each \
+                     level splits every face in four where the path turns (straight runs stay \
+                     coarser). Saved with the cutter; undoable.",
+                );
+                ui.end_row();
+            }
         });
     if app.cutter_init != before {
         app.cutter_settings_changed();

@@ -300,6 +300,7 @@ mod tests {
                 cutter: cutter::Cutter {
                     kind: cutter::CutKind::Straight,
                     smooth: false,
+                    levels: cutter::subdivision::DEFAULT_LEVELS,
                     planes: crate::cutting::cut_scene::tests::box_cutter(
                         0.4, 1.6, -1.0, 1.0, 0.4, 1.6,
                     ),

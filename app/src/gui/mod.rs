@@ -42,6 +42,8 @@ pub mod orientation_marker;
 pub mod recovery;
 pub mod ruler;
 pub mod scalpel_mode;
+#[cfg(test)]
+mod smoothness_tests;
 pub mod status_bar;
 #[cfg(test)]
 pub mod test_window;

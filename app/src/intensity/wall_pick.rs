@@ -161,6 +161,7 @@ mod tests {
             cutter: cutter::Cutter {
                 kind: CutKind::Straight,
                 smooth: false,
+                levels: cutter::subdivision::DEFAULT_LEVELS,
                 planes: box_cutter(2.0, 8.0, -5.0, 5.0, 2.0, 8.0),
             },
             views: CutterViews::default(),

@@ -18,6 +18,9 @@ pub struct EditorSettings {
     pub spacing: f64,
     /// Rounded/freeform (subdivided) cutter. Default false.
     pub smooth: bool,
+    /// Subdivision levels of a smooth cutter ("Smoothness", 0 to
+    /// [`crate::subdivision::MAX_LEVELS`]). Default [`crate::subdivision::DEFAULT_LEVELS`].
+    pub levels: u32,
     /// Scene increment δ (see [`EditorSettings::delta_for_scene`]). Default 1.
     pub delta: f64,
 }
@@ -28,6 +31,7 @@ impl Default for EditorSettings {
             kind: CutKind::Curving,
             spacing: 20.0,
             smooth: false,
+            levels: crate::subdivision::DEFAULT_LEVELS,
             delta: 1.0,
         }
     }
@@ -62,6 +66,15 @@ impl EditorSettings {
     /// Builder: smooth (rounded/freeform).
     pub fn with_smooth(self, smooth: bool) -> Self {
         EditorSettings { smooth, ..self }
+    }
+
+    /// Builder: subdivision levels of a smooth cutter (clamped to
+    /// [`crate::subdivision::MAX_LEVELS`]).
+    pub fn with_levels(self, levels: u32) -> Self {
+        EditorSettings {
+            levels: levels.min(crate::subdivision::MAX_LEVELS),
+            ..self
+        }
     }
 }
 
