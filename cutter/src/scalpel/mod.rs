@@ -82,6 +82,7 @@ pub mod layers;
 mod local_check;
 pub mod locate;
 pub mod loop_tool;
+pub mod relocate;
 pub mod step;
 pub mod survey;
 pub mod through;
