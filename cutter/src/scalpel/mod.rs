@@ -85,6 +85,7 @@ pub mod loop_tool;
 pub mod relocate;
 pub mod step;
 pub mod survey;
+pub mod taper;
 pub mod through;
 
 pub use cut_point::CutPoint;

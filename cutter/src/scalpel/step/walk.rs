@@ -410,6 +410,7 @@ impl Scalpel {
             // walls closing at the tip), merged, even where the stroke would cross again: it
             // restarts past the trench (see `start_cut`).
             g.make_tip(k, v);
+            crate::scalpel::taper::shape_end(g, &mut self.mesh, &cut.path, k);
             if !g.build_walls(&mut self.mesh, &cut.path, k) || !g.is_closed() {
                 self.reason = "ending on a trench's lip";
                 return Err(fail(pv));
