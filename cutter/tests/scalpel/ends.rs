@@ -23,48 +23,54 @@ fn groove_ends_taper_to_the_tips() {
             DVec3::new(lat.cos() * lon.sin(), -lat.cos() * lon.cos(), lat.sin()) * r
         })
         .collect();
-    let mut s = Scalpel::new(&sphere, ScalpelOptions::default().with_depth(depth)).unwrap();
-    groove_strokes(&mut s, std::slice::from_ref(&path));
-    let segments = s.segments();
-    let tips = [segments[0].pa, segments[segments.len() - 1].pb];
-    let m = s.dyn_mesh();
-    let floors: Vec<u32> = (0..m.vertex_count() as u32)
-        .filter(|&v| m.is_floor(v))
-        .collect();
-    assert!(floors.len() >= 3, "{} floor vertices", floors.len());
-    let (mut near, mut far) = (0, 0);
-    for &f in &floors {
-        let p = m.pos(f);
-        let below = r - p.length();
-        let above = p.normalize() * r;
-        let to_tip = tips
-            .iter()
-            .map(|t| t.distance(above))
-            .fold(f64::INFINITY, f64::min);
-        let allowed = depth * (to_tip / reach).clamp(MIN_DEPTH, 1.0);
-        let across = path
-            .iter()
-            .map(|q| q.distance(above))
-            .fold(f64::INFINITY, f64::min);
-        println!(
-            "floor at {to_tip:.2} from a tip ({across:.2} from the nearest sample): {below:.3} deep (allowed {allowed:.3})"
-        );
-        assert!(
-            below <= allowed * 1.05 + 1e-9,
-            "floor vertex {to_tip} from a tip is {below} deep (taper allows {allowed})"
-        );
-        if to_tip >= reach {
-            far += 1;
-            assert!(
-                below >= 0.9 * depth,
-                "floor vertex {to_tip} from the tips is only {below} deep"
+    // Paths of several lengths, so that the end falls at different distances after the last
+    // floor change (the last floor vertex is then raised toward the tip).
+    let (mut near, mut far, mut near_end) = (0, 0, 0);
+    for samples in [40, 46, 52, 60] {
+        let path = &path[..=samples];
+        let mut s = Scalpel::new(&sphere, ScalpelOptions::default().with_depth(depth)).unwrap();
+        groove_strokes(&mut s, &[path.to_vec()]);
+        let segments = s.segments();
+        let tips = [segments[0].pa, segments[segments.len() - 1].pb];
+        let m = s.dyn_mesh();
+        let floors: Vec<u32> = (0..m.vertex_count() as u32)
+            .filter(|&v| m.is_floor(v))
+            .collect();
+        assert!(floors.len() >= 2, "{} floor vertices", floors.len());
+        for &f in &floors {
+            let p = m.pos(f);
+            let below = r - p.length();
+            let above = p.normalize() * r;
+            let to_tip = tips
+                .iter()
+                .map(|t| t.distance(above))
+                .fold(f64::INFINITY, f64::min);
+            let allowed = depth * (to_tip / reach).clamp(MIN_DEPTH, 1.0);
+            let across = path
+                .iter()
+                .map(|q| q.distance(above))
+                .fold(f64::INFINITY, f64::min);
+            println!(
+                "floor at {to_tip:.2} from a tip ({across:.2} from the nearest sample): {below:.3} deep (allowed {allowed:.3})"
             );
-        } else {
-            near += 1;
+            assert!(
+                below <= allowed * 1.05 + 1e-9,
+                "floor vertex {to_tip} from a tip is {below} deep (taper allows {allowed})"
+            );
+            if to_tip >= reach {
+                far += 1;
+                assert!(
+                    below >= 0.9 * depth,
+                    "floor vertex {to_tip} from the tips is only {below} deep"
+                );
+            } else {
+                near += 1;
+                near_end += usize::from(tips[1].distance(above) < reach);
+            }
         }
     }
     assert!(
-        near >= 1 && far >= 1,
-        "{near} floor vertices near a tip, {far} far"
+        near >= 1 && far >= 1 && near_end >= 1,
+        "{near} floor vertices near a tip ({near_end} near the end), {far} far"
     );
 }
