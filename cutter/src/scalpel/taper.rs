@@ -1,22 +1,20 @@
 //! Tapered groove ends: the groove's depth goes to zero over a short distance at each crack tip.
 //!
-//! A groove closes at a crack tip (the tip is its own bottom, see [`super::groove`]). Its floor
-//! vertex nearest the tip used to sit at the full blade depth right under the path vertex next
-//! to the tip, so the walls dropped from the surface to the full depth over one path segment:
-//! a cliff of long thin triangles at each end, which showed as a torn end once the incision
-//! opened. Here the floor vertex nearest each tip is moved so that the groove reaches its full
-//! depth [`TAPER_DEPTHS`] blade depths from the tip, along the path:
-//! - at the start, the first floor vertex slides along under the path while its run grows, up to
-//!   that distance from the start, at the depth that distance gives (full depth once there);
-//! - at the end (the temporary tip of every step and the end of the cut), the last floor vertex,
-//!   when the tip is nearer than that distance to where it sits, is raised to the depth its
-//!   distance from the tip gives (never above [`MIN_DEPTH`] of the blade depth, so its walls
-//!   keep their shape).
+//! A groove closes at a crack tip (the tip is its own bottom, see [`super::groove`]). Its last
+//! floor vertex could sit at the full blade depth under a path vertex right next to the tip, so
+//! the walls dropped from the surface to the full depth over one path segment: a cliff of long
+//! thin triangles at the end, which showed as a torn end once the incision opened. Here, at
+//! the end of a cut (the temporary tip of every step and the end of the stroke), the last floor
+//! vertex, when the tip is nearer than [`TAPER_DEPTHS`] blade depths to where it sits along the
+//! path, is raised to the depth its distance from the tip gives (never above [`MIN_DEPTH`] of
+//! the blade depth, so its walls keep their shape): the walls slope from the tip into the
+//! groove. (The start of a groove is not tapered: its first floor vertex stays at full depth
+//! under the second path vertex. Moving it along the path put it away from where a later cut
+//! crossing the groove near its start looks for it.)
 //!
 //! Only positions of floor vertices change (journaled like every edit, so an undone tip puts
-//! them back): no triangle is added, so the groove's element budget is untouched, and the walls
-//! are the same fans as before, now sloping into the groove from the tips.
-//! Cost: a few path segments per step (the loops stop one taper length from the tip).
+//! them back): no triangle is added, so the groove's element budget is untouched.
+//! Cost: a few path segments per step (the loop stops one taper length from the tip).
 
 use glam::DVec3;
 
@@ -33,57 +31,6 @@ pub const MIN_DEPTH: f64 = 0.2;
 /// A floor vertex lies under a stretch of path when it is at most this many blade depths
 /// across from it (see [`shape_end`]).
 const UNDER: f64 = 0.25;
-
-/// The point of `path` (vertex positions) `s` along it from its first vertex (its last vertex
-/// when the path is shorter) and the index of the segment it is on.
-fn along(mesh: &DynMesh, path: &[u32], s: f64) -> (DVec3, usize) {
-    let mut left = s;
-    for i in 0..path.len().saturating_sub(1) {
-        let (a, b) = (mesh.pos(path[i]), mesh.pos(path[i + 1]));
-        let l = a.distance(b);
-        if l >= left && l > 0.0 {
-            return (a.lerp(b, left / l), i);
-        }
-        left -= l;
-    }
-    let last = path.len().saturating_sub(1);
-    (mesh.pos(path[last]), last)
-}
-
-/// Places the groove's first floor vertex (see the module doc) after path vertex `k`'s bottom
-/// was made or reused. Nothing unless the groove starts at a crack tip and vertices `1..=k`
-/// all use the first floor vertex.
-pub(crate) fn shape_start(g: &Groove, mesh: &mut DynMesh, path: &[u32], k: usize) {
-    let Some(&first) = g.bottom_vertices.first() else {
-        return;
-    };
-    if k == 0
-        || k >= path.len()
-        || g.bottoms.first() != Some(&path[0])
-        || g.bottoms
-            .get(1..=k)
-            .is_none_or(|b| b.iter().any(|&x| x != first))
-    {
-        return;
-    }
-    let reach = TAPER_DEPTHS * g.depth;
-    // Length of the run under the first floor vertex, up to the taper's reach.
-    let mut run = 0.0;
-    for i in 0..k {
-        run += mesh.pos(path[i]).distance(mesh.pos(path[i + 1]));
-        if run >= reach {
-            break;
-        }
-    }
-    let station = run.min(reach);
-    let (top, i) = along(mesh, &path[..=k], station);
-    let n = normal_at(mesh, path[i.max(1).min(k)]);
-    if n == DVec3::ZERO {
-        return;
-    }
-    let depth = g.depth * (station / reach).clamp(MIN_DEPTH, 1.0);
-    mesh.set_pos(first, top - n * depth);
-}
 
 /// Raises the groove's last floor vertex toward the tip at path index `last` (see the module
 /// doc). `path` includes the tip. Nothing when the floor vertex before the tip is not one of

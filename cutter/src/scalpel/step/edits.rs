@@ -3,7 +3,6 @@
 //! and recording the cut segments the opening deforms.
 
 use super::*;
-use crate::scalpel::taper;
 
 impl Scalpel {
     /// Starts a cut at the surface point nearest `q`. Where the stroke starts this is a global
@@ -233,7 +232,6 @@ impl Scalpel {
                 let pv = self.mesh.pos(v);
                 let prev = self.mesh.pos(cut.path[k - 1]);
                 g.make_bottom(&mut self.mesh, k, pv, prev, n);
-                taper::shape_start(g, &mut self.mesh, &cut.path, k);
             }
         }
         self.open_between(v, x)?;

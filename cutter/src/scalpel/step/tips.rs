@@ -289,7 +289,6 @@ impl Scalpel {
                     let pv = self.mesh.pos(v);
                     let prev = self.mesh.pos(cut.path[k - 1]);
                     g.make_bottom(&mut self.mesh, k, pv, prev, n);
-                    taper::shape_start(g, &mut self.mesh, &cut.path, k);
                 }
                 cut.path.push(x);
             }
