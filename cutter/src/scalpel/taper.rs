@@ -46,9 +46,15 @@ pub(crate) fn shape_end(g: &Groove, mesh: &mut DynMesh, path: &[u32], last: usiz
         return;
     }
     let reach = TAPER_DEPTHS * g.depth;
+    let pb = mesh.pos(b);
+    // The floor vertex is at most a blade depth below a path point: farther than that plus the
+    // reach from the tip, it sits more than the reach along the path from it (the usual case,
+    // checked in constant time).
+    if pb.distance(mesh.pos(path[last])) > reach + g.depth {
+        return;
+    }
     // Where the floor vertex sits along the path: the point of the path segments within reach
     // of the tip nearest above it (across the local normal).
-    let pb = mesh.pos(b);
     let mut arc = 0.0;
     let mut best: Option<(f64, f64, DVec3, u32)> = None;
     let mut i = last;
