@@ -328,10 +328,12 @@ fn a_loop_around_a_cap_detaches_it_as_a_model() {
     let (kept, piece) = (&scene.models[0].mesh, &scene.models[1].mesh);
     assert!(piece.triangle_count() > 0);
     assert!(kept.triangle_count() > 0);
-    // Nothing lost: kept + piece cover the sphere's area.
+    // Nothing lost: kept + piece cover the sphere's area (to within what moving the vertices the
+    // cut passes near onto the cut changes on a curved surface: second order in the move, about
+    // 1e-6 of the area here; one lost triangle would be 2e-4).
     let total = kept.area() + piece.area();
     assert!(
-        (total - original.area()).abs() < 1e-6 * original.area(),
+        (total - original.area()).abs() < 1e-5 * original.area(),
         "{total} vs {}",
         original.area()
     );

@@ -60,7 +60,8 @@ pub struct Mark {
 #[derive(Clone, Debug, Default)]
 pub struct DynMesh {
     /// Rest-pose vertex positions (the opening deformation never writes here). Vertices the cut
-    /// did not create keep their input coordinates bit for bit.
+    /// did not create keep their input coordinates bit for bit, except those it moved onto its
+    /// path (`scalpel::relocate`, by at most the snap radius along an edge of their fan).
     pub(crate) positions: Vec<DVec3>,
     /// Counter-clockwise triangles. Every index `< positions.len()`.
     pub(crate) triangles: Vec<[u32; 3]>,
@@ -419,7 +420,8 @@ impl DynMesh {
         self.next_copy[v as usize] = n;
     }
 
-    /// Moves vertex `v` (only groove floor vertices are ever moved: the deeper cut at a crossing).
+    /// Moves vertex `v` (groove floor vertices: the deeper cut at a crossing and the tapered ends;
+    /// surface vertices moved onto the cut, `scalpel::relocate`).
     pub(crate) fn set_pos(&mut self, v: u32, p: DVec3) {
         let old = self.positions[v as usize];
         self.journal.push(Change::Pos(v, old));

@@ -7,7 +7,8 @@
 //! ([`Groove::make_bottom`]): a quad whose two bottoms are one vertex is one triangle, so a
 //! segment usually costs 2 wall triangles instead of 4. At a crack tip the bottom is the tip
 //! itself and the quad degenerates to one triangle, so the groove ends in a point and the
-//! surface is closed.
+//! surface is closed; the last floor vertex is raised near the end tip so that the groove
+//! deepens gradually from it ([`super::taper`]).
 //!
 //! ## Element budget
 //! A groove adds at most 4 new triangles in one triangle the cut crosses (counted as in

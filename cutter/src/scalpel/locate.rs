@@ -8,8 +8,9 @@
 //! structures built once when the scalpel is made ([`super::Scalpel::new`], which the window runs
 //! off its UI thread when a model is selected):
 //!
-//! - a BVH ([`csg::SpatialIndex`]) over the mesh as it was given. Cutting never moves the rest
-//!   pose of the surface and keeps every input vertex, so the input triangle nearest a sample
+//! - a BVH ([`csg::SpatialIndex`]) over the mesh as it was given. Cutting keeps every input
+//!   vertex and moves one only within its own fan (onto the cut, [`super::relocate`]), so the
+//!   input triangle nearest a sample
 //!   names a vertex next to the current triangles under it; a search bounded by
 //!   [`super::cut_point::RESTART_SEARCH`] triangles outward from that vertex
 //!   ([`super::cut_point::closest_face_near`]) finds them. The same holds for the blade's ray;

@@ -14,7 +14,9 @@
 //! - Cut points are vertices, points on edges or points inside faces ([`cut_point`]); an edge
 //!   crossing closer than `snap_edge` (relative edge parameter) to a vertex goes through the
 //!   vertex, an end point closer than `snap_end` to a vertex or edge lands on it, so no sliver is
-//!   created and the mesh never has a T-junction.
+//!   created and the mesh never has a T-junction. A vertex the walk goes through this way is first
+//!   moved onto the cut where that keeps its triangles well shaped ([`relocate`]), so the cut
+//!   keeps the drawn path's line instead of kinking toward the vertex.
 //! - The end of the cut inside its last triangle (the tool tip) is *temporary*: it is undone at
 //!   the next step and redone further on (Mor–Kanade), so sampling density and trembling do not
 //!   leave permanent triangles.
@@ -82,8 +84,10 @@ pub mod layers;
 mod local_check;
 pub mod locate;
 pub mod loop_tool;
+pub mod relocate;
 pub mod step;
 pub mod survey;
+pub mod taper;
 pub mod through;
 
 pub use cut_point::CutPoint;

@@ -12,6 +12,8 @@ use cutter::scalpel::invariants::{min_angle_deg, t_junction_near, validate};
 use cutter::scalpel::{Scalpel, ScalpelOptions, Tool, TopologyReport, survey};
 
 mod anatomy;
+mod ends;
+mod fidelity;
 mod fuzz;
 mod grooves;
 mod opening;

@@ -3,6 +3,7 @@
 //! finished stroke or a closed loop leaves behind.
 
 use super::*;
+use crate::scalpel::taper;
 
 impl Scalpel {
     /// Places the temporary tip at `end`; when cutting through, first moves the far cut on
@@ -293,6 +294,7 @@ impl Scalpel {
             }
             let last = cut.path.len() - 1;
             g.make_tip(last, cut.path[last]);
+            taper::shape_end(g, &mut self.mesh, &cut.path, last);
             let closed = g.build_walls(&mut self.mesh, &cut.path, last) && g.is_closed();
             if x != v {
                 cut.path.pop();
@@ -332,6 +334,7 @@ impl Scalpel {
         {
             let k = cut.path.len() - 1;
             g.make_tip(k, cut.anchor);
+            taper::shape_end(g, &mut self.mesh, &cut.path, k);
             if !g.build_walls(&mut self.mesh, &cut.path, k) || !g.is_closed() {
                 self.reason = "walls at the end of a groove";
                 return Err(ScalpelError::WalkFailed {

@@ -3,6 +3,11 @@
 //! the anchor toward the tool sample, joining an earlier trench where the cut meets one.
 
 use super::*;
+use crate::scalpel::relocate;
+
+/// A sample whose offset from the anchor across the surface normal is at most this fraction of
+/// the anchor's longest edge is reached (see `walk`).
+const REACHED: f64 = 1e-3;
 
 impl Scalpel {
     /// Exit of the cut from `v`'s fan toward `q` (see the module doc).
@@ -80,6 +85,10 @@ impl Scalpel {
         } else {
             self.options.snap_edge
         };
+        // Vertices are moved onto the cut (`relocate`) by open cuts and grooves; a slot's two
+        // slits are joined by walls built from both paths, and a loop's closing walk aims at a
+        // vertex, not along the drawn path: those go through vertices as they are.
+        let relocating = !cut.through && close_to.is_none();
         for _ in 0..MAX_CROSSINGS {
             let v = cut.anchor;
             // A groove whose floor is due for a new vertex where the anchor split an edge (no
@@ -109,9 +118,16 @@ impl Scalpel {
             let n = self.mesh.surface_normal(v, &mut self.scratch);
             let pv = self.mesh.pos(v);
             let h = self.mesh.vert_he[v as usize];
-            if is_real(h) && pv.distance(q) <= 1e-9 * self.mesh.longest_edge(h / 3) {
+            let dq = q - pv;
+            let across = (dq - n * dq.dot(n)).length();
+            if is_real(h)
+                && (pv.distance(q) <= 1e-9 * self.mesh.longest_edge(h / 3)
+                    || across <= REACHED * self.mesh.longest_edge(h / 3))
+            {
                 // The sample is on the anchor (a through-cut's far side found exactly under
-                // the sample at a vertex): nothing to cut, no direction to find an exit in.
+                // the sample at a vertex), or straight above or below it (an anchor moved onto
+                // the cut, `relocate`, lies on a chord of a curved surface, under a sample on
+                // the surface): nothing to cut, no direction to find an exit in.
                 return Ok(WalkEnd::Reached(End::AtVertex));
             }
             let forward = |p: DVec3| (p - pv).dot(q - pv) > 0.0;
@@ -315,8 +331,16 @@ impl Scalpel {
                         return Ok(WalkEnd::Reached(end));
                     }
                     let (x, split_edge) = if near_b && forward(pb) {
+                        // Through `b`, moved onto the cut where that keeps its triangles well
+                        // shaped (`relocate`): the cut keeps its line instead of kinking to `b`.
+                        if relocating {
+                            relocate::onto_cut(&mut self.mesh, b, y, &mut self.scratch);
+                        }
                         (b, None)
                     } else if near_c && forward(pc) {
+                        if relocating {
+                            relocate::onto_cut(&mut self.mesh, c, y, &mut self.scratch);
+                        }
                         (c, None)
                     } else {
                         (self.split_edge_with_mate(next(h0), y)?, Some((b, c)))
@@ -386,6 +410,7 @@ impl Scalpel {
             // walls closing at the tip), merged, even where the stroke would cross again: it
             // restarts past the trench (see `start_cut`).
             g.make_tip(k, v);
+            crate::scalpel::taper::shape_end(g, &mut self.mesh, &cut.path, k);
             if !g.build_walls(&mut self.mesh, &cut.path, k) || !g.is_closed() {
                 self.reason = "ending on a trench's lip";
                 return Err(fail(pv));

@@ -1,0 +1,72 @@
+//! Groove ends (`scalpel::taper`): the groove's depth goes to zero over a short distance toward
+//! the end tip instead of dropping to the full depth over one path segment.
+
+use super::*;
+use cutter::scalpel::taper::{MIN_DEPTH, TAPER_DEPTHS};
+
+/// Grooves of `depth` along wavy paths of several lengths over a sphere of radius 20 (the
+/// patella's size): every floor vertex near the end tip is at most as deep as the taper allows
+/// at its distance from that tip (the last floor vertex used to sit at the full depth wherever
+/// the path ended, down to one segment from the tip), the ones far from the end are at the full
+/// depth, and the sphere stays closed and manifold after every step.
+#[test]
+fn groove_ends_taper_to_the_tips() {
+    let r = 20.0;
+    let depth = 3.0;
+    let reach = TAPER_DEPTHS * depth;
+    let sphere = csg::testkit::icosphere(5, r);
+    let path: Vec<DVec3> = (0..=60)
+        .map(|i| {
+            let u = i as f64 / 60.0;
+            let lon = -0.6 + 1.2 * u;
+            let lat = 0.12 * (u * std::f64::consts::TAU).sin();
+            DVec3::new(lat.cos() * lon.sin(), -lat.cos() * lon.cos(), lat.sin()) * r
+        })
+        .collect();
+    // Paths of several lengths, so that the end falls at different distances after the last
+    // floor change (the last floor vertex is then raised toward the tip).
+    let (mut near, mut far) = (0, 0);
+    for samples in [40, 46, 52, 60] {
+        let path = &path[..=samples];
+        let mut s = Scalpel::new(&sphere, ScalpelOptions::default().with_depth(depth)).unwrap();
+        groove_strokes(&mut s, &[path.to_vec()]);
+        let segments = s.segments();
+        let tip = segments[segments.len() - 1].pb;
+        let m = s.dyn_mesh();
+        let floors: Vec<u32> = (0..m.vertex_count() as u32)
+            .filter(|&v| m.is_floor(v))
+            .collect();
+        assert!(floors.len() >= 2, "{} floor vertices", floors.len());
+        for &f in &floors {
+            let p = m.pos(f);
+            let below = r - p.length();
+            let above = p.normalize() * r;
+            let to_tip = tip.distance(above);
+            let allowed = depth * (to_tip / reach).clamp(MIN_DEPTH, 1.0);
+            let across = path
+                .iter()
+                .map(|q| q.distance(above))
+                .fold(f64::INFINITY, f64::min);
+            println!(
+                "floor at {to_tip:.2} from the end tip ({across:.2} from the nearest sample): {below:.3} deep (allowed {allowed:.3})"
+            );
+            assert!(
+                below <= allowed * 1.05 + 1e-9,
+                "floor vertex {to_tip} from the end tip is {below} deep (taper allows {allowed})"
+            );
+            if to_tip >= reach {
+                far += 1;
+                assert!(
+                    below >= 0.9 * depth,
+                    "floor vertex {to_tip} from the end tip is only {below} deep"
+                );
+            } else {
+                near += 1;
+            }
+        }
+    }
+    assert!(
+        near >= 1 && far >= 1,
+        "{near} floor vertices near the end tip, {far} far"
+    );
+}
