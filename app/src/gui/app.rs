@@ -229,6 +229,8 @@ pub struct CutawayApp {
     /// Undo snapshots are whole scenes (meshes shared); the camera is not part of undo.
     pub history: History<Scene>,
     pub jobs: Vec<Job<JobOutput>>,
+    /// The default scene's label surfaces while they arrive after its first frame.
+    pub atlas: super::atlas_arrival::AtlasArrival,
     pub recovery: Recovery,
     pub recent: RecentFiles,
     /// Where "Save Session" writes; set by Open Session and Save Session As.
@@ -287,6 +289,7 @@ impl CutawayApp {
             hidden_cutters: 0,
             history: History::default(),
             jobs: Vec::new(),
+            atlas: Default::default(),
             recent: RecentFiles::load(&start.state_dir),
             recovery,
             session_path: None,
@@ -322,7 +325,10 @@ impl CutawayApp {
 
     /// True while any background job runs (tests wait on this).
     pub fn busy(&self) -> bool {
-        self.jobs.iter().any(Job::is_running) || self.metrics.busy() || self.compare.busy()
+        self.jobs.iter().any(Job::is_running)
+            || self.metrics.busy()
+            || self.compare.busy()
+            || self.atlas.busy()
     }
 
     /// Sets the status message.
@@ -348,19 +354,29 @@ impl CutawayApp {
             .push(Job::spawn(label, move || ctx.request_repaint(), work));
     }
 
+    /// The skin at once (milliseconds), the atlas's labels from a background job.
     fn load_default_scene(&mut self, ctx: &egui::Context) {
-        self.spawn(ctx, "Loading the default scene", |progress| {
-            let models = super::bridge::default_scene_models(progress)?;
-            Ok(JobOutput::Models {
-                models,
-                replace: true,
-                sources: Vec::new(),
-                image: None,
-            })
-        });
+        match crate::default_anatomy::load_skin() {
+            Ok(skin) => self.add_models(skin, true, &[]),
+            Err(e) => return self.complain(&e),
+        }
+        self.atlas.start(ctx);
+    }
+
+    /// Every scene this window holds: the current one, the last committed, the one before a
+    /// pending edit, and the undo history's snapshots.
+    pub(super) fn scenes_mut(&mut self) -> impl Iterator<Item = &mut Scene> {
+        let pending = self.pending_edit.as_mut().map(|(_, scene)| scene);
+        [&mut self.scene, &mut self.last_committed]
+            .into_iter()
+            .chain(pending)
+            .chain(self.history.scenes_mut())
     }
 
     fn load_example(&mut self, ctx: &egui::Context, name: String) {
+        if name == crate::default_anatomy::NAME {
+            return self.load_default_scene(ctx);
+        }
         self.spawn(
             ctx,
             format!("Loading the {name} example"),
@@ -840,6 +856,7 @@ impl CutawayApp {
                 }
             }
             JobOutput::Session { path, scene } => {
+                self.atlas.cancel();
                 self.scene = *scene;
                 // A restored autosave has no file of its own: Save asks where to put it.
                 let restored = path == self.recovery.session_path();
@@ -908,6 +925,7 @@ impl CutawayApp {
     fn add_models(&mut self, models: Vec<crate::io::Model>, replace: bool, sources: &[PathBuf]) {
         let before = self.scene.clone();
         if replace {
+            self.atlas.cancel();
             let render = self.scene.render;
             self.scene = new_scene();
             self.scene.render = render;
@@ -1143,6 +1161,7 @@ impl eframe::App for CutawayApp {
         self.frame_started = Instant::now();
         self.status.frame_ms = 0.9 * self.status.frame_ms + 0.1 * frame_ms;
         self.poll_jobs(&ctx);
+        super::atlas_arrival::poll(self);
 
         let mut actions = self.shortcuts(&ctx);
         actions.extend(super::view_menu::view_shortcuts(&ctx));
@@ -1156,6 +1175,7 @@ impl eframe::App for CutawayApp {
         });
         egui::Panel::bottom("cutaway-status").show(ui, |ui| {
             self.refresh_status();
+            super::atlas_arrival::status_ui(ui, self);
             super::status_bar::status_bar_ui(ui, &self.status);
         });
         egui::Panel::left("cutaway-side")
@@ -1331,12 +1351,18 @@ pub fn load_paths(
     }
     let mut models = Vec::new();
     let mut image = None;
-    let total = files.len() as u64;
+    // Per mille of each file, so a volume's label surfacing moves the bar within its file.
+    let total = files.len() as u64 * 1000;
     for (i, (file, group)) in files.iter().enumerate() {
         progress.check()?;
-        progress.set(i as u64, total);
+        let start = i as u64 * 1000;
+        progress.set(start, total);
         progress.set_message(file_label(file));
-        crate::intensity::open::read_file_into(file, group, &mut models, &mut image)?;
+        let surfacing = |fraction: f32| {
+            progress.set(start + (fraction.clamp(0.0, 1.0) * 1000.0) as u64, total);
+            !progress.is_cancelled()
+        };
+        crate::intensity::open::read_file_into(file, group, &mut models, &mut image, &surfacing)?;
     }
     progress.set(total, total);
     Ok((models, image))

@@ -476,7 +476,7 @@ pub fn paint_scene(ui: &mut egui::Ui, rect: egui::Rect, app: &CutawayApp) -> boo
     true
 }
 
-/// The embedded default scene (the knee).
+/// The embedded default scene, all of it at once (the head atlas: skin and labels).
 pub fn default_scene_models(progress: &Progress) -> anyhow::Result<Vec<crate::io::Model>> {
     example_scene_models(crate::default_anatomy::NAME, progress)
 }
@@ -531,13 +531,33 @@ pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
         );
         match unit {
             crate::scene::ModelUnit::Region => crate::io::load_models(file),
-            crate::scene::ModelUnit::Structure => crate::io::load_structures(file),
+            crate::scene::ModelUnit::Structure => session_structures(file, progress),
         }
     })?;
     scene
         .sanity_check()
         .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     Ok(scene)
+}
+
+/// The structures a session names in `file`: a label volume surfaced with its progress in the
+/// bar (Cancel stops it between labels); the default scene's files from the binary when they are
+/// not on disk; any other file as [`crate::io::load_structures`] reads it.
+fn session_structures(file: &Path, progress: &Progress) -> anyhow::Result<Vec<crate::io::Model>> {
+    if !(file.is_file() && crate::io::volume::is_volume(file)) {
+        return crate::assets::load_or_embedded(file, crate::scene::ModelUnit::Structure);
+    }
+    let surfacing = |fraction: f32| {
+        progress.set((fraction.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
+        !progress.is_cancelled()
+    };
+    match crate::io::content_of_file_with(file, "", &surfacing)? {
+        crate::io::FileContent::Structures(models) => Ok(models),
+        crate::io::FileContent::Image { reason, .. } => anyhow::bail!(
+            "{}: an intensity image ({reason}), not a segmentation",
+            file.display()
+        ),
+    }
 }
 
 /// Renders `scene` headless into a PNG at `path` (worker thread).

@@ -16,6 +16,7 @@ use std::path::PathBuf;
 
 pub mod about;
 pub mod app;
+pub mod atlas_arrival;
 pub mod bridge;
 pub mod camera_controls;
 pub mod compare_view;
@@ -45,6 +46,8 @@ pub mod undo;
 pub mod variants_panel;
 pub mod view_menu;
 pub mod viewport;
+#[cfg(test)]
+mod volume_jobs_tests;
 
 pub use app::{CutawayApp, Mode, StartOptions};
 
