@@ -476,11 +476,6 @@ pub fn paint_scene(ui: &mut egui::Ui, rect: egui::Rect, app: &CutawayApp) -> boo
     true
 }
 
-/// The embedded default scene, all of it at once (the head atlas: skin and labels).
-pub fn default_scene_models(progress: &Progress) -> anyhow::Result<Vec<crate::io::Model>> {
-    example_scene_models(crate::default_anatomy::NAME, progress)
-}
-
 /// An embedded example scene by name. Models keep the virtual `assets/<scene>/<part>.ply`
 /// source unless the source tree's copy exists, whose absolute path is used instead so that a
 /// session saved from the example opens anywhere on this machine.
