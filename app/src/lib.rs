@@ -33,5 +33,6 @@ pub mod session_limits;
 pub mod session_meshes;
 pub mod session_rulers;
 pub mod session_variants;
+pub mod session_volumes;
 pub mod variants;
 pub mod view;

@@ -526,33 +526,16 @@ pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
         );
         match unit {
             crate::scene::ModelUnit::Region => crate::io::load_models(file),
-            crate::scene::ModelUnit::Structure => session_structures(file, progress),
+            crate::scene::ModelUnit::Structure => crate::session_volumes::structures(file, &|f| {
+                progress.set((f.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
+                !progress.is_cancelled()
+            }),
         }
     })?;
     scene
         .sanity_check()
         .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     Ok(scene)
-}
-
-/// The structures a session names in `file`: a label volume surfaced with its progress in the
-/// bar (Cancel stops it between labels); the default scene's files from the binary when they are
-/// not on disk; any other file as [`crate::io::load_structures`] reads it.
-fn session_structures(file: &Path, progress: &Progress) -> anyhow::Result<Vec<crate::io::Model>> {
-    if !(file.is_file() && crate::io::volume::is_volume(file)) {
-        return crate::assets::load_or_embedded(file, crate::scene::ModelUnit::Structure);
-    }
-    let surfacing = |fraction: f32| {
-        progress.set((fraction.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
-        !progress.is_cancelled()
-    };
-    match crate::io::content_of_file_with(file, "", &surfacing)? {
-        crate::io::FileContent::Structures(models) => Ok(models),
-        crate::io::FileContent::Image { reason, .. } => anyhow::bail!(
-            "{}: an intensity image ({reason}), not a segmentation",
-            file.display()
-        ),
-    }
 }
 
 /// Renders `scene` headless into a PNG at `path` (worker thread).
