@@ -60,7 +60,7 @@ fn leaders_end_on_their_structure_s_visible_pixels() {
     };
     let options = RenderPngOptions::new(480, 320);
     let picture = render_with(&mut renderer, &scene, &options).unwrap();
-    let preview = cutaway::cutaway_geometry::preview_geometry(&scene);
+    let preview = cutaway::cutting::cut_scene::preview_geometry(&scene);
     let models = chosen(&scene, &[]).unwrap();
     assert_eq!(models, [0, 1]);
     let mut labelled = picture.clone();

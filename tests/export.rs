@@ -6,7 +6,7 @@ mod scene_files;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use cutaway::cutaway_geometry::{PartKind, preview_geometry};
+use cutaway::cutting::cut_scene::{PartKind, preview_geometry};
 use scene_files::{
     box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
 };

@@ -323,7 +323,7 @@ fn painting_in_edit_mode_shows_the_live_cut() {
     // Grab the handle (middle of the leading plane's front edge) and paint down the leg: every
     // move extrudes and asks for a new live cut.
     let app = h.state();
-    let lead = *app.scene.cutters[0].planes.last().unwrap();
+    let lead = app.scene.cutters[0].cutter.planes.last().unwrap().corners();
     let handle_px = app
         .scene
         .camera
@@ -331,7 +331,7 @@ fn painting_in_edit_mode_shows_the_live_cut() {
         .expect("handle in view");
     let ppp = h.ctx.pixels_per_point();
     let handle = rect.min + egui::vec2(handle_px.x as f32 / ppp, handle_px.y as f32 / ppp);
-    let planes_before = app.scene.cutters[0].planes.len();
+    let planes_before = app.scene.cutters[0].cutter.planes.len();
     h.drag_at(handle);
     h.step();
     for k in 1..=12 {
@@ -341,7 +341,7 @@ fn painting_in_edit_mode_shows_the_live_cut() {
     h.drop_at(handle + egui::vec2(24.0, 144.0));
     h.run_steps(2);
     assert!(
-        h.state().scene.cutters[0].planes.len() > planes_before,
+        h.state().scene.cutters[0].cutter.planes.len() > planes_before,
         "the handle drag did not extrude"
     );
     // The live cut arrives in the background and is drawn in Edit mode.
@@ -358,7 +358,7 @@ fn painting_in_edit_mode_shows_the_live_cut() {
             .geometry
             .parts
             .iter()
-            .any(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall),
+            .any(|p| p.kind == cutaway::cutting::cut_scene::PartKind::Wall),
         "the live cut has no walls: {:?}",
         shown.geometry.notes
     );
@@ -367,7 +367,7 @@ fn painting_in_edit_mode_shows_the_live_cut() {
         .geometry
         .parts
         .iter()
-        .filter(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall)
+        .filter(|p| p.kind == cutaway::cutting::cut_scene::PartKind::Wall)
         .map(|p| p.mesh.triangle_count())
         .sum();
     assert_eq!(app.status.last_cut_ms, Some(shown.ms));
@@ -394,10 +394,10 @@ fn painting_in_edit_mode_shows_the_live_cut() {
         .expect("preview geometry");
     let live = h.state().viewport.live.shown().map(|r| r.geometry.clone());
     assert!(live.is_none(), "the live cut is kept outside Edit mode");
-    let walls = |g: &cutaway::cutaway_geometry::PreviewGeometry| -> usize {
+    let walls = |g: &cutaway::cutting::cut_scene::PreviewGeometry| -> usize {
         g.parts
             .iter()
-            .filter(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall)
+            .filter(|p| p.kind == cutaway::cutting::cut_scene::PartKind::Wall)
             .map(|p| p.mesh.triangle_count())
             .sum()
     };

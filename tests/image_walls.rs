@@ -13,8 +13,9 @@ use std::sync::Arc;
 use cutaway::intensity::{ImageLayer, IntensityImage, WallDisplay, Window};
 use cutaway::render::headless::{HeadlessRenderer, render_with};
 use cutaway::render::{RenderPngOptions, ViewMode};
-use cutaway::scene::{CutKind, CutterPlane, CutterViews, Scene, SceneCutter, SceneModel};
+use cutaway::scene::{CutterViews, Scene, SceneCutter, SceneModel};
 use cutter::Camera;
+use cutter::{BoundedPlane, CutKind};
 use glam::{DAffine3, DMat3, DVec2, DVec3};
 
 const WIDTH: u32 = 320;
@@ -40,14 +41,14 @@ fn out_dir() -> PathBuf {
     dir
 }
 
-fn box_planes(x0: f64, x1: f64, y0: f64, y1: f64, z0: f64, z1: f64) -> Vec<CutterPlane> {
+fn box_planes(x0: f64, x1: f64, y0: f64, y1: f64, z0: f64, z1: f64) -> Vec<BoundedPlane> {
     let plane = |x: f64| {
-        [
+        cutter::BoundedPlane::from_corners([
             DVec3::new(x, y0, z1),
             DVec3::new(x, y1, z1),
             DVec3::new(x, y1, z0),
             DVec3::new(x, y0, z0),
-        ]
+        ])
     };
     vec![plane(x0), plane((x0 + x1) * 0.5), plane(x1)]
 }
@@ -65,9 +66,11 @@ fn cube_scene(image: IntensityImage, window: Window) -> Scene {
     ));
     scene.cutters.push(SceneCutter {
         target: 0,
-        kind: CutKind::Straight,
-        smooth: false,
-        planes: box_planes(1.0, 9.0, -5.0, 5.0, 1.0, 9.0),
+        cutter: cutter::Cutter {
+            kind: CutKind::Straight,
+            smooth: false,
+            planes: box_planes(1.0, 9.0, -5.0, 5.0, 1.0, 9.0),
+        },
         views: CutterViews::default(),
     });
     scene.camera = camera();

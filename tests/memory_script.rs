@@ -346,7 +346,12 @@ fn paint_cutter(
     if h.state().scene.cutters.len() != before + 1 {
         return false;
     }
-    let lead = *h.state().scene.cutters[before].planes.last().unwrap();
+    let lead = h.state().scene.cutters[before]
+        .cutter
+        .planes
+        .last()
+        .unwrap()
+        .corners();
     let Some(handle) = to_screen(h, (lead[0] + lead[3]) * 0.5) else {
         return true;
     };

@@ -158,7 +158,7 @@ fn removed_volume_equals_the_boolean_s_removed_piece_closed_by_its_walls() {
     let scene = cutaway::session::load(&session).unwrap();
     let target = scene.models[0].mesh.clone();
     let index = csg::TargetIndex::build(target.clone()).unwrap();
-    let surface = cutaway::cutaway_geometry::cutter_mesh(&scene.cutters[0]);
+    let surface = cutaway::cutting::cut_scene::cutter_mesh(&scene.cutters[0]);
     let result = csg::subtract(&index, &surface).unwrap();
     csg::cutcheck::check_measures(&target, &result).unwrap();
     let mut removed = result.removed.part().mesh.clone();

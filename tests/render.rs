@@ -14,10 +14,9 @@ use csg::Mesh;
 use cutaway::render::headless::{HeadlessRenderer, render_with};
 use cutaway::render::{RenderPngOptions, ViewMode};
 use cutaway::scene::{
-    CutKind, CutterPlane, CutterViews, ModelStyle, Scene, SceneCutter, SceneModel, Stereo,
-    SubCutterView,
+    CutterViews, ModelStyle, Scene, SceneCutter, SceneModel, Stereo, SubCutterView,
 };
-use cutter::Camera;
+use cutter::{BoundedPlane, Camera, CutKind};
 use glam::DVec3;
 
 #[path = "image_compare.rs"]
@@ -116,14 +115,14 @@ fn camera() -> Camera {
 
 /// A straight cutter through the front-top-right of the unit sphere: planes at x = -0.25, 0.35,
 /// 0.95; front (toward the camera) at y = -1.3, back at y = 0.15; z from -0.15 to 1.2.
-fn corner_planes() -> Vec<CutterPlane> {
+fn corner_planes() -> Vec<BoundedPlane> {
     let plane = |x: f64| {
-        [
+        cutter::BoundedPlane::from_corners([
             DVec3::new(x, -1.3, 1.2),
             DVec3::new(x, 0.15, 1.2),
             DVec3::new(x, 0.15, -0.15),
             DVec3::new(x, -1.3, -0.15),
-        ]
+        ])
     };
     vec![plane(-0.25), plane(0.35), plane(0.95)]
 }
@@ -149,9 +148,11 @@ fn layered_scene() -> Scene {
 fn with_cutter(mut scene: Scene, views: CutterViews) -> Scene {
     scene.cutters.push(SceneCutter {
         target: 0,
-        kind: CutKind::Straight,
-        smooth: false,
-        planes: corner_planes(),
+        cutter: cutter::Cutter {
+            kind: CutKind::Straight,
+            smooth: false,
+            planes: corner_planes(),
+        },
         views,
     });
     scene
@@ -403,14 +404,15 @@ fn rounded_knee_scene() -> Scene {
             let edge = DVec3::new(-slope, 0.0, 1.0).normalize() * 22.0;
             let front = DVec3::new(x, -75.0, z);
             cutter::BoundedPlane::from_front_edge(front + edge, front - edge, DVec3::Y, 45.0)
-                .corners()
         })
         .collect();
     scene.cutters.push(SceneCutter {
         target: 0,
-        kind: CutKind::Curving,
-        smooth: true,
-        planes,
+        cutter: cutter::Cutter {
+            kind: CutKind::Curving,
+            smooth: true,
+            planes,
+        },
         views: CutterViews::default(),
     });
     scene.camera = Camera {
@@ -426,21 +428,19 @@ fn rounded_knee_scene() -> Scene {
 fn golden_rounded_cut_on_the_knee_overlay_is_the_wall() {
     let scene = rounded_knee_scene();
     assert_eq!(scene.models.len(), 3, "skin, patella and femur");
-    let preview = cutaway::cutaway_geometry::preview_geometry(&scene);
+    let preview = cutaway::cutting::cut_scene::preview_geometry(&scene);
     assert!(preview.notes.is_empty(), "{:?}", preview.notes);
     assert!(preview.reports[0].1.exact);
     // The walls lie on the overlay's surface (the one surface that cuts and is drawn), and that
     // surface is the rounded one, not the boxes.
-    let surface = cutaway::cutaway_geometry::cutter_mesh(&scene.cutters[0]);
-    let boxes = cutaway::cutaway_geometry::to_cutter(&scene.cutters[0])
-        .quad_mesh()
-        .triangulate();
+    let surface = cutaway::cutting::cut_scene::cutter_mesh(&scene.cutters[0]);
+    let boxes = scene.cutters[0].cutter.quad_mesh().triangulate();
     let on_surface = csg::SpatialIndex::build(&surface);
     let on_boxes = csg::SpatialIndex::build(&boxes);
     let mut off_boxes: f64 = 0.0;
     let mut wall_vertices = 0;
     for part in &preview.parts {
-        if part.kind != cutaway::cutaway_geometry::PartKind::Wall {
+        if part.kind != cutaway::cutting::cut_scene::PartKind::Wall {
             continue;
         }
         for &p in &part.mesh.positions {
@@ -587,9 +587,11 @@ mod sessions {
         scene.models[1].visible = false;
         scene.cutters.push(SceneCutter {
             target: 1,
-            kind: CutKind::Wedge,
-            smooth: true,
-            planes: corner_planes(),
+            cutter: cutter::Cutter {
+                kind: CutKind::Wedge,
+                smooth: true,
+                planes: corner_planes(),
+            },
             views: CutterViews {
                 cut: false,
                 transparency: Some(0.25),

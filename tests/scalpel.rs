@@ -226,3 +226,65 @@ fn bad_path_files_and_off_mesh_points_are_one_line_errors() {
     assert_one_error_line(&run(), &path, "off the mesh");
     assert!(!out.exists(), "nothing written on error");
 }
+
+/// A groove drawn across the knee's patella (millimetres, the anterior face) and opened 2 mm
+/// wide: along the whole path, away from its ends, the opened surface has left the line the
+/// blade drew (the two lips moved apart, the groove between them), and the mesh is closed. The
+/// opening used to move both lips of a groove one way along most of such a path (the surface
+/// stayed shut there) and tear it elsewhere.
+#[test]
+fn groove_on_the_patella_opens_along_its_whole_path() {
+    let dir = scratch("patella");
+    let target = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/knee/patella.ply");
+    let (path, out) = (dir.join("p.json"), dir.join("out.ply"));
+    let mesh = cutaway::io::read_mesh(&target).unwrap();
+    // Samples on the anterior face (-y): the front-most vertex near each (x, z) of a gentle arc.
+    let points: Vec<[f64; 3]> = (0..=40)
+        .map(|i| {
+            let u = i as f64 / 40.0;
+            let (x, z) = (-12.0 + 24.0 * u, 33.0 + 4.0 * (3.1 * u).sin());
+            let front = mesh
+                .positions
+                .iter()
+                .filter(|p| (p.x - x).abs() < 1.5 && (p.z - z).abs() < 1.5)
+                .min_by(|a, b| a.y.total_cmp(&b.y))
+                .unwrap();
+            [x, front.y, z]
+        })
+        .collect();
+    let width = 2.0;
+    let json = serde_json::json!({"format": "cutaway-path/1", "depth": 3.0, "tool": "scalpel",
+        "points": points, "open": {"width": width, "window": 0.5}});
+    std::fs::write(&path, json.to_string()).unwrap();
+    let v = run_json(&target, &path, &out);
+    assert_eq!(v["closed"], true, "{v}");
+    assert_eq!(v["manifold"], true, "{v}");
+    let opened = cutaway::io::read_mesh(&out).unwrap();
+    let (before, after) = (
+        csg::SpatialIndex::build(&mesh),
+        csg::SpatialIndex::build(&opened),
+    );
+    let on_surface: Vec<csg::DVec3> = points
+        .iter()
+        .map(|&p| before.closest_point(&mesh, p.into()).unwrap().point)
+        .collect();
+    let (first, last) = (on_surface[0], on_surface[on_surface.len() - 1]);
+    // The lips follow mesh edges, which kink up to about half an edge (0.4 mm here) away from
+    // the drawn line in places; there a lip passes closer to it. A shut groove passes at 0.
+    let mut gaps = Vec::new();
+    for &p in &on_surface {
+        if p.distance(first) < 2.0 * width || p.distance(last) < 2.0 * width {
+            continue;
+        }
+        gaps.push(after.closest_point(&opened, p).unwrap().point.distance(p));
+    }
+    assert!(gaps.len() >= 20, "{gaps:?}");
+    let close = gaps.iter().filter(|&&g| g < 0.15 * width).count();
+    assert!(
+        6 * close <= gaps.len(),
+        "the opened surface passes within 0.15 widths of the cut at {close} of {} points: {gaps:?}",
+        gaps.len()
+    );
+    let mean = gaps.iter().sum::<f64>() / gaps.len() as f64;
+    assert!(mean >= 0.2 * width, "mean gap {mean} mm: {gaps:?}");
+}

@@ -254,3 +254,110 @@ fn render_json_reports_the_smooth_cut_exact() {
     assert_eq!(json["cutters"][0]["exact"], false);
     assert!(!png2.exists());
 }
+
+#[test]
+fn extrude_levels_option_sets_the_subdivision() {
+    let dir = scratch("levels");
+    let target = dir.join("sphere.obj");
+    cutaway::io::write_mesh(&target, &sphere()).expect("write sphere");
+    let gesture = gestures()
+        .into_iter()
+        .find(|p| p.ends_with("sphere_rounded.json"))
+        .expect("rounded gesture");
+    let mut faces = Vec::new();
+    for levels in ["0", "1", "3"] {
+        let out = dir.join(format!("cutter{levels}.obj"));
+        let (ok, stdout, err) = cutaway(&[
+            "extrude".as_ref(),
+            target.as_os_str(),
+            "--gesture".as_ref(),
+            gesture.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+            "--levels".as_ref(),
+            levels.as_ref(),
+            "--json".as_ref(),
+        ]);
+        assert!(ok, "--levels {levels}: {err}");
+        let json: serde_json::Value = serde_json::from_str(stdout.trim()).expect("extrude JSON");
+        assert_eq!(json["levels"].to_string(), levels, "{json}");
+        assert_eq!(json["closed"], true);
+        let cutter = read_obj(&out);
+        csg::check_cutter(&cutter).unwrap_or_else(|e| panic!("--levels {levels}: {e}"));
+        faces.push(cutter.triangle_count());
+    }
+    // Each level splits every quad in four.
+    assert_eq!(faces[1], 4 * faces[0], "{faces:?}");
+    assert_eq!(faces[2], 16 * faces[1], "{faces:?}");
+
+    let out = dir.join("too_many.obj");
+    let (ok, _, err) = cutaway(&[
+        "extrude".as_ref(),
+        target.as_os_str(),
+        "--gesture".as_ref(),
+        gesture.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+        "--levels".as_ref(),
+        "9".as_ref(),
+    ]);
+    assert!(!ok);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("error: ") && err.contains("--levels 9"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}
+
+#[test]
+fn render_json_reports_every_smooth_gesture_exact() {
+    let dir = scratch("render-all");
+    let target = dir.join("sphere.obj");
+    cutaway::io::write_mesh(&target, &sphere()).expect("write sphere");
+    for file in gestures() {
+        let name = file.file_stem().unwrap().to_string_lossy().into_owned();
+        let mut gesture = read_gesture(&file).expect("gesture");
+        gesture.cut.smooth = true;
+        let r = replay(&sphere(), &gesture).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+        let planes: Vec<serde_json::Value> = r
+            .cutter
+            .planes
+            .iter()
+            .map(|p| serde_json::json!(p.corners().map(|c| c.to_array())))
+            .collect();
+        let session = serde_json::json!({
+            "format": "cutaway-session/1",
+            "models": [{"path": "sphere.obj", "color": [0.9, 0.7, 0.6]}],
+            "cutters": [{"target": 0, "kind": r.cutter.kind.name(), "smooth": true,
+                         "planes": planes, "views": {"cut": true}}],
+            "camera": {"eye": [0, -300, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 30}
+        });
+        let session_path = dir.join(format!("{name}.json"));
+        std::fs::write(&session_path, session.to_string()).unwrap();
+        let png = dir.join(format!("{name}.png"));
+        let (ok, out, err) = cutaway(&[
+            "render".as_ref(),
+            session_path.as_os_str(),
+            "--out".as_ref(),
+            png.as_os_str(),
+            "--width".as_ref(),
+            "64".as_ref(),
+            "--height".as_ref(),
+            "48".as_ref(),
+            "--json".as_ref(),
+        ]);
+        if !ok && err.contains("adapter") {
+            eprintln!("skipped: no GPU adapter ({err})");
+            return;
+        }
+        assert!(ok, "{name}: render failed: {err}");
+        let json: serde_json::Value = serde_json::from_str(out.trim()).expect("render JSON");
+        assert_eq!(json["cutters"][0]["exact"], true, "{name}: {json}");
+        assert!(
+            json["cutters"][0]["cut_ms"].as_f64().unwrap() > 0.0,
+            "{name}"
+        );
+        assert!(png.exists(), "{name}");
+    }
+}

@@ -11,10 +11,11 @@ use std::path::Path;
 use std::sync::Arc;
 
 use csg::Mesh;
-use cutaway::cutaway_geometry::{PartKind, preview_geometry};
+use cutaway::cutting::cut_scene::{PartKind, preview_geometry};
 use cutaway::render::headless::{HeadlessRenderer, render_with_preview};
 use cutaway::render::{RenderPngOptions, ViewMode};
-use cutaway::scene::{CutKind, CutterViews, Scene, SceneCutter, SceneModel};
+use cutaway::scene::{Scene, SceneCutter, SceneModel};
+use cutter::CutKind;
 use cutter::extrude::{RollSettings, extrude_move, initialize};
 use cutter::surface::Surface;
 use cutter::wedge::share_inside;
@@ -133,13 +134,14 @@ fn sweep_a_wedge(mesh: &Mesh, camera: &Camera, a: DVec2, radius_px: f64) -> Cutt
 /// Cuts `scene` (target 0) with `wedge`: the exact boolean makes walls of a sector, not a
 /// sliver; renders it at 1280×800 from `camera` into the test's temporary folder as `name`.
 fn cut_and_render(scene: &mut Scene, wedge: &Cutter, camera: Camera, name: &str) {
-    scene.cutters.push(SceneCutter {
-        target: 0,
-        kind: CutKind::Wedge,
-        smooth: false,
-        planes: wedge.planes.iter().map(|p| p.corners()).collect(),
-        views: CutterViews::default(),
-    });
+    assert_eq!(wedge.kind, CutKind::Wedge);
+    scene.cutters.push(SceneCutter::new(
+        0,
+        Cutter {
+            smooth: false,
+            ..wedge.clone()
+        },
+    ));
     scene.camera = camera;
     let preview = preview_geometry(scene);
     assert!(preview.notes.is_empty(), "{:?}", preview.notes);

@@ -8,6 +8,8 @@
 //! Skipped, with the reason printed, when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with
 //! Mesa's lavapipe installed); the real-data test reads `CUTAWAY_ANATOMY` (default `../shared/anatomy`).
 
+mod window_harness;
+
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -19,39 +21,13 @@ use cutaway::view::{LengthUnit, Orientation, ViewPreset};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::DVec3;
-
-fn no_adapter() -> Option<String> {
-    let instance =
-        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-    match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default())) {
-        Ok(_) => None,
-        Err(e) => Some(format!(
-            "no wgpu adapter ({e}); install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan"
-        )),
-    }
-}
+use window_harness::{apply, harness, no_adapter, shot};
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("cutaway-window-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir
-}
-
-fn harness(state_dir: &Path, paths: Vec<PathBuf>) -> Harness<'static, CutawayApp> {
-    let start = StartOptions {
-        paths,
-        state_dir: state_dir.to_path_buf(),
-        offer_recovery: false,
-    };
-    Harness::builder()
-        .wgpu()
-        .with_size(egui::vec2(1280.0, 800.0))
-        .with_max_steps(10_000)
-        // Real frame times, so two clicks a frame apart are a double-click.
-        .with_step_dt(1.0 / 60.0)
-        .with_accessibility_check(false)
-        .build_eframe(move |cc| CutawayApp::new(cc, start))
 }
 
 fn settle(h: &mut Harness<'_, CutawayApp>) {
@@ -62,21 +38,6 @@ fn settle(h: &mut Harness<'_, CutawayApp>) {
         std::thread::sleep(Duration::from_millis(5));
     }
     h.run_steps(3);
-}
-
-/// Renders the window, saves it as `name` in the test's temporary folder, returns it.
-fn shot(h: &mut Harness<'_, CutawayApp>, name: &str) -> image::RgbaImage {
-    let image = h.render().expect("render the window");
-    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("window-{name}.png"));
-    image.save(&path).expect("save screenshot");
-    println!("screenshot: {}", path.display());
-    image
-}
-
-fn apply(h: &mut Harness<'_, CutawayApp>, action: Action) {
-    let ctx = h.ctx.clone();
-    h.state_mut().apply(&ctx, action);
-    h.run_steps(2);
 }
 
 fn click_mode(h: &mut Harness<'_, CutawayApp>, mode: Mode) {
@@ -281,7 +242,7 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
     // Extrude it down the face by its handle (the middle of the leading plane's front edge):
     // the live cut arrives under the translucent cutter.
     let app = h.state();
-    let lead = *app.scene.cutters[0].planes.last().unwrap();
+    let lead = app.scene.cutters[0].cutter.planes.last().unwrap().corners();
     let px = app
         .scene
         .camera
@@ -290,7 +251,10 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
     let ppp = h.ctx.pixels_per_point();
     let handle = app.viewport.rect.min + egui::vec2(px.x as f32 / ppp, px.y as f32 / ppp);
     drag(&mut h, handle, handle + egui::vec2(10.0, 90.0));
-    assert!(h.state().scene.cutters[0].planes.len() > 1, "no extrusion");
+    assert!(
+        h.state().scene.cutters[0].cutter.planes.len() > 1,
+        "no extrusion"
+    );
     let deadline = Instant::now() + Duration::from_secs(120);
     while h.state().viewport.live.shown().is_none() || h.state().viewport.live.pending() {
         assert!(Instant::now() < deadline, "no live cut");
@@ -316,7 +280,15 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
     assert_eq!(app.scene.cutters[0].target, app.scene.cutters[1].target);
     let overlays = frame_inputs(app, [64, 48]).overlays;
     assert_eq!(overlays.len(), 1, "only the new cutter shows");
-    assert_eq!(overlays[0].planes, app.scene.cutters[1].planes);
+    assert_eq!(
+        overlays[0].planes,
+        app.scene.cutters[1]
+            .cutter
+            .planes
+            .iter()
+            .map(|p| p.corners())
+            .collect::<Vec<_>>()
+    );
     // The cut stays visible in Camera mode: the preview is computed and drawn there too.
     click_mode(&mut h, Mode::Camera);
     settle(&mut h);
@@ -325,7 +297,7 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
     assert!(
         cut.parts
             .iter()
-            .any(|p| p.kind == cutaway::cutaway_geometry::PartKind::Wall),
+            .any(|p| p.kind == cutaway::cutting::cut_scene::PartKind::Wall),
         "no walls in Camera mode"
     );
     shot(&mut h, "camera-mode-shows-cut");

@@ -9,46 +9,22 @@
 //! Mesa's lavapipe installed).
 
 mod scene_files;
+mod window_harness;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
+use cutaway::gui::CutawayApp;
 use cutaway::gui::app::Action;
 use cutaway::gui::variants_panel::VariantCommand;
-use cutaway::gui::{CutawayApp, StartOptions};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::{DVec2, DVec3};
 use scene_files::{
     box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
 };
-
-fn no_adapter() -> Option<String> {
-    let instance =
-        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-    match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default())) {
-        Ok(_) => None,
-        Err(e) => Some(format!(
-            "no wgpu adapter ({e}); install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan"
-        )),
-    }
-}
-
-fn harness(state_dir: &Path, paths: Vec<PathBuf>) -> Harness<'static, CutawayApp> {
-    let start = StartOptions {
-        paths,
-        state_dir: state_dir.to_path_buf(),
-        offer_recovery: false,
-    };
-    Harness::builder()
-        .wgpu()
-        .with_size(egui::vec2(1280.0, 800.0))
-        .with_max_steps(10_000)
-        .with_step_dt(1.0 / 60.0)
-        .with_accessibility_check(false)
-        .build_eframe(move |cc| CutawayApp::new(cc, start))
-}
+use window_harness::{apply, harness, no_adapter, shot};
 
 /// Steps until no job (loads, measurements, compare pictures) runs, twice over: a finished job
 /// may start the next one.
@@ -62,20 +38,6 @@ fn settle(h: &mut Harness<'_, CutawayApp>) {
         }
         h.run_steps(3);
     }
-}
-
-fn shot(h: &mut Harness<'_, CutawayApp>, name: &str) -> image::RgbaImage {
-    let image = h.render().expect("render the window");
-    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("window-{name}.png"));
-    image.save(&path).expect("save screenshot");
-    println!("screenshot: {}", path.display());
-    image
-}
-
-fn apply(h: &mut Harness<'_, CutawayApp>, action: Action) {
-    let ctx = h.ctx.clone();
-    h.state_mut().apply(&ctx, action);
-    h.run_steps(2);
 }
 
 /// Opens the View menu and clicks the switch `label` in it.
@@ -675,18 +637,20 @@ fn export_turntable_shows_progress_cancels_without_output_and_writes_the_frames(
 /// A box cutter through `min`..`max` on model `target`: three planes across x.
 fn box_cutter(target: usize, min: DVec3, max: DVec3) -> cutaway::scene::SceneCutter {
     let plane = |x: f64| {
-        [
+        cutter::BoundedPlane::from_corners([
             DVec3::new(x, min.y, max.z),
             DVec3::new(x, max.y, max.z),
             DVec3::new(x, max.y, min.z),
             DVec3::new(x, min.y, min.z),
-        ]
+        ])
     };
     cutaway::scene::SceneCutter {
         target,
-        kind: cutaway::scene::CutKind::Curving,
-        smooth: false,
-        planes: vec![plane(min.x), plane((min.x + max.x) * 0.5), plane(max.x)],
+        cutter: cutter::Cutter {
+            kind: cutter::CutKind::Curving,
+            smooth: false,
+            planes: vec![plane(min.x), plane((min.x + max.x) * 0.5), plane(max.x)],
+        },
         views: Default::default(),
     }
 }

@@ -58,7 +58,7 @@ fn main() {
     let _ = std::fs::remove_file(&path);
     let mut without = with_image.clone();
     without.image = None;
-    let preview = Arc::new(cutaway::cutaway_geometry::preview_geometry(&with_image));
+    let preview = Arc::new(cutaway::cutting::cut_scene::preview_geometry(&with_image));
     assert!(preview.notes.is_empty(), "{:?}", preview.notes);
 
     let mut renderer = match HeadlessRenderer::new() {

@@ -2,7 +2,7 @@
 //! [`cutaway::metrics::measure`] (the code `cutaway metrics` runs) on the embedded knee and on the
 //! SPL head atlas, each cut by a box from the front of its skin to its middle, with a focus structure (exposure from the
 //! camera) and one critical structure. The peer is the Preview cut of the same scene
-//! ([`cutaway::cutaway_geometry::preview_geometry`]), which the window computes anyway: the
+//! ([`cutaway::cutting::cut_scene::preview_geometry`]), which the window computes anyway: the
 //! ratio says what measuring costs on top of cutting.
 //!
 //! Run: `cargo bench -p cutaway --bench metrics_update` (add `--profile dev` for the figure of a
@@ -11,24 +11,27 @@
 use std::time::Instant;
 
 use cutaway::metrics::{MetricsOptions, measure};
-use cutaway::scene::{CutKind, CutterViews, Scene, SceneCutter, SceneModel};
+use cutaway::scene::{CutterViews, Scene, SceneCutter, SceneModel};
+use cutter::CutKind;
 use glam::DVec3;
 
 /// A box cutter through `min`..`max`: three planes across x, each spanning y and z.
 fn box_cutter(target: usize, min: DVec3, max: DVec3) -> SceneCutter {
     let plane = |x: f64| {
-        [
+        cutter::BoundedPlane::from_corners([
             DVec3::new(x, min.y, max.z),
             DVec3::new(x, max.y, max.z),
             DVec3::new(x, max.y, min.z),
             DVec3::new(x, min.y, min.z),
-        ]
+        ])
     };
     SceneCutter {
         target,
-        kind: CutKind::Curving,
-        smooth: false,
-        planes: vec![plane(min.x), plane((min.x + max.x) * 0.5), plane(max.x)],
+        cutter: cutter::Cutter {
+            kind: CutKind::Curving,
+            smooth: false,
+            planes: vec![plane(min.x), plane((min.x + max.x) * 0.5), plane(max.x)],
+        },
         views: CutterViews::default(),
     }
 }
@@ -97,7 +100,7 @@ fn bench(name: &str, scene: &Scene, focus: &str, critical: &str) {
         std::hint::black_box(measure(scene, &options).expect("measure"));
     });
     let cut_ms = median_ms(|| {
-        std::hint::black_box(cutaway::cutaway_geometry::preview_geometry(scene));
+        std::hint::black_box(cutaway::cutting::cut_scene::preview_geometry(scene));
     });
     let removed: f64 = metrics
         .structures

@@ -11,8 +11,9 @@
 //! [`MIN_VIEWPORT_PX`]..=[`MAX_VIEWPORT_PX`], more than [`MAX_EVENTS`] events, a pointer more
 //! than one viewport size outside the viewport, a wheel step beyond ±[`MAX_WHEEL_DELTA`], camera
 //! coordinates beyond ±[`crate::io::MAX_ABS_COORDINATE`]. The replay itself stops with an error
-//! once the cutter has more than [`MAX_REPLAY_BOXES`] boxes or its events took longer than
-//! [`MAX_REPLAY_TIME`] (see `cutaway extrude`), so every replay is bounded.
+//! once the cutter has more than [`MAX_REPLAY_BOXES`] boxes or its events used more than
+//! [`MAX_REPLAY_TIME`] of the replaying thread's CPU time (see `cutaway extrude`), so every replay
+//! is bounded, and a valid gesture replays the same on a loaded machine as on a quiet one.
 
 use std::path::Path;
 
@@ -38,7 +39,8 @@ pub const MAX_WHEEL_DELTA: f64 = 1000.0;
 /// (the cutter is checked whole: the replay's cost grows about with the square of the box
 /// count), and 100 keep a replay well within 2 s.
 pub const MAX_REPLAY_BOXES: usize = 100;
-/// Longest a replay's events may take before it stops with an error. The box cap alone does not
+/// Most CPU time a replay's events may use before it stops with an error (the replaying thread's
+/// own time, [`crate::thread_time`]: the machine's load does not count). The box cap alone does not
 /// bound a replay: thousands of moves that each re-fit a cutter of many boxes (a 16-pixel
 /// viewport, each pixel a large step) stay under the cap and took 38 s; so the replay also
 /// stops at this deadline, which leaves room for reading the target, indexing it and writing

@@ -8,9 +8,9 @@
 
 use glam::DVec3;
 
-use crate::cutaway_geometry::{PartKind, PreviewGeometry};
+use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
+use crate::cutting::pick::ScenePicks;
 use crate::scene::Scene;
-use crate::scene_pick::ScenePicks;
 use crate::view::LengthUnit;
 
 /// One measured distance: from `a` to `b`, both points on a surface (file units).

@@ -143,39 +143,6 @@ impl SceneModel {
     }
 }
 
-/// The cut kinds of the contract (`kind` in the session and gesture formats).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum CutKind {
-    /// Freeform path following the mouse (default).
-    #[default]
-    Curving,
-    /// Straight path (the Shift constraint).
-    Straight,
-    /// All planes share one top edge (prism fan).
-    Wedge,
-}
-
-impl CutKind {
-    /// The contract's name of the kind.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            CutKind::Curving => "curving",
-            CutKind::Straight => "straight",
-            CutKind::Wedge => "wedge",
-        }
-    }
-
-    /// Parses the contract's name of a kind.
-    pub fn parse(text: &str) -> Option<CutKind> {
-        match text {
-            "curving" => Some(CutKind::Curving),
-            "straight" => Some(CutKind::Straight),
-            "wedge" => Some(CutKind::Wedge),
-            _ => None,
-        }
-    }
-}
-
 /// Thin sub-cutters of a cutter (ribbons or slices, thesis 3.4.2): evenly spaced along the path,
 /// centred on the cutting planes, or horizontal layers at depth steps.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -242,21 +209,31 @@ impl CutterViews {
     }
 }
 
-/// One bounded cutting plane: front-top, back-top, back-bottom, front-bottom (front = on the
-/// occluding surface), in world coordinates.
-pub type CutterPlane = [DVec3; 4];
-
-/// A cutter of the scene: the bounded cutting planes the editor produced, aimed at one model.
+/// A cutter of the scene: the `cutter` crate's [`cutter::Cutter`] (kind, smoothing and the
+/// bounded planes the editor produced), aimed at one model, with how Preview shows it.
+///
+/// The cutter is held as the editor, the boolean and the overlay know it, never as a copy in
+/// another form: the session reader makes it once from the file's names and points, and every
+/// reader (live cut, Preview, undo, `extrude`, `render`) takes its surface from
+/// [`cutter::Cutter::surface`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneCutter {
     /// Index into [`Scene::models`] of the model this cutter cuts.
     pub target: usize,
-    pub kind: CutKind,
-    /// The rounded/freeform (subdivided) cutter instead of the plain boxes.
-    pub smooth: bool,
     /// At least one plane; consecutive planes bound one box of the cutter.
-    pub planes: Vec<CutterPlane>,
+    pub cutter: cutter::Cutter,
     pub views: CutterViews,
+}
+
+impl SceneCutter {
+    /// `cutter` aimed at model `target`, shown as a Normal Cut.
+    pub fn new(target: usize, cutter: cutter::Cutter) -> SceneCutter {
+        SceneCutter {
+            target,
+            cutter,
+            views: CutterViews::default(),
+        }
+    }
 }
 
 /// Stereo output of the renderer.
@@ -439,10 +416,15 @@ impl Scene {
                     models.len()
                 ));
             }
-            if c.planes.is_empty() {
+            if c.cutter.planes.is_empty() {
                 return Err(format!("cutter {i}: has no planes"));
             }
-            if c.planes.iter().flatten().any(|p| !p.is_finite()) {
+            if c.cutter
+                .planes
+                .iter()
+                .flat_map(|p| p.corners())
+                .any(|p| !p.is_finite())
+            {
                 return Err(format!("cutter {i}: a plane point is not finite"));
             }
             if let Some(t) = c.views.transparency
@@ -532,13 +514,19 @@ mod tests {
         scene
             .models
             .push(SceneModel::new("a", "a.obj", triangle(), [1.0, 0.0, 0.0]));
-        scene.cutters.push(SceneCutter {
-            target: 0,
-            kind: CutKind::Curving,
-            smooth: false,
-            planes: vec![[DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z]],
-            views: CutterViews::default(),
-        });
+        scene.cutters.push(SceneCutter::new(
+            0,
+            cutter::Cutter {
+                kind: cutter::CutKind::Curving,
+                smooth: false,
+                planes: vec![cutter::BoundedPlane::from_corners([
+                    DVec3::ZERO,
+                    DVec3::X,
+                    DVec3::Y,
+                    DVec3::Z,
+                ])],
+            },
+        ));
         assert!(scene.sanity_check().is_ok());
         scene.cutters[0].target = 3;
         let err = scene.sanity_check().unwrap_err();

@@ -31,132 +31,19 @@
 //!   anything is loaded or built.
 //! - Every error is one line naming the session file and the problem.
 
-use std::path::{Component, Path, PathBuf};
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use anyhow::Context as _;
 use cutter::Camera;
 use glam::DVec3;
-use serde::{Deserialize, Serialize};
 
 use crate::scene::{
     MeshOrigin, ModelStyle, ModelUnit, RenderSettings, Scene, SceneModel, Stereo, distinct_colors,
 };
 
-pub use crate::session_cutters::{
-    CutterEntry, SubCutterEntry, ViewsEntry, cutter_entry, cutter_from_entry,
-};
-
-/// The `format` value of the structure-based version, written whenever a scene holds structures.
-pub const FORMAT: &str = "cutaway-session/2";
-
-/// The `format` value of the region-based version: loaded with its meaning, written for scenes
-/// made only of regions.
-pub const FORMAT_V1: &str = "cutaway-session/1";
-
-/// The file as it is on disk.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct SessionFile {
-    pub format: String,
-    pub models: Vec<ModelEntry>,
-    #[serde(default)]
-    pub cutters: Vec<CutterEntry>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub camera: Option<CameraEntry>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub render: Option<RenderEntry>,
-    /// The patient's axes in world space; absent in older files (then guessed from the data).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub orientation: Option<OrientationEntry>,
-    /// The intensity image on the walls ([`crate::session_image`]).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub image: Option<crate::session_image::ImageEntry>,
-    /// Named cutter sets ([`crate::session_variants`]); `cutters` are the active one's.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub variants: Vec<crate::session_variants::VariantEntry>,
-    /// Index into `variants` of the variant `cutters` belong to.
-    #[serde(default, skip_serializing_if = "crate::session_variants::is_zero")]
-    pub active_variant: usize,
-    /// Measured distances ([`crate::session_rulers`]).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub rulers: Vec<crate::session_rulers::RulerEntry>,
-}
-
-/// `orientation`: world directions of the patient's superior and anterior (unit, orthogonal).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct OrientationEntry {
-    pub superior: [f64; 3],
-    pub anterior: [f64; 3],
-}
-
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct ModelEntry {
-    /// Relative to the session file's folder (or absolute).
-    pub path: PathBuf,
-    /// Which region of the file (0-based, file order); in `/1` absent means every region.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub region: Option<usize>,
-    /// `/2` only: which structure of the file (0-based); absent (and no `region`): every
-    /// structure of the file.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub structure: Option<usize>,
-    /// `/2` only: the model list's group (folder names, `/` between them).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub group: Option<String>,
-    /// sRGB, 0..=1.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub color: Option<[f32; 3]>,
-    #[serde(default = "one")]
-    pub opacity: f32,
-    /// `solid` or `wireframe`.
-    #[serde(default = "solid")]
-    pub style: String,
-    #[serde(default = "yes")]
-    pub visible: bool,
-    /// The file is this one model exactly as stored (a mesh Cutaway wrote for an edited model,
-    /// see [`crate::session_meshes`]): read verbatim, no welding, no region split.
-    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
-    pub exact: bool,
-    /// The model's display name (written for `exact` entries, whose file name is not the name,
-    /// and for structures in `/2`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub name: Option<String>,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct CameraEntry {
-    pub eye: [f64; 3],
-    pub target: [f64; 3],
-    pub up: [f64; 3],
-    pub fov_y_deg: f64,
-}
-
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct RenderEntry {
-    #[serde(default = "white")]
-    pub background: [f32; 4],
-    #[serde(default = "yes")]
-    pub antialias: bool,
-    /// `none` or `anaglyph`.
-    #[serde(default = "none")]
-    pub stereo: String,
-}
-
-fn one() -> f32 {
-    1.0
-}
-fn yes() -> bool {
-    true
-}
-fn solid() -> String {
-    "solid".to_string()
-}
-fn none() -> String {
-    "none".to_string()
-}
-fn white() -> [f32; 4] {
-    [1.0, 1.0, 1.0, 1.0]
-}
+pub use crate::session_format::*;
+pub use crate::session_paths::relative_path;
 
 /// Parses a session's text (no file access). Errors say what is wrong and where (line, column).
 pub fn parse(text: &str) -> anyhow::Result<SessionFile> {
@@ -444,44 +331,6 @@ fn point_entries(
             entry.name = Some(model.name.clone());
         }
     }
-}
-
-/// `path` relative to `folder` when both can be made absolute and share a root; else `path` made
-/// absolute (or as given).
-pub fn relative_path(path: &Path, folder: &Path) -> PathBuf {
-    let (Ok(path_abs), Ok(folder_abs)) = (std::path::absolute(path), std::path::absolute(folder))
-    else {
-        return path.to_path_buf();
-    };
-    let p: Vec<Component> = normalized(&path_abs);
-    let f: Vec<Component> = normalized(&folder_abs);
-    if p.first() != f.first() {
-        return path_abs;
-    }
-    let common = p.iter().zip(&f).take_while(|(a, b)| a == b).count();
-    let mut out = PathBuf::new();
-    for _ in common..f.len() {
-        out.push("..");
-    }
-    for c in &p[common..] {
-        out.push(c.as_os_str());
-    }
-    out
-}
-
-/// Components with `.` dropped and `..` folded into their parent.
-fn normalized(path: &Path) -> Vec<Component<'_>> {
-    let mut out: Vec<Component> = Vec::new();
-    for c in path.components() {
-        match c {
-            Component::CurDir => {}
-            Component::ParentDir if matches!(out.last(), Some(Component::Normal(_))) => {
-                out.pop();
-            }
-            other => out.push(other),
-        }
-    }
-    out
 }
 
 #[cfg(test)]

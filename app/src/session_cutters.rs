@@ -1,15 +1,18 @@
 //! A session's cutter entries and the scene's cutters, converted both ways (the top-level
-//! `cutters` and every variant's use the same conversion).
+//! `cutters` and every variant's use the same conversion). This is the one place the contract's
+//! kind names meet [`cutter::CutKind`] and the file's corner lists meet
+//! [`cutter::BoundedPlane`]: the scene holds the `cutter` crate's cutter itself.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use crate::scene::{CutKind, CutterViews, SceneCutter, SubCutterView};
+use crate::scene::{CutterViews, SceneCutter, SubCutterView};
 use cutter::subcutters::Placement;
+use cutter::{BoundedPlane, CutKind, Cutter};
 
 /// The scene cutter a session entry describes; errors name cutter `i`.
 pub fn cutter_from_entry(i: usize, c: &CutterEntry) -> anyhow::Result<SceneCutter> {
-    let kind = CutKind::parse(&c.kind).ok_or_else(|| {
+    let kind = CutKind::from_name(&c.kind).ok_or_else(|| {
         anyhow::anyhow!(
             "cutter {i}: kind {:?} is not curving, straight or wedge",
             c.kind
@@ -32,9 +35,15 @@ pub fn cutter_from_entry(i: usize, c: &CutterEntry) -> anyhow::Result<SceneCutte
     };
     Ok(SceneCutter {
         target: c.target,
-        kind,
-        smooth: c.smooth,
-        planes: c.planes.iter().map(|p| p.map(DVec3::from_array)).collect(),
+        cutter: Cutter {
+            kind,
+            smooth: c.smooth,
+            planes: c
+                .planes
+                .iter()
+                .map(|p| BoundedPlane::from_corners(p.map(DVec3::from_array)))
+                .collect(),
+        },
         views: CutterViews {
             cut: c.views.cut,
             transparency: c.views.transparency,
@@ -56,9 +65,14 @@ pub fn cutter_entry(c: &SceneCutter) -> CutterEntry {
     };
     CutterEntry {
         target: c.target,
-        kind: c.kind.as_str().to_string(),
-        smooth: c.smooth,
-        planes: c.planes.iter().map(|p| p.map(|v| v.to_array())).collect(),
+        kind: c.cutter.kind.name().to_string(),
+        smooth: c.cutter.smooth,
+        planes: c
+            .cutter
+            .planes
+            .iter()
+            .map(|p| p.corners().map(|v| v.to_array()))
+            .collect(),
         views: ViewsEntry {
             cut: c.views.cut,
             transparency: c.views.transparency,

@@ -18,7 +18,7 @@
 //! the limit of 1000`); the caller adds the file name.
 
 use crate::io::MAX_ABS_COORDINATE;
-use crate::session::{SessionFile, SubCutterEntry};
+use crate::session_format::{CutterEntry, SessionFile, SubCutterEntry};
 
 /// Most model entries in one session.
 pub const MAX_MODELS: usize = 10_000;
@@ -76,7 +76,7 @@ pub fn check(file: &SessionFile) -> anyhow::Result<()> {
 
 /// Checks plane counts, coordinates and sub-cutter counts of `cutters`; errors start with
 /// `prefix` (which variant).
-fn check_cutters(cutters: &[crate::session::CutterEntry], prefix: &str) -> anyhow::Result<()> {
+fn check_cutters(cutters: &[CutterEntry], prefix: &str) -> anyhow::Result<()> {
     for (i, cutter) in cutters.iter().enumerate() {
         if cutter.planes.len() > MAX_PLANES_PER_CUTTER {
             anyhow::bail!(

@@ -130,8 +130,8 @@ mod tests {
         let scene = scene_from_file(&file, Path::new("/s"), &mut one_sphere).unwrap();
         assert_eq!(crate::variants::names(&scene), ["straight", "wedge"]);
         let all = crate::variants::all(&scene);
-        assert_eq!(all[1].1[0].kind, crate::scene::CutKind::Wedge);
-        assert_eq!(all[1].1[0].planes[0][0].x, 0.5);
+        assert_eq!(all[1].1[0].cutter.kind, cutter::CutKind::Wedge);
+        assert_eq!(all[1].1[0].cutter.planes[0].front_top.x, 0.5);
         let saved = file_from_scene(&scene, Path::new("/s"));
         assert_eq!(saved.variants.len(), 2);
         assert_eq!(saved.variants[0].cutters, saved.cutters);

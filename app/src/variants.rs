@@ -240,15 +240,23 @@ pub fn check(scene: &Scene) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{CutKind, CutterViews, SceneModel};
+    use crate::scene::{CutterViews, SceneModel};
+    use cutter::CutKind;
     use glam::DVec3;
 
     fn cutter(x: f64) -> SceneCutter {
         SceneCutter {
             target: 0,
-            kind: CutKind::Straight,
-            smooth: false,
-            planes: vec![[DVec3::X * x, DVec3::Y, DVec3::Z, DVec3::ONE]],
+            cutter: cutter::Cutter {
+                kind: CutKind::Straight,
+                smooth: false,
+                planes: vec![cutter::BoundedPlane::from_corners([
+                    DVec3::X * x,
+                    DVec3::Y,
+                    DVec3::Z,
+                    DVec3::ONE,
+                ])],
+            },
             views: CutterViews::default(),
         }
     }

@@ -25,10 +25,62 @@
 //! Cost: one exact volume pass over the faces when the mesh has several components, then one
 //! ray per inward closed component (more only where vertices touch other shells).
 
+use crate::aabb::Aabb;
+use crate::adjacency::EdgeAdjacency;
 use crate::exact::{self, LPoint};
+use crate::lattice::Lattice;
+use crate::lattice_bvh::{Bvh, IBox};
 use crate::mesh::Mesh;
 use crate::regions::{Regions, union};
-use crate::target::IBox;
+
+/// Regions are components with their cavities joined: the rule of this module applied to
+/// [`Regions::components`] (kept here so that `regions` stays the plain union-find it builds on).
+impl Regions {
+    /// Labels the regions of `mesh`: its edge-connected components, each cavity (a closed inward
+    /// component inside another closed component) joined to the innermost component around it
+    /// (the rule above).
+    ///
+    /// `adjacency` must be [`EdgeAdjacency::build`] of `mesh`.
+    pub fn build(mesh: &Mesh, adjacency: &EdgeAdjacency) -> Regions {
+        Self::of_components(mesh, adjacency, Self::components(mesh, adjacency))
+    }
+
+    /// [`Regions::build`] from the components ([`Regions::components`]) already labelled.
+    pub fn of_components(mesh: &Mesh, adjacency: &EdgeAdjacency, components: Regions) -> Regions {
+        if components.count <= 1 {
+            return components;
+        }
+        let mut closed = vec![true; components.count];
+        for e in 0..adjacency.edge_count() as u32 {
+            let faces = adjacency.faces_of_edge(e);
+            if faces.len() != 2 {
+                for &f in faces {
+                    closed[components.region_of_triangle[f as usize] as usize] = false;
+                }
+            }
+        }
+        if closed.iter().all(|&c| !c) {
+            return components;
+        }
+        let lattice = Lattice::for_box(&Aabb::from_points(&mesh.positions));
+        let lpoints: Vec<LPoint> = mesh
+            .positions
+            .iter()
+            .map(|&p| lattice.quantize(p).unwrap_or([0, 0, 0]))
+            .collect();
+        let boxes: Vec<IBox> = mesh
+            .triangles
+            .iter()
+            .map(|t| IBox::of_triangle(t.map(|v| &lpoints[v as usize])))
+            .collect();
+        let bounds = boxes.iter().fold(IBox::EMPTY, |acc, b| acc.union(b));
+        let bvh = Bvh::build(&boxes);
+        let faces_in_box =
+            |query: &IBox, visit: &mut dyn FnMut(u32)| bvh.query(query, &boxes, visit);
+        let solids = solid_regions(mesh, &lpoints, &bounds, &components, &closed, &faces_in_box);
+        solids.label(&components)
+    }
+}
 
 /// How many vertices of an inward component are tried before it is left as its own region
 /// (every one lying exactly on another shell: a degenerate, touching configuration).

@@ -270,7 +270,7 @@ impl Deref for Removed {
 /// by their symbolic identity.
 pub(crate) struct PartBuilder {
     merge: bool,
-    by_position: FxMap<crate::boolean::PositionBits, u32>,
+    by_position: FxMap<PositionBits, u32>,
     by_source: FxMap<Vx, u32>,
     positions: Vec<DVec3>,
     vertex_source: Vec<VertexSource>,
@@ -328,7 +328,7 @@ impl PartBuilder {
     pub fn new_vertex(&mut self, p: DVec3, source: VertexSource) -> u32 {
         let next = self.positions.len() as u32;
         let id = if self.merge {
-            let key = crate::boolean::position_bits(p);
+            let key = position_bits(p);
             *self.by_position.entry(key).or_insert(next)
         } else {
             next
@@ -477,6 +477,17 @@ impl CutResult {
     pub fn kept_mesh(&self, target: &Mesh) -> Mesh {
         self.materialize(target).compacted()
     }
+}
+
+/// A position's bits (`-0.0` as `0.0`), as a key for "the same rounded position". A tuple, not
+/// an array: arrays hash as one byte slice, which the integer hasher digests byte by byte.
+pub(crate) type PositionBits = (u64, u64, u64);
+
+/// See [`PositionBits`].
+#[inline]
+pub(crate) fn position_bits(p: DVec3) -> PositionBits {
+    let b = p.to_array().map(|c| (c + 0.0).to_bits());
+    (b[0], b[1], b[2])
 }
 
 #[cfg(test)]

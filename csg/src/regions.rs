@@ -15,13 +15,8 @@
 //! root, so every root is the first triangle of its region and numbering "in order of the first
 //! triangle" falls out of one forward pass.
 
-use crate::aabb::Aabb;
 use crate::adjacency::EdgeAdjacency;
-use crate::cavities;
-use crate::exact::LPoint;
-use crate::lattice::Lattice;
 use crate::mesh::Mesh;
-use crate::target::{Bvh, IBox};
 
 /// The region (or component) of every triangle.
 #[derive(Clone, Debug, Default)]
@@ -34,52 +29,6 @@ pub struct Regions {
 }
 
 impl Regions {
-    /// Labels the regions of `mesh`: its edge-connected components, each cavity (a closed inward
-    /// component inside another closed component) joined to the innermost component around it
-    /// (see [`crate::cavities`]).
-    ///
-    /// `adjacency` must be [`EdgeAdjacency::build`] of `mesh`.
-    pub fn build(mesh: &Mesh, adjacency: &EdgeAdjacency) -> Regions {
-        Self::of_components(mesh, adjacency, Self::components(mesh, adjacency))
-    }
-
-    /// [`Regions::build`] from the components ([`Regions::components`]) already labelled.
-    pub fn of_components(mesh: &Mesh, adjacency: &EdgeAdjacency, components: Regions) -> Regions {
-        if components.count <= 1 {
-            return components;
-        }
-        let mut closed = vec![true; components.count];
-        for e in 0..adjacency.edge_count() as u32 {
-            let faces = adjacency.faces_of_edge(e);
-            if faces.len() != 2 {
-                for &f in faces {
-                    closed[components.region_of_triangle[f as usize] as usize] = false;
-                }
-            }
-        }
-        if closed.iter().all(|&c| !c) {
-            return components;
-        }
-        let lattice = Lattice::for_box(&Aabb::from_points(&mesh.positions));
-        let lpoints: Vec<LPoint> = mesh
-            .positions
-            .iter()
-            .map(|&p| lattice.quantize(p).unwrap_or([0, 0, 0]))
-            .collect();
-        let boxes: Vec<IBox> = mesh
-            .triangles
-            .iter()
-            .map(|t| IBox::of_triangle(t.map(|v| &lpoints[v as usize])))
-            .collect();
-        let bounds = boxes.iter().fold(IBox::EMPTY, |acc, b| acc.union(b));
-        let bvh = Bvh::build(&boxes);
-        let faces_in_box =
-            |query: &IBox, visit: &mut dyn FnMut(u32)| bvh.query(query, &boxes, visit);
-        let solids =
-            cavities::solid_regions(mesh, &lpoints, &bounds, &components, &closed, &faces_in_box);
-        solids.label(&components)
-    }
-
     /// Labels edge-connected components of `mesh` (non-manifold edges connect all their faces).
     ///
     /// `adjacency` must be [`EdgeAdjacency::build`] of `mesh`.

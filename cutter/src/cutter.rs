@@ -12,6 +12,7 @@ use glam::DVec3;
 
 use crate::geom;
 use crate::plane::BoundedPlane;
+pub use crate::quad_mesh::QuadMesh;
 
 /// The three cut types of the thesis (3.3.2.1–3.3.2.3). Rounded/freeform is `smooth` on top.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -86,58 +87,6 @@ pub enum CutterError {
     /// The wedge sweeps a full turn or more.
     #[error("the wedge sweeps {degrees:.0} degrees, which overlaps itself")]
     WedgeOverlaps { degrees: f64 },
-}
-
-/// A closed polygon mesh (quads, and triangles in a wedge), outward oriented.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct QuadMesh {
-    pub positions: Vec<DVec3>,
-    /// Faces as vertex indices, counter-clockwise seen from outside. 3 or 4 indices each, every
-    /// index `< positions.len()`.
-    pub faces: Vec<Vec<u32>>,
-}
-
-impl QuadMesh {
-    /// Fan-triangulates every face into a [`csg::Mesh`].
-    pub fn triangulate(&self) -> csg::Mesh {
-        let mut triangles = Vec::with_capacity(self.faces.len() * 2);
-        for f in &self.faces {
-            for k in 1..f.len().saturating_sub(1) {
-                triangles.push([f[0], f[k], f[k + 1]]);
-            }
-        }
-        csg::Mesh {
-            positions: self.positions.clone(),
-            triangles,
-        }
-    }
-
-    /// Signed enclosed volume (positive when outward oriented).
-    pub fn volume(&self) -> f64 {
-        geom::signed_volume(&self.positions, &self.faces)
-    }
-
-    /// Checks that every edge is used exactly once in each direction (closed and consistently
-    /// oriented). Returns the first bad edge.
-    pub fn check_closed(&self) -> Result<(), (u32, u32)> {
-        let mut edges = std::collections::HashMap::<(u32, u32), i32>::new();
-        for f in &self.faces {
-            for k in 0..f.len() {
-                let a = f[k];
-                let b = f[(k + 1) % f.len()];
-                if a == b {
-                    return Err((a, b));
-                }
-                *edges.entry((a, b)).or_default() += 1;
-            }
-        }
-        for (&(a, b), &n) in &edges {
-            if n != 1 || edges.get(&(b, a)) != Some(&1) {
-                return Err((a, b));
-            }
-        }
-        Ok(())
-    }
 }
 
 /// A cutter: the planes and the kind they were made with.
@@ -256,14 +205,31 @@ impl Cutter {
         self.validated_smoothing().map(|_| ())
     }
 
+    /// [`Cutter::sanity_check`] plus the exact check of [`Cutter::validate`] on the box mesh
+    /// alone (for a smooth cutter, before subdivision). Cheap enough for every pointer move of a
+    /// drag. A smooth cutter that passes it passes [`Cutter::validate`] too: the smoothing keeps
+    /// a level only once it is free of self-intersections, inserts planes in turns only when the
+    /// box mesh they make passes the exact check, and otherwise keeps the boxes.
+    pub fn validate_boxes(&self) -> Result<(), CutterError> {
+        self.sanity_check()?;
+        csg::check_cutter(&self.quad_mesh().triangulate()).map_err(|e| CutterError::Refused {
+            reason: e.to_string(),
+        })
+    }
+
     /// [`Cutter::validate`], returning the smoothing it checked (what the repair gave up is in
     /// it, see [`crate::subdivision::Smoothing::note`]).
     pub fn validated_smoothing(&self) -> Result<crate::subdivision::Smoothing, CutterError> {
         self.sanity_check()?;
         let smoothing = self.smoothing(crate::subdivision::DEFAULT_LEVELS);
-        csg::check_cutter(&smoothing.mesh.triangulate()).map_err(|e| CutterError::Refused {
-            reason: e.to_string(),
-        })?;
+        // A level is kept only once `csg::cutter_self_intersections` (the same preparation and
+        // predicate as `csg::check_cutter`) found nothing in it, so a subdivided mesh has passed
+        // the exact check already; the boxes (no level kept) are checked here.
+        if smoothing.levels == 0 {
+            csg::check_cutter(&smoothing.mesh.triangulate()).map_err(|e| CutterError::Refused {
+                reason: e.to_string(),
+            })?;
+        }
         Ok(smoothing)
     }
 

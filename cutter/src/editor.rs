@@ -33,14 +33,18 @@
 //! would make the cutter invalid is refused and leaves it unchanged: every completed action is
 //! checked with [`Cutter::validate`], the exact check the boolean makes of the very surface it
 //! cuts with (smooth cutters subdivided), so the editor never hands over a cutter the exact cut
-//! would refuse. A refusal, or smoothing that had to be reduced so the smooth cutter does not
-//! fold, leaves a one-line [`Editor::note`] for the status bar.
+//! would refuse. Every pointer move of a drag (extrusion, wedge sweep, edge drag) is checked
+//! too, before the live cut sees it: the whole cutter by [`Cutter::sanity_check`], the boxes
+//! around the planes it changed by the exact check. A refused move leaves the cutter where the
+//! last valid move put it and the drag goes on from there. A refusal, or smoothing that had to be
+//! reduced so the smooth cutter does not fold, leaves a one-line [`Editor::note`] for the status
+//! bar.
 
 use std::sync::Arc;
 
 use glam::{DVec2, DVec3};
 
-use csg::{Aabb, Mesh, SpatialIndex};
+use csg::{Mesh, SpatialIndex};
 
 use crate::camera::{Camera, Ray};
 use crate::cutter::{CutKind, Cutter};
@@ -50,107 +54,18 @@ use crate::extrude::{self, RollSettings};
 use crate::geom;
 use crate::surface::Surface;
 
+mod pick;
+mod settings;
+
+use pick::Pick;
+pub use settings::{CursorHint, EditorResponse, EditorSettings};
+
 /// Pick radius of the leading plane's handle (middle third of its front edge), in pixels.
 pub const HANDLE_PX: f64 = 12.0;
 /// Pick radius of a plane's front vertex, in pixels.
 pub const VERTEX_PX: f64 = 8.0;
 /// Shortest initialisation drag, in pixels.
 pub const MIN_DRAG_PX: f64 = 3.0;
-
-/// Editor options (the thesis's "Cutter Initialization" tab).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct EditorSettings {
-    /// Cut type of the next cutter. Default `Curving`. `Straight` behaves like Shift always held;
-    /// `Wedge` applies from the next initialisation.
-    pub kind: CutKind,
-    /// Segment spacing ω: a box is locked when it reaches ω·δ wide. Default 20.
-    pub spacing: f64,
-    /// Rounded/freeform (subdivided) cutter. Default false.
-    pub smooth: bool,
-    /// Scene increment δ (see [`EditorSettings::delta_for_scene`]). Default 1.
-    pub delta: f64,
-}
-
-impl Default for EditorSettings {
-    fn default() -> Self {
-        EditorSettings {
-            kind: CutKind::Curving,
-            spacing: 20.0,
-            smooth: false,
-            delta: 1.0,
-        }
-    }
-}
-
-impl EditorSettings {
-    /// δ for a scene: the distance at which a camera with vertical field of view `fov_y_deg`
-    /// frames the bounding sphere of every model ([`Camera::framing_distance`], our reading of
-    /// the thesis's VTK camera reset), divided by 2000.
-    pub fn delta_for_scene(scene: &Aabb, fov_y_deg: f64) -> f64 {
-        Camera::framing_distance(scene, fov_y_deg) / 2000.0
-    }
-
-    /// Default settings with δ for `scene`.
-    pub fn for_scene(scene: &Aabb, fov_y_deg: f64) -> Self {
-        EditorSettings {
-            delta: Self::delta_for_scene(scene, fov_y_deg),
-            ..Default::default()
-        }
-    }
-
-    /// Builder: the cut kind.
-    pub fn with_kind(self, kind: CutKind) -> Self {
-        EditorSettings { kind, ..self }
-    }
-
-    /// Builder: the segment spacing ω.
-    pub fn with_spacing(self, spacing: f64) -> Self {
-        EditorSettings { spacing, ..self }
-    }
-
-    /// Builder: smooth (rounded/freeform).
-    pub fn with_smooth(self, smooth: bool) -> Self {
-        EditorSettings { smooth, ..self }
-    }
-}
-
-/// The cursor the GUI should show.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum CursorHint {
-    /// Nothing under the pointer.
-    #[default]
-    Default,
-    /// No cutter yet: a press starts one.
-    Crosshair,
-    /// Over the leading plane's handle.
-    Grab,
-    /// Extruding.
-    Grabbing,
-    /// Over (or dragging) a plane's front vertex.
-    Move,
-    /// Over a plane (a press selects it).
-    PointingHand,
-}
-
-/// What [`Editor::handle`] did.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct EditorResponse {
-    /// The cutter (or its existence) changed: re-mesh and re-cut.
-    pub changed: bool,
-    /// The cursor to show now.
-    pub cursor: CursorHint,
-    /// Where the GUI should move the real cursor (pixels), when the editor snapped it.
-    pub warp_cursor: Option<DVec2>,
-}
-
-/// What a pixel is over.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Pick {
-    Nothing,
-    Handle,
-    Vertex { plane: usize, top: bool },
-    Plane(usize),
-}
 
 #[derive(Clone, Debug)]
 enum Drag {
@@ -182,6 +97,11 @@ pub struct Editor {
     cutter: Option<Cutter>,
     /// What the last completed action refused or corrected, for the status bar.
     note: Option<String>,
+    /// Why a move of the drag in progress was refused (kept for the note when the drag ends).
+    drag_refusal: Option<String>,
+    /// Set when the last action was accepted: what smoothing gave up, worked out when
+    /// [`Editor::note`] is first read (a replay that never reads it never subdivides).
+    smoothing_note: Option<std::sync::OnceLock<Option<String>>>,
     undo_stack: Vec<Option<Cutter>>,
     redo_stack: Vec<Option<Cutter>>,
     drag: Drag,
@@ -219,6 +139,8 @@ impl Editor {
             settings,
             cutter: None,
             note: None,
+            drag_refusal: None,
+            smoothing_note: None,
             undo_stack: Vec::new(),
             redo_stack: Vec::new(),
             drag: Drag::None,
@@ -236,7 +158,18 @@ impl Editor {
     /// What the last completed action refused or corrected (one line for the status bar), if
     /// anything.
     pub fn note(&self) -> Option<&str> {
-        self.note.as_deref()
+        if self.note.is_some() {
+            return self.note.as_deref();
+        }
+        let pending = self.smoothing_note.as_ref()?;
+        pending.get_or_init(|| self.smoothing_note_now()).as_deref()
+    }
+
+    /// What smoothing the current cutter had to give up, if anything.
+    fn smoothing_note_now(&self) -> Option<String> {
+        self.cutter
+            .as_ref()
+            .and_then(|c| c.smoothing(crate::subdivision::DEFAULT_LEVELS).note())
     }
 
     /// Replaces the cutter (e.g. loaded from a session) as an undoable action. Refused (false)
@@ -251,16 +184,19 @@ impl Editor {
         true
     }
 
-    /// True when `cutter` passes [`Cutter::validate`]; sets [`Editor::note`] either way (the
-    /// refusal, or what smoothing had to give up).
+    /// True when `cutter` passes [`Cutter::validate`] (checked as [`Cutter::validate_boxes`],
+    /// which implies it without subdividing); sets [`Editor::note`] either way (the refusal, or
+    /// what smoothing had to give up, worked out when the note is first read).
     fn accepts(&mut self, cutter: &Cutter, what: &str) -> bool {
-        match cutter.validated_smoothing() {
-            Ok(smoothing) => {
-                self.note = smoothing.note();
+        match cutter.validate_boxes() {
+            Ok(()) => {
+                self.note = None;
+                self.smoothing_note = Some(std::sync::OnceLock::new());
                 true
             }
             Err(e) => {
                 self.note = Some(format!("{what} was refused: {e}"));
+                self.smoothing_note = None;
                 false
             }
         }
@@ -455,107 +391,12 @@ impl Editor {
         }
     }
 
-    fn hint(&self, pick: Pick) -> CursorHint {
-        if self.cutter.is_none() {
-            return CursorHint::Crosshair;
-        }
-        match pick {
-            Pick::Nothing => CursorHint::Default,
-            Pick::Handle => CursorHint::Grab,
-            Pick::Vertex { .. } => CursorHint::Move,
-            Pick::Plane(_) => CursorHint::PointingHand,
-        }
-    }
-
-    fn project(&self, p: DVec3) -> Option<DVec2> {
-        self.camera.project(self.viewport, p)
-    }
-
-    /// What the pixel `px` is over: the handle first, then a front vertex, then a plane.
-    fn pick(&self, px: DVec2) -> Pick {
-        let Some(cutter) = &self.cutter else {
-            return Pick::Nothing;
-        };
-        let lead = cutter.leading();
-        if let (Some(a), Some(d)) = (
-            self.project(lead.front_top),
-            self.project(lead.front_bottom),
-        ) {
-            let s0 = a + (d - a) / 3.0;
-            let s1 = a + (d - a) * (2.0 / 3.0);
-            if segment_distance(px, s0, s1) <= HANDLE_PX {
-                return Pick::Handle;
-            }
-        }
-        let mut best: Option<(f64, Pick)> = None;
-        for (i, p) in cutter.planes.iter().enumerate() {
-            for (top, v) in [(true, p.front_top), (false, p.front_bottom)] {
-                if cutter.kind == CutKind::Wedge && top {
-                    continue;
-                }
-                if let Some(q) = self.project(v) {
-                    let dist = (q - px).length();
-                    if dist <= VERTEX_PX && best.is_none_or(|(b, _)| dist < b) {
-                        best = Some((dist, Pick::Vertex { plane: i, top }));
-                    }
-                }
-            }
-        }
-        if let Some((_, pick)) = best {
-            return pick;
-        }
-        self.plane_under(px).map_or(Pick::Nothing, Pick::Plane)
-    }
-
-    /// The plane whose quad the pointer's ray hits first, else the plane whose projected front
-    /// edge is nearest within [`HANDLE_PX`].
-    fn plane_under(&self, px: DVec2) -> Option<usize> {
-        let cutter = self.cutter.as_ref()?;
-        let ray = self.ray(px);
-        let mut best: Option<(f64, usize)> = None;
-        for (i, p) in cutter.planes.iter().enumerate() {
-            for t in geom::quad_triangles(&p.corners()) {
-                if let Some(s) = geom::ray_triangle(ray.origin, ray.direction, &t)
-                    && best.is_none_or(|(b, _)| s < b)
-                {
-                    best = Some((s, i));
-                }
-            }
-        }
-        if let Some((_, i)) = best {
-            return Some(i);
-        }
-        let mut near: Option<(f64, usize)> = None;
-        for (i, p) in cutter.planes.iter().enumerate() {
-            if let (Some(a), Some(d)) = (self.project(p.front_top), self.project(p.front_bottom)) {
-                let dist = segment_distance(px, a, d);
-                if dist <= HANDLE_PX && near.is_none_or(|(b, _)| dist < b) {
-                    near = Some((dist, i));
-                }
-            }
-        }
-        near.map(|(_, i)| i)
-    }
-
-    /// True when the pointer is over any part of the cutter (its mesh, or near a front edge).
-    fn over_cutter(&self, px: DVec2) -> bool {
-        let Some(cutter) = &self.cutter else {
-            return false;
-        };
-        if self.pick(px) != Pick::Nothing {
-            return true;
-        }
-        let ray = self.ray(px);
-        let mesh = cutter.quad_mesh().triangulate();
-        (0..mesh.triangles.len())
-            .any(|t| geom::ray_triangle(ray.origin, ray.direction, &mesh.corners(t)).is_some())
-    }
-
     fn press(&mut self, px: DVec2) -> EditorResponse {
         if self.is_dragging() {
             // A second press without release: treat the first drag as finished.
             self.release(px, false);
         }
+        self.drag_refusal = None;
         let Some(cutter) = self.cutter.clone() else {
             self.drag = Drag::Init { a: px, b: px };
             return EditorResponse {
@@ -662,17 +503,40 @@ impl Editor {
         let Some(mut cutter) = self.cutter.take() else {
             return false;
         };
+        let before = cutter.clone();
         let changed = {
             let surface = Surface::new(&self.target, &self.index);
             extrude::extrude_move(&mut cutter, &surface, &ray, &settings)
         };
+        let kept = !changed || self.accepts_move(&before, &cutter, "the extrusion");
+        let cutter = if kept { cutter } else { before };
         self.selected = Some(cutter.planes.len() - 1);
         self.cutter = Some(cutter);
-        changed
+        changed && kept
+    }
+
+    /// True when `cutter`, the result of one pointer move of a drag from `before`, passes the
+    /// exact check where the move changed it; otherwise the move is refused (the cutter stays as
+    /// it was, so the live cut does not get it) and the reason is kept for [`Editor::note`].
+    ///
+    /// The move itself ([`extrude::extrude_move`], [`edits::move_edge`]) made sure the whole
+    /// cutter passes [`Cutter::sanity_check`]; here the boxes on either side of every changed
+    /// plane get the exact check ([`Cutter::validate_boxes`]), which keeps a drag over a long
+    /// cutter as fast as the pointer (the whole cutter is checked exactly when the drag ends).
+    fn accepts_move(&mut self, before: &Cutter, cutter: &Cutter, what: &str) -> bool {
+        match changed_span(before, cutter).validate_boxes() {
+            Ok(()) => true,
+            Err(e) => {
+                let refusal = format!("{what} was stopped here: {e}");
+                self.note = Some(refusal.clone());
+                self.drag_refusal = Some(refusal);
+                false
+            }
+        }
     }
 
     fn drag_vertex(&mut self, plane: usize, top: bool, px: DVec2) -> bool {
-        let Some(cutter) = &self.cutter else {
+        let Some(cutter) = self.cutter.clone() else {
             return false;
         };
         let Some(p) = cutter.planes.get(plane) else {
@@ -690,12 +554,20 @@ impl Editor {
         if t <= 0.0 {
             return false;
         }
-        match edits::move_edge(cutter, plane, top, ray.at(t)) {
+        match edits::move_edge(&cutter, plane, top, ray.at(t)) {
             Some(c) => {
+                if !self.accepts_move(&cutter, &c, "the edge") {
+                    return false;
+                }
                 self.cutter = Some(c);
                 true
             }
-            None => false,
+            None => {
+                let refusal = "the edge cannot go there: planes would cross or fold".to_string();
+                self.note = Some(refusal.clone());
+                self.drag_refusal = Some(refusal);
+                false
+            }
         }
     }
 
@@ -742,15 +614,24 @@ impl Editor {
         response
     }
 
-    /// Ends a drag that started from `before`: a valid, different result is one undo step. An
-    /// invalid one (every move is checked by [`Cutter::sanity_check`], but only the end of a drag
-    /// by the exact [`Cutter::validate`]) loses boxes from its end until it is valid, else falls
-    /// back to `before`; [`Editor::note`] says so.
+    /// Ends a drag that started from `before`: a valid, different result is one undo step. Every
+    /// move of the drag was checked where it changed the cutter (a move that failed was refused,
+    /// and [`Editor::note`] says where the drag stopped); the whole result gets the exact
+    /// [`Cutter::validate`] here, and should it fail, it loses boxes from its end until it
+    /// passes, else falls back to `before`, and the note says so.
     fn finish_drag(&mut self, before: Cutter) {
         let valid = match self.cutter.clone() {
             Some(c) => self.accepts(&c, "the drag"),
             None => false,
         };
+        if let Some(stopped) = self.drag_refusal.take()
+            && valid
+        {
+            self.note = Some(match self.smoothing_note_now() {
+                Some(smoothing) => format!("{stopped}; {smoothing}"),
+                None => stopped,
+            });
+        }
         if !valid {
             let refusal = self.note.clone();
             let mut trimmed = self.cutter.clone();
@@ -758,7 +639,7 @@ impl Editor {
             if let Some(c) = &mut trimmed {
                 while c.planes.len() > 2 && !kept {
                     c.planes.pop();
-                    kept = c.validate().is_ok();
+                    kept = c.validate_boxes().is_ok();
                 }
             }
             if kept && let Some(c) = trimmed {
@@ -848,13 +729,20 @@ impl Editor {
     }
 }
 
-/// Distance from `p` to the segment `a`–`b`.
-fn segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let ab = b - a;
-    let t = if ab.length_squared() > 0.0 {
-        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-    } else {
-        0.0
+/// The planes of `after` that differ from `before`, with one unchanged plane on either side,
+/// as a cutter of its own (at least one box; the whole of `after` when nothing differs).
+fn changed_span(before: &Cutter, after: &Cutter) -> Cutter {
+    let n = after.planes.len();
+    let differs = |i: usize| before.planes.get(i) != Some(&after.planes[i]);
+    let (Some(first), Some(last)) = ((0..n).find(|&i| differs(i)), (0..n).rfind(|&i| differs(i)))
+    else {
+        return after.clone();
     };
-    (a + ab * t - p).length()
+    let lo = first.saturating_sub(1).min(n.saturating_sub(2));
+    let hi = (last + 1).min(n - 1).max(lo + 1).min(n - 1);
+    Cutter {
+        kind: after.kind,
+        smooth: false,
+        planes: after.planes[lo..=hi].to_vec(),
+    }
 }

@@ -33,24 +33,15 @@ use crate::camera::{Camera, Ray};
 use crate::cutter::{CutKind, Cutter};
 use crate::geom;
 use crate::plane::BoundedPlane;
+use crate::roll::MAX_BOXES_PER_MOVE;
+pub use crate::roll::{INITIAL_DEPTH, INITIAL_WIDTH, MIN_WIDTH, ROTATION_STEP, RollSettings};
 use crate::surface::{LocalSurface, Surface};
-
-/// Initial strip width as a multiple of δ (thesis 3.3.1).
-pub const INITIAL_WIDTH: f64 = 10.0;
-/// Initial depth as a multiple of δ.
-pub const INITIAL_DEPTH: f64 = 5.0;
-/// Width of a freshly started leading box, as a multiple of δ ("very narrow").
-pub const MIN_WIDTH: f64 = 0.25;
-/// Displacement of one face-rotation step, as a multiple of δ.
-pub const ROTATION_STEP: f64 = 2.0;
 
 /// Largest inward rotation searched for the surface, in degrees.
 const MAX_INWARD_DEG: f64 = 60.0;
 /// Height above the contact where the front face rests, as a multiple of δ (at the leading edge).
 pub const REST_GAP: f64 = 1.0;
 
-/// Largest number of boxes one mouse move may lock (a far jump of the mouse).
-pub(crate) const MAX_BOXES_PER_MOVE: usize = 16;
 /// Below this |cos| between the mouse ray and the front plane's normal (about 75°), the front
 /// plane counts as seen edge-on.
 const GRAZING: f64 = 0.25;
@@ -241,17 +232,6 @@ pub fn initialize(
     }
     cutter.sanity_check().ok()?;
     Some(cutter)
-}
-
-/// Settings of one extrusion move.
-#[derive(Clone, Copy, Debug)]
-pub struct RollSettings {
-    /// Scene increment δ.
-    pub delta: f64,
-    /// Segment spacing ω: a box is locked when it reaches ω·δ wide.
-    pub spacing: f64,
-    /// Straight-path constraint (Shift, or the Straight kind).
-    pub straight: bool,
 }
 
 /// Moves the leading plane toward the mouse ray (one extrusion move), locking boxes and starting

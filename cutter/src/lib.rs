@@ -13,6 +13,8 @@ pub mod events;
 pub mod extrude;
 mod geom;
 pub mod plane;
+pub mod quad_mesh;
+pub mod roll;
 pub mod scalpel;
 pub mod subcutters;
 pub mod subdivision;
@@ -20,7 +22,8 @@ pub mod surface;
 pub mod wedge;
 
 pub use camera::{Camera, Ray};
-pub use cutter::{CutKind, Cutter, CutterError, QuadMesh};
+pub use cutter::{CutKind, Cutter, CutterError};
 pub use editor::{CursorHint, Editor, EditorResponse, EditorSettings};
 pub use events::{EditorEvent, Key};
 pub use plane::BoundedPlane;
+pub use quad_mesh::QuadMesh;

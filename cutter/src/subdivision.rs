@@ -10,10 +10,14 @@
 //!
 //! Edge points use the four-point rule `(−p₋₁ + 9p₀ + 9p₁ − p₂) / 16` along the edge. At a vertex
 //! of valence 4 the outer neighbour `p₋₁` is the vertex opposite the edge (the neighbour sharing
-//! no face with it), exactly as in Kobbelt's regular case; at other valences (the end-cap corners
-//! of a box chain have valence 3, a wedge's axis vertices many) the outer neighbour is the
-//! reflection `2p₀ − p₁`, which makes the rule fall back to a locally linear one instead of
-//! Kobbelt's extraordinary-vertex stencil. Face points are the Boolean sum of the edge points,
+//! no face with it), exactly as in Kobbelt's regular case. At a vertex of valence 3 (the corners
+//! of a box chain's end planes and of a wedge's end planes) it is Kobbelt's virtual point, the
+//! centroid of the three neighbours: it lies inside the corner, so the end cap is rounded the way
+//! the sides are (its rim bulges out of the end plane's rectangle and the cap domes out past the
+//! end plane, meeting the sides without a crease) instead of staying a flat end joined to the
+//! rounded sides by a sharp, linear rim. At higher valences (a wedge's axis vertices, which stay
+//! the sharp edge the wedge opens along) the outer neighbour is the reflection `2p₀ − p₁`, a
+//! locally linear rule. Face points are the Boolean sum of the edge points,
 //! `(2/n)·Σ edge points − (1/n)·Σ corners`, which reproduces the centre of any bilinear face.
 //!
 //! ## Never folding
@@ -41,7 +45,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use crate::cutter::QuadMesh;
+use crate::quad_mesh::QuadMesh;
 
 /// Subdivision levels of a smooth cutter unless told otherwise: each level splits every quad in
 /// four, so two levels draw a box side as 16 quads.
@@ -294,9 +298,13 @@ fn refine(mesh: &QuadMesh) -> Refinement {
         }
     }
     let p = &mesh.positions;
-    // The vertex across `v` from neighbour `w` (valence 4), else the reflection of `w` about `v`.
+    // The point across `v` from neighbour `w`: the opposite vertex (valence 4), Kobbelt's
+    // virtual point (valence 3, the end-cap corners), else the reflection of `w` about `v`.
     let outer = |v: u32, w: u32| -> DVec3 {
         let ns = &neighbours[v as usize];
+        if ns.len() == 3 {
+            return virtual_point(ns.iter().map(|&q| p[q as usize]));
+        }
         if ns.len() == 4 {
             let faces = edge_faces.get(&key(v, w)).map(Vec::as_slice).unwrap_or(&[]);
             let shares_face = |x: u32| faces.iter().any(|&fi| mesh.faces[fi].contains(&x));
@@ -348,6 +356,16 @@ fn refine(mesh: &QuadMesh) -> Refinement {
         displacement,
         first_new: nv,
     }
+}
+
+/// Kobbelt's virtual point across a vertex of valence 3 from any of its neighbours
+/// `q₀, q₁, q₂`: `(4/n)·Σ qⱼ − qᵢ₋₁ − qᵢ − qᵢ₊₁`, which for `n = 3` is the neighbours' centroid
+/// (for `n = 4` the same formula gives the opposite vertex). It lies inside the corner, so the
+/// four-point rule pushes the new points near the corner outward: the corner and the end cap
+/// around it are rounded like the rest of the surface instead of staying a flat, sharp-edged end.
+fn virtual_point(neighbours: impl Iterator<Item = DVec3>) -> DVec3 {
+    let (sum, n) = neighbours.fold((DVec3::ZERO, 0.0), |(s, n), q| (s + q, n + 1.0));
+    sum / n
 }
 
 fn key(a: u32, b: u32) -> (u32, u32) {
@@ -481,6 +499,124 @@ mod tests {
             let r = q[0].truncate().length();
             assert!((0.95..1.1).contains(&r), "{r}");
         }
+    }
+
+    /// The largest angle (degrees) between the normals of two faces sharing an edge.
+    fn largest_crease(m: &QuadMesh) -> f64 {
+        let normal = |f: &Vec<u32>| {
+            let q = |k: usize| m.positions[f[k % f.len()] as usize];
+            (q(2) - q(0)).cross(q(3) - q(1)).normalize()
+        };
+        let mut by_edge: HashMap<(u32, u32), Vec<DVec3>> = HashMap::new();
+        for f in &m.faces {
+            for k in 0..f.len() {
+                by_edge
+                    .entry(key(f[k], f[(k + 1) % f.len()]))
+                    .or_default()
+                    .push(normal(f));
+            }
+        }
+        by_edge
+            .values()
+            .map(|n| n[0].angle_between(n[1]).to_degrees())
+            .fold(0.0, f64::max)
+    }
+
+    /// A straight chain of `count` unit cubes along +x (front edge along z, depth along y).
+    fn cube_chain(count: usize) -> Cutter {
+        let planes = (0..=count)
+            .map(|i| {
+                let x = i as f64;
+                BoundedPlane::from_front_edge(
+                    DVec3::new(x, 0.0, 1.0),
+                    DVec3::new(x, 0.0, 0.0),
+                    DVec3::Y,
+                    1.0,
+                )
+            })
+            .collect();
+        Cutter {
+            kind: CutKind::Curving,
+            smooth: true,
+            planes,
+        }
+    }
+
+    #[test]
+    fn end_caps_are_rounded_like_the_sides() {
+        let c = cube_chain(4);
+        let boxes = c.quad_mesh();
+        let s = smooth(&boxes, 3);
+        assert_eq!((s.levels, s.damped), (3, 0), "{s:?}");
+        s.mesh.check_closed().unwrap();
+        csg::check_cutter(&s.mesh.triangulate()).unwrap();
+        // Interpolating: the end planes' corners are still there.
+        assert_eq!(
+            &s.mesh.positions[..boxes.positions.len()],
+            &boxes.positions[..]
+        );
+        // The end caps are domes beyond the end planes (x = 0 and x = 4), not flat squares:
+        // their middle bulges out by a visible fraction of the cube, the rest of the cap too.
+        let lo = s
+            .mesh
+            .positions
+            .iter()
+            .map(|p| p.x)
+            .fold(f64::MAX, f64::min);
+        let hi = s
+            .mesh
+            .positions
+            .iter()
+            .map(|p| p.x)
+            .fold(f64::MIN, f64::max);
+        assert!(lo < -0.05 && hi > 4.05, "ends at {lo} and {hi}");
+        // Rounded all round: a flat cap meets the sides along a 90° crease; rounded, the
+        // sharpest crease left is next to the interpolated corners (48° after three levels,
+        // where the middle's sharpest is 27°).
+        let crease = largest_crease(&s.mesh);
+        assert!(crease < 55.0, "largest crease {crease:.1}°");
+        // The end's outline is rounded like the middle's cross-section: the cap (everything at
+        // or beyond the end plane) bulges out of the unit square the boxes have there, as the
+        // middle plane's cross-section does.
+        let bulge = |inside: &dyn Fn(f64) -> bool| {
+            s.mesh
+                .positions
+                .iter()
+                .filter(|p| inside(p.x))
+                .map(|p| (p.y - 0.5).abs().max((p.z - 0.5).abs()))
+                .fold(0.0, f64::max)
+        };
+        let end = bulge(&|x| x <= 1e-9);
+        let middle = bulge(&|x| (x - 2.0).abs() < 1e-9);
+        assert!(end > 0.52 && middle > 0.52, "{end} {middle}");
+    }
+
+    #[test]
+    fn rounded_ends_of_thin_and_tight_cutters_stay_valid() {
+        // Thin slabs, long boxes and a tight turn: the rounded ends never fold.
+        for (front, depth, step) in [(0.05, 2.0, 1.0), (2.0, 0.05, 1.0), (1.0, 1.0, 8.0)] {
+            let planes = (0..4)
+                .map(|i| {
+                    let x = i as f64 * step;
+                    BoundedPlane::from_front_edge(
+                        DVec3::new(x, 0.0, front),
+                        DVec3::new(x, 0.0, 0.0),
+                        DVec3::Y,
+                        depth,
+                    )
+                })
+                .collect();
+            let c = Cutter {
+                kind: CutKind::Curving,
+                smooth: true,
+                planes,
+            };
+            c.validate().unwrap();
+            let s = smooth(&c.quad_mesh(), 3);
+            csg::check_cutter(&s.mesh.triangulate()).unwrap();
+        }
+        let c = tight_turn(0.05, 40.0, 6);
+        c.validate().unwrap();
     }
 
     #[test]

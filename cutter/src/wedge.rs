@@ -15,9 +15,9 @@ use glam::{DQuat, DVec3};
 
 use crate::camera::Ray;
 use crate::cutter::Cutter;
-use crate::extrude::{INITIAL_DEPTH, MIN_WIDTH, ROTATION_STEP, RollSettings};
 use crate::geom;
 use crate::plane::BoundedPlane;
+use crate::roll::{INITIAL_DEPTH, MIN_WIDTH, ROTATION_STEP, RollSettings};
 use crate::surface::Surface;
 
 /// Points sampled along each front edge (apex to rim) when looking for the surface under the
@@ -89,7 +89,7 @@ pub(crate) fn wedge_move(
     let delta = settings.delta;
     let lock = (settings.spacing * delta).max(2.0 * MIN_WIDTH * delta);
     let mut changed = false;
-    for _ in 0..crate::extrude::MAX_BOXES_PER_MOVE {
+    for _ in 0..crate::roll::MAX_BOXES_PER_MOVE {
         let n = cutter.planes.len();
         let p0 = cutter.planes[0];
         let prev = cutter.planes[n - 2];

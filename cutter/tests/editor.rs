@@ -454,3 +454,38 @@ fn handle_press_snaps_the_cursor_and_short_drags_do_nothing() {
     assert_eq!(editor.recorded_events().len(), 3 + 8 + 2);
     let _ = DVec3::ZERO;
 }
+
+#[test]
+fn an_edge_dragged_across_its_neighbour_is_refused_in_place_with_a_note() {
+    let scene = Scene::sphere();
+    for smooth in [false, true] {
+        let mut editor = painted_sphere(&scene);
+        assert!(editor.set_smooth(smooth) || !smooth);
+        let before = editor.cutter().unwrap().clone();
+        let p = before.planes[2];
+        let v = editor
+            .camera()
+            .project(editor.viewport(), p.front_top)
+            .unwrap();
+        // Far along the path, across planes 3, 4, ...: every move that would cross is refused,
+        // so the cutter holds the last valid position and the note says why.
+        feed(&mut editor, drag(v, v + DVec2::new(240.0, 0.0), 12));
+        let c = editor.cutter().unwrap();
+        validate(c);
+        assert_eq!(c.planes.len(), before.planes.len());
+        let note = editor.note().expect("a refused move leaves a note");
+        assert!(note.contains("edge"), "{note}");
+        // The edge moved at most to just before its neighbour, never past it.
+        let next = before.planes[3].front_top;
+        let along = (next - p.front_top).normalize();
+        assert!(
+            (c.planes[2].front_top - p.front_top).dot(along) < (next - p.front_top).length(),
+            "smooth={smooth}"
+        );
+        // One undo step brings the cutter back.
+        if c != &before {
+            assert!(editor.undo());
+            assert_eq!(editor.cutter().unwrap(), &before);
+        }
+    }
+}

@@ -30,8 +30,16 @@ fn gesture() -> impl Strategy<Value = (DVec2, DVec2, Walk, Vec<u8>)> {
         })
 }
 
-fn run(scene: &Scene, kind: CutKind, a: DVec2, b: DVec2, walk: &[(f64, f64, bool)], edits: &[u8]) {
-    let mut editor = scene.editor(scene.settings(kind).with_spacing(12.0));
+fn run(
+    scene: &Scene,
+    kind: CutKind,
+    smooth: bool,
+    a: DVec2,
+    b: DVec2,
+    walk: &[(f64, f64, bool)],
+    edits: &[u8],
+) {
+    let mut editor = scene.editor(scene.settings(kind).with_spacing(12.0).with_smooth(smooth));
     feed(&mut editor, drag(a, b, 3));
     let Some(c) = editor.cutter() else {
         // A drag too short to make a cutter (fewer than 3 pixels): nothing to check.
@@ -93,18 +101,42 @@ proptest! {
     #[test]
     fn random_paths_on_sphere_keep_the_cutter_valid((a, b, walk, edits) in gesture()) {
         let scene = Scene::sphere();
-        run(&scene, CutKind::Curving, a, b, &walk, &edits);
+        run(&scene, CutKind::Curving, false, a, b, &walk, &edits);
     }
 
     #[test]
     fn random_paths_on_bumpy_surface_keep_the_cutter_valid((a, b, walk, edits) in gesture()) {
         let scene = Scene::bumpy();
-        run(&scene, CutKind::Curving, a, b, &walk, &edits);
+        run(&scene, CutKind::Curving, false, a, b, &walk, &edits);
     }
 
     #[test]
     fn random_wedges_keep_the_cutter_valid((a, b, walk, edits) in gesture()) {
         let scene = Scene::slab();
-        run(&scene, CutKind::Wedge, a, b, &walk, &edits);
+        run(&scene, CutKind::Wedge, false, a, b, &walk, &edits);
+    }
+}
+
+proptest! {
+    // Rounded and freeform: every move of every drag and every edit leaves a smooth cutter whose
+    // subdivided surface the exact boolean takes (`validate` runs the exact check).
+    #![proptest_config(ProptestConfig { cases: 6, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_smooth_paths_on_sphere_keep_the_cutter_valid((a, b, walk, edits) in gesture()) {
+        let scene = Scene::sphere();
+        run(&scene, CutKind::Curving, true, a, b, &walk, &edits);
+    }
+
+    #[test]
+    fn random_smooth_paths_on_bumpy_surface_keep_the_cutter_valid((a, b, walk, edits) in gesture()) {
+        let scene = Scene::bumpy();
+        run(&scene, CutKind::Curving, true, a, b, &walk, &edits);
+    }
+
+    #[test]
+    fn random_smooth_wedges_keep_the_cutter_valid((a, b, walk, edits) in gesture()) {
+        let scene = Scene::slab();
+        run(&scene, CutKind::Wedge, true, a, b, &walk, &edits);
     }
 }

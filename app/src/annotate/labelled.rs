@@ -10,7 +10,7 @@ use super::orientation::screen_axes;
 use super::scale_bar::{ScaleBar, caption, scale_bar};
 use super::text::{Face, TextPainter, blend};
 use super::visible::{VisibleGrid, anchor, is_opaque, visible_grid};
-use crate::cutaway_geometry::PreviewGeometry;
+use crate::cutting::cut_scene::PreviewGeometry;
 use crate::scene::Scene;
 
 const INK: [u8; 4] = [20, 22, 26, 255];

@@ -9,7 +9,7 @@ use image::RgbaImage;
 
 use super::labelled::{Annotations, Extras, annotate_with};
 use super::visible::is_opaque;
-use crate::cutaway_geometry::preview_geometry;
+use crate::cutting::cut_scene::preview_geometry;
 use crate::render::{HeadlessRenderer, RenderPngOptions, ViewMode, render_mode};
 use crate::scene::Scene;
 

@@ -9,7 +9,7 @@ use csg::{Mesh, SpatialIndex};
 use glam::DVec2;
 use rayon::prelude::*;
 
-use crate::cutaway_geometry::{PartKind, PreviewGeometry};
+use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
 use crate::scene::{ModelStyle, Scene};
 
 /// The model seen through each cell of a grid laid over the image.

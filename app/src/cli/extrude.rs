@@ -28,6 +28,10 @@ pub struct ExtrudeArgs {
     /// Where to write the cutter (OBJ quads).
     #[arg(long)]
     pub out: PathBuf,
+    /// Subdivision levels of a smooth (rounded/freeform) cutter, 0 to 4 (default 2); each level
+    /// splits every quad in four. Not used when the gesture's cutter is not smooth.
+    #[arg(long)]
+    pub levels: Option<u32>,
     /// Print one JSON object (see CONTRACT.md).
     #[arg(long)]
     pub json: bool,
@@ -65,7 +69,7 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
         delta,
     };
     let mut editor = Editor::new(mesh, index, gesture.camera, gesture.viewport, settings);
-    let started = std::time::Instant::now();
+    let started = crate::thread_time::thread_cpu_time();
     for (i, &event) in gesture.events.iter().enumerate() {
         editor.handle(event);
         // One event adds a bounded number of boxes, so checking after each bounds the replay.
@@ -76,9 +80,9 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
             );
         }
         // One event costs at most a bounded re-fit, so checking after each bounds the time.
-        if started.elapsed() > MAX_REPLAY_TIME {
+        if crate::thread_time::thread_cpu_time() - started > MAX_REPLAY_TIME {
             bail!(
-                "event {i} of {}: the replay took longer than {:.1} s and stopped (the cutter has {boxes} boxes; a tiny viewport makes every move re-fit many of them)",
+                "event {i} of {}: the replay used more than {:.1} s of CPU time and stopped (the cutter has {boxes} boxes; a tiny viewport makes every move re-fit many of them)",
                 gesture.events.len(),
                 MAX_REPLAY_TIME.as_secs_f64()
             );
@@ -137,10 +141,25 @@ fn painted_region(target: &Mesh, gesture: &Gesture) -> usize {
 }
 
 pub fn run(args: &ExtrudeArgs) -> anyhow::Result<()> {
+    let levels = args.levels.unwrap_or(cutter::subdivision::DEFAULT_LEVELS);
+    if levels > cutter::subdivision::MAX_LEVELS {
+        bail!(
+            "--levels {levels}: at most {} subdivision levels",
+            cutter::subdivision::MAX_LEVELS
+        );
+    }
     let target = crate::io::read_mesh(&args.target)?;
     let gesture = read_gesture(&args.gesture)?;
     let result = replay(&target, &gesture).with_context(|| args.gesture.display().to_string())?;
-    let mesh = result.cutter.display_mesh();
+    let smoothing = result.cutter.smoothing(levels);
+    let mesh = &smoothing.mesh;
+    // The editor checked the cutter at the default levels; other levels are checked here.
+    csg::check_cutter(&mesh.triangulate()).map_err(|e| {
+        anyhow::anyhow!(
+            "{}: the cutter with {levels} subdivision levels is not a valid cutter: {e}",
+            args.gesture.display()
+        )
+    })?;
     crate::io::write_obj_polygons(&args.out, &mesh.positions, &mesh.faces)?;
     let closed = mesh.check_closed().is_ok() && mesh.volume() > 0.0;
     if args.json {
@@ -153,6 +172,7 @@ pub fn run(args: &ExtrudeArgs) -> anyhow::Result<()> {
             "delta": result.delta,
             "smooth": result.cutter.smooth,
             "region": result.region,
+            "levels": smoothing.levels,
         });
         println!("{json}");
     } else {

@@ -25,7 +25,7 @@ use std::sync::Arc;
 
 use anyhow::Context as _;
 
-use crate::cutaway_geometry::{CutReport, preview_geometry};
+use crate::cutting::cut_scene::{CutReport, preview_geometry};
 use crate::render::{HeadlessRenderer, RenderPngOptions, ViewMode, render_mode};
 
 #[derive(Debug, clap::Args)]
@@ -175,14 +175,15 @@ fn turntable(
         args.gif,
         args.delay_ms,
     )?;
-    let decorate = |image: &mut image::RgbaImage,
-                    frame: &crate::scene::Scene,
-                    preview: Option<&crate::cutaway_geometry::PreviewGeometry>| {
-        crate::annotate::rulers::draw_rulers(image, frame);
-        if let Some(models) = labelled {
-            crate::annotate::labelled::annotate(image, frame, preview, models);
-        }
-    };
+    let decorate =
+        |image: &mut image::RgbaImage,
+         frame: &crate::scene::Scene,
+         preview: Option<&crate::cutting::cut_scene::PreviewGeometry>| {
+            crate::annotate::rulers::draw_rulers(image, frame);
+            if let Some(models) = labelled {
+                crate::annotate::labelled::annotate(image, frame, preview, models);
+            }
+        };
     let progress = crate::cli::turntable::TerminalProgress::new();
     let result = crate::export::turntable::export_turntable(
         scene,

@@ -9,7 +9,7 @@ pub mod table;
 
 use std::sync::Arc;
 
-use crate::cutaway_geometry::preview_geometry;
+use crate::cutting::cut_scene::preview_geometry;
 use crate::metrics::{Metrics, MetricsOptions, measure};
 use crate::render::{HeadlessRenderer, RenderPngOptions};
 use crate::scene::Scene;

@@ -36,7 +36,7 @@ use glam::DVec3;
 use gltf_json as json;
 use json::validation::{Checked::Valid, USize64};
 
-use crate::cutaway_geometry::{PartKind, PreviewGeometry};
+use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
 use crate::render::{CONTOUR_COLOR, WALL_MIX, WALL_TINT, srgb_to_linear};
 use crate::scene::{ModelStyle, Scene};
 
@@ -89,7 +89,7 @@ enum MaterialKey {
     Image,
 }
 
-/// Builds the document of `scene` as drawn with `geometry` (its [`crate::cutaway_geometry::preview_geometry`]).
+/// Builds the document of `scene` as drawn with `geometry` (its [`crate::cutting::cut_scene::preview_geometry`]).
 pub fn scene_document(scene: &Scene, geometry: &PreviewGeometry) -> Document {
     let mut builder = Builder::default();
     let mut children = Vec::new();

@@ -17,7 +17,7 @@ use std::path::Path;
 
 use anyhow::Context as _;
 
-use crate::cutaway_geometry::preview_geometry;
+use crate::cutting::cut_scene::preview_geometry;
 use crate::scene::Scene;
 
 /// The outcome of [`export_glb`].

@@ -15,7 +15,7 @@ use anyhow::Context as _;
 use glam::{DMat3, DVec3};
 use image::RgbaImage;
 
-use crate::cutaway_geometry::{PreviewGeometry, preview_geometry};
+use crate::cutting::cut_scene::{PreviewGeometry, preview_geometry};
 use crate::io::OutputSet;
 use crate::render::{RenderPngOptions, ViewMode, render_mode};
 use crate::scene::Scene;

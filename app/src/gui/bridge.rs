@@ -1,331 +1,21 @@
 //! Where the window meets the other parts of the application: the renderer (paint callback and
-//! headless export), the session file, the embedded default scene, the cutter editor and the cut
-//! geometry. Kept in one file so the panels never depend on those APIs directly.
+//! headless export), the session file, the embedded default scene and the mesh export. Kept in
+//! one file so the panels never depend on those APIs directly. Cutting itself (the editor slot,
+//! the whole-scene cut, the live cut, picks) is egui-free in [`crate::cutting`].
 
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, Weak};
-use std::time::Instant;
 
 use glam::DVec2;
 
-use csg::{Mesh, SpatialIndex};
-use cutter::{BoundedPlane, Cutter, Editor, EditorEvent, EditorSettings};
-
 use super::app::CutawayApp;
 use super::jobs::Progress;
-use crate::cutaway_geometry::{self, PreviewGeometry};
+use crate::cutting::cut_scene;
+use crate::cutting::scene_cuts::cut_each_in_turn;
 use crate::render::{CutterOverlay, FrameInputs, OutputTarget, Renderer, ViewMode};
-use crate::scene::{CutKind, Scene, SceneCutter, SceneModel};
+use crate::scene::Scene;
 
 /// Whether the scalpel mode exists in this build (its button is disabled otherwise).
 pub const SCALPEL_AVAILABLE: bool = true;
-
-/// Targets up to this many triangles get their spatial index built on the UI thread (a few
-/// milliseconds); bigger ones in a background job with progress.
-const SYNC_INDEX_TRIANGLES: usize = 150_000;
-
-/// Scene cut kind → editor cut kind.
-pub fn editor_kind(kind: CutKind) -> cutter::CutKind {
-    match kind {
-        CutKind::Curving => cutter::CutKind::Curving,
-        CutKind::Straight => cutter::CutKind::Straight,
-        CutKind::Wedge => cutter::CutKind::Wedge,
-    }
-}
-
-/// Editor cut kind → scene cut kind.
-pub fn scene_kind(kind: cutter::CutKind) -> CutKind {
-    match kind {
-        cutter::CutKind::Curving => CutKind::Curving,
-        cutter::CutKind::Straight => CutKind::Straight,
-        cutter::CutKind::Wedge => CutKind::Wedge,
-    }
-}
-
-/// The editor working on one cutter of the scene.
-struct Active {
-    editor: Editor,
-    /// Index into `Scene::models` of the target.
-    target: usize,
-    /// Index into `Scene::cutters` of the cutter being edited; `None` until the first drag made one.
-    cutter: Option<usize>,
-}
-
-/// The window's cutter editing: at most one active [`Editor`] (on the selected target), a cache of
-/// spatial indexes per target mesh, and the glue that mirrors the editor's cutter into
-/// `Scene::cutters` so that undo, sessions, the renderer and Preview all see one truth.
-#[derive(Default)]
-pub struct EditorSlot {
-    active: Option<Active>,
-    /// Spatial indexes by target mesh (weak: a replaced mesh invalidates its entry). Only the
-    /// index of the target being edited is kept (see [`EditorSlot::ensure`]), and one built in
-    /// the background for the next target: an index per model ever edited would add up to
-    /// several times the scene.
-    indexes: Vec<(Weak<Mesh>, Arc<SpatialIndex>)>,
-    /// The cursor the editor asked for at the last event.
-    pub cursor: cutter::CursorHint,
-    /// Where the editor asked the real cursor to be put at the last event (viewport pixels).
-    pub warp: Option<DVec2>,
-}
-
-impl EditorSlot {
-    /// What the active editor's last action refused or corrected (see [`Editor::note`]).
-    pub fn note(&self) -> Option<&str> {
-        self.active.as_ref().and_then(|a| a.editor.note())
-    }
-
-    /// The cached index of `mesh`, if built.
-    pub fn index_for(&self, mesh: &Arc<Mesh>) -> Option<Arc<SpatialIndex>> {
-        self.indexes
-            .iter()
-            .find(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)))
-            .map(|(_, i)| i.clone())
-    }
-
-    /// Stores an index built by a background job.
-    pub fn store_index(&mut self, mesh: Weak<Mesh>, index: Arc<SpatialIndex>) {
-        self.indexes.retain(|(w, _)| w.strong_count() > 0);
-        self.indexes.push((mesh, index));
-    }
-
-    /// The model the active editor works on.
-    pub fn target(&self) -> Option<usize> {
-        self.active.as_ref().map(|a| a.target)
-    }
-
-    /// Index into `Scene::cutters` of the cutter being edited.
-    pub fn active_cutter(&self) -> Option<usize> {
-        self.active.as_ref().and_then(|a| a.cutter)
-    }
-
-    /// Highlighted plane of the active cutter (selected, else hovered).
-    pub fn highlighted_plane(&self) -> Option<usize> {
-        let a = self.active.as_ref()?;
-        a.editor.selected_plane().or(a.editor.hovered_plane())
-    }
-
-    /// The active cutter's plane under the pointer after the last event (none: off the cutter).
-    pub fn hovered_plane(&self) -> Option<usize> {
-        let a = self.active.as_ref()?;
-        a.editor.cutter().and(a.editor.hovered_plane())
-    }
-
-    /// The initial strip while the first drag is in progress.
-    pub fn init_strip(&self) -> Option<[glam::DVec3; 4]> {
-        self.active.as_ref()?.editor.init_strip()
-    }
-
-    /// Stops editing the current cutter (it stays in the scene); the next drag starts a new one.
-    pub fn finish(&mut self) {
-        self.active = None;
-    }
-
-    /// Makes an editor for `target` ready when its index exists. Returns `false` when it is not
-    /// ready: the model does not exist, or its index must first be built in the background (the
-    /// caller starts that job).
-    pub fn ensure(
-        &mut self,
-        scene: &Scene,
-        target: usize,
-        viewport: DVec2,
-        init: &super::app::CutterInit,
-    ) -> bool {
-        if self.active.as_ref().is_some_and(|a| a.target == target) {
-            return true;
-        }
-        let Some(model) = scene.models.get(target) else {
-            return false;
-        };
-        let index = match self.index_for(&model.mesh) {
-            Some(index) => index,
-            None if model.mesh.triangle_count() <= SYNC_INDEX_TRIANGLES => {
-                let index = Arc::new(SpatialIndex::build(&model.mesh));
-                self.store_index(Arc::downgrade(&model.mesh), index.clone());
-                index
-            }
-            None => return false,
-        };
-        self.indexes
-            .retain(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, &model.mesh)));
-        let settings = EditorSettings::for_scene(&scene.bbox(), scene.camera.fov_y_deg)
-            .with_kind(editor_kind(init.kind))
-            .with_spacing(init.spacing)
-            .with_smooth(init.smooth);
-        let editor = Editor::new(model.mesh.clone(), index, scene.camera, viewport, settings);
-        self.active = Some(Active {
-            editor,
-            target,
-            cutter: None,
-        });
-        true
-    }
-
-    /// Opens scene cutter `index` for editing (its target's index must exist or be cheap).
-    pub fn edit_existing(
-        &mut self,
-        scene: &Scene,
-        index: usize,
-        viewport: DVec2,
-        init: &super::app::CutterInit,
-    ) -> bool {
-        let Some(c) = scene.cutters.get(index) else {
-            return false;
-        };
-        self.active = None;
-        if !self.ensure(scene, c.target, viewport, init) {
-            return false;
-        }
-        let cutter = Cutter {
-            kind: editor_kind(c.kind),
-            smooth: c.smooth,
-            planes: c
-                .planes
-                .iter()
-                .map(|p| BoundedPlane::from_corners(*p))
-                .collect(),
-        };
-        let Some(active) = &mut self.active else {
-            return false;
-        };
-        if !active.editor.set_cutter(Some(cutter)) {
-            self.active = None;
-            return false;
-        }
-        active.cutter = Some(index);
-        true
-    }
-
-    /// Feeds one event to the active editor. Returns true when the scene's cutters changed.
-    pub fn handle(&mut self, scene: &mut Scene, viewport: DVec2, event: EditorEvent) -> bool {
-        let Some(active) = &mut self.active else {
-            return false;
-        };
-        if !active.editor.is_dragging() {
-            active.editor.set_view(scene.camera, viewport);
-        }
-        let response = active.editor.handle(event);
-        self.cursor = response.cursor;
-        self.warp = response.warp_cursor;
-        if !response.changed {
-            return false;
-        }
-        self.mirror_into(scene);
-        true
-    }
-
-    /// Applies Initialization-tab settings to the active editor; true when the cutter changed.
-    pub fn apply_settings(&mut self, scene: &mut Scene, init: &super::app::CutterInit) -> bool {
-        let Some(active) = &mut self.active else {
-            return false;
-        };
-        active.editor.set_kind(editor_kind(init.kind));
-        active.editor.set_spacing(init.spacing);
-        if active.editor.set_smooth(init.smooth) {
-            self.mirror_into(scene);
-            return true;
-        }
-        false
-    }
-
-    /// Copies the editor's cutter into `scene.cutters` (adding, updating or removing the entry).
-    fn mirror_into(&mut self, scene: &mut Scene) {
-        let Some(active) = &mut self.active else {
-            return;
-        };
-        match (active.editor.cutter(), active.cutter) {
-            (Some(c), Some(i)) if i < scene.cutters.len() => {
-                let entry = &mut scene.cutters[i];
-                entry.kind = scene_kind(c.kind);
-                entry.smooth = c.smooth;
-                entry.planes = c.planes.iter().map(BoundedPlane::corners).collect();
-            }
-            (Some(c), _) => {
-                scene.cutters.push(SceneCutter {
-                    target: active.target,
-                    kind: scene_kind(c.kind),
-                    smooth: c.smooth,
-                    planes: c.planes.iter().map(BoundedPlane::corners).collect(),
-                    views: Default::default(),
-                });
-                active.cutter = Some(scene.cutters.len() - 1);
-            }
-            (None, Some(i)) if i < scene.cutters.len() => {
-                scene.cutters.remove(i);
-                active.cutter = None;
-            }
-            (None, _) => active.cutter = None,
-        }
-    }
-
-    /// After an undo/redo replaced the scene: make the editor show what the scene now holds.
-    pub fn sync_from_scene(&mut self, scene: &Scene) {
-        let Some(active) = &mut self.active else {
-            return;
-        };
-        if scene
-            .models
-            .get(active.target)
-            .is_none_or(|m| !std::ptr::eq(Arc::as_ptr(&m.mesh), active.editor.target()))
-        {
-            self.active = None;
-            return;
-        }
-        let wanted = active
-            .cutter
-            .and_then(|i| scene.cutters.get(i))
-            .filter(|c| c.target == active.target);
-        let current: Option<Vec<[glam::DVec3; 4]>> = active
-            .editor
-            .cutter()
-            .map(|c| c.planes.iter().map(BoundedPlane::corners).collect());
-        match wanted {
-            Some(c) if current.as_ref() != Some(&c.planes) => {
-                let cutter = Cutter {
-                    kind: editor_kind(c.kind),
-                    smooth: c.smooth,
-                    planes: c
-                        .planes
-                        .iter()
-                        .map(|p| BoundedPlane::from_corners(*p))
-                        .collect(),
-                };
-                if !active.editor.set_cutter(Some(cutter)) {
-                    self.active = None;
-                }
-            }
-            Some(_) => {}
-            None => {
-                // The cutter is gone (its creation was undone): a fresh start on the same target.
-                active.editor.set_cutter(None);
-                active.cutter = None;
-            }
-        }
-    }
-
-    /// Number of cutters the editor has made or opened (for the status line, see `Scene::cutters`).
-    pub fn is_active(&self) -> bool {
-        self.active.is_some()
-    }
-
-    /// The events the active editor has handled (for gesture recording).
-    pub fn editor_settings(&self) -> Option<EditorSettings> {
-        self.active.as_ref().map(|a| *a.editor.settings())
-    }
-}
-
-/// Builds the spatial index of a target mesh in a worker.
-pub fn build_index(
-    mesh: &Arc<Mesh>,
-    progress: &Progress,
-) -> anyhow::Result<(Weak<Mesh>, Arc<SpatialIndex>)> {
-    progress.set_message(format!(
-        "{} triangles",
-        super::status_bar::grouped(mesh.triangle_count())
-    ));
-    let index = Arc::new(SpatialIndex::build(mesh));
-    progress.check()?;
-    Ok((Arc::downgrade(mesh), index))
-}
 
 /// Installs the renderer in egui's callback resources; false when there is no wgpu device.
 pub fn install_renderer(render_state: Option<&egui_wgpu::RenderState>) -> bool {
@@ -402,42 +92,17 @@ pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
             .enumerate()
             .filter(|&(i, _)| !hidden(i))
             .map(|(i, c)| CutterOverlay {
-                planes: c.planes.clone(),
-                surface: overlay_surface(c),
                 highlighted_plane: if Some(i) == active {
                     app.viewport.editor.highlighted_plane()
                 } else {
                     None
                 },
                 active: Some(i) == active,
+                ..crate::cutting::overlay::cutter_overlay(c)
             })
             .collect();
     }
     inputs
-}
-
-/// The cutter surface the overlay draws: the very mesh the boolean cuts with
-/// ([`cutaway_geometry::cutter_mesh`]). A smooth cutter's surface costs a subdivision and its
-/// exact check, so the surfaces of the last few cutters drawn are kept between frames.
-fn overlay_surface(cutter: &SceneCutter) -> Arc<Mesh> {
-    type Key = (crate::scene::CutKind, bool, Vec<crate::scene::CutterPlane>);
-    thread_local! {
-        static SURFACES: std::cell::RefCell<std::collections::VecDeque<(Key, Arc<Mesh>)>> =
-            Default::default();
-    }
-    let key: Key = (cutter.kind, cutter.smooth, cutter.planes.clone());
-    SURFACES.with(|cache| {
-        let mut cache = cache.borrow_mut();
-        if let Some((_, mesh)) = cache.iter().find(|(k, _)| *k == key) {
-            return mesh.clone();
-        }
-        let mesh = Arc::new(cutaway_geometry::cutter_mesh(cutter));
-        if cache.len() >= 8 {
-            cache.pop_front();
-        }
-        cache.push_back((key, mesh.clone()));
-        mesh
-    })
 }
 
 /// Draws the scene with the GPU renderer into `rect`; false when no renderer is installed.
@@ -586,7 +251,7 @@ pub fn export_meshes(
     let ext = settings.format.extension();
     let mut written = Vec::new();
     cut_each_in_turn(scene, progress, |step, model| {
-        use cutaway_geometry::{SURFACE, select};
+        use cut_scene::{SURFACE, select};
         let stem = sanitize(&format!("cutter{}_{}", step.cutter + 1, model.name));
         let tags = step.after_tags;
         for (wanted, part) in [
@@ -613,56 +278,6 @@ pub fn export_meshes(
     Ok(written)
 }
 
-/// Cuts every model by its cutters in turn ([`cutaway_geometry::cut_in_turn`]: each cutter cuts
-/// the closed result of the ones before it, so overlapping cutters give T ∖ (K1 ∪ … ∪ Kn), with
-/// no wall of one cutter left inside another). `visit(step, model)` sees every cutter's step
-/// (its `after` is kept part and walls so far, closed). Returns per model the closed result (None
-/// when no cutter targets it). Each cutter's kind and smoothing are honoured.
-fn cut_each_in_turn(
-    scene: &Scene,
-    progress: &Progress,
-    mut visit: impl FnMut(&cutaway_geometry::Step, &SceneModel) -> anyhow::Result<()>,
-) -> anyhow::Result<Vec<Option<Arc<Mesh>>>> {
-    let mut out = vec![None; scene.models.len()];
-    let mut cache = cutaway_geometry::CutCache::default();
-    let total = scene.cutters.len() as u64;
-    let mut done = 0u64;
-    for (m, model) in scene.models.iter().enumerate() {
-        let cutters: Vec<(usize, &SceneCutter)> = scene
-            .cutters
-            .iter()
-            .enumerate()
-            .filter(|(_, c)| c.target == m)
-            .collect();
-        if cutters.is_empty() {
-            continue;
-        }
-        progress.check()?;
-        let mut failure = None;
-        let sequence = cutaway_geometry::cut_in_turn(
-            &mut cache,
-            &model.mesh,
-            &cutters,
-            |_| false,
-            |step| {
-                if failure.is_some() {
-                    return;
-                }
-                done += 1;
-                progress.set(done, total);
-                if let Err(e) = progress.check().and_then(|()| visit(step, model)) {
-                    failure = Some(e);
-                }
-            },
-        );
-        if let Some(e) = failure {
-            return Err(e);
-        }
-        out[m] = Some(sequence.closed);
-    }
-    Ok(out)
-}
-
 /// File-name-safe version of a model name.
 fn sanitize(name: &str) -> String {
     name.chars()
@@ -674,49 +289,6 @@ fn sanitize(name: &str) -> String {
             }
         })
         .collect()
-}
-
-/// The cut parts Preview shows, computed in a worker; returns them with the wall time in ms.
-pub fn compute_preview(scene: &Scene) -> (Arc<PreviewGeometry>, f64) {
-    let started = Instant::now();
-    let geometry = cutaway_geometry::preview_geometry(scene);
-    (Arc::new(geometry), started.elapsed().as_secs_f64() * 1000.0)
-}
-
-/// "Remove All Cut Geometry": each cut model replaced by its kept part closed by the walls, so
-/// later cuts reach the structures behind. Returns (model index, new mesh) pairs.
-pub fn apply_all_cuts(
-    scene: &Scene,
-    progress: &Progress,
-) -> anyhow::Result<Vec<(usize, Arc<Mesh>)>> {
-    let current = cut_each_in_turn(scene, progress, |_, _| Ok(()))?;
-    Ok(current
-        .into_iter()
-        .enumerate()
-        .filter_map(|(i, m)| m.map(|m| (i, m)))
-        .collect())
-}
-
-/// Preview's dependency on the scene: the cutters and their targets' meshes. When this changes,
-/// the preview is recomputed.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PreviewKey {
-    cutters: Vec<SceneCutter>,
-    targets: Vec<usize>,
-}
-
-impl PreviewKey {
-    pub fn of(scene: &Scene) -> PreviewKey {
-        PreviewKey {
-            cutters: scene.cutters.clone(),
-            targets: scene
-                .cutters
-                .iter()
-                .filter_map(|c| scene.models.get(c.target))
-                .map(|m| Arc::as_ptr(&m.mesh) as usize)
-                .collect(),
-        }
-    }
 }
 
 /// At most this many triangles are drawn by the CPU fallback.

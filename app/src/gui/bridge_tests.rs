@@ -1,7 +1,8 @@
 //! Tests of [`super`] (`bridge.rs`), kept in their own file.
 
 use super::*;
-use crate::cutaway_geometry::tests::scene_with_cube_cut;
+use crate::cutting::cut_scene::tests::scene_with_cube_cut;
+use crate::cutting::scene_cuts::apply_all_cuts;
 use crate::scene::CutterViews;
 
 #[test]

@@ -15,7 +15,7 @@ use std::time::Instant;
 use glam::DVec2;
 
 use crate::compare::VariantMetrics;
-use crate::cutaway_geometry::{PreviewGeometry, preview_geometry};
+use crate::cutting::cut_scene::{PreviewGeometry, preview_geometry};
 use crate::metrics::MetricsOptions;
 use crate::render::{HeadlessRenderer, RenderPngOptions};
 use crate::scene::{Scene, SceneCutter};
@@ -366,16 +366,16 @@ fn camera_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, 
         let delta_px = DVec2::new(delta.x as f64 * ppp, delta.y as f64 * ppp);
         if ui.input(|i| i.modifiers.shift) {
             let size = DVec2::new(app.compare.tile[0] as f64, app.compare.tile[1] as f64);
-            super::camera_controls::pan(&mut app.scene.camera, delta_px, size);
+            crate::view::camera_controls::pan(&mut app.scene.camera, delta_px, size);
         } else {
-            super::camera_controls::orbit(&mut app.scene.camera, delta_px);
+            crate::view::camera_controls::orbit(&mut app.scene.camera, delta_px);
         }
     }
     if response.hovered() {
         let (notches, _) = super::viewport::wheel_notches(ui);
         if notches != 0.0 {
             let min = app.scene.bbox().diagonal().max(1e-6) * 1e-3;
-            super::camera_controls::zoom(&mut app.scene.camera, notches, min);
+            crate::view::camera_controls::zoom(&mut app.scene.camera, notches, min);
         }
     }
 }

@@ -2,13 +2,13 @@
 //! parts, the walls and the contour), Preview adds the removed-piece views (transparency,
 //! ribbons, slices), Edit shows the live cut under the cutters.
 //!
-//! The cut parts are the Preview computation's ([`crate::cutaway_geometry::PreviewGeometry`]);
+//! The cut parts are the Preview computation's ([`crate::cutting::cut_scene::PreviewGeometry`]);
 //! the outside-Preview picture is the same geometry without the removed-piece parts, derived once
 //! per computed preview and kept while the preview stays the same.
 
 use std::sync::{Arc, Weak};
 
-use crate::cutaway_geometry::{PartKind, PreviewGeometry};
+use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
 
 use super::app::{CutawayApp, Mode};
 
@@ -81,7 +81,7 @@ pub fn without_views(full: &PreviewGeometry) -> PreviewGeometry {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cutaway_geometry::PreviewPart;
+    use crate::cutting::cut_scene::PreviewPart;
 
     #[test]
     fn only_kept_parts_and_walls_stay() {

@@ -4,7 +4,8 @@
 //! (the cut shown while painting in Edit mode, see [`super::live_cut`]).
 
 use super::app::{Action, CutawayApp};
-use crate::scene::{CutKind, SubCutterView};
+use crate::scene::SubCutterView;
+use cutter::CutKind;
 
 /// Which tab is shown.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

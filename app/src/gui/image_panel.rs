@@ -297,9 +297,13 @@ mod tests {
             let app = h.state_mut();
             app.scene.cutters.push(crate::scene::SceneCutter {
                 target: 0,
-                kind: crate::scene::CutKind::Straight,
-                smooth: false,
-                planes: crate::cutaway_geometry::tests::box_cutter(0.4, 1.6, -1.0, 1.0, 0.4, 1.6),
+                cutter: cutter::Cutter {
+                    kind: cutter::CutKind::Straight,
+                    smooth: false,
+                    planes: crate::cutting::cut_scene::tests::box_cutter(
+                        0.4, 1.6, -1.0, 1.0, 0.4, 1.6,
+                    ),
+                },
                 views: Default::default(),
             });
             app.scene.camera = cutter::Camera {

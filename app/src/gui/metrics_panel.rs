@@ -21,7 +21,7 @@ use super::jobs::Job;
 /// What a measurement depends on; a new one starts when this changes.
 #[derive(Clone, Debug, PartialEq)]
 struct Request {
-    preview: super::bridge::PreviewKey,
+    preview: crate::cutting::scene_cuts::PreviewKey,
     focus: Option<String>,
     critical: Vec<String>,
     /// Eye and target, only when a focus is measured (exposure is seen from the camera).
@@ -34,7 +34,7 @@ impl Request {
     fn of(scene: &Scene, panel: &MetricsPanel) -> Request {
         let c = scene.camera;
         Request {
-            preview: super::bridge::PreviewKey::of(scene),
+            preview: crate::cutting::scene_cuts::PreviewKey::of(scene),
             focus: panel.focus.clone(),
             critical: panel.critical.clone(),
             camera: panel.focus.as_ref().map(|_| {

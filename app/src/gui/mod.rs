@@ -9,21 +9,26 @@
 //! The UI thread only draws and translates input. Loads, index builds, cuts, exports and native
 //! file dialogs run on worker threads ([`jobs`]) with a progress window and Cancel for anything
 //! longer than half a second, so a 2M-triangle model never freezes the window. While a cutter is
-//! painted in Edit mode, [`live_cut`] re-cuts it on its own worker (latest request wins) and the
-//! view shows the result under the translucent cutter.
+//! painted in Edit mode, [`live_cut`] has [`crate::cutting::live_cut`] re-cut it on its own worker
+//! (latest request wins) and the view shows the result under the translucent cutter. What is
+//! cut, picked and edited lives in [`crate::cutting`]; this module maps input to it and draws.
 
 use std::path::PathBuf;
 
 pub mod about;
+pub mod action;
 pub mod app;
 pub mod atlas_arrival;
+pub mod app_jobs;
 pub mod bridge;
-pub mod camera_controls;
 pub mod compare_view;
 pub mod cut_view;
 pub mod cutter_panel;
+pub mod dialogs;
 pub mod export_labels;
 pub mod file_browser;
+#[cfg(test)]
+mod first_press_tests;
 pub mod help;
 pub mod image_panel;
 pub mod jobs;

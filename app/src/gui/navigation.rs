@@ -12,7 +12,7 @@
 use glam::DVec2;
 
 use super::app::{Action, CutawayApp, Mode};
-use super::camera_controls;
+use crate::view::camera_controls;
 
 /// What the navigation drag in progress does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -26,8 +26,8 @@ pub struct RulerTool {
 /// where the view shows the cut), if any.
 pub fn surface_point(app: &mut CutawayApp, px: DVec2) -> Option<DVec3> {
     let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, px);
-    let current =
-        app.viewport.preview_key.as_ref() == Some(&super::bridge::PreviewKey::of(&app.scene));
+    let current = app.viewport.preview_key.as_ref()
+        == Some(&crate::cutting::scene_cuts::PreviewKey::of(&app.scene));
     let preview =
         (super::cut_view::shows_cut(app.mode) && current && !app.scene.cutters.is_empty())
             .then(|| app.viewport.preview.clone())

@@ -12,8 +12,8 @@ use std::ops::{Deref, DerefMut};
 use glam::DVec2;
 
 use super::app::CutawayApp;
-use super::camera_controls;
 use crate::scalpel_session::{Released, ScalpelSession};
+use crate::view::camera_controls;
 use cutter::scalpel::Tool;
 
 pub use crate::scalpel_session::ScalpelSettings;

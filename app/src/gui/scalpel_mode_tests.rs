@@ -35,7 +35,7 @@ fn the_window_saves_the_mesh_left_by_remove_all_cut_geometry() {
     let mut h = crate::gui::test_window::open(start, 1024.0, 700.0);
     assert_eq!(h.state().scene.models.len(), 1);
     assert_eq!(h.state().scene.models[0].origin, MeshOrigin::Region);
-    let cutter = crate::cutaway_geometry::tests::scene_with_cube_cut(Default::default())
+    let cutter = crate::cutting::cut_scene::tests::scene_with_cube_cut(Default::default())
         .cutters
         .remove(0);
     h.state_mut().scene.cutters.push(cutter);
@@ -217,26 +217,29 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
         h.state().status.message
     );
     // A cutter on the model: a scalpel stroke and its undo must never lose it.
-    let cutter = crate::scene::SceneCutter {
-        target: 0,
-        kind: crate::scene::CutKind::Curving,
-        smooth: false,
-        planes: vec![
-            [
-                DVec3::new(0.0, -11.0, 1.0),
-                DVec3::new(0.0, -9.0, 1.0),
-                DVec3::new(0.0, -9.0, -1.0),
-                DVec3::new(0.0, -11.0, -1.0),
-            ],
-            [
-                DVec3::new(1.0, -11.0, 1.0),
-                DVec3::new(1.0, -9.0, 1.0),
-                DVec3::new(1.0, -9.0, -1.0),
-                DVec3::new(1.0, -11.0, -1.0),
-            ],
-        ],
-        views: Default::default(),
-    };
+    let cutter = crate::scene::SceneCutter::new(
+        0,
+        cutter::Cutter {
+            kind: cutter::CutKind::Curving,
+            smooth: false,
+            planes: [
+                [
+                    DVec3::new(0.0, -11.0, 1.0),
+                    DVec3::new(0.0, -9.0, 1.0),
+                    DVec3::new(0.0, -9.0, -1.0),
+                    DVec3::new(0.0, -11.0, -1.0),
+                ],
+                [
+                    DVec3::new(1.0, -11.0, 1.0),
+                    DVec3::new(1.0, -9.0, 1.0),
+                    DVec3::new(1.0, -9.0, -1.0),
+                    DVec3::new(1.0, -11.0, -1.0),
+                ],
+            ]
+            .map(cutter::BoundedPlane::from_corners)
+            .to_vec(),
+        },
+    );
     h.state_mut().scene.cutters.push(cutter.clone());
 
     h.query_all_by_label("Scalpel")
@@ -329,7 +332,7 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
 #[cfg(test)]
 mod view {
     use super::*;
-    use crate::gui::live_cut::view::differing_pixels;
+    use crate::cutting::live_cut::view::differing_pixels;
     use crate::render::delta::MeshDelta;
     use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
 
@@ -522,7 +525,7 @@ mod timings {
             .time_prepare(&frame_of(&scene, None))
             .expect("frame");
         let f = |v: &[f64]| {
-            let (med, max) = crate::gui::live_cut::timings::median_max(v);
+            let (med, max) = crate::cutting::live_cut::timings::median_max(v);
             format!("median {med:.2} (max {max:.2})")
         };
         println!(

@@ -15,8 +15,9 @@ use glam::{DVec2, DVec3};
 use cutter::Camera;
 use cutter::events::{EditorEvent, Key};
 
-use super::app::{Action, CutawayApp, CutterInit, Mode};
-use super::camera_controls;
+use super::app::{Action, CutawayApp, Mode};
+use crate::cutting::editing::CutterInit;
+use crate::view::camera_controls;
 
 /// What the primary-button drag in progress does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -85,14 +86,14 @@ pub struct ViewportState {
     last_pointer: Option<DVec2>,
     pub recording: Option<Recording>,
     /// The cutter editor and its spatial-index cache.
-    pub editor: super::bridge::EditorSlot,
+    pub editor: crate::cutting::editing::EditorSlot,
     /// Scalpel mode's blade settings, session and stroke.
     pub scalpel: super::scalpel_mode::ScalpelSlot,
     /// Cut parts shown in Preview, with the scene state they were computed for.
-    pub preview: Option<Arc<crate::cutaway_geometry::PreviewGeometry>>,
-    pub preview_key: Option<super::bridge::PreviewKey>,
+    pub preview: Option<Arc<crate::cutting::cut_scene::PreviewGeometry>>,
+    pub preview_key: Option<crate::cutting::scene_cuts::PreviewKey>,
     /// The live re-cut shown in Edit mode while the cutter is painted.
-    pub live: super::live_cut::LiveCut,
+    pub live: crate::cutting::live_cut::LiveCut,
     /// The renderer is installed in egui's callback resources.
     pub gpu: bool,
     /// The navigation drag (right or middle button, Alt+drag in Edit) in progress.
@@ -100,7 +101,7 @@ pub struct ViewportState {
     /// View → Orientation Marker (a window overlay: exports do not draw it).
     pub show_marker: bool,
     /// The models' ray-pick trees (double-click focus, the first press of a cutter).
-    pub picks: crate::scene_pick::ScenePicks,
+    pub picks: crate::cutting::pick::ScenePicks,
 }
 
 impl ViewportState {
@@ -112,7 +113,7 @@ impl ViewportState {
             rect: egui::Rect::NOTHING,
             last_pointer: None,
             recording: None,
-            editor: super::bridge::EditorSlot::default(),
+            editor: crate::cutting::editing::EditorSlot::default(),
             scalpel: Default::default(),
             preview: None,
             preview_key: None,
@@ -135,7 +136,7 @@ impl ViewportState {
     }
 
     pub fn reset_editor(&mut self) {
-        self.editor = super::bridge::EditorSlot::default();
+        self.editor = crate::cutting::editing::EditorSlot::default();
         self.scalpel.reset();
         self.drag = None;
         self.preview = None;
@@ -179,7 +180,7 @@ impl Recording {
             viewport: self.viewport,
             camera: self.camera,
             cut: crate::gesture::CutSettings {
-                kind: super::bridge::editor_kind(self.init.kind),
+                kind: self.init.kind,
                 spacing: self.init.spacing,
                 smooth: self.init.smooth,
             },

@@ -10,7 +10,7 @@
 
 use glam::DVec3;
 
-use crate::cutaway_geometry::{PartKind, PreviewGeometry};
+use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
 use crate::scene::Scene;
 
 /// True when `ray`'s first hit in the cut scene (`geometry`, the preview of `scene`) is a surface
@@ -142,9 +142,10 @@ mod tests {
     use glam::DVec3;
 
     use super::*;
-    use crate::cutaway_geometry::tests::{box_cutter, cube};
+    use crate::cutting::cut_scene::tests::{box_cutter, cube};
     use crate::intensity::{ImageLayer, IntensityImage, WallDisplay};
-    use crate::scene::{CutKind, CutterViews, SceneCutter, SceneModel};
+    use crate::scene::{CutterViews, SceneCutter, SceneModel};
+    use cutter::CutKind;
 
     /// The cube [0, 10]³ cut by a box x, z in 2..8 from the front to y = 5, with an image.
     fn scene() -> Scene {
@@ -157,9 +158,11 @@ mod tests {
         ));
         scene.cutters.push(SceneCutter {
             target: 0,
-            kind: CutKind::Straight,
-            smooth: false,
-            planes: box_cutter(2.0, 8.0, -5.0, 5.0, 2.0, 8.0),
+            cutter: cutter::Cutter {
+                kind: CutKind::Straight,
+                smooth: false,
+                planes: box_cutter(2.0, 8.0, -5.0, 5.0, 2.0, 8.0),
+            },
             views: CutterViews::default(),
         });
         let image = IntensityImage::from_fn([11, 11, 11], glam::DAffine3::IDENTITY, |p| p.x as f32);
@@ -177,7 +180,7 @@ mod tests {
     #[test]
     fn only_rays_that_first_meet_an_image_wall_count() {
         let mut scene = scene();
-        let geometry = crate::cutaway_geometry::preview_geometry(&scene);
+        let geometry = crate::cutting::cut_scene::preview_geometry(&scene);
         assert!(geometry.notes.is_empty(), "{:?}", geometry.notes);
         // Through the opening onto the back wall at y = 5.
         assert!(image_wall_under(&scene, Some(&geometry), &ray_at(5.0, 5.0)));

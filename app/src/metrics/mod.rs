@@ -18,7 +18,7 @@ pub mod removal;
 
 use csg::Mesh;
 
-use crate::cutaway_geometry::{PartKind, preview_geometry};
+use crate::cutting::cut_scene::{PartKind, preview_geometry};
 use crate::scene::{ModelStyle, Scene};
 use crate::view::LengthUnit;
 

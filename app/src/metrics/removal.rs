@@ -27,7 +27,7 @@ use std::sync::Arc;
 use csg::Mesh;
 use glam::DVec3;
 
-use crate::cutaway_geometry::{CutCache, SURFACE, cut_in_turn};
+use crate::cutting::cut_scene::{CutCache, SURFACE, cut_in_turn};
 use crate::scene::{Scene, SceneCutter};
 
 /// The measures of one cutter.
@@ -64,7 +64,7 @@ pub struct ModelCut {
 impl ModelCut {
     /// All walls left by the cuts (every triangle not of the model's own surface).
     pub fn walls(&self) -> Mesh {
-        crate::cutaway_geometry::select(&self.closed, |t| self.tags[t] != SURFACE)
+        crate::cutting::cut_scene::select(&self.closed, |t| self.tags[t] != SURFACE)
     }
 }
 
@@ -135,11 +135,10 @@ pub fn cut_models(scene: &Scene) -> anyhow::Result<Vec<ModelCut>> {
 /// model surface it took) to the deepest point of `removed` and `walls` (0 when it took none).
 fn cut_depth(cutter: &SceneCutter, removed: &Mesh, walls: impl Iterator<Item = DVec3>) -> f64 {
     let direction = cutter
+        .cutter
         .planes
         .iter()
-        .map(|[front_top, back_top, back_bottom, front_bottom]| {
-            (*back_top - *front_top) + (*back_bottom - *front_bottom)
-        })
+        .map(|p| (p.back_top - p.front_top) + (p.back_bottom - p.front_bottom))
         .sum::<DVec3>()
         .try_normalize();
     let Some(direction) = direction else {

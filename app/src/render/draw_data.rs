@@ -72,7 +72,7 @@ pub fn polyline_segments<'a>(lines: impl IntoIterator<Item = &'a [DVec3]>) -> Ve
 
 /// The four outline edges of a bounded cutting plane, plus the edges joining consecutive planes
 /// (front-top, back-top, back-bottom, front-bottom rails).
-pub fn cutter_outline_segments(planes: &[crate::scene::CutterPlane]) -> Vec<Segment> {
+pub fn cutter_outline_segments(planes: &[[glam::DVec3; 4]]) -> Vec<Segment> {
     let mut out = Vec::new();
     for p in planes {
         for k in 0..4 {

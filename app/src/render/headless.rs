@@ -9,7 +9,7 @@ use std::sync::Arc;
 use anyhow::Context as _;
 
 use super::{FrameInputs, OutputTarget, Renderer, Tile, ViewMode};
-use crate::cutaway_geometry::preview_geometry;
+use crate::cutting::cut_scene::preview_geometry;
 use crate::scene::Scene;
 
 /// Largest tile rendered at once (output pixels per side); bigger images are tiled.
@@ -321,7 +321,7 @@ pub fn render_with_preview(
     renderer: &mut HeadlessRenderer,
     scene: &Scene,
     options: &RenderPngOptions,
-    preview: Option<Arc<crate::cutaway_geometry::PreviewGeometry>>,
+    preview: Option<Arc<crate::cutting::cut_scene::PreviewGeometry>>,
 ) -> anyhow::Result<image::RgbaImage> {
     let mut scene = scene.clone();
     if options.transparent_background {
@@ -341,11 +341,7 @@ pub fn render_with_preview(
             .scene
             .cutters
             .iter()
-            .map(|c| super::CutterOverlay {
-                planes: c.planes.clone(),
-                surface: Arc::new(crate::cutaway_geometry::cutter_mesh(c)),
-                ..Default::default()
-            })
+            .map(crate::cutting::overlay::cutter_overlay)
             .collect();
     }
     renderer.render(&frame)

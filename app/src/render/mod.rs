@@ -36,7 +36,7 @@
 //! [`delta::MeshDelta`] in [`FrameInputs::deltas`] instead: the uploaded mesh stays, some of its
 //! faces are hidden in place and a small patch is drawn with it, so a change uploads only what
 //! changed ([`Renderer::last_frame_uploads`] counts it). Preview
-//! geometry (the cut parts) is computed on the CPU by [`crate::cutaway_geometry::preview_geometry`]
+//! geometry (the cut parts) is computed on the CPU by [`crate::cutting::cut_scene::preview_geometry`]
 //! — the GUI should do that on a worker thread and pass the `Arc` result every frame.
 //!
 //! ## What is drawn (thesis 3.4)
@@ -60,8 +60,8 @@ use std::sync::Arc;
 
 use cutter::Camera;
 
-use crate::cutaway_geometry::PreviewGeometry;
-use crate::scene::{CutterPlane, Scene};
+use crate::cutting::cut_scene::PreviewGeometry;
+use crate::scene::Scene;
 
 pub mod delta;
 pub mod device_memory;
@@ -93,10 +93,11 @@ pub enum ViewMode {
 /// A cutter as the editor shows it in Edit mode.
 #[derive(Clone, Debug, Default)]
 pub struct CutterOverlay {
-    /// The bounded cutting planes (front-top, back-top, back-bottom, front-bottom).
-    pub planes: Vec<CutterPlane>,
+    /// The corners of each bounded cutting plane (front-top, back-top, back-bottom,
+    /// front-bottom), for the outline and the highlighted plane.
+    pub planes: Vec<[glam::DVec3; 4]>,
     /// The closed cutter surface, exactly the one the boolean cuts with
-    /// ([`crate::cutaway_geometry::cutter_mesh`], smooth cutters subdivided).
+    /// ([`crate::cutting::cut_scene::cutter_mesh`], smooth cutters subdivided).
     pub surface: Arc<csg::Mesh>,
     /// Index into `planes` of the plane under the mouse or selected; drawn in orange.
     pub highlighted_plane: Option<usize>,

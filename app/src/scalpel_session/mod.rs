@@ -167,7 +167,7 @@ pub struct ScalpelSession {
     /// mesh invalidates its entry). Used when the editor has none cached for the mesh.
     layer_indexes: Vec<(std::sync::Weak<Mesh>, Arc<SpatialIndex>)>,
     /// The models' ray-pick trees: which model a press starts on.
-    picks: crate::scene_pick::ScenePicks,
+    picks: crate::cutting::pick::ScenePicks,
 }
 
 impl Default for ScalpelSession {

@@ -2,8 +2,10 @@
 //! labelled exports agree: the patient's axes in world space and the radiological view presets
 //! ([`orientation`]), the orientation marker's axes as a camera projects them ([`marker`]), the
 //! length unit of the data and the defaults that follow from the target's size ([`units`]), and
-//! framing (zoom to fit, zoom to a selection: [`fit`]).
+//! framing (zoom to fit, zoom to a selection: [`fit`]), and the camera moves the pointer makes
+//! (orbit, pan, zoom, centring: [`camera_controls`]).
 
+pub mod camera_controls;
 pub mod fit;
 pub mod marker;
 pub mod orientation;

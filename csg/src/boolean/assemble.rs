@@ -11,7 +11,9 @@ use super::inputs::{CutInputs, PARALLEL_MIN};
 use crate::contour;
 use crate::exact::{self, HPoint, LPoint};
 use crate::intersect::{FxMap, PointKey};
-use crate::output::{CutOptions, CutStats, PartBuilder, Provenance, Removed};
+use crate::output::{
+    CutOptions, CutStats, PartBuilder, PositionBits, Provenance, Removed, position_bits,
+};
 use crate::phases::Phases;
 use crate::split::{OUT, Vx};
 
@@ -237,17 +239,6 @@ pub(crate) fn assemble(
         stats,
         phases: sub,
     })
-}
-
-/// A position's bits (`-0.0` as `0.0`), as a key for "the same rounded position". A tuple, not
-/// an array: arrays hash as one byte slice, which the integer hasher digests byte by byte.
-pub(crate) type PositionBits = (u64, u64, u64);
-
-/// See [`PositionBits`].
-#[inline]
-pub(crate) fn position_bits(p: DVec3) -> PositionBits {
-    let b = p.to_array().map(|c| (c + 0.0).to_bits());
-    (b[0], b[1], b[2])
 }
 
 /// False when the unperturbed limit of `h` is certainly not a lattice point (then

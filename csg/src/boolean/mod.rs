@@ -103,7 +103,6 @@ mod inputs;
 mod prepare;
 mod vertex_solids;
 
-pub(crate) use assemble::{PositionBits, position_bits};
 pub use error::CutError;
 pub(crate) use prepare::prepare_cutter;
 pub use prepare::{check_cutter, cutter_self_intersections};
@@ -243,6 +242,7 @@ pub(crate) fn run(
 mod tests {
     use super::inputs::PARALLEL_MIN;
     use super::*;
+    use crate::output::{PositionBits, position_bits};
     use crate::testkit;
     use glam::DVec3;
 

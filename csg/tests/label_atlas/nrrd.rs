@@ -52,7 +52,10 @@ pub fn read(path: &std::path::Path) -> Result<Volume, String> {
     let body = &bytes[end + 2..];
     let raw = match field("encoding").ok_or("no encoding")? {
         "gzip" | "gz" => {
-            let mut out = Vec::new();
+            // Sized from the header (bounded: the check below refuses any other length), so
+            // the decoder writes once instead of growing and copying the buffer.
+            let expected = dims.iter().product::<usize>().saturating_mul(width);
+            let mut out = Vec::with_capacity(expected.min(1 << 31));
             flate2::read::MultiGzDecoder::new(body)
                 .read_to_end(&mut out)
                 .map_err(|e| e.to_string())?;

@@ -12,6 +12,10 @@ use glam::DVec3;
 
 use super::dyn_mesh::{DynMesh, is_real};
 
+/// At most this many triangles examined when a cut restarts inside a stroke (see
+/// `Scalpel::start_cut`), or when a stroke starts near a known vertex ([`super::locate`]).
+pub const RESTART_SEARCH: usize = 4096;
+
 /// Where a cut point lies on the current mesh.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum CutPoint {

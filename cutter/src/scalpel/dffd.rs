@@ -2,10 +2,22 @@
 //!
 //! The DFFD paper inserts a C⁻¹ knot along the incision so that a smooth displacement field
 //! jumps across it. Here the field is evaluated directly at the vertices: a vertex at distance
-//! `dist < r` from the cut (nearest point `c` on a cut segment, lateral direction
-//! `l = n × tangent`) moves by `σ · (w / 2) · ramp · taper · φ(dist / r) · l`, where
-//! - `σ = ±1` is the side of the cut the vertex is on (the discontinuity; a lip vertex takes the
-//!   side of its own triangles, so the two lips of one slit move apart);
+//! `dist < r` from the cut (nearest point `c` on a cut segment) moves by
+//! `σ · (w / 2) · ramp · taper · φ(dist / r) · l`, where
+//! - `l = n × t` is the lateral direction of the *path*, not of the one mesh edge nearest the
+//!   vertex: the cut runs along mesh edges that zigzag around the drawn path (snapping), so the
+//!   tangent `t` and normal `n` are averaged over the cut segments within about one width on
+//!   either side ([`frames`]). With per-edge directions neighbouring vertices moved in directions
+//!   up to the zigzag's angle apart, and the lips looked torn;
+//! - `σ = ±1` is the side of the cut the vertex is on (the discontinuity). It is decided by the
+//!   mesh, not by coordinates: each lip copy knows its side from the orientation of its own
+//!   surface triangles (the surface lies left of the lip it walks along, and left is `+l` when
+//!   the lip runs along `t`), and every other vertex takes the side of the lip it is reached from
+//!   over surface triangles (a breadth-first walk that never crosses the cut, since the lips are
+//!   split and groove walls are not walked). A vertex's own position says nothing reliable: next
+//!   to a zigzagging lip it can lie across the nearest edge's line, and a groove lip's fan holds
+//!   long wall triangles reaching to a floor vertex far along the path, which used to put both
+//!   lips of a groove on one side, so they moved together and the groove did not open;
 //! - `ramp = clamp((now - t_cut) / window, 0, 1)`: the trailing time window over which a freshly
 //!   cut segment opens to its full width;
 //! - `taper` goes from 0 at a crack tip to 1 one width away, so the lips meet at the tips;
@@ -19,6 +31,7 @@ use std::collections::{HashMap, HashSet, VecDeque};
 
 use glam::DVec3;
 
+use super::dyn_mesh::{DynMesh, prev};
 use super::step::{CutSegment, Scalpel};
 
 /// How the incision opens.
@@ -64,6 +77,7 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
     }
     let r = SUPPORT * w;
     let nv = mesh.vertex_count() as u32;
+    let frames = frames(segments, w);
     // Segment grid with cell size r.
     let cell = |p: DVec3| {
         let c = (p / r).floor();
@@ -93,9 +107,10 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
         }
     }
     let fixed: HashSet<u32> = scalpel.fixed.iter().copied().collect();
-    let nearest = |p: DVec3| -> Option<(f64, DVec3, &CutSegment)> {
+    // Nearest point on the cut: (distance, point, segment index).
+    let nearest = |p: DVec3| -> Option<(f64, DVec3, usize)> {
         let c0 = cell(p);
-        let mut best: Option<(f64, DVec3, &CutSegment)> = None;
+        let mut best: Option<(f64, DVec3, usize)> = None;
         for x in c0.0 - 1..=c0.0 + 1 {
             for y in c0.1 - 1..=c0.1 + 1 {
                 for z in c0.2 - 1..=c0.2 + 1 {
@@ -111,7 +126,7 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
                         let c = s.pa + ab * u;
                         let d = c.distance(p);
                         if best.is_none_or(|b| d < b.0) {
-                            best = Some((d, c, s));
+                            best = Some((d, c, i));
                         }
                     }
                 }
@@ -119,82 +134,151 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
         }
         best
     };
-    // Breadth-first over vertices from the cut's own vertices, within the support.
-    let mut seen: HashSet<u32> = HashSet::new();
+    // Breadth-first over surface vertices from the lip copies (seeds with their side), within
+    // the support; every other vertex takes the side of the vertex it was reached from.
+    let mut side: HashMap<u32, f64> = HashMap::new();
     let mut queue: VecDeque<u32> = VecDeque::new();
+    let mut fan = Vec::new();
     for s in segments {
         for v in [s.a, s.b] {
-            if v < nv {
-                for c in std::iter::once(v).chain(mesh.copies(v)) {
-                    if seen.insert(c) {
-                        queue.push_back(c);
-                    }
+            if v >= nv || mesh.copies(v).is_empty() {
+                continue;
+            }
+            for c in std::iter::once(v).chain(mesh.copies(v)) {
+                if side.contains_key(&c) {
+                    continue;
+                }
+                let Some((_, _, i)) = nearest(mesh.pos(c)) else {
+                    continue;
+                };
+                let sigma = lip_side(mesh, c, &frames[i], &mut fan);
+                if sigma != 0.0 {
+                    side.insert(c, sigma);
+                    queue.push_back(c);
                 }
             }
         }
     }
-    let mut fan = Vec::new();
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
-        let Some((dist, c, s)) = nearest(p) else {
+        let Some((dist, c, i)) = nearest(p) else {
             continue;
         };
         if dist >= r {
             continue;
         }
-        mesh.fan_into(v, &mut fan);
-        let neighbours: Vec<u32> = fan
-            .iter()
-            .flat_map(|&h| [mesh.dest(h), mesh.origin(super::dyn_mesh::prev(h))])
-            .collect();
-        if !fixed.contains(&v) {
-            let tangent = s.pb - s.pa;
-            let lateral = s.normal.cross(tangent).normalize_or_zero();
-            let mut off = (p - c).dot(lateral);
-            if off.abs() <= 1e-9 * r {
-                // On the cut: the side of the vertex's own triangles.
-                let centroid: DVec3 = fan
-                    .iter()
-                    .map(|&h| {
-                        let [a, b, cc] = mesh.triangles()[(h / 3) as usize].map(|x| mesh.pos(x));
-                        (a + b + cc) / 3.0
-                    })
-                    .sum::<DVec3>()
-                    / (fan.len().max(1) as f64);
-                off = (centroid - c).dot(lateral);
-            }
-            let sigma = if off > 0.0 {
-                1.0
-            } else if off < 0.0 {
-                -1.0
-            } else {
-                0.0
-            };
-            let ramp = if options.window > 0.0 {
-                ((now - s.time) / options.window).clamp(0.0, 1.0)
-            } else {
-                1.0
-            };
-            let tip_dist = tips
-                .iter()
-                .map(|t| t.distance(c))
-                .fold(f64::INFINITY, f64::min);
-            let x = (tip_dist / w).min(1.0);
-            let taper = x * x * (3.0 - 2.0 * x);
-            let falloff = {
-                let s2 = (dist / r) * (dist / r);
-                (1.0 - s2) * (1.0 - s2)
-            };
-            let amount = sigma * 0.5 * w * ramp * taper * falloff;
-            if amount != 0.0 {
-                out.push((v, p + lateral * amount));
+        let sigma = side[&v];
+        mesh.surface_fan_into(v, &mut fan);
+        for &h in &fan {
+            for n in [mesh.dest(h), mesh.origin(prev(h))] {
+                if !mesh.is_floor(n) && !side.contains_key(&n) {
+                    side.insert(n, sigma);
+                    queue.push_back(n);
+                }
             }
         }
-        for n in neighbours {
-            if seen.insert(n) {
-                queue.push_back(n);
-            }
+        if fixed.contains(&v) {
+            continue;
+        }
+        let s = &segments[i];
+        let lateral = frames[i].lateral;
+        let ramp = if options.window > 0.0 {
+            ((now - s.time) / options.window).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        let tip_dist = tips
+            .iter()
+            .map(|t| t.distance(c))
+            .fold(f64::INFINITY, f64::min);
+        let x = (tip_dist / w).min(1.0);
+        let taper = x * x * (3.0 - 2.0 * x);
+        let falloff = {
+            let s2 = (dist / r) * (dist / r);
+            (1.0 - s2) * (1.0 - s2)
+        };
+        let amount = sigma * 0.5 * w * ramp * taper * falloff;
+        if amount != 0.0 {
+            out.push((v, p + lateral * amount));
         }
     }
     out
+}
+
+/// The path's direction at a cut segment, smoothed over the zigzag of the mesh edges it runs
+/// along (see the module doc).
+#[derive(Clone, Copy, Debug)]
+pub struct Frame {
+    /// Unit tangent of the path (the direction it was cut in).
+    pub tangent: DVec3,
+    /// Unit `normal × tangent`: the side a lip copy with `σ = +1` moves to.
+    pub lateral: DVec3,
+}
+
+/// Segments on either side of a segment averaged into its [`Frame`], at most.
+const SMOOTH_SEGMENTS: usize = 24;
+
+/// One [`Frame`] per segment: the sum of the segment vectors and of the normals of the connected
+/// segments (each one's end is the next one's start) within `width` (and at least two segments)
+/// of it on either side, normalised.
+pub fn frames(segments: &[CutSegment], width: f64) -> Vec<Frame> {
+    let linked = |j: usize| segments[j].pb == segments[j + 1].pa;
+    (0..segments.len())
+        .map(|i| {
+            let s = &segments[i];
+            let mut tangent = s.pb - s.pa;
+            let mut normal = s.normal;
+            let reach = width.max(2.0 * tangent.length());
+            let (mut back, mut len) = (i, 0.0);
+            while back > 0 && i - back < SMOOTH_SEGMENTS && linked(back - 1) {
+                back -= 1;
+                let t = segments[back].pb - segments[back].pa;
+                len += t.length();
+                tangent += t;
+                normal += segments[back].normal;
+                if len >= reach && i - back >= 2 {
+                    break;
+                }
+            }
+            let (mut ahead, mut len) = (i, 0.0);
+            while ahead + 1 < segments.len() && ahead - i < SMOOTH_SEGMENTS && linked(ahead) {
+                ahead += 1;
+                let t = segments[ahead].pb - segments[ahead].pa;
+                len += t.length();
+                tangent += t;
+                normal += segments[ahead].normal;
+                if len >= reach && ahead - i >= 2 {
+                    break;
+                }
+            }
+            let tangent = tangent.normalize_or_zero();
+            let normal = normal.normalize_or_zero();
+            let lateral = normal.cross(tangent).normalize_or_zero();
+            Frame { tangent, lateral }
+        })
+        .collect()
+}
+
+/// The side (`±1` along the frame's lateral) lip copy `v` opens to, from its own surface
+/// triangles: they lie left of the lip `y → v → x` (the first and last edges of its surface
+/// fan), so the side is `+1` when that lip runs along the path. `0` when `v` is no lip (a
+/// closed surface fan) or the lip runs across the path.
+fn lip_side(mesh: &DynMesh, v: u32, frame: &Frame, fan: &mut Vec<u32>) -> f64 {
+    let closed = mesh.fan_into(v, fan);
+    if closed && !fan.iter().any(|&h| mesh.is_wall(h / 3)) {
+        return 0.0;
+    }
+    if !mesh.surface_fan_into(v, fan) {
+        return 0.0;
+    }
+    let (Some(&first), Some(&last)) = (fan.first(), fan.last()) else {
+        return 0.0;
+    };
+    let along = mesh.pos(mesh.dest(first)) - mesh.pos(mesh.origin(prev(last)));
+    let d = along.dot(frame.tangent);
+    if d.abs() <= 1e-6 * along.length() {
+        0.0
+    } else {
+        d.signum()
+    }
 }

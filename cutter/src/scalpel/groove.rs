@@ -62,6 +62,9 @@ pub struct Groove {
     pub attached: Vec<u8>,
     /// Segments whose floor triangles sit at their first path vertex (the others' at their last).
     pub floor_at_start: Vec<usize>,
+    /// The path points whose bottom reused the newest floor vertex since it was made (the floor
+    /// runs straight under them, see [`FLOOR_SWAY`]).
+    pub floor_run: Vec<DVec3>,
 }
 
 /// A new floor vertex once the path is farther than this many blade depths (or segment
@@ -82,12 +85,44 @@ pub const FLOOR_STRETCH: f64 = 3.0;
 /// See [`FLOOR_STRETCH`]. (The turn is measured from the one segment where the floor vertex was
 /// made: zigzags of the path across the mesh make it noisy, so the limit is generous.)
 pub const FLOOR_FORCE_TURN_DEG: f64 = 85.0;
+/// A new floor vertex is due once a path point above the current stretch of floor is farther
+/// than this many blade depths (or twice the segment length, when longer: the lips zigzag
+/// around the drawn path by up to an edge snap) from the straight line the floor takes (from
+/// where it was made to the path vertex now). A path curving along the surface otherwise leaves
+/// the straight floor off to one side of it: under one lip, so that when the incision opens one
+/// wall stands vertical or overhangs (hidden) and the other lies flat. Only a due change: it
+/// waits for room like the others and never goes over the element budget.
+pub const FLOOR_SWAY: f64 = 0.25;
 
 /// Whether a path vertex at `p` (the one before at `prev`) is more than `k` times
-/// [`FLOOR_REACH`] (never more than [`FLOOR_MAX_SPAN`] depths) from `top`, where the current floor vertex was made going `dir`, or turned
-/// more than [`FLOOR_TURN_DEG`] from `dir` (for `k > 1`, [`FLOOR_FORCE_TURN_DEG`]).
-fn floor_far(depth: f64, top: DVec3, dir: DVec3, p: DVec3, prev: DVec3, k: f64) -> bool {
+/// [`FLOOR_REACH`] (never more than [`FLOOR_MAX_SPAN`] depths) from `top`, where the current
+/// floor vertex was made going `dir`, or turned more than [`FLOOR_TURN_DEG`] from `dir` (for
+/// `k > 1`, [`FLOOR_FORCE_TURN_DEG`]), or (for `k ≤ 1`) a point of `run` (the path above the
+/// current floor) sways more than [`FLOOR_SWAY`] from the line `top → p`.
+fn floor_far(
+    depth: f64,
+    (top, dir): (DVec3, DVec3),
+    run: &[DVec3],
+    p: DVec3,
+    prev: DVec3,
+    k: f64,
+) -> bool {
     let d = p - top;
+    let l2 = d.length_squared();
+    // The lips zigzag around the drawn path by up to a snap of an edge: not a sway.
+    let sway_limit = FLOOR_SWAY * depth.max(2.0 * p.distance(prev));
+    let sway = k <= 1.0
+        && run.iter().any(|&q| {
+            let u = if l2 > 0.0 {
+                ((q - top).dot(d) / l2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            q.distance(top + d * u) > sway_limit
+        });
+    if sway {
+        return true;
+    }
     let reach = FLOOR_REACH * depth.max(p.distance(prev));
     let l = d.length() * dir.length();
     let turn = if k > 1.0 {
@@ -114,6 +149,7 @@ pub struct GrooveBackup {
     split_tail: Vec<u8>,
     attached_tail: Vec<u8>,
     floor_at_start: Vec<usize>,
+    floor_run: Vec<DVec3>,
 }
 
 impl Groove {
@@ -131,6 +167,7 @@ impl Groove {
             split: vec![start_split],
             attached: vec![0],
             floor_at_start: Vec::new(),
+            floor_run: Vec::new(),
         }
     }
 
@@ -218,9 +255,10 @@ impl Groove {
         if self.owns_floor(index)
             && let Some((top, dir)) = self.floor_top
         {
-            let far = |k: f64| floor_far(self.depth, top, dir, p, prev, k);
+            let far = |k: f64| floor_far(self.depth, (top, dir), &self.floor_run, p, prev, k);
             if !far(1.0) {
                 self.bottoms[index] = self.bottoms[index - 1];
+                self.floor_run.push(p);
                 return;
             }
             if self.load(index - 1) <= 1 && self.load(index) <= 1 {
@@ -232,6 +270,7 @@ impl Groove {
                 // Waiting; past the stretch only while the next path vertex (known) is a vertex
                 // of the mesh, where the floor can change with room.
                 self.bottoms[index] = self.bottoms[index - 1];
+                self.floor_run.push(p);
                 return;
             } else {
                 // Over the budget rather than a wall too long and thin.
@@ -242,6 +281,7 @@ impl Groove {
         self.bottoms[index] = b;
         self.bottom_vertices.push(b);
         self.floor_top = Some((p, p - prev));
+        self.floor_run.clear();
     }
 
     /// Whether the bottom of path vertex `index` would continue this groove's own floor (not a
@@ -256,7 +296,7 @@ impl Groove {
         self.owns_floor(index)
             && self
                 .floor_top
-                .is_some_and(|(top, dir)| floor_far(self.depth, top, dir, p, prev, 1.0))
+                .is_some_and(|top| floor_far(self.depth, top, &self.floor_run, p, prev, 1.0))
     }
 
     /// What the temporary tip may change, to restore it without copying the whole groove
@@ -286,6 +326,7 @@ impl Groove {
                 .map(<[u8]>::to_vec)
                 .unwrap_or_default(),
             floor_at_start: self.floor_at_start.clone(),
+            floor_run: self.floor_run.clone(),
         }
     }
 
@@ -305,6 +346,7 @@ impl Groove {
         self.attached.truncate(keep);
         self.attached.extend_from_slice(&backup.attached_tail);
         self.floor_at_start = backup.floor_at_start;
+        self.floor_run = backup.floor_run;
     }
 
     /// Marks path vertex `index` (vertex `v`) as a crack tip: its own bottom.

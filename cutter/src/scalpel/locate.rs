@@ -11,7 +11,7 @@
 //! - a BVH ([`csg::SpatialIndex`]) over the mesh as it was given. Cutting never moves the rest
 //!   pose of the surface and keeps every input vertex, so the input triangle nearest a sample
 //!   names a vertex next to the current triangles under it; a search bounded by
-//!   [`super::step::RESTART_SEARCH`] triangles outward from that vertex
+//!   [`super::cut_point::RESTART_SEARCH`] triangles outward from that vertex
 //!   ([`super::cut_point::closest_face_near`]) finds them. The same holds for the blade's ray;
 //! - the connected component of each input triangle and whether it was closed. A stroke that
 //!   leaves a boundary edge on a component marks it open ([`super::Scalpel::end_stroke`]; undone
@@ -106,7 +106,7 @@ impl Locator {
         let mut best: Option<(u32, DVec3, f64)> = None;
         for v in self.corners_by_weight(cp.face, cp.bary) {
             if let Some(found) =
-                super::cut_point::closest_face_near(mesh, v, q, super::step::RESTART_SEARCH)
+                super::cut_point::closest_face_near(mesh, v, q, super::cut_point::RESTART_SEARCH)
                 && best.is_none_or(|b| found.2 < b.2)
             {
                 best = Some(found);
@@ -144,11 +144,16 @@ impl Locator {
         }
         let s = hit.t + eps;
         for w in self.corners_by_weight(hit.face, hit.bary) {
-            if let Some(found) =
-                super::through::ray_hit_near(mesh, w, origin, dir, s, super::step::RESTART_SEARCH)
-                && !mesh.triangles()[found.0 as usize]
-                    .iter()
-                    .any(|&x| mesh.same_point(x, v))
+            if let Some(found) = super::through::ray_hit_near(
+                mesh,
+                w,
+                origin,
+                dir,
+                s,
+                super::cut_point::RESTART_SEARCH,
+            ) && !mesh.triangles()[found.0 as usize]
+                .iter()
+                .any(|&x| mesh.same_point(x, v))
             {
                 return Some(found);
             }

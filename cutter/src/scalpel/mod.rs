@@ -79,6 +79,7 @@ pub mod dyn_mesh;
 pub mod groove;
 pub mod invariants;
 pub mod layers;
+mod local_check;
 pub mod locate;
 pub mod loop_tool;
 pub mod step;

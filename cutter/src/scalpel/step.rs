@@ -35,9 +35,7 @@ pub const SAMPLE_PERIOD: f64 = 1.0 / 60.0;
 /// Tip snapping radius of both slits of a through-cut (see `Scalpel::end_snap`).
 const THROUGH_SNAP_END: f64 = 0.02;
 
-/// At most this many triangles examined when a cut restarts inside a stroke (see
-/// `Scalpel::start_cut`).
-pub const RESTART_SEARCH: usize = 4096;
+pub use super::cut_point::RESTART_SEARCH;
 
 /// Triangles reserved for cuts when a scalpel is made (at least; more on large meshes).
 const RESERVED_TRIANGLES: usize = 65_536;

@@ -138,11 +138,14 @@ pub fn height_field(f: impl Fn(f64, f64) -> f64, n: usize) -> Mesh {
 }
 
 /// The validator of the issue, run after every edit: ≥ 2 planes, planar planes, consecutive
-/// planes not crossing, closed outward mesh, no self-intersection (all in `sanity_check`), plus
-/// the mesh facts checked independently here.
+/// planes not crossing, closed outward mesh, no self-intersection (all in `sanity_check`), the
+/// exact check the boolean makes of the surface it cuts with (`validate`: a smooth cutter's
+/// subdivided surface, touching counted), plus the mesh facts checked independently here.
 pub fn validate(c: &Cutter) {
     c.sanity_check()
         .unwrap_or_else(|e| panic!("invalid cutter: {e}\n{c:?}"));
+    c.validate()
+        .unwrap_or_else(|e| panic!("the exact cut would refuse the cutter: {e}\n{c:?}"));
     assert!(c.planes.len() >= 2);
     let q = c.quad_mesh();
     q.check_closed().expect("closed and consistently oriented");

@@ -1,7 +1,7 @@
 //! A binary STL reader for the cutter's tests and benches, which read real anatomy but cannot use
 //! the app's loaders (the app depends on `cutter`, not the other way round). Bit-identical corners
 //! are welded; triangles with a repeated corner are dropped. `None` for anything malformed.
-//! Included with `#[path]` by `tests/scalpel.rs` and `benches/scalpel.rs`.
+//! Included with `#[path]` by `tests/scalpel/main.rs` and `benches/scalpel.rs`.
 
 use glam::DVec3;
 

@@ -2,35 +2,16 @@
 //! opened on its own (`cutaway open CT.nrrd`, File → Open, a dropped file, `info`) becomes the
 //! scene's image instead of failing as a broken label map.
 //!
-//! # The rule
-//! A file with more than one layer (a Slicer segmentation) is always labels. A one-layer file
-//! is an **intensity image** when any of these holds, checked in one pass over the samples:
-//! - a float value with a fractional part (or NaN, or infinite): label maps hold whole numbers
-//!   (masks written as `float32` 0/1 stay labels);
-//! - a negative value: labels are never negative, CT is (air is -1000 HU);
-//! - more than [`MAX_LABEL_VALUES`] distinct values: a segmentation has tens to hundreds of
-//!   labels, a scan thousands of grey values.
-//!
-//! Otherwise it is a label map. An 8-bit scan without negative values (at most 256 values) is
-//! therefore read as labels; open it with `--image` / File → Open Image… instead.
+//! The rule is in [`super::content_rule`].
 
-use std::collections::HashSet;
 use std::path::Path;
 
 use anyhow::Context as _;
 
-use super::samples::{Endian, SampleType};
-use super::{LabelVolume, RawSamples, RawVolume, VolumeFormat};
+pub use super::content_rule::MAX_LABEL_VALUES;
+use super::content_rule::RawContent;
+use super::{LabelVolume, VolumeFormat};
 use crate::intensity::IntensityImage;
-
-/// More distinct values than this make a one-layer volume an intensity image.
-pub const MAX_LABEL_VALUES: usize = 1000;
-
-/// What a reader found in a file before decoding labels.
-pub(crate) enum RawContent {
-    Labels(RawVolume),
-    Image(RawSamples, String),
-}
 
 /// A volume file or mask folder, read once, as what it holds.
 #[derive(Debug)]
@@ -43,7 +24,7 @@ pub enum VolumeContent {
     },
 }
 
-/// Reads `path` as labels or as an intensity image by [the rule](self). Errors name the file.
+/// Reads `path` as labels or as an intensity image by [the rule](super::content_rule). Errors name the file.
 /// `labels`: a colour table for a label map (ignored for an image).
 pub fn read_content(path: &Path, labels: Option<&Path>) -> anyhow::Result<VolumeContent> {
     let metadata = std::fs::metadata(path).with_context(|| path.display().to_string())?;
@@ -77,135 +58,4 @@ pub fn intensity_reason_of_file(path: &Path) -> anyhow::Result<Option<String>> {
         VolumeContent::Labels(_) => None,
         VolumeContent::Image { reason, .. } => Some(reason),
     })
-}
-
-/// Why `raw` is an intensity image, or `None` for a label map (see [the rule](self)).
-pub(crate) fn intensity_reason(raw: &RawSamples) -> Option<String> {
-    if raw.layers != 1 {
-        return None;
-    }
-    let size = raw.sample.size();
-    let name = raw.sample.name();
-    // 16-bit values: a bitmap of the 65 536 possible values; wider: a set that stops growing
-    // past the limit.
-    let mut seen16 = vec![0u64; if size == 2 { 1024 } else { 0 }];
-    let mut seen = HashSet::new();
-    let mut distinct = 0usize;
-    for chunk in raw.bytes.chunks_exact(size) {
-        let mut b = [0u8; 8];
-        b[..size].copy_from_slice(chunk);
-        if raw.endian == Endian::Big {
-            b[..size].reverse();
-        }
-        let value = match raw.sample {
-            SampleType::U8 => b[0] as f64,
-            SampleType::I8 => b[0] as i8 as f64,
-            SampleType::U16 => u16::from_le_bytes([b[0], b[1]]) as f64,
-            SampleType::I16 => i16::from_le_bytes([b[0], b[1]]) as f64,
-            SampleType::U32 => u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
-            SampleType::I32 => i32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
-            SampleType::U64 => u64::from_le_bytes(b) as f64,
-            SampleType::I64 => i64::from_le_bytes(b) as f64,
-            SampleType::F32 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
-            SampleType::F64 => f64::from_le_bytes(b),
-        };
-        if !value.is_finite() || value.fract() != 0.0 {
-            return Some(format!("{name} values with fractions, such as {value}"));
-        }
-        if value < 0.0 {
-            return Some(format!("negative {name} values, such as {value}"));
-        }
-        let new = match size {
-            1 => false,
-            2 => {
-                let bits = u16::from_le_bytes([b[0], b[1]]) as usize;
-                let word = &mut seen16[bits / 64];
-                let fresh = *word & (1 << (bits % 64)) == 0;
-                *word |= 1 << (bits % 64);
-                fresh
-            }
-            _ => seen.insert(u64::from_le_bytes(b)),
-        };
-        if new {
-            distinct += 1;
-            if distinct > MAX_LABEL_VALUES {
-                return Some(format!(
-                    "more than {MAX_LABEL_VALUES} distinct {name} values"
-                ));
-            }
-        }
-    }
-    None
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn raw(sample: SampleType, bytes: Vec<u8>, layers: usize) -> RawSamples {
-        let voxels = bytes.len() / sample.size() / layers;
-        RawSamples {
-            dims: [voxels, 1, 1],
-            world_from_voxel: glam::DAffine3::IDENTITY,
-            layers,
-            sample,
-            endian: Endian::Little,
-            bytes,
-            scale: (1.0, 0.0),
-        }
-    }
-
-    fn le<T: Copy, const N: usize>(values: &[T], f: impl Fn(T) -> [u8; N]) -> Vec<u8> {
-        values.iter().flat_map(|&v| f(v)).collect()
-    }
-
-    #[test]
-    fn labels_stay_labels() {
-        // Whole floats (a nibabel mask), a few int16 labels, 1000 distinct uint16 values.
-        let mask = le(&[0f32, 1.0, 1.0, 0.0], f32::to_le_bytes);
-        assert_eq!(intensity_reason(&raw(SampleType::F32, mask, 1)), None);
-        let few = le(&[0i16, 3, 7, 3], i16::to_le_bytes);
-        assert_eq!(intensity_reason(&raw(SampleType::I16, few, 1)), None);
-        let many: Vec<u16> = (0..MAX_LABEL_VALUES as u16).collect();
-        let many = le(&many, u16::to_le_bytes);
-        assert_eq!(intensity_reason(&raw(SampleType::U16, many, 1)), None);
-        // A layered file is a segmentation whatever its values.
-        let layered = le(&[-1i16, 2], i16::to_le_bytes);
-        assert_eq!(intensity_reason(&raw(SampleType::I16, layered, 2)), None);
-    }
-
-    #[test]
-    fn scans_are_images_with_the_reason() {
-        let ct = le(&[0i16, -1000, 40], i16::to_le_bytes);
-        let why = intensity_reason(&raw(SampleType::I16, ct, 1)).unwrap();
-        assert_eq!(why, "negative int16 values, such as -1000");
-        let mr = le(&[0.0f32, 12.5], f32::to_le_bytes);
-        let why = intensity_reason(&raw(SampleType::F32, mr, 1)).unwrap();
-        assert!(why.starts_with("float32 values with fractions"), "{why}");
-        let nan = le(&[f64::NAN], f64::to_le_bytes);
-        assert!(intensity_reason(&raw(SampleType::F64, nan, 1)).is_some());
-        for (sample, bytes) in [
-            (
-                SampleType::U16,
-                le(
-                    &(0..=MAX_LABEL_VALUES as u16).collect::<Vec<_>>(),
-                    u16::to_le_bytes,
-                ),
-            ),
-            (
-                SampleType::U32,
-                le(
-                    &(0..=MAX_LABEL_VALUES as u32).collect::<Vec<_>>(),
-                    u32::to_le_bytes,
-                ),
-            ),
-        ] {
-            let why = intensity_reason(&raw(sample, bytes, 1)).unwrap();
-            assert!(why.starts_with("more than 1000 distinct"), "{why}");
-        }
-        // Big-endian samples are read in their order: 0xFC18 is -1000.
-        let mut big = raw(SampleType::I16, vec![0xFC, 0x18], 1);
-        big.endian = Endian::Big;
-        assert!(intensity_reason(&big).unwrap().contains("-1000"));
-    }
 }

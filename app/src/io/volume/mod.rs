@@ -38,6 +38,7 @@ use glam::{DAffine3, DMat3, DVec3};
 pub mod color_table;
 pub mod content;
 pub mod embedded;
+mod content_rule;
 mod gzip;
 pub mod intensity;
 mod masks;

@@ -135,12 +135,12 @@ pub(crate) fn read(path: &Path) -> anyhow::Result<RawVolume> {
     labels_of(read_samples(path)?)
 }
 
-/// The file as labels or as an intensity image (`super::content`), read once.
-pub(crate) fn read_content(path: &Path) -> anyhow::Result<super::content::RawContent> {
+/// The file as labels or as an intensity image (`super::content_rule`), read once.
+pub(crate) fn read_content(path: &Path) -> anyhow::Result<super::content_rule::RawContent> {
     let raw = read_samples(path)?;
-    Ok(match super::content::intensity_reason(&raw) {
-        Some(reason) => super::content::RawContent::Image(raw, reason),
-        None => super::content::RawContent::Labels(labels_of(raw)?),
+    Ok(match super::content_rule::intensity_reason(&raw) {
+        Some(reason) => super::content_rule::RawContent::Image(raw, reason),
+        None => super::content_rule::RawContent::Labels(labels_of(raw)?),
     })
 }
 

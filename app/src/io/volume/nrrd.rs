@@ -353,13 +353,13 @@ fn data_file_path(header_path: &Path, name: &str) -> anyhow::Result<PathBuf> {
     Ok(dir.join(name))
 }
 
-/// The file as labels or as an intensity image (`super::content`), read once.
-pub(crate) fn read_content(path: &Path) -> anyhow::Result<super::content::RawContent> {
+/// The file as labels or as an intensity image (`super::content_rule`), read once.
+pub(crate) fn read_content(path: &Path) -> anyhow::Result<super::content_rule::RawContent> {
     let (header, data) = read_header_and_data(path)?;
     let raw = samples(&header, data)?;
-    Ok(match super::content::intensity_reason(&raw) {
-        Some(reason) => super::content::RawContent::Image(raw, reason),
-        None => super::content::RawContent::Labels(labels_of(&header, raw)?),
+    Ok(match super::content_rule::intensity_reason(&raw) {
+        Some(reason) => super::content_rule::RawContent::Image(raw, reason),
+        None => super::content_rule::RawContent::Labels(labels_of(&header, raw)?),
     })
 }
 

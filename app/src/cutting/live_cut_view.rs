@@ -1,7 +1,7 @@
 //! Tests of [`super`] (`live_cut.rs`), kept in their own file.
 
 use super::*;
-use crate::cutaway_geometry::tests::box_cutter;
+use crate::cutting::cut_scene::tests::box_cutter;
 use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
 use crate::scene::{SceneCutter, SceneModel};
 
@@ -21,7 +21,7 @@ fn the_live_cut_from_its_delta_looks_as_the_whole_kept_part_and_uploads_little()
         }
     };
     let sphere = Arc::new(csg::testkit::icosphere(6, 10.0));
-    let mut scene = crate::gui::app::new_scene();
+    let mut scene = crate::scene::Scene::default();
     scene.models.push(SceneModel::new(
         "sphere",
         "sphere.obj",
@@ -40,9 +40,11 @@ fn the_live_cut_from_its_delta_looks_as_the_whole_kept_part_and_uploads_little()
     for (k, x1) in [1.0, 4.0, 2.5].into_iter().enumerate() {
         scene.cutters = vec![SceneCutter {
             target: 0,
-            kind: crate::scene::CutKind::Curving,
-            smooth: false,
-            planes: box_cutter(-4.0, x1, -12.0, -8.0, -2.0, 3.0),
+            cutter: cutter::Cutter {
+                kind: cutter::CutKind::Curving,
+                smooth: false,
+                planes: box_cutter(-4.0, x1, -12.0, -8.0, -2.0, 3.0),
+            },
             views: CutterViews::default(),
         }];
         assert!(live.request(&scene, None));
@@ -55,7 +57,7 @@ fn the_live_cut_from_its_delta_looks_as_the_whole_kept_part_and_uploads_little()
         );
         // The way before: the whole kept part as a preview part.
         let mut whole = frame(&scene);
-        whole.preview = Some(Arc::new(crate::cutaway_geometry::preview_geometry(
+        whole.preview = Some(Arc::new(crate::cutting::cut_scene::preview_geometry(
             &live_scene(&scene),
         )));
         let expected = renderer.render(&whole).expect("render");

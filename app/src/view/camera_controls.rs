@@ -1,4 +1,4 @@
-//! Camera manipulation of the viewport: orbit, pan, zoom and framing (picking: `crate::scene_pick`).
+//! Camera manipulation of the viewport: orbit, pan, zoom and framing (picking: `crate::cutting::pick`).
 //!
 //! Behaves like VTK's trackball-camera style that the thesis used (section 3.5, "Mode buttons"):
 //! a left drag orbits the eye around the target (horizontal motion about the camera's up axis,

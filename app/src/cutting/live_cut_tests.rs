@@ -1,8 +1,8 @@
 //! Tests of [`super`] (`live_cut.rs`), kept in their own file.
 
 use super::*;
-use crate::cutaway_geometry::PartKind;
-use crate::cutaway_geometry::tests::scene_with_cube_cut;
+use crate::cutting::cut_scene::PartKind;
+use crate::cutting::cut_scene::tests::scene_with_cube_cut;
 
 /// Everything the live cut draws as one mesh: the parts, and the kept deltas composed.
 fn drawn(r: &LiveResult) -> Mesh {
@@ -49,8 +49,8 @@ fn stale_requests_are_dropped_and_the_newest_wins() {
     let mut last_x = 0.0;
     for k in 0..40 {
         let x = 1.0 + 0.01 * k as f64;
-        scene.cutters[0].planes =
-            crate::cutaway_geometry::tests::box_cutter(x, 3.0, -1.0, 1.0, 1.0, 3.0);
+        scene.cutters[0].cutter.planes =
+            crate::cutting::cut_scene::tests::box_cutter(x, 3.0, -1.0, 1.0, 1.0, 3.0);
         live.request(&scene, None);
         last_x = x;
     }

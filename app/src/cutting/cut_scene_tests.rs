@@ -1,4 +1,4 @@
-//! Tests of [`super`] (`cutaway_geometry.rs`), kept in their own file.
+//! Tests of [`super`] (`cut_scene.rs`), kept in their own file.
 
 use super::*;
 
@@ -35,14 +35,21 @@ pub fn cube(min: DVec3, max: DVec3) -> Mesh {
 
 /// A straight two-plane cutter spanning x in [x0, x1], y in [y0, y1] (front at y0), z in
 /// [z0, z1].
-pub fn box_cutter(x0: f64, x1: f64, y0: f64, y1: f64, z0: f64, z1: f64) -> Vec<CutterPlane> {
+pub fn box_cutter(
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    z0: f64,
+    z1: f64,
+) -> Vec<cutter::BoundedPlane> {
     let plane = |x: f64| {
-        [
+        cutter::BoundedPlane::from_corners([
             DVec3::new(x, y0, z1),
             DVec3::new(x, y1, z1),
             DVec3::new(x, y1, z0),
             DVec3::new(x, y0, z0),
-        ]
+        ])
     };
     vec![plane(x0), plane((x0 + x1) * 0.5), plane(x1)]
 }
@@ -57,9 +64,11 @@ pub(crate) fn scene_with_cube_cut(views: crate::scene::CutterViews) -> Scene {
     ));
     scene.cutters.push(SceneCutter {
         target: 0,
-        kind: crate::scene::CutKind::Straight,
-        smooth: false,
-        planes: box_cutter(1.0, 3.0, -1.0, 1.0, 1.0, 3.0),
+        cutter: cutter::Cutter {
+            kind: cutter::CutKind::Straight,
+            smooth: false,
+            planes: box_cutter(1.0, 3.0, -1.0, 1.0, 1.0, 3.0),
+        },
         views,
     });
     scene
@@ -143,9 +152,11 @@ fn sphere_scene(boxes: &[[f64; 6]]) -> Scene {
     for b in boxes {
         scene.cutters.push(SceneCutter {
             target: 0,
-            kind: crate::scene::CutKind::Straight,
-            smooth: false,
-            planes: box_cutter(b[0], b[1], b[2], b[3], b[4], b[5]),
+            cutter: cutter::Cutter {
+                kind: cutter::CutKind::Straight,
+                smooth: false,
+                planes: box_cutter(b[0], b[1], b[2], b[3], b[4], b[5]),
+            },
             views: crate::scene::CutterViews::default(),
         });
     }
@@ -161,9 +172,11 @@ fn nested_shells_are_each_cut_closed_and_a_cavity_stays_hollow() {
     let inner = cube(DVec3::splat(3.0), DVec3::splat(7.0));
     let cutter = |planes| SceneCutter {
         target: 0,
-        kind: crate::scene::CutKind::Straight,
-        smooth: false,
-        planes,
+        cutter: cutter::Cutter {
+            kind: cutter::CutKind::Straight,
+            smooth: false,
+            planes,
+        },
         views: crate::scene::CutterViews::default(),
     };
     let k1 = cutter(box_cutter(3.5, 6.5, -1.0, 11.0, -1.0, 11.0));
@@ -269,7 +282,7 @@ fn overlapping_cutters_remove_the_union_and_no_wall_survives_inside_the_other() 
     }
     // A second preview of a moved second cutter reuses the first cutter's cached result.
     let mut moved = scene.clone();
-    moved.cutters[1].planes = box_cutter(-2.0, 0.5, -2.0, 2.0, 0.3, 2.0);
+    moved.cutters[1].cutter.planes = box_cutter(-2.0, 0.5, -2.0, 2.0, 0.3, 2.0);
     let again = preview_geometry_with(&moved, &mut cache);
     assert!(again.notes.is_empty(), "{:?}", again.notes);
     assert_eq!(cache.prefixes.len(), 1);
@@ -279,7 +292,7 @@ fn overlapping_cutters_remove_the_union_and_no_wall_survives_inside_the_other() 
 fn cutter_outside_the_target_removes_nothing() {
     let target = cube(DVec3::ZERO, DVec3::ONE);
     let mut scene = scene_with_cube_cut(crate::scene::CutterViews::default());
-    scene.cutters[0].planes = box_cutter(1.5, 2.5, 1.5, 2.5, 1.5, 2.5);
+    scene.cutters[0].cutter.planes = box_cutter(1.5, 2.5, 1.5, 2.5, 1.5, 2.5);
     let index = TargetIndex::build(target).unwrap();
     let parts = cut_exact(&index, &scene.cutters[0]).unwrap();
     assert!(parts.removed.is_empty() && parts.walls.is_empty() && parts.contour.is_empty());
@@ -289,7 +302,7 @@ fn cutter_outside_the_target_removes_nothing() {
 #[test]
 fn cutter_mesh_is_closed_and_outward() {
     let mut scene = scene_with_cube_cut(crate::scene::CutterViews::default());
-    scene.cutters[0].planes = box_cutter(0.0, 2.0, 0.0, 1.0, 0.0, 1.0);
+    scene.cutters[0].cutter.planes = box_cutter(0.0, 2.0, 0.0, 1.0, 0.0, 1.0);
     let surface = cutter_mesh(&scene.cutters[0]);
     assert!(
         (surface.volume() - 2.0).abs() < 1e-9,
@@ -297,7 +310,7 @@ fn cutter_mesh_is_closed_and_outward() {
         surface.volume()
     );
     csg::check_cutter(&surface).unwrap();
-    scene.cutters[0].smooth = true;
+    scene.cutters[0].cutter.smooth = true;
     let smooth = cutter_mesh(&scene.cutters[0]);
     csg::check_cutter(&smooth).unwrap();
     assert!(smooth.triangle_count() > surface.triangle_count());
@@ -308,8 +321,8 @@ fn a_refused_cutter_cuts_nothing_and_says_why() {
     let mut scene = scene_with_cube_cut(crate::scene::CutterViews::default());
     // The middle plane folds back past the last one: the boxes overlap.
     let mut planes = box_cutter(1.0, 3.0, -1.0, 1.0, 1.0, 3.0);
-    planes[1] = planes[1].map(|p| p + DVec3::X * 3.0);
-    scene.cutters[0].planes = planes;
+    planes[1] = cutter::BoundedPlane::from_corners(planes[1].corners().map(|p| p + DVec3::X * 3.0));
+    scene.cutters[0].cutter.planes = planes;
     let preview = preview_geometry(&scene);
     assert_eq!(preview.notes.len(), 1, "{:?}", preview.notes);
     assert!(
@@ -345,9 +358,11 @@ fn ribbons_of_a_smooth_cutter_lie_inside_its_surface() {
         };
         scene.cutters.push(SceneCutter {
             target: 0,
-            kind: crate::scene::CutKind::Curving,
-            smooth: true,
-            planes: box_cutter(-0.6, 0.6, -0.5, 0.5, 0.3, 1.5),
+            cutter: cutter::Cutter {
+                kind: cutter::CutKind::Curving,
+                smooth: true,
+                planes: box_cutter(-0.6, 0.6, -0.5, 0.5, 0.3, 1.5),
+            },
             views: crate::scene::CutterViews {
                 cut: false,
                 transparency: None,

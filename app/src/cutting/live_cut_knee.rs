@@ -1,9 +1,9 @@
 //! Tests of [`super`] (`live_cut.rs`), kept in their own file.
 
 use super::*;
-use crate::cutaway_geometry::PartKind;
-use crate::gui::app::CutterInit;
-use crate::gui::bridge::EditorSlot;
+use crate::cutting::cut_scene::PartKind;
+use crate::cutting::editing::CutterInit;
+use crate::cutting::editing::EditorSlot;
 use cutter::EditorEvent;
 use glam::DVec2;
 
@@ -24,7 +24,7 @@ fn live_cut_follows_the_editor_on_the_knee() {
     let viewport = DVec2::new(1280.0, 800.0);
     let press = viewport * 0.5 + DVec2::new(-60.0, 0.0);
     let ray = scene.camera.ray_through_pixel(viewport, press);
-    let (target, _) = crate::scene_pick::ScenePicks::default()
+    let (target, _) = crate::cutting::pick::ScenePicks::default()
         .pick(&scene, &ray)
         .expect("the knee is in view");
     let mut slot = EditorSlot::default();
@@ -62,13 +62,13 @@ fn live_cut_follows_the_editor_on_the_knee() {
     };
     let first = request(&scene, &mut live);
     // Grab the handle (the middle of the leading plane's front edge) and paint downwards.
-    let lead = *scene.cutters[0].planes.last().unwrap();
+    let lead = scene.cutters[0].cutter.planes.last().unwrap().corners();
     let handle = scene
         .camera
         .project(viewport, (lead[0] + lead[3]) * 0.5)
         .expect("handle in view");
     slot.handle(&mut scene, viewport, EditorEvent::press(handle.x, handle.y));
-    let planes_before = scene.cutters[0].planes.clone();
+    let planes_before = scene.cutters[0].cutter.planes.clone();
     for k in 1..=12 {
         let p = handle + DVec2::new(3.0 * k as f64, 6.0 * k as f64);
         if slot.handle(&mut scene, viewport, EditorEvent::move_to(p.x, p.y)) {
@@ -81,7 +81,7 @@ fn live_cut_follows_the_editor_on_the_knee() {
         EditorEvent::release(handle.x, handle.y),
     );
     assert_ne!(
-        scene.cutters[0].planes, planes_before,
+        scene.cutters[0].cutter.planes, planes_before,
         "the drag did not extrude"
     );
     assert!(!times.is_empty());

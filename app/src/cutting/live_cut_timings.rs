@@ -1,7 +1,7 @@
 //! Tests of [`super`] (`live_cut.rs`), kept in their own file.
 
 use super::*;
-use crate::cutaway_geometry::tests::box_cutter;
+use crate::cutting::cut_scene::tests::box_cutter;
 use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
 use crate::scene::{SceneCutter, SceneModel};
 
@@ -28,7 +28,7 @@ fn live_recut_ui_thread_cost_on_two_million_triangles() {
         }
     };
     let sphere = Arc::new(csg::testkit::geodesic_sphere(316, 100.0));
-    let mut scene = crate::gui::app::new_scene();
+    let mut scene = crate::scene::Scene::default();
     scene.models.push(SceneModel::new(
         "sphere",
         "sphere.ply",
@@ -50,9 +50,11 @@ fn live_recut_ui_thread_cost_on_two_million_triangles() {
         let planes = box_cutter(-60.0, x1, -120.0, -70.0, -8.0, 8.0);
         scene.cutters = vec![SceneCutter {
             target: 0,
-            kind: crate::scene::CutKind::Curving,
-            smooth: false,
-            planes,
+            cutter: cutter::Cutter {
+                kind: cutter::CutKind::Curving,
+                smooth: false,
+                planes,
+            },
             views: CutterViews::default(),
         }];
         assert!(live.request(&scene, None));

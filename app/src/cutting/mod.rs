@@ -1,0 +1,25 @@
+//! # Cutting a scene: everything between the cutter editor and the pictures, without a window
+//!
+//! The window (`gui/`), the CLI and the tests drive the same code here, so what a user does in
+//! the window can be replayed and checked headless. Nothing in this module knows egui or wgpu:
+//! it speaks scenes, `cutter` cutters and `csg` meshes, and reports progress through
+//! [`crate::jobs::Progress`].
+//!
+//! - [`cut_scene`]: the scene-cutting model: every cutter of a model cut in turn, the parts
+//!   Preview draws, and the cache that makes re-cutting one edited cutter cost one boolean;
+//!   [`cut_parts`] is one cutter against one target (surface, exact cut, ribbons, slices).
+//! - [`live_cut`]: the live re-cut of Edit mode on its own worker, newest request wins.
+//! - [`scene_cuts`]: the whole scene cut off the UI thread (Preview, Remove All Cut Geometry,
+//!   exports) and the key that says when a result is stale.
+//! - [`editing`]: the editor slot around `cutter::Editor` and the settings a new cutter starts
+//!   with.
+//! - [`overlay`]: the cutter as Edit mode draws it, the surface the boolean cuts with.
+//! - [`pick`]: which model a ray meets first, through each model's BVH.
+
+pub mod cut_parts;
+pub mod cut_scene;
+pub mod editing;
+pub mod live_cut;
+pub mod overlay;
+pub mod pick;
+pub mod scene_cuts;

@@ -1,0 +1,104 @@
+//! The whole scene cut at once, off the UI thread: Preview's parts, "Remove All Cut Geometry",
+//! the export of cut meshes, and the key that says when a computed preview is stale.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use csg::Mesh;
+
+use super::cut_scene::{self, PreviewGeometry};
+use crate::jobs::Progress;
+use crate::scene::{Scene, SceneCutter, SceneModel};
+
+/// Cuts every model by its cutters in turn ([`cut_scene::cut_in_turn`]: each cutter cuts
+/// the closed result of the ones before it, so overlapping cutters give T ∖ (K1 ∪ … ∪ Kn), with
+/// no wall of one cutter left inside another). `visit(step, model)` sees every cutter's step
+/// (its `after` is kept part and walls so far, closed). Returns per model the closed result (None
+/// when no cutter targets it). Each cutter's kind and smoothing are honoured.
+pub fn cut_each_in_turn(
+    scene: &Scene,
+    progress: &Progress,
+    mut visit: impl FnMut(&cut_scene::Step, &SceneModel) -> anyhow::Result<()>,
+) -> anyhow::Result<Vec<Option<Arc<Mesh>>>> {
+    let mut out = vec![None; scene.models.len()];
+    let mut cache = cut_scene::CutCache::default();
+    let total = scene.cutters.len() as u64;
+    let mut done = 0u64;
+    for (m, model) in scene.models.iter().enumerate() {
+        let cutters: Vec<(usize, &SceneCutter)> = scene
+            .cutters
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.target == m)
+            .collect();
+        if cutters.is_empty() {
+            continue;
+        }
+        progress.check()?;
+        let mut failure = None;
+        let sequence = cut_scene::cut_in_turn(
+            &mut cache,
+            &model.mesh,
+            &cutters,
+            |_| false,
+            |step| {
+                if failure.is_some() {
+                    return;
+                }
+                done += 1;
+                progress.set(done, total);
+                if let Err(e) = progress.check().and_then(|()| visit(step, model)) {
+                    failure = Some(e);
+                }
+            },
+        );
+        if let Some(e) = failure {
+            return Err(e);
+        }
+        out[m] = Some(sequence.closed);
+    }
+    Ok(out)
+}
+
+/// The cut parts Preview shows, computed in a worker; returns them with the wall time in ms.
+pub fn compute_preview(scene: &Scene) -> (Arc<PreviewGeometry>, f64) {
+    let started = Instant::now();
+    let geometry = cut_scene::preview_geometry(scene);
+    (Arc::new(geometry), started.elapsed().as_secs_f64() * 1000.0)
+}
+
+/// "Remove All Cut Geometry": each cut model replaced by its kept part closed by the walls, so
+/// later cuts reach the structures behind. Returns (model index, new mesh) pairs.
+pub fn apply_all_cuts(
+    scene: &Scene,
+    progress: &Progress,
+) -> anyhow::Result<Vec<(usize, Arc<Mesh>)>> {
+    let current = cut_each_in_turn(scene, progress, |_, _| Ok(()))?;
+    Ok(current
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, m)| m.map(|m| (i, m)))
+        .collect())
+}
+
+/// Preview's dependency on the scene: the cutters and their targets' meshes. When this changes,
+/// the preview is recomputed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreviewKey {
+    cutters: Vec<SceneCutter>,
+    targets: Vec<usize>,
+}
+
+impl PreviewKey {
+    pub fn of(scene: &Scene) -> PreviewKey {
+        PreviewKey {
+            cutters: scene.cutters.clone(),
+            targets: scene
+                .cutters
+                .iter()
+                .filter_map(|c| scene.models.get(c.target))
+                .map(|m| Arc::as_ptr(&m.mesh) as usize)
+                .collect(),
+        }
+    }
+}

@@ -1,0 +1,469 @@
+//! The window's background work: what each job starts with, and how its result lands in the
+//! scene once it finishes.
+//!
+//! Loads, index builds, cuts and exports run on worker threads ([`super::jobs`]) so a frame never
+//! waits for them; every job ends as one [`JobOutput`] that [`CutawayApp::poll_jobs`] hands to
+//! `finish_job` on the UI thread, the only place a finished job changes the window's state.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use crate::scene::{Scene, SceneModel};
+
+use super::action::Purpose;
+use super::app::{CutawayApp, is_session_path, new_scene, triangle_count};
+use super::jobs::{self, Job, Progress};
+
+/// Result of a background job.
+pub enum JobOutput {
+    /// A file dialog closed; `paths` is empty when it was cancelled.
+    Picked {
+        purpose: Purpose,
+        paths: Vec<PathBuf>,
+        took: std::time::Duration,
+    },
+    /// Models were read.
+    Models {
+        models: Vec<crate::io::Model>,
+        replace: bool,
+        sources: Vec<PathBuf>,
+        /// A volume among the files that holds an intensity image, not labels.
+        image: Option<crate::intensity::ImageLayer>,
+    },
+    /// A session was read (models included).
+    Session { path: PathBuf, scene: Box<Scene> },
+    /// An intensity image was read, to show on the walls.
+    Image(crate::intensity::ImageLayer),
+    /// A target's spatial index was built.
+    Index {
+        model: usize,
+        mesh: std::sync::Weak<csg::Mesh>,
+        index: Arc<csg::SpatialIndex>,
+    },
+    /// Preview cut parts for the scene state `key`, and the wall time of the cut in ms.
+    Preview {
+        geometry: Arc<crate::cutting::cut_scene::PreviewGeometry>,
+        key: crate::cutting::scene_cuts::PreviewKey,
+        ms: f64,
+    },
+    /// "Remove All Cut Geometry": new meshes for the cut models, for the scene state `key`.
+    CutsApplied {
+        meshes: Vec<(usize, Arc<csg::Mesh>)>,
+        key: crate::cutting::scene_cuts::PreviewKey,
+    },
+    /// Something finished that only needs a message.
+    Done(String),
+}
+
+impl CutawayApp {
+    pub(super) fn spawn(
+        &mut self,
+        ctx: &egui::Context,
+        label: impl Into<String>,
+        work: impl FnOnce(&Progress) -> anyhow::Result<JobOutput> + Send + 'static,
+    ) {
+        let ctx = ctx.clone();
+        self.jobs
+            .push(Job::spawn(label, move || ctx.request_repaint(), work));
+    }
+
+    /// The skin at once (milliseconds), the atlas's labels from a background job.
+    pub(super) fn load_default_scene(&mut self, ctx: &egui::Context) {
+        match crate::default_anatomy::load_skin() {
+            Ok(skin) => self.add_models(skin, true, &[]),
+            Err(e) => return self.complain(&e),
+        }
+        self.atlas.start(ctx);
+    }
+
+    pub(super) fn load_example(&mut self, ctx: &egui::Context, name: String) {
+        if name == crate::default_anatomy::NAME {
+            return self.load_default_scene(ctx);
+        }
+        self.spawn(
+            ctx,
+            format!("Loading the {name} example"),
+            move |progress| {
+                let models = super::bridge::example_scene_models(&name, progress)?;
+                Ok(JobOutput::Models {
+                    models,
+                    replace: true,
+                    sources: Vec::new(),
+                    image: None,
+                })
+            },
+        );
+    }
+
+    pub(super) fn remove_all_cut_geometry(&mut self, ctx: &egui::Context) {
+        if self.scene.cutters.is_empty() {
+            self.say("There are no cutters to apply");
+            return;
+        }
+        let scene = self.scene.clone();
+        let key = crate::cutting::scene_cuts::PreviewKey::of(&scene);
+        self.spawn(ctx, "Removing all cut geometry", move |progress| {
+            let meshes = crate::cutting::scene_cuts::apply_all_cuts(&scene, progress)?;
+            Ok(JobOutput::CutsApplied { meshes, key })
+        });
+    }
+
+    /// Starts building the spatial index of model `target` in the background (big targets).
+    pub fn start_index_job(&mut self, ctx: &egui::Context, target: usize) {
+        let Some(model) = self.scene.models.get(target) else {
+            return;
+        };
+        if self.jobs.iter().any(|j| j.label.starts_with("Indexing")) {
+            return;
+        }
+        let mesh = model.mesh.clone();
+        let name = model.name.clone();
+        self.say(format!("Indexing {name} for editing…"));
+        self.spawn(ctx, format!("Indexing {name}"), move |progress| {
+            progress.set_message(format!(
+                "{} triangles",
+                super::status_bar::grouped(mesh.triangle_count())
+            ));
+            let (weak, index) = crate::cutting::editing::build_index(&mesh, progress)?;
+            Ok(JobOutput::Index {
+                model: target,
+                mesh: weak,
+                index,
+            })
+        });
+    }
+
+    /// Opens files: a session replaces everything; meshes and directories load in the background.
+    pub(super) fn open_paths(&mut self, ctx: &egui::Context, paths: Vec<PathBuf>, replace: bool) {
+        if paths.is_empty() {
+            return;
+        }
+        if paths.len() == 1 && is_session_path(&paths[0]) {
+            let path = paths[0].clone();
+            self.load_session(ctx, &path);
+            return;
+        }
+        for p in &paths {
+            self.recent.add(p);
+        }
+        let label = match paths.as_slice() {
+            [one] => format!("Loading {}", file_label(one)),
+            many => format!("Loading {} items", many.len()),
+        };
+        let sources = paths.clone();
+        self.spawn(ctx, label, move |progress| {
+            let (models, image) = load_paths(&paths, progress)?;
+            Ok(JobOutput::Models {
+                models,
+                replace,
+                sources,
+                image,
+            })
+        });
+    }
+
+    pub(super) fn finish_job(&mut self, ctx: &egui::Context, output: JobOutput) {
+        match output {
+            JobOutput::Picked {
+                purpose,
+                paths,
+                took,
+            } => {
+                // A dialog that "closes" within a blink never opened: no portal and no zenity.
+                if paths.is_empty() && took < std::time::Duration::from_millis(150) {
+                    self.browser = Some(super::file_browser::FileBrowser::new(purpose, None));
+                    self.say("No native file dialog opened; choose in the window's browser");
+                } else {
+                    self.picked(ctx, purpose, paths);
+                }
+            }
+            JobOutput::Models {
+                models,
+                replace,
+                sources,
+                image,
+            } => {
+                let image = image.or_else(|| super::image_panel::image_kept(self, replace));
+                self.add_models(models, replace, &sources);
+                if let Some(layer) = image {
+                    super::image_panel::image_loaded(self, layer);
+                }
+            }
+            JobOutput::Session { path, scene } => {
+                self.atlas.cancel();
+                self.scene = *scene;
+                // A restored autosave has no file of its own: Save asks where to put it.
+                let restored = path == self.recovery.session_path();
+                self.session_path = (!restored).then(|| path.clone());
+                self.selected_model = None;
+                self.selected_cutter = 0;
+                self.history.clear();
+                self.viewport.reset_editor();
+                self.last_committed = self.scene.clone();
+                self.recovery.mark_dirty();
+                if !restored {
+                    self.recent.add(&path);
+                }
+                self.say(format!(
+                    "Opened {}: {} models, {} cutters",
+                    path.display(),
+                    self.scene.models.len(),
+                    self.scene.cutters.len()
+                ));
+            }
+            JobOutput::Image(layer) => super::image_panel::image_loaded(self, layer),
+            JobOutput::Index { model, mesh, index } => {
+                self.viewport.editor.store_index(mesh, index);
+                self.say(format!(
+                    "{} is ready: drag on it to start a cutter",
+                    self.scene
+                        .models
+                        .get(model)
+                        .map(|m| m.name.as_str())
+                        .unwrap_or("the target")
+                ));
+            }
+            JobOutput::Preview { geometry, key, ms } => {
+                if key == crate::cutting::scene_cuts::PreviewKey::of(&self.scene) {
+                    self.status.last_cut_ms = Some(ms);
+                    self.status.cut_triangles = geometry.triangle_count();
+                    self.viewport.preview = Some(geometry);
+                    self.viewport.preview_key = Some(key);
+                }
+            }
+            JobOutput::CutsApplied { meshes, key } => {
+                if key != crate::cutting::scene_cuts::PreviewKey::of(&self.scene) {
+                    self.say("The cutters changed while cutting; Remove All Cut Geometry was not applied");
+                    return;
+                }
+                let before = self.scene.clone();
+                let count = meshes.len();
+                for (i, mesh) in meshes {
+                    if let Some(m) = self.scene.models.get_mut(i) {
+                        m.replace_mesh(mesh);
+                    }
+                }
+                self.scene.cutters.clear();
+                self.viewport.editor.finish();
+                self.viewport.preview = None;
+                self.viewport.preview_key = None;
+                self.record("remove all cut geometry", before);
+                self.say(format!(
+                    "Applied the cuts to {count} models; new cuts reach the structures behind"
+                ));
+            }
+            JobOutput::Done(message) => self.say(message),
+        }
+    }
+
+    pub(super) fn add_models(
+        &mut self,
+        models: Vec<crate::io::Model>,
+        replace: bool,
+        sources: &[PathBuf],
+    ) {
+        let before = self.scene.clone();
+        if replace {
+            self.atlas.cancel();
+            let render = self.scene.render;
+            self.scene = new_scene();
+            self.scene.render = render;
+            self.session_path = None;
+            self.selected_model = None;
+            self.history.clear();
+            self.viewport.reset_editor();
+        }
+        let first_new = self.scene.models.len();
+        let count = models.len();
+        let default_scene = crate::default_anatomy::is_default_scene(&models);
+        let from_volume = sources.iter().any(|p| crate::io::volume::is_volume(p));
+        for (i, model) in models.into_iter().enumerate() {
+            let color =
+                crate::anatomy_colors::structure_color(&model.name, model.color, first_new + i);
+            self.scene.models.push(SceneModel::structure(model, color));
+        }
+        if replace {
+            super::view_menu::orient_new_scene(self, default_scene, from_volume);
+            self.last_committed = self.scene.clone();
+            self.recovery.mark_dirty();
+        } else {
+            self.record(&format!("add {count} models"), before);
+        }
+        let what = match sources {
+            [] => "the example scene".to_string(),
+            [one] => file_label(one),
+            many => format!("{} items", many.len()),
+        };
+        self.say(format!(
+            "Loaded {what}: {count} models, {} triangles",
+            super::status_bar::grouped(triangle_count(&self.scene))
+        ));
+    }
+
+    pub(super) fn save_session(&mut self, path: &Path) -> anyhow::Result<()> {
+        super::bridge::save_session(self, path)
+    }
+
+    pub(super) fn load_session(&mut self, ctx: &egui::Context, path: &Path) {
+        let path = path.to_path_buf();
+        self.spawn(
+            ctx,
+            format!("Opening {}", file_label(&path)),
+            move |progress| {
+                let scene = super::bridge::load_session(&path, progress)?;
+                Ok(JobOutput::Session {
+                    path,
+                    scene: Box::new(scene),
+                })
+            },
+        );
+    }
+
+    pub(super) fn export_image_to(&mut self, ctx: &egui::Context, path: PathBuf) {
+        let scene = self.scene.clone();
+        // Camera and Scalpel modes show the cut too: the picture shows it as well.
+        let preview = super::cut_view::shows_cut(self.mode) && !self.scene.cutters.is_empty();
+        let settings = self.export_image.clone();
+        self.spawn(
+            ctx,
+            format!("Exporting {}×{} image", settings.width, settings.height),
+            move |progress| {
+                progress.set_message(file_label(&path));
+                Ok(JobOutput::Done(super::bridge::export_image(
+                    &scene, preview, &settings, &path,
+                )?))
+            },
+        );
+    }
+
+    pub(super) fn export_meshes_to(&mut self, ctx: &egui::Context, dir: PathBuf) {
+        let scene = self.scene.clone();
+        let settings = self.export_meshes.clone();
+        self.spawn(ctx, "Exporting cut meshes", move |progress| {
+            let files = super::bridge::export_meshes(&scene, &settings, &dir, progress)?;
+            Ok(JobOutput::Done(format!(
+                "Exported {} meshes to {}",
+                files.len(),
+                dir.display()
+            )))
+        });
+    }
+
+    pub(super) fn export_turntable_to(&mut self, ctx: &egui::Context, dir: PathBuf) {
+        let scene = self.scene.clone();
+        let preview = super::cut_view::shows_cut(self.mode) && !self.scene.cutters.is_empty();
+        let settings = self.export_turntable.clone();
+        let label = format!(
+            "Exporting a turntable of {} frames",
+            settings.options.frames
+        );
+        self.spawn(ctx, label, move |progress| {
+            let message =
+                super::turntable_export::export(&scene, preview, &settings, &dir, progress)?;
+            Ok(JobOutput::Done(message))
+        });
+    }
+
+    /// In Preview, recompute the cut parts whenever the cutters or their targets changed.
+    pub(super) fn update_preview(&mut self, ctx: &egui::Context) {
+        if !super::cut_view::shows_cut(self.mode) || self.scene.cutters.is_empty() {
+            return;
+        }
+        let key = crate::cutting::scene_cuts::PreviewKey::of(&self.scene);
+        if self.viewport.preview_key.as_ref() == Some(&key)
+            || self.jobs.iter().any(|j| j.label == PREVIEW_JOB)
+        {
+            return;
+        }
+        let scene = self.scene.clone();
+        self.spawn(ctx, PREVIEW_JOB, move |_| {
+            let (geometry, ms) = crate::cutting::scene_cuts::compute_preview(&scene);
+            Ok(JobOutput::Preview { geometry, key, ms })
+        });
+    }
+
+    pub(super) fn poll_jobs(&mut self, ctx: &egui::Context) {
+        let mut finished = Vec::new();
+        for job in &mut self.jobs {
+            if let Some(result) = job.poll() {
+                finished.push((job.label.clone(), result));
+            }
+        }
+        self.jobs.retain(Job::is_running);
+        for (label, result) in finished {
+            match result {
+                Ok(output) => self.finish_job(ctx, output),
+                Err(e) if jobs::is_cancelled(&e) => self.say(format!("{label}: cancelled")),
+                Err(e) => self.complain(&e),
+            }
+        }
+    }
+}
+
+const PREVIEW_JOB: &str = "Cutting (Preview)";
+
+pub(super) fn file_label(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| path.display().to_string())
+}
+
+/// Reads files and folders (recursively) as structures, one file at a time, reporting progress
+/// per file and stopping between files when cancelled. A folder's files are grouped by the
+/// folders between it and them, its own name first. A volume file whose values are not labels
+/// becomes the scene's image.
+pub fn load_paths(
+    paths: &[PathBuf],
+    progress: &Progress,
+) -> anyhow::Result<(Vec<crate::io::Model>, Option<crate::intensity::ImageLayer>)> {
+    let mut files: Vec<(PathBuf, String)> = Vec::new();
+    for path in paths {
+        if path.is_dir() {
+            let found = crate::io::mesh_files(path)?;
+            if found.is_empty() {
+                anyhow::bail!(
+                    "{}: no .obj, .stl, .ply or .vtk files in this folder",
+                    path.display()
+                );
+            }
+            let root = path.parent().unwrap_or(Path::new(""));
+            files.extend(found.into_iter().map(|f| {
+                let group = crate::io::group_of(&f, root);
+                (f, group)
+            }));
+        } else {
+            files.push((path.clone(), String::new()));
+        }
+    }
+    let mut models = Vec::new();
+    let mut image = None;
+    // Per mille of each file, so a volume's label surfacing moves the bar within its file.
+    let total = files.len() as u64 * 1000;
+    for (i, (file, group)) in files.iter().enumerate() {
+        progress.check()?;
+        let start = i as u64 * 1000;
+        progress.set(start, total);
+        progress.set_message(file_label(file));
+        let surfacing = |fraction: f32| {
+            progress.set(start + (fraction.clamp(0.0, 1.0) * 1000.0) as u64, total);
+            !progress.is_cancelled()
+        };
+        crate::intensity::open::read_file_into(file, group, &mut models, &mut image, &surfacing)?;
+    }
+    progress.set(total, total);
+    Ok((models, image))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn load_paths_names_an_empty_folder() {
+        let dir = std::env::temp_dir().join(format!("cutaway-empty-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let err = load_paths(std::slice::from_ref(&dir), &Progress::default()).unwrap_err();
+        assert!(format!("{err:#}").contains(&dir.display().to_string()));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

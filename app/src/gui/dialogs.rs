@@ -1,0 +1,165 @@
+//! File dialogs: the native one on a worker thread, the in-window browser when no native dialog
+//! can open, the recovery prompt, and what a picked path turns into.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use super::action::{Action, Purpose};
+use super::app::CutawayApp;
+use super::app_jobs::JobOutput;
+
+impl CutawayApp {
+    pub(super) fn open_dialog(&mut self, ctx: &egui::Context, purpose: Purpose) {
+        let start_dir = self
+            .session_path
+            .as_ref()
+            .and_then(|p| p.parent().map(Path::to_path_buf))
+            .or_else(|| {
+                self.recent
+                    .paths
+                    .first()
+                    .and_then(|p| p.parent().map(Path::to_path_buf))
+            });
+        if !self.native_dialogs {
+            self.browser = Some(super::file_browser::FileBrowser::new(purpose, start_dir));
+            return;
+        }
+        self.spawn(ctx, purpose.title(), move |_| {
+            let started = Instant::now();
+            let mut dialog = rfd::AsyncFileDialog::new().set_title(purpose.title());
+            if let Some(dir) = &start_dir {
+                dialog = dialog.set_directory(dir);
+            }
+            let meshes = ["obj", "stl", "ply", "vtk"];
+            // `.seg.nrrd` ends in `nrrd`; `.nii.gz` in `gz` (a filter names one extension).
+            let volumes = ["nrrd", "nhdr", "nii", "gz"];
+            let paths: Vec<PathBuf> = pollster::block_on(async move {
+                match purpose {
+                    Purpose::LoadModel | Purpose::AddModel => dialog
+                        .add_filter("Meshes", &meshes)
+                        .add_filter("Label volumes", &volumes)
+                        .add_filter("Session", &["json"])
+                        .pick_files()
+                        .await
+                        .map(|files| files.iter().map(|f| f.path().to_path_buf()).collect())
+                        .unwrap_or_default(),
+                    Purpose::LoadDirectory | Purpose::ExportMeshes | Purpose::ExportTurntable => {
+                        dialog
+                            .pick_folder()
+                            .await
+                            .map(|f| vec![f.path().to_path_buf()])
+                            .unwrap_or_default()
+                    }
+                    Purpose::OpenImage => dialog
+                        .add_filter("Image volume", &["nrrd", "nhdr", "nii", "gz"])
+                        .pick_file()
+                        .await
+                        .map(|f| vec![f.path().to_path_buf()])
+                        .unwrap_or_default(),
+                    Purpose::OpenSession => dialog
+                        .add_filter("Cutaway session", &["json"])
+                        .pick_file()
+                        .await
+                        .map(|f| vec![f.path().to_path_buf()])
+                        .unwrap_or_default(),
+                    Purpose::SaveSessionAs => dialog
+                        .add_filter("Cutaway session", &["json"])
+                        .set_file_name("session.json")
+                        .save_file()
+                        .await
+                        .map(|f| vec![f.path().to_path_buf()])
+                        .unwrap_or_default(),
+                    Purpose::ExportImage => dialog
+                        .add_filter("PNG image", &["png"])
+                        .set_file_name("cutaway.png")
+                        .save_file()
+                        .await
+                        .map(|f| vec![f.path().to_path_buf()])
+                        .unwrap_or_default(),
+                    Purpose::SaveGesture => dialog
+                        .add_filter("Gesture", &["json"])
+                        .set_file_name("gesture.json")
+                        .save_file()
+                        .await
+                        .map(|f| vec![f.path().to_path_buf()])
+                        .unwrap_or_default(),
+                }
+            });
+            Ok(JobOutput::Picked {
+                purpose,
+                paths,
+                took: started.elapsed(),
+            })
+        });
+    }
+
+    /// What happens once a dialog (native or manual) gave paths.
+    pub(super) fn picked(&mut self, ctx: &egui::Context, purpose: Purpose, paths: Vec<PathBuf>) {
+        let Some(first) = paths.first().cloned() else {
+            return;
+        };
+        match purpose {
+            Purpose::LoadModel | Purpose::LoadDirectory => self.apply(ctx, Action::Open(paths)),
+            Purpose::AddModel => self.apply(ctx, Action::Add(paths)),
+            Purpose::OpenSession => self.apply(ctx, Action::Open(vec![first])),
+            Purpose::SaveSessionAs => {
+                self.apply(ctx, Action::SaveSessionTo(with_extension(first, "json")))
+            }
+            Purpose::ExportImage => {
+                self.apply(ctx, Action::ExportImageTo(with_extension(first, "png")))
+            }
+            Purpose::ExportMeshes => self.apply(ctx, Action::ExportMeshesTo(first)),
+            Purpose::ExportTurntable => self.apply(ctx, Action::ExportTurntableTo(first)),
+            Purpose::OpenImage => self.apply(ctx, Action::OpenImage(first)),
+            Purpose::SaveGesture => {
+                let path = with_extension(first, "json");
+                match self.viewport.save_recording(&path) {
+                    Ok(n) => self.say(format!("Saved gesture of {n} events to {}", path.display())),
+                    Err(e) => self.complain(&e),
+                }
+            }
+        }
+    }
+
+    pub(super) fn dialogs_ui(&mut self, ctx: &egui::Context) -> Vec<Action> {
+        let mut actions = Vec::new();
+        if let Some(path) = self.pending_recovery.clone() {
+            egui::Modal::new(egui::Id::unique("cutaway-recovery")).show(ctx, |ui| {
+                ui.heading("Restore the previous session?");
+                ui.label("Cutaway did not exit cleanly last time. An autosaved session was found:");
+                ui.label(
+                    egui::RichText::new(path.display().to_string())
+                        .monospace()
+                        .small(),
+                );
+                ui.add_space(8.0);
+                ui.horizontal(|ui| {
+                    if ui.button("Restore").clicked() {
+                        actions.push(Action::RestoreRecovery);
+                    }
+                    if ui.button("Discard").clicked() {
+                        actions.push(Action::DiscardRecovery);
+                    }
+                });
+            });
+        }
+        if let Some(browser) = &mut self.browser
+            && let Some(paths) = browser.ui(ctx)
+        {
+            let purpose = browser.purpose;
+            self.browser = None;
+            if let Some(path) = paths.into_iter().next() {
+                self.pending_manual = Some((purpose, path));
+            }
+        }
+        actions
+    }
+}
+
+fn with_extension(path: PathBuf, ext: &str) -> PathBuf {
+    if path.extension().is_some() {
+        path
+    } else {
+        path.with_extension(ext)
+    }
+}

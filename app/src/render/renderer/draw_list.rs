@@ -1,0 +1,432 @@
+//! What a frame draws: uploads what is new (model meshes, a preview's parts and contours, delta
+//! patches, the cutter overlays of Edit mode) into the renderer's caches and lists each draw with
+//! its uniform (colour, opacity, line width), sorted into the opaque, transparent and overlay
+//! passes. The one place that decides how each kind of geometry looks; the passes only replay
+//! the list.
+
+use std::collections::HashMap;
+use std::sync::{Arc, Weak};
+
+use csg::Mesh;
+use glam::DVec3;
+
+use super::index_patches::{IndexPatch, hidden_patches};
+use super::{CONTOUR_COLOR, CachedDelta, CachedMesh, Renderer, WALL_MIX, WALL_TINT};
+use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
+use crate::render::draw_data::{GpuMesh, GpuSegments, cutter_outline_segments, polyline_segments};
+use crate::render::gpu_data::DrawUniform;
+use crate::render::{FrameInputs, ViewMode, srgb_to_linear};
+use crate::scene::ModelStyle;
+
+/// Contour line width in pixels at 800 px image height.
+const CONTOUR_WIDTH_PX: f32 = 3.0;
+const WIREFRAME_WIDTH_PX: f32 = 1.0;
+/// Cutter overlay colours (sRGB) and opacities.
+const CUTTER_FILL: [f32; 3] = [0.35, 0.6, 0.95];
+const CUTTER_OUTLINE: [f32; 3] = [0.08, 0.28, 0.75];
+const HIGHLIGHT: [f32; 3] = [1.0, 0.55, 0.1];
+/// Brightness of back faces relative to front faces.
+const BACK_FACE: f32 = 0.55;
+
+pub(super) struct CachedPreview {
+    pub(super) preview: Weak<PreviewGeometry>,
+    /// One per `PreviewGeometry::parts` entry.
+    pub(super) parts: Vec<Option<GpuMesh>>,
+    /// Per model: its contour polylines.
+    pub(super) contours: HashMap<usize, GpuSegments>,
+}
+
+/// What one draw call draws.
+#[derive(Clone, Copy)]
+pub(super) enum Source {
+    /// A scene model's mesh, by cache key.
+    Model(usize),
+    /// `PreviewGeometry::parts[i]`.
+    Part(usize),
+    /// The patch of a [`MeshDelta`](crate::render::delta::MeshDelta), by cache key.
+    Delta(usize),
+    /// A per-frame overlay mesh.
+    Overlay(usize),
+}
+
+#[derive(Clone, Copy)]
+pub(super) enum Draw {
+    Mesh(Source, u32),
+    /// A mesh showing the intensity image ([`crate::render::image_layer`]).
+    ImageMesh(Source, u32),
+    Edges(Source, u32),
+    Contour(usize, u32),
+    Lines(usize, u32),
+}
+
+#[derive(Default)]
+pub(super) struct DrawList {
+    pub(super) opaque: Vec<Draw>,
+    pub(super) transparent: Vec<Draw>,
+    /// Drawn after the transparency composite, with no depth test.
+    pub(super) overlay: Vec<Draw>,
+}
+
+impl Renderer {
+    /// Uploads what is missing and lists the draws of the frame with their uniforms.
+    /// `image_on`: whether walls, and slices and ribbons, show the image.
+    pub(super) fn upload_and_list(
+        &mut self,
+        device: &wgpu::Device,
+        frame: &FrameInputs,
+        image_on: [bool; 2],
+    ) -> (DrawList, Vec<DrawUniform>) {
+        let [image_walls, image_slices] = image_on;
+        let scene = &frame.scene;
+        let mut list = DrawList::default();
+        let mut uniforms: Vec<DrawUniform> = Vec::new();
+        let mut push_uniform = |color: [f32; 3], opacity: f32, lit: bool, width: f32, bias: f32| {
+            uniforms.push(DrawUniform {
+                color: [
+                    srgb_to_linear(color[0]),
+                    srgb_to_linear(color[1]),
+                    srgb_to_linear(color[2]),
+                    opacity,
+                ],
+                params: [BACK_FACE, if lit { 1.0 } else { 0.0 }, width, bias],
+            });
+            (uniforms.len() - 1) as u32
+        };
+        let radius = 0.5 * self.scene_bbox.diagonal().max(1e-9);
+        let contour_bias = (radius * 0.004) as f32;
+
+        // Preview parts.
+        // Edit mode shows the live cut under the cutters when the GUI provides one.
+        let preview = if matches!(frame.mode, ViewMode::Preview | ViewMode::Edit) {
+            frame.preview.clone()
+        } else {
+            None
+        };
+        if let Some(p) = &preview {
+            let stale = self
+                .preview
+                .as_ref()
+                .is_none_or(|c| !c.preview.upgrade().is_some_and(|q| Arc::ptr_eq(&q, p)));
+            if stale {
+                let cache = upload_preview(device, p);
+                for part in &cache.parts {
+                    self.uploads.mesh(part.as_ref());
+                }
+                for c in cache.contours.values() {
+                    self.uploads.segments(Some(c));
+                }
+                if self.preview.is_some() {
+                    // The app dropped the old preview's meshes when it made this one.
+                    self.free_pages.note_large_free();
+                }
+                self.preview = Some(cache);
+            }
+        } else {
+            // Nothing to show: the last preview's buffers go now, not when the next one comes
+            // (a model-sized kept part would otherwise stay on the GPU through Camera mode).
+            if self.preview.take().is_some() {
+                self.free_pages.note_large_free();
+            }
+        }
+        let replaced = |m: usize| {
+            preview
+                .as_ref()
+                .is_some_and(|p| p.replaced.get(m).copied().unwrap_or(false))
+        };
+
+        // Models (uncut, or the kept parts of cut ones).
+        for (index, model) in scene.models.iter().enumerate() {
+            let delta = frame
+                .deltas
+                .iter()
+                .find(|d| Arc::ptr_eq(&d.base, &model.mesh));
+            if !model.visible || model.opacity <= 0.0 || (replaced(index) && delta.is_none()) {
+                continue;
+            }
+            let key = Arc::as_ptr(&model.mesh) as usize;
+            let fresh = self.models.get(&key).is_some_and(|c| {
+                c.mesh
+                    .upgrade()
+                    .is_some_and(|m| Arc::ptr_eq(&m, &model.mesh))
+            });
+            if !fresh {
+                let gpu = GpuMesh::upload(device, &model.name, &model.mesh);
+                self.uploads.mesh(gpu.as_ref());
+                self.models.insert(
+                    key,
+                    CachedMesh {
+                        mesh: Arc::downgrade(&model.mesh),
+                        gpu,
+                        last_used: 0,
+                        hidden: Vec::new(),
+                        hidden_for: None,
+                    },
+                );
+            }
+            let Some(cached) = self.models.get_mut(&key) else {
+                continue;
+            };
+            cached.last_used = self.frame_index;
+            if cached.gpu.is_none() {
+                continue;
+            }
+            // Hide the faces the delta replaces (or show them again when it is gone).
+            let same = match (&cached.hidden_for, delta) {
+                (Some(w), Some(d)) => w.upgrade().is_some_and(|x| Arc::ptr_eq(&x, d)),
+                (None, None) => true,
+                _ => false,
+            };
+            if !same {
+                let wanted: &[u32] = delta.map_or(&[], |d| &d.hidden);
+                let words = hidden_patches(&model.mesh, &cached.hidden, wanted);
+                self.uploads.bytes += (words.len() * size_of::<[u32; 2]>()) as u64;
+                self.uploads.triangles += (words.len() / 3) as u64;
+                if !words.is_empty() {
+                    self.patches.push(IndexPatch { key, words });
+                }
+                cached.hidden = wanted.to_vec();
+                cached.hidden_for = delta.map(Arc::downgrade);
+            }
+            let delta_key = delta.map(|d| {
+                let dkey = Arc::as_ptr(d) as usize;
+                let fresh = self
+                    .deltas
+                    .get(&dkey)
+                    .is_some_and(|c| c.delta.upgrade().is_some_and(|x| Arc::ptr_eq(&x, d)));
+                if !fresh {
+                    let gpu = GpuMesh::upload_vertices(
+                        device,
+                        &format!("{} patch", model.name),
+                        &d.vertices,
+                        &d.patch.triangles,
+                    );
+                    self.uploads.mesh(gpu.as_ref());
+                    self.deltas.insert(
+                        dkey,
+                        CachedDelta {
+                            delta: Arc::downgrade(d),
+                            gpu,
+                            last_used: 0,
+                        },
+                    );
+                }
+                if let Some(c) = self.deltas.get_mut(&dkey) {
+                    c.last_used = self.frame_index;
+                }
+                (dkey, d)
+            });
+            let mut sources = vec![Source::Model(key)];
+            sources.extend(delta_key.map(|(k, _)| Source::Delta(k)));
+            match model.style {
+                ModelStyle::Solid => {
+                    let u = push_uniform(model.color, model.opacity, true, 0.0, 0.0);
+                    for source in sources {
+                        if model.opacity < 1.0 {
+                            list.transparent.push(Draw::Mesh(source, u));
+                        } else {
+                            list.opaque.push(Draw::Mesh(source, u));
+                        }
+                    }
+                }
+                ModelStyle::Wireframe => {
+                    // The base's edges include those of hidden faces: a wireframe under a
+                    // delta shows the old edges too until the change is committed.
+                    if let Some(gpu) = self.models.get_mut(&key).and_then(|c| c.gpu.as_mut()) {
+                        let had = gpu.edges.is_some();
+                        gpu.ensure_edges(device, &model.name, &model.mesh);
+                        if !had {
+                            self.uploads.segments(gpu.edges.as_ref());
+                        }
+                    }
+                    if let Some((k, d)) = delta_key
+                        && let Some(gpu) = self.deltas.get_mut(&k).and_then(|c| c.gpu.as_mut())
+                    {
+                        let had = gpu.edges.is_some();
+                        gpu.ensure_edges(device, &model.name, &d.patch);
+                        if !had {
+                            self.uploads.segments(gpu.edges.as_ref());
+                        }
+                    }
+                    let u = push_uniform(model.color, 1.0, false, WIREFRAME_WIDTH_PX, 0.0);
+                    for source in sources {
+                        list.opaque.push(Draw::Edges(source, u));
+                    }
+                }
+            }
+        }
+
+        if let (Some(p), Some(cache)) = (&preview, self.preview.as_mut()) {
+            for (i, part) in p.parts.iter().enumerate() {
+                let Some(model) = scene.models.get(part.model) else {
+                    continue;
+                };
+                if !model.visible {
+                    continue;
+                }
+                let Some(gpu) = cache.parts.get_mut(i).and_then(|g| g.as_mut()) else {
+                    continue;
+                };
+                let wall = mix(model.color, WALL_TINT, WALL_MIX);
+                match part.kind {
+                    PartKind::Kept => match model.style {
+                        ModelStyle::Solid if model.opacity <= 0.0 => {}
+                        ModelStyle::Solid => {
+                            let u = push_uniform(model.color, model.opacity, true, 0.0, 0.0);
+                            if model.opacity < 1.0 {
+                                list.transparent.push(Draw::Mesh(Source::Part(i), u));
+                            } else {
+                                list.opaque.push(Draw::Mesh(Source::Part(i), u));
+                            }
+                        }
+                        ModelStyle::Wireframe => {
+                            gpu.ensure_edges(device, &model.name, &part.mesh);
+                            let u = push_uniform(model.color, 1.0, false, WIREFRAME_WIDTH_PX, 0.0);
+                            list.opaque.push(Draw::Edges(Source::Part(i), u));
+                        }
+                    },
+                    PartKind::Wall | PartKind::SliceWall => {
+                        let u = push_uniform(wall, 1.0, true, 0.0, 0.0);
+                        let image =
+                            image_walls || (part.kind == PartKind::SliceWall && image_slices);
+                        list.opaque.push(if image {
+                            Draw::ImageMesh(Source::Part(i), u)
+                        } else {
+                            Draw::Mesh(Source::Part(i), u)
+                        });
+                    }
+                    PartKind::Ribbon => {
+                        let u = push_uniform(model.color, 1.0, true, 0.0, 0.0);
+                        list.opaque.push(if image_slices {
+                            Draw::ImageMesh(Source::Part(i), u)
+                        } else {
+                            Draw::Mesh(Source::Part(i), u)
+                        });
+                    }
+                    PartKind::Removed => {
+                        let u = push_uniform(model.color, part.opacity, true, 0.0, 0.0);
+                        list.transparent.push(Draw::Mesh(Source::Part(i), u));
+                    }
+                }
+            }
+            let mut models: Vec<usize> = cache.contours.keys().copied().collect();
+            models.sort_unstable();
+            for m in models {
+                if scene.models.get(m).is_some_and(|model| model.visible) {
+                    let u = push_uniform(CONTOUR_COLOR, 1.0, false, CONTOUR_WIDTH_PX, contour_bias);
+                    list.opaque.push(Draw::Contour(m, u));
+                }
+            }
+        }
+
+        // Cutter overlays (Edit mode), re-uploaded every frame: they change while dragging.
+        self.overlay_meshes.clear();
+        self.overlay_lines.clear();
+        if frame.mode == ViewMode::Edit {
+            for (k, overlay) in frame.overlays.iter().enumerate() {
+                let surface = GpuMesh::upload(device, "cutter overlay surface", &overlay.surface);
+                if surface.is_some() {
+                    let opacity = if overlay.active { 0.35 } else { 0.22 };
+                    // Pushed a little away from the eye: where the cutter coincides with the
+                    // walls it cut, the walls win (no z-fighting, the live cut looks like the
+                    // committed one); where it sticks out of the target it shows as a shell.
+                    let u = push_uniform(CUTTER_FILL, opacity, true, 0.0, -contour_bias);
+                    list.transparent
+                        .push(Draw::Mesh(Source::Overlay(self.overlay_meshes.len()), u));
+                    self.overlay_meshes.push(surface);
+                }
+                let outline = GpuSegments::upload(
+                    device,
+                    &format!("cutter {k} outline"),
+                    &cutter_outline_segments(&overlay.planes),
+                );
+                if outline.is_some() {
+                    let width = if overlay.active { 1.5 } else { 1.0 };
+                    let u = push_uniform(CUTTER_OUTLINE, 0.85, false, width, 0.0);
+                    list.overlay.push(Draw::Lines(self.overlay_lines.len(), u));
+                    self.overlay_lines.push(outline);
+                }
+                if let Some(plane) = overlay
+                    .highlighted_plane
+                    .and_then(|i| overlay.planes.get(i))
+                {
+                    let quad = Mesh {
+                        positions: plane.to_vec(),
+                        triangles: vec![[0, 1, 2], [0, 2, 3]],
+                    };
+                    let u = push_uniform(HIGHLIGHT, 0.55, false, 0.0, 0.0);
+                    list.transparent
+                        .push(Draw::Mesh(Source::Overlay(self.overlay_meshes.len()), u));
+                    self.overlay_meshes
+                        .push(GpuMesh::upload(device, "highlighted plane", &quad));
+                    let u = push_uniform(HIGHLIGHT, 1.0, false, 3.0, 0.0);
+                    list.overlay.push(Draw::Lines(self.overlay_lines.len(), u));
+                    self.overlay_lines.push(GpuSegments::upload(
+                        device,
+                        "highlighted plane outline",
+                        &cutter_outline_segments(std::slice::from_ref(plane)),
+                    ));
+                }
+            }
+            for m in self.overlay_meshes.iter().flatten() {
+                self.uploads.mesh(Some(m));
+            }
+            for l in self.overlay_lines.iter().flatten() {
+                self.uploads.segments(Some(l));
+            }
+        }
+        (list, uniforms)
+    }
+
+    pub(super) fn mesh(&self, source: Source) -> Option<&GpuMesh> {
+        match source {
+            Source::Model(key) => self.models.get(&key)?.gpu.as_ref(),
+            Source::Part(i) => self.preview.as_ref()?.parts.get(i)?.as_ref(),
+            Source::Overlay(i) => self.overlay_meshes.get(i)?.as_ref(),
+            Source::Delta(key) => self.deltas.get(&key)?.gpu.as_ref(),
+        }
+    }
+
+    pub(super) fn segments(&self, draw: Draw) -> Option<&GpuSegments> {
+        match draw {
+            Draw::Edges(source, _) => self.mesh(source)?.edges.as_ref(),
+            Draw::Contour(model, _) => self.preview.as_ref()?.contours.get(&model),
+            Draw::Lines(i, _) => self.overlay_lines.get(i)?.as_ref(),
+            Draw::Mesh(..) | Draw::ImageMesh(..) => None,
+        }
+    }
+}
+
+fn upload_preview(device: &wgpu::Device, preview: &Arc<PreviewGeometry>) -> CachedPreview {
+    let parts = preview
+        .parts
+        .iter()
+        .map(|p| {
+            GpuMesh::upload(
+                device,
+                &format!("preview part {:?} of model {}", p.kind, p.model),
+                &p.mesh,
+            )
+        })
+        .collect();
+    let mut by_model: HashMap<usize, Vec<&[DVec3]>> = HashMap::new();
+    for (model, line) in &preview.contours {
+        by_model.entry(*model).or_default().push(line);
+    }
+    let contours = by_model
+        .into_iter()
+        .filter_map(|(model, lines)| {
+            let segments = polyline_segments(lines);
+            GpuSegments::upload(device, &format!("contour of model {model}"), &segments)
+                .map(|s| (model, s))
+        })
+        .collect();
+    CachedPreview {
+        preview: Arc::downgrade(preview),
+        parts,
+        contours,
+    }
+}
+
+fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
+    [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t)
+}
