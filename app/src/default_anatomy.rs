@@ -6,10 +6,16 @@
 //! The structures come from the atlas's label map (`hncma-atlas.nrrd`, 256³, 1 mm) and its
 //! colour table, embedded byte for byte and read by the same NRRD reader and label-surface
 //! pipeline (`io::volume`, `csg::labels`) as any volume the user opens: names and colours from
-//! the table, one model per label, grouped by anatomical system ([`groups`]), the brain's mantle
-//! (cortex, white matter) left out so that the deep structures show when the skin is cut. The atlas has no
-//! skin label, so the occluder is the atlas's skin surface, decimated once offline
-//! (`assets/spl_head/decimate_skin.py`); it is first in the list and the cutter's natural target.
+//! the table, one model per label, grouped by anatomical system ([`groups`]). The default shows
+//! the deep structures a user expects inside a head ([`selection`]: about sixty of the atlas's
+//! three hundred labels, light enough to surface and draw at once); [`ALL_NAME`] is the same
+//! atlas with every named structure. The atlas has no skin label, so the occluder is the atlas's
+//! skin surface, decimated once offline (`assets/spl_head/decimate_skin.py`); it is first in the
+//! list and the cutter's natural target.
+//!
+//! Earlier defaults embedded the atlas's model files (`Model_<label>_<name>.vtk`) instead of the
+//! label map; sessions saved from them name those files, and [`load_missing`] serves each as the
+//! surface of its label, so such sessions still open.
 //!
 //! The skin reads in milliseconds, the label surfaces take longer: the window shows the skin at
 //! once ([`load_skin`]) and lets the structures arrive from a background job
@@ -25,12 +31,16 @@ use crate::io::volume::{LabelVolume, Structure};
 use crate::io::{Format, Model};
 
 pub mod groups;
+pub mod selection;
 
 /// The folder under `assets/` (and in the models' virtual paths).
 pub const FOLDER: &str = "spl_head";
 
 /// Menu name of the scene.
 pub const NAME: &str = "head atlas";
+
+/// Menu name of the same atlas with every structure its table names.
+pub const ALL_NAME: &str = "head atlas (all structures)";
 
 /// Direction from the head toward a viewer who faces it (RAS: anterior is +Y).
 pub const FRONT: DVec3 = DVec3::Y;
@@ -57,10 +67,21 @@ pub fn virtual_path(file: &str) -> PathBuf {
     PathBuf::from(format!("assets/{FOLDER}/{file}"))
 }
 
-/// The whole scene: the skin, then every label of the atlas ([`load_skin`] + [`load_structures`]).
+/// The whole scene: the skin, then the default's labels ([`load_skin`] + [`load_structures`]).
 pub fn load() -> anyhow::Result<Vec<Model>> {
     let mut models = load_skin()?;
     models.extend(load_structures(&|_| true)?);
+    Ok(models)
+}
+
+/// The skin and every structure the atlas's table names ([`ALL_NAME`]), grouped and listed as
+/// [`load_structures`] lists its own. `progress` gets 0..=1 and returns false to cancel.
+pub fn load_all(progress: &(dyn Fn(f32) -> bool + Sync)) -> anyhow::Result<Vec<Model>> {
+    let named = table_values()?;
+    let mut structures = atlas_models(|s| named.contains(&s.value), progress)?;
+    structures.sort_by_key(|m| (groups::rank(&m.group), m.index));
+    let mut models = load_skin()?;
+    models.extend(structures);
     Ok(models)
 }
 
@@ -89,20 +110,13 @@ pub fn surface_options() -> csg::labels::SurfaceOptions {
     }
 }
 
-/// Every structure of the atlas as a model: named from the table (`left hippocampus`),
-/// coloured by it, grouped by anatomical system, listed group by group (deep structures first)
-/// and by label value within a group. Left out: a label the table does not name (a stray voxel:
-/// label 1 is one, not anatomy) and the brain's mantle ([`groups::LEFT_OUT`]: cortex, white
-/// matter, sulci), which would hide the deep structures and weigh two thirds of the atlas's
-/// triangles; opening the atlas file gives every label. A model's `index` is its label's position in the
-/// volume's ascending label list, as when the file is opened, so sessions find it again.
-/// `progress` gets 0..=1 and returns false to cancel.
+/// The default scene's structures ([`selection::DEFAULT_LABELS`]) as models: named from the
+/// table (`left hippocampus`), coloured by it, grouped by anatomical system, listed group by
+/// group (deep structures first) and by label value within a group. A model's `index` is its
+/// label's position in the volume's ascending label list, as when the file is opened, so
+/// sessions find it again. `progress` gets 0..=1 and returns false to cancel.
 pub fn load_structures(progress: &(dyn Fn(f32) -> bool + Sync)) -> anyhow::Result<Vec<Model>> {
-    let named = table_values()?;
-    let keep = |s: &Structure| {
-        named.contains(&s.value) && !groups::LEFT_OUT.contains(&groups::group_of(s.value, &s.name))
-    };
-    let mut models = atlas_models(keep, progress)?;
+    let mut models = atlas_models(|s| selection::in_default(s.value), progress)?;
     models.sort_by_key(|m| (groups::rank(&m.group), m.index));
     Ok(models)
 }
@@ -145,8 +159,9 @@ pub fn table_values() -> anyhow::Result<Vec<u32>> {
 
 /// The embedded file a path names when the path does not exist on disk and ends in
 /// `assets/spl_head/<file>` (as sessions saved from the default scene do): its structures, in the
-/// volume's label order for the atlas (a session picks them by that index). `None` for any other
-/// path.
+/// volume's label order for the atlas (a session picks them by that index); for a model file of
+/// an earlier default (`Model_<label>_<name>.vtk`) the one surface of its label, as the file held
+/// it. `None` for any other path.
 pub fn load_missing(path: &Path) -> Option<anyhow::Result<Vec<Model>>> {
     if path.exists() {
         return None;
@@ -163,8 +178,39 @@ pub fn load_missing(path: &Path) -> Option<anyhow::Result<Vec<Model>>> {
         SKIN_FILE => Some(load_skin()),
         // Every label, as opening the file gives them: a session picks by position.
         ATLAS_FILE => Some(atlas_models(|_| true, &|_| true)),
-        _ => None,
+        _ => {
+            let value = old_model_label(file)?;
+            Some(old_model(file, value))
+        }
     }
+}
+
+/// The label value an earlier default's model file is named after: `Model_17_left_hippocampus.vtk`
+/// → 17. `None` for any other name.
+pub fn old_model_label(file: &str) -> Option<u32> {
+    let rest = file.strip_prefix("Model_")?.strip_suffix(".vtk")?;
+    let (value, name) = rest.split_once('_')?;
+    (!name.is_empty()).then_some(())?;
+    value.parse().ok()
+}
+
+/// The surface of label `value`, as the one structure of the model file `file` (its virtual path
+/// is the model's source, so saving the session again names the same file). An error when the
+/// atlas has no such label.
+fn old_model(file: &str, value: u32) -> anyhow::Result<Vec<Model>> {
+    let path = virtual_path(file);
+    let mut models = atlas_models(|s| s.value == value, &|_| true)?;
+    anyhow::ensure!(
+        models.len() == 1,
+        "{}: the head atlas has no label {value}",
+        path.display()
+    );
+    for model in &mut models {
+        model.source = path.clone();
+        model.index = 0;
+        model.group.clear();
+    }
+    Ok(models)
 }
 
 /// True when every model comes from this scene (its virtual paths or the source tree's copies).
@@ -178,3 +224,6 @@ pub fn is_default_scene(models: &[Model]) -> bool {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod old_sessions_tests;

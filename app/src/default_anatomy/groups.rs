@@ -22,12 +22,6 @@ pub const ORDER: &[&str] = &[
     "other",
 ];
 
-/// Groups the default scene leaves out: the brain's mantle. The cortex and the hemispheres'
-/// white matter enclose the ventricles, basal ganglia and limbic structures, so with them a cut
-/// through the skin shows the brain's outer surface and nothing deep; they are also two thirds
-/// of the atlas's triangles (2.6 of 3.9 million at the default smoothing).
-pub const LEFT_OUT: &[&str] = &["cerebral cortex", "white matter", "sulci"];
-
 /// Words of a label name (underscores as spaces) that put it in a group, first match wins.
 const BY_WORDS: &[(&str, &[&str])] = &[
     (
@@ -64,6 +58,7 @@ const BY_WORDS: &[(&str, &[&str])] = &[
         &[
             "thalamus",
             "thalamic",
+            "medullary lamina",
             "geniculate",
             "pulvinar",
             "hypothalamus",
@@ -139,6 +134,10 @@ mod tests {
         assert_eq!(group_of(17, "left_hippocampus"), "limbic system");
         assert_eq!(group_of(12, "left_putamen"), "basal ganglia");
         assert_eq!(group_of(35, "pons"), "brainstem");
+        assert_eq!(
+            group_of(501, "left_internal_medullary_lamina"),
+            "thalamus and hypothalamus"
+        );
         assert_eq!(group_of(8, "left_cerebellar_cortex"), "cerebellum");
         assert_eq!(group_of(305, "left_VIIAf_v"), "cerebellum");
         assert_eq!(

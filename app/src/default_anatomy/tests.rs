@@ -25,20 +25,19 @@ fn the_skin_comes_first_closed_and_the_labels_follow_named_from_the_table() {
         skin.mesh.volume()
     );
     let volume = atlas_volume().unwrap();
-    // Every label present in the atlas that the table names is a model, once, but the brain's
-    // mantle; the one the table does not name (label 1, a single voxel) is not.
+    // Every label of the selection is in the atlas and named by its table, and is a model, once.
     let named = table_values().unwrap();
-    let kept = |s: &crate::io::volume::Structure| {
-        named.contains(&s.value) && !groups::LEFT_OUT.contains(&groups::group_of(s.value, &s.name))
-    };
+    for value in selection::DEFAULT_LABELS {
+        assert!(named.contains(value), "the table does not name label {value}");
+        assert!(
+            volume.structures.iter().any(|s| s.value == *value),
+            "the atlas has no label {value}"
+        );
+    }
     let expected: Vec<usize> = (0..volume.structures.len())
-        .filter(|&i| kept(&volume.structures[i]))
+        .filter(|&i| selection::in_default(volume.structures[i].value))
         .collect();
-    assert!(expected.len() > 200, "{} structures kept", expected.len());
-    assert!(
-        volume.structures.iter().any(|s| !named.contains(&s.value)),
-        "label 1 is unnamed"
-    );
+    assert_eq!(expected.len(), selection::DEFAULT_LABELS.len());
     let mut indices: Vec<usize> = models[1..].iter().map(|m| m.index).collect();
     indices.sort_unstable();
     assert_eq!(indices, expected);
@@ -73,17 +72,19 @@ fn the_list_runs_group_by_group_deep_structures_first() {
     let ranks: Vec<usize> = models.iter().map(|m| groups::rank(&m.group)).collect();
     assert!(ranks.windows(2).all(|w| w[0] <= w[1]), "groups interleave");
     assert_eq!(models[0].group, "ventricles");
-    for left_out in groups::LEFT_OUT {
+    // The mantle and the muscles around the deep structures stay out of the default.
+    for left_out in ["cerebral cortex", "white matter", "sulci", "muscles"] {
         assert!(
-            !models.iter().any(|m| m.group == *left_out),
+            !models.iter().any(|m| m.group == left_out),
             "{left_out} is in"
         );
     }
     for group in [
         "basal ganglia",
+        "limbic system",
+        "thalamus and hypothalamus",
         "brainstem",
         "eyes and optic pathway",
-        "muscles",
     ] {
         assert!(
             models.iter().any(|m| m.group == group),
@@ -123,6 +124,85 @@ fn the_deep_structures_lie_inside_the_skin_and_every_surface_is_closed() {
     }
 }
 
+/// The model files an earlier default embedded; sessions saved from it name them.
+const OLD_MODEL_FILES: &[&str] = &[
+    "Model_4_left_lateral_ventricle.vtk",
+    "Model_43_right_lateral_ventricle.vtk",
+    "Model_5_temporal_horn_of_left_lateral_ventricle.vtk",
+    "Model_44_temporal_horn_of_right_lateral_ventricle.vtk",
+    "Model_24_third_ventricle.vtk",
+    "Model_15_fourth_ventricle.vtk",
+    "Model_11_left_caudate_nucleus.vtk",
+    "Model_50_right_caudate_nucleus.vtk",
+    "Model_12_left_putamen.vtk",
+    "Model_51_right_putamen.vtk",
+    "Model_17_left_hippocampus.vtk",
+    "Model_53_right_hippocampus.vtk",
+    "Model_18_left_amygdala.vtk",
+    "Model_54_right_amygdala.vtk",
+    "Model_40_part_of_midbrain.vtk",
+    "Model_35_pons.vtk",
+    "Model_61_medulla_oblongata.vtk",
+    "Model_4027_left_eyeball.vtk",
+    "Model_4028_right_eyeball.vtk",
+    "Model_77_left_optic_nerve.vtk",
+    "Model_215_right_optic_nerve.vtk",
+    "Model_85_optic_chiasm.vtk",
+];
+
+#[test]
+fn the_default_is_light_and_holds_every_structure_of_the_earlier_default() {
+    let models = scene();
+    let triangles: usize = models.iter().map(|m| m.mesh.triangle_count()).sum();
+    println!(
+        "default scene: {} structures and the skin, {triangles} triangles",
+        models.len() - 1
+    );
+    assert!(models.len() - 1 <= 64, "{} structures", models.len() - 1);
+    assert!(triangles <= 400_000, "{triangles} triangles");
+    for file in OLD_MODEL_FILES {
+        let value = old_model_label(file).unwrap_or_else(|| panic!("{file}: no label"));
+        assert!(selection::in_default(value), "{file} is not in the default");
+        // The file's name is the table's name of its label.
+        let name = file
+            .trim_start_matches(&format!("Model_{value}_"))
+            .trim_end_matches(".vtk")
+            .replace('_', " ");
+        assert!(
+            models.iter().any(|m| m.name == name),
+            "{name} is not in the default"
+        );
+    }
+}
+
+#[test]
+fn a_missing_model_file_of_an_earlier_default_is_its_label_surface() {
+    let missing = Path::new("/nonexistent/x/assets/spl_head/Model_35_pons.vtk");
+    let pons = load_missing(missing).expect("embedded").unwrap();
+    assert_eq!(pons.len(), 1);
+    assert_eq!((pons[0].name.as_str(), pons[0].index), ("pons", 0));
+    assert_eq!(pons[0].source, virtual_path("Model_35_pons.vtk"));
+    let in_default = scene().iter().find(|m| m.name == "pons").unwrap();
+    assert_eq!(
+        pons[0].mesh.triangle_count(),
+        in_default.mesh.triangle_count()
+    );
+    let report = pons[0].mesh.report();
+    assert!(report.closed && report.manifold, "{report:?}");
+    // A label the atlas lacks is an error naming the file; other names are not ours.
+    let err = load_missing(Path::new("/nonexistent/assets/spl_head/Model_9_none.vtk"))
+        .expect("a model file name")
+        .unwrap_err();
+    assert!(
+        format!("{err:#}").contains("Model_9_none.vtk"),
+        "{err:#}"
+    );
+    assert_eq!(old_model_label("Model_4027_left_eyeball.vtk"), Some(4027));
+    assert_eq!(old_model_label("Model_x_pons.vtk"), None);
+    assert_eq!(old_model_label("Model_35_.vtk"), None);
+    assert_eq!(old_model_label("Model_35_pons.ply"), None);
+}
+
 #[test]
 fn missing_paths_of_the_scene_are_served_from_the_binary() {
     let skin = load_missing(Path::new("/nonexistent/x/assets/spl_head/skin.ply"))
@@ -156,4 +236,29 @@ fn a_missing_atlas_is_served_in_label_order_as_a_session_picks_it() {
 fn a_cancelled_surfacing_ends_with_an_error_and_no_models() {
     let err = load_structures(&|_| false).unwrap_err();
     assert!(format!("{err:#}").contains("cancelled"), "{err:#}");
+}
+
+#[test]
+fn the_atlas_with_all_structures_adds_the_mantle_and_the_muscles() {
+    let all = load_all(&|_| true).unwrap();
+    assert_eq!(all[0].name, "skin");
+    let named = table_values().unwrap();
+    let volume = atlas_volume().unwrap();
+    let present_and_named = volume
+        .structures
+        .iter()
+        .filter(|s| named.contains(&s.value))
+        .count();
+    assert_eq!(all.len() - 1, present_and_named);
+    assert!(all.len() > 200, "{} structures", all.len());
+    for name in ["left superior frontal gyrus", "tongue", "left masseter"] {
+        assert!(all.iter().any(|m| m.name == name), "{name} is missing");
+    }
+    // The default's structures are the same surfaces at the same label positions.
+    for m in &scene()[1..] {
+        let same = all.iter().find(|a| a.index == m.index).expect("in all");
+        assert_eq!(same.name, m.name);
+    }
+    let ranks: Vec<usize> = all[1..].iter().map(|m| groups::rank(&m.group)).collect();
+    assert!(ranks.windows(2).all(|w| w[0] <= w[1]), "groups interleave");
 }

@@ -151,6 +151,11 @@ pub fn example_scene_models(
     progress.set_message(name.to_string());
     let mut models = if name == crate::default_anatomy::NAME {
         crate::default_anatomy::load()?
+    } else if name == crate::default_anatomy::ALL_NAME {
+        crate::default_anatomy::load_all(&|fraction| {
+            progress.set((fraction.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
+            !progress.is_cancelled()
+        })?
     } else {
         let scene = crate::assets::scene(name)
             .ok_or_else(|| anyhow::anyhow!("{name}: no such example scene"))?;
