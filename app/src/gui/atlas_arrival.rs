@@ -12,7 +12,7 @@
 use std::time::Duration;
 
 use super::CutawayApp;
-use super::jobs::{Job, is_cancelled};
+use super::jobs::{Job, Progress, is_cancelled};
 use crate::io::Model;
 use crate::scene::SceneModel;
 
@@ -28,17 +28,27 @@ impl AtlasArrival {
 
     /// Starts surfacing the atlas's labels (a running job is cancelled first).
     pub fn start(&mut self, ctx: &egui::Context) {
+        self.start_with(ctx, |progress| {
+            crate::default_anatomy::load_structures(&|fraction| {
+                progress.set((fraction.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
+                !progress.is_cancelled()
+            })
+        });
+    }
+
+    /// [`AtlasArrival::start`] with the structures made by `work` (tests hold the job open
+    /// with it, whatever the machine's speed).
+    pub fn start_with(
+        &mut self,
+        ctx: &egui::Context,
+        work: impl FnOnce(&Progress) -> anyhow::Result<Vec<Model>> + Send + 'static,
+    ) {
         self.cancel();
         let ctx = ctx.clone();
         self.job = Some(Job::spawn(
             Self::LABEL,
             move || ctx.request_repaint(),
-            |progress| {
-                crate::default_anatomy::load_structures(&|fraction| {
-                    progress.set((fraction.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
-                    !progress.is_cancelled()
-                })
-            },
+            work,
         ));
     }
 

@@ -5,6 +5,7 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
@@ -52,6 +53,27 @@ fn step_until(
         std::thread::sleep(Duration::from_millis(5));
     }
     frames
+}
+
+/// The default scene's window with its labels' job replaced by one that surfaces them only once
+/// the returned flag is set (or is cancelled), so the test acts while they are on their way
+/// however fast the machine surfaces them.
+fn window_with_labels_held(name: &str) -> (Harness<'static, CutawayApp>, Arc<AtomicBool>) {
+    let mut h = window(name, Vec::new());
+    let open = Arc::new(AtomicBool::new(false));
+    let gate = open.clone();
+    let ctx = h.ctx.clone();
+    h.state_mut().atlas.start_with(&ctx, move |progress| {
+        while !gate.load(Ordering::Relaxed) {
+            progress.check()?;
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        crate::default_anatomy::load_structures(&|_| !progress.is_cancelled())
+    });
+    h.run_steps(2);
+    assert_eq!(h.state().scene.models.len(), 1, "the skin, alone");
+    assert!(h.state().atlas.busy());
+    (h, open)
 }
 
 /// The embedded atlas's label map in the source tree (256³, 312 labels, its colour table beside).
@@ -102,10 +124,10 @@ fn the_default_scene_shows_its_skin_first_and_the_labels_arrive_with_progress() 
     let app = h.state();
     assert!(!app.status.is_error, "{}", app.status.message);
     assert_eq!(app.scene.models[0].name, "skin", "the skin stays first");
-    assert!(
-        app.scene.models.len() > 150,
-        "{} models",
-        app.scene.models.len()
+    assert_eq!(
+        app.scene.models.len(),
+        1 + crate::default_anatomy::selection::DEFAULT_LABELS.len(),
+        "the skin and the default's structures"
     );
     let hippocampus = app
         .scene
@@ -123,17 +145,20 @@ fn the_default_scene_shows_its_skin_first_and_the_labels_arrive_with_progress() 
 
 #[test]
 fn an_edit_made_while_the_labels_surface_undoes_without_losing_them() {
-    let mut h = window("undo", Vec::new());
-    h.run_steps(2);
-    assert!(h.state().atlas.busy());
+    let (mut h, open) = window_with_labels_held("undo");
     // Remove the skin (an undoable scene change) before the labels arrive.
     let ctx = h.ctx.clone();
     h.state_mut().apply(&ctx, Action::RemoveModel(0));
     assert!(h.state().scene.models.is_empty());
+    open.store(true, Ordering::Relaxed);
     step_until(&mut h, "the atlas's labels", |app| !app.atlas.busy());
     h.run_steps(2);
     let arrived = h.state().scene.models.len();
-    assert!(arrived > 150, "{arrived} models arrived");
+    assert_eq!(
+        arrived,
+        crate::default_anatomy::selection::DEFAULT_LABELS.len(),
+        "{arrived} models arrived"
+    );
     h.state_mut().apply(&ctx, Action::Undo);
     h.run_steps(2);
     let app = h.state();
@@ -150,13 +175,12 @@ fn an_edit_made_while_the_labels_surface_undoes_without_losing_them() {
 
 #[test]
 fn cancelling_the_labels_keeps_the_skin() {
-    let mut h = window("cancel-default", Vec::new());
-    h.run_steps(2);
-    assert!(h.state().atlas.busy());
+    let (mut h, open) = window_with_labels_held("cancel-default");
     h.get_by_label("Cancel").click();
     h.run_steps(2);
     step_until(&mut h, "the cancel", |app| !app.busy());
-    // A late result is never applied: give the worker time to end and poll again.
+    // A late result is never applied: let the worker go on, give it time to end and poll again.
+    open.store(true, Ordering::Relaxed);
     std::thread::sleep(Duration::from_millis(200));
     h.run_steps(3);
     let app = h.state();
@@ -165,6 +189,52 @@ fn cancelling_the_labels_keeps_the_skin() {
         app.status.message.contains("cancelled"),
         "{}",
         app.status.message
+    );
+}
+
+#[test]
+fn the_atlas_with_all_structures_opens_from_the_examples_in_the_background() {
+    let mut h = window("all-structures", vec![skin_file()]);
+    step_until(&mut h, "the skin", |app| !app.busy());
+    let ctx = h.ctx.clone();
+    let all = crate::default_anatomy::ALL_NAME;
+    h.state_mut().apply(&ctx, Action::OpenExample(all.to_string()));
+    // Frames keep coming and the fraction of labels done moves while it surfaces.
+    let mut seen = Vec::new();
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while h.state().busy() {
+        assert!(Instant::now() < deadline, "the whole atlas did not open");
+        h.step();
+        if let Some(f) = h.state().jobs.first().and_then(|j| j.progress.fraction()) {
+            seen.push(f);
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    h.run_steps(2);
+    assert!(
+        seen.iter().any(|&f| f > 0.0 && f < 1.0),
+        "no fraction between 0 and 1 was shown: {seen:?}"
+    );
+    let app = h.state();
+    assert!(!app.status.is_error, "{}", app.status.message);
+    let named = crate::default_anatomy::table_values().unwrap();
+    // The skin and every label the table names (311: all but the one unnamed voxel of label 1).
+    assert_eq!(app.scene.models.len(), 1 + 311);
+    assert!(named.len() >= 311);
+    assert_eq!(app.scene.models[0].name, "skin");
+    let gyrus = app
+        .scene
+        .models
+        .iter()
+        .find(|m| m.name == "left superior frontal gyrus")
+        .expect("the cortex is in");
+    assert_eq!(gyrus.group, "cerebral cortex");
+    // Face forward, as the default.
+    let camera = app.scene.camera;
+    let toward_eye = (camera.eye - camera.target).normalize();
+    assert!(
+        toward_eye.dot(crate::default_anatomy::FRONT) > 0.9,
+        "{camera:?}"
     );
 }
 
