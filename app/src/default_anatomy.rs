@@ -110,7 +110,7 @@ pub fn surface_options() -> csg::labels::SurfaceOptions {
     }
 }
 
-/// The default scene's structures ([`selection::DEFAULT_LABELS`]) as models: named from the
+/// The default scene's structures ([`selection::DEFAULT_SYSTEMS`]) as models: named from the
 /// table (`left hippocampus`), coloured by it, grouped by anatomical system, listed group by
 /// group (deep structures first) and by label value within a group. A model's `index` is its
 /// label's position in the volume's ascending label list, as when the file is opened, so

@@ -31,7 +31,11 @@ fn entries() -> Vec<(String, String, String)> {
 
 fn check(scene: &Scene, how: &str) {
     let entries = entries();
-    assert_eq!(entries.len(), 23, "the earlier default had the skin and 22 structures");
+    assert_eq!(
+        entries.len(),
+        23,
+        "the earlier default had the skin and 22 structures"
+    );
     assert_eq!(scene.models.len(), entries.len(), "{how}");
     let head = scene.models[0].mesh.bbox();
     for (model, (path, name, group)) in scene.models.iter().zip(&entries) {
@@ -47,7 +51,10 @@ fn check(scene: &Scene, how: &str) {
             assert!(super::selection::in_default(value), "{name}");
         }
         let report = model.mesh.report();
-        assert!(report.closed && report.manifold, "{how}: {name}: {report:?}");
+        assert!(
+            report.closed && report.manifold,
+            "{how}: {name}: {report:?}"
+        );
         assert!(model.mesh.volume() > 0.0, "{how}: {name} is inside out");
         let b = model.mesh.bbox();
         assert!(
@@ -56,7 +63,10 @@ fn check(scene: &Scene, how: &str) {
         );
     }
     assert_eq!(scene.cutters.len(), 1, "{how}");
-    assert_eq!(scene.cutters[0].target, 0, "{how}: the cutter cuts the skin");
+    assert_eq!(
+        scene.cutters[0].target, 0,
+        "{how}: the cutter cuts the skin"
+    );
 }
 
 #[test]
@@ -64,8 +74,8 @@ fn a_session_of_the_model_file_default_opens_from_the_cli_and_the_window() {
     let scene = crate::session::load(&fixture()).unwrap_or_else(|e| panic!("{e:#}"));
     check(&scene, "session::load");
     let progress = crate::jobs::Progress::default();
-    let scene = crate::gui::bridge::load_session(&fixture(), &progress)
-        .unwrap_or_else(|e| panic!("{e:#}"));
+    let scene =
+        crate::gui::bridge::load_session(&fixture(), &progress).unwrap_or_else(|e| panic!("{e:#}"));
     check(&scene, "the window's loader");
     // Saved again, it names the same files, so it opens again.
     let dir = std::env::temp_dir().join(format!("cutaway-old-session-{}", std::process::id()));

@@ -27,17 +27,20 @@ fn the_skin_comes_first_closed_and_the_labels_follow_named_from_the_table() {
     let volume = atlas_volume().unwrap();
     // Every label of the selection is in the atlas and named by its table, and is a model, once.
     let named = table_values().unwrap();
-    for value in selection::DEFAULT_LABELS {
-        assert!(named.contains(value), "the table does not name label {value}");
+    for value in selection::default_labels() {
         assert!(
-            volume.structures.iter().any(|s| s.value == *value),
+            named.contains(&value),
+            "the table does not name label {value}"
+        );
+        assert!(
+            volume.structures.iter().any(|s| s.value == value),
             "the atlas has no label {value}"
         );
     }
     let expected: Vec<usize> = (0..volume.structures.len())
         .filter(|&i| selection::in_default(volume.structures[i].value))
         .collect();
-    assert_eq!(expected.len(), selection::DEFAULT_LABELS.len());
+    assert_eq!(expected.len(), selection::default_labels().count());
     let mut indices: Vec<usize> = models[1..].iter().map(|m| m.index).collect();
     indices.sort_unstable();
     assert_eq!(indices, expected);
@@ -193,10 +196,7 @@ fn a_missing_model_file_of_an_earlier_default_is_its_label_surface() {
     let err = load_missing(Path::new("/nonexistent/assets/spl_head/Model_9_none.vtk"))
         .expect("a model file name")
         .unwrap_err();
-    assert!(
-        format!("{err:#}").contains("Model_9_none.vtk"),
-        "{err:#}"
-    );
+    assert!(format!("{err:#}").contains("Model_9_none.vtk"), "{err:#}");
     assert_eq!(old_model_label("Model_4027_left_eyeball.vtk"), Some(4027));
     assert_eq!(old_model_label("Model_x_pons.vtk"), None);
     assert_eq!(old_model_label("Model_35_.vtk"), None);

@@ -45,11 +45,7 @@ impl AtlasArrival {
     ) {
         self.cancel();
         let ctx = ctx.clone();
-        self.job = Some(Job::spawn(
-            Self::LABEL,
-            move || ctx.request_repaint(),
-            work,
-        ));
+        self.job = Some(Job::spawn(Self::LABEL, move || ctx.request_repaint(), work));
     }
 
     /// True while the surfaces are being made.

@@ -126,7 +126,7 @@ fn the_default_scene_shows_its_skin_first_and_the_labels_arrive_with_progress() 
     assert_eq!(app.scene.models[0].name, "skin", "the skin stays first");
     assert_eq!(
         app.scene.models.len(),
-        1 + crate::default_anatomy::selection::DEFAULT_LABELS.len(),
+        1 + crate::default_anatomy::selection::default_labels().count(),
         "the skin and the default's structures"
     );
     let hippocampus = app
@@ -156,7 +156,7 @@ fn an_edit_made_while_the_labels_surface_undoes_without_losing_them() {
     let arrived = h.state().scene.models.len();
     assert_eq!(
         arrived,
-        crate::default_anatomy::selection::DEFAULT_LABELS.len(),
+        crate::default_anatomy::selection::default_labels().count(),
         "{arrived} models arrived"
     );
     h.state_mut().apply(&ctx, Action::Undo);
@@ -198,7 +198,8 @@ fn the_atlas_with_all_structures_opens_from_the_examples_in_the_background() {
     step_until(&mut h, "the skin", |app| !app.busy());
     let ctx = h.ctx.clone();
     let all = crate::default_anatomy::ALL_NAME;
-    h.state_mut().apply(&ctx, Action::OpenExample(all.to_string()));
+    h.state_mut()
+        .apply(&ctx, Action::OpenExample(all.to_string()));
     // Frames keep coming and the fraction of labels done moves while it surfaces.
     let mut seen = Vec::new();
     let deadline = Instant::now() + Duration::from_secs(120);

@@ -37,8 +37,8 @@ use glam::{DAffine3, DMat3, DVec3};
 
 pub mod color_table;
 pub mod content;
-pub mod embedded;
 mod content_rule;
+pub mod embedded;
 mod gzip;
 pub mod intensity;
 mod masks;
