@@ -55,14 +55,18 @@ fn step_until(
     frames
 }
 
-/// The default scene's window with its labels' job replaced by one that surfaces them only once
-/// the returned flag is set (or is cancelled), so the test acts while they are on their way
-/// however fast the machine surfaces them.
+/// The default scene as the window loads it (the embedded skin at once, the labels from the
+/// arrival job), but with a job that surfaces them only once the returned flag is set (or is
+/// cancelled), so the test acts while they are on their way however fast the machine surfaces
+/// them. The window starts on a file, so no default-scene job of its own races the test.
 fn window_with_labels_held(name: &str) -> (Harness<'static, CutawayApp>, Arc<AtomicBool>) {
-    let mut h = window(name, Vec::new());
+    let mut h = window(name, vec![skin_file()]);
+    step_until(&mut h, "the skin file", |app| !app.busy());
     let open = Arc::new(AtomicBool::new(false));
     let gate = open.clone();
     let ctx = h.ctx.clone();
+    let skin = crate::default_anatomy::load_skin().unwrap();
+    h.state_mut().add_models(skin, true, &[]);
     h.state_mut().atlas.start_with(&ctx, move |progress| {
         while !gate.load(Ordering::Relaxed) {
             progress.check()?;
@@ -92,19 +96,25 @@ fn skin_file() -> PathBuf {
 
 #[test]
 fn the_default_scene_shows_its_skin_first_and_the_labels_arrive_with_progress() {
-    let mut h = window("default", Vec::new());
+    // The window's own start: the skin at once, the labels from the background.
+    let mut h = window("default-start", Vec::new());
+    assert_eq!(h.state().scene.models[0].name, "skin");
+    step_until(&mut h, "the default's labels", |app| !app.busy());
     h.run_steps(2);
-    {
-        let app = h.state();
-        assert_eq!(app.scene.models.len(), 1, "the skin comes first, alone");
-        assert_eq!(app.scene.models[0].name, "skin");
-        assert!(app.atlas.busy(), "the labels surface in the background");
-    }
-    // Frames keep coming while the labels surface, and the status bar shows their progress.
+    assert_eq!(
+        h.state().scene.models.len(),
+        1 + crate::default_anatomy::selection::default_labels().count()
+    );
+    // The same with the labels held: the skin alone first, frames keep coming while the labels
+    // surface, and the status bar shows their progress.
+    let (mut h, open) = window_with_labels_held("default");
     let label = super::atlas_arrival::AtlasArrival::LABEL;
     let mut frames_with_progress = 0;
     let deadline = Instant::now() + Duration::from_secs(120);
     while h.state().atlas.busy() {
+        if frames_with_progress >= 3 {
+            open.store(true, Ordering::Relaxed);
+        }
         assert!(Instant::now() < deadline, "the labels did not arrive");
         h.step();
         if h.query_by_label_contains(label).is_some() {
