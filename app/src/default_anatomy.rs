@@ -1,20 +1,37 @@
-//! The default scene: **real anatomy** from the SPL-PNL head/brain atlas (3D Slicer licence;
+//! The default scene: **real anatomy**, the SPL head/neck atlas label map (3D Slicer licence;
 //! provenance and attribution in `assets/README.md`), compiled into the binary so that `cutaway`
 //! opens on a head to cut into, face forward, with the deep structures (ventricles, basal ganglia,
 //! hippocampus and amygdala, brainstem, eyes and optic nerves) inside.
 //!
-//! The structures are the atlas's own model files, embedded byte for byte (legacy VTK) and read
-//! by the same reader as any file the user opens; the skin is the atlas's skin label surface,
-//! decimated once offline (`assets/spl_head/decimate_skin.py`) to keep the binary small. The
-//! atlas is in RAS millimetres, so its front (anterior) is +Y: [`FRONT`] says where the camera
-//! looks from.
+//! The structures come from the atlas's label map (`hncma-atlas.nrrd`, 256³, 1 mm) and its
+//! colour table, embedded byte for byte and read by the same NRRD reader and label-surface
+//! pipeline (`io::volume`, `csg::labels`) as any volume the user opens: names and colours from
+//! the table, one model per label, grouped by anatomical system ([`groups`]). The default shows
+//! the deep structures a user expects inside a head ([`selection`]: about sixty of the atlas's
+//! three hundred labels, light enough to surface and draw at once); [`ALL_NAME`] is the same
+//! atlas with every named structure. The atlas has no skin label, so the occluder is the atlas's
+//! skin surface, decimated once offline (`assets/spl_head/decimate_skin.py`); it is first in the
+//! list and the cutter's natural target.
+//!
+//! Earlier defaults embedded the atlas's model files (`Model_<label>_<name>.vtk`) instead of the
+//! label map; sessions saved from them name those files, and [`load_missing`] serves each as the
+//! surface of its label, so such sessions still open.
+//!
+//! The skin reads in milliseconds, the label surfaces take longer: the window shows the skin at
+//! once ([`load_skin`]) and lets the structures arrive from a background job
+//! ([`load_structures`]); the CLI, benches and tests take both at once ([`load`]). The atlas is in
+//! RAS millimetres, so its front (anterior) is +Y: [`FRONT`] says where the camera looks from.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use glam::DVec3;
 
+use crate::io::volume::{LabelVolume, Structure};
 use crate::io::{Format, Model};
+
+pub mod groups;
+pub mod selection;
 
 /// The folder under `assets/` (and in the models' virtual paths).
 pub const FOLDER: &str = "spl_head";
@@ -22,82 +39,129 @@ pub const FOLDER: &str = "spl_head";
 /// Menu name of the scene.
 pub const NAME: &str = "head atlas";
 
+/// Menu name of the same atlas with every structure its table names.
+pub const ALL_NAME: &str = "head atlas (all structures)";
+
 /// Direction from the head toward a viewer who faces it (RAS: anterior is +Y).
 pub const FRONT: DVec3 = DVec3::Y;
 
-/// `(file name, group in the model list, bytes)` of `assets/spl_head/<file>`.
-macro_rules! file {
-    ($file:literal, $group:literal) => {
-        (
-            $file,
-            $group,
-            include_bytes!(concat!("../../assets/spl_head/", $file)) as &[u8],
-        )
-    };
-}
+/// The label map's file name under `assets/spl_head/`.
+pub const ATLAS_FILE: &str = "hncma-atlas.nrrd";
 
-/// The scene's files in list order, outer structure first.
-static FILES: &[(&str, &str, &[u8])] = &[
-    file!("skin.ply", ""),
-    file!("Model_4_left_lateral_ventricle.vtk", "ventricles"),
-    file!("Model_43_right_lateral_ventricle.vtk", "ventricles"),
-    file!(
-        "Model_5_temporal_horn_of_left_lateral_ventricle.vtk",
-        "ventricles"
-    ),
-    file!(
-        "Model_44_temporal_horn_of_right_lateral_ventricle.vtk",
-        "ventricles"
-    ),
-    file!("Model_24_third_ventricle.vtk", "ventricles"),
-    file!("Model_15_fourth_ventricle.vtk", "ventricles"),
-    file!("Model_11_left_caudate_nucleus.vtk", "basal ganglia"),
-    file!("Model_50_right_caudate_nucleus.vtk", "basal ganglia"),
-    file!("Model_12_left_putamen.vtk", "basal ganglia"),
-    file!("Model_51_right_putamen.vtk", "basal ganglia"),
-    file!("Model_17_left_hippocampus.vtk", "limbic"),
-    file!("Model_53_right_hippocampus.vtk", "limbic"),
-    file!("Model_18_left_amygdala.vtk", "limbic"),
-    file!("Model_54_right_amygdala.vtk", "limbic"),
-    file!("Model_40_part_of_midbrain.vtk", "brainstem"),
-    file!("Model_35_pons.vtk", "brainstem"),
-    file!("Model_61_medulla_oblongata.vtk", "brainstem"),
-    file!("Model_4027_left_eyeball.vtk", "eyes and optic nerves"),
-    file!("Model_4028_right_eyeball.vtk", "eyes and optic nerves"),
-    file!("Model_77_left_optic_nerve.vtk", "eyes and optic nerves"),
-    file!("Model_215_right_optic_nerve.vtk", "eyes and optic nerves"),
-    file!("Model_85_optic_chiasm.vtk", "eyes and optic nerves"),
-];
+/// The skin surface's file name under `assets/spl_head/`.
+pub const SKIN_FILE: &str = "skin.ply";
+
+static ATLAS: &[u8] = include_bytes!("../../assets/spl_head/hncma-atlas.nrrd");
+static TABLE: &str = include_str!("../../assets/spl_head/hncma-atlas-lut.ctbl");
+static SKIN: &[u8] = include_bytes!("../../assets/spl_head/skin.ply");
+
+/// Smoothing of the label surfaces: the reader's default, so the default scene is what opening
+/// `hncma-atlas.nrrd` gives.
+pub const SMOOTHING: f64 = 0.5;
+
+/// Fraction of each label surface's triangles kept; `None` keeps the surfaces as extracted.
+pub const DECIMATE: Option<f64> = None;
 
 /// The virtual path of an embedded file, as if loaded from the repository's `assets/` folder.
 pub fn virtual_path(file: &str) -> PathBuf {
     PathBuf::from(format!("assets/{FOLDER}/{file}"))
 }
 
-/// Every structure of the scene, one [`Model`] per file, named from the file name
-/// (`left hippocampus`), grouped as the list shows them, with no colour of its own (the anatomy
-/// colour table gives it). Files are parsed in parallel.
+/// The whole scene: the skin, then the default's labels ([`load_skin`] + [`load_structures`]).
 pub fn load() -> anyhow::Result<Vec<Model>> {
-    use rayon::prelude::*;
-    let per_file: Vec<Vec<Model>> = FILES
-        .par_iter()
-        .map(|&(file, group, bytes)| parse(file, group, bytes))
-        .collect::<anyhow::Result<_>>()?;
-    Ok(per_file.into_iter().flatten().collect())
+    let mut models = load_skin()?;
+    models.extend(load_structures(&|_| true)?);
+    Ok(models)
 }
 
-fn parse(file: &str, group: &str, bytes: &[u8]) -> anyhow::Result<Vec<Model>> {
-    let path = virtual_path(file);
+/// The skin and every structure the atlas's table names ([`ALL_NAME`]), grouped and listed as
+/// [`load_structures`] lists its own. `progress` gets 0..=1 and returns false to cancel.
+pub fn load_all(progress: &(dyn Fn(f32) -> bool + Sync)) -> anyhow::Result<Vec<Model>> {
+    let named = table_values()?;
+    let mut structures = atlas_models(|s| named.contains(&s.value), progress)?;
+    structures.sort_by_key(|m| (groups::rank(&m.group), m.index));
+    let mut models = load_skin()?;
+    models.extend(structures);
+    Ok(models)
+}
+
+/// The skin, one closed surface named `skin`, outside any group, with no colour of its own (the
+/// anatomy colour table gives it).
+pub fn load_skin() -> anyhow::Result<Vec<Model>> {
+    let path = virtual_path(SKIN_FILE);
     let format = Format::from_path(&path)
         .ok_or_else(|| anyhow::anyhow!("{}: not a mesh file name", path.display()))?;
-    let parts = crate::io::parse_bytes(format, bytes, &crate::io::file_stem(&path))
+    let parts = crate::io::parse_bytes(format, SKIN, &crate::io::file_stem(&path))
         .with_context(|| path.display().to_string())?;
-    Ok(crate::io::structures_of_parts(&path, parts, group))
+    Ok(crate::io::structures_of_parts(&path, parts, ""))
+}
+
+/// The embedded label map with the names and colours of its table.
+pub fn atlas_volume() -> anyhow::Result<LabelVolume> {
+    crate::io::volume::embedded::read_embedded(&virtual_path(ATLAS_FILE), ATLAS, TABLE)
+}
+
+/// The surface options of the default scene's labels.
+pub fn surface_options() -> csg::labels::SurfaceOptions {
+    csg::labels::SurfaceOptions {
+        smoothing: SMOOTHING,
+        decimate: DECIMATE,
+        only: None,
+    }
+}
+
+/// The default scene's structures ([`selection::DEFAULT_SYSTEMS`]) as models: named from the
+/// table (`left hippocampus`), coloured by it, grouped by anatomical system, listed group by
+/// group (deep structures first) and by label value within a group. A model's `index` is its
+/// label's position in the volume's ascending label list, as when the file is opened, so
+/// sessions find it again. `progress` gets 0..=1 and returns false to cancel.
+pub fn load_structures(progress: &(dyn Fn(f32) -> bool + Sync)) -> anyhow::Result<Vec<Model>> {
+    let mut models = atlas_models(|s| selection::in_default(s.value), progress)?;
+    models.sort_by_key(|m| (groups::rank(&m.group), m.index));
+    Ok(models)
+}
+
+/// The surfaces of the atlas's labels that `keep` accepts, in label order, grouped.
+fn atlas_models(
+    keep: impl Fn(&Structure) -> bool,
+    progress: &(dyn Fn(f32) -> bool + Sync),
+) -> anyhow::Result<Vec<Model>> {
+    let mut volume = atlas_volume()?;
+    let all = std::mem::take(&mut volume.structures);
+    volume.structures = all.iter().filter(|s| keep(s)).cloned().collect();
+    let surfaces = crate::io::volume::surfaces_with(&volume, surface_options(), progress)
+        .with_context(|| volume.source.display().to_string())?;
+    Ok(surfaces
+        .into_iter()
+        .map(|s| {
+            let label = &s.structure;
+            Model {
+                name: crate::io::structure_name(&label.name),
+                source: volume.source.clone(),
+                index: all
+                    .iter()
+                    .position(|v| (v.value, v.layer) == (label.value, label.layer))
+                    .unwrap_or(0),
+                color: Some(label.color.map(|c| c as f32 / 255.0)),
+                group: groups::group_of(label.value, &label.name).to_owned(),
+                mesh: s.mesh,
+            }
+        })
+        .collect())
+}
+
+/// The label values the atlas's colour table names.
+pub fn table_values() -> anyhow::Result<Vec<u32>> {
+    let table = crate::io::volume::color_table::parse(TABLE)
+        .with_context(|| virtual_path("hncma-atlas-lut.ctbl").display().to_string())?;
+    Ok(table.into_iter().map(|entry| entry.value).collect())
 }
 
 /// The embedded file a path names when the path does not exist on disk and ends in
-/// `assets/spl_head/<file>` (as sessions saved from the default scene do): its structures.
-/// `None` for any other path.
+/// `assets/spl_head/<file>` (as sessions saved from the default scene do): its structures, in the
+/// volume's label order for the atlas (a session picks them by that index); for a model file of
+/// an earlier default (`Model_<label>_<name>.vtk`) the one surface of its label, as the file held
+/// it. `None` for any other path.
 pub fn load_missing(path: &Path) -> Option<anyhow::Result<Vec<Model>>> {
     if path.exists() {
         return None;
@@ -109,9 +173,44 @@ pub fn load_missing(path: &Path) -> Option<anyhow::Result<Vec<Model>>> {
     if *assets != "assets" || *folder != FOLDER {
         return None;
     }
-    let &(file, _, bytes) = FILES.iter().find(|(name, _, _)| name == file)?;
     // A session names the file, not the list's group: the group comes back with the entry.
-    Some(parse(file, "", bytes))
+    match *file {
+        SKIN_FILE => Some(load_skin()),
+        // Every label, as opening the file gives them: a session picks by position.
+        ATLAS_FILE => Some(atlas_models(|_| true, &|_| true)),
+        _ => {
+            let value = old_model_label(file)?;
+            Some(old_model(file, value))
+        }
+    }
+}
+
+/// The label value an earlier default's model file is named after: `Model_17_left_hippocampus.vtk`
+/// → 17. `None` for any other name.
+pub fn old_model_label(file: &str) -> Option<u32> {
+    let rest = file.strip_prefix("Model_")?.strip_suffix(".vtk")?;
+    let (value, name) = rest.split_once('_')?;
+    (!name.is_empty()).then_some(())?;
+    value.parse().ok()
+}
+
+/// The surface of label `value`, as the one structure of the model file `file` (its virtual path
+/// is the model's source, so saving the session again names the same file). An error when the
+/// atlas has no such label.
+fn old_model(file: &str, value: u32) -> anyhow::Result<Vec<Model>> {
+    let path = virtual_path(file);
+    let mut models = atlas_models(|s| s.value == value, &|_| true)?;
+    anyhow::ensure!(
+        models.len() == 1,
+        "{}: the head atlas has no label {value}",
+        path.display()
+    );
+    for model in &mut models {
+        model.source = path.clone();
+        model.index = 0;
+        model.group.clear();
+    }
+    Ok(models)
 }
 
 /// True when every model comes from this scene (its virtual paths or the source tree's copies).
@@ -124,51 +223,7 @@ pub fn is_default_scene(models: &[Model]) -> bool {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
+mod tests;
 
-    #[test]
-    fn the_scene_loads_named_and_grouped_with_a_closed_skin() {
-        let models = load().unwrap();
-        assert_eq!(models.len(), FILES.len());
-        assert!(is_default_scene(&models));
-        let skin = &models[0];
-        assert_eq!((skin.name.as_str(), skin.group.as_str()), ("skin", ""));
-        let report = skin.mesh.sanity_check();
-        assert!(report.is_ok(), "{report:?}");
-        let report = skin.mesh.report();
-        assert!(
-            report.closed && report.manifold && report.regions == 1,
-            "the decimated skin must stay one closed manifold surface: {report:?}"
-        );
-        assert!(
-            skin.mesh.volume() > 1.0e6,
-            "skin volume {}",
-            skin.mesh.volume()
-        );
-        let hippocampus = models
-            .iter()
-            .find(|m| m.name == "left hippocampus")
-            .expect("left hippocampus");
-        assert_eq!(hippocampus.group, "limbic");
-        // Every deep structure lies inside the head.
-        let head = skin.mesh.bbox();
-        for m in &models[1..] {
-            let b = m.mesh.bbox();
-            assert!(
-                head.contains(b.min) && head.contains(b.max),
-                "{} sticks out of the head",
-                m.name
-            );
-        }
-    }
-
-    #[test]
-    fn missing_paths_of_the_scene_are_served_from_the_binary() {
-        let missing = Path::new("/nonexistent/x/assets/spl_head/Model_35_pons.vtk");
-        let models = load_missing(missing).expect("embedded").unwrap();
-        assert_eq!(models[0].name, "pons");
-        assert!(load_missing(Path::new("/nonexistent/assets/spl_head/other.vtk")).is_none());
-        assert!(load_missing(Path::new("/nonexistent/assets/knee/skin.ply")).is_none());
-    }
-}
+#[cfg(test)]
+mod old_sessions_tests;

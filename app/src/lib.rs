@@ -36,6 +36,7 @@ pub mod session_meshes;
 pub mod session_paths;
 pub mod session_rulers;
 pub mod session_variants;
+pub mod session_volumes;
 pub mod thread_time;
 pub mod variants;
 pub mod view;

@@ -33,9 +33,10 @@ pub fn about_window_ui(ctx: &egui::Context) {
                 "The head is real anatomy from the SPL-PNL Brain Atlas (Surgical Planning \
                  Laboratory and Psychiatry Neuroimaging Laboratory, Brigham and Women's \
                  Hospital; NIH P41 EB015902, P41 RR013218, R01 MH050740), distributed with \
-                 3D Slicer under the 3D Slicer License. The structure models are the atlas's \
-                 own files; the skin is a surface derived from the atlas's skin label and \
-                 simplified. Research use only, not for clinical use.",
+                 3D Slicer under the 3D Slicer License. The structures are surfaces of the \
+                 atlas's label map (hncma-atlas.nrrd), named and coloured by its colour table; \
+                 the skin is a surface derived from the same atlas and simplified. Research use \
+                 only, not for clinical use.",
             );
             ui.hyperlink_to(
                 "3D Slicer License",

@@ -68,6 +68,8 @@ pub struct CutawayApp {
     /// Undo snapshots are whole scenes (meshes shared); the camera is not part of undo.
     pub history: History<Scene>,
     pub jobs: Vec<Job<JobOutput>>,
+    /// The default scene's label surfaces while they arrive after its first frame.
+    pub atlas: super::atlas_arrival::AtlasArrival,
     pub recovery: Recovery,
     pub recent: RecentFiles,
     /// Where "Save Session" writes; set by Open Session and Save Session As.
@@ -126,6 +128,7 @@ impl CutawayApp {
             hidden_cutters: 0,
             history: History::default(),
             jobs: Vec::new(),
+            atlas: Default::default(),
             recent: RecentFiles::load(&start.state_dir),
             recovery,
             session_path: None,
@@ -161,7 +164,20 @@ impl CutawayApp {
 
     /// True while any background job runs (tests wait on this).
     pub fn busy(&self) -> bool {
-        self.jobs.iter().any(Job::is_running) || self.metrics.busy() || self.compare.busy()
+        self.jobs.iter().any(Job::is_running)
+            || self.metrics.busy()
+            || self.compare.busy()
+            || self.atlas.busy()
+    }
+
+    /// Every scene this window holds: the current one, the last committed, the one before a
+    /// pending edit, and the undo history's snapshots.
+    pub(super) fn scenes_mut(&mut self) -> impl Iterator<Item = &mut Scene> {
+        let pending = self.pending_edit.as_mut().map(|(_, scene)| scene);
+        [&mut self.scene, &mut self.last_committed]
+            .into_iter()
+            .chain(pending)
+            .chain(self.history.scenes_mut())
     }
 
     /// Sets the status message.
@@ -238,6 +254,7 @@ impl eframe::App for CutawayApp {
         self.frame_started = Instant::now();
         self.status.frame_ms = 0.9 * self.status.frame_ms + 0.1 * frame_ms;
         self.poll_jobs(&ctx);
+        super::atlas_arrival::poll(self);
         // Pick trees of new or replaced meshes are built on a worker, not at the first press.
         self.viewport.picks.prepare(&self.scene);
 
@@ -253,6 +270,7 @@ impl eframe::App for CutawayApp {
         });
         egui::Panel::bottom("cutaway-status").show(ui, |ui| {
             self.refresh_status();
+            super::atlas_arrival::status_ui(ui, self);
             super::status_bar::status_bar_ui(ui, &self.status);
         });
         egui::Panel::left("cutaway-side")

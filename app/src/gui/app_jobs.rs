@@ -67,19 +67,19 @@ impl CutawayApp {
             .push(Job::spawn(label, move || ctx.request_repaint(), work));
     }
 
+    /// The skin at once (milliseconds), the atlas's labels from a background job.
     pub(super) fn load_default_scene(&mut self, ctx: &egui::Context) {
-        self.spawn(ctx, "Loading the default scene", |progress| {
-            let models = super::bridge::default_scene_models(progress)?;
-            Ok(JobOutput::Models {
-                models,
-                replace: true,
-                sources: Vec::new(),
-                image: None,
-            })
-        });
+        match crate::default_anatomy::load_skin() {
+            Ok(skin) => self.add_models(skin, true, &[]),
+            Err(e) => return self.complain(&e),
+        }
+        self.atlas.start(ctx);
     }
 
     pub(super) fn load_example(&mut self, ctx: &egui::Context, name: String) {
+        if name == crate::default_anatomy::NAME {
+            return self.load_default_scene(ctx);
+        }
         self.spawn(
             ctx,
             format!("Loading the {name} example"),
@@ -190,6 +190,7 @@ impl CutawayApp {
                 }
             }
             JobOutput::Session { path, scene } => {
+                self.atlas.cancel();
                 self.scene = *scene;
                 // A restored autosave has no file of its own: Save asks where to put it.
                 let restored = path == self.recovery.session_path();
@@ -263,6 +264,7 @@ impl CutawayApp {
     ) {
         let before = self.scene.clone();
         if replace {
+            self.atlas.cancel();
             let render = self.scene.render;
             self.scene = new_scene();
             self.scene.render = render;
@@ -435,12 +437,18 @@ pub fn load_paths(
     }
     let mut models = Vec::new();
     let mut image = None;
-    let total = files.len() as u64;
+    // Per mille of each file, so a volume's label surfacing moves the bar within its file.
+    let total = files.len() as u64 * 1000;
     for (i, (file, group)) in files.iter().enumerate() {
         progress.check()?;
-        progress.set(i as u64, total);
+        let start = i as u64 * 1000;
+        progress.set(start, total);
         progress.set_message(file_label(file));
-        crate::intensity::open::read_file_into(file, group, &mut models, &mut image)?;
+        let surfacing = |fraction: f32| {
+            progress.set(start + (fraction.clamp(0.0, 1.0) * 1000.0) as u64, total);
+            !progress.is_cancelled()
+        };
+        crate::intensity::open::read_file_into(file, group, &mut models, &mut image, &surfacing)?;
     }
     progress.set(total, total);
     Ok((models, image))

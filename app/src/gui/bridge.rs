@@ -141,11 +141,6 @@ pub fn paint_scene(ui: &mut egui::Ui, rect: egui::Rect, app: &CutawayApp) -> boo
     true
 }
 
-/// The embedded default scene (the knee).
-pub fn default_scene_models(progress: &Progress) -> anyhow::Result<Vec<crate::io::Model>> {
-    example_scene_models(crate::default_anatomy::NAME, progress)
-}
-
 /// An embedded example scene by name. Models keep the virtual `assets/<scene>/<part>.ply`
 /// source unless the source tree's copy exists, whose absolute path is used instead so that a
 /// session saved from the example opens anywhere on this machine.
@@ -156,6 +151,11 @@ pub fn example_scene_models(
     progress.set_message(name.to_string());
     let mut models = if name == crate::default_anatomy::NAME {
         crate::default_anatomy::load()?
+    } else if name == crate::default_anatomy::ALL_NAME {
+        crate::default_anatomy::load_all(&|fraction| {
+            progress.set((fraction.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
+            !progress.is_cancelled()
+        })?
     } else {
         let scene = crate::assets::scene(name)
             .ok_or_else(|| anyhow::anyhow!("{name}: no such example scene"))?;
@@ -196,7 +196,10 @@ pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
         );
         match unit {
             crate::scene::ModelUnit::Region => crate::io::load_models(file),
-            crate::scene::ModelUnit::Structure => crate::io::load_structures(file),
+            crate::scene::ModelUnit::Structure => crate::session_volumes::structures(file, &|f| {
+                progress.set((f.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
+                !progress.is_cancelled()
+            }),
         }
     })?;
     scene

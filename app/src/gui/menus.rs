@@ -147,6 +147,10 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
                 if ui.button(format!("{atlas} (real anatomy)")).clicked() {
                     actions.push(Action::OpenExample(atlas.to_string()));
                 }
+                let all = crate::default_anatomy::ALL_NAME;
+                if ui.button(format!("{all}, real anatomy")).clicked() {
+                    actions.push(Action::OpenExample(all.to_string()));
+                }
                 for scene in crate::assets::scenes() {
                     if ui.button(format!("{} (synthetic)", scene.name)).clicked() {
                         actions.push(Action::OpenExample(scene.name.to_string()));

@@ -19,6 +19,7 @@ pub mod about;
 pub mod action;
 pub mod app;
 pub mod app_jobs;
+pub mod atlas_arrival;
 pub mod bridge;
 pub mod compare_view;
 pub mod cut_view;
@@ -52,6 +53,8 @@ pub mod undo;
 pub mod variants_panel;
 pub mod view_menu;
 pub mod viewport;
+#[cfg(test)]
+mod volume_jobs_tests;
 
 pub use app::{CutawayApp, Mode, StartOptions};
 

@@ -121,6 +121,18 @@ impl<S> History<S> {
         self.undone.clear();
     }
 
+    /// Every scene snapshot held, done and undone (to add what arrived after the steps were
+    /// recorded, such as structures surfaced in the background, to each of them).
+    pub fn scenes_mut(&mut self) -> impl Iterator<Item = &mut S> {
+        self.done
+            .iter_mut()
+            .chain(self.undone.iter_mut())
+            .flat_map(|step| match step {
+                Step::Scene { before, after, .. } => vec![before, after],
+                Step::Editor { .. } => Vec::new(),
+            })
+    }
+
     /// Forgets editor steps only (the editor was replaced, its stack is gone).
     pub fn forget_editor_steps(&mut self) {
         self.done.retain(|s| matches!(s, Step::Scene { .. }));

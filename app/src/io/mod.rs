@@ -67,8 +67,8 @@ mod vtk;
 pub use atomic::{OutputSet, recover as recover_output_set, write_file};
 pub use dir::mesh_files;
 pub use structures::{
-    FileContent, content_of_file, group_of, load_structures, structure_name, structures_of_file,
-    structures_of_parts,
+    FileContent, content_of_file, content_of_file_with, group_of, load_structures, structure_name,
+    structures_of_file, structures_of_parts,
 };
 
 /// A named part of a file (an OBJ object/group, or the whole file for formats without parts).

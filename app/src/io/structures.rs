@@ -71,13 +71,23 @@ pub enum FileContent {
 /// [`structures_of_file`], except that a volume file holding an intensity image is returned as
 /// that image (read once) instead of failing as a bad label map.
 pub fn content_of_file(file: &Path, group: &str) -> anyhow::Result<FileContent> {
+    content_of_file_with(file, group, &|_| true)
+}
+
+/// [`content_of_file`] reporting a label volume's surfacing (fraction of its labels' voxels done,
+/// 0..=1) to `progress`, which returns false to cancel.
+pub fn content_of_file_with(
+    file: &Path,
+    group: &str,
+    progress: &(dyn Fn(f32) -> bool + Sync),
+) -> anyhow::Result<FileContent> {
     use super::volume::content::{VolumeContent, read_content};
     if !(file.is_file() && super::volume::is_volume(file)) {
         return structures_of_file(file, group).map(FileContent::Structures);
     }
     Ok(match read_content(file, None)? {
         VolumeContent::Labels(volume) => {
-            let parts = super::volume::parts_of(&volume)?;
+            let parts = super::volume::parts_of_with(&volume, progress)?;
             FileContent::Structures(structures_of_parts(file, parts, group))
         }
         VolumeContent::Image { image, reason } => FileContent::Image { image, reason },

@@ -38,6 +38,7 @@ use glam::{DAffine3, DMat3, DVec3};
 pub mod color_table;
 pub mod content;
 mod content_rule;
+pub mod embedded;
 mod gzip;
 pub mod intensity;
 mod masks;
@@ -519,8 +520,16 @@ pub fn read_parts(path: &Path) -> anyhow::Result<Vec<super::Part>> {
 
 /// A label volume's structures as mesh parts (see [`read_parts`]).
 pub fn parts_of(volume: &LabelVolume) -> anyhow::Result<Vec<super::Part>> {
+    parts_of_with(volume, &|_| true)
+}
+
+/// [`parts_of`] reporting the fraction done (0..=1) to `progress`, which returns false to cancel.
+pub fn parts_of_with(
+    volume: &LabelVolume,
+    progress: &(dyn Fn(f32) -> bool + Sync),
+) -> anyhow::Result<Vec<super::Part>> {
     let path = &volume.source;
-    let surfaces = surfaces(volume, None, &|_| true).with_context(|| path.display().to_string())?;
+    let surfaces = surfaces(volume, None, progress).with_context(|| path.display().to_string())?;
     Ok(surfaces
         .into_iter()
         .map(|s| super::Part {

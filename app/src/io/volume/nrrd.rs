@@ -57,6 +57,18 @@ pub(crate) fn read(path: &Path) -> anyhow::Result<RawVolume> {
     volume(&header, data)
 }
 
+/// [`read`] of a whole NRRD file already in memory, its data attached (the default scene's
+/// embedded atlas): the same header parsing, size checks and decoding as a file on disk.
+pub(crate) fn read_attached(mut bytes: Vec<u8>) -> anyhow::Result<RawVolume> {
+    let (text, data_start) = split_header(&bytes)?;
+    let header = parse_header(text)?;
+    if header.data_file.is_some() {
+        anyhow::bail!("a NRRD header with a separate 'data file' cannot be read from memory");
+    }
+    bytes.drain(..data_start);
+    volume(&header, bytes)
+}
+
 /// The samples of a NRRD file at their own type (intensity images): the same header, geometry
 /// and size checks as label maps, no decoding.
 pub(crate) fn read_samples(path: &Path) -> anyhow::Result<RawSamples> {

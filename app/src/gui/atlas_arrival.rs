@@ -1,0 +1,139 @@
+//! The default scene in two steps, so its first frame never waits on the label surfaces: the
+//! skin is read at once (milliseconds) and drawn, and the atlas's label surfaces arrive from a
+//! background [`Job`] with their progress and a Cancel in the status bar. While they surface the
+//! window works as usual; the user may already orbit, select the skin and cut into it.
+//!
+//! Arriving structures are appended after the skin (no cutter's target index moves) and to every
+//! undo snapshot of the same scene, so that undoing an edit made while they surfaced does not
+//! take them away again; their arrival is no undo step of its own. Opening anything that replaces
+//! the scene cancels the job ([`AtlasArrival::cancel`]), so a late result never lands in another
+//! scene. Cancel keeps the skin.
+
+use std::time::Duration;
+
+use super::CutawayApp;
+use super::jobs::{Job, Progress, is_cancelled};
+use crate::io::Model;
+use crate::scene::SceneModel;
+
+/// The label surfaces of the default scene while they are made.
+#[derive(Default)]
+pub struct AtlasArrival {
+    job: Option<Job<Vec<Model>>>,
+}
+
+impl AtlasArrival {
+    /// What the status bar says while the surfaces are made.
+    pub const LABEL: &'static str = "Surfacing the head atlas";
+
+    /// Starts surfacing the atlas's labels (a running job is cancelled first).
+    pub fn start(&mut self, ctx: &egui::Context) {
+        self.start_with(ctx, |progress| {
+            crate::default_anatomy::load_structures(&|fraction| {
+                progress.set((fraction.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
+                !progress.is_cancelled()
+            })
+        });
+    }
+
+    /// [`AtlasArrival::start`] with the structures made by `work` (tests hold the job open
+    /// with it, whatever the machine's speed).
+    pub fn start_with(
+        &mut self,
+        ctx: &egui::Context,
+        work: impl FnOnce(&Progress) -> anyhow::Result<Vec<Model>> + Send + 'static,
+    ) {
+        self.cancel();
+        let ctx = ctx.clone();
+        self.job = Some(Job::spawn(Self::LABEL, move || ctx.request_repaint(), work));
+    }
+
+    /// True while the surfaces are being made.
+    pub fn busy(&self) -> bool {
+        self.job.as_ref().is_some_and(Job::is_running)
+    }
+
+    /// Fraction of the labels' voxels done, while the job runs.
+    pub fn fraction(&self) -> Option<f32> {
+        let job = self.job.as_ref().filter(|j| j.is_running())?;
+        Some(job.progress.fraction().unwrap_or(0.0))
+    }
+
+    /// Stops the job, if any; its result, if it still comes, is dropped. True when one ran.
+    pub fn cancel(&mut self) -> bool {
+        match self.job.take() {
+            Some(job) => {
+                job.progress.cancel();
+                job.is_running()
+            }
+            None => false,
+        }
+    }
+}
+
+/// Takes the finished job's result, once per frame: the structures join the scene and every
+/// undo snapshot; a failure is said in the status bar, the skin stays.
+pub fn poll(app: &mut CutawayApp) {
+    let Some(job) = app.atlas.job.as_mut() else {
+        return;
+    };
+    let Some(result) = job.poll() else {
+        return;
+    };
+    let took = job.started.elapsed();
+    app.atlas.job = None;
+    match result {
+        Ok(models) => add_structures(app, models, took),
+        Err(e) if is_cancelled(&e) => {}
+        Err(e) => app.complain(&e.context("head atlas labels")),
+    }
+}
+
+fn add_structures(app: &mut CutawayApp, models: Vec<Model>, took: Duration) {
+    let first = app.scene.models.len();
+    let count = models.len();
+    let added: Vec<SceneModel> = models
+        .into_iter()
+        .enumerate()
+        .map(|(i, model)| {
+            let color = crate::anatomy_colors::structure_color(&model.name, model.color, first + i);
+            SceneModel::structure(model, color)
+        })
+        .collect();
+    for scene in app.scenes_mut() {
+        scene.models.extend(added.iter().cloned());
+    }
+    app.say(format!(
+        "Loaded the head atlas: {count} structures in {:.1} s, {} triangles",
+        took.as_secs_f64(),
+        super::status_bar::grouped(
+            app.scene
+                .models
+                .iter()
+                .map(|m| m.mesh.triangle_count())
+                .sum()
+        )
+    ));
+}
+
+/// The status bar's line while the structures surface: a bar with the fraction done and Cancel.
+pub fn status_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
+    let Some(fraction) = app.atlas.fraction() else {
+        return;
+    };
+    let mut cancel = false;
+    ui.horizontal(|ui| {
+        ui.label(format!("{}…", AtlasArrival::LABEL));
+        ui.add(
+            egui::ProgressBar::new(fraction)
+                .show_percentage()
+                .desired_width(180.0),
+        );
+        cancel = ui.button("Cancel").clicked();
+    });
+    if cancel {
+        app.atlas.cancel();
+        app.say("Head atlas labels cancelled: the skin stays");
+    }
+    ui.ctx().request_repaint_after(Duration::from_millis(100));
+}
