@@ -3,7 +3,9 @@
 //! GPU buffers are host memory and count in the resident size), loads a scene, paints cutters
 //! with drags of many frames (every frame drawn), turns every view on and off, and undoes and
 //! redoes everything. The process's resident size is read from `/proc/self/status` after every
-//! step.
+//! step, printed with the allocator's totals and what the window holds
+//! ([`cutaway::memory_census`]: the live cut's indexes and cuts, the kept preview, the renderer's
+//! uploads).
 
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -251,6 +253,11 @@ impl Trace {
             mb(exec),
             mb(shared),
             mb(files)
+        );
+        eprintln!(
+            "  {:<40} {}",
+            "",
+            cutaway::gui::bridge::memory_census(h.state())
         );
         print_large_anonymous_mappings();
         self.steps.push((step.to_string(), rss));
