@@ -19,8 +19,8 @@ pub const FIXED_ALLOWANCE: u64 = 300 << 20;
 /// The goal for growth over the level after the first cut (printed; see [`GROWTH_GUARD`]).
 pub const GROWTH: f64 = 0.10;
 /// Growth over the level after the first cut that fails the test: the goal is [`GROWTH`], but
-/// run to run the levels scatter by about ±10 MB on the default scene (what the software
-/// driver and the allocator keep), so the test guards against real growth (a cache per model
+/// run to run the levels scatter by 10 to 20 MB on the default scene (what the allocator keeps
+/// resident in its arenas), so the test guards against real growth (a cache per model
 /// or per state: gigabytes before) and prints the goal.
 pub const GROWTH_GUARD: f64 = 0.25;
 /// Allowed growth over the level once everything was shown (see [`Report::repeat_limit`]).
