@@ -150,6 +150,7 @@ fn window_child() {
         "loaded": report.loaded,
         "load_bound": report.load_bound(),
         "growth_limit": report.growth_limit(),
+        "growth_guard": report.growth_guard(),
         "all_shown": report.all_shown,
         "worst_after_all_shown": report.worst_after_all_shown.1,
         "repeat_limit": report.repeat_limit(),

@@ -20,6 +20,7 @@ pub mod intensity;
 pub mod io;
 pub mod jobs;
 pub mod large_blocks;
+pub mod memory_census;
 pub mod metrics;
 pub mod path_file;
 pub mod phantom;

@@ -196,8 +196,19 @@ pub struct CutCache {
     models: std::collections::VecDeque<(ModelKey, std::sync::Weak<Mesh>, ModelPreview, bool)>,
 }
 
-/// Entries kept of each of [`CutCache`]'s bounded lists (each may hold a model-sized mesh).
+/// Cut prefixes kept by [`CutCache`] (each holds a model-sized mesh and its index).
 const CACHE_ENTRIES: usize = 4;
+
+/// How many entries a [`CutCache`] holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CacheCensus {
+    /// Exact indexes of model meshes.
+    pub indexes: usize,
+    /// Closed results of leading runs of cutters (each with its own index).
+    pub prefixes: usize,
+    /// Whole-model previews.
+    pub previews: usize,
+}
 
 impl CutCache {
     /// The exact index of `mesh`, built on first use.
@@ -217,6 +228,15 @@ impl CutCache {
         Ok(index)
     }
 
+    /// What the cache holds now (the memory test prints it per step).
+    pub fn census(&self) -> CacheCensus {
+        CacheCensus {
+            indexes: self.indexes.len(),
+            prefixes: self.prefixes.len(),
+            previews: self.models.len(),
+        }
+    }
+
     /// True when the index of `mesh` is cached.
     pub fn has_index(&self, mesh: &Arc<Mesh>) -> bool {
         self.indexes
@@ -229,7 +249,7 @@ impl CutCache {
     /// what the current cutters need, not every model or cutter state ever cut: an index costs
     /// several times its mesh, a prefix or a preview a model-sized mesh, and a model whose
     /// cutters did not change is not cut again. (Without calls, each list stays bounded:
-    /// [`CACHE_ENTRIES`] prefixes and previews, an index per live target mesh.)
+    /// [`CACHE_ENTRIES`] prefixes, a preview and an index per live target mesh.)
     pub fn forget_unused(&mut self) {
         self.indexes
             .retain(|(w, _, used)| *used && w.strong_count() > 0);
@@ -277,13 +297,13 @@ impl CutCache {
     }
 
     /// Keeps one preview per model mesh (the newest): older states of an edited model's cutters
-    /// are never asked for again, and a big model's parts are large.
+    /// are never asked for again, and a big model's parts are large. Not bounded by a count: a
+    /// model whose preview was pushed out would be cut again on the next request, its index built
+    /// again and kept, so a scene of more cut models than a bound re-cut most of them on every
+    /// change; one preview per live mesh is what the current picture is made of anyway.
     fn store_model(&mut self, mesh: &Arc<Mesh>, key: ModelKey, preview: ModelPreview) {
         self.models
             .retain(|(k, w, _, _)| w.strong_count() > 0 && k.0 != key.0);
-        if self.models.len() >= CACHE_ENTRIES {
-            self.models.pop_front();
-        }
         self.models
             .push_back((key, Arc::downgrade(mesh), preview, true));
     }

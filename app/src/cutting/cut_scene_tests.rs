@@ -403,3 +403,69 @@ fn ribbons_of_a_smooth_cutter_lie_inside_its_surface() {
         assert!(ribbon_area > 0.0, "{placement:?}: no ribbons");
     }
 }
+
+/// `n` cubes of side 2 spaced 10 apart along x, each cut at its corner by `per_model` box
+/// cutters (Normal Cut view), the cutters of one model slightly apart.
+pub(crate) fn cubes_each_cut(n: usize, per_model: usize) -> Scene {
+    let mut scene = Scene::default();
+    for m in 0..n {
+        let x = 10.0 * m as f64;
+        scene.models.push(crate::scene::SceneModel::new(
+            format!("cube {m}"),
+            format!("cube{m}.obj"),
+            Arc::new(cube(DVec3::new(x, 0.0, 0.0), DVec3::new(x + 2.0, 2.0, 2.0))),
+            [0.8, 0.6, 0.5],
+        ));
+        for k in 0..per_model {
+            let z = 1.0 - 0.5 * k as f64;
+            scene.cutters.push(SceneCutter {
+                target: m,
+                cutter: cutter::Cutter {
+                    kind: cutter::CutKind::Straight,
+                    smooth: false,
+                    planes: box_cutter(x + 1.0 + 0.2 * k as f64, x + 3.0, -1.0, 1.0, z, 3.0),
+                },
+                views: crate::scene::CutterViews::default(),
+            });
+        }
+    }
+    scene
+}
+
+#[test]
+fn a_long_lived_cache_keeps_one_preview_per_model_and_only_the_edited_models_index() {
+    // More cut models than any fixed bound: editing one cutter must not re-cut the others (and
+    // so keep their indexes) because their previews were pushed out.
+    let mut scene = cubes_each_cut(6, 2);
+    let mut cache = CutCache::default();
+    let first = preview_geometry_with(&scene, &mut cache);
+    assert!(first.notes.is_empty(), "{:?}", first.notes);
+    cache.forget_unused();
+    assert_eq!(cache.census().previews, 6);
+    // Move the last cutter of model 0, as a drag does, twice.
+    for step in 1..=2 {
+        let last = &mut scene.cutters[1].cutter.planes;
+        *last = box_cutter(1.2 + 0.1 * step as f64, 3.0, -1.0, 1.0, 0.5, 3.0);
+        let again = preview_geometry_with(&scene, &mut cache);
+        assert!(again.notes.is_empty(), "{:?}", again.notes);
+        cache.forget_unused();
+        let census = cache.census();
+        assert_eq!(census.previews, 6, "step {step}: {census:?}");
+        // Only model 0 was cut again: at most its own index and its first cutter's prefix.
+        assert!(census.indexes <= 1, "step {step}: {census:?}");
+        assert!(census.prefixes <= 1, "step {step}: {census:?}");
+        assert_eq!(
+            again.triangle_count(),
+            first.triangle_count() - first_model_triangles(&first) + first_model_triangles(&again)
+        );
+    }
+}
+
+/// Triangles of model 0's parts.
+fn first_model_triangles(g: &PreviewGeometry) -> usize {
+    g.parts
+        .iter()
+        .filter(|p| p.model == 0)
+        .map(|p| p.mesh.triangle_count())
+        .sum()
+}

@@ -86,6 +86,11 @@ impl EditorSlot {
             .map(|(_, i)| i.clone())
     }
 
+    /// Spatial indexes held (the memory test prints it per step).
+    pub fn index_count(&self) -> usize {
+        self.indexes.len()
+    }
+
     /// Stores an index built by a background job.
     pub fn store_index(&mut self, mesh: Weak<Mesh>, index: Arc<SpatialIndex>) {
         self.indexes.retain(|(w, _)| w.strong_count() > 0);

@@ -70,6 +70,21 @@ struct Slot {
     shutdown: bool,
     /// Requests replaced in the slot before the worker took them (latest wins).
     dropped: u64,
+    /// Set by [`LiveCut::clear`]: the worker drops its caches before its next request.
+    forget: bool,
+    /// What the worker's caches held after its last request (or after forgetting them).
+    census: LiveCensus,
+}
+
+/// What the live-cut worker keeps between cuts (see [`LiveCut::census`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LiveCensus {
+    /// Indexes, cut prefixes and whole-model previews of models cut by several cutters.
+    pub cuts: super::cut_scene::CacheCensus,
+    /// Vertex-to-face tables of model meshes (for the deltas' normals).
+    pub face_tables: usize,
+    /// Live cuts of models cut by one cutter (walls, contour and kept delta each).
+    pub model_cuts: usize,
 }
 
 struct Shared {
@@ -89,6 +104,8 @@ pub struct LiveCut {
     shown: Option<LiveResult>,
     /// Cuts finished so far.
     pub finished: u64,
+    /// A request was made since the worker last dropped its caches.
+    worker_caches: bool,
 }
 
 impl Default for LiveCut {
@@ -103,6 +120,7 @@ impl Default for LiveCut {
             requested: None,
             shown: None,
             finished: 0,
+            worker_caches: false,
         }
     }
 }
@@ -147,6 +165,7 @@ impl LiveCut {
             return false;
         }
         self.requested = Some(key.clone());
+        self.worker_caches = true;
         if let Ok(mut slot) = self.shared.slot.lock() {
             if slot.request.is_some() {
                 slot.dropped += 1;
@@ -234,13 +253,31 @@ impl LiveCut {
         self.shown.is_some() || self.requested.is_some()
     }
 
-    /// Forgets what was shown (the scene was replaced, or has no cutters left).
+    /// Forgets what was shown (Edit mode was left, the scene was replaced, or has no cutters
+    /// left), and has the worker drop its caches: outside Edit mode nothing asks for a live cut,
+    /// so the indexes, face tables and cuts of every cut model would otherwise stay in memory
+    /// through Preview and Camera. Coming back to Edit mode cuts the models again in the
+    /// background (each index is built again; the view shows the cut when it is ready).
     pub fn clear(&mut self) {
         self.shown = None;
         self.requested = None;
+        if !std::mem::take(&mut self.worker_caches) {
+            return;
+        }
         if let Ok(mut slot) = self.shared.slot.lock() {
             slot.request = None;
+            slot.forget = true;
         }
+        self.shared.wake.notify_all();
+    }
+
+    /// What the worker's caches held after its last request (the memory test prints it).
+    pub fn census(&self) -> LiveCensus {
+        self.shared
+            .slot
+            .lock()
+            .map(|s| s.census)
+            .unwrap_or_default()
     }
 
     /// Waits until the newest request's result arrived (tests only; the UI polls).
@@ -271,6 +308,13 @@ fn worker(shared: &Shared, results: &Sender<LiveResult>) {
                 if slot.shutdown {
                     return;
                 }
+                if slot.forget {
+                    slot.forget = false;
+                    cache = LiveCache::default();
+                    slot.census = cache.census();
+                    // The caches were model-sized and freed on this thread: hand the pages back.
+                    crate::free_pages::trim_now();
+                }
                 if let Some(r) = slot.request.take() {
                     break r;
                 }
@@ -299,6 +343,9 @@ fn worker(shared: &Shared, results: &Sender<LiveResult>) {
                 (geometry, Vec::new())
             }
         };
+        if let Ok(mut slot) = shared.slot.lock() {
+            slot.census = cache.census();
+        }
         let result = LiveResult {
             geometry: Arc::new(geometry),
             deltas,
@@ -352,6 +399,14 @@ impl LiveCache {
         let faces = Arc::new(VertexFaces::build(mesh));
         self.faces.push((Arc::downgrade(mesh), faces.clone(), true));
         faces
+    }
+
+    fn census(&self) -> LiveCensus {
+        LiveCensus {
+            cuts: self.cuts.census(),
+            face_tables: self.faces.len(),
+            model_cuts: self.models.len(),
+        }
     }
 
     /// Drops what the request just answered did not use (see [`LiveCache`]).

@@ -70,3 +70,53 @@ fn stale_requests_are_dropped_and_the_newest_wins() {
         closed.volume()
     );
 }
+
+/// Waits until the worker's caches read `want` (the worker updates them after a request, or when
+/// it wakes to forget them).
+fn census_becomes(live: &LiveCut, want: impl Fn(&LiveCensus) -> bool) -> LiveCensus {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        let census = live.census();
+        if want(&census) || Instant::now() > deadline {
+            return census;
+        }
+        std::thread::sleep(Duration::from_millis(2));
+    }
+}
+
+#[test]
+fn the_worker_keeps_an_index_only_while_its_cutter_changes_and_forgets_all_when_cleared() {
+    let mut scene = crate::cutting::cut_scene::tests::cubes_each_cut(3, 1);
+    let mut live = LiveCut::default();
+    assert!(live.request(&scene, None));
+    assert!(live.wait(Duration::from_secs(60)), "no live cut arrived");
+    let census = live.census();
+    assert_eq!(census.model_cuts, 3, "{census:?}");
+    assert_eq!(census.cuts.indexes, 3, "every model was cut: {census:?}");
+    // A drag on model 1's cutter: only its index is kept, the others' cuts stay.
+    for step in 1..=3 {
+        scene.cutters[1].cutter.planes = crate::cutting::cut_scene::tests::box_cutter(
+            11.0 + 0.1 * step as f64,
+            13.0,
+            -1.0,
+            1.0,
+            1.0,
+            3.0,
+        );
+        assert!(live.request(&scene, None));
+        assert!(live.wait(Duration::from_secs(60)), "no live cut arrived");
+        assert_eq!(live.shown().unwrap().deltas.len(), 3);
+        let census = live.census();
+        assert_eq!(census.model_cuts, 3, "step {step}: {census:?}");
+        assert_eq!(census.cuts.indexes, 1, "step {step}: {census:?}");
+        assert_eq!(census.face_tables, 1, "step {step}: {census:?}");
+    }
+    // Leaving Edit mode: the worker drops everything.
+    live.clear();
+    let census = census_becomes(&live, |c| *c == LiveCensus::default());
+    assert_eq!(census, LiveCensus::default());
+    // Coming back cuts again from scratch.
+    assert!(live.request(&scene, None));
+    assert!(live.wait(Duration::from_secs(60)), "no live cut arrived");
+    assert_eq!(live.census().model_cuts, 3);
+}

@@ -49,6 +49,11 @@ fn same_mesh(weak: &Weak<Mesh>, mesh: &Arc<Mesh>) -> bool {
 }
 
 impl ScenePicks {
+    /// Pick trees held (the memory test prints it per step).
+    pub fn tree_count(&self) -> usize {
+        self.trees.len()
+    }
+
     /// Starts building, on a worker thread, the trees of the scene's pickable models that have
     /// none and are not being built; collects the trees workers finished. Cheap when every model
     /// has its tree: the window calls it once per frame.

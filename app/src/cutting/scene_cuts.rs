@@ -64,7 +64,11 @@ pub fn cut_each_in_turn(
 pub fn compute_preview(scene: &Scene) -> (Arc<PreviewGeometry>, f64) {
     let started = Instant::now();
     let geometry = cut_scene::preview_geometry(scene);
-    (Arc::new(geometry), started.elapsed().as_secs_f64() * 1000.0)
+    let ms = started.elapsed().as_secs_f64() * 1000.0;
+    // The cut's indexes and intermediate meshes were freed on this thread as its cache went:
+    // hand their pages back now rather than leave them resident in this thread's arena.
+    crate::free_pages::trim_now();
+    (Arc::new(geometry), ms)
 }
 
 /// "Remove All Cut Geometry": each cut model replaced by its kept part closed by the walls, so

@@ -365,11 +365,17 @@ impl CutawayApp {
     }
 
     /// In Preview, recompute the cut parts whenever the cutters or their targets changed.
+    /// Elsewhere (Edit mode) a preview the cutters no longer match is dropped: nothing draws
+    /// it, and it holds every cut model's kept part and walls.
     pub(super) fn update_preview(&mut self, ctx: &egui::Context) {
+        let key = crate::cutting::scene_cuts::PreviewKey::of(&self.scene);
         if !super::cut_view::shows_cut(self.mode) || self.scene.cutters.is_empty() {
+            if self.viewport.preview_key.as_ref() != Some(&key) {
+                self.viewport.preview = None;
+                self.viewport.preview_key = None;
+            }
             return;
         }
-        let key = crate::cutting::scene_cuts::PreviewKey::of(&self.scene);
         if self.viewport.preview_key.as_ref() == Some(&key)
             || self.jobs.iter().any(|j| j.label == PREVIEW_JOB)
         {

@@ -63,8 +63,14 @@ pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
     // Camera and Scalpel draw the cut (without the removed-piece views) as Preview does.
     let cut = match app.mode {
         Mode::Camera | Mode::Scalpel => super::cut_view::cut_without_views(app),
-        Mode::Preview => app.viewport.preview.clone(),
-        Mode::Edit => None,
+        Mode::Preview => {
+            super::cut_view::drop_derived();
+            app.viewport.preview.clone()
+        }
+        Mode::Edit => {
+            super::cut_view::drop_derived();
+            None
+        }
     };
     let mode = match app.mode {
         Mode::Edit => ViewMode::Edit,
@@ -383,3 +389,21 @@ pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &CutawayAp
 #[cfg(test)]
 #[path = "bridge_tests.rs"]
 mod tests;
+
+/// What the window holds now, counted ([`crate::memory_census`]).
+pub fn memory_census(app: &CutawayApp) -> crate::memory_census::MemoryCensus {
+    crate::memory_census::MemoryCensus {
+        live: app.viewport.live.census(),
+        preview_triangles: app.viewport.preview.as_ref().map(|p| p.triangle_count()),
+        derived_cut: super::cut_view::holds_derived(),
+        editor_indexes: app.viewport.editor.index_count(),
+        pick_trees: app.viewport.picks.tree_count(),
+        gpu: app.wgpu.as_ref().and_then(|rs| {
+            rs.renderer
+                .read()
+                .callback_resources
+                .get::<Renderer>()
+                .map(Renderer::census)
+        }),
+    }
+}

@@ -17,17 +17,34 @@ pub fn shows_cut(mode: Mode) -> bool {
     matches!(mode, Mode::Camera | Mode::Preview | Mode::Scalpel)
 }
 
+thread_local! {
+    /// The last preview [`cut_without_views`] derived from, and what it derived (a copy of every
+    /// cut model's kept part and walls).
+    static DERIVED: std::cell::RefCell<Option<(Weak<PreviewGeometry>, Arc<PreviewGeometry>)>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// Drops what [`cut_without_views`] derived: the modes that do not draw it call this every
+/// frame, so the copy lives only while Camera or Scalpel mode shows it (deriving it again costs
+/// a copy of the parts, no cut).
+pub fn drop_derived() {
+    DERIVED.with(|last| {
+        last.borrow_mut().take();
+    });
+}
+
+/// True while a derived copy is held (the memory test prints it per step).
+pub fn holds_derived() -> bool {
+    DERIVED.with(|last| last.borrow().is_some())
+}
+
 /// What Camera and Scalpel modes draw for the current preview: kept parts, walls and contours.
 pub fn cut_without_views(app: &CutawayApp) -> Option<Arc<PreviewGeometry>> {
     let full = app.viewport.preview.as_ref()?;
     if app.scene.cutters.is_empty() {
         return None;
     }
-    thread_local! {
-        static LAST: std::cell::RefCell<Option<(Weak<PreviewGeometry>, Arc<PreviewGeometry>)>> =
-            const { std::cell::RefCell::new(None) };
-    }
-    LAST.with(|last| {
+    DERIVED.with(|last| {
         let mut last = last.borrow_mut();
         if let Some((source, derived)) = last.as_ref()
             && source.upgrade().is_some_and(|s| Arc::ptr_eq(&s, full))

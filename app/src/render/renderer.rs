@@ -46,6 +46,8 @@ struct CachedMesh {
     mesh: Weak<Mesh>,
     gpu: Option<GpuMesh>,
     last_used: u64,
+    /// The last frame that drew `gpu`'s wireframe edges (see [`Renderer::evict`]).
+    edges_drawn: u64,
     /// Faces currently hidden in `gpu`'s index buffer (ascending; see [`MeshDelta`]) and the
     /// delta they were hidden for.
     hidden: Vec<u32>,
@@ -82,6 +84,23 @@ impl UploadStats {
             self.bytes += s.byte_size();
         }
     }
+}
+
+/// The uploads a [`Renderer`] keeps between frames, by kind (see [`Renderer::census`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GpuCensus {
+    /// Whole model meshes, and their bytes.
+    pub models: usize,
+    pub model_bytes: u64,
+    /// Wireframe edge buffers (of models and preview parts), and their bytes.
+    pub edge_sets: usize,
+    pub edge_bytes: u64,
+    /// Parts of the preview or live cut being drawn, and their bytes (contours included).
+    pub preview_parts: usize,
+    pub preview_bytes: u64,
+    /// Patches of deltas (live cut, scalpel), and their bytes.
+    pub deltas: usize,
+    pub delta_bytes: u64,
 }
 
 /// See the module documentation of [`crate::render`].
@@ -174,6 +193,35 @@ impl Renderer {
     /// must not send a whole model).
     pub fn last_frame_uploads(&self) -> UploadStats {
         self.uploads
+    }
+
+    /// What the renderer keeps uploaded between frames (the memory test prints it per step).
+    pub fn census(&self) -> GpuCensus {
+        let mut c = GpuCensus::default();
+        for gpu in self.models.values().filter_map(|m| m.gpu.as_ref()) {
+            c.models += 1;
+            c.model_bytes += gpu.byte_size();
+            if let Some(e) = &gpu.edges {
+                c.edge_sets += 1;
+                c.edge_bytes += e.byte_size();
+            }
+        }
+        for gpu in self.deltas.values().filter_map(|d| d.gpu.as_ref()) {
+            c.deltas += 1;
+            c.delta_bytes += gpu.byte_size();
+        }
+        if let Some(p) = &self.preview {
+            for gpu in p.parts.iter().flatten() {
+                c.preview_parts += 1;
+                c.preview_bytes += gpu.byte_size();
+                if let Some(e) = &gpu.edges {
+                    c.edge_sets += 1;
+                    c.edge_bytes += e.byte_size();
+                }
+            }
+            c.preview_bytes += p.contours.values().map(|s| s.byte_size()).sum::<u64>();
+        }
+        c
     }
 
     /// Renders `frame` offscreen, recording into `encoder` (egui's encoder in a paint callback's
@@ -330,10 +378,24 @@ impl Renderer {
 
     /// Drops uploads of meshes that no longer exist or were not drawn for a while (a model
     /// mesh dropped with faces hidden goes with them). Delta patches go as soon as a frame did
-    /// not draw them: each change makes a new one.
+    /// not draw them: each change makes a new one. Wireframe edges (one and a half segments
+    /// per triangle, bigger than the mesh's own buffers) are made on demand and go as soon as a
+    /// frame did not draw them: the model is drawn solid again, or hidden, or replaced by its
+    /// cut, and finding them again costs one pass over the mesh when they are next drawn.
     fn evict(&mut self) {
         let now = self.frame_index;
         let models = self.models.len();
+        let mut edges_dropped = false;
+        for c in self.models.values_mut() {
+            if c.edges_drawn != now
+                && let Some(gpu) = c.gpu.as_mut()
+            {
+                edges_dropped |= gpu.edges.take().is_some();
+            }
+        }
+        if edges_dropped {
+            self.free_pages.note_large_free();
+        }
         self.models.retain(|_, c| {
             c.mesh.strong_count() > 0 && now.saturating_sub(c.last_used) <= CACHE_FRAMES
         });

@@ -158,6 +158,7 @@ impl Renderer {
                         mesh: Arc::downgrade(&model.mesh),
                         gpu,
                         last_used: 0,
+                        edges_drawn: 0,
                         hidden: Vec::new(),
                         hidden_for: None,
                     },
@@ -231,11 +232,17 @@ impl Renderer {
                 ModelStyle::Wireframe => {
                     // The base's edges include those of hidden faces: a wireframe under a
                     // delta shows the old edges too until the change is committed.
-                    if let Some(gpu) = self.models.get_mut(&key).and_then(|c| c.gpu.as_mut()) {
+                    let frame_index = self.frame_index;
+                    if let Some(cached) = self.models.get_mut(&key)
+                        && let Some(gpu) = cached.gpu.as_mut()
+                    {
+                        cached.edges_drawn = frame_index;
                         let had = gpu.edges.is_some();
                         gpu.ensure_edges(device, &model.name, &model.mesh);
                         if !had {
                             self.uploads.segments(gpu.edges.as_ref());
+                            // Finding the edges went through a model-sized hash set.
+                            self.free_pages.note_large_free();
                         }
                     }
                     if let Some((k, d)) = delta_key
@@ -279,7 +286,10 @@ impl Renderer {
                             }
                         }
                         ModelStyle::Wireframe => {
-                            gpu.ensure_edges(device, &model.name, &part.mesh);
+                            if gpu.edges.is_none() {
+                                gpu.ensure_edges(device, &model.name, &part.mesh);
+                                self.free_pages.note_large_free();
+                            }
                             let u = push_uniform(model.color, 1.0, false, WIREFRAME_WIDTH_PX, 0.0);
                             list.opaque.push(Draw::Edges(Source::Part(i), u));
                         }
