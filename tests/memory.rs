@@ -7,8 +7,8 @@
 //! later step (undo and redo of everything, each state drawn again) is more than 10 % above that
 //! level: repeating work must not pile memory up. It prints the highest level after the first
 //! cut against the goal of +10 %, which is not met yet: on the earlier default scene (the head's
-//! model files) 12 %, 13 % and 14 % in three runs (232 → 261 MB, 220 → 249 MB, 231 → 264 MB; 16 % to 27 % before the caches below were
-//! bounded). What the window's caches hold stays flat at the worst steps (no live-cut index, one
+//! model files) 12 %, 13 % and 14 % in three runs (232 → 261 MB, 220 → 249 MB, 231 → 264 MB;
+//! 16 % to 27 % before the caches below were bounded). What the window's caches hold stays flat at the worst steps (no live-cut index, one
 //! preview, no copies), and so, within about 10 MB, do the allocator's bytes in use: the rest is
 //! free space the allocator keeps resident in its arenas (40 MB after the first cut, 60 to 95 MB
 //! later), once 27 MB in use that no counted cache holds (the software driver and egui are the
