@@ -424,6 +424,7 @@ pub(crate) fn cubes_each_cut(n: usize, per_model: usize) -> Scene {
                     kind: cutter::CutKind::Straight,
                     smooth: false,
                     planes: box_cutter(x + 1.0 + 0.2 * k as f64, x + 3.0, -1.0, 1.0, z, 3.0),
+                    levels: cutter::subdivision::DEFAULT_LEVELS,
                 },
                 views: crate::scene::CutterViews::default(),
             });
