@@ -86,6 +86,11 @@ fn main() {
             mb(render_peak),
             peak as f64 / render_peak.max(1) as f64
         );
+        if let Some(refused) = render["refused"].as_str() {
+            println!(
+                "  cutaway render refused the saved session (peak up to the refusal): {refused}"
+            );
+        }
         let line = serde_json::json!({
             "scene": folder,
             "triangles": get(&window, "triangles"),
@@ -98,6 +103,7 @@ fn main() {
             "window_peak_bytes": peak,
             "render_peak_bytes": render_peak,
             "window_over_render": peak as f64 / render_peak.max(1) as f64,
+            "render_refused": render["refused"],
             "cutters": get(&window, "cutters"),
             "seconds": window["seconds"],
         });
@@ -184,17 +190,20 @@ fn mesh_files(dir: &Path, out: &mut Vec<PathBuf>) {
 fn render_child() {
     let session = std::env::var_os(SESSION).expect("session");
     let png = PathBuf::from(&session).with_extension("png");
-    cutaway::cli::run([
+    // A cutter the exact boolean refuses fails `cutaway render` (the contract); the bench then
+    // reports the refusal with the peak reached so far instead of stopping the other scenes.
+    let refused = cutaway::cli::run([
         "cutaway".into(),
         "render".into(),
         session,
         "--out".into(),
         png.into_os_string(),
     ])
-    .expect("cutaway render");
+    .err()
+    .map(|e| format!("{e:#}"));
     println!(
         "{}",
-        serde_json::json!({ "peak": memory_script::peak_rss() })
+        serde_json::json!({ "peak": memory_script::peak_rss(), "refused": refused })
     );
 }
 

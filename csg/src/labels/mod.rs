@@ -54,6 +54,16 @@
 //! labels is extracted and smoothed once per label, so about half the vertices are made twice.
 //! Sharing them needs one topology for both labels on every inter-label face, which the per-mask
 //! face rule here does not give (on an ambiguous face each label separates its own corners).
+//! A one-pass variant that shares only the vertices (each label keeps its own polygons from the
+//! same case table, a voxel edge between two labels carries one vertex smoothed once over the
+//! lower label's surface) was built and measured against this path on the SPL head atlas: it
+//! makes 1.48 million vertices instead of 1.95 million (surfaces against background, most of the
+//! area, are not shared) and costs more CPU time (about 0.67 s against 0.46 s in the same run),
+//! because a whole-grid pass over label values is slower than per-label passes over bit masks and
+//! one large vertex array loses the per-label arrays' cache locality. It kept volumes closer
+//! (median error 1.4 % against 1.9 %) and left no gap between touching labels. To beat this path
+//! it would need cube configurations from bit masks, its ring and stitch passes per slab in
+//! parallel, and smoothing in slab order with each slab's boundary neighbours copied in.
 
 mod cases;
 mod decimate;
