@@ -47,6 +47,32 @@ fn cutaway(args: &[&std::ffi::OsStr]) -> (bool, String, String) {
     )
 }
 
+/// Writes `session` as `DIR/NAME.json`, renders it at 64×48 with `--json`, checks that the image
+/// was written and returns the JSON; `None`, with the reason printed, when no GPU adapter exists.
+fn render_json(dir: &Path, name: &str, session: &serde_json::Value) -> Option<serde_json::Value> {
+    let session_path = dir.join(format!("{name}.json"));
+    std::fs::write(&session_path, session.to_string()).unwrap();
+    let png = dir.join(format!("{name}.png"));
+    let (ok, out, err) = cutaway(&[
+        "render".as_ref(),
+        session_path.as_os_str(),
+        "--out".as_ref(),
+        png.as_os_str(),
+        "--width".as_ref(),
+        "64".as_ref(),
+        "--height".as_ref(),
+        "48".as_ref(),
+        "--json".as_ref(),
+    ]);
+    if !ok && err.contains("adapter") {
+        eprintln!("skipped: no GPU adapter ({err})");
+        return None;
+    }
+    assert!(ok, "{name}: render failed: {err}");
+    assert!(png.exists(), "{name}");
+    Some(serde_json::from_str(out.trim()).expect("render JSON"))
+}
+
 fn read_obj(path: &Path) -> Mesh {
     cutaway::io::read_mesh(path).unwrap_or_else(|e| panic!("{}: {e:#}", path.display()))
 }
@@ -182,26 +208,9 @@ fn render_json_reports_the_smooth_cut_exact() {
                      "views": {"cut": true, "ribbons": {"count": 3, "width": 0.4, "relative": true}}}],
         "camera": {"eye": [0, -300, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 30}
     });
-    let session_path = dir.join("session.json");
-    std::fs::write(&session_path, session.to_string()).unwrap();
-    let png = dir.join("out.png");
-    let (ok, out, err) = cutaway(&[
-        "render".as_ref(),
-        session_path.as_os_str(),
-        "--out".as_ref(),
-        png.as_os_str(),
-        "--width".as_ref(),
-        "64".as_ref(),
-        "--height".as_ref(),
-        "48".as_ref(),
-        "--json".as_ref(),
-    ]);
-    if !ok && err.contains("adapter") {
-        eprintln!("skipped: no GPU adapter ({err})");
+    let Some(json) = render_json(&dir, "session", &session) else {
         return;
-    }
-    assert!(ok, "render failed: {err}");
-    let json: serde_json::Value = serde_json::from_str(out.trim()).expect("render JSON");
+    };
     let keys: Vec<&String> = json.as_object().unwrap().keys().collect();
     assert_eq!(keys, ["cutters", "render_ms"]);
     let cutters = json["cutters"].as_array().unwrap();
@@ -209,7 +218,6 @@ fn render_json_reports_the_smooth_cut_exact() {
     assert_eq!(cutters[0]["exact"], true, "{json}");
     assert!(cutters[0]["cut_ms"].as_f64().unwrap() > 0.0);
     assert!(json["render_ms"].as_f64().unwrap() > 0.0);
-    assert!(png.exists());
 
     // A cutter the boolean refuses (its boxes fold over each other): no image, a non-zero exit
     // naming the session, and the report says it was not exact.
@@ -342,32 +350,14 @@ fn render_json_reports_every_smooth_gesture_exact() {
                          "planes": planes, "views": {"cut": true}}],
             "camera": {"eye": [0, -300, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 30}
         });
-        let session_path = dir.join(format!("{name}.json"));
-        std::fs::write(&session_path, session.to_string()).unwrap();
-        let png = dir.join(format!("{name}.png"));
-        let (ok, out, err) = cutaway(&[
-            "render".as_ref(),
-            session_path.as_os_str(),
-            "--out".as_ref(),
-            png.as_os_str(),
-            "--width".as_ref(),
-            "64".as_ref(),
-            "--height".as_ref(),
-            "48".as_ref(),
-            "--json".as_ref(),
-        ]);
-        if !ok && err.contains("adapter") {
-            eprintln!("skipped: no GPU adapter ({err})");
+        let Some(json) = render_json(&dir, &name, &session) else {
             return;
-        }
-        assert!(ok, "{name}: render failed: {err}");
-        let json: serde_json::Value = serde_json::from_str(out.trim()).expect("render JSON");
+        };
         assert_eq!(json["cutters"][0]["exact"], true, "{name}: {json}");
         assert!(
             json["cutters"][0]["cut_ms"].as_f64().unwrap() > 0.0,
             "{name}"
         );
-        assert!(png.exists(), "{name}");
     }
 }
 
@@ -460,26 +450,9 @@ fn render_json_of_a_session_uses_its_cutter_levels() {
             "cutters": [entry],
             "camera": {"eye": [0, -300, 0], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 30}
         });
-        let session_path = dir.join(format!("levels{levels:?}.json"));
-        std::fs::write(&session_path, session.to_string()).unwrap();
-        let png = dir.join(format!("levels{levels:?}.png"));
-        let (ok, out, err) = cutaway(&[
-            "render".as_ref(),
-            session_path.as_os_str(),
-            "--out".as_ref(),
-            png.as_os_str(),
-            "--width".as_ref(),
-            "64".as_ref(),
-            "--height".as_ref(),
-            "48".as_ref(),
-            "--json".as_ref(),
-        ]);
-        if !ok && err.contains("adapter") {
-            eprintln!("skipped: no GPU adapter ({err})");
+        let Some(json) = render_json(&dir, &format!("levels{levels:?}"), &session) else {
             return;
-        }
-        assert!(ok, "levels {levels:?}: render failed: {err}");
-        let json: serde_json::Value = serde_json::from_str(out.trim()).expect("render JSON");
+        };
         let c = &json["cutters"][0];
         assert_eq!(c["exact"], true, "{json}");
         let expected = levels.unwrap_or(cutter::subdivision::DEFAULT_LEVELS);
