@@ -24,6 +24,8 @@ pub struct ScalpelSlot {
     camera_drag: Option<CameraDrag>,
     /// The viewport in egui points at the last frame (tests aim with it).
     pub rect: egui::Rect,
+    /// The target the depth and opening were sized for (they follow the selected model).
+    pub sizing: crate::view::target::ScalpelSizing,
 }
 
 impl Default for ScalpelSlot {
@@ -32,6 +34,7 @@ impl Default for ScalpelSlot {
             session: ScalpelSession::default(),
             camera_drag: None,
             rect: egui::Rect::NOTHING,
+            sizing: Default::default(),
         }
     }
 }
@@ -77,6 +80,10 @@ pub fn scalpel_input(
     // The selected model's scalpel is made off this thread before the user presses on it.
     let selected = app.selected_model;
     app.viewport.scalpel.session.prepare(&app.scene, selected);
+    // Depth and opening follow the selected model until the user sets them.
+    let slot = &mut app.viewport.scalpel;
+    slot.sizing
+        .follow(&app.scene, selected, &mut slot.session.settings);
     let (shift, alt) = ui.input(|i| (i.modifiers.shift, i.modifiers.alt));
     let viewport = app.viewport.size_px;
 
@@ -108,7 +115,7 @@ pub fn scalpel_input(
     if response.hovered() {
         let notches = ui.input(|i| i.smooth_scroll_delta.y as f64 / 50.0);
         if notches != 0.0 {
-            let min = app.scene.bbox().diagonal().max(1e-6) * 1e-3;
+            let min = crate::view::target::defaults_for(&app.scene, selected).min_camera_distance;
             camera_controls::zoom(&mut app.scene.camera, notches, min);
         }
     }
@@ -124,6 +131,17 @@ pub fn scalpel_input(
         && !(shift || alt);
     let released = ui.input(|i| i.pointer.primary_released());
     if pressed {
+        // The model the stroke starts on becomes the target, as a new cutter's does, so the
+        // blade starts with that model's depth and opening.
+        let ray = app.scene.camera.ray_through_pixel(viewport, px);
+        if let Some((hit, _)) = app.viewport.picks.pick(&app.scene, &ray)
+            && app.selected_model != Some(hit)
+        {
+            app.selected_model = Some(hit);
+            let slot = &mut app.viewport.scalpel;
+            slot.sizing
+                .follow(&app.scene, Some(hit), &mut slot.session.settings);
+        }
         match app.viewport.scalpel.press(&app.scene, viewport, px) {
             Ok(Some(_)) => {}
             Ok(None) => app.say("Press on a model to cut it"),

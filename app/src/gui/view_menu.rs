@@ -5,7 +5,7 @@
 //! headless renders agree with the window; this file only turns menu items and keys into
 //! [`ViewCommand`]s and applies them to the window's camera.
 
-use crate::view::{LengthUnit, Orientation, SizeDefaults, ViewPreset, fit};
+use crate::view::{LengthUnit, Orientation, ViewPreset, fit};
 
 use super::app::{Action, CutawayApp};
 
@@ -25,7 +25,8 @@ pub enum ViewCommand {
 /// Orients, scales and frames a scene that replaced the previous one: the default scene is RAS;
 /// anything else is guessed from its size and shape ([`Orientation::guess`],
 /// [`LengthUnit::guess`]). The first view is anterior, like the default scene's, and the scalpel
-/// starts with lengths relative to the scene's size.
+/// starts with lengths relative to the scene's size (they follow the selected model from then
+/// on, [`crate::view::target::ScalpelSizing`]).
 pub fn orient_new_scene(app: &mut CutawayApp, default_scene: bool, from_volume: bool) {
     let bbox = app.scene.bbox();
     app.scene.orientation = if default_scene {
@@ -35,10 +36,9 @@ pub fn orient_new_scene(app: &mut CutawayApp, default_scene: bool, from_volume: 
     };
     app.scene.unit = LengthUnit::guess(&bbox, from_volume);
     app.scene.camera = app.scene.preset_camera(ViewPreset::Anterior);
-    let defaults = SizeDefaults::of(&bbox);
-    let scalpel = &mut app.viewport.scalpel.settings;
-    scalpel.depth = defaults.scalpel_depth;
-    scalpel.opening = defaults.scalpel_opening;
+    let slot = &mut app.viewport.scalpel;
+    slot.sizing
+        .resize(&app.scene, None, &mut slot.session.settings);
 }
 
 /// Applies a view command.
