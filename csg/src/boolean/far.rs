@@ -44,7 +44,7 @@ pub(crate) fn index_with_room(target: &TargetIndex, cutters: &[&Mesh]) -> Option
     }
     let size = own.size().max_element();
     let reach = room.size().max_element();
-    if !(reach <= MAX_REACH * size) {
+    if reach.is_nan() || reach > MAX_REACH * size {
         return None;
     }
     TargetIndex::build_with_room(target.mesh.clone(), &room).ok()
