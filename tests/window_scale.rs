@@ -312,3 +312,59 @@ fn on_the_knee_in_millimetres_the_same_steps_give_proportionate_lengths() {
     assert_cut(&mut h, whole_view);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn on_the_default_head_atlas_a_small_structure_gets_its_own_lengths() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("head");
+    let mut h = harness(&dir, Vec::new());
+    settle(&mut h);
+    assert!(!h.state().status.is_error, "{}", h.state().status.message);
+    let fov = h.state().scene.camera.fov_y_deg;
+    // The scene opens with the head's lengths, in millimetres.
+    let head = h.state().scene.bbox().diagonal();
+    let depth = h.state().viewport.scalpel.settings.depth;
+    assert!((depth - 0.03 * head).abs() < 1e-9, "scalpel depth {depth} mm");
+    // The smallest structure of some size (a deep nucleus, a nerve), alone in view.
+    let models = &h.state().scene.models;
+    let small = (0..models.len())
+        .filter(|&m| models[m].mesh.triangle_count() >= 500)
+        .min_by(|&a, &b| {
+            let d = |m: usize| models[m].mesh.bbox().diagonal();
+            d(a).total_cmp(&d(b))
+        })
+        .expect("a structure");
+    let size = models[small].mesh.bbox();
+    let name = models[small].name.clone();
+    assert!(size.diagonal() < 0.3 * head, "{name} is not small");
+    for (m, model) in h.state_mut().scene.models.iter_mut().enumerate() {
+        model.visible = m == small;
+    }
+    h.state_mut().selected_model = Some(small);
+    apply(&mut h, Action::View(ViewCommand::ZoomToSelection));
+    apply(&mut h, Action::SetMode(Mode::Edit));
+    let k = paint_cutter(&mut h, small, 90.0);
+    let delta = editor_delta(&h);
+    let framed = EditorSettings::delta_for_scene(&size, fov);
+    assert!(
+        delta >= framed * (1.0 - 1e-9) && delta < 1.5 * framed,
+        "δ {delta} mm, {name} framed gives {framed} mm"
+    );
+    assert_cut(&mut h, k);
+    shot(&mut h, "scale-head-small-structure-first-cut");
+    apply(&mut h, Action::SetMode(Mode::Scalpel));
+    h.run_steps(2);
+    let depth = h.state().viewport.scalpel.settings.depth;
+    assert!(
+        (depth - 0.03 * size.diagonal()).abs() < 1e-9,
+        "scalpel depth {depth} mm on {name}"
+    );
+    println!(
+        "{name}: {:.1} mm across; δ {delta:.4} mm; scalpel depth {depth:.2} mm",
+        size.diagonal()
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
