@@ -103,8 +103,12 @@ fn s_path_on_sphere_through_the_cli() {
     // δ: the distance framing the sphere's bounding box with the gesture's 30° field of view, or
     // the gesture camera's distance from the sphere when that is farther, / 2000.
     let bbox = csg::testkit::icosphere(5, 50.0).bbox();
-    let eye = read_gesture(&gestures().join("sphere_s.json")).unwrap().camera.eye;
-    let expected = Camera::framing_distance(&bbox, 30.0).max((bbox.center() - eye).length()) / 2000.0;
+    let eye = read_gesture(&gestures().join("sphere_s.json"))
+        .unwrap()
+        .camera
+        .eye;
+    let expected =
+        Camera::framing_distance(&bbox, 30.0).max((bbox.center() - eye).length()) / 2000.0;
     assert!(
         (delta - expected).abs() < 1e-12 * expected,
         "{delta} vs {expected}"
@@ -246,7 +250,11 @@ fn the_region_under_the_press_is_painted() {
     // δ comes from the painted region (the sphere framed), not the whole file.
     let region = right.bbox();
     let framed = EditorSettings::delta_for_scene(&region, 30.0);
-    assert!((r.delta - framed).abs() < 1e-12 * framed, "{} vs {framed}", r.delta);
+    assert!(
+        (r.delta - framed).abs() < 1e-12 * framed,
+        "{} vs {framed}",
+        r.delta
+    );
     let whole = EditorSettings::delta_for_scene(&two.bbox(), 30.0);
     assert!(r.delta < 0.6 * whole, "{} vs the file's {whole}", r.delta);
     // And the library parse of the contract example works (same parser as the CLI).

@@ -107,7 +107,10 @@ fn paint_cutter(h: &mut Harness<'_, CutawayApp>, target: usize, length: f32) -> 
     h.state_mut().selected_model = Some(target);
     let before = h.state().scene.cutters.len();
     let centre = to_screen(h, h.state().scene.models[target].mesh.bbox().center());
-    let (a, b) = (centre + egui::vec2(-35.0, 0.0), centre + egui::vec2(35.0, 0.0));
+    let (a, b) = (
+        centre + egui::vec2(-35.0, 0.0),
+        centre + egui::vec2(35.0, 0.0),
+    );
     drag(h, a, b, 5);
     assert_eq!(
         h.state().scene.cutters.len(),
@@ -137,7 +140,11 @@ fn assert_cut(h: &mut Harness<'_, CutawayApp>, k: usize) {
     settle(h);
     let inputs = frame_inputs(h.state(), [64, 48]);
     let cut = inputs.preview.expect("Camera mode draws the cut");
-    assert!(cut.notes.is_empty(), "a cutter was refused: {:?}", cut.notes);
+    assert!(
+        cut.notes.is_empty(),
+        "a cutter was refused: {:?}",
+        cut.notes
+    );
     let target = h.state().scene.cutters[k].target;
     assert!(
         cut.parts
@@ -191,7 +198,10 @@ fn a_small_hubmap_structure_is_cut_with_its_own_sizes_and_its_session_renders() 
         delta >= framed * (1.0 - 1e-9) && delta < 1.5 * framed,
         "δ {delta} m, the coccyx framed gives {framed} m"
     );
-    assert!(delta < whole / 10.0, "δ {delta} m is the body's ({whole} m)");
+    assert!(
+        delta < whole / 10.0,
+        "δ {delta} m is the body's ({whole} m)"
+    );
     let first = h.state().scene.cutters[near].cutter.planes[0];
     let extent = size.size().max_element();
     assert!(
@@ -327,7 +337,10 @@ fn on_the_default_head_atlas_a_small_structure_gets_its_own_lengths() {
     // The scene opens with the head's lengths, in millimetres.
     let head = h.state().scene.bbox().diagonal();
     let depth = h.state().viewport.scalpel.settings.depth;
-    assert!((depth - 0.03 * head).abs() < 1e-9, "scalpel depth {depth} mm");
+    assert!(
+        (depth - 0.03 * head).abs() < 1e-9,
+        "scalpel depth {depth} mm"
+    );
     // The smallest structure of some size (a deep nucleus, a nerve), alone in view.
     let models = &h.state().scene.models;
     let small = (0..models.len())

@@ -95,8 +95,18 @@ mod tests {
         let mut scene = Scene::default();
         let body = csg::testkit::cube(DVec3::new(-0.25, 0.0, -0.15), DVec3::new(0.25, 1.8, 0.15));
         let gland = csg::testkit::cube(DVec3::new(0.05, 1.0, 0.0), DVec3::new(0.07, 1.02, 0.02));
-        scene.models.push(SceneModel::new("body", "body.obj", Arc::new(body), [1.0; 3]));
-        scene.models.push(SceneModel::new("gland", "gland.obj", Arc::new(gland), [1.0; 3]));
+        scene.models.push(SceneModel::new(
+            "body",
+            "body.obj",
+            Arc::new(body),
+            [1.0; 3],
+        ));
+        scene.models.push(SceneModel::new(
+            "gland",
+            "gland.obj",
+            Arc::new(gland),
+            [1.0; 3],
+        ));
         scene
     }
 
