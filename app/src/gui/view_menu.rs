@@ -25,8 +25,7 @@ pub enum ViewCommand {
 /// Orients, scales and frames a scene that replaced the previous one: the default scene is RAS;
 /// anything else is guessed from its size and shape ([`Orientation::guess`],
 /// [`LengthUnit::guess`]). The first view is anterior, like the default scene's, and the scalpel
-/// starts with lengths relative to the scene's size (they follow the selected model from then
-/// on, [`crate::view::target::ScalpelSizing`]).
+/// starts with lengths relative to the scene's size.
 pub fn orient_new_scene(app: &mut CutawayApp, default_scene: bool, from_volume: bool) {
     let bbox = app.scene.bbox();
     app.scene.orientation = if default_scene {
@@ -36,6 +35,7 @@ pub fn orient_new_scene(app: &mut CutawayApp, default_scene: bool, from_volume: 
     };
     app.scene.unit = LengthUnit::guess(&bbox, from_volume);
     app.scene.camera = app.scene.preset_camera(ViewPreset::Anterior);
+    // From here on they follow the selected model (`crate::view::target::ScalpelSizing`).
     let slot = &mut app.viewport.scalpel;
     slot.sizing
         .resize(&app.scene, None, &mut slot.session.settings);
