@@ -379,5 +379,36 @@ fn on_the_default_head_atlas_a_small_structure_gets_its_own_lengths() {
         "{name}: {:.1} mm across; δ {delta:.4} mm; scalpel depth {depth:.2} mm",
         size.diagonal()
     );
+    // Nothing selected, every structure shown: the blade has the head's lengths again (the
+    // scene's box is that of the models shown).
+    for model in &mut h.state_mut().scene.models {
+        model.visible = true;
+    }
+    h.state_mut().selected_model = None;
+    h.run_steps(2);
+    let depth = h.state().viewport.scalpel.settings.depth;
+    assert!(
+        (depth - 0.03 * head).abs() < 1e-9,
+        "scalpel depth {depth} mm"
+    );
+    // A stroke that starts on the structure (alone in view again) selects it and is cut with
+    // its lengths.
+    for (m, model) in h.state_mut().scene.models.iter_mut().enumerate() {
+        model.visible = m == small;
+    }
+    h.run_steps(2);
+    let centre = to_screen(&h, size.center());
+    drag(
+        &mut h,
+        centre + egui::vec2(-30.0, 0.0),
+        centre + egui::vec2(30.0, 0.0),
+        10,
+    );
+    assert_eq!(h.state().selected_model, Some(small));
+    let depth = h.state().viewport.scalpel.settings.depth;
+    assert!(
+        (depth - 0.03 * size.diagonal()).abs() < 1e-9,
+        "scalpel depth {depth} mm after a stroke on {name}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -20,7 +20,7 @@ use crate::scalpel_session::ScalpelSettings;
 use crate::scene::Scene;
 
 /// The box a tool on `model` is sized from: that model's, else (no model, or an empty one) the
-/// scene's.
+/// scene's ([`Scene::bbox`]: the models shown).
 pub fn target_box(scene: &Scene, model: Option<usize>) -> Aabb {
     model
         .and_then(|m| scene.models.get(m))
