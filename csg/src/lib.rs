@@ -39,7 +39,8 @@ pub mod winding;
 pub use aabb::Aabb;
 pub use adjacency::EdgeAdjacency;
 pub use boolean::{
-    CutError, check_cutter, cutter_self_intersections, subtract, subtract_many, subtract_with,
+    CutError, MAX_REACH, check_cutter, cutter_self_intersections, subtract, subtract_many,
+    subtract_with,
 };
 pub use glam::DVec3;
 pub use mesh::{Mesh, MeshError};

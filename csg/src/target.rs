@@ -272,6 +272,23 @@ impl TargetIndex {
     /// memory (about 0.6 ms per MB), so the index keeps no array it can derive cheaply (face
     /// boxes come from `lpoints`).
     pub fn build_timed(mesh: impl Into<Arc<Mesh>>) -> Result<(TargetIndex, BuildTimes), MeshError> {
+        Self::build_in(mesh, &Aabb::EMPTY)
+    }
+
+    /// [`TargetIndex::build`] on a lattice that also spans `room`: a cutter anywhere in `room`
+    /// then fits it (see [`crate::lattice`]). The lattice step grows with the box, so this is
+    /// for a cutter that reaches far beyond a small target, not for every cut.
+    pub fn build_with_room(
+        mesh: impl Into<Arc<Mesh>>,
+        room: &Aabb,
+    ) -> Result<TargetIndex, MeshError> {
+        Self::build_in(mesh, room).map(|(index, _)| index)
+    }
+
+    fn build_in(
+        mesh: impl Into<Arc<Mesh>>,
+        room: &Aabb,
+    ) -> Result<(TargetIndex, BuildTimes), MeshError> {
         let mut times = BuildTimes::default();
         let clock = Instant::now();
         let mesh: Arc<Mesh> = mesh.into();
@@ -279,7 +296,7 @@ impl TargetIndex {
         mesh.sanity_check()?;
         times.lap("sanity_check", &mut lap);
         let bbox: Aabb = Aabb::from_points(&mesh.positions);
-        let lattice = Lattice::for_box(&bbox);
+        let lattice = Lattice::for_box(&bbox.union(room));
         times.lap("bbox", &mut lap);
         let (topology, ((spatial, t_spatial), (scratch, t_scratch))) = rayon::join(
             || build_topology(&mesh, &lattice),

@@ -28,6 +28,33 @@ fn box_through_sphere_makes_a_tunnel() {
     );
 }
 
+/// A cutter that runs far past a small target (a stroke painted across a small structure seen
+/// from far away) reaches beyond the target's own lattice: the cut runs on a wider lattice and
+/// removes the same as a short cutter with the same cross-section, checked by the full contract.
+#[test]
+fn a_long_cutter_through_a_small_target_is_cut_not_refused() {
+    let target = icosphere(3, 1.0);
+    let index = TargetIndex::build(target.clone()).unwrap();
+    let long = cube(v(-0.3, -0.3, -400.0), v(0.3, 0.3, 20.0));
+    let short = cube(v(-0.3, -0.3, -2.0), v(0.3, 0.3, 2.0));
+    // The long cutter is far beyond the cached lattice (about 2^28 steps of 2^-26 units).
+    assert!(index.lattice.quantize(v(0.0, 0.0, -400.0)).is_none());
+    let far = cut_checked(&index, &target, &long).unwrap();
+    let near = cut_checked(&index, &target, &short).unwrap();
+    check_cut_welded(&target, &far).unwrap();
+    assert_eq!(far.contours.len(), 2, "a tunnel through the ball");
+    assert_eq!(far.removed_faces, near.removed_faces);
+    let removed = |r: &csg::CutResult| volume(&concat(&r.removed.mesh, &r.walls.mesh.reversed()));
+    let (a, b) = (removed(&far), removed(&near));
+    assert!(a > 0.5 && (a - b).abs() < 1e-4 * b, "removed {a} vs {b}");
+    // Beyond `MAX_REACH` target sizes the cutter is still refused, with the reason.
+    let reach = csg::MAX_REACH * 2.0 + 10.0;
+    let too_long = cube(v(-0.3, -0.3, -reach), v(0.3, 0.3, 2.0));
+    let err = csg::subtract(&index, &too_long).unwrap_err();
+    assert!(matches!(err, CutError::OutOfRange { .. }), "{err}");
+    assert!(err.to_string().contains("1024 target sizes"), "{err}");
+}
+
 #[test]
 fn strip_groove_on_sphere() {
     let target = icosphere(4, 50.0);

@@ -97,6 +97,28 @@ pub fn sub_cutters(cutter: &Cutter, spec: &SubCutterSpec) -> Vec<Cutter> {
     }
 }
 
+/// The width in model units each sub-cutter of `spec` has on `cutter`: `spec.width` when it is
+/// absolute, else the relative width times the spacing it fills (along the path, or the mean
+/// depth step for horizontal layers). A width switched from relative to absolute starts here, so
+/// it keeps its size in millimetres and metres alike.
+pub fn absolute_width(cutter: &Cutter, spec: &SubCutterSpec) -> f64 {
+    if !spec.relative {
+        return spec.width;
+    }
+    let relative = spec.width.min(MAX_RELATIVE);
+    let path = cutter.path();
+    let length: f64 = path.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+    match spec.placement {
+        Placement::Even => relative * length / spec.count.max(1) as f64,
+        Placement::Planes => relative * length / cutter.box_count().max(1) as f64,
+        Placement::Horizontal => {
+            let planes = cutter.planes.len().max(1) as f64;
+            let depth = cutter.planes.iter().map(|p| p.depth()).sum::<f64>() / planes;
+            relative * depth / spec.count.max(1) as f64
+        }
+    }
+}
+
 /// `count` layers of `cutter` parallel to its front (the surface), centred at depth fractions
 /// `(k + ½) / count`; each is the cutter's planes cut down to a band of depths, `width` thick
 /// (model units), or with `relative` the fraction `width` of a depth step (per plane).
@@ -270,6 +292,15 @@ mod tests {
         let on = sub_cutters(&cutter(), &planes);
         assert_eq!(on.len(), 5);
         assert!((width(&on[2]) - 1.0).abs() < 1e-9);
+        // The same widths in model units, to start an absolute width from.
+        assert!((absolute_width(&cutter(), &spec) - 1.0).abs() < 1e-9);
+        assert!((absolute_width(&cutter(), &planes) - 1.0).abs() < 1e-9);
+        let absolute = SubCutterSpec {
+            relative: false,
+            width: 3.0,
+            ..spec
+        };
+        assert_eq!(absolute_width(&cutter(), &absolute), 3.0);
     }
 
     #[test]

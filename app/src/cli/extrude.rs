@@ -1,11 +1,12 @@
 //! `cutaway extrude TARGET --gesture G.json --out CUTTER.obj --json`: replays a recorded gesture
 //! through the same [`cutter::Editor`] the GUI uses and writes the cutter as OBJ quads.
 //!
-//! The target file is the whole scene: δ comes from its bounding box (see
-//! [`cutter::EditorSettings::delta_for_scene`], with the gesture camera's field of view), and the
-//! region painted on is the one under the first press (else the first one seen through the
-//! initial drag, else the one nearest to the press ray), as the thesis picks "the first region
-//! under the press" when no target was selected.
+//! The target file is the whole scene; the region painted on is the one under the first press
+//! (else the first one seen through the initial drag, else the one nearest to the press ray), as
+//! the thesis picks "the first region under the press" when no target was selected. δ comes from
+//! that region's bounding box seen by the gesture's camera, the file's box when the region is
+//! flat ([`cutter::EditorSettings::delta_for_target`], as the window sizes a new cutter from
+//! the model it starts on).
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -54,13 +55,13 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
     if target.is_empty() {
         bail!("the target has no triangles");
     }
-    let delta = EditorSettings::delta_for_scene(&target.bbox(), gesture.camera.fov_y_deg);
     let region = painted_region(target, gesture);
     let mut pieces = csg::regions::split_regions(target);
     if region >= pieces.len() {
         bail!("the target has no region {region}");
     }
     let mesh = Arc::new(pieces.swap_remove(region));
+    let delta = EditorSettings::delta_for_target(&mesh.bbox(), &target.bbox(), &gesture.camera);
     let index = Arc::new(SpatialIndex::build(&mesh));
     let settings = EditorSettings {
         kind: gesture.cut.kind,

@@ -156,7 +156,8 @@ impl EditorSlot {
         };
         self.indexes
             .retain(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, &model.mesh)));
-        let settings = EditorSettings::for_scene(&scene.bbox(), scene.camera.fov_y_deg)
+        // Sized from the target the stroke starts on, as `cutaway extrude` sizes its cutter.
+        let settings = EditorSettings::for_target(&model.mesh.bbox(), &scene.bbox(), &scene.camera)
             .with_kind(init.kind)
             .with_spacing(init.spacing)
             .with_smooth(init.smooth)

@@ -176,8 +176,9 @@ fn visualization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Act
         views.transparency = transparency.then_some(opacity);
     });
 
-    sub_cutter_ui(ui, "Slices", &mut views.slices);
-    sub_cutter_ui(ui, "Ribbons", &mut views.ribbons);
+    let (cutter, unit) = (&app.scene.cutters[i].cutter, app.scene.unit);
+    sub_cutter_ui(ui, "Slices", &mut views.slices, cutter, unit);
+    sub_cutter_ui(ui, "Ribbons", &mut views.ribbons, cutter, unit);
 
     if views != before {
         app.begin_edit("cutter view change");
@@ -185,9 +186,15 @@ fn visualization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Act
     }
 }
 
-/// A checkbox with placement, count and width (relative to the cut or in model units) for
-/// ribbons or slices.
-fn sub_cutter_ui(ui: &mut egui::Ui, label: &str, value: &mut Option<SubCutterView>) {
+/// A checkbox with placement, count and width (relative to the cut, or absolute in mm) for
+/// ribbons or slices of the cutter `cut`.
+fn sub_cutter_ui(
+    ui: &mut egui::Ui,
+    label: &str,
+    value: &mut Option<SubCutterView>,
+    cut: &cutter::Cutter,
+    unit: crate::view::LengthUnit,
+) {
     use cutter::subcutters::Placement;
     let mut on = value.is_some();
     let mut v = value.unwrap_or(SubCutterView::NEW);
@@ -218,24 +225,36 @@ fn sub_cutter_ui(ui: &mut egui::Ui, label: &str, value: &mut Option<SubCutterVie
                 .on_hover_text("width as the fraction of the spacing each one fills")
                 .changed()
             {
+                // Absolute starts at the size the relative width had (the target's scale).
                 v.width = if v.relative {
                     SubCutterView::NEW.width
                 } else {
-                    1.0
+                    let was = SubCutterView {
+                        relative: true,
+                        ..v
+                    };
+                    cutter::subcutters::absolute_width(cut, &was.spec())
                 };
             }
-            let range = if v.relative {
-                0.01..=cutter::subcutters::MAX_RELATIVE
+            if v.relative {
+                ui.add(
+                    egui::DragValue::new(&mut v.width)
+                        .range(0.01..=cutter::subcutters::MAX_RELATIVE)
+                        .speed(0.005)
+                        .prefix("width "),
+                );
             } else {
-                1e-4..=1e4
-            };
-            let speed = if v.relative { 0.005 } else { v.width * 0.01 };
-            ui.add(
-                egui::DragValue::new(&mut v.width)
-                    .range(range)
+                let mut mm = unit.to_mm(v.width);
+                let speed = mm * 0.01;
+                let edit = egui::DragValue::new(&mut mm)
+                    .range(1e-3..=1e4)
                     .speed(speed)
-                    .prefix("width "),
-            );
+                    .prefix("width ")
+                    .suffix(" mm");
+                if ui.add(edit).changed() {
+                    v.width = unit.from_mm(mm);
+                }
+            }
         });
     });
     *value = on.then_some(v);

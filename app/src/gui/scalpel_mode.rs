@@ -31,6 +31,10 @@ pub fn scalpel_input(
     // The selected model's scalpel is made off this thread before the user presses on it.
     let selected = app.selected_model;
     app.viewport.scalpel.session.prepare(&app.scene, selected);
+    // Depth and opening follow the selected model until the user sets them.
+    let slot = &mut app.viewport.scalpel;
+    slot.sizing
+        .follow(&app.scene, selected, &mut slot.session.settings);
     let (shift, alt) = ui.input(|i| (i.modifiers.shift, i.modifiers.alt));
     let viewport = app.viewport.size_px;
 
@@ -62,7 +66,7 @@ pub fn scalpel_input(
     if response.hovered() {
         let notches = ui.input(|i| i.smooth_scroll_delta.y as f64 / 50.0);
         if notches != 0.0 {
-            let min = app.scene.bbox().diagonal().max(1e-6) * 1e-3;
+            let min = crate::view::target::defaults_for(&app.scene, selected).min_camera_distance;
             camera_controls::zoom(&mut app.scene.camera, notches, min);
         }
     }
@@ -78,6 +82,17 @@ pub fn scalpel_input(
         && !(shift || alt);
     let released = ui.input(|i| i.pointer.primary_released());
     if pressed {
+        // The model the stroke starts on becomes the target, as a new cutter's does, so the
+        // blade starts with that model's depth and opening.
+        let ray = app.scene.camera.ray_through_pixel(viewport, px);
+        if let Some((hit, _)) = app.viewport.picks.pick(&app.scene, &ray)
+            && app.selected_model != Some(hit)
+        {
+            app.selected_model = Some(hit);
+            let slot = &mut app.viewport.scalpel;
+            slot.sizing
+                .follow(&app.scene, Some(hit), &mut slot.session.settings);
+        }
         match app.viewport.scalpel.press(&app.scene, viewport, px) {
             Ok(Some(_)) => {}
             Ok(None) => app.say("Press on a model to cut it"),

@@ -5,7 +5,7 @@
 //! headless renders agree with the window; this file only turns menu items and keys into
 //! [`ViewCommand`]s and applies them to the window's camera.
 
-use crate::view::{LengthUnit, Orientation, SizeDefaults, ViewPreset, fit};
+use crate::view::{LengthUnit, Orientation, ViewPreset, fit};
 
 use super::action::Action;
 pub use super::action::ViewCommand;
@@ -24,10 +24,10 @@ pub fn orient_new_scene(app: &mut AppState, default_scene: bool, from_volume: bo
     };
     app.scene.unit = LengthUnit::guess(&bbox, from_volume);
     app.scene.camera = app.scene.preset_camera(ViewPreset::Anterior);
-    let defaults = SizeDefaults::of(&bbox);
-    let scalpel = &mut app.viewport.scalpel.settings;
-    scalpel.depth = defaults.scalpel_depth;
-    scalpel.opening = defaults.scalpel_opening;
+    // From here on they follow the selected model (`crate::view::target::ScalpelSizing`).
+    let slot = &mut app.viewport.scalpel;
+    slot.sizing
+        .resize(&app.scene, None, &mut slot.session.settings);
 }
 
 /// Applies a view command.

@@ -15,9 +15,10 @@ pub enum CutError {
         #[source]
         source: MeshError,
     },
-    /// A cutter vertex is more than four target sizes from the target's centre.
+    /// A cutter vertex is so far from the target that the two together span more than
+    /// [`super::MAX_REACH`] target sizes.
     #[error(
-        "cutter {sub_cutter}: vertex {vertex} at {position:?} is too far from the target (more than four target sizes from its centre)"
+        "cutter {sub_cutter}: vertex {vertex} at {position:?} is too far from the target (the cutter and the target together span more than 1024 target sizes)"
     )]
     OutOfRange {
         sub_cutter: usize,

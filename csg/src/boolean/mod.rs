@@ -6,8 +6,9 @@
 //! [`TargetIndex::build`]: closed or open, manifold or not, several regions, degenerate faces
 //! allowed. The cutter must be closed, edge-manifold, consistently oriented outward (positive
 //! volume), free of self-intersections (sub-cutters of [`subtract_many`] must also be disjoint
-//! and not nested), finite, and lie within four target sizes of the target's centre. Anything
-//! else is a typed [`CutError`]; a cut never panics and never modifies the target.
+//! and not nested), finite, and span together with the target at most [`MAX_REACH`] target
+//! sizes (a cutter beyond the cached lattice is cut on a wider one, see `far.rs`). Anything else
+//! is a typed [`CutError`]; a cut never panics and never modifies the target.
 //!
 //! **Decisions.** Coordinates are quantized once to an integer lattice (steps of about
 //! 2⁻²⁷ × the target's size, see [`crate::lattice`]); every topological decision is an exact
@@ -98,12 +99,14 @@
 mod assemble;
 mod error;
 mod faces;
+mod far;
 mod flood;
 mod inputs;
 mod prepare;
 mod vertex_solids;
 
 pub use error::CutError;
+pub use far::MAX_REACH;
 pub(crate) use prepare::prepare_cutter;
 pub use prepare::{check_cutter, cutter_self_intersections};
 
@@ -149,7 +152,16 @@ pub fn subtract_with(
     options: &CutOptions,
 ) -> Result<CutResult, CutError> {
     let mut phases = Phases::new(options.time_phases);
-    let cutter = prepare_cutter(target, cutters)?;
+    // A cutter reaching beyond the target's lattice is cut on a wider lattice (`far`).
+    let wider;
+    let (target, cutter) = match prepare_cutter(target, cutters) {
+        Err(far @ CutError::OutOfRange { .. }) => {
+            wider = far::index_with_room(target, cutters).ok_or(far)?;
+            phases.mark("index with room for the cutter");
+            (&wider, prepare_cutter(&wider, cutters)?)
+        }
+        prepared => (target, prepared?),
+    };
     phases.mark("prepare");
     // On a rayon worker: the parallel stages inside then hand work to the other workers through
     // their local queues, instead of each waking the pool from outside (which costs a scheduler

@@ -21,7 +21,7 @@ pub struct EditorSettings {
     /// Subdivision levels of a smooth cutter ("Smoothness", 0 to
     /// [`crate::subdivision::MAX_LEVELS`]). Default [`crate::subdivision::DEFAULT_LEVELS`].
     pub levels: u32,
-    /// Scene increment δ (see [`EditorSettings::delta_for_scene`]). Default 1.
+    /// Scene increment δ (see [`EditorSettings::delta_for_target`]). Default 1.
     pub delta: f64,
 }
 
@@ -49,6 +49,35 @@ impl EditorSettings {
     pub fn for_scene(scene: &Aabb, fov_y_deg: f64) -> Self {
         EditorSettings {
             delta: Self::delta_for_scene(scene, fov_y_deg),
+            ..Default::default()
+        }
+    }
+
+    /// δ for a new cutter on a target with bounding box `target` (the model or region the
+    /// stroke starts on; the `scene` box when the target's is empty or flat), seen by `camera`:
+    /// the distance that frames the target ([`EditorSettings::delta_for_scene`] of its box) or,
+    /// when the camera is farther from the target's centre, that distance, divided by 2000.
+    ///
+    /// So a cutter on a small structure is sized from the structure, not from the whole scene
+    /// (a kidney in a body in metres gets a kidney's boxes), while a target seen from afar
+    /// keeps the thesis's on-screen step (δ = camera distance / 2000): the roller never locks
+    /// boxes narrower than a pixel or so, however small the target.
+    pub fn delta_for_target(target: &Aabb, scene: &Aabb, camera: &Camera) -> f64 {
+        let usable = |b: &Aabb| !b.is_empty() && b.diagonal().is_finite() && b.diagonal() > 0.0;
+        let sized = if usable(target) { target } else { scene };
+        let framing = Camera::framing_distance(sized, camera.fov_y_deg);
+        let seen_from = if usable(sized) {
+            (sized.center() - camera.eye).length()
+        } else {
+            0.0
+        };
+        framing.max(seen_from) / 2000.0
+    }
+
+    /// Default settings with δ for a new cutter on `target` ([`EditorSettings::delta_for_target`]).
+    pub fn for_target(target: &Aabb, scene: &Aabb, camera: &Camera) -> Self {
+        EditorSettings {
+            delta: Self::delta_for_target(target, scene, camera),
             ..Default::default()
         }
     }
@@ -105,4 +134,45 @@ pub struct EditorResponse {
     pub cursor: CursorHint,
     /// Where the GUI should move the real cursor (pixels), when the editor snapped it.
     pub warp_cursor: Option<DVec2>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    fn boxed(min: DVec3, max: DVec3) -> Aabb {
+        Aabb { min, max }
+    }
+
+    /// A 20 mm structure inside a 1.8 m body in metres: framed closely, its cutter is sized from
+    /// the structure (about 100 times finer than from the body); seen with the whole body, the
+    /// camera's distance keeps boxes on screen; an empty target falls back to the scene.
+    #[test]
+    fn delta_follows_the_target_and_never_drops_below_the_view() {
+        let body = boxed(DVec3::new(-0.25, 0.0, -0.15), DVec3::new(0.25, 1.8, 0.15));
+        let organ = boxed(DVec3::new(0.05, 1.0, 0.0), DVec3::new(0.07, 1.02, 0.02));
+        let close = Camera::framing(&organ, DVec3::Z, DVec3::Y, 30.0);
+        let from_organ = EditorSettings::delta_for_target(&organ, &body, &close);
+        let from_body = EditorSettings::delta_for_scene(&body, 30.0);
+        assert!(
+            (from_organ - EditorSettings::delta_for_scene(&organ, 30.0)).abs() < 1e-15,
+            "{from_organ}"
+        );
+        assert!(from_organ * 50.0 < from_body, "{from_organ} vs {from_body}");
+        // The first box (10δ wide, 5δ deep) is a fraction of the organ, not wider than it.
+        let organ_size = organ.diagonal();
+        assert!(10.0 * from_organ < 0.2 * organ_size && 5.0 * from_organ > 1e-3 * organ_size);
+
+        let whole = Camera::framing(&body, DVec3::Z, DVec3::Y, 30.0);
+        let far = EditorSettings::delta_for_target(&organ, &body, &whole);
+        let seen_from = (organ.center() - whole.eye).length() / 2000.0;
+        assert!((far - seen_from).abs() < 1e-15 && far > 20.0 * from_organ);
+
+        let fallback = EditorSettings::delta_for_target(&Aabb::EMPTY, &body, &whole);
+        assert!((fallback - from_body).abs() < 1e-12);
+        let settings = EditorSettings::for_target(&organ, &body, &close);
+        assert_eq!(settings.delta, from_organ);
+        assert_eq!(settings.spacing, EditorSettings::default().spacing);
+    }
 }

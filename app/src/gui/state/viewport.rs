@@ -202,6 +202,8 @@ pub struct ScalpelSlot {
     pub(in crate::gui) camera_drag: Option<CameraDrag>,
     /// The viewport in egui points at the last frame (tests aim with it).
     pub rect: egui::Rect,
+    /// The target the depth and opening were sized for (they follow the selected model).
+    pub sizing: crate::view::target::ScalpelSizing,
 }
 
 impl Default for ScalpelSlot {
@@ -210,6 +212,7 @@ impl Default for ScalpelSlot {
             session: ScalpelSession::default(),
             camera_drag: None,
             rect: egui::Rect::NOTHING,
+            sizing: Default::default(),
         }
     }
 }

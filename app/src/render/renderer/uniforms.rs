@@ -59,7 +59,11 @@ pub(super) fn full_size(frame: &FrameInputs) -> [u32; 2] {
     frame.tile.map_or(frame.size, |t| t.full_size)
 }
 
-/// Near and far distances that enclose everything drawn, and the scene radius.
+/// Near and far distances that enclose everything drawn, and the scene radius. Inside the
+/// scene the near plane is a ten-thousandth of the far one, but never more than a quarter of the
+/// way to the point the camera orbits: zoomed onto a small structure of a large scene (the
+/// closest zoom follows the selected model's size) the structure stays in front of the near
+/// plane.
 pub(super) fn depth_range(frame: &FrameInputs, scene_bbox: csg::Aabb) -> (f64, f64, f64) {
     let mut bbox = scene_bbox;
     if frame.mode == ViewMode::Edit {
@@ -72,12 +76,17 @@ pub(super) fn depth_range(frame: &FrameInputs, scene_bbox: csg::Aabb) -> (f64, f
     if bbox.is_empty() {
         return (0.1, 1000.0, 1.0);
     }
+    near_far(&bbox, &frame.camera)
+}
+
+/// [`depth_range`] of a non-empty box seen by `camera`.
+fn near_far(bbox: &csg::Aabb, camera: &cutter::Camera) -> (f64, f64, f64) {
     let radius = (0.5 * bbox.diagonal()).max(1e-6);
     // The anaglyph eyes sit a little off the camera.
-    let distance =
-        (bbox.center() - frame.camera.eye).length() + EYE_SEPARATION * frame.camera.distance();
+    let distance = (bbox.center() - camera.eye).length() + EYE_SEPARATION * camera.distance();
     let far = distance + radius * 1.05;
-    let near = (distance - radius * 1.05).max(far * 1e-4);
+    let closest = (far * 1e-4).min(0.25 * camera.distance()).max(far * 1e-7);
+    let near = (distance - radius * 1.05).max(closest);
     (near, far, radius)
 }
 
@@ -133,5 +142,37 @@ pub(super) fn frame_uniform(
         eye_in_world: camera.eye.as_vec3().extend(1.0).to_array(),
         light_in_world: light.as_vec3().extend(0.0).to_array(),
         viewport: [size[0] as f32, size[1] as f32, near as f32, far as f32],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    /// A body 1.8 m tall in metres, the camera zoomed to 0.1 mm from a point inside it (a small
+    /// structure's closest zoom): the near plane is in front of that point. Seen from outside,
+    /// the range is the scene's as before.
+    #[test]
+    fn the_near_plane_stays_in_front_of_a_close_zoom() {
+        let body = csg::Aabb {
+            min: DVec3::new(-0.25, 0.0, -0.15),
+            max: DVec3::new(0.25, 1.8, 0.15),
+        };
+        let target = DVec3::new(0.06, 1.01, 0.01);
+        let close = cutter::Camera {
+            eye: target - DVec3::Z * 1e-4,
+            target,
+            up: DVec3::Y,
+            fov_y_deg: 30.0,
+        };
+        let (near, far, _) = near_far(&body, &close);
+        assert!(near < 1e-4 && near > 0.0, "near {near}");
+        assert!(far > 1.0);
+        let whole = cutter::Camera::framing(&body, DVec3::Z, DVec3::Y, 30.0);
+        let (near, far, radius) = near_far(&body, &whole);
+        let distance = (body.center() - whole.eye).length() + EYE_SEPARATION * whole.distance();
+        assert!((near - (distance - 1.05 * radius)).abs() < 1e-12);
+        assert!((far - (distance + 1.05 * radius)).abs() < 1e-12);
     }
 }
