@@ -38,6 +38,8 @@ pub mod session_paths;
 pub mod session_rulers;
 pub mod session_variants;
 pub mod session_volumes;
+#[cfg(test)]
+pub(crate) mod test_support;
 pub mod thread_time;
 pub mod variants;
 pub mod view;

@@ -609,4 +609,4 @@ fn model_preview(
 
 #[cfg(test)]
 #[path = "cut_scene_tests.rs"]
-pub(crate) mod tests;
+mod tests;
