@@ -35,6 +35,7 @@ pub mod session_image;
 pub mod session_limits;
 pub mod session_meshes;
 pub mod session_paths;
+pub mod session_picks;
 pub mod session_rulers;
 pub mod session_variants;
 pub mod session_volumes;
