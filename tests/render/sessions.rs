@@ -11,6 +11,46 @@ fn temp_dir(name: &str) -> PathBuf {
     dir
 }
 
+/// `cutaway render <session> --out <out>` at `size` pixels, not yet run.
+fn cli_render(session: &Path, out: &Path, size: [u32; 2]) -> std::process::Command {
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"));
+    command
+        .arg("render")
+        .arg(session)
+        .arg("--out")
+        .arg(out)
+        .args([
+            "--width",
+            &size[0].to_string(),
+            "--height",
+            &size[1].to_string(),
+        ]);
+    command
+}
+
+/// Runs `command` on the software adapter unless `WGPU_BACKEND` names another.
+fn software_render(mut command: std::process::Command) -> std::process::Output {
+    command
+        .env(
+            "WGPU_BACKEND",
+            std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
+        )
+        .output()
+        .unwrap()
+}
+
+/// The picture `run` wrote to `out`; `None` after printing why when there is no adapter. Fails
+/// the test when the render failed otherwise.
+fn rendered(run: &std::process::Output, out: &Path) -> Option<image::RgbaImage> {
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    if !run.status.success() && stderr.contains("no GPU adapter") {
+        println!("skipped: {stderr}");
+        return None;
+    }
+    assert!(run.status.success(), "{stderr}");
+    Some(image::open(out).unwrap().to_rgba8())
+}
+
 /// Writes two disconnected spheres into one OBJ (two regions).
 fn write_two_region_obj(path: &Path) {
     let mut mesh = icosphere(DVec3::ZERO, 1.0, 1);
@@ -158,25 +198,10 @@ fn cli_render_writes_the_png_headless() {
     let file = dir.join("s.json");
     session::save(&file, &scene).unwrap();
     let out = dir.join("out.png");
-    let run = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
-        .args(["render"])
-        .arg(&file)
-        .arg("--out")
-        .arg(&out)
-        .args(["--width", "96", "--height", "64"])
-        .env(
-            "WGPU_BACKEND",
-            std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
-        )
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    if !run.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
+    let run = software_render(cli_render(&file, &out, [96, 64]));
+    let Some(image) = rendered(&run, &out) else {
         return;
-    }
-    assert!(run.status.success(), "{stderr}");
-    let image = image::open(&out).unwrap().to_rgba8();
+    };
     assert_eq!(image.dimensions(), (96, 64));
     // Bad session: one line on stderr naming the file, non-zero exit.
     std::fs::write(&file, "{not json").unwrap();
@@ -220,25 +245,10 @@ fn cli_render_shows_an_edited_mesh_saved_with_the_session() {
     session::save(&file, &scene).unwrap();
     std::fs::remove_file(&source).unwrap();
     let out = dir.join("edited.png");
-    let run = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
-        .args(["render"])
-        .arg(&file)
-        .arg("--out")
-        .arg(&out)
-        .args(["--width", "64", "--height", "48"])
-        .env(
-            "WGPU_BACKEND",
-            std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "vulkan".into()),
-        )
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    if !run.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
+    let run = software_render(cli_render(&file, &out, [64, 48]));
+    let Some(image) = rendered(&run, &out) else {
         return;
-    }
-    assert!(run.status.success(), "{stderr}");
-    let image = image::open(&out).unwrap().to_rgba8();
+    };
     // The unit sphere at the origin fills the middle of the view (the loaded sphere was
     // small and above it).
     assert!(coverage(&image, [255, 255, 255]) > 0.05);
@@ -259,22 +269,15 @@ fn cli_render_success_prints_nothing_without_a_runtime_dir() {
     let file = dir.join("s.json");
     session::save(&file, &scene).unwrap();
     let out = dir.join("out.png");
-    let run = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
-        .args(["render"])
-        .arg(&file)
-        .arg("--out")
-        .arg(&out)
-        .args(["--width", "32", "--height", "32"])
+    let run = cli_render(&file, &out, [32, 32])
         .env_remove("XDG_RUNTIME_DIR")
         .env_remove("WGPU_BACKEND")
         .output()
         .unwrap();
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    if !run.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
+    if rendered(&run, &out).is_none() {
         return;
     }
-    assert!(run.status.success(), "{stderr}");
+    let stderr = String::from_utf8_lossy(&run.stderr);
     assert_eq!(
         stderr, "",
         "a successful render must print nothing on stderr"
