@@ -167,6 +167,16 @@ fn with_cutter(mut scene: Scene, views: CutterViews) -> Scene {
     scene
 }
 
+/// `count` sub-cutters `width` model units wide, spread evenly through the cutter.
+fn even_sub_cutters(count: u32, width: f64) -> SubCutterView {
+    SubCutterView {
+        count,
+        width,
+        placement: cutter::subcutters::Placement::Even,
+        relative: false,
+    }
+}
+
 fn render(r: &mut HeadlessRenderer, scene: &Scene, mode: Option<ViewMode>) -> image::RgbaImage {
     let mut options = RenderPngOptions::new(WIDTH, HEIGHT);
     options.deterministic = true;

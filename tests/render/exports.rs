@@ -37,12 +37,7 @@ fn transparent_background_and_tiled_export() {
 #[ignore]
 fn sample_renders_for_people() {
     let Some(mut r) = renderer() else { return };
-    let sub = Some(SubCutterView {
-        count: 4,
-        width: 0.1,
-        placement: cutter::subcutters::Placement::Even,
-        relative: false,
-    });
+    let sub = Some(even_sub_cutters(4, 0.1));
     let views = [
         ("sample_plain", None),
         ("sample_cut", Some(CutterViews::default())),

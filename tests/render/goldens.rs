@@ -95,12 +95,7 @@ fn golden_ribbons() {
     let Some(mut r) = renderer() else { return };
     let views = CutterViews {
         cut: true,
-        ribbons: Some(SubCutterView {
-            count: 3,
-            width: 0.12,
-            placement: cutter::subcutters::Placement::Even,
-            relative: false,
-        }),
+        ribbons: Some(even_sub_cutters(3, 0.12)),
         ..CutterViews::default()
     };
     let scene = with_cutter(layered_scene(), views);
@@ -124,24 +119,14 @@ fn golden_slices() {
     let Some(mut r) = renderer() else { return };
     let views = CutterViews {
         cut: true,
-        slices: Some(SubCutterView {
-            count: 3,
-            width: 0.12,
-            placement: cutter::subcutters::Placement::Even,
-            relative: false,
-        }),
+        slices: Some(even_sub_cutters(3, 0.12)),
         ..CutterViews::default()
     };
     let scene = with_cutter(layered_scene(), views);
     let image = render(&mut r, &scene, None);
     let ribbons = CutterViews {
         cut: true,
-        ribbons: Some(SubCutterView {
-            count: 3,
-            width: 0.12,
-            placement: cutter::subcutters::Placement::Even,
-            relative: false,
-        }),
+        ribbons: Some(even_sub_cutters(3, 0.12)),
         ..CutterViews::default()
     };
     let ribbon_image = render(&mut r, &with_cutter(layered_scene(), ribbons), None);

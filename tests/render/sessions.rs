@@ -91,12 +91,7 @@ fn scene_for(dir: &Path) -> Scene {
         views: CutterViews {
             cut: false,
             transparency: Some(0.25),
-            ribbons: Some(SubCutterView {
-                count: 5,
-                width: 2.0,
-                placement: cutter::subcutters::Placement::Even,
-                relative: false,
-            }),
+            ribbons: Some(even_sub_cutters(5, 2.0)),
             slices: None,
         },
     });
