@@ -62,7 +62,7 @@ pub fn contour_polylines(contours: Vec<csg::Contour>) -> Vec<Vec<DVec3>> {
 }
 
 /// Ribbons (the removed surface inside the sub-cutters of `view`) and the walls of those
-/// sub-cutters inside the target (facing out of the kept part) for one step of [`cut_in_turn`],
+/// sub-cutters inside the target (facing out of the kept part) for one step of [`cut_in_turn`](super::cut_scene::cut_in_turn),
 /// by the exact boolean. Ribbons keep only the model's own surface, not the walls of earlier
 /// cutters.
 ///
