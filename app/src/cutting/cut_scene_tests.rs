@@ -69,6 +69,19 @@ fn preview_has_every_requested_view() {
     assert!(preview.parts.is_empty());
 }
 
+/// Every cutter cut in turn out of `mesh`, each cut exact and the result closed and manifold.
+fn cut_closed(
+    cache: &mut CutCache,
+    mesh: &Arc<Mesh>,
+    cutters: &[(usize, &SceneCutter)],
+) -> SequenceResult {
+    let sequence = cut_in_turn(cache, mesh, cutters, |_| true, |_| {});
+    assert!(sequence.notes.is_empty(), "{:?}", sequence.notes);
+    let report = sequence.closed.report();
+    assert!(report.closed && report.manifold, "{report:?}");
+    sequence
+}
+
 /// A sphere with one cutter per box, each cutter straight and aimed at model 0.
 fn sphere_scene(boxes: &[[f64; 6]]) -> Scene {
     let mut scene = Scene::default();
@@ -115,16 +128,7 @@ fn nested_shells_are_each_cut_closed_and_a_cavity_stays_hollow() {
     ] {
         let mut model = outer.clone();
         model.append(&inner);
-        let sequence = cut_in_turn(
-            &mut CutCache::default(),
-            &Arc::new(model),
-            &cutters,
-            |_| true,
-            |_| {},
-        );
-        assert!(sequence.notes.is_empty(), "{:?}", sequence.notes);
-        let report = sequence.closed.report();
-        assert!(report.closed && report.manifold, "{report:?}");
+        let sequence = cut_closed(&mut CutCache::default(), &Arc::new(model), &cutters);
         assert!(
             (sequence.closed.volume() - expected).abs() < 1e-9,
             "{} vs {expected}",
@@ -155,16 +159,7 @@ fn overlapping_cutters_remove_the_union_and_no_wall_survives_inside_the_other() 
     let expected = t - (t - v1) - (t - v2) + (t - v12);
     let cutters: Vec<(usize, &SceneCutter)> = scene.cutters.iter().enumerate().collect();
     let mut cache = CutCache::default();
-    let sequence = cut_in_turn(
-        &mut cache,
-        &scene.models[0].mesh,
-        &cutters,
-        |_| true,
-        |_| {},
-    );
-    assert!(sequence.notes.is_empty(), "{:?}", sequence.notes);
-    let report = sequence.closed.report();
-    assert!(report.closed && report.manifold, "{report:?}");
+    let sequence = cut_closed(&mut cache, &scene.models[0].mesh, &cutters);
     // New contour vertices are rounded once from the lattice (steps of ~1e-8 here).
     assert!(
         (sequence.closed.volume() - expected).abs() < 1e-6,
