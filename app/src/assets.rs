@@ -179,6 +179,16 @@ pub fn load_models_or_embedded(path: &Path) -> anyhow::Result<Vec<Model>> {
 /// ([`crate::io::load_structures`]; a missing embedded part or file of the default anatomy is
 /// served from the binary).
 pub fn load_or_embedded(path: &Path, unit: ModelUnit) -> anyhow::Result<Vec<Model>> {
+    load_or_embedded_picking(path, unit, None)
+}
+
+/// [`load_or_embedded`] for a reader that needs only the structures at positions `only` (see
+/// [`crate::default_anatomy::load_missing_picking`]); other files are read whole.
+pub fn load_or_embedded_picking(
+    path: &Path,
+    unit: ModelUnit,
+    only: Option<&[usize]>,
+) -> anyhow::Result<Vec<Model>> {
     match unit {
         ModelUnit::Region => load_models_or_embedded(path),
         ModelUnit::Structure => match embedded_part(path) {
@@ -187,7 +197,7 @@ pub fn load_or_embedded(path: &Path, unit: ModelUnit) -> anyhow::Result<Vec<Mode
                 vec![part?],
                 "",
             )),
-            None => crate::default_anatomy::load_missing(path)
+            None => crate::default_anatomy::load_missing_picking(path, only)
                 .unwrap_or_else(|| crate::io::load_structures(path)),
         },
     }

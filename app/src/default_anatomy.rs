@@ -78,7 +78,7 @@ pub fn load() -> anyhow::Result<Vec<Model>> {
 /// [`load_structures`] lists its own. `progress` gets 0..=1 and returns false to cancel.
 pub fn load_all(progress: &(dyn Fn(f32) -> bool + Sync)) -> anyhow::Result<Vec<Model>> {
     let named = table_values()?;
-    let mut structures = atlas_models(|s| named.contains(&s.value), progress)?;
+    let mut structures = atlas_models(|_, s| named.contains(&s.value), progress)?;
     structures.sort_by_key(|m| (groups::rank(&m.group), m.index));
     let mut models = load_skin()?;
     models.extend(structures);
@@ -116,19 +116,25 @@ pub fn surface_options() -> csg::labels::SurfaceOptions {
 /// label's position in the volume's ascending label list, as when the file is opened, so
 /// sessions find it again. `progress` gets 0..=1 and returns false to cancel.
 pub fn load_structures(progress: &(dyn Fn(f32) -> bool + Sync)) -> anyhow::Result<Vec<Model>> {
-    let mut models = atlas_models(|s| selection::in_default(s.value), progress)?;
+    let mut models = atlas_models(|_, s| selection::in_default(s.value), progress)?;
     models.sort_by_key(|m| (groups::rank(&m.group), m.index));
     Ok(models)
 }
 
-/// The surfaces of the atlas's labels that `keep` accepts, in label order, grouped.
+/// The surfaces of the atlas's labels that `keep` accepts (given the label's position in the
+/// volume's ascending label list), in label order, grouped.
 fn atlas_models(
-    keep: impl Fn(&Structure) -> bool,
+    keep: impl Fn(usize, &Structure) -> bool,
     progress: &(dyn Fn(f32) -> bool + Sync),
 ) -> anyhow::Result<Vec<Model>> {
     let mut volume = atlas_volume()?;
     let all = std::mem::take(&mut volume.structures);
-    volume.structures = all.iter().filter(|s| keep(s)).cloned().collect();
+    volume.structures = all
+        .iter()
+        .enumerate()
+        .filter(|(k, s)| keep(*k, s))
+        .map(|(_, s)| s.clone())
+        .collect();
     let surfaces = crate::io::volume::surfaces_with(&volume, surface_options(), progress)
         .with_context(|| volume.source.display().to_string())?;
     Ok(surfaces
@@ -163,6 +169,18 @@ pub fn table_values() -> anyhow::Result<Vec<u32>> {
 /// an earlier default (`Model_<label>_<name>.vtk`) the one surface of its label, as the file held
 /// it. `None` for any other path.
 pub fn load_missing(path: &Path) -> Option<anyhow::Result<Vec<Model>>> {
+    load_missing_picking(path, None)
+}
+
+/// [`load_missing`] for a reader that needs only the structures at positions `only` of the
+/// file's list (a session's picks): the atlas then surfaces just those labels (a saved default
+/// scene picks 59 of 312), each model keeping its position as `index`. Every label is surfaced,
+/// as [`load_missing`] does, when `only` is `None` or names a position the atlas does not have
+/// (the session's reader then says which).
+pub fn load_missing_picking(
+    path: &Path,
+    only: Option<&[usize]>,
+) -> Option<anyhow::Result<Vec<Model>>> {
     if path.exists() {
         return None;
     }
@@ -177,11 +195,22 @@ pub fn load_missing(path: &Path) -> Option<anyhow::Result<Vec<Model>>> {
     match *file {
         SKIN_FILE => Some(load_skin()),
         // Every label, as opening the file gives them: a session picks by position.
-        ATLAS_FILE => Some(atlas_models(|_| true, &|_| true)),
+        ATLAS_FILE => Some(atlas_picking(only)),
         _ => {
             let value = old_model_label(file)?;
             Some(old_model(file, value))
         }
+    }
+}
+
+/// The atlas's labels at positions `only` (all of them when `None` or out of range).
+fn atlas_picking(only: Option<&[usize]>) -> anyhow::Result<Vec<Model>> {
+    let labels = atlas_volume()?.structures.len();
+    match only {
+        Some(only) if only.iter().all(|&k| k < labels) => {
+            atlas_models(|k, _| only.contains(&k), &|_| true)
+        }
+        _ => atlas_models(|_, _| true, &|_| true),
     }
 }
 
@@ -199,7 +228,7 @@ pub fn old_model_label(file: &str) -> Option<u32> {
 /// atlas has no such label.
 fn old_model(file: &str, value: u32) -> anyhow::Result<Vec<Model>> {
     let path = virtual_path(file);
-    let mut models = atlas_models(|s| s.value == value, &|_| true)?;
+    let mut models = atlas_models(|_, s| s.value == value, &|_| true)?;
     anyhow::ensure!(
         models.len() == 1,
         "{}: the head atlas has no label {value}",

@@ -35,9 +35,12 @@ pub mod session_image;
 pub mod session_limits;
 pub mod session_meshes;
 pub mod session_paths;
+pub mod session_picks;
 pub mod session_rulers;
 pub mod session_variants;
 pub mod session_volumes;
+#[cfg(test)]
+pub(crate) mod test_support;
 pub mod thread_time;
 pub mod variants;
 pub mod view;

@@ -64,7 +64,7 @@ pub fn parse(text: &str) -> anyhow::Result<SessionFile> {
 /// (`…/assets/<scene>/<part>.ply`) that do not exist on disk are served from the embedded
 /// phantoms, so sessions saved from the examples open anywhere.
 pub fn load(path: &Path) -> anyhow::Result<Scene> {
-    load_with(path, crate::assets::load_or_embedded)
+    load_with(path, crate::assets::load_or_embedded_picking)
 }
 
 /// Loads one model file or folder as a list of models of one [`ModelUnit`]: its regions in file
@@ -73,15 +73,30 @@ pub type LoadModels<'a> = dyn FnMut(&Path, ModelUnit) -> anyhow::Result<Vec<crat
 
 /// Reads the session at `path`, loading each model file with `load_models`. Errors name the
 /// session file (or the model file that failed).
+/// `load_models` also gets the positions of the structures the session picks from the file
+/// (`None`: all of them, or regions); it may return just those, each with its position as
+/// `index` (see [`crate::session_picks`]).
 pub fn load_with(
     path: &Path,
-    mut load_models: impl FnMut(&Path, ModelUnit) -> anyhow::Result<Vec<crate::io::Model>>,
+    mut load_models: impl FnMut(
+        &Path,
+        ModelUnit,
+        Option<&[usize]>,
+    ) -> anyhow::Result<Vec<crate::io::Model>>,
 ) -> anyhow::Result<Scene> {
     let text = crate::io::bounded::read_text(path, crate::io::bounded::JSON_MAX_BYTES)
         .with_context(|| format!("{}", path.display()))?;
     let file = parse(&text).with_context(|| format!("{}", path.display()))?;
     let folder = path.parent().unwrap_or(Path::new(""));
-    let scene = scene_from_file(&file, folder, &mut load_models)
+    let picks = crate::session_picks::structure_picks(&file, folder);
+    let mut load_picked = |source: &Path, unit: ModelUnit| {
+        let only = match unit {
+            ModelUnit::Structure => crate::session_picks::picks_of(&picks, source),
+            ModelUnit::Region => None,
+        };
+        load_models(source, unit, only)
+    };
+    let scene = scene_from_file(&file, folder, &mut load_picked)
         .with_context(|| format!("{}", path.display()))?;
     Ok(scene)
 }
@@ -145,7 +160,7 @@ pub fn scene_from_file(
             ModelUnit::Structure => (entry.structure, "structure"),
         };
         let picked: Vec<(usize, &crate::io::Model)> = match picked_index {
-            Some(r) => match regions.get(r) {
+            Some(r) => match crate::session_picks::at_position(regions, r) {
                 Some(m) => vec![(r, m)],
                 None => anyhow::bail!(
                     "model {i}: {what} {r} of {} does not exist (it has {} {what}s)",

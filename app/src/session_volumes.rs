@@ -7,14 +7,20 @@ use std::path::Path;
 
 use crate::io::{FileContent, Model};
 
-/// The structures of `file` for a session entry. `progress` hears a volume's surfacing (0..=1)
-/// and returns false to cancel it.
+/// The structures of `file` for a session entry. `only`: the positions the session picks, when
+/// it picks some (the embedded atlas then surfaces just those). `progress` hears a volume's
+/// surfacing (0..=1) and returns false to cancel it.
 pub fn structures(
     file: &Path,
+    only: Option<&[usize]>,
     progress: &(dyn Fn(f32) -> bool + Sync),
 ) -> anyhow::Result<Vec<Model>> {
     if !(file.is_file() && crate::io::volume::is_volume(file)) {
-        return crate::assets::load_or_embedded(file, crate::scene::ModelUnit::Structure);
+        return crate::assets::load_or_embedded_picking(
+            file,
+            crate::scene::ModelUnit::Structure,
+            only,
+        );
     }
     match crate::io::content_of_file_with(file, "", progress)? {
         FileContent::Structures(models) => Ok(models),

@@ -1,14 +1,15 @@
 //! One cutter against one indexed target: the cutter's closed surface, its exact cut, the contour
 //! as polylines, and the ribbons and slices of its sub-cutters. [`super::cut_scene`] strings these
 //! together over the cutters of a scene; kept apart so that file reads as the sequence and the
-//! cache, and this one as what a single cut produces.
+//! cache, and this one as what a single cut produces. The types both speak are in
+//! [`super::cut_results`]; imports go cut_scene → cut_parts → cut_results.
 
 use std::collections::HashMap;
 
 use csg::{Mesh, TargetIndex};
 use glam::DVec3;
 
-use super::cut_scene::{CutParts, PartKind, PreviewGeometry, PreviewPart, SURFACE, Step, select};
+use super::cut_results::{CutParts, PartKind, PreviewGeometry, PreviewPart, SURFACE, Step};
 use crate::scene::SceneCutter;
 
 /// The closed triangulated cutter: the surface the boolean cuts with and the Edit overlay draws
@@ -61,7 +62,7 @@ pub fn contour_polylines(contours: Vec<csg::Contour>) -> Vec<Vec<DVec3>> {
 }
 
 /// Ribbons (the removed surface inside the sub-cutters of `view`) and the walls of those
-/// sub-cutters inside the target (facing out of the kept part) for one step of [`cut_in_turn`],
+/// sub-cutters inside the target (facing out of the kept part) for one step of [`cut_in_turn`](super::cut_scene::cut_in_turn),
 /// by the exact boolean. Ribbons keep only the model's own surface, not the walls of earlier
 /// cutters.
 ///
@@ -218,4 +219,16 @@ pub(super) fn chain_edges(mesh: &Mesh, mut edges: Vec<(u32, u32)>) -> Vec<Vec<DV
         );
     }
     lines
+}
+
+/// The triangles `keep(t)` accepts, compacted.
+pub fn select(mesh: &Mesh, keep: impl Fn(usize) -> bool) -> Mesh {
+    Mesh {
+        positions: mesh.positions.clone(),
+        triangles: (0..mesh.triangle_count())
+            .filter(|&t| keep(t))
+            .map(|t| mesh.triangles[t])
+            .collect(),
+    }
+    .compacted()
 }

@@ -35,109 +35,12 @@ use glam::DVec3;
 use crate::scene::{Scene, SceneCutter};
 
 use super::cut_parts::{chain_edges, push_part};
-pub use super::cut_parts::{contour_polylines, cut_exact, cutter_mesh, cutter_surface, sub_cuts};
-
-/// The three surfaces and the contour of one cut of a target by a closed cutter.
-#[derive(Clone, Debug, Default)]
-pub struct CutParts {
-    /// The target outside the cutter, original orientation.
-    pub kept: Mesh,
-    /// The cutter surface inside the target, facing out of `kept`.
-    pub walls: Mesh,
-    /// The target inside the cutter.
-    pub removed: Mesh,
-    /// Where the target surface crosses the cutter surface, as polylines (closed loops repeat
-    /// their first point at the end).
-    pub contour: Vec<Vec<DVec3>>,
-}
-
-/// What a part of the preview is, which decides its colour and how it is drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PartKind {
-    /// The target outside every cutter: the model's own colour, opacity and style.
-    Kept,
-    /// Cutter surface inside the target (normal cut): the wall colour, opaque.
-    Wall,
-    /// The removed piece with the Transparency view: model colour at the cutter's opacity.
-    Removed,
-    /// Removed surface inside a thin sub-cutter: model colour, opaque, two-sided.
-    Ribbon,
-    /// Walls of a solid slice: the wall colour, opaque.
-    SliceWall,
-}
-
-/// One mesh of the preview.
-#[derive(Clone, Debug)]
-pub struct PreviewPart {
-    /// Index of the model (in `Scene::models`) the part belongs to.
-    pub model: usize,
-    /// Index of the cutter (in `Scene::cutters`) that made it (`usize::MAX` for `Kept`).
-    pub cutter: usize,
-    pub kind: PartKind,
-    /// Opacity for `Removed` parts; 1 for the others.
-    pub opacity: f32,
-    pub mesh: Mesh,
-}
-
-/// Everything Preview mode draws for a scene.
-#[derive(Clone, Debug, Default)]
-pub struct PreviewGeometry {
-    /// Per model (same length as `Scene::models`): true when the model is drawn by its parts
-    /// instead of its own mesh.
-    pub replaced: Vec<bool>,
-    pub parts: Vec<PreviewPart>,
-    /// Thick contour lines: (model index, polyline). Only for cutters with the normal-cut view.
-    pub contours: Vec<(usize, Vec<DVec3>)>,
-    /// Why a cutter could not cut (one line each, for the status line); such a cutter cuts
-    /// nothing.
-    pub notes: Vec<String>,
-    /// Per cutter that ran (scene index order): whether its cut (and its ribbons and slices)
-    /// was made by the exact boolean, and how long the boolean took.
-    pub reports: Vec<(usize, CutReport)>,
-}
-
-/// How one cutter's cut went.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct CutReport {
-    /// The cut (and its ribbons and slices, if shown) was made; false: it was refused and the
-    /// cutter cut nothing.
-    pub exact: bool,
-    /// Wall time of the cutter's boolean against the cached index, in milliseconds (0 for a cut
-    /// taken from the cache).
-    pub cut_ms: f64,
-}
-
-impl PreviewGeometry {
-    /// Total triangles of all parts (for the status line).
-    pub fn triangle_count(&self) -> usize {
-        self.parts.iter().map(|p| p.mesh.triangle_count()).sum()
-    }
-}
-
-/// Tag of a triangle of a cut model that belongs to the model's own surface; any other tag is the
-/// scene index of the cutter whose wall the triangle is (see [`cut_in_turn`]).
-pub const SURFACE: u32 = u32::MAX;
-
-/// What one cutter of a sequence did (see [`cut_in_turn`]); borrowed by the step callback.
-pub struct Step<'a> {
-    /// Scene index of the cutter.
-    pub cutter: usize,
-    /// The surface this cutter cut, indexed: the model closed by the walls of the cutters before
-    /// it.
-    pub before: &'a TargetIndex,
-    /// The mesh of `before`.
-    pub before_mesh: &'a Mesh,
-    /// Tag of every triangle of `before_mesh` ([`SURFACE`] or a cutter index).
-    pub before_tags: &'a [u32],
-    /// The model's surface inside this cutter that the cutters before had not removed (walls of
-    /// earlier cutters left out), with the model's orientation. Empty for cutters the caller of
-    /// [`cut_in_turn`] said it may skip.
-    pub removed: &'a Mesh,
-    /// The closed result after this cutter, T ∖ (K1 ∪ … ∪ Ki), welded: kept surface and walls.
-    pub after: &'a Mesh,
-    /// Tag of every triangle of `after`.
-    pub after_tags: &'a [u32],
-}
+pub use super::cut_parts::{
+    contour_polylines, cut_exact, cutter_mesh, cutter_surface, select, sub_cuts,
+};
+pub use super::cut_results::{
+    CutParts, CutReport, PartKind, PreviewGeometry, PreviewPart, SURFACE, Step,
+};
 
 /// A model cut by several cutters in turn.
 #[derive(Clone, Debug)]
@@ -530,18 +433,6 @@ pub fn closed_by_region(
     (closed, closed_tags)
 }
 
-/// The triangles `keep(t)` accepts, compacted.
-pub fn select(mesh: &Mesh, keep: impl Fn(usize) -> bool) -> Mesh {
-    Mesh {
-        positions: mesh.positions.clone(),
-        triangles: (0..mesh.triangle_count())
-            .filter(|&t| keep(t))
-            .map(|t| mesh.triangles[t])
-            .collect(),
-    }
-    .compacted()
-}
-
 /// The contour of a cut read off a welded, tagged result: the edges where a [`SURFACE`] triangle
 /// meets a wall triangle whose tag `wall(tag)` accepts, chained into polylines (closed loops
 /// repeat their first point). The edges of the walls are gathered first, so the cost is one hash
@@ -718,4 +609,4 @@ fn model_preview(
 
 #[cfg(test)]
 #[path = "cut_scene_tests.rs"]
-pub(crate) mod tests;
+mod tests;

@@ -1,79 +1,7 @@
 //! Tests of [`super`] (`cut_scene.rs`), kept in their own file.
 
 use super::*;
-
-/// An axis-aligned closed box mesh, outward-facing.
-pub fn cube(min: DVec3, max: DVec3) -> Mesh {
-    let p = |x: usize, y: usize, z: usize| {
-        DVec3::new(
-            if x == 0 { min.x } else { max.x },
-            if y == 0 { min.y } else { max.y },
-            if z == 0 { min.z } else { max.z },
-        )
-    };
-    let positions: Vec<DVec3> = (0..8)
-        .map(|i| p(i & 1, (i >> 1) & 1, (i >> 2) & 1))
-        .collect();
-    let quads = [
-        [0, 2, 3, 1], // z min
-        [4, 5, 7, 6], // z max
-        [0, 1, 5, 4], // y min
-        [2, 6, 7, 3], // y max
-        [0, 4, 6, 2], // x min
-        [1, 3, 7, 5], // x max
-    ];
-    let mut triangles = Vec::new();
-    for q in quads {
-        triangles.push([q[0], q[1], q[2]]);
-        triangles.push([q[0], q[2], q[3]]);
-    }
-    Mesh {
-        positions,
-        triangles,
-    }
-}
-
-/// A straight two-plane cutter spanning x in [x0, x1], y in [y0, y1] (front at y0), z in
-/// [z0, z1].
-pub fn box_cutter(
-    x0: f64,
-    x1: f64,
-    y0: f64,
-    y1: f64,
-    z0: f64,
-    z1: f64,
-) -> Vec<cutter::BoundedPlane> {
-    let plane = |x: f64| {
-        cutter::BoundedPlane::from_corners([
-            DVec3::new(x, y0, z1),
-            DVec3::new(x, y1, z1),
-            DVec3::new(x, y1, z0),
-            DVec3::new(x, y0, z0),
-        ])
-    };
-    vec![plane(x0), plane((x0 + x1) * 0.5), plane(x1)]
-}
-
-pub(crate) fn scene_with_cube_cut(views: crate::scene::CutterViews) -> Scene {
-    let mut scene = Scene::default();
-    scene.models.push(crate::scene::SceneModel::new(
-        "cube",
-        "cube.obj",
-        std::sync::Arc::new(cube(DVec3::ZERO, DVec3::splat(2.0))),
-        [0.8, 0.6, 0.5],
-    ));
-    scene.cutters.push(SceneCutter {
-        target: 0,
-        cutter: cutter::Cutter {
-            kind: cutter::CutKind::Straight,
-            smooth: false,
-            levels: cutter::subdivision::DEFAULT_LEVELS,
-            planes: box_cutter(1.0, 3.0, -1.0, 1.0, 1.0, 3.0),
-        },
-        views,
-    });
-    scene
-}
+use crate::test_support::{box_cutter, cube, cubes_each_cut, plain_cutter, scene_with_cube_cut};
 
 #[test]
 fn exact_cut_of_a_cube_corner_removes_three_squares() {
@@ -141,6 +69,19 @@ fn preview_has_every_requested_view() {
     assert!(preview.parts.is_empty());
 }
 
+/// Every cutter cut in turn out of `mesh`, each cut exact and the result closed and manifold.
+fn cut_closed(
+    cache: &mut CutCache,
+    mesh: &Arc<Mesh>,
+    cutters: &[(usize, &SceneCutter)],
+) -> SequenceResult {
+    let sequence = cut_in_turn(cache, mesh, cutters, |_| true, |_| {});
+    assert!(sequence.notes.is_empty(), "{:?}", sequence.notes);
+    let report = sequence.closed.report();
+    assert!(report.closed && report.manifold, "{report:?}");
+    sequence
+}
+
 /// A sphere with one cutter per box, each cutter straight and aimed at model 0.
 fn sphere_scene(boxes: &[[f64; 6]]) -> Scene {
     let mut scene = Scene::default();
@@ -151,16 +92,11 @@ fn sphere_scene(boxes: &[[f64; 6]]) -> Scene {
         [0.8, 0.6, 0.5],
     ));
     for b in boxes {
-        scene.cutters.push(SceneCutter {
-            target: 0,
-            cutter: cutter::Cutter {
-                kind: cutter::CutKind::Straight,
-                smooth: false,
-                levels: cutter::subdivision::DEFAULT_LEVELS,
-                planes: box_cutter(b[0], b[1], b[2], b[3], b[4], b[5]),
-            },
-            views: crate::scene::CutterViews::default(),
-        });
+        scene.cutters.push(plain_cutter(
+            0,
+            cutter::CutKind::Straight,
+            box_cutter(b[0], b[1], b[2], b[3], b[4], b[5]),
+        ));
     }
     scene
 }
@@ -192,16 +128,7 @@ fn nested_shells_are_each_cut_closed_and_a_cavity_stays_hollow() {
     ] {
         let mut model = outer.clone();
         model.append(&inner);
-        let sequence = cut_in_turn(
-            &mut CutCache::default(),
-            &Arc::new(model),
-            &cutters,
-            |_| true,
-            |_| {},
-        );
-        assert!(sequence.notes.is_empty(), "{:?}", sequence.notes);
-        let report = sequence.closed.report();
-        assert!(report.closed && report.manifold, "{report:?}");
+        let sequence = cut_closed(&mut CutCache::default(), &Arc::new(model), &cutters);
         assert!(
             (sequence.closed.volume() - expected).abs() < 1e-9,
             "{} vs {expected}",
@@ -232,16 +159,7 @@ fn overlapping_cutters_remove_the_union_and_no_wall_survives_inside_the_other() 
     let expected = t - (t - v1) - (t - v2) + (t - v12);
     let cutters: Vec<(usize, &SceneCutter)> = scene.cutters.iter().enumerate().collect();
     let mut cache = CutCache::default();
-    let sequence = cut_in_turn(
-        &mut cache,
-        &scene.models[0].mesh,
-        &cutters,
-        |_| true,
-        |_| {},
-    );
-    assert!(sequence.notes.is_empty(), "{:?}", sequence.notes);
-    let report = sequence.closed.report();
-    assert!(report.closed && report.manifold, "{report:?}");
+    let sequence = cut_closed(&mut cache, &scene.models[0].mesh, &cutters);
     // New contour vertices are rounded once from the lattice (steps of ~1e-8 here).
     assert!(
         (sequence.closed.volume() - expected).abs() < 1e-6,
@@ -402,35 +320,6 @@ fn ribbons_of_a_smooth_cutter_lie_inside_its_surface() {
         }
         assert!(ribbon_area > 0.0, "{placement:?}: no ribbons");
     }
-}
-
-/// `n` cubes of side 2 spaced 10 apart along x, each cut at its corner by `per_model` box
-/// cutters (Normal Cut view), the cutters of one model slightly apart.
-pub(crate) fn cubes_each_cut(n: usize, per_model: usize) -> Scene {
-    let mut scene = Scene::default();
-    for m in 0..n {
-        let x = 10.0 * m as f64;
-        scene.models.push(crate::scene::SceneModel::new(
-            format!("cube {m}"),
-            format!("cube{m}.obj"),
-            Arc::new(cube(DVec3::new(x, 0.0, 0.0), DVec3::new(x + 2.0, 2.0, 2.0))),
-            [0.8, 0.6, 0.5],
-        ));
-        for k in 0..per_model {
-            let z = 1.0 - 0.5 * k as f64;
-            scene.cutters.push(SceneCutter {
-                target: m,
-                cutter: cutter::Cutter {
-                    kind: cutter::CutKind::Straight,
-                    smooth: false,
-                    planes: box_cutter(x + 1.0 + 0.2 * k as f64, x + 3.0, -1.0, 1.0, z, 3.0),
-                    levels: cutter::subdivision::DEFAULT_LEVELS,
-                },
-                views: crate::scene::CutterViews::default(),
-            });
-        }
-    }
-    scene
 }
 
 #[test]

@@ -537,7 +537,7 @@ mod knee;
 /// uploads only what changed.
 #[cfg(test)]
 #[path = "live_cut_view.rs"]
-pub(crate) mod view;
+mod view;
 
 /// The UI thread's cost of a live re-cut on a 2M-triangle model: what a frame does when a new
 /// live cut arrives (take it, hand it to the renderer, which uploads what changed). Prints
@@ -545,4 +545,4 @@ pub(crate) mod view;
 /// `CUTAWAY_UI_TIMINGS=1 WGPU_BACKEND=vulkan cargo test -p cutaway --lib ui_thread_cost -- --nocapture`.
 #[cfg(test)]
 #[path = "live_cut_timings.rs"]
-pub(crate) mod timings;
+mod timings;

@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::cutting::cut_scene::PartKind;
-use crate::cutting::cut_scene::tests::scene_with_cube_cut;
+use crate::test_support::scene_with_cube_cut;
 
 /// Everything the live cut draws as one mesh: the parts, and the kept deltas composed.
 fn drawn(r: &LiveResult) -> Mesh {
@@ -50,7 +50,7 @@ fn stale_requests_are_dropped_and_the_newest_wins() {
     for k in 0..40 {
         let x = 1.0 + 0.01 * k as f64;
         scene.cutters[0].cutter.planes =
-            crate::cutting::cut_scene::tests::box_cutter(x, 3.0, -1.0, 1.0, 1.0, 3.0);
+            crate::test_support::box_cutter(x, 3.0, -1.0, 1.0, 1.0, 3.0);
         live.request(&scene, None);
         last_x = x;
     }
@@ -86,7 +86,7 @@ fn census_becomes(live: &LiveCut, want: impl Fn(&LiveCensus) -> bool) -> LiveCen
 
 #[test]
 fn the_worker_keeps_an_index_only_while_its_cutter_changes_and_forgets_all_when_cleared() {
-    let mut scene = crate::cutting::cut_scene::tests::cubes_each_cut(3, 1);
+    let mut scene = crate::test_support::cubes_each_cut(3, 1);
     let mut live = LiveCut::default();
     assert!(live.request(&scene, None));
     assert!(live.wait(Duration::from_secs(60)), "no live cut arrived");
@@ -95,14 +95,8 @@ fn the_worker_keeps_an_index_only_while_its_cutter_changes_and_forgets_all_when_
     assert_eq!(census.cuts.indexes, 3, "every model was cut: {census:?}");
     // A drag on model 1's cutter: only its index is kept, the others' cuts stay.
     for step in 1..=3 {
-        scene.cutters[1].cutter.planes = crate::cutting::cut_scene::tests::box_cutter(
-            11.0 + 0.1 * step as f64,
-            13.0,
-            -1.0,
-            1.0,
-            1.0,
-            3.0,
-        );
+        scene.cutters[1].cutter.planes =
+            crate::test_support::box_cutter(11.0 + 0.1 * step as f64, 13.0, -1.0, 1.0, 1.0, 3.0);
         assert!(live.request(&scene, None));
         assert!(live.wait(Duration::from_secs(60)), "no live cut arrived");
         assert_eq!(live.shown().unwrap().deltas.len(), 3);

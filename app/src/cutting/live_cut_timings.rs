@@ -1,43 +1,26 @@
 //! Tests of [`super`] (`live_cut.rs`), kept in their own file.
 
 use super::*;
-use crate::cutting::cut_scene::tests::box_cutter;
-use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
-use crate::scene::{SceneCutter, SceneModel};
-
-pub(crate) fn median_max(v: &[f64]) -> (f64, f64) {
-    let mut s = v.to_vec();
-    s.sort_by(f64::total_cmp);
-    (s[s.len() / 2], s[s.len() - 1])
-}
+use crate::render::ViewMode;
+use crate::test_support::{
+    box_cutter, deterministic_frame, median_and_max, plain_cutter, two_renderers_or_skip,
+    ui_timings_requested, with_sphere,
+};
 
 /// Per re-cut, the window's way (the live cut drawn from its delta) and the way before it
 /// (the whole kept part cut, materialized and uploaded, as `preview_geometry_with` gives
 /// it), each with a renderer of its own, in the same run.
 #[test]
 fn live_recut_ui_thread_cost_on_two_million_triangles() {
-    if std::env::var_os("CUTAWAY_UI_TIMINGS").is_none() {
-        println!("skipped: set CUTAWAY_UI_TIMINGS=1 to measure");
+    if !ui_timings_requested() {
         return;
     }
-    let (mut renderer, mut whole) = match (HeadlessRenderer::new(), HeadlessRenderer::new()) {
-        (Ok(a), Ok(b)) => (a, b),
-        (Err(e), _) | (_, Err(e)) => {
-            println!("skipped: {e}");
-            return;
-        }
+    let Some((mut renderer, mut whole)) = two_renderers_or_skip() else {
+        return;
     };
     let sphere = Arc::new(csg::testkit::geodesic_sphere(316, 100.0));
-    let mut scene = crate::scene::Scene::default();
-    scene.models.push(SceneModel::new(
-        "sphere",
-        "sphere.ply",
-        sphere.clone(),
-        [0.9, 0.7, 0.6],
-    ));
-    scene.camera = scene.framing_camera();
-    let mut frame = FrameInputs::new(scene.clone(), [640, 400], ViewMode::Camera);
-    frame.deterministic = true;
+    let mut scene = with_sphere(Scene::default(), sphere.clone(), "sphere.ply");
+    let frame = deterministic_frame(&scene, [640, 400], ViewMode::Camera);
     let first = renderer.time_prepare(&frame).expect("first frame");
     let base_bytes = renderer.last_frame_uploads().bytes;
     whole.time_prepare(&frame).expect("first frame");
@@ -48,20 +31,10 @@ fn live_recut_ui_thread_cost_on_two_million_triangles() {
     for k in 0..=10 {
         let x1 = -20.0 + 5.0 * k as f64;
         let planes = box_cutter(-60.0, x1, -120.0, -70.0, -8.0, 8.0);
-        scene.cutters = vec![SceneCutter {
-            target: 0,
-            cutter: cutter::Cutter {
-                kind: cutter::CutKind::Curving,
-                smooth: false,
-                levels: cutter::subdivision::DEFAULT_LEVELS,
-                planes,
-            },
-            views: CutterViews::default(),
-        }];
+        scene.cutters = vec![plain_cutter(0, cutter::CutKind::Curving, planes)];
         assert!(live.request(&scene, None));
         assert!(live.wait(Duration::from_secs(600)), "no live cut");
-        let mut frame = FrameInputs::new(scene.clone(), [640, 400], ViewMode::Edit);
-        frame.deterministic = true;
+        let mut frame = deterministic_frame(&scene, [640, 400], ViewMode::Edit);
         frame.preview = live.geometry();
         frame.deltas = live.deltas();
         let ms = renderer.time_prepare(&frame).expect("frame");
@@ -82,10 +55,7 @@ fn live_recut_ui_thread_cost_on_two_million_triangles() {
             whole_bytes.push(whole.last_frame_uploads().bytes as f64 / 1e6);
         }
     }
-    let f = |v: &[f64]| {
-        let (med, max) = median_max(v);
-        format!("median {med:.2} (max {max:.2})")
-    };
+    let f = median_and_max;
     println!(
         "live re-cut on {} triangles ({}): first frame {first:.1} ms ({:.1} MB); {} re-cuts:\n  \
          delta: worker ms {}, UI thread ms {}, MB uploaded {}\n  \

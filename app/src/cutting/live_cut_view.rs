@@ -1,53 +1,28 @@
 //! Tests of [`super`] (`live_cut.rs`), kept in their own file.
 
 use super::*;
-use crate::cutting::cut_scene::tests::box_cutter;
-use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
-use crate::scene::{SceneCutter, SceneModel};
-
-/// Pixels that differ between two images of the same size.
-pub(crate) fn differing_pixels(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
-    assert_eq!(a.dimensions(), b.dimensions());
-    a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count()
-}
+use crate::render::ViewMode;
+use crate::test_support::{
+    box_cutter, deterministic_frame, differing_pixels, plain_cutter, renderer_or_skip, with_sphere,
+};
 
 #[test]
 fn the_live_cut_from_its_delta_looks_as_the_whole_kept_part_and_uploads_little() {
-    let mut renderer = match HeadlessRenderer::new() {
-        Ok(r) => r,
-        Err(e) => {
-            println!("skipped: {e}");
-            return;
-        }
+    let Some(mut renderer) = renderer_or_skip() else {
+        return;
     };
     let sphere = Arc::new(csg::testkit::icosphere(6, 10.0));
-    let mut scene = crate::scene::Scene::default();
-    scene.models.push(SceneModel::new(
-        "sphere",
-        "sphere.obj",
-        sphere.clone(),
-        [0.9, 0.7, 0.6],
-    ));
-    scene.camera = scene.framing_camera();
-    let frame = |scene: &Scene| {
-        let mut f = FrameInputs::new(scene.clone(), [320, 240], ViewMode::Edit);
-        f.deterministic = true;
-        f
-    };
+    let mut scene = with_sphere(Scene::default(), sphere.clone(), "sphere.obj");
+    let frame = |scene: &Scene| deterministic_frame(scene, [320, 240], ViewMode::Edit);
     let uncut = renderer.render(&frame(&scene)).expect("render");
     let model_bytes = renderer.last_frame_uploads().bytes;
     let mut live = LiveCut::default();
     for (k, x1) in [1.0, 4.0, 2.5].into_iter().enumerate() {
-        scene.cutters = vec![SceneCutter {
-            target: 0,
-            cutter: cutter::Cutter {
-                kind: cutter::CutKind::Curving,
-                smooth: false,
-                levels: cutter::subdivision::DEFAULT_LEVELS,
-                planes: box_cutter(-4.0, x1, -12.0, -8.0, -2.0, 3.0),
-            },
-            views: CutterViews::default(),
-        }];
+        scene.cutters = vec![plain_cutter(
+            0,
+            cutter::CutKind::Curving,
+            box_cutter(-4.0, x1, -12.0, -8.0, -2.0, 3.0),
+        )];
         assert!(live.request(&scene, None));
         assert!(live.wait(Duration::from_secs(120)), "no live cut");
         assert_eq!(

@@ -7,7 +7,8 @@
 //!
 //! - [`cut_scene`]: the scene-cutting model: every cutter of a model cut in turn, the parts
 //!   Preview draws, and the cache that makes re-cutting one edited cutter cost one boolean;
-//!   [`cut_parts`] is one cutter against one target (surface, exact cut, ribbons, slices).
+//!   [`cut_parts`] is one cutter against one target (surface, exact cut, ribbons, slices);
+//!   [`cut_results`] the types both speak (a cut's parts, Preview's parts, each cutter's report).
 //! - [`live_cut`]: the live re-cut of Edit mode on its own worker, newest request wins.
 //! - [`scene_cuts`]: the whole scene cut off the UI thread (Preview, Remove All Cut Geometry,
 //!   exports) and the key that says when a result is stale.
@@ -18,6 +19,7 @@
 //!   a ray meets on the scene as drawn (cut walls and kept parts where a cut is shown).
 
 pub mod cut_parts;
+pub mod cut_results;
 pub mod cut_scene;
 pub mod drawn_hit;
 pub mod editing;

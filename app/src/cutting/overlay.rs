@@ -52,7 +52,7 @@ pub fn overlay_surface(cutter: &cutter::Cutter) -> Arc<Mesh> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cutting::cut_scene::tests::scene_with_cube_cut;
+    use crate::test_support::scene_with_cube_cut;
 
     /// The overlay draws exactly the surface the cut subtracts, plain and smooth.
     #[test]

@@ -262,3 +262,58 @@ fn the_atlas_with_all_structures_adds_the_mantle_and_the_muscles() {
     let ranks: Vec<usize> = all[1..].iter().map(|m| groups::rank(&m.group)).collect();
     assert!(ranks.windows(2).all(|w| w[0] <= w[1]), "groups interleave");
 }
+
+#[test]
+fn a_session_of_the_default_scene_surfaces_only_the_structures_it_picks() {
+    let atlas_path = Path::new("/nonexistent/assets/spl_head/hncma-atlas.nrrd");
+    let atlas = load_missing(atlas_path).expect("embedded").unwrap();
+    let dir = std::env::temp_dir().join(format!("cutaway-atlas-picks-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = |picks: &[usize]| {
+        let models: Vec<String> = picks
+            .iter()
+            .map(|k| format!(r#"{{"path": "assets/spl_head/{ATLAS_FILE}", "structure": {k}}}"#))
+            .collect();
+        let path = dir.join("picks.cutaway.json");
+        std::fs::write(
+            &path,
+            format!(
+                r#"{{"format": "cutaway-session/2", "models": [{}], "cutters": []}}"#,
+                models.join(", ")
+            ),
+        )
+        .unwrap();
+        path
+    };
+    let surfaced = |path: &Path| {
+        let mut surfaced = 0;
+        let scene = crate::session::load_with(path, |file, unit, only| {
+            let models = crate::assets::load_or_embedded_picking(file, unit, only)?;
+            surfaced += models.len();
+            Ok(models)
+        });
+        (scene, surfaced)
+    };
+    // Two picks: two labels surfaced, the same meshes and names as from the whole atlas.
+    let (scene, count) = surfaced(&session(&[40, 3]));
+    let scene = scene.unwrap();
+    assert_eq!(count, 2);
+    assert_eq!(scene.models.len(), 2);
+    for (model, k) in scene.models.iter().zip([40, 3]) {
+        assert_eq!(model.region, k);
+        assert_eq!(model.name, atlas[k].name);
+        assert_eq!(*model.mesh, atlas[k].mesh);
+    }
+    // The session's own reader gives the same scene.
+    let read = crate::session::load(&session(&[40, 3])).unwrap();
+    assert_eq!(*read.models[0].mesh, atlas[40].mesh);
+    // A pick the atlas does not have: every label is read, and the error says how many there are.
+    let (scene, count) = surfaced(&session(&[3, atlas.len()]));
+    assert_eq!(count, atlas.len());
+    let err = format!("{:#}", scene.unwrap_err());
+    assert!(
+        err.contains(&format!("it has {} structures", atlas.len())),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,6 +1,6 @@
 //! The default scene in two steps, so its first frame never waits on the label surfaces: the
 //! skin is read at once (milliseconds) and drawn, and the atlas's label surfaces arrive from a
-//! background [`Job`] with their progress and a Cancel in the status bar. While they surface the
+//! background [`Job`](super::jobs::Job) with their progress and a Cancel in the status bar. While they surface the
 //! window works as usual; the user may already orbit, select the skin and cut into it.
 //!
 //! Arriving structures are appended after the skin (no cutter's target index moves) and to every

@@ -192,7 +192,7 @@ pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
             .unwrap_or_default(),
     );
     let mut files = 0u64;
-    let scene = crate::session::load_with(path, |file, unit| {
+    let scene = crate::session::load_with(path, |file, unit, only| {
         progress.check()?;
         files += 1;
         progress.set_message(
@@ -202,10 +202,12 @@ pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
         );
         match unit {
             crate::scene::ModelUnit::Region => crate::io::load_models(file),
-            crate::scene::ModelUnit::Structure => crate::session_volumes::structures(file, &|f| {
-                progress.set((f.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
-                !progress.is_cancelled()
-            }),
+            crate::scene::ModelUnit::Structure => {
+                crate::session_volumes::structures(file, only, &|f| {
+                    progress.set((f.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
+                    !progress.is_cancelled()
+                })
+            }
         }
     })?;
     scene

@@ -1,9 +1,9 @@
 //! Tests of [`super`] (`bridge.rs`), kept in their own file.
 
 use super::*;
-use crate::cutting::cut_scene::tests::scene_with_cube_cut;
 use crate::cutting::scene_cuts::apply_all_cuts;
 use crate::scene::CutterViews;
+use crate::test_support::scene_with_cube_cut;
 
 #[test]
 fn remove_all_cut_geometry_leaves_the_closed_kept_part() {

@@ -301,9 +301,7 @@ mod tests {
                     kind: cutter::CutKind::Straight,
                     smooth: false,
                     levels: cutter::subdivision::DEFAULT_LEVELS,
-                    planes: crate::cutting::cut_scene::tests::box_cutter(
-                        0.4, 1.6, -1.0, 1.0, 0.4, 1.6,
-                    ),
+                    planes: crate::test_support::box_cutter(0.4, 1.6, -1.0, 1.0, 0.4, 1.6),
                 },
                 views: Default::default(),
             });

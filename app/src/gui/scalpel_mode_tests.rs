@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 
 use crate::scalpel_session::Released;
 use crate::scalpel_session::tests::{assert_closed_and_manifold, position_bits};
-use crate::scene::{MeshOrigin, Scene, SceneModel};
+use crate::scene::{MeshOrigin, Scene};
 
 fn session_dir(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("cutaway-scalpel-{name}-{}", std::process::id()));
@@ -35,7 +35,7 @@ fn the_window_saves_the_mesh_left_by_remove_all_cut_geometry() {
     let mut h = crate::gui::test_window::open(start, 1024.0, 700.0);
     assert_eq!(h.state().scene.models.len(), 1);
     assert_eq!(h.state().scene.models[0].origin, MeshOrigin::Region);
-    let cutter = crate::cutting::cut_scene::tests::scene_with_cube_cut(Default::default())
+    let cutter = crate::test_support::scene_with_cube_cut(Default::default())
         .cutters
         .remove(0);
     h.state_mut().scene.cutters.push(cutter);
@@ -333,32 +333,22 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
 #[cfg(test)]
 mod view {
     use super::*;
-    use crate::cutting::live_cut::view::differing_pixels;
+    use crate::render::ViewMode;
     use crate::render::delta::MeshDelta;
-    use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
+    use crate::test_support::{
+        deterministic_frame, differing_pixels, renderer_or_skip, with_sphere,
+    };
 
     #[test]
     fn a_stroke_drawn_from_its_delta_looks_as_the_whole_mesh_and_uploads_little() {
-        let mut renderer = match HeadlessRenderer::new() {
-            Ok(r) => r,
-            Err(e) => {
-                println!("skipped: {e}");
-                return;
-            }
+        let Some(mut renderer) = renderer_or_skip() else {
+            return;
         };
-        let mut scene = crate::gui::app::new_scene();
         let sphere = Arc::new(csg::testkit::icosphere(6, 10.0));
-        scene.models.push(SceneModel::new(
-            "sphere",
-            "sphere.obj",
-            sphere.clone(),
-            [0.9, 0.7, 0.6],
-        ));
-        scene.camera = scene.framing_camera();
+        let mut scene = with_sphere(crate::gui::app::new_scene(), sphere, "sphere.obj");
         let viewport = DVec2::new(320.0, 240.0);
         let frame = |scene: &Scene, delta: Option<Arc<MeshDelta>>| {
-            let mut f = FrameInputs::new(scene.clone(), [320, 240], ViewMode::Camera);
-            f.deterministic = true;
+            let mut f = deterministic_frame(scene, [320, 240], ViewMode::Camera);
             f.deltas.extend(delta);
             f
         };
@@ -425,8 +415,12 @@ mod view {
 #[cfg(test)]
 mod timings {
     use super::*;
+    use crate::render::ViewMode;
     use crate::render::delta::MeshDelta;
-    use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
+    use crate::test_support::{
+        deterministic_frame, median_and_max, two_renderers_or_skip, ui_timings_requested,
+        with_sphere,
+    };
     use std::time::Instant;
 
     /// Per step, the window's way (the stroke drawn as a delta over the uploaded model) and the
@@ -434,30 +428,17 @@ mod timings {
     /// of its own, in the same run.
     #[test]
     fn scalpel_step_ui_thread_cost_on_two_million_triangles() {
-        if std::env::var_os("CUTAWAY_UI_TIMINGS").is_none() {
-            println!("skipped: set CUTAWAY_UI_TIMINGS=1 to measure");
+        if !ui_timings_requested() {
             return;
         }
-        let (mut renderer, mut whole) = match (HeadlessRenderer::new(), HeadlessRenderer::new()) {
-            (Ok(a), Ok(b)) => (a, b),
-            (Err(e), _) | (_, Err(e)) => {
-                println!("skipped: {e}");
-                return;
-            }
+        let Some((mut renderer, mut whole)) = two_renderers_or_skip() else {
+            return;
         };
         let sphere = Arc::new(csg::testkit::geodesic_sphere(316, 100.0));
-        let mut scene = crate::gui::app::new_scene();
-        scene.models.push(SceneModel::new(
-            "sphere",
-            "sphere.ply",
-            sphere.clone(),
-            [0.9, 0.7, 0.6],
-        ));
-        scene.camera = scene.framing_camera();
+        let mut scene = with_sphere(crate::gui::app::new_scene(), sphere.clone(), "sphere.ply");
         let viewport = DVec2::new(640.0, 400.0);
         let frame_of = |scene: &Scene, delta: Option<Arc<MeshDelta>>| {
-            let mut frame = FrameInputs::new(scene.clone(), [640, 400], ViewMode::Camera);
-            frame.deterministic = true;
+            let mut frame = deterministic_frame(scene, [640, 400], ViewMode::Camera);
             frame.deltas.extend(delta);
             frame
         };
@@ -525,10 +506,7 @@ mod timings {
         let after_release = renderer
             .time_prepare(&frame_of(&scene, None))
             .expect("frame");
-        let f = |v: &[f64]| {
-            let (med, max) = crate::cutting::live_cut::timings::median_max(v);
-            format!("median {med:.2} (max {max:.2})")
-        };
+        let f = median_and_max;
         println!(
             "scalpel on {} triangles ({}): first frame {first:.1} ms, press {press_ms:.1} ms; \
              {} steps:\n  delta: step ms {} (of which the delta {}), frame ms {}, UI thread ms \

@@ -142,9 +142,9 @@ mod tests {
     use glam::DVec3;
 
     use super::*;
-    use crate::cutting::cut_scene::tests::{box_cutter, cube};
     use crate::intensity::{ImageLayer, IntensityImage, WallDisplay};
     use crate::scene::{CutterViews, SceneCutter, SceneModel};
+    use crate::test_support::{box_cutter, cube};
     use cutter::CutKind;
 
     /// The cube [0, 10]³ cut by a box x, z in 2..8 from the front to y = 5, with an image.
