@@ -102,6 +102,12 @@ pub struct CompareView {
     worker: Arc<Mutex<Worker>>,
     /// Size of one viewport in pixels, from the last layout.
     tile: [u32; 2],
+    /// How many viewports the shared camera was last framed for: the main view's camera is
+    /// framed for a wide view, and seen through a narrow viewport it cuts the models off or
+    /// leaves them off-centre, so opening the view (or changing the number shown) frames the
+    /// scene for the viewports' shape, keeping the direction; closing frames it for the 3D
+    /// view again.
+    framed_for: Option<usize>,
 }
 
 impl CompareView {
@@ -184,6 +190,9 @@ fn compare_one(
 /// Takes finished pictures and starts new ones when the variants, the camera or the viewport
 /// size changed and no pointer button is held. Call once per frame.
 pub fn update(app: &mut CutawayApp, ctx: &egui::Context) {
+    if !app.compare.open && app.compare.framed_for.take().is_some() {
+        super::view_menu::apply(app, super::view_menu::ViewCommand::ZoomToFit);
+    }
     let view = &mut app.compare;
     if let Some((request, job)) = &mut view.job
         && let Some(result) = job.poll()
@@ -308,6 +317,12 @@ fn compare_contents(ui: &mut egui::Ui, app: &mut CutawayApp) {
     let width = ((ui.available_width() - gap * (shown as f32 - 1.0)) / shown as f32).max(32.0);
     let height = (ui.available_height() - table_height - 24.0).max(32.0);
     app.compare.tile = [(width * ppp).round() as u32, (height * ppp).round() as u32];
+    if app.compare.framed_for != Some(shown) {
+        app.compare.framed_for = Some(shown);
+        let aspect = f64::from(width) / f64::from(height);
+        app.scene.camera =
+            crate::view::fit::fit_to_box(&app.scene.camera, &app.scene.bbox(), aspect);
+    }
     if let Some(Err(e)) = &app.compare.shown {
         ui.colored_label(ui.visuals().error_fg_color, e.clone());
     }
