@@ -100,6 +100,8 @@ pub enum Action {
     /// Centre the camera on a model.
     FocusModel(usize),
     RemoveModel(usize),
+    /// One model per connected region of model `i` ([`crate::scene_regions`]).
+    SplitRegions(usize),
     StartGesture,
     StopGesture,
     /// Keep the current cutter; the next drag in Edit mode starts a new one.
@@ -207,6 +209,19 @@ impl CutawayApp {
                         }
                     }
                     self.record(&format!("remove {}", removed.name), before);
+                }
+            }
+            Action::SplitRegions(index) => {
+                let Some(name) = self.scene.models.get(index).map(|m| m.name.clone()) else {
+                    return;
+                };
+                let before = self.scene.clone();
+                match crate::scene_regions::split_into_regions(&mut self.scene, index) {
+                    Ok(count) => {
+                        self.record(&format!("split {name}"), before);
+                        self.say(format!("{name}: {count} regions, listed under \"{name}\""));
+                    }
+                    Err(why) => self.say(format!("{name} not split: {why}")),
                 }
             }
             Action::StartGesture => self

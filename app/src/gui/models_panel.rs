@@ -197,6 +197,13 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         if ui.button("Remove").clicked() {
             actions.push(Action::RemoveModel(index));
         }
+        if ui
+            .button("Split")
+            .on_hover_text("One model per connected region of this structure")
+            .clicked()
+        {
+            actions.push(Action::SplitRegions(index));
+        }
     });
     actions
 }
