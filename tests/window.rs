@@ -217,6 +217,112 @@ fn a_double_click_selects_and_highlights_in_every_mode() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Double-clicks at `at` (points) with real frame times between the clicks.
+fn double_click(h: &mut Harness<'_, CutawayApp>, at: egui::Pos2) {
+    h.hover_at(at);
+    h.step();
+    for pressed in [true, false, true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: Default::default(),
+        });
+    }
+    h.step();
+    h.run_steps(3);
+}
+
+#[test]
+fn a_double_click_on_a_deep_structure_scrolls_the_list_to_it_and_zoom_to_selection_frames_it() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("reveal");
+    let mut h = harness(&dir, Vec::new());
+    settle(&mut h);
+    // The skin hidden, an eyeball (the last group of the list, far below its first rows) is the
+    // front-most structure at its own centre in the anterior view.
+    apply(&mut h, Action::SelectModel(None));
+    h.state_mut().scene.models[0].visible = false;
+    let app = h.state();
+    let (eye, name) = app
+        .scene
+        .models
+        .iter()
+        .enumerate()
+        .filter(|(_, m)| m.name.contains("eyeball"))
+        .map(|(i, m)| (i, m.name.clone()))
+        .next_back()
+        .expect("an eyeball in the default scene");
+    let centre = app.scene.models[eye].mesh.bbox().center();
+    let px = app
+        .scene
+        .camera
+        .project(app.viewport.size_px, centre)
+        .expect("in view");
+    let ppp = h.ctx.pixels_per_point();
+    let at = app.viewport.rect.min + egui::vec2(px.x as f32 / ppp, px.y as f32 / ppp);
+    let list_bottom = app.viewport.rect.center().y;
+    let row = h.get_by_label(&name).rect();
+    assert!(
+        row.min.y > list_bottom,
+        "{name}'s row {row:?} is already in the list's first rows"
+    );
+    h.run_steps(40);
+    double_click(&mut h, at);
+    assert_eq!(
+        h.state().selected_model,
+        Some(eye),
+        "the double-click did not select {name} ({})",
+        h.state().status.message
+    );
+    // The list opened its group and scrolled: the row is in the list, above the properties.
+    h.run_steps(20);
+    // (The name is also the properties' heading, below the list.)
+    let row = h
+        .query_all_by_label(&name)
+        .map(|n| n.rect())
+        .min_by(|a, b| a.min.y.total_cmp(&b.min.y))
+        .expect("the row");
+    let properties = h.get_by_label("Opacity").rect();
+    assert!(
+        row.min.y > 150.0 && row.max.y < properties.min.y,
+        "{name}'s row {row:?} is not in view above the properties at {properties:?}"
+    );
+    shot(&mut h, "deep-structure-revealed-in-list");
+    // "." frames the selection: the eyeball fills the view's middle, whole.
+    let before = h.state().scene.camera;
+    h.hover_at(h.state().viewport.rect.center());
+    h.key_press(egui::Key::Period);
+    h.run_steps(2);
+    let app = h.state();
+    let camera = app.scene.camera;
+    assert!(
+        (camera.target - centre).length() < 1e-6,
+        "not centred on {name}"
+    );
+    assert!(camera.distance() < before.distance() * 0.5, "not zoomed in");
+    assert!((camera.forward() - before.forward()).length() < 1e-9);
+    let bbox = app.scene.models[eye].mesh.bbox();
+    let vp = app.viewport.size_px;
+    for k in 0..8 {
+        let corner = DVec3::new(
+            if k & 1 == 0 { bbox.min.x } else { bbox.max.x },
+            if k & 2 == 0 { bbox.min.y } else { bbox.max.y },
+            if k & 4 == 0 { bbox.min.z } else { bbox.max.z },
+        );
+        let p = camera.project(vp, corner).expect("in front");
+        assert!(
+            p.x >= 0.0 && p.y >= 0.0 && p.x <= vp.x && p.y <= vp.y,
+            "{name} cut off by the frame: {p:?} in {vp:?}"
+        );
+    }
+    shot(&mut h, "zoom-to-selection");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_ones() {
     if let Some(reason) = no_adapter() {
@@ -325,6 +431,22 @@ fn the_help_menu_opens_the_keyboard_and_mouse_reference() {
     h.get_by_label("cut along the path");
     h.get_by_label("superior / inferior view");
     shot(&mut h, "help-keyboard-and-mouse");
+    // The reference opens below the menu bar, not over it.
+    let title = h.get_by_label("Keyboard and Mouse").rect();
+    let menu = h.get_by_label("Help").rect();
+    assert!(
+        title.min.y > menu.max.y,
+        "the window {title:?} covers the menu bar {menu:?}"
+    );
+    // About names the embedded anatomy and its licence.
+    h.key_press(egui::Key::Escape);
+    h.get_by_label("Help").click();
+    h.run_steps(2);
+    h.get_by_label("About Cutaway…").click();
+    h.run_steps(3);
+    h.get_by_label("3D Slicer License");
+    h.get_by_label("SPL-PNL Brain Atlas");
+    shot(&mut h, "help-about");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
