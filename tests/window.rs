@@ -21,7 +21,7 @@ use cutaway::view::{LengthUnit, Orientation, ViewPreset};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::DVec3;
-use window_harness::{apply, harness, no_adapter, shot};
+use window_harness::{apply, harness, harness_sized, no_adapter, shot};
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("cutaway-window-{name}-{}", std::process::id()));
@@ -619,6 +619,55 @@ fn edit_mode_orbits_with_the_right_button_and_zooms_off_the_cutter() {
     assert!(
         h.state().scene.camera.distance() < after.distance() * 0.95,
         "the wheel did not zoom in Edit mode"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn at_1600_by_1000_the_view_grows_and_the_marker_and_status_stay_in_place() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("large");
+    let mut paths = Vec::new();
+    if let Some(brain) = anatomy("head_brain_spl_atlas") {
+        paths.push(brain);
+    }
+    let mut h = harness_sized(&dir, paths.clone(), egui::vec2(1600.0, 1000.0));
+    settle(&mut h);
+    let app = h.state();
+    assert!(!app.status.is_error, "{}", app.status.message);
+    // The panels keep their width: the view takes the extra room.
+    let view = app.viewport.rect;
+    assert!(
+        view.width() > 1250.0 && view.height() > 850.0,
+        "the view did not grow: {view:?}"
+    );
+    let image = shot(
+        &mut h,
+        if paths.is_empty() {
+            "large-default"
+        } else {
+            "large-brain-folder"
+        },
+    );
+    // The marker is in the view's lower-left corner at this size too.
+    let view = view_px(&h);
+    let corner = egui::Rect::from_min_size(
+        egui::pos2(view.min.x, view.max.y - 120.0),
+        egui::vec2(120.0, 120.0),
+    );
+    assert!(
+        count_colour(&image, corner, [230, 70, 60]) >= 15,
+        "no marker in the corner"
+    );
+    // The status line sits under the view.
+    let message = h.state().status.message.clone();
+    let label = h.get_by_label(&message).rect();
+    assert!(
+        label.min.y >= h.state().viewport.rect.max.y - 0.5 && label.max.y <= 1000.0,
+        "the status text {label:?} is not under the view"
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
