@@ -669,6 +669,17 @@ fn at_1600_by_1000_the_view_grows_and_the_marker_and_status_stay_in_place() {
         label.min.y >= h.state().viewport.rect.max.y - 0.5 && label.max.y <= 1000.0,
         "the status text {label:?} is not under the view"
     );
+    // The side panel is resizable: dragging its edge widens the list, the view gives way.
+    let before = h.state().viewport.rect;
+    let edge = egui::pos2(before.min.x - 1.0, 500.0);
+    drag(&mut h, edge, edge + egui::vec2(120.0, 0.0));
+    h.run_steps(3);
+    let after = h.state().viewport.rect;
+    assert!(
+        after.min.x > before.min.x + 80.0,
+        "the panel did not widen: view {before:?} → {after:?}"
+    );
+    shot(&mut h, "large-panel-widened");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
