@@ -702,6 +702,100 @@ fn at_1600_by_1000_the_view_grows_and_the_marker_and_status_stay_in_place() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Presses `button` at `a`, moves in four steps and releases at `b` (points).
+fn button_drag(
+    h: &mut Harness<'_, CutawayApp>,
+    button: egui::PointerButton,
+    a: egui::Pos2,
+    b: egui::Pos2,
+) {
+    h.hover_at(a);
+    h.step();
+    h.event(egui::Event::PointerButton {
+        pos: a,
+        button,
+        pressed: true,
+        modifiers: Default::default(),
+    });
+    h.step();
+    for k in 1..=4 {
+        h.hover_at(a + (b - a) * (k as f32 / 4.0));
+        h.step();
+    }
+    h.event(egui::Event::PointerButton {
+        pos: b,
+        button,
+        pressed: false,
+        modifiers: Default::default(),
+    });
+    h.step();
+    h.run_steps(2);
+}
+
+#[test]
+fn right_drag_orbits_middle_drag_pans_and_the_wheel_zooms_in_every_mode() {
+    if let Some(reason) = no_adapter() {
+        println!("skipped: {reason}");
+        return;
+    }
+    let dir = temp_dir("every-mode");
+    let mut h = harness(&dir, Vec::new());
+    settle(&mut h);
+    let c = h.state().viewport.rect.center();
+    for mode in [Mode::Camera, Mode::Edit, Mode::Preview, Mode::Scalpel] {
+        click_mode(&mut h, mode);
+        h.run_steps(30);
+        let before = h.state().scene.camera;
+        button_drag(
+            &mut h,
+            egui::PointerButton::Secondary,
+            c,
+            c + egui::vec2(80.0, 10.0),
+        );
+        let orbited = h.state().scene.camera;
+        assert!(
+            (orbited.eye - before.eye).length() > 1.0
+                && (orbited.target - before.target).length() < 1e-6,
+            "{mode:?}: right-drag did not orbit"
+        );
+        button_drag(
+            &mut h,
+            egui::PointerButton::Middle,
+            c,
+            c + egui::vec2(60.0, -30.0),
+        );
+        let panned = h.state().scene.camera;
+        assert!(
+            (panned.target - orbited.target).length() > 1.0
+                && (panned.distance() - orbited.distance()).abs() < 1e-6,
+            "{mode:?}: middle-drag did not pan"
+        );
+        // The wheel over empty background, away from any cutter.
+        let corner = h.state().viewport.rect.right_top() + egui::vec2(-60.0, 60.0);
+        h.hover_at(corner);
+        h.step();
+        h.event(egui::Event::MouseWheel {
+            unit: egui::MouseWheelUnit::Line,
+            delta: egui::vec2(0.0, 2.0),
+            modifiers: Default::default(),
+            phase: egui::TouchPhase::Move,
+            source: egui::MouseWheelSource::Wheel,
+        });
+        h.run_steps(2);
+        assert!(
+            h.state().scene.camera.distance() < panned.distance() * 0.95,
+            "{mode:?}: the wheel did not zoom"
+        );
+        let app = h.state();
+        assert!(
+            app.scene.cutters.is_empty(),
+            "{mode:?}: navigating made a cutter"
+        );
+        assert!(!app.status.is_error, "{mode:?}: {}", app.status.message);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A file the windowing system reports as dropped on the window.
 #[derive(Debug)]
 struct Dropped(PathBuf);
