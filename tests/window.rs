@@ -407,6 +407,22 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
         "no walls in Camera mode"
     );
     shot(&mut h, "camera-mode-shows-cut");
+    // Scalpel mode draws the same cut; Preview adds the removed pieces' views to it.
+    for mode in [Mode::Scalpel, Mode::Preview] {
+        click_mode(&mut h, mode);
+        settle(&mut h);
+        let inputs = frame_inputs(h.state(), [64, 48]);
+        let cut = inputs
+            .preview
+            .unwrap_or_else(|| panic!("{mode:?} mode draws no cut"));
+        assert!(
+            cut.parts
+                .iter()
+                .any(|p| p.kind == cutaway::cutting::cut_scene::PartKind::Wall),
+            "no walls in {mode:?} mode"
+        );
+    }
+    shot(&mut h, "preview-mode-shows-cut");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
