@@ -297,7 +297,11 @@ fn model_row_ui(
         } else {
             egui::RichText::new(&name).weak()
         };
-        let row = ui.add(egui::Button::selectable(selected, text));
+        // Long structure names end in "…" at the panel's edge (widen the panel to read them);
+        // the whole name shows on hover.
+        let row = ui
+            .add(egui::Button::selectable(selected, text).truncate())
+            .on_hover_text(&name);
         if reveal {
             row.scroll_to_me(None);
         }
