@@ -6,54 +6,12 @@
 //! `finish_job` on the UI thread, the only place a finished job changes the window's state.
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
-use crate::scene::{Scene, SceneModel};
+use crate::scene::SceneModel;
 
-use super::action::Purpose;
 use super::app::{CutawayApp, is_session_path, new_scene, triangle_count};
+use super::job_output::JobOutput;
 use super::jobs::{self, Job, Progress};
-
-/// Result of a background job.
-pub enum JobOutput {
-    /// A file dialog closed; `paths` is empty when it was cancelled.
-    Picked {
-        purpose: Purpose,
-        paths: Vec<PathBuf>,
-        took: std::time::Duration,
-    },
-    /// Models were read.
-    Models {
-        models: Vec<crate::io::Model>,
-        replace: bool,
-        sources: Vec<PathBuf>,
-        /// A volume among the files that holds an intensity image, not labels.
-        image: Option<crate::intensity::ImageLayer>,
-    },
-    /// A session was read (models included).
-    Session { path: PathBuf, scene: Box<Scene> },
-    /// An intensity image was read, to show on the walls.
-    Image(crate::intensity::ImageLayer),
-    /// A target's spatial index was built.
-    Index {
-        model: usize,
-        mesh: std::sync::Weak<csg::Mesh>,
-        index: Arc<csg::SpatialIndex>,
-    },
-    /// Preview cut parts for the scene state `key`, and the wall time of the cut in ms.
-    Preview {
-        geometry: Arc<crate::cutting::cut_scene::PreviewGeometry>,
-        key: crate::cutting::scene_cuts::PreviewKey,
-        ms: f64,
-    },
-    /// "Remove All Cut Geometry": new meshes for the cut models, for the scene state `key`.
-    CutsApplied {
-        meshes: Vec<(usize, Arc<csg::Mesh>)>,
-        key: crate::cutting::scene_cuts::PreviewKey,
-    },
-    /// Something finished that only needs a message.
-    Done(String),
-}
 
 impl CutawayApp {
     pub(super) fn spawn(
@@ -63,7 +21,8 @@ impl CutawayApp {
         work: impl FnOnce(&Progress) -> anyhow::Result<JobOutput> + Send + 'static,
     ) {
         let ctx = ctx.clone();
-        self.jobs
+        self.state
+            .jobs
             .push(Job::spawn(label, move || ctx.request_repaint(), work));
     }
 
@@ -71,9 +30,9 @@ impl CutawayApp {
     pub(super) fn load_default_scene(&mut self, ctx: &egui::Context) {
         match crate::default_anatomy::load_skin() {
             Ok(skin) => self.add_models(skin, true, &[]),
-            Err(e) => return self.complain(&e),
+            Err(e) => return self.state.complain(&e),
         }
-        self.atlas.start(ctx);
+        self.state.atlas.start(ctx);
     }
 
     pub(super) fn load_example(&mut self, ctx: &egui::Context, name: String) {
@@ -96,11 +55,11 @@ impl CutawayApp {
     }
 
     pub(super) fn remove_all_cut_geometry(&mut self, ctx: &egui::Context) {
-        if self.scene.cutters.is_empty() {
-            self.say("There are no cutters to apply");
+        if self.state.scene.cutters.is_empty() {
+            self.state.say("There are no cutters to apply");
             return;
         }
-        let scene = self.scene.clone();
+        let scene = self.state.scene.clone();
         let key = crate::cutting::scene_cuts::PreviewKey::of(&scene);
         self.spawn(ctx, "Removing all cut geometry", move |progress| {
             let meshes = crate::cutting::scene_cuts::apply_all_cuts(&scene, progress)?;
@@ -110,15 +69,20 @@ impl CutawayApp {
 
     /// Starts building the spatial index of model `target` in the background (big targets).
     pub fn start_index_job(&mut self, ctx: &egui::Context, target: usize) {
-        let Some(model) = self.scene.models.get(target) else {
+        let Some(model) = self.state.scene.models.get(target) else {
             return;
         };
-        if self.jobs.iter().any(|j| j.label.starts_with("Indexing")) {
+        if self
+            .state
+            .jobs
+            .iter()
+            .any(|j| j.label.starts_with("Indexing"))
+        {
             return;
         }
         let mesh = model.mesh.clone();
         let name = model.name.clone();
-        self.say(format!("Indexing {name} for editing…"));
+        self.state.say(format!("Indexing {name} for editing…"));
         self.spawn(ctx, format!("Indexing {name}"), move |progress| {
             progress.set_message(format!(
                 "{} triangles",
@@ -144,7 +108,7 @@ impl CutawayApp {
             return;
         }
         for p in &paths {
-            self.recent.add(p);
+            self.state.recent.add(p);
         }
         let label = match paths.as_slice() {
             [one] => format!("Loading {}", file_label(one)),
@@ -171,8 +135,9 @@ impl CutawayApp {
             } => {
                 // A dialog that "closes" within a blink never opened: no portal and no zenity.
                 if paths.is_empty() && took < std::time::Duration::from_millis(150) {
-                    self.browser = Some(super::file_browser::FileBrowser::new(purpose, None));
-                    self.say("No native file dialog opened; choose in the window's browser");
+                    self.state.browser = Some(super::file_browser::FileBrowser::new(purpose, None));
+                    self.state
+                        .say("No native file dialog opened; choose in the window's browser");
                 } else {
                     self.picked(ctx, purpose, paths);
                 }
@@ -183,40 +148,41 @@ impl CutawayApp {
                 sources,
                 image,
             } => {
-                let image = image.or_else(|| super::image_panel::image_kept(self, replace));
+                let image = image.or_else(|| super::image_panel::image_kept(&self.state, replace));
                 self.add_models(models, replace, &sources);
                 if let Some(layer) = image {
-                    super::image_panel::image_loaded(self, layer);
+                    super::image_panel::image_loaded(&mut self.state, layer);
                 }
             }
             JobOutput::Session { path, scene } => {
-                self.atlas.cancel();
-                self.scene = *scene;
+                self.state.atlas.cancel();
+                self.state.scene = *scene;
                 // A restored autosave has no file of its own: Save asks where to put it.
-                let restored = path == self.recovery.session_path();
-                self.session_path = (!restored).then(|| path.clone());
-                self.selected_model = None;
-                self.selected_cutter = 0;
-                self.history.clear();
-                self.viewport.reset_editor();
-                self.last_committed = self.scene.clone();
-                self.recovery.mark_dirty();
+                let restored = path == self.state.recovery.session_path();
+                self.state.session_path = (!restored).then(|| path.clone());
+                self.state.selected_model = None;
+                self.state.selected_cutter = 0;
+                self.state.history.clear();
+                self.state.viewport.reset_editor();
+                self.state.last_committed = self.state.scene.clone();
+                self.state.recovery.mark_dirty();
                 if !restored {
-                    self.recent.add(&path);
+                    self.state.recent.add(&path);
                 }
-                self.say(format!(
+                self.state.say(format!(
                     "Opened {}: {} models, {} cutters",
                     path.display(),
-                    self.scene.models.len(),
-                    self.scene.cutters.len()
+                    self.state.scene.models.len(),
+                    self.state.scene.cutters.len()
                 ));
             }
-            JobOutput::Image(layer) => super::image_panel::image_loaded(self, layer),
+            JobOutput::Image(layer) => super::image_panel::image_loaded(&mut self.state, layer),
             JobOutput::Index { model, mesh, index } => {
-                self.viewport.editor.store_index(mesh, index);
-                self.say(format!(
+                self.state.viewport.editor.store_index(mesh, index);
+                self.state.say(format!(
                     "{} is ready: drag on it to start a cutter",
-                    self.scene
+                    self.state
+                        .scene
                         .models
                         .get(model)
                         .map(|m| m.name.as_str())
@@ -224,35 +190,35 @@ impl CutawayApp {
                 ));
             }
             JobOutput::Preview { geometry, key, ms } => {
-                if key == crate::cutting::scene_cuts::PreviewKey::of(&self.scene) {
-                    self.status.last_cut_ms = Some(ms);
-                    self.status.cut_triangles = geometry.triangle_count();
-                    self.viewport.preview = Some(geometry);
-                    self.viewport.preview_key = Some(key);
+                if key == crate::cutting::scene_cuts::PreviewKey::of(&self.state.scene) {
+                    self.state.status.last_cut_ms = Some(ms);
+                    self.state.status.cut_triangles = geometry.triangle_count();
+                    self.state.viewport.preview = Some(geometry);
+                    self.state.viewport.preview_key = Some(key);
                 }
             }
             JobOutput::CutsApplied { meshes, key } => {
-                if key != crate::cutting::scene_cuts::PreviewKey::of(&self.scene) {
-                    self.say("The cutters changed while cutting; Remove All Cut Geometry was not applied");
+                if key != crate::cutting::scene_cuts::PreviewKey::of(&self.state.scene) {
+                    self.state.say("The cutters changed while cutting; Remove All Cut Geometry was not applied");
                     return;
                 }
-                let before = self.scene.clone();
+                let before = self.state.scene.clone();
                 let count = meshes.len();
                 for (i, mesh) in meshes {
-                    if let Some(m) = self.scene.models.get_mut(i) {
+                    if let Some(m) = self.state.scene.models.get_mut(i) {
                         m.replace_mesh(mesh);
                     }
                 }
-                self.scene.cutters.clear();
-                self.viewport.editor.finish();
-                self.viewport.preview = None;
-                self.viewport.preview_key = None;
-                self.record("remove all cut geometry", before);
-                self.say(format!(
+                self.state.scene.cutters.clear();
+                self.state.viewport.editor.finish();
+                self.state.viewport.preview = None;
+                self.state.viewport.preview_key = None;
+                self.state.record("remove all cut geometry", before);
+                self.state.say(format!(
                     "Applied the cuts to {count} models; new cuts reach the structures behind"
                 ));
             }
-            JobOutput::Done(message) => self.say(message),
+            JobOutput::Done(message) => self.state.say(message),
         }
     }
 
@@ -262,46 +228,49 @@ impl CutawayApp {
         replace: bool,
         sources: &[PathBuf],
     ) {
-        let before = self.scene.clone();
+        let before = self.state.scene.clone();
         if replace {
-            self.atlas.cancel();
-            let render = self.scene.render;
-            self.scene = new_scene();
-            self.scene.render = render;
-            self.session_path = None;
-            self.selected_model = None;
-            self.history.clear();
-            self.viewport.reset_editor();
+            self.state.atlas.cancel();
+            let render = self.state.scene.render;
+            self.state.scene = new_scene();
+            self.state.scene.render = render;
+            self.state.session_path = None;
+            self.state.selected_model = None;
+            self.state.history.clear();
+            self.state.viewport.reset_editor();
         }
-        let first_new = self.scene.models.len();
+        let first_new = self.state.scene.models.len();
         let count = models.len();
         let default_scene = crate::default_anatomy::is_default_scene(&models);
         let from_volume = sources.iter().any(|p| crate::io::volume::is_volume(p));
         for (i, model) in models.into_iter().enumerate() {
             let color =
                 crate::anatomy_colors::structure_color(&model.name, model.color, first_new + i);
-            self.scene.models.push(SceneModel::structure(model, color));
+            self.state
+                .scene
+                .models
+                .push(SceneModel::structure(model, color));
         }
         if replace {
-            super::view_menu::orient_new_scene(self, default_scene, from_volume);
-            self.last_committed = self.scene.clone();
-            self.recovery.mark_dirty();
+            super::view_menu::orient_new_scene(&mut self.state, default_scene, from_volume);
+            self.state.last_committed = self.state.scene.clone();
+            self.state.recovery.mark_dirty();
         } else {
-            self.record(&format!("add {count} models"), before);
+            self.state.record(&format!("add {count} models"), before);
         }
         let what = match sources {
             [] => "the example scene".to_string(),
             [one] => file_label(one),
             many => format!("{} items", many.len()),
         };
-        self.say(format!(
+        self.state.say(format!(
             "Loaded {what}: {count} models, {} triangles",
-            super::status_bar::grouped(triangle_count(&self.scene))
+            super::status_bar::grouped(triangle_count(&self.state.scene))
         ));
     }
 
     pub(super) fn save_session(&mut self, path: &Path) -> anyhow::Result<()> {
-        super::bridge::save_session(self, path)
+        super::bridge::save_session(&self.state, path)
     }
 
     pub(super) fn load_session(&mut self, ctx: &egui::Context, path: &Path) {
@@ -320,10 +289,11 @@ impl CutawayApp {
     }
 
     pub(super) fn export_image_to(&mut self, ctx: &egui::Context, path: PathBuf) {
-        let scene = self.scene.clone();
+        let scene = self.state.scene.clone();
         // Camera and Scalpel modes show the cut too: the picture shows it as well.
-        let preview = super::cut_view::shows_cut(self.mode) && !self.scene.cutters.is_empty();
-        let settings = self.export_image.clone();
+        let preview =
+            super::cut_view::shows_cut(self.state.mode) && !self.state.scene.cutters.is_empty();
+        let settings = self.state.export_image.clone();
         self.spawn(
             ctx,
             format!("Exporting {}×{} image", settings.width, settings.height),
@@ -337,8 +307,8 @@ impl CutawayApp {
     }
 
     pub(super) fn export_meshes_to(&mut self, ctx: &egui::Context, dir: PathBuf) {
-        let scene = self.scene.clone();
-        let settings = self.export_meshes.clone();
+        let scene = self.state.scene.clone();
+        let settings = self.state.export_meshes.clone();
         self.spawn(ctx, "Exporting cut meshes", move |progress| {
             let files = super::bridge::export_meshes(&scene, &settings, &dir, progress)?;
             Ok(JobOutput::Done(format!(
@@ -350,9 +320,10 @@ impl CutawayApp {
     }
 
     pub(super) fn export_turntable_to(&mut self, ctx: &egui::Context, dir: PathBuf) {
-        let scene = self.scene.clone();
-        let preview = super::cut_view::shows_cut(self.mode) && !self.scene.cutters.is_empty();
-        let settings = self.export_turntable.clone();
+        let scene = self.state.scene.clone();
+        let preview =
+            super::cut_view::shows_cut(self.state.mode) && !self.state.scene.cutters.is_empty();
+        let settings = self.state.export_turntable.clone();
         let label = format!(
             "Exporting a turntable of {} frames",
             settings.options.frames
@@ -368,20 +339,20 @@ impl CutawayApp {
     /// Elsewhere (Edit mode) a preview the cutters no longer match is dropped: nothing draws
     /// it, and it holds every cut model's kept part and walls.
     pub(super) fn update_preview(&mut self, ctx: &egui::Context) {
-        let key = crate::cutting::scene_cuts::PreviewKey::of(&self.scene);
-        if !super::cut_view::shows_cut(self.mode) || self.scene.cutters.is_empty() {
-            if self.viewport.preview_key.as_ref() != Some(&key) {
-                self.viewport.preview = None;
-                self.viewport.preview_key = None;
+        let key = crate::cutting::scene_cuts::PreviewKey::of(&self.state.scene);
+        if !super::cut_view::shows_cut(self.state.mode) || self.state.scene.cutters.is_empty() {
+            if self.state.viewport.preview_key.as_ref() != Some(&key) {
+                self.state.viewport.preview = None;
+                self.state.viewport.preview_key = None;
             }
             return;
         }
-        if self.viewport.preview_key.as_ref() == Some(&key)
-            || self.jobs.iter().any(|j| j.label == PREVIEW_JOB)
+        if self.state.viewport.preview_key.as_ref() == Some(&key)
+            || self.state.jobs.iter().any(|j| j.label == PREVIEW_JOB)
         {
             return;
         }
-        let scene = self.scene.clone();
+        let scene = self.state.scene.clone();
         self.spawn(ctx, PREVIEW_JOB, move |_| {
             let (geometry, ms) = crate::cutting::scene_cuts::compute_preview(&scene);
             Ok(JobOutput::Preview { geometry, key, ms })
@@ -390,17 +361,17 @@ impl CutawayApp {
 
     pub(super) fn poll_jobs(&mut self, ctx: &egui::Context) {
         let mut finished = Vec::new();
-        for job in &mut self.jobs {
+        for job in &mut self.state.jobs {
             if let Some(result) = job.poll() {
                 finished.push((job.label.clone(), result));
             }
         }
-        self.jobs.retain(Job::is_running);
+        self.state.jobs.retain(Job::is_running);
         for (label, result) in finished {
             match result {
                 Ok(output) => self.finish_job(ctx, output),
-                Err(e) if jobs::is_cancelled(&e) => self.say(format!("{label}: cancelled")),
-                Err(e) => self.complain(&e),
+                Err(e) if jobs::is_cancelled(&e) => self.state.say(format!("{label}: cancelled")),
+                Err(e) => self.state.complain(&e),
             }
         }
     }

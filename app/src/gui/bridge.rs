@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec2;
 
-use super::app::CutawayApp;
 use super::jobs::Progress;
+use super::state::AppState;
 use crate::cutting::cut_scene;
 use crate::cutting::scene_cuts::cut_each_in_turn;
 use crate::render::{CutterOverlay, FrameInputs, OutputTarget, Renderer, ViewMode};
@@ -58,8 +58,8 @@ impl egui_wgpu::CallbackTrait for ViewCallback {
 }
 
 /// What the renderer draws for the window's current state.
-pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
-    use super::app::Mode;
+pub fn frame_inputs(app: &AppState, size: [u32; 2]) -> FrameInputs {
+    use super::action::Mode;
     // Camera and Scalpel draw the cut (without the removed-piece views) as Preview does.
     let cut = match app.mode {
         Mode::Camera | Mode::Scalpel => super::cut_view::cut_without_views(app),
@@ -112,7 +112,7 @@ pub fn frame_inputs(app: &CutawayApp, size: [u32; 2]) -> FrameInputs {
 }
 
 /// Draws the scene with the GPU renderer into `rect`; false when no renderer is installed.
-pub fn paint_scene(ui: &mut egui::Ui, rect: egui::Rect, app: &CutawayApp) -> bool {
+pub fn paint_scene(ui: &mut egui::Ui, rect: egui::Rect, app: &AppState) -> bool {
     if !app.viewport.gpu {
         return false;
     }
@@ -180,7 +180,7 @@ pub fn example_scene_models(
 }
 
 /// Writes the window's scene as a session file (atomic).
-pub fn save_session(app: &CutawayApp, path: &Path) -> anyhow::Result<()> {
+pub fn save_session(app: &AppState, path: &Path) -> anyhow::Result<()> {
     crate::session::save(path, &app.scene)
 }
 
@@ -218,7 +218,7 @@ pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
 pub fn export_image(
     scene: &Scene,
     preview: bool,
-    settings: &super::menus::ExportImageSettings,
+    settings: &super::state::export_settings::ExportImageSettings,
     path: &Path,
 ) -> anyhow::Result<String> {
     let mut options = crate::render::RenderPngOptions::new(settings.width, settings.height);
@@ -248,7 +248,7 @@ pub fn export_image(
 /// and writes the chosen parts into `dir`; returns the files written.
 pub fn export_meshes(
     scene: &Scene,
-    settings: &super::menus::ExportMeshSettings,
+    settings: &super::state::export_settings::ExportMeshSettings,
     dir: &Path,
     progress: &Progress,
 ) -> anyhow::Result<Vec<PathBuf>> {
@@ -308,7 +308,7 @@ const FALLBACK_TRIANGLES: usize = 40_000;
 /// A CPU preview of the scene for when no GPU renderer is available (a window on a non-wgpu
 /// backend): a subsample of the visible triangles, flat-shaded with a headlight and sorted back
 /// to front.
-pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &CutawayApp) {
+pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &AppState) {
     let bg = app.scene.render.background;
     let to_u8 = |c: f32| (c.clamp(0.0, 1.0) * 255.0) as u8;
     painter.rect_filled(
@@ -391,7 +391,7 @@ pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &CutawayAp
 mod tests;
 
 /// What the window holds now, counted ([`crate::memory_census`]).
-pub fn memory_census(app: &CutawayApp) -> crate::memory_census::MemoryCensus {
+pub fn memory_census(app: &AppState) -> crate::memory_census::MemoryCensus {
     crate::memory_census::MemoryCensus {
         live: app.viewport.live.census(),
         preview_triangles: app.viewport.preview.as_ref().map(|p| p.triangle_count()),

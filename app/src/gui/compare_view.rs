@@ -9,113 +9,21 @@
 //! cutters change, so turning the camera only re-renders (and re-measures exposure when a focus
 //! structure is chosen in the Metrics panel).
 
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 use std::time::Instant;
 
 use glam::DVec2;
 
 use crate::compare::VariantMetrics;
-use crate::cutting::cut_scene::{PreviewGeometry, preview_geometry};
+use crate::cutting::cut_scene::preview_geometry;
 use crate::metrics::MetricsOptions;
 use crate::render::{HeadlessRenderer, RenderPngOptions};
-use crate::scene::{Scene, SceneCutter};
+use crate::scene::Scene;
 
-use super::CutawayApp;
 use super::jobs::Job;
-
-/// Most variants shown side by side.
-pub const MAX_SHOWN: usize = 4;
-
-/// Everything the pictures and measures depend on.
-#[derive(Clone, Debug, PartialEq)]
-struct Request {
-    variants: Vec<(String, Vec<SceneCutter>)>,
-    camera: [f64; 9],
-    tile: [u32; 2],
-    focus: Option<String>,
-    critical: Vec<String>,
-    models: Vec<(usize, bool, u32, [u32; 3])>,
-}
-
-impl Request {
-    fn of(scene: &Scene, tile: [u32; 2], options: &MetricsOptions) -> Request {
-        let c = scene.camera;
-        let mut variants = crate::variants::all(scene);
-        variants.truncate(MAX_SHOWN);
-        Request {
-            variants,
-            camera: [
-                c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y,
-                c.up.z,
-            ],
-            tile,
-            focus: options.focus.clone(),
-            critical: options.critical.clone(),
-            models: scene
-                .models
-                .iter()
-                .map(|m| {
-                    (
-                        Arc::as_ptr(&m.mesh) as usize,
-                        m.visible,
-                        m.opacity.to_bits(),
-                        m.color.map(f32::to_bits),
-                    )
-                })
-                .collect(),
-        }
-    }
-}
-
-/// A variant's cut and measures, kept while its cutters and the models stay the same.
-struct Cached {
-    key: (Vec<SceneCutter>, Vec<usize>),
-    geometry: Arc<PreviewGeometry>,
-    /// Measures and the options (and camera, for exposure) they were taken with.
-    metrics: Option<(MetricsOptions, [f64; 9], crate::metrics::Metrics)>,
-}
-
-#[derive(Default)]
-struct Worker {
-    renderer: Option<HeadlessRenderer>,
-    cache: Vec<Cached>,
-}
-
-/// What one update produced.
-pub struct Compared {
-    pub images: Vec<image::RgbaImage>,
-    pub variants: Vec<VariantMetrics>,
-    /// Wall time of the update on the worker, ms.
-    pub ms: f64,
-}
-
-/// The view's state.
-#[derive(Default)]
-pub struct CompareView {
-    /// The view replaces the 3D view.
-    pub open: bool,
-    /// The newest finished update, or why it failed.
-    pub shown: Option<Result<Compared, String>>,
-    textures: Vec<egui::TextureHandle>,
-    shown_request: Option<Request>,
-    job: Option<(Request, Job<Compared>)>,
-    worker: Arc<Mutex<Worker>>,
-    /// Size of one viewport in pixels, from the last layout.
-    tile: [u32; 2],
-    /// How many viewports the shared camera was last framed for: the main view's camera is
-    /// framed for a wide view, and seen through a narrow viewport it cuts the models off or
-    /// leaves them off-centre, so opening the view (or changing the number shown) frames the
-    /// scene for the viewports' shape, keeping the direction; closing frames it for the 3D
-    /// view again.
-    framed_for: Option<usize>,
-}
-
-impl CompareView {
-    /// True while pictures are being made.
-    pub fn busy(&self) -> bool {
-        self.job.is_some()
-    }
-}
+use super::state::AppState;
+use super::state::compare::{Cached, Request, Worker};
+pub use super::state::compare::{CompareView, Compared, MAX_SHOWN};
 
 /// Draws and measures variant `k` of `scene` with the worker's renderer and cache.
 fn compare_one(
@@ -189,7 +97,7 @@ fn compare_one(
 
 /// Takes finished pictures and starts new ones when the variants, the camera or the viewport
 /// size changed and no pointer button is held. Call once per frame.
-pub fn update(app: &mut CutawayApp, ctx: &egui::Context) {
+pub fn update(app: &mut AppState, ctx: &egui::Context) {
     if !app.compare.open && app.compare.framed_for.take().is_some() {
         super::view_menu::apply(app, super::view_menu::ViewCommand::ZoomToFit);
     }
@@ -274,7 +182,7 @@ pub fn update(app: &mut CutawayApp, ctx: &egui::Context) {
 
 /// The view, in place of the 3D view: the viewports in a row, each with its name and its column
 /// of the metrics table under it.
-pub fn compare_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
+pub fn compare_ui(ui: &mut egui::Ui, app: &mut AppState) {
     egui::Frame::NONE
         .fill(ui.visuals().panel_fill)
         .inner_margin(egui::Margin::same(8))
@@ -284,7 +192,7 @@ pub fn compare_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
         });
 }
 
-fn compare_contents(ui: &mut egui::Ui, app: &mut CutawayApp) {
+fn compare_contents(ui: &mut egui::Ui, app: &mut AppState) {
     let names = crate::variants::names(&app.scene);
     let shown = names.len().min(MAX_SHOWN);
     ui.horizontal(|ui| {
@@ -375,7 +283,7 @@ fn compare_contents(ui: &mut egui::Ui, app: &mut CutawayApp) {
 }
 
 /// Drag turns (Shift: pans) the shared camera; the wheel zooms.
-fn camera_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, ppp: f64) {
+fn camera_input(ui: &egui::Ui, response: &egui::Response, app: &mut AppState, ppp: f64) {
     if response.dragged() {
         let delta = response.drag_delta();
         let delta_px = DVec2::new(delta.x as f64 * ppp, delta.y as f64 * ppp);
@@ -387,7 +295,7 @@ fn camera_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, 
         }
     }
     if response.hovered() {
-        let (notches, _) = super::viewport::wheel_notches(ui);
+        let (notches, _) = super::navigation::wheel_notches(ui);
         if notches != 0.0 {
             let min = app.scene.bbox().diagonal().max(1e-6) * 1e-3;
             crate::view::camera_controls::zoom(&mut app.scene.camera, notches, min);

@@ -10,7 +10,8 @@ use std::sync::{Arc, Weak};
 
 use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
 
-use super::app::{CutawayApp, Mode};
+use super::action::Mode;
+use super::state::AppState;
 
 /// True in the modes that show the computed cut (the preview job runs in them).
 pub fn shows_cut(mode: Mode) -> bool {
@@ -39,7 +40,7 @@ pub fn holds_derived() -> bool {
 }
 
 /// What Camera and Scalpel modes draw for the current preview: kept parts, walls and contours.
-pub fn cut_without_views(app: &CutawayApp) -> Option<Arc<PreviewGeometry>> {
+pub fn cut_without_views(app: &AppState) -> Option<Arc<PreviewGeometry>> {
     let full = app.viewport.preview.as_ref()?;
     if app.scene.cutters.is_empty() {
         return None;
@@ -65,7 +66,7 @@ const HIGHLIGHT_MIX: f32 = 0.3;
 /// Tints the selected model in the drawn copy of the scene (never in the scene itself, so
 /// exports and sessions keep its colour). Not in Edit mode, where the selection is the target
 /// being painted and the live cut must look like the committed one.
-pub fn highlight_selection(app: &CutawayApp, drawn: &mut crate::scene::Scene) {
+pub fn highlight_selection(app: &AppState, drawn: &mut crate::scene::Scene) {
     if app.mode == Mode::Edit {
         return;
     }

@@ -3,19 +3,14 @@
 //! its opacity, Slices, Ribbons with count and width) for Preview mode, and the "Live cut" toggle
 //! (the cut shown while painting in Edit mode, see [`super::live_cut`]).
 
-use super::app::{Action, CutawayApp};
+use super::action::Action;
+use super::state::AppState;
 use crate::scene::SubCutterView;
 use cutter::CutKind;
 
-/// Which tab is shown.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum CutterTab {
-    #[default]
-    Initialization,
-    Visualization,
-}
+pub use super::state::CutterTab;
 
-pub fn cutter_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
+pub fn cutter_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     ui.heading("Cutter");
     ui.checkbox(&mut app.viewport.live.enabled, "Live cut")
@@ -39,7 +34,7 @@ pub fn cutter_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     actions
 }
 
-fn initialization_ui(ui: &mut egui::Ui, app: &mut CutawayApp, actions: &mut Vec<Action>) {
+fn initialization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Action>) {
     let before = app.cutter_init.clone();
     egui::Grid::new("cutter-init")
         .num_columns(2)
@@ -115,7 +110,7 @@ fn initialization_ui(ui: &mut egui::Ui, app: &mut CutawayApp, actions: &mut Vec<
     ui.label(egui::RichText::new(hint).weak().small());
 }
 
-fn visualization_ui(ui: &mut egui::Ui, app: &mut CutawayApp, actions: &mut Vec<Action>) {
+fn visualization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Action>) {
     if app.scene.cutters.is_empty() {
         ui.label(
             egui::RichText::new(

@@ -6,22 +6,24 @@ use std::time::Instant;
 
 use super::action::{Action, Purpose};
 use super::app::CutawayApp;
-use super::app_jobs::JobOutput;
+use super::job_output::JobOutput;
 
 impl CutawayApp {
     pub(super) fn open_dialog(&mut self, ctx: &egui::Context, purpose: Purpose) {
         let start_dir = self
+            .state
             .session_path
             .as_ref()
             .and_then(|p| p.parent().map(Path::to_path_buf))
             .or_else(|| {
-                self.recent
+                self.state
+                    .recent
                     .paths
                     .first()
                     .and_then(|p| p.parent().map(Path::to_path_buf))
             });
-        if !self.native_dialogs {
-            self.browser = Some(super::file_browser::FileBrowser::new(purpose, start_dir));
+        if !self.state.native_dialogs {
+            self.state.browser = Some(super::file_browser::FileBrowser::new(purpose, start_dir));
             return;
         }
         self.spawn(ctx, purpose.title(), move |_| {
@@ -113,9 +115,11 @@ impl CutawayApp {
             Purpose::OpenImage => self.apply(ctx, Action::OpenImage(first)),
             Purpose::SaveGesture => {
                 let path = with_extension(first, "json");
-                match self.viewport.save_recording(&path) {
-                    Ok(n) => self.say(format!("Saved gesture of {n} events to {}", path.display())),
-                    Err(e) => self.complain(&e),
+                match self.state.viewport.save_recording(&path) {
+                    Ok(n) => self
+                        .state
+                        .say(format!("Saved gesture of {n} events to {}", path.display())),
+                    Err(e) => self.state.complain(&e),
                 }
             }
         }
@@ -123,7 +127,7 @@ impl CutawayApp {
 
     pub(super) fn dialogs_ui(&mut self, ctx: &egui::Context) -> Vec<Action> {
         let mut actions = Vec::new();
-        if let Some(path) = self.pending_recovery.clone() {
+        if let Some(path) = self.state.pending_recovery.clone() {
             egui::Modal::new(egui::Id::unique("cutaway-recovery")).show(ctx, |ui| {
                 ui.heading("Restore the previous session?");
                 ui.label("Cutaway did not exit cleanly last time. An autosaved session was found:");
@@ -143,13 +147,13 @@ impl CutawayApp {
                 });
             });
         }
-        if let Some(browser) = &mut self.browser
+        if let Some(browser) = &mut self.state.browser
             && let Some(paths) = browser.ui(ctx)
         {
             let purpose = browser.purpose;
-            self.browser = None;
+            self.state.browser = None;
             if let Some(path) = paths.into_iter().next() {
-                self.pending_manual = Some((purpose, path));
+                self.state.pending_manual = Some((purpose, path));
             }
         }
         actions

@@ -1,7 +1,7 @@
 //! Help → Keyboard and Mouse: the whole reference of every mode in one window (the line above the
 //! view shows only the current mode's), the view keys, and the Debug menu's switch.
 
-use super::app::Mode;
+use super::action::Mode;
 
 /// The environment variable that shows the Debug menu (gesture recording).
 pub const DEBUG_ENV: &str = "CUTAWAY_DEBUG";

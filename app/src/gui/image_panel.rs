@@ -5,10 +5,10 @@
 
 use crate::intensity::{ImageLayer, WallDisplay, WindowPreset};
 
-use super::CutawayApp;
+use super::state::AppState;
 
 /// A freshly read image joins the scene, unless it lies outside the models.
-pub fn image_loaded(app: &mut CutawayApp, layer: ImageLayer) {
+pub fn image_loaded(app: &mut AppState, layer: ImageLayer) {
     if let Err(e) = crate::intensity::check_overlap(&layer.image, app.scene.bbox()) {
         app.complain(&e.context(layer.image.source.display().to_string()));
         return;
@@ -40,7 +40,7 @@ pub fn image_loaded(app: &mut CutawayApp, layer: ImageLayer) {
 
 /// The image to keep when files replace the scene: the scene's image when the scene has no
 /// models (an image opened alone waits for its segmentation), else none.
-pub fn image_kept(app: &CutawayApp, replace: bool) -> Option<ImageLayer> {
+pub fn image_kept(app: &AppState, replace: bool) -> Option<ImageLayer> {
     (replace && app.scene.models.is_empty())
         .then(|| app.scene.image.clone())
         .flatten()
@@ -57,7 +57,7 @@ fn preset_label(preset: WindowPreset) -> &'static str {
 }
 
 /// The Image section (nothing without an image).
-pub fn image_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
+pub fn image_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
     let Some(layer) = app.scene.image.as_mut() else {
         return;
     };
@@ -117,7 +117,7 @@ pub fn image_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
 /// Shift + secondary-button drag that starts on a wall showing the image adjusts the window like
 /// a radiology viewer: right widens, down raises the level; one undo step per drag. A drag that
 /// starts elsewhere keeps its navigation meaning. Returns true when it took the drag.
-pub fn window_drag(app: &mut CutawayApp, response: &egui::Response, ui: &egui::Ui) -> bool {
+pub fn window_drag(app: &mut AppState, response: &egui::Response, ui: &egui::Ui) -> bool {
     let id = egui::Id::unique("cutaway image window drag");
     let shift = ui.input(|i| i.modifiers.shift);
     if response.drag_started_by(egui::PointerButton::Secondary) {

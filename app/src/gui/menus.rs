@@ -4,83 +4,13 @@
 //! Menus describe what the user asked for as [`Action`]s; only the Rendering menu's toggles change
 //! settings in place (they are view settings, not undoable scene edits).
 
-use super::app::{Action, CutawayApp, Mode, Purpose};
+use super::action::{Action, Mode, Purpose};
+use super::state::AppState;
 use crate::scene::Stereo;
 
-/// The largest exported image side (8k).
-pub const MAX_EXPORT_SIDE: u32 = 8192;
-
-/// The Export Image dialog's settings.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ExportImageSettings {
-    /// The dialog is open.
-    pub open: bool,
-    /// Output size in pixels, each in 1..=[`MAX_EXPORT_SIDE`].
-    pub width: u32,
-    pub height: u32,
-    /// Write a transparent background instead of the scene's background colour.
-    pub transparent: bool,
-    /// Labels, scale bar and orientation marker drawn over the picture (none by default).
-    pub annotations: crate::annotate::picture::AnnotationChoice,
-}
-
-impl Default for ExportImageSettings {
-    fn default() -> Self {
-        ExportImageSettings {
-            open: false,
-            width: 3840,
-            height: 2160,
-            transparent: false,
-            annotations: crate::annotate::picture::AnnotationChoice {
-                extras: crate::annotate::labelled::Extras {
-                    scale_bar: false,
-                    marker: false,
-                },
-                ..Default::default()
-            },
-        }
-    }
-}
-
-/// Mesh file format of Export Cut Meshes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MeshFormat {
-    Obj,
-    Stl,
-    Ply,
-}
-
-impl MeshFormat {
-    pub fn extension(self) -> &'static str {
-        match self {
-            MeshFormat::Obj => "obj",
-            MeshFormat::Stl => "stl",
-            MeshFormat::Ply => "ply",
-        }
-    }
-}
-
-/// The Export Cut Meshes dialog's settings.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ExportMeshSettings {
-    pub open: bool,
-    pub format: MeshFormat,
-    pub kept: bool,
-    pub walls: bool,
-    pub removed: bool,
-}
-
-impl Default for ExportMeshSettings {
-    fn default() -> Self {
-        ExportMeshSettings {
-            open: false,
-            format: MeshFormat::Obj,
-            kept: true,
-            walls: true,
-            removed: true,
-        }
-    }
-}
+pub use super::state::export_settings::{
+    ExportImageSettings, ExportMeshSettings, MAX_EXPORT_SIDE, MeshFormat,
+};
 
 /// A calm dark theme with one accent colour and a little more room than egui's default.
 pub fn apply_style(ctx: &egui::Context) {
@@ -106,7 +36,7 @@ fn item(ui: &mut egui::Ui, text: &str, shortcut: &str) -> bool {
 }
 
 /// The menu bar.
-pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
+pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
@@ -294,7 +224,7 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
 }
 
 /// The Debug menu (only with the debug environment variable, see [`super::help::DEBUG_ENV`]).
-fn debug_menu_ui(ui: &mut egui::Ui, app: &CutawayApp, actions: &mut Vec<Action>) {
+fn debug_menu_ui(ui: &mut egui::Ui, app: &AppState, actions: &mut Vec<Action>) {
     ui.menu_button("Debug", |ui| {
         if app.viewport.recording.is_none() {
             if ui
@@ -315,7 +245,7 @@ fn to_u8(c: f32) -> u8 {
 }
 
 /// The mode buttons (thesis 3.5 C), undo/redo and a busy indicator.
-pub fn toolbar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
+pub fn toolbar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     ui.horizontal(|ui| {
         ui.add_space(2.0);
@@ -392,7 +322,7 @@ pub fn toolbar_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     actions
 }
 
-fn export_image_window_ui(ctx: &egui::Context, app: &mut CutawayApp) -> Vec<Action> {
+fn export_image_window_ui(ctx: &egui::Context, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     if !app.export_image.open {
         return actions;
@@ -455,7 +385,7 @@ fn export_image_window_ui(ctx: &egui::Context, app: &mut CutawayApp) -> Vec<Acti
     actions
 }
 
-fn export_meshes_window_ui(ctx: &egui::Context, app: &mut CutawayApp) -> Vec<Action> {
+fn export_meshes_window_ui(ctx: &egui::Context, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     if !app.export_meshes.open {
         return actions;

@@ -12,116 +12,16 @@ use std::time::Instant;
 
 use glam::DVec2;
 
-use crate::metrics::{Metrics, MetricsOptions};
-use crate::scene::Scene;
+use crate::metrics::Metrics;
 
-use super::CutawayApp;
 use super::jobs::Job;
-
-/// What a measurement depends on; a new one starts when this changes.
-#[derive(Clone, Debug, PartialEq)]
-struct Request {
-    preview: crate::cutting::scene_cuts::PreviewKey,
-    focus: Option<String>,
-    critical: Vec<String>,
-    /// Eye and target, only when a focus is measured (exposure is seen from the camera).
-    camera: Option<[f64; 6]>,
-    /// Mesh, visibility and opacity of every model (they hide the focus or not).
-    models: Vec<(usize, bool, u32)>,
-}
-
-impl Request {
-    fn of(scene: &Scene, panel: &MetricsPanel) -> Request {
-        let c = scene.camera;
-        Request {
-            preview: crate::cutting::scene_cuts::PreviewKey::of(scene),
-            focus: panel.focus.clone(),
-            critical: panel.critical.clone(),
-            camera: panel.focus.as_ref().map(|_| {
-                [
-                    c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z,
-                ]
-            }),
-            models: scene
-                .models
-                .iter()
-                .map(|m| {
-                    (
-                        std::sync::Arc::as_ptr(&m.mesh) as usize,
-                        m.visible,
-                        m.opacity.to_bits(),
-                    )
-                })
-                .collect(),
-        }
-    }
-}
-
-/// A finished measurement.
-pub struct Measured {
-    pub metrics: Metrics,
-    /// Wall time of the measurement on the worker, ms.
-    pub ms: f64,
-}
-
-/// Which cut the removal table shows.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Scope {
-    /// Every cutter together, per structure.
-    #[default]
-    Scene,
-    /// One scene cutter.
-    Cutter(usize),
-}
-
-/// The panel's state.
-#[derive(Default)]
-pub struct MetricsPanel {
-    /// The panel is shown (and measurements run).
-    pub open: bool,
-    pub scope: Scope,
-    /// Structure whose exposure is measured.
-    pub focus: Option<String>,
-    /// Structures whose distance to the cut walls is measured, in the order marked.
-    pub critical: Vec<String>,
-    /// The newest finished measurement, or why it failed.
-    pub shown: Option<Result<Measured, String>>,
-    shown_request: Option<Request>,
-    job: Option<(Request, Job<Measured>)>,
-}
-
-impl MetricsPanel {
-    /// True while a measurement runs.
-    pub fn busy(&self) -> bool {
-        self.job.is_some()
-    }
-
-    /// Whether the shown numbers describe the scene as it is now.
-    pub fn is_current(&self, scene: &Scene) -> bool {
-        self.shown_request.as_ref() == Some(&Request::of(scene, self))
-    }
-
-    /// Marks or unmarks `name` as critical.
-    pub fn set_critical(&mut self, name: &str, critical: bool) {
-        self.critical.retain(|n| n != name);
-        if critical {
-            self.critical.push(name.to_string());
-        }
-    }
-
-    /// The options the measurement uses (the CLI's `--focus` and `--critical`).
-    pub fn options(&self) -> MetricsOptions {
-        MetricsOptions {
-            focus: self.focus.clone(),
-            critical: self.critical.clone(),
-            ..MetricsOptions::default()
-        }
-    }
-}
+use super::state::AppState;
+use super::state::metrics::Request;
+pub use super::state::metrics::{Measured, MetricsPanel, Scope};
 
 /// Takes a finished measurement and starts the next one when the scene changed and no pointer
 /// button is held. Call once per frame.
-pub fn update(app: &mut CutawayApp, ctx: &egui::Context) {
+pub fn update(app: &mut AppState, ctx: &egui::Context) {
     let panel = &mut app.metrics;
     if let Some((request, job)) = &mut panel.job
         && let Some(result) = job.poll()
@@ -174,7 +74,7 @@ fn number(value: Option<f64>) -> String {
 }
 
 /// The panel's contents (the side panel itself is laid out by the app).
-pub fn metrics_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
+pub fn metrics_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
     ui.heading("Metrics");
     let names: Vec<String> = app.scene.models.iter().map(|m| m.name.clone()).collect();
     let panel = &mut app.metrics;
@@ -354,7 +254,7 @@ fn cutter_table(ui: &mut egui::Ui, metrics: &Metrics, index: usize) {
 
 /// Draws, for each critical structure, its closest point and the nearest wall point joined by a
 /// line, with the distance, over the 3D view.
-pub fn paint_closest_points(painter: &egui::Painter, rect: egui::Rect, app: &CutawayApp) {
+pub fn paint_closest_points(painter: &egui::Painter, rect: egui::Rect, app: &AppState) {
     let panel = &app.metrics;
     if !panel.open {
         return;
@@ -399,7 +299,7 @@ pub fn paint_closest_points(painter: &egui::Painter, rect: egui::Rect, app: &Cut
 }
 
 /// The right-hand side panel's contents: Variants, Metrics and Rulers.
-pub fn side_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
+pub fn side_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
     egui::ScrollArea::vertical()
         .id_salt("metrics-side")
         .show(ui, |ui| {
@@ -416,12 +316,12 @@ pub fn side_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
 }
 
 /// Whether the side panel is shown.
-pub fn side_panel_open(app: &CutawayApp) -> bool {
+pub fn side_panel_open(app: &AppState) -> bool {
     app.metrics.open || app.ruler.active || app.compare.open
 }
 
 /// The View menu's Metrics, Ruler and Compare Variants switches.
-pub fn view_menu_items(ui: &mut egui::Ui, app: &mut CutawayApp) {
+pub fn view_menu_items(ui: &mut egui::Ui, app: &mut AppState) {
     ui.checkbox(&mut app.metrics.open, "Metrics");
     let mut ruler = app.ruler.active;
     if ui.checkbox(&mut ruler, "Ruler").changed() {

@@ -19,6 +19,7 @@ pub mod about;
 pub mod action;
 pub mod app;
 pub mod app_jobs;
+pub mod apply;
 pub mod atlas_arrival;
 pub mod bridge;
 pub mod compare_view;
@@ -31,6 +32,7 @@ pub mod file_browser;
 mod first_press_tests;
 pub mod help;
 pub mod image_panel;
+pub mod job_output;
 pub mod jobs;
 pub mod key_reference;
 pub mod live_cut;
@@ -45,6 +47,7 @@ pub mod ruler;
 pub mod scalpel_mode;
 #[cfg(test)]
 mod smoothness_tests;
+pub mod state;
 pub mod status_bar;
 #[cfg(test)]
 pub mod test_window;
@@ -57,6 +60,7 @@ pub mod viewport;
 mod volume_jobs_tests;
 
 pub use app::{CutawayApp, Mode, StartOptions};
+pub use state::AppState;
 
 /// Opens the window on `paths` (meshes, directories of meshes, or one session file); no paths
 /// opens the embedded default scene. Returns when the window is closed.

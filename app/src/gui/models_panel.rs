@@ -5,8 +5,9 @@
 //! undoable; a slider drag or a colour-picker drag is one step. When the selection changes (a
 //! double-click in the view), the list opens the model's groups and scrolls to its row.
 
-use super::app::{Action, CutawayApp};
+use super::action::Action;
 use super::model_groups::GroupNode;
+use super::state::AppState;
 use crate::scene::ModelStyle;
 
 fn srgb_u8(c: [f32; 3]) -> [u8; 3] {
@@ -32,7 +33,7 @@ struct ListState {
 /// How many frames the list keeps scrolling to a newly selected model.
 const REVEAL_FRAMES: u8 = 12;
 
-pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
+pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     let state_id = egui::Id::unique("models-list-state");
     let mut state: ListState = ui.data(|d| d.get_temp(state_id)).unwrap_or_default();
@@ -209,7 +210,7 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
 }
 
 /// Sets the visibility of `models` as one undo step (nothing when none changes).
-fn set_visible(app: &mut CutawayApp, models: &[usize], visible: bool, label: &str) {
+fn set_visible(app: &mut AppState, models: &[usize], visible: bool, label: &str) {
     if models
         .iter()
         .all(|&i| app.scene.models[i].visible == visible)
@@ -226,7 +227,7 @@ fn set_visible(app: &mut CutawayApp, models: &[usize], visible: bool, label: &st
 /// open while filtering and open up to reveal the model `reveal`.
 fn group_body_ui(
     ui: &mut egui::Ui,
-    app: &mut CutawayApp,
+    app: &mut AppState,
     node: &GroupNode,
     filtering: bool,
     reveal: Option<usize>,
@@ -272,7 +273,7 @@ fn group_body_ui(
 /// One model's row: visibility box, colour swatch, name (click selects, double-click centres).
 fn model_row_ui(
     ui: &mut egui::Ui,
-    app: &mut CutawayApp,
+    app: &mut AppState,
     index: usize,
     reveal: bool,
     actions: &mut Vec<Action>,

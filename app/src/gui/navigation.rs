@@ -11,14 +11,36 @@
 
 use glam::DVec2;
 
-use super::app::{Action, CutawayApp, Mode};
+use super::action::{Action, Mode};
+use super::state::AppState;
+pub use super::state::viewport::NavDrag;
 use crate::view::camera_controls;
 
-/// What the navigation drag in progress does.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum NavDrag {
-    Orbit,
-    Pan,
+/// Wheel notches of this frame (positive = wheel up, away from the user), and whether Ctrl/Cmd
+/// was held.
+pub fn wheel_notches(ui: &egui::Ui) -> (f64, bool) {
+    ui.input(|i| {
+        let mut notches = 0.0;
+        let mut ctrl = false;
+        for event in &i.events {
+            if let egui::Event::MouseWheel {
+                unit,
+                delta,
+                modifiers,
+                ..
+            } = event
+            {
+                let d = delta.y as f64;
+                notches += match unit {
+                    egui::MouseWheelUnit::Point => d / 50.0,
+                    egui::MouseWheelUnit::Line => d,
+                    egui::MouseWheelUnit::Page => d * 10.0,
+                };
+                ctrl |= modifiers.command || modifiers.ctrl;
+            }
+        }
+        (notches, ctrl)
+    })
 }
 
 /// Handles navigation for this frame. True when it owns the pointer (a navigation drag, or Alt
@@ -26,7 +48,7 @@ pub enum NavDrag {
 pub fn navigation_input(
     ui: &egui::Ui,
     response: &egui::Response,
-    app: &mut CutawayApp,
+    app: &mut AppState,
     ppp: f64,
     to_px: impl Fn(egui::Pos2) -> DVec2,
     actions: &mut Vec<Action>,
@@ -82,13 +104,13 @@ pub fn navigation_input(
 
 /// True when the wheel in Edit mode goes to the cutter editor: over the active cutter, or with
 /// Ctrl (rotate the selected plane) while a cutter is edited.
-pub fn wheel_goes_to_editor(app: &CutawayApp, ctrl: bool) -> bool {
+pub fn wheel_goes_to_editor(app: &AppState, ctrl: bool) -> bool {
     app.viewport.editor.hovered_plane().is_some()
         || (ctrl && app.viewport.editor.active_cutter().is_some())
 }
 
-fn edit_wheel_zoom(ui: &egui::Ui, app: &mut CutawayApp) {
-    let (notches, ctrl) = super::viewport::wheel_notches(ui);
+fn edit_wheel_zoom(ui: &egui::Ui, app: &mut AppState) {
+    let (notches, ctrl) = wheel_notches(ui);
     if notches != 0.0 && !wheel_goes_to_editor(app, ctrl) {
         let min = crate::view::SizeDefaults::of(&app.scene.bbox()).min_camera_distance;
         camera_controls::zoom(&mut app.scene.camera, notches, min);

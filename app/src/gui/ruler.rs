@@ -11,20 +11,13 @@ use glam::{DVec2, DVec3};
 
 use crate::ruler::Ruler;
 
-use super::CutawayApp;
+use super::state::AppState;
 
-/// The tool's state.
-#[derive(Clone, Debug, Default)]
-pub struct RulerTool {
-    /// Clicks in the 3D view place ruler ends.
-    pub active: bool,
-    /// The first end of the ruler being placed.
-    pub first: Option<DVec3>,
-}
+pub use super::state::RulerTool;
 
 /// The surface point under pixel `px` of the 3D view as drawn (the cut's walls and kept parts
 /// where the view shows the cut), if any.
-pub fn surface_point(app: &mut CutawayApp, px: DVec2) -> Option<DVec3> {
+pub fn surface_point(app: &mut AppState, px: DVec2) -> Option<DVec3> {
     let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, px);
     let current = app.viewport.preview_key.as_ref()
         == Some(&crate::cutting::scene_cuts::PreviewKey::of(&app.scene));
@@ -42,7 +35,7 @@ pub fn surface_point(app: &mut CutawayApp, px: DVec2) -> Option<DVec3> {
 
 /// Places a ruler end at the clicked pixel `px`: the first click starts a ruler, the second
 /// finishes it (one undo step). Says what happened in the status bar.
-pub fn click(app: &mut CutawayApp, px: DVec2) {
+pub fn click(app: &mut AppState, px: DVec2) {
     let Some(point) = surface_point(app, px) else {
         app.say("Ruler: no surface under the pointer");
         return;
@@ -66,7 +59,7 @@ pub fn click(app: &mut CutawayApp, px: DVec2) {
 /// the click was taken.
 pub fn ruler_input(
     response: &egui::Response,
-    app: &mut CutawayApp,
+    app: &mut AppState,
     to_px: impl Fn(egui::Pos2) -> DVec2,
 ) -> bool {
     if !response.clicked_by(egui::PointerButton::Primary) {
@@ -80,7 +73,7 @@ pub fn ruler_input(
 }
 
 /// Draws the scene's rulers (and the first end of one being placed) over the 3D view.
-pub fn paint_rulers(painter: &egui::Painter, rect: egui::Rect, app: &CutawayApp) {
+pub fn paint_rulers(painter: &egui::Painter, rect: egui::Rect, app: &AppState) {
     let ppp = painter.ctx().pixels_per_point() as f64;
     let size = app.viewport.size_px;
     let camera = app.scene.camera;
@@ -117,7 +110,7 @@ pub fn paint_rulers(painter: &egui::Painter, rect: egui::Rect, app: &CutawayApp)
 
 /// The Rulers section of the Metrics panel: the tool switch and every ruler with its length and a
 /// remove button.
-pub fn rulers_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
+pub fn rulers_ui(ui: &mut egui::Ui, app: &mut AppState) {
     ui.heading("Rulers");
     let mut active = app.ruler.active;
     if ui

@@ -7,69 +7,23 @@
 //! zooms), the status line, asking for the selected model's scalpel ahead of the press, and the
 //! panel's controls.
 
-use std::ops::{Deref, DerefMut};
-
 use glam::DVec2;
 
-use super::app::CutawayApp;
-use crate::scalpel_session::{Released, ScalpelSession};
+use super::state::AppState;
+use crate::scalpel_session::Released;
 use crate::view::camera_controls;
 use cutter::scalpel::Tool;
 
+use super::state::viewport::CameraDrag;
+pub use super::state::viewport::ScalpelSlot;
 pub use crate::scalpel_session::ScalpelSettings;
-
-/// Scalpel mode's state in the viewport: the session plus what the pointer is doing.
-pub struct ScalpelSlot {
-    pub session: ScalpelSession,
-    camera_drag: Option<CameraDrag>,
-    /// The viewport in egui points at the last frame (tests aim with it).
-    pub rect: egui::Rect,
-}
-
-impl Default for ScalpelSlot {
-    fn default() -> Self {
-        ScalpelSlot {
-            session: ScalpelSession::default(),
-            camera_drag: None,
-            rect: egui::Rect::NOTHING,
-        }
-    }
-}
-
-impl Deref for ScalpelSlot {
-    type Target = ScalpelSession;
-    fn deref(&self) -> &ScalpelSession {
-        &self.session
-    }
-}
-
-impl DerefMut for ScalpelSlot {
-    fn deref_mut(&mut self) -> &mut ScalpelSession {
-        &mut self.session
-    }
-}
-
-impl ScalpelSlot {
-    /// Forgets the scalpel and the pointer's drag (a new scene was loaded).
-    pub fn reset(&mut self) {
-        self.session.reset();
-        self.camera_drag = None;
-    }
-}
-
-/// What a camera drag in Scalpel mode does.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum CameraDrag {
-    Orbit,
-    Pan,
-}
 
 /// Viewport input in Scalpel mode: primary drag cuts; Alt+drag or right drag orbits,
 /// Shift+drag or middle drag pans, the wheel zooms (the camera stays usable while cutting).
 pub fn scalpel_input(
     ui: &egui::Ui,
     response: &egui::Response,
-    app: &mut CutawayApp,
+    app: &mut AppState,
     ppp: f64,
     to_px: impl Fn(egui::Pos2) -> DVec2,
 ) {
@@ -148,7 +102,7 @@ pub fn scalpel_input(
 }
 
 /// Ends the stroke in progress and records it for undo.
-pub fn finish_stroke(app: &mut CutawayApp) {
+pub fn finish_stroke(app: &mut AppState) {
     let editor = &app.viewport.editor;
     let released = app
         .viewport
@@ -172,7 +126,7 @@ pub fn finish_stroke(app: &mut CutawayApp) {
 }
 
 /// The Scalpel panel: tool, depth and opening width of the next strokes.
-pub fn scalpel_panel_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
+pub fn scalpel_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
     ui.heading("Scalpel");
     // Lengths are edited in millimetres whatever the file's unit (metre-scale bodies too).
     let unit = app.scene.unit;

@@ -5,36 +5,14 @@
 
 use std::path::Path;
 
-use super::app::{Action, CutawayApp, Purpose};
+use super::action::{Action, Purpose};
 use super::jobs::Progress;
-use crate::export::turntable::{MAX_FRAMES, TurntableOptions, TurntableProgress, export_turntable};
+use super::state::AppState;
+use crate::export::turntable::{MAX_FRAMES, TurntableProgress, export_turntable};
 use crate::render::{RenderPngOptions, ViewMode};
 use crate::scene::Scene;
 
-/// The largest turntable frame side.
-pub const MAX_TURNTABLE_SIDE: u32 = 4096;
-
-/// The Export Turntable dialog's settings.
-#[derive(Clone, Debug, PartialEq)]
-pub struct TurntableSettings {
-    /// The dialog is open.
-    pub open: bool,
-    /// Frame size in pixels, each in 1..=[`MAX_TURNTABLE_SIDE`].
-    pub width: u32,
-    pub height: u32,
-    pub options: TurntableOptions,
-}
-
-impl Default for TurntableSettings {
-    fn default() -> Self {
-        TurntableSettings {
-            open: false,
-            width: 640,
-            height: 480,
-            options: TurntableOptions::default(),
-        }
-    }
-}
+pub use super::state::export_settings::{MAX_TURNTABLE_SIDE, TurntableSettings};
 
 /// The job's progress bar counts frames; its Cancel stops the export.
 impl TurntableProgress for Progress {
@@ -73,7 +51,7 @@ pub fn export(
 }
 
 /// The Export Turntable dialog; "Choose Folder…" asks for the output folder.
-pub fn window_ui(ctx: &egui::Context, app: &mut CutawayApp) -> Vec<Action> {
+pub fn window_ui(ctx: &egui::Context, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     if !app.export_turntable.open {
         return actions;
@@ -142,6 +120,7 @@ mod tests {
     use glam::DVec3;
 
     use super::*;
+    use crate::export::turntable::TurntableOptions;
     use crate::gui::jobs::{Job, is_cancelled};
 
     fn off_centre_box() -> Scene {

@@ -3,7 +3,7 @@
 //! an empty cutter set, Duplicate copies the active one, Rename and Delete act on the active one.
 //! Every change is an undo step, and the variants are saved in the session.
 
-use super::CutawayApp;
+use super::state::AppState;
 use crate::variants;
 
 /// A change to the scene's variants.
@@ -22,7 +22,7 @@ pub enum VariantCommand {
 }
 
 /// Applies `command` to the app's scene as one undo step; refusals go to the status bar.
-pub fn apply(app: &mut CutawayApp, command: VariantCommand) {
+pub fn apply(app: &mut AppState, command: VariantCommand) {
     let before = app.scene.clone();
     let active = app.scene.variants.active;
     let result = match &command {
@@ -68,7 +68,7 @@ pub fn apply(app: &mut CutawayApp, command: VariantCommand) {
 }
 
 /// A free name `stem 2`, `stem 3`, … for a new variant.
-fn free_name(app: &CutawayApp, stem: &str) -> String {
+fn free_name(app: &AppState, stem: &str) -> String {
     let names = variants::names(&app.scene);
     (2..)
         .map(|n| format!("{stem} {n}"))
@@ -77,7 +77,7 @@ fn free_name(app: &CutawayApp, stem: &str) -> String {
 }
 
 /// The section's contents.
-pub fn variants_ui(ui: &mut egui::Ui, app: &mut CutawayApp) {
+pub fn variants_ui(ui: &mut egui::Ui, app: &mut AppState) {
     ui.heading("Variants");
     let names = variants::names(&app.scene);
     let active = app.scene.variants.active;

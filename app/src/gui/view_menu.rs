@@ -7,26 +7,15 @@
 
 use crate::view::{LengthUnit, Orientation, SizeDefaults, ViewPreset, fit};
 
-use super::app::{Action, CutawayApp};
-
-/// A change of what the camera looks at (never an undoable scene edit).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ViewCommand {
-    /// Look from one side of the patient, framing every visible model.
-    Preset(ViewPreset),
-    /// Keep the direction, frame every visible model.
-    ZoomToFit,
-    /// Keep the direction, frame the selected model.
-    ZoomToSelection,
-    /// Take these axes as the patient's (the View → Up Axis choice); saved with the session.
-    Orient(Orientation),
-}
+use super::action::Action;
+pub use super::action::ViewCommand;
+use super::state::AppState;
 
 /// Orients, scales and frames a scene that replaced the previous one: the default scene is RAS;
 /// anything else is guessed from its size and shape ([`Orientation::guess`],
 /// [`LengthUnit::guess`]). The first view is anterior, like the default scene's, and the scalpel
 /// starts with lengths relative to the scene's size.
-pub fn orient_new_scene(app: &mut CutawayApp, default_scene: bool, from_volume: bool) {
+pub fn orient_new_scene(app: &mut AppState, default_scene: bool, from_volume: bool) {
     let bbox = app.scene.bbox();
     app.scene.orientation = if default_scene {
         Orientation::RAS
@@ -42,7 +31,7 @@ pub fn orient_new_scene(app: &mut CutawayApp, default_scene: bool, from_volume: 
 }
 
 /// Applies a view command.
-pub fn apply(app: &mut CutawayApp, command: ViewCommand) {
+pub fn apply(app: &mut AppState, command: ViewCommand) {
     let aspect = app.viewport.size_px.x / app.viewport.size_px.y.max(1.0);
     match command {
         ViewCommand::Preset(preset) => {
@@ -78,7 +67,7 @@ pub fn apply(app: &mut CutawayApp, command: ViewCommand) {
 }
 
 /// The View menu's view items (presets, zooms, up axis, the orientation marker).
-pub fn view_items_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
+pub fn view_items_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     for preset in ViewPreset::ALL {
         let button =

@@ -7,217 +7,19 @@
 //! convention as the gesture format, so a recorded gesture replays identically in `cutaway
 //! extrude`.
 
-use std::path::Path;
-use std::sync::Arc;
-
 use glam::{DVec2, DVec3};
 
 use cutter::Camera;
 use cutter::events::{EditorEvent, Key};
 
-use super::app::{Action, CutawayApp, Mode};
-use crate::cutting::editing::CutterInit;
+use super::action::{Action, Mode};
+use super::state::AppState;
+use super::state::viewport::Drag;
+pub use super::state::viewport::{CursorWarp, Recording, ViewportState};
 use crate::view::camera_controls;
 
-/// What the primary-button drag in progress does.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Drag {
-    Orbit,
-    Pan,
-    /// The press went to the editor; the release must too.
-    Editor,
-}
-
-/// The cursor warp of a handle press (thesis 3.3: the cursor snaps to the middle of the handle's
-/// front edge). The editor already treats the pointer as moved there for the whole drag (it adds
-/// the press-to-handle offset to every position), so once the real cursor has arrived at the
-/// handle the positions sent to it are shifted back by that offset; a platform that ignores the
-/// warp request (Wayland, test harnesses) never arrives and gets the plain positions.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct CursorWarp {
-    /// (handle, press) in viewport pixels while waiting for the cursor to arrive.
-    pending: Option<(DVec2, DVec2)>,
-    /// Subtracted from the pointer position for the rest of the drag.
-    offset: DVec2,
-}
-
-impl CursorWarp {
-    /// The cursor was asked to move from `press` to `handle`.
-    pub fn requested(&mut self, handle: DVec2, press: DVec2) {
-        *self = CursorWarp {
-            pending: Some((handle, press)),
-            offset: DVec2::ZERO,
-        };
-    }
-
-    /// The position to send to the editor for the real pointer position `raw` during the drag.
-    pub fn observe(&mut self, raw: DVec2) -> DVec2 {
-        if let Some((handle, press)) = self.pending
-            && raw.distance(handle) <= 1.5
-        {
-            self.offset = handle - press;
-            self.pending = None;
-        }
-        raw - self.offset
-    }
-}
-
-/// A gesture being recorded (the "record gesture" debug action).
-#[derive(Clone, Debug)]
-pub struct Recording {
-    /// Camera when recording started (Edit mode never moves the camera).
-    pub camera: Camera,
-    /// Viewport size in pixels when recording started.
-    pub viewport: DVec2,
-    pub init: CutterInit,
-    pub events: Vec<EditorEvent>,
-}
-
-/// Viewport state that lives across frames.
-pub struct ViewportState {
-    drag: Option<Drag>,
-    /// The cursor warp of the extrusion drag in progress.
-    warp: CursorWarp,
-    /// Size of the viewport in physical pixels at the last frame.
-    pub size_px: DVec2,
-    /// The viewport's rectangle in points at the last frame.
-    pub rect: egui::Rect,
-    /// Pointer position of the last editor event (to send moves only when it changes).
-    last_pointer: Option<DVec2>,
-    pub recording: Option<Recording>,
-    /// The cutter editor and its spatial-index cache.
-    pub editor: crate::cutting::editing::EditorSlot,
-    /// Scalpel mode's blade settings, session and stroke.
-    pub scalpel: super::scalpel_mode::ScalpelSlot,
-    /// Cut parts shown in Preview, with the scene state they were computed for.
-    pub preview: Option<Arc<crate::cutting::cut_scene::PreviewGeometry>>,
-    pub preview_key: Option<crate::cutting::scene_cuts::PreviewKey>,
-    /// The live re-cut shown in Edit mode while the cutter is painted.
-    pub live: crate::cutting::live_cut::LiveCut,
-    /// The renderer is installed in egui's callback resources.
-    pub gpu: bool,
-    /// The navigation drag (right or middle button, Alt+drag in Edit) in progress.
-    pub nav: Option<super::navigation::NavDrag>,
-    /// View → Orientation Marker (a window overlay: exports do not draw it).
-    pub show_marker: bool,
-    /// The models' ray-pick trees (double-click focus, the first press of a cutter).
-    pub picks: crate::cutting::pick::ScenePicks,
-}
-
-impl ViewportState {
-    pub fn new(render_state: Option<&egui_wgpu::RenderState>) -> ViewportState {
-        ViewportState {
-            drag: None,
-            warp: CursorWarp::default(),
-            size_px: DVec2::new(1280.0, 800.0),
-            rect: egui::Rect::NOTHING,
-            last_pointer: None,
-            recording: None,
-            editor: crate::cutting::editing::EditorSlot::default(),
-            scalpel: Default::default(),
-            preview: None,
-            preview_key: None,
-            live: Default::default(),
-            gpu: super::bridge::install_renderer(render_state),
-            nav: None,
-            show_marker: true,
-            picks: Default::default(),
-        }
-    }
-
-    pub fn cancel_drag(&mut self) {
-        self.drag = None;
-        self.nav = None;
-    }
-
-    /// True while a press went to the cutter editor and is not released yet.
-    pub fn editor_dragging(&self) -> bool {
-        self.drag == Some(Drag::Editor)
-    }
-
-    pub fn reset_editor(&mut self) {
-        self.editor = crate::cutting::editing::EditorSlot::default();
-        self.scalpel.reset();
-        self.drag = None;
-        self.preview = None;
-        self.preview_key = None;
-        self.live.clear();
-    }
-
-    pub fn start_recording(&mut self, camera: &Camera, init: &CutterInit) {
-        self.recording = Some(Recording {
-            camera: *camera,
-            viewport: self.size_px,
-            init: init.clone(),
-            events: Vec::new(),
-        });
-    }
-
-    /// Writes the recording as a `cutaway-gesture/1` file and stops recording; returns the number
-    /// of events written.
-    pub fn save_recording(&mut self, path: &Path) -> anyhow::Result<usize> {
-        let Some(recording) = self.recording.take() else {
-            anyhow::bail!("{}: no gesture is being recorded", path.display());
-        };
-        let gesture = recording.gesture();
-        crate::gesture::write_gesture(path, &gesture)?;
-        Ok(gesture.events.len())
-    }
-
-    /// Sends one event to the editor (and the recorder). True when the scene's cutters changed.
-    fn editor_event(&mut self, scene: &mut crate::scene::Scene, event: EditorEvent) -> bool {
-        if let Some(r) = &mut self.recording {
-            r.events.push(event);
-        }
-        self.editor.handle(scene, self.size_px, event)
-    }
-}
-
-impl Recording {
-    /// The recording as a gesture (the format `cutaway extrude` replays).
-    pub fn gesture(&self) -> crate::gesture::Gesture {
-        crate::gesture::Gesture {
-            viewport: self.viewport,
-            camera: self.camera,
-            cut: crate::gesture::CutSettings {
-                kind: self.init.kind,
-                spacing: self.init.spacing,
-                smooth: self.init.smooth,
-            },
-            events: self.events.clone(),
-        }
-    }
-}
-
-/// Wheel notches of this frame (positive = wheel up, away from the user), and whether Ctrl/Cmd
-/// was held.
-pub fn wheel_notches(ui: &egui::Ui) -> (f64, bool) {
-    ui.input(|i| {
-        let mut notches = 0.0;
-        let mut ctrl = false;
-        for event in &i.events {
-            if let egui::Event::MouseWheel {
-                unit,
-                delta,
-                modifiers,
-                ..
-            } = event
-            {
-                let d = delta.y as f64;
-                notches += match unit {
-                    egui::MouseWheelUnit::Point => d / 50.0,
-                    egui::MouseWheelUnit::Line => d,
-                    egui::MouseWheelUnit::Page => d * 10.0,
-                };
-                ctrl |= modifiers.command || modifiers.ctrl;
-            }
-        }
-        (notches, ctrl)
-    })
-}
-
 /// The viewport panel: fills the remaining space.
-pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
+pub fn viewport_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     // Size.
     let size = ui.available_size().max(egui::vec2(16.0, 16.0));
@@ -250,7 +52,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
         match app.mode {
             Mode::Camera | Mode::Preview => camera_input(ui, &response, app, ppp),
             Mode::Scalpel => super::scalpel_mode::scalpel_input(ui, &response, app, ppp, to_px),
-            Mode::Edit => edit_input(ui, &response, app, to_px),
+            Mode::Edit => edit_input(ui, &response, app, to_px, &mut actions),
         }
     }
     response.context_menu(|ui| {
@@ -299,7 +101,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut CutawayApp) -> Vec<Action> {
     actions
 }
 
-fn camera_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, ppp: f64) {
+fn camera_input(ui: &egui::Ui, response: &egui::Response, app: &mut AppState, ppp: f64) {
     let shift = ui.input(|i| i.modifiers.shift);
     if response.drag_started_by(egui::PointerButton::Primary) {
         app.viewport.drag = Some(if shift { Drag::Pan } else { Drag::Orbit });
@@ -321,7 +123,7 @@ fn camera_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, 
         app.viewport.drag = None;
     }
     if response.hovered() {
-        let (notches, _) = wheel_notches(ui);
+        let (notches, _) = super::navigation::wheel_notches(ui);
         if notches != 0.0 {
             let min = app.scene.bbox().diagonal().max(1e-6) * 1e-3;
             camera_controls::zoom(&mut app.scene.camera, notches, min);
@@ -332,8 +134,9 @@ fn camera_input(ui: &egui::Ui, response: &egui::Response, app: &mut CutawayApp, 
 fn edit_input(
     ui: &egui::Ui,
     response: &egui::Response,
-    app: &mut CutawayApp,
+    app: &mut AppState,
     to_px: impl Fn(egui::Pos2) -> DVec2,
+    actions: &mut Vec<Action>,
 ) {
     let (shift, ctrl) = ui.input(|i| (i.modifiers.shift, i.modifiers.command || i.modifiers.ctrl));
     let Some(pos) = ui.input(|i| i.pointer.latest_pos()) else {
@@ -397,7 +200,7 @@ fn edit_input(
             .editor
             .ensure(&app.scene, target, app.viewport.size_px, &app.cutter_init)
         {
-            app.start_index_job(ui.ctx(), target);
+            actions.push(Action::IndexModel(target));
             return;
         }
     }
@@ -452,7 +255,7 @@ fn edit_input(
         );
     }
     if response.hovered() {
-        let (notches, wheel_ctrl) = wheel_notches(ui);
+        let (notches, wheel_ctrl) = super::navigation::wheel_notches(ui);
         if notches != 0.0 && super::navigation::wheel_goes_to_editor(app, wheel_ctrl) {
             changed |= app.viewport.editor_event(
                 &mut app.scene,
@@ -500,7 +303,7 @@ fn edit_input(
 }
 
 /// The right-click menu of the viewport (thesis 3.5 G).
-pub fn context_menu_ui(ui: &mut egui::Ui, app: &CutawayApp) -> Vec<Action> {
+pub fn context_menu_ui(ui: &mut egui::Ui, app: &AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     if ui.button("Switch to Camera").clicked() {
         actions.push(Action::SetMode(Mode::Camera));
@@ -546,56 +349,6 @@ pub fn point_on_target_plane(camera: &Camera, viewport: DVec2, px: DVec2) -> DVe
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_recorded_gesture_reads_back_as_the_same_gesture() {
-        let recording = Recording {
-            camera: Camera {
-                eye: DVec3::new(0.0, -300.0, 0.0),
-                target: DVec3::ZERO,
-                up: DVec3::Z,
-                fov_y_deg: 30.0,
-            },
-            viewport: DVec2::new(1280.0, 800.0),
-            init: CutterInit::default(),
-            events: vec![
-                EditorEvent::press(600.0, 380.0),
-                EditorEvent::move_shift(660.0, 380.0),
-                EditorEvent::release(660.0, 380.0),
-                EditorEvent::wheel(100.0, 100.0, 3.0, true),
-                EditorEvent::key(Key::Delete, 640.0, 320.0),
-            ],
-        };
-        let mut state = ViewportState::new(None);
-        state.recording = Some(recording.clone());
-        let path =
-            std::env::temp_dir().join(format!("cutaway-gesture-{}.json", std::process::id()));
-        assert_eq!(state.save_recording(&path).unwrap(), 5);
-        assert!(state.recording.is_none());
-        let back = crate::gesture::read_gesture(&path).unwrap();
-        assert_eq!(back, recording.gesture());
-        let text = std::fs::read_to_string(&path).unwrap();
-        assert!(text.contains("cutaway-gesture/1"));
-        let _ = std::fs::remove_file(&path);
-    }
-
-    #[test]
-    fn a_warped_cursor_is_not_offset_twice() {
-        let (press, handle) = (DVec2::new(100.0, 200.0), DVec2::new(110.0, 195.0));
-        let editor_sees = |sent: DVec2| sent + (handle - press);
-        let mut warp = CursorWarp::default();
-        warp.requested(handle, press);
-        // Before the cursor arrives (or when the platform ignores the warp): plain positions.
-        assert_eq!(
-            warp.observe(DVec2::new(101.0, 200.0)),
-            DVec2::new(101.0, 200.0)
-        );
-        // The cursor arrived at the handle: the editor sees the real position from now on.
-        let sent = warp.observe(handle);
-        assert_eq!(editor_sees(sent), handle);
-        let later = DVec2::new(150.0, 180.0);
-        assert_eq!(editor_sees(warp.observe(later)), later);
-    }
 
     #[test]
     fn target_plane_point_is_on_the_plane() {

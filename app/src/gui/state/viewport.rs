@@ -1,0 +1,300 @@
+//! The 3D viewport's state across frames: the drag in progress, the cutter editor, the scalpel,
+//! the cut shown, the gesture recorder and the pick trees. The input that changes it is in
+//! `gui/viewport.rs`, `gui/navigation.rs` and `gui/scalpel_mode.rs`.
+
+use std::ops::{Deref, DerefMut};
+use std::path::Path;
+use std::sync::Arc;
+
+use glam::DVec2;
+
+use cutter::Camera;
+use cutter::events::EditorEvent;
+
+use crate::cutting::editing::CutterInit;
+use crate::scalpel_session::ScalpelSession;
+
+/// What the primary-button drag in progress does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(in crate::gui) enum Drag {
+    Orbit,
+    Pan,
+    /// The press went to the editor; the release must too.
+    Editor,
+}
+
+/// The cursor warp of a handle press (thesis 3.3: the cursor snaps to the middle of the handle's
+/// front edge). The editor already treats the pointer as moved there for the whole drag (it adds
+/// the press-to-handle offset to every position), so once the real cursor has arrived at the
+/// handle the positions sent to it are shifted back by that offset; a platform that ignores the
+/// warp request (Wayland, test harnesses) never arrives and gets the plain positions.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CursorWarp {
+    /// (handle, press) in viewport pixels while waiting for the cursor to arrive.
+    pending: Option<(DVec2, DVec2)>,
+    /// Subtracted from the pointer position for the rest of the drag.
+    offset: DVec2,
+}
+
+impl CursorWarp {
+    /// The cursor was asked to move from `press` to `handle`.
+    pub fn requested(&mut self, handle: DVec2, press: DVec2) {
+        *self = CursorWarp {
+            pending: Some((handle, press)),
+            offset: DVec2::ZERO,
+        };
+    }
+
+    /// The position to send to the editor for the real pointer position `raw` during the drag.
+    pub fn observe(&mut self, raw: DVec2) -> DVec2 {
+        if let Some((handle, press)) = self.pending
+            && raw.distance(handle) <= 1.5
+        {
+            self.offset = handle - press;
+            self.pending = None;
+        }
+        raw - self.offset
+    }
+}
+
+/// A gesture being recorded (the "record gesture" debug action).
+#[derive(Clone, Debug)]
+pub struct Recording {
+    /// Camera when recording started (Edit mode never moves the camera).
+    pub camera: Camera,
+    /// Viewport size in pixels when recording started.
+    pub viewport: DVec2,
+    pub init: CutterInit,
+    pub events: Vec<EditorEvent>,
+}
+
+/// Viewport state that lives across frames.
+pub struct ViewportState {
+    pub(in crate::gui) drag: Option<Drag>,
+    /// The cursor warp of the extrusion drag in progress.
+    pub(in crate::gui) warp: CursorWarp,
+    /// Size of the viewport in physical pixels at the last frame.
+    pub size_px: DVec2,
+    /// The viewport's rectangle in points at the last frame.
+    pub rect: egui::Rect,
+    /// Pointer position of the last editor event (to send moves only when it changes).
+    pub(in crate::gui) last_pointer: Option<DVec2>,
+    pub recording: Option<Recording>,
+    /// The cutter editor and its spatial-index cache.
+    pub editor: crate::cutting::editing::EditorSlot,
+    /// Scalpel mode's blade settings, session and stroke.
+    pub scalpel: ScalpelSlot,
+    /// Cut parts shown in Preview, with the scene state they were computed for.
+    pub preview: Option<Arc<crate::cutting::cut_scene::PreviewGeometry>>,
+    pub preview_key: Option<crate::cutting::scene_cuts::PreviewKey>,
+    /// The live re-cut shown in Edit mode while the cutter is painted.
+    pub live: crate::cutting::live_cut::LiveCut,
+    /// The renderer is installed in egui's callback resources.
+    pub gpu: bool,
+    /// The navigation drag (right or middle button, Alt+drag in Edit) in progress.
+    pub nav: Option<NavDrag>,
+    /// View → Orientation Marker (a window overlay: exports do not draw it).
+    pub show_marker: bool,
+    /// The models' ray-pick trees (double-click focus, the first press of a cutter).
+    pub picks: crate::cutting::pick::ScenePicks,
+}
+
+impl ViewportState {
+    /// `gpu`: the renderer is installed in egui's callback resources.
+    pub fn new(gpu: bool) -> ViewportState {
+        ViewportState {
+            drag: None,
+            warp: CursorWarp::default(),
+            size_px: DVec2::new(1280.0, 800.0),
+            rect: egui::Rect::NOTHING,
+            last_pointer: None,
+            recording: None,
+            editor: crate::cutting::editing::EditorSlot::default(),
+            scalpel: Default::default(),
+            preview: None,
+            preview_key: None,
+            live: Default::default(),
+            gpu,
+            nav: None,
+            show_marker: true,
+            picks: Default::default(),
+        }
+    }
+
+    pub fn cancel_drag(&mut self) {
+        self.drag = None;
+        self.nav = None;
+    }
+
+    /// True while a press went to the cutter editor and is not released yet.
+    pub fn editor_dragging(&self) -> bool {
+        self.drag == Some(Drag::Editor)
+    }
+
+    pub fn reset_editor(&mut self) {
+        self.editor = crate::cutting::editing::EditorSlot::default();
+        self.scalpel.reset();
+        self.drag = None;
+        self.preview = None;
+        self.preview_key = None;
+        self.live.clear();
+    }
+
+    pub fn start_recording(&mut self, camera: &Camera, init: &CutterInit) {
+        self.recording = Some(Recording {
+            camera: *camera,
+            viewport: self.size_px,
+            init: init.clone(),
+            events: Vec::new(),
+        });
+    }
+
+    /// Writes the recording as a `cutaway-gesture/1` file and stops recording; returns the number
+    /// of events written.
+    pub fn save_recording(&mut self, path: &Path) -> anyhow::Result<usize> {
+        let Some(recording) = self.recording.take() else {
+            anyhow::bail!("{}: no gesture is being recorded", path.display());
+        };
+        let gesture = recording.gesture();
+        crate::gesture::write_gesture(path, &gesture)?;
+        Ok(gesture.events.len())
+    }
+
+    /// Sends one event to the editor (and the recorder). True when the scene's cutters changed.
+    pub(in crate::gui) fn editor_event(
+        &mut self,
+        scene: &mut crate::scene::Scene,
+        event: EditorEvent,
+    ) -> bool {
+        if let Some(r) = &mut self.recording {
+            r.events.push(event);
+        }
+        self.editor.handle(scene, self.size_px, event)
+    }
+}
+
+impl Recording {
+    /// The recording as a gesture (the format `cutaway extrude` replays).
+    pub fn gesture(&self) -> crate::gesture::Gesture {
+        crate::gesture::Gesture {
+            viewport: self.viewport,
+            camera: self.camera,
+            cut: crate::gesture::CutSettings {
+                kind: self.init.kind,
+                spacing: self.init.spacing,
+                smooth: self.init.smooth,
+            },
+            events: self.events.clone(),
+        }
+    }
+}
+
+/// What the navigation drag in progress does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NavDrag {
+    Orbit,
+    Pan,
+}
+
+/// Scalpel mode's state in the viewport: the session plus what the pointer is doing.
+pub struct ScalpelSlot {
+    pub session: ScalpelSession,
+    pub(in crate::gui) camera_drag: Option<CameraDrag>,
+    /// The viewport in egui points at the last frame (tests aim with it).
+    pub rect: egui::Rect,
+}
+
+impl Default for ScalpelSlot {
+    fn default() -> Self {
+        ScalpelSlot {
+            session: ScalpelSession::default(),
+            camera_drag: None,
+            rect: egui::Rect::NOTHING,
+        }
+    }
+}
+
+impl Deref for ScalpelSlot {
+    type Target = ScalpelSession;
+    fn deref(&self) -> &ScalpelSession {
+        &self.session
+    }
+}
+
+impl DerefMut for ScalpelSlot {
+    fn deref_mut(&mut self) -> &mut ScalpelSession {
+        &mut self.session
+    }
+}
+
+impl ScalpelSlot {
+    /// Forgets the scalpel and the pointer's drag (a new scene was loaded).
+    pub fn reset(&mut self) {
+        self.session.reset();
+        self.camera_drag = None;
+    }
+}
+
+/// What a camera drag in Scalpel mode does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(in crate::gui) enum CameraDrag {
+    Orbit,
+    Pan,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cutter::events::Key;
+    use glam::DVec3;
+
+    #[test]
+    fn a_recorded_gesture_reads_back_as_the_same_gesture() {
+        let recording = Recording {
+            camera: Camera {
+                eye: DVec3::new(0.0, -300.0, 0.0),
+                target: DVec3::ZERO,
+                up: DVec3::Z,
+                fov_y_deg: 30.0,
+            },
+            viewport: DVec2::new(1280.0, 800.0),
+            init: CutterInit::default(),
+            events: vec![
+                EditorEvent::press(600.0, 380.0),
+                EditorEvent::move_shift(660.0, 380.0),
+                EditorEvent::release(660.0, 380.0),
+                EditorEvent::wheel(100.0, 100.0, 3.0, true),
+                EditorEvent::key(Key::Delete, 640.0, 320.0),
+            ],
+        };
+        let mut state = ViewportState::new(false);
+        state.recording = Some(recording.clone());
+        let path =
+            std::env::temp_dir().join(format!("cutaway-gesture-{}.json", std::process::id()));
+        assert_eq!(state.save_recording(&path).unwrap(), 5);
+        assert!(state.recording.is_none());
+        let back = crate::gesture::read_gesture(&path).unwrap();
+        assert_eq!(back, recording.gesture());
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(text.contains("cutaway-gesture/1"));
+        let _ = std::fs::remove_file(&path);
+    }
+
+    #[test]
+    fn a_warped_cursor_is_not_offset_twice() {
+        let (press, handle) = (DVec2::new(100.0, 200.0), DVec2::new(110.0, 195.0));
+        let editor_sees = |sent: DVec2| sent + (handle - press);
+        let mut warp = CursorWarp::default();
+        warp.requested(handle, press);
+        // Before the cursor arrives (or when the platform ignores the warp): plain positions.
+        assert_eq!(
+            warp.observe(DVec2::new(101.0, 200.0)),
+            DVec2::new(101.0, 200.0)
+        );
+        // The cursor arrived at the handle: the editor sees the real position from now on.
+        let sent = warp.observe(handle);
+        assert_eq!(editor_sees(sent), handle);
+        let later = DVec2::new(150.0, 180.0);
+        assert_eq!(editor_sees(warp.observe(later)), later);
+    }
+}
