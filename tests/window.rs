@@ -204,6 +204,14 @@ fn a_double_click_selects_and_highlights_in_every_mode() {
             app.status.message
         );
         assert_eq!(app.scene.cutters.len(), 0, "{mode:?}: a double-click cut");
+        // Edit mode paints the selection: no tint there, so the live cut looks like the
+        // committed one; every other mode tints it.
+        let drawn = frame_inputs(app, [64, 48]).scene.models[0].color;
+        assert_eq!(
+            drawn == app.scene.models[0].color,
+            mode == Mode::Edit,
+            "{mode:?}: tint {drawn:?}"
+        );
     }
     // Camera mode centres on it; the list shows it selected; the view tints it.
     let selected = shot(&mut h, "selected-highlighted");
