@@ -66,6 +66,8 @@ pub fn split_into_regions(scene: &mut Scene, index: usize) -> Result<usize, Spli
         let mut part = template.clone();
         part.name = format!("{} {}", template.name, k + 1);
         part.group = group.clone();
+        // A structure of its own, so a session keeps its name and group whatever the model was.
+        part.unit = crate::scene::ModelUnit::Structure;
         part.replace_mesh(Arc::new(piece));
         if k == 0 {
             scene.models[index] = part;
@@ -138,6 +140,29 @@ mod tests {
             assert_eq!(m.opacity, 0.5);
             assert_eq!(m.origin, MeshOrigin::Edited, "saved as meshes of their own");
         }
+    }
+
+    #[test]
+    fn a_session_saved_after_a_split_reopens_the_pieces() {
+        let dir = std::env::temp_dir().join(format!("cutaway-split-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut scene = scene();
+        // The test's models are regions of files (as a `cutaway-session/1` file gives them); the
+        // pons names no real file, so it is saved as a mesh of its own too.
+        scene.models[1].origin = MeshOrigin::Edited;
+        split_into_regions(&mut scene, 0).unwrap();
+        let path = dir.join("split.json");
+        crate::session::save(&path, &scene).unwrap();
+        let reopened = crate::session::load(&path).unwrap();
+        let summary = |s: &Scene| -> Vec<(String, String, usize)> {
+            s.models
+                .iter()
+                .map(|m| (m.name.clone(), m.group.clone(), m.mesh.triangle_count()))
+                .collect()
+        };
+        assert_eq!(summary(&reopened), summary(&scene));
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]
