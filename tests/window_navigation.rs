@@ -278,4 +278,3 @@ fn right_drag_orbits_middle_drag_pans_and_the_wheel_zooms_in_every_mode() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
-
