@@ -24,6 +24,15 @@ pub fn no_adapter() -> Option<String> {
 /// The window opening `paths` (none: the default scene), its state kept in `state_dir`, no
 /// recovery prompt.
 pub fn harness(state_dir: &Path, paths: Vec<PathBuf>) -> Harness<'static, CutawayApp> {
+    harness_sized(state_dir, paths, egui::vec2(1280.0, 800.0))
+}
+
+/// [`harness`] with a window of `size` points.
+pub fn harness_sized(
+    state_dir: &Path,
+    paths: Vec<PathBuf>,
+    size: egui::Vec2,
+) -> Harness<'static, CutawayApp> {
     let start = StartOptions {
         paths,
         state_dir: state_dir.to_path_buf(),
@@ -31,7 +40,7 @@ pub fn harness(state_dir: &Path, paths: Vec<PathBuf>) -> Harness<'static, Cutawa
     };
     Harness::builder()
         .wgpu()
-        .with_size(egui::vec2(1280.0, 800.0))
+        .with_size(size)
         .with_max_steps(10_000)
         // Real frame times, so two clicks a frame apart are a double-click.
         .with_step_dt(1.0 / 60.0)

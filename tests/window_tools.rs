@@ -92,6 +92,22 @@ fn count_colour(h: &Harness<'_, CutawayApp>, image: &image::RgbaImage, rgb: [u8;
 
 /// A 10 mm cube with a corner box cutter and an overlapping slot (removing 125 and 45 mm³), and a
 /// ball beside it that the walls come close to.
+/// The pixel box of everything in `image` that differs from its top-left pixel (the
+/// background).
+fn drawn_box(image: &image::RgbaImage) -> (DVec2, DVec2) {
+    let background = *image.get_pixel(0, 0);
+    let (mut min, mut max) = (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN));
+    for (x, y, p) in image.enumerate_pixels() {
+        if (0..3).any(|k| (p[k] as i32 - background[k] as i32).abs() > 12) {
+            let at = DVec2::new(x as f64, y as f64);
+            min = min.min(at);
+            max = max.max(at);
+        }
+    }
+    assert!(min.x <= max.x, "nothing drawn");
+    (min, max)
+}
+
 fn cube_and_ball(dir: &Path) -> PathBuf {
     write_session(
         dir,
@@ -318,6 +334,21 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
         differ > 100,
         "the two variants look the same ({differ} pixels differ)"
     );
+    // The session's camera looks at the cube's corner, framed for the wide 3D view; each narrow
+    // viewport frames the models instead: centred, nothing cut off at the borders.
+    for image in &compared.images {
+        let (w, h) = (image.width() as f64, image.height() as f64);
+        let (min, max) = drawn_box(image);
+        let centre = (min + max) * 0.5;
+        assert!(
+            (centre.x - w / 2.0).abs() < 0.08 * w && (centre.y - h / 2.0).abs() < 0.08 * h,
+            "models drawn off-centre: {min:?}..{max:?} in {w}×{h}"
+        );
+        assert!(
+            min.x > 1.0 && min.y > 1.0 && max.x < w - 2.0 && max.y < h - 2.0,
+            "models cut off: {min:?}..{max:?} in {w}×{h}"
+        );
+    }
     let before = compared.images[0].clone();
     for shown in ["170.0 mm³", "125.0 mm³"] {
         assert!(
@@ -363,6 +394,21 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
     h.get_by_label("Close").click();
     h.run_steps(3);
     assert!(!h.state().compare.open && h.state().compare.shown.is_none());
+    // The 3D view is framed for its own shape again: every corner of the scene inside it.
+    let app = h.state();
+    let (bbox, vp) = (app.scene.bbox(), app.viewport.size_px);
+    for k in 0..8 {
+        let corner = DVec3::new(
+            if k & 1 == 0 { bbox.min.x } else { bbox.max.x },
+            if k & 2 == 0 { bbox.min.y } else { bbox.max.y },
+            if k & 4 == 0 { bbox.min.z } else { bbox.max.z },
+        );
+        let p = app.scene.camera.project(vp, corner).expect("in front");
+        assert!(
+            p.x >= 0.0 && p.y >= 0.0 && p.x <= vp.x && p.y <= vp.y,
+            "corner {corner:?} at {p:?} outside the {vp:?} view after closing Compare"
+        );
+    }
 }
 
 #[test]

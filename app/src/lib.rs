@@ -28,6 +28,7 @@ pub mod render;
 pub mod ruler;
 pub mod scalpel_session;
 pub mod scene;
+pub mod scene_regions;
 pub mod session;
 pub mod session_cutters;
 pub mod session_format;

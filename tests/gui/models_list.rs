@@ -110,6 +110,41 @@ fn the_models_list_names_structures_groups_folders_and_filters() {
     h.get_by_label("Show all").click();
     h.run_steps(3);
     assert!(h.state().scene.models.iter().all(|m| m.visible));
+
+    // The two-sphere hippocampus split on request: its regions become a folder of their own in
+    // its place, and one undo makes it one model again.
+    h.get_by_label("left hippocampus").click();
+    h.run_steps(3);
+    assert_eq!(h.state().selected_model, Some(0));
+    h.get_by_label("Split").click();
+    h.run_steps(3);
+    let names: Vec<(String, String)> = h
+        .state()
+        .scene
+        .models
+        .iter()
+        .map(|m| (m.name.clone(), m.group.clone()))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            expect("left hippocampus 1", "atlas/left hippocampus"),
+            expect("right hippocampus", "atlas"),
+            expect("pons", "atlas/brainstem"),
+            expect("left hippocampus 2", "atlas/left hippocampus"),
+        ],
+        "{}",
+        h.state().status.message
+    );
+    h.get_by_role_and_label(egui::accesskit::Role::CheckBox, "left hippocampus (2)");
+    h.get_by_label("left hippocampus 2");
+    let shot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("gui-models-list-split.png");
+    h.render().expect("render").save(&shot).expect("save");
+    println!("screenshot: {}", shot.display());
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    h.run_steps(3);
+    assert_eq!(h.state().scene.models.len(), 3, "undo joined the regions");
+    assert_eq!(h.state().scene.models[0].name, "left hippocampus");
     let shot = dir.join("models-list.png");
     h.render().expect("render").save(&shot).expect("save");
     println!("screenshot: {}", shot.display());

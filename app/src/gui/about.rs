@@ -22,6 +22,8 @@ pub fn about_window_ui(ctx: &egui::Context) {
         .collapsible(false)
         .resizable(false)
         .default_width(460.0)
+        .pivot(egui::Align2::CENTER_TOP)
+        .default_pos(ctx.content_rect().center_top() + egui::vec2(0.0, 72.0))
         .show(ctx, |ui| {
             ui.label(format!(
                 "Cutaway {}: context-preserving cutaways of segmented anatomy.",

@@ -93,6 +93,8 @@ pub enum Action {
     /// Centre the camera on a model.
     FocusModel(usize),
     RemoveModel(usize),
+    /// One model per connected region of model `i` ([`crate::scene_regions`]).
+    SplitRegions(usize),
     StartGesture,
     StopGesture,
     /// Keep the current cutter; the next drag in Edit mode starts a new one.

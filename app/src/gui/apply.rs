@@ -113,6 +113,20 @@ impl CutawayApp {
                         .record(&format!("remove {}", removed.name), before);
                 }
             }
+            Action::SplitRegions(index) => {
+                let Some(name) = self.state.scene.models.get(index).map(|m| m.name.clone()) else {
+                    return;
+                };
+                let before = self.state.scene.clone();
+                match crate::scene_regions::split_into_regions(&mut self.state.scene, index) {
+                    Ok(count) => {
+                        self.state.record(&format!("split {name}"), before);
+                        self.state
+                            .say(format!("{name}: {count} regions, listed under \"{name}\""));
+                    }
+                    Err(why) => self.state.say(format!("{name} not split: {why}")),
+                }
+            }
             Action::StartGesture => self
                 .state
                 .viewport

@@ -98,6 +98,9 @@ fn compare_one(
 /// Takes finished pictures and starts new ones when the variants, the camera or the viewport
 /// size changed and no pointer button is held. Call once per frame.
 pub fn update(app: &mut AppState, ctx: &egui::Context) {
+    if !app.compare.open && app.compare.framed_for.take().is_some() {
+        super::view_menu::apply(app, super::view_menu::ViewCommand::ZoomToFit);
+    }
     let view = &mut app.compare;
     if let Some((request, job)) = &mut view.job
         && let Some(result) = job.poll()
@@ -222,6 +225,12 @@ fn compare_contents(ui: &mut egui::Ui, app: &mut AppState) {
     let width = ((ui.available_width() - gap * (shown as f32 - 1.0)) / shown as f32).max(32.0);
     let height = (ui.available_height() - table_height - 24.0).max(32.0);
     app.compare.tile = [(width * ppp).round() as u32, (height * ppp).round() as u32];
+    if app.compare.framed_for != Some(shown) {
+        app.compare.framed_for = Some(shown);
+        let aspect = f64::from(width) / f64::from(height);
+        app.scene.camera =
+            crate::view::fit::fit_to_box(&app.scene.camera, &app.scene.bbox(), aspect);
+    }
     if let Some(Err(e)) = &app.compare.shown {
         ui.colored_label(ui.visuals().error_fg_color, e.clone());
     }

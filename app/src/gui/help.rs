@@ -41,13 +41,20 @@ pub fn help_window_ui(ctx: &egui::Context) {
     if !open {
         return;
     }
+    // Below the menu bar and the mode bar, centred over the window, as tall as the window
+    // allows (the reference is long; it scrolls).
+    let screen = ctx.content_rect();
     egui::Window::new("Keyboard and Mouse")
         .open(&mut open)
         .collapsible(false)
         .default_width(520.0)
+        .default_height((screen.height() - 140.0).max(240.0))
+        .pivot(egui::Align2::CENTER_TOP)
+        .default_pos(screen.center_top() + egui::vec2(0.0, 72.0))
         .show(ctx, |ui| {
             egui::ScrollArea::vertical()
-                .max_height(560.0)
+                .max_height((screen.height() - 180.0).max(200.0))
+                .auto_shrink([false, false])
                 .show(ui, |ui| {
                     section_ui(ui, "Every mode", EVERY_MODE);
                     for mode in [Mode::Camera, Mode::Edit, Mode::Preview, Mode::Scalpel] {

@@ -198,6 +198,13 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
         if ui.button("Remove").clicked() {
             actions.push(Action::RemoveModel(index));
         }
+        if ui
+            .button("Split")
+            .on_hover_text("One model per connected region of this structure")
+            .clicked()
+        {
+            actions.push(Action::SplitRegions(index));
+        }
     });
     actions
 }
@@ -291,7 +298,11 @@ fn model_row_ui(
         } else {
             egui::RichText::new(&name).weak()
         };
-        let row = ui.add(egui::Button::selectable(selected, text));
+        // Long structure names end in "…" at the panel's edge (widen the panel to read them);
+        // the whole name shows on hover.
+        let row = ui
+            .add(egui::Button::selectable(selected, text).truncate())
+            .on_hover_text(&name);
         if reveal {
             row.scroll_to_me(None);
         }

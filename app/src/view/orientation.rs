@@ -89,23 +89,24 @@ impl Orientation {
     }
 
     /// The orientation of data whose bounding box is `bbox`: volumes are RAS; a mesh whose
-    /// largest extent is at least 1.6 times the next (a standing body, a limb) has that axis
-    /// superior; any other mesh keeps the medical file convention, RAS.
+    /// largest extent is along Y and at least 1.6 times the next (a body standing in a Y-up
+    /// file) is Y-up; any other mesh keeps the medical file convention, RAS (a limb tall along
+    /// Z already is). Only the two conventions files use are guessed: a scene longest along X is
+    /// parts laid side by side or a body lying down, not one whose head points along X, so it
+    /// stays RAS (View → Superior Axis offers +X for the rare file that means it).
     pub fn guess(bbox: &Aabb, from_volume: bool) -> Orientation {
         if from_volume || bbox.is_empty() {
             return Orientation::RAS;
         }
         let size = bbox.max - bbox.min;
-        let e = [size.x, size.y, size.z];
-        let mut order = [0usize, 1, 2];
-        order.sort_by(|&a, &b| e[b].total_cmp(&e[a]));
-        let (largest, second) = (e[order[0]], e[order[1]]);
-        if !(largest.is_finite() && second >= 0.0) || largest < 1.6 * second {
+        if !size.is_finite() {
             return Orientation::RAS;
         }
-        let mut up = DVec3::ZERO;
-        up[order[0]] = 1.0;
-        Orientation::with_up(up)
+        if size.y >= 1.6 * size.x.max(size.z) {
+            Orientation::Y_UP
+        } else {
+            Orientation::RAS
+        }
     }
 
     /// A camera looking from `preset`'s side at `target` from `distance`, superior (or, for the
@@ -228,6 +229,9 @@ mod tests {
         // A head: no dominant axis, file convention.
         let head = Orientation::guess(&bbox(DVec3::new(160.0, 200.0, 190.0)), false);
         assert_eq!(head, Orientation::RAS);
+        // Parts side by side along X (or a body lying along X): RAS, not X up.
+        let row = Orientation::guess(&bbox(DVec3::new(30.0, 10.0, 10.0)), false);
+        assert_eq!(row, Orientation::RAS);
         // A volume is RAS whatever its shape.
         let slab = Orientation::guess(&bbox(DVec3::new(10.0, 300.0, 10.0)), true);
         assert_eq!(slab, Orientation::RAS);

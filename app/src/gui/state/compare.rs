@@ -90,6 +90,12 @@ pub struct CompareView {
     pub(in crate::gui) worker: Arc<Mutex<Worker>>,
     /// Size of one viewport in pixels, from the last layout.
     pub(in crate::gui) tile: [u32; 2],
+    /// How many viewports the shared camera was last framed for: the main view's camera is
+    /// framed for a wide view, and seen through a narrow viewport it cuts the models off or
+    /// leaves them off-centre, so opening the view (or changing the number shown) frames the
+    /// scene for the viewports' shape, keeping the direction; closing frames it for the 3D
+    /// view again.
+    pub(in crate::gui) framed_for: Option<usize>,
 }
 
 impl CompareView {
