@@ -75,7 +75,8 @@ impl Scalpel {
         if self.mesh.singular[v as usize] {
             return Err(self.nonmanifold(v));
         }
-        let mut groove = groove_mode.then(|| Groove::new(self.options.depth, v, start_split));
+        let mut groove =
+            groove_mode.then(|| Groove::new(self.options.depth, v, self.mesh.pos(v), start_split));
         stroke.far = None;
         let through = if !groove_mode {
             None
