@@ -1,16 +1,17 @@
-//! Where a finished cut ends (`Scalpel::end_stroke`, `relocate::tip_onto`): the lips end at the
-//! drawn end of the path, not where the walk snapped its tip to avoid a sliver (up to a quarter
-//! of the last segment for a slit, half of it for a groove).
+//! Where a cut starts and ends (`relocate::tip_onto`): the lips start and end at the drawn ends
+//! of the path, not where the walk snapped its tips to avoid a sliver (up to a quarter of the
+//! last segment for a slit, half of it for a groove).
 
 use super::*;
 
-/// Slits and grooves along wavy paths of many lengths over a sphere (so the last sample falls
-/// anywhere in a triangle, near vertices and edges too): after the stroke the cut's end vertex
-/// (the last segment's end, the vertex itself) is within 2% of an edge of the last sample's
-/// nearest point on the sphere in at least nine strokes in ten (the move is refused where it
-/// would make a sliver of a triangle around the tip; the walk's snap is up to half a segment) and
-/// never farther than 0.6 edges; the
-/// mesh stays valid, a groove closed.
+/// Slits and grooves along wavy paths of many lengths over a sphere, starting and ending at
+/// different places (so the end samples fall anywhere in a triangle, near vertices and edges
+/// too): after the stroke, the cut's end vertex (the last segment's end, the vertex itself) is
+/// within 2% of an edge of the last sample's nearest point on the sphere, and its start vertex
+/// of the first sample's, at nine ends in ten or more (measured: 61, 59 and 59 of 62; without
+/// the move 8 of 31 slit ends). Where the move is refused (it would make a sliver of a triangle
+/// around the tip), the walk's snap is left: never farther than 0.75 edges (measured 0.23 for
+/// slits, 0.59 for grooves). The mesh stays valid, a groove closed.
 #[test]
 fn cut_ends_at_the_drawn_tip() {
     let r = 20.0;
@@ -28,7 +29,9 @@ fn cut_ends_at_the_drawn_tip() {
     for depth in [0.0, 0.75, 3.0] {
         let (mut close, mut strokes, mut worst) = (0, 0, 0.0f64);
         for samples in (30..=120).step_by(3) {
-            let path = &path[..=samples];
+            // Both ends fall at different places along the wavy line.
+            let from = (120 - samples) / 2;
+            let path = &path[from..=from + samples];
             let mut s = Scalpel::new(&sphere, ScalpelOptions::default().with_depth(depth)).unwrap();
             s.cut_stroke(path).unwrap();
             let t = topo(&s);
@@ -36,29 +39,39 @@ fn cut_ends_at_the_drawn_tip() {
             if depth > 0.0 {
                 assert!(t.closed, "depth {depth}, {samples} samples: {t:?}");
             }
-            let end = path[samples].normalize() * r;
-            let seg = s.segments()[s.segments().len() - 1];
-            let tip = s.dyn_mesh().pos(seg.b);
-            assert_eq!(tip, seg.pb, "the segment ends where its vertex is");
-            // The sphere's triangles are chords: the drawn end on the mesh is up to the
-            // sagitta (h²/8r) inside the sphere.
-            let off = (tip.distance(end) - h * h / (8.0 * r)).max(0.0) / h;
-            worst = worst.max(off);
-            strokes += 1;
-            if off <= 0.02 {
-                close += 1;
+            let (first, last) = (s.segments()[0], s.segments()[s.segments().len() - 1]);
+            let m = s.dyn_mesh();
+            assert_eq!(
+                m.pos(last.b),
+                last.pb,
+                "the segment ends where its vertex is"
+            );
+            assert_eq!(
+                m.pos(first.a),
+                first.pa,
+                "the segment starts where its vertex is"
+            );
+            for (tip, drawn) in [(last.pb, path[path.len() - 1]), (first.pa, path[0])] {
+                // The sphere's triangles are chords: the drawn end on the mesh is up to the
+                // sagitta (h²/8r) inside the sphere.
+                let off = (tip.distance(drawn.normalize() * r) - h * h / (8.0 * r)).max(0.0) / h;
+                worst = worst.max(off);
+                strokes += 1;
+                if off <= 0.02 {
+                    close += 1;
+                }
             }
         }
         println!(
-            "depth {depth}: {close} of {strokes} cuts end within 2% of an edge of the drawn end, worst {worst:.3} edges"
+            "depth {depth}: {close} of {strokes} cut ends within 2% of an edge of the drawn ends, worst {worst:.3} edges"
         );
         assert!(
             10 * close >= 9 * strokes,
-            "depth {depth}: {close} of {strokes} cuts end within 2% of an edge of the drawn end"
+            "depth {depth}: {close} of {strokes} cut ends within 2% of an edge of the drawn ends"
         );
         assert!(
-            worst <= 0.6,
-            "depth {depth}: a cut ends {worst} edges from the drawn end"
+            worst <= 0.75,
+            "depth {depth}: a cut end is {worst} edges from the drawn end"
         );
     }
 }
