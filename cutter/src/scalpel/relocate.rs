@@ -15,7 +15,9 @@
 //!   ([`KEEP_ANGLE`]): the quality bound of the notes (Q1: a move of at most the snap radius
 //!   keeps the 1-ring above the bound snapping itself gives).
 //!
-//! Otherwise the cut snaps as before. The move is journaled like every other edit, so a refused
+//! Otherwise the cut snaps as before. The tips of a stroke are treated alike ([`tip_onto`]): its
+//! start vertex and, when the stroke ends, its end vertex move from the vertex or edge they
+//! snapped to onto the drawn start and end, on the same shape condition. The move is journaled like every other edit, so a refused
 //! step or an undone tip puts the vertex back bit for bit.
 
 use glam::DVec3;
