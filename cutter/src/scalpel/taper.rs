@@ -57,6 +57,9 @@ pub(crate) fn shape_end(g: &Groove, mesh: &mut DynMesh, path: &[u32], last: usiz
         return;
     }
     let reach = TAPER_DEPTHS * g.depth;
+    // One normal for finding where floor vertices sit along the path near the tip (the surface
+    // turns little over a taper length): a normal per path vertex cost more than the step.
+    let n_tip = normal_at(mesh, path[last]);
     let mut seen = None;
     let mut arc = 0.0;
     let mut i = last;
@@ -80,7 +83,7 @@ pub(crate) fn shape_end(g: &Groove, mesh: &mut DynMesh, path: &[u32], last: usiz
         if b == path[i] || !own {
             return;
         }
-        raise(g, mesh, path, last, b);
+        raise(g, mesh, path, last, b, n_tip);
     }
 }
 
@@ -89,8 +92,8 @@ pub(crate) fn shape_end(g: &Groove, mesh: &mut DynMesh, path: &[u32], last: usiz
 const OWN_LOOKBACK: usize = 8;
 
 /// Raises floor vertex `b` toward the tip at path index `last`, when the tip is nearer than the
-/// taper length to where `b` sits along the path.
-fn raise(g: &Groove, mesh: &mut DynMesh, path: &[u32], last: usize, b: u32) {
+/// taper length to where `b` sits along the path (found across `n_tip`, the normal at the tip).
+fn raise(g: &Groove, mesh: &mut DynMesh, path: &[u32], last: usize, b: u32, n_tip: DVec3) {
     let reach = TAPER_DEPTHS * g.depth;
     let pb = mesh.pos(b);
     // The floor vertex is at most a blade depth below a path point: farther than that plus the
@@ -115,9 +118,8 @@ fn raise(g: &Groove, mesh: &mut DynMesh, path: &[u32], last: usize, b: u32) {
         };
         let foot = c + ca * u;
         let near = if u < 0.5 { path[i] } else { path[i - 1] };
-        let n = normal_at(mesh, near);
         let x = pb - foot;
-        let off = (x - n * x.dot(n)).length();
+        let off = (x - n_tip * x.dot(n_tip)).length();
         if best.is_none_or(|(o, ..)| off < o) {
             best = Some((off, arc + u * l, foot, near));
         }
