@@ -25,6 +25,9 @@
 //!   the lips meet at the tips and a groove never opens wider than it is deep near them;
 //! - `φ(s) = (1 - s²)²` and `r = 3 w` (the support).
 //!
+//! Where that field would turn a surface triangle over (sharp bends, corners framed by
+//! different segments), [`super::unfold`] shrinks the displacements of its corners.
+//!
 //! Vertices outside the support, and groove bottoms, are never written: their display position
 //! is their rest position bit for bit. The rest pose itself is never changed (cutting continues
 //! in the rest pose).
@@ -207,6 +210,7 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
             out.push((v, p + lateral * amount));
         }
     }
+    super::unfold::unfold(mesh, &mut out);
     out
 }
 

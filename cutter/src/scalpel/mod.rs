@@ -93,6 +93,7 @@ pub mod step;
 pub mod survey;
 pub mod taper;
 pub mod through;
+pub mod unfold;
 
 pub use cut_point::CutPoint;
 pub use dffd::OpenOptions;
