@@ -404,3 +404,106 @@ fn opened_groove_on_the_patella_shows_along_its_whole_path_at_1280x800() {
     }
     assert_eq!(far_differs, 0, "pixels far from the cut changed");
 }
+
+/// The vertices and triangles of a binary PLY as `cutaway scalpel` writes it (double x, y, z;
+/// triangles), read verbatim: no welding, so a shut groove's coincident lip copies stay apart
+/// and the opened and shut outputs correspond vertex for vertex.
+fn read_ply_verbatim(path: &Path) -> (Vec<csg::DVec3>, Vec<[usize; 3]>) {
+    let bytes = std::fs::read(path).unwrap();
+    let end = b"end_header\n";
+    let at = bytes.windows(end.len()).position(|w| w == end).unwrap() + end.len();
+    let header = std::str::from_utf8(&bytes[..at]).unwrap();
+    assert!(header.contains("property double x"), "{header}");
+    let count = |what: &str| -> usize {
+        let line = header.lines().find(|l| l.starts_with(what)).unwrap();
+        line.split_whitespace().last().unwrap().parse().unwrap()
+    };
+    let (nv, nf) = (count("element vertex"), count("element face"));
+    let f64_at = |o: usize| f64::from_le_bytes(bytes[o..o + 8].try_into().unwrap());
+    let positions = (0..nv)
+        .map(|i| {
+            csg::DVec3::new(
+                f64_at(at + 24 * i),
+                f64_at(at + 24 * i + 8),
+                f64_at(at + 24 * i + 16),
+            )
+        })
+        .collect();
+    let mut o = at + 24 * nv;
+    let mut triangles = Vec::with_capacity(nf);
+    for _ in 0..nf {
+        assert_eq!(bytes[o], 3);
+        let i = |k: usize| {
+            u32::from_le_bytes(bytes[o + 1 + 4 * k..o + 5 + 4 * k].try_into().unwrap()) as usize
+        };
+        triangles.push([i(0), i(1), i(2)]);
+        o += 13;
+    }
+    (positions, triangles)
+}
+
+/// The groove on the patella with its samples on the surface (as the window's ray picks are),
+/// cut shut and opened 2 mm wide: the two outputs are the same mesh vertex for vertex, and no
+/// surface triangle (all its corners on the knee's surface: not a groove wall) turns more than
+/// 60° from the shut one as the groove opens (a folded triangle showed as a shard or a crack).
+#[test]
+fn opened_groove_on_the_patella_folds_no_surface_triangle() {
+    let dir = scratch("patella-fold");
+    let target = patella();
+    let mesh = cutaway::io::read_mesh(&target).unwrap();
+    let index = csg::SpatialIndex::build(&mesh);
+    let points: Vec<[f64; 3]> = patella_arc(&mesh)
+        .iter()
+        .map(|&p| {
+            index
+                .closest_point(&mesh, p.into())
+                .unwrap()
+                .point
+                .to_array()
+        })
+        .collect();
+    let mut outputs = Vec::new();
+    for width in [0.0, 2.0] {
+        let (path, out) = (
+            dir.join(format!("p{width}.json")),
+            dir.join(format!("o{width}.ply")),
+        );
+        let json = serde_json::json!({"format": "cutaway-path/1", "depth": 3.0, "tool": "scalpel",
+            "points": points, "open": {"width": width, "window": 0.5}});
+        std::fs::write(&path, json.to_string()).unwrap();
+        let v = run_json(&target, &path, &out);
+        assert_eq!(v["closed"], true, "{v}");
+        outputs.push(read_ply_verbatim(&out));
+    }
+    let ((shut, tris), (opened, tris2)) = (&outputs[0], &outputs[1]);
+    assert_eq!(tris, tris2, "the opening changes positions only");
+    assert_eq!(shut.len(), opened.len());
+    let moved = (0..shut.len()).filter(|&v| shut[v] != opened[v]).count();
+    assert!(moved >= 50, "only {moved} vertices moved");
+    let on_surface =
+        |p: csg::DVec3| index.closest_point(&mesh, p).unwrap().point.distance(p) < 0.05;
+    let (mut checked, mut worst) = (0, 0.0f64);
+    for t in tris {
+        if t.iter().all(|&v| shut[v] == opened[v]) || !t.iter().all(|&v| on_surface(shut[v])) {
+            continue;
+        }
+        let normal = |p: &[csg::DVec3]| (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+        let (a, b) = (normal(shut), normal(opened));
+        if a.length() == 0.0 {
+            continue;
+        }
+        let turn = if b.length() == 0.0 {
+            180.0
+        } else {
+            a.angle_between(b).to_degrees()
+        };
+        worst = worst.max(turn);
+        checked += 1;
+    }
+    println!("{checked} opened surface triangles, largest turn {worst:.1}°");
+    assert!(checked >= 100, "only {checked} surface triangles moved");
+    assert!(
+        worst <= 60.0,
+        "a surface triangle turned {worst:.1}° as the groove opened"
+    );
+}
