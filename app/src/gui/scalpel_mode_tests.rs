@@ -393,7 +393,7 @@ mod view {
             }
         }
         assert!(drawn > 3, "{drawn} steps drawn");
-        let cut = {
+        let drawn_last = {
             let session = slot.session.as_ref().unwrap();
             session.display(&slot.settings.open())
         };
@@ -401,9 +401,23 @@ mod view {
             slot.release(&mut scene),
             Released::Committed { .. }
         ));
+        let cut = {
+            let session = slot.session.as_ref().unwrap();
+            session.display(&slot.settings.open())
+        };
         assert_eq!(
             *scene.models[0].mesh, *cut,
             "the release puts the cut mesh in the scene"
+        );
+        // Ending the stroke only moves its end tip onto the drawn end (with the groove floor
+        // and the opening that taper toward it): the mesh last drawn, a few vertices moved.
+        assert_eq!(cut.triangles, drawn_last.triangles);
+        let moved = (cut.positions.iter().zip(&drawn_last.positions))
+            .filter(|(a, b)| a != b)
+            .count();
+        assert!(
+            moved * 100 < cut.positions.len(),
+            "the release moved {moved} vertices"
         );
     }
 }

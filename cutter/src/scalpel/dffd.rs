@@ -20,8 +20,13 @@
 //!   lips of a groove on one side, so they moved together and the groove did not open;
 //! - `ramp = clamp((now - t_cut) / window, 0, 1)`: the trailing time window over which a freshly
 //!   cut segment opens to its full width;
-//! - `taper` goes from 0 at a crack tip to 1 one width away, so the lips meet at the tips;
+//! - `taper` goes from 0 at a crack tip to 1 one width away (or, for a groove, where its depth
+//!   stops tapering, [`super::taper::TAPER_DEPTHS`] blade depths away, when that is farther), so
+//!   the lips meet at the tips and a groove never opens wider than it is deep near them;
 //! - `φ(s) = (1 - s²)²` and `r = 3 w` (the support).
+//!
+//! Where that field would turn a surface triangle over (sharp bends, corners framed by
+//! different segments), [`super::unfold`] shrinks the displacements of its corners.
 //!
 //! Vertices outside the support, and groove bottoms, are never written: their display position
 //! is their rest position bit for bit. The rest pose itself is never changed (cutting continues
@@ -107,6 +112,9 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
         }
     }
     let fixed: HashSet<u32> = scalpel.fixed.iter().copied().collect();
+    // A groove's depth tapers toward its tips over `TAPER_DEPTHS` blade depths: opening it wider
+    // than it is deep there would tilt its walls over the lips (folded triangles).
+    let taper_len = w.max(super::taper::TAPER_DEPTHS * scalpel.options().depth);
     // Nearest point on the cut: (distance, point, segment index).
     let nearest = |p: DVec3| -> Option<(f64, DVec3, usize)> {
         let c0 = cell(p);
@@ -191,7 +199,7 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
             .iter()
             .map(|t| t.distance(c))
             .fold(f64::INFINITY, f64::min);
-        let x = (tip_dist / w).min(1.0);
+        let x = (tip_dist / taper_len).min(1.0);
         let taper = x * x * (3.0 - 2.0 * x);
         let falloff = {
             let s2 = (dist / r) * (dist / r);
@@ -202,6 +210,7 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
             out.push((v, p + lateral * amount));
         }
     }
+    super::unfold::unfold(mesh, &mut out);
     out
 }
 

@@ -7,8 +7,19 @@
 //! ([`Groove::make_bottom`]): a quad whose two bottoms are one vertex is one triangle, so a
 //! segment usually costs 2 wall triangles instead of 4. At a crack tip the bottom is the tip
 //! itself and the quad degenerates to one triangle, so the groove ends in a point and the
-//! surface is closed; the last floor vertex is raised near the end tip so that the groove
-//! deepens gradually from it ([`super::taper`]).
+//! surface is closed; floor vertices near either end are shallower, so that the groove deepens
+//! gradually from its tips ([`super::taper`]).
+//!
+//! ## Wall shape
+//! A floor vertex shared by the path vertices above a stretch of floor makes a fan of wall
+//! triangles from it; the farther the fan reaches along the path, the thinner its triangles
+//! (one whose lip edge is `s` along the path from the floor vertex, at depth `d`, has angles of
+//! about `L·d / (s² + d²)` radians for a lip edge of length `L`). A reach of about one blade
+//! depth ([`FLOOR_REACH`]) keeps them within a factor two of a strip with a floor vertex under
+//! every path vertex (angles about `L / d`), and the floor triangles between floor changes at
+//! about 45°, while the floor changes no more often than the element budget allows (walls
+//! shared over six depths made fans of sliver triangles that showed as a torn incision once
+//! it opened).
 //!
 //! ## Element budget
 //! A groove adds at most 4 new triangles in one triangle the cut crosses (counted as in
@@ -66,11 +77,14 @@ pub struct Groove {
     /// The path points whose bottom reused the newest floor vertex since it was made (the floor
     /// runs straight under them, see [`FLOOR_SWAY`]).
     pub floor_run: Vec<DVec3>,
+    /// Where the groove starts, while that start is a crack tip (not a trench it opens into):
+    /// floor vertices near it are made shallower ([`super::taper::start_depth`]).
+    pub start_tip: Option<DVec3>,
 }
 
 /// A new floor vertex once the path is farther than this many blade depths (or segment
-/// lengths, when longer) from where the current one was made.
-pub const FLOOR_REACH: f64 = 6.0;
+/// lengths, when longer) from where the current one was made (see "Wall shape").
+pub const FLOOR_REACH: f64 = 1.0;
 /// A new floor vertex once the path turns more than this from where the current one was made.
 pub const FLOOR_TURN_DEG: f64 = 35.0;
 /// At most about this many blade depths (plus a segment) between consecutive floor vertices,
@@ -82,7 +96,7 @@ pub const FLOOR_MAX_SPAN: f64 = 45.0;
 /// A floor change waits for a path vertex with room for its floor triangles (see
 /// [`Groove::make_bottom`]) up to this many times [`FLOOR_REACH`], or a turn of
 /// [`FLOOR_FORCE_TURN_DEG`].
-pub const FLOOR_STRETCH: f64 = 3.0;
+pub const FLOOR_STRETCH: f64 = 6.0;
 /// See [`FLOOR_STRETCH`]. (The turn is measured from the one segment where the floor vertex was
 /// made: zigzags of the path across the mesh make it noisy, so the limit is generous.)
 pub const FLOOR_FORCE_TURN_DEG: f64 = 85.0;
@@ -151,12 +165,13 @@ pub struct GrooveBackup {
     attached_tail: Vec<u8>,
     floor_at_start: Vec<usize>,
     floor_run: Vec<DVec3>,
+    start_tip: Option<DVec3>,
 }
 
 impl Groove {
-    /// A groove starting at `start`, a vertex the cut made by splitting `start_split` pieces
-    /// more into the triangles around it (see [`Groove::split`]).
-    pub fn new(depth: f64, start: u32, start_split: u8) -> Groove {
+    /// A groove starting at `start` (at `start_pos`), a vertex the cut made by splitting
+    /// `start_split` pieces more into the triangles around it (see [`Groove::split`]).
+    pub fn new(depth: f64, start: u32, start_pos: DVec3, start_split: u8) -> Groove {
         Groove {
             depth,
             bottoms: vec![start],
@@ -169,6 +184,7 @@ impl Groove {
             attached: vec![0],
             floor_at_start: Vec::new(),
             floor_run: Vec::new(),
+            start_tip: Some(start_pos),
         }
     }
 
@@ -216,6 +232,9 @@ impl Groove {
             self.bottoms.resize(index + 1, NO_TWIN);
         }
         self.bottoms[index] = floor;
+        if index == 0 {
+            self.start_tip = None;
+        }
         if !self.junctions.contains(&index) {
             self.junctions.push(index);
         }
@@ -256,7 +275,14 @@ impl Groove {
         if self.owns_floor(index)
             && let Some((top, dir)) = self.floor_top
         {
-            let far = |k: f64| floor_far(self.depth, (top, dir), &self.floor_run, p, prev, k);
+            let floor_depth = super::taper::start_depth(self, top);
+            let far = |k: f64| {
+                // A floor vertex made shallower near the start reaches as far as it is deep
+                // (its fan would be as thin as a deep one's reaching several times as far);
+                // the wait for room counts in blade depths.
+                let depth = if k <= 1.0 { floor_depth } else { self.depth };
+                floor_far(depth, (top, dir), &self.floor_run, p, prev, k)
+            };
             if !far(1.0) {
                 self.bottoms[index] = self.bottoms[index - 1];
                 self.floor_run.push(p);
@@ -278,7 +304,7 @@ impl Groove {
                 self.attach(index);
             }
         }
-        let b = mesh.push_floor_vertex(p - n * self.depth);
+        let b = mesh.push_floor_vertex(p - n * super::taper::start_depth(self, p));
         self.bottoms[index] = b;
         self.bottom_vertices.push(b);
         self.floor_top = Some((p, p - prev));
@@ -295,9 +321,10 @@ impl Groove {
     /// should get a new vertex (see [`Groove::make_bottom`]).
     pub fn floor_due(&self, index: usize, p: DVec3, prev: DVec3) -> bool {
         self.owns_floor(index)
-            && self
-                .floor_top
-                .is_some_and(|top| floor_far(self.depth, top, &self.floor_run, p, prev, 1.0))
+            && self.floor_top.is_some_and(|top| {
+                let depth = super::taper::start_depth(self, top.0);
+                floor_far(depth, top, &self.floor_run, p, prev, 1.0)
+            })
     }
 
     /// What the temporary tip may change, to restore it without copying the whole groove
@@ -328,6 +355,7 @@ impl Groove {
                 .unwrap_or_default(),
             floor_at_start: self.floor_at_start.clone(),
             floor_run: self.floor_run.clone(),
+            start_tip: self.start_tip,
         }
     }
 
@@ -348,6 +376,7 @@ impl Groove {
         self.attached.extend_from_slice(&backup.attached_tail);
         self.floor_at_start = backup.floor_at_start;
         self.floor_run = backup.floor_run;
+        self.start_tip = backup.start_tip;
     }
 
     /// Marks path vertex `index` (vertex `v`) as a crack tip: its own bottom.

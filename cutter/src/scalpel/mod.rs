@@ -20,6 +20,9 @@
 //! - The end of the cut inside its last triangle (the tool tip) is *temporary*: it is undone at
 //!   the next step and redone further on (Mor–Kanade), so sampling density and trembling do not
 //!   leave permanent triangles.
+//! - A stroke's first cut starts, and its cut ends when the stroke ends, at the drawn points:
+//!   the tip vertex the walk snapped to a vertex or an edge near them is moved there where its
+//!   triangles stay well shaped (`relocate::tip_onto`).
 //! - Every step is a transaction over the mesh's journal: it commits a valid mesh or returns an
 //!   error with the mesh exactly as before. Before committing, the triangles the step touched are
 //!   validated locally (twins, orientation, fans, closedness for grooves; cost proportional to
@@ -37,8 +40,9 @@
 //!   a crossing reaches a trench lip again gets a middle vertex (a floor of its own between the
 //!   two junctions); one that comes straight back into the trench it crossed, at the same floor
 //!   vertex, ends on the lip in a crack tip instead of opening into it.
-//! - Grooves share floor vertices along straight runs and snap to vertices a little more than
-//!   slits (`groove_snap_edge`), so a groove costs under 3 new triangles per crossed triangle on
+//! - Grooves share floor vertices over about a blade depth of path (walls of well-shaped
+//!   triangles rather than long fans) and snap to vertices a little more than slits
+//!   (`groove_snap_edge`), so a groove costs about 3.3 new triangles per crossed triangle on
 //!   average, walls included, and never more than 4 in one where the floor can change at a
 //!   vertex of the mesh (see [`groove`], "Element budget"; counted by
 //!   [`survey::element_budget`]).
@@ -89,6 +93,7 @@ pub mod step;
 pub mod survey;
 pub mod taper;
 pub mod through;
+pub mod unfold;
 
 pub use cut_point::CutPoint;
 pub use dffd::OpenOptions;

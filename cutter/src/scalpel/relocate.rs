@@ -15,7 +15,9 @@
 //!   ([`KEEP_ANGLE`]): the quality bound of the notes (Q1: a move of at most the snap radius
 //!   keeps the 1-ring above the bound snapping itself gives).
 //!
-//! Otherwise the cut snaps as before. The move is journaled like every other edit, so a refused
+//! Otherwise the cut snaps as before. The tips of a stroke are treated alike ([`tip_onto`]): its
+//! start vertex and, when the stroke ends, its end vertex move from the vertex or edge they
+//! snapped to onto the drawn start and end, on the same shape condition. The move is journaled like every other edit, so a refused
 //! step or an undone tip puts the vertex back bit for bit.
 
 use glam::DVec3;
@@ -44,12 +46,39 @@ pub(crate) fn onto_cut(mesh: &mut DynMesh, b: u32, y: DVec3, fan: &mut Vec<u32>)
     if pb == y {
         return true;
     }
+    if fan.iter().any(|&h| mesh.is_wall(h / 3)) || !keeps_shape(mesh, b, y, fan) {
+        return false;
+    }
+    mesh.set_pos(b, y);
+    true
+}
+
+/// Moves crack tip `x` (the end of a finished cut: no copies, not a floor vertex) to `y`, the
+/// drawn end of the cut on the surface, when that keeps every triangle around it well shaped
+/// (the same test as [`onto_cut`], walls included: a groove's tip is its own bottom, its walls
+/// move with it). The cut snaps its end to a vertex or an edge near the drawn end so as to make
+/// no sliver; moving the tip there afterwards ends the lips where the user drew. Returns
+/// whether it moved.
+pub(crate) fn tip_onto(mesh: &mut DynMesh, x: u32, y: DVec3, fan: &mut Vec<u32>) -> bool {
+    if !y.is_finite() || mesh.singular[x as usize] || mesh.is_floor(x) || !mesh.copies(x).is_empty()
+    {
+        return false;
+    }
+    mesh.fan_into(x, fan);
+    if fan.is_empty() || !keeps_shape(mesh, x, y, fan) {
+        return false;
+    }
+    mesh.set_pos(x, y);
+    true
+}
+
+/// Whether moving `b` to `y` keeps each triangle of `fan` (`b`'s outgoing half-edges) from
+/// turning over (its normal turns less than [`MAX_TURN_DEG`]) and above [`KEEP_ANGLE`] of its
+/// smallest angle.
+fn keeps_shape(mesh: &DynMesh, b: u32, y: DVec3, fan: &[u32]) -> bool {
+    let pb = mesh.pos(b);
     let cos_turn = MAX_TURN_DEG.to_radians().cos();
-    for &h in fan.iter() {
-        let t = h / 3;
-        if mesh.is_wall(t) {
-            return false;
-        }
+    for &h in fan {
         let (c, d) = (mesh.pos(mesh.dest(h)), mesh.pos(mesh.origin(prev(h))));
         let before = (c - pb).cross(d - pb);
         let after = (c - y).cross(d - y);
@@ -61,7 +90,6 @@ pub(crate) fn onto_cut(mesh: &mut DynMesh, b: u32, y: DVec3, fan: &mut Vec<u32>)
             return false;
         }
     }
-    mesh.set_pos(b, y);
     true
 }
 

@@ -424,8 +424,11 @@ impl Scalpel {
                     return Err(e);
                 }
             }
-        } else if let Some(tip) = stroke.tip.take() {
-            stroke.crossed += tip.crossed;
+        } else {
+            if let Some(tip) = stroke.tip.take() {
+                stroke.crossed += tip.crossed;
+            }
+            self.settle_tip(&stroke);
         }
         if let Some(g) = stroke.cut.as_ref().and_then(|c| c.groove.as_ref()) {
             self.fixed.extend_from_slice(&g.bottom_vertices);

@@ -243,8 +243,10 @@ fn groove_regressions_from_fuzzing() {
 }
 
 /// The element budget of grooves: new triangles (walls included) per triangle crossed, on a
-/// spiral like the benchmark's (turns 3 h apart) on a geodesic sphere: at most 3 on average per
-/// triangle the stroke crossed, never more than 4 in one. What "new in one crossed triangle"
+/// spiral like the benchmark's (turns 3 h apart) on a geodesic sphere: at most 3.5 on average
+/// per triangle the stroke crossed, never more than 4 in one. (A floor shared over six blade
+/// depths kept the mean under 3 but made fans of sliver walls; the floor changes about every
+/// blade depth now, see `groove` "Wall shape", which costs about 0.3 more.) What "new in one crossed triangle"
 /// counts is defined at `survey::element_budget`: its surface pieces minus one, plus the lip
 /// walls of the segments cut through it, plus half of each floor triangle at either end of those
 /// segments; every new triangle is counted exactly once (checked).
@@ -285,7 +287,7 @@ fn groove_element_budget_on_a_spiral() {
             "groove depth {depth} (h {h:.2}): {} crossed, {per:.2} new per crossed ({walls} walls, {floors} floor vertices)",
             r.triangles_cut
         );
-        assert!(per <= 3.0, "{per} new triangles per crossed triangle");
+        assert!(per <= 3.5, "{per} new triangles per crossed triangle");
         let b = survey::element_budget(&sphere, s.dyn_mesh());
         eprintln!(
             "groove depth {depth}: {} cut triangles, mean {:.2}, max {} new ({} over 4; worst: triangle, pieces, walls {:?}); (pieces, 2 walls) histogram {:?}",

@@ -19,6 +19,9 @@ mod grooves;
 mod opening;
 mod slits;
 mod through;
+mod tips;
+mod unfold;
+mod walls;
 
 /// An `n × n` grid of unit squares on z = 0 from (0, 0), each split on the (0,0)-(1,1) diagonal
 /// (right-isosceles triangles; longest edge h = √2).

@@ -53,6 +53,11 @@ impl Scalpel {
         }
         let groove_mode =
             self.options.depth > 0.0 && self.options.tool == Tool::Scalpel && stroke.surface_closed;
+        // Where the user drew the start, on the surface.
+        let drawn = {
+            let [a, b, c] = self.mesh.triangles[t as usize].map(|x| self.mesh.pos(x));
+            a * bary.x + b * bary.y + c * bary.z
+        };
         let cp = if groove_mode {
             // A groove never starts inside a face (a face split, the crossing out of it and the
             // walls would be 5 new triangles in one): it starts on the nearest edge.
@@ -75,7 +80,15 @@ impl Scalpel {
         if self.mesh.singular[v as usize] {
             return Err(self.nonmanifold(v));
         }
-        let mut groove = groove_mode.then(|| Groove::new(self.options.depth, v, start_split));
+        if !stroke.touched && self.options.tool == Tool::Scalpel {
+            // The stroke's first cut starts where the user drew, not where the start snapped
+            // to (a vertex or an edge near it, so as to make no sliver), where the triangles
+            // around it stay well shaped; before anything else is built on it. (A loop's start
+            // is where it closes.)
+            crate::scalpel::relocate::tip_onto(&mut self.mesh, v, drawn, &mut self.scratch);
+        }
+        let mut groove =
+            groove_mode.then(|| Groove::new(self.options.depth, v, self.mesh.pos(v), start_split));
         stroke.far = None;
         let through = if !groove_mode {
             None

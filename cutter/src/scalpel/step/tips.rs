@@ -3,7 +3,7 @@
 //! finished stroke or a closed loop leaves behind.
 
 use super::*;
-use crate::scalpel::taper;
+use crate::scalpel::{relocate, taper};
 
 impl Scalpel {
     /// Places the temporary tip at `end`; when cutting through, first moves the far cut on
@@ -344,6 +344,63 @@ impl Scalpel {
             self.fixed.extend_from_slice(&g.bottom_vertices);
         }
         Ok(())
+    }
+
+    /// At the end of a stroke (not a loop, not cutting through): moves the cut's end tip from
+    /// where the walk snapped it (a vertex or an edge near the last sample, so as to make no
+    /// sliver) onto the last sample's nearest point on the surface around it, where that keeps
+    /// the tip's triangles well shaped ([`relocate::tip_onto`]), so the lips end where the user
+    /// drew. The cut segments ending there follow (the opening tapers to the moved tip), and so
+    /// does a groove's taper toward the tip.
+    pub(super) fn settle_tip(&mut self, stroke: &Stroke) {
+        let (Some(cut), Some(q), None) = (stroke.cut.as_ref(), stroke.tip_q, stroke.far.as_ref())
+        else {
+            return;
+        };
+        let Some(last) = self.segments[stroke.records.0.min(self.segments.len())..].last() else {
+            return;
+        };
+        // The cut's own last segment (not one of a cut it merged into before restarting).
+        if last.a != cut.anchor && last.b != cut.anchor {
+            return;
+        }
+        let x = last.b;
+        if !self.mesh.surface_fan_into(x, &mut self.scratch) {
+            return;
+        }
+        let mut best: Option<(f64, DVec3)> = None;
+        for &h in &self.scratch {
+            let tri = self.mesh.triangles[(h / 3) as usize];
+            let [a, b, c] = tri.map(|v| self.mesh.pos(v));
+            let w = crate::scalpel::cut_point::closest_on_triangle(q, a, b, c);
+            let y = a * w.x + b * w.y + c * w.z;
+            let d = y.distance_squared(q);
+            if best.is_none_or(|(e, _)| d < e) {
+                best = Some((d, y));
+            }
+        }
+        let Some((_, y)) = best else {
+            return;
+        };
+        if !relocate::tip_onto(&mut self.mesh, x, y, &mut self.scratch) {
+            return;
+        }
+        for s in &mut self.segments[stroke.records.0..] {
+            if s.a == x {
+                s.pa = y;
+            }
+            if s.b == x {
+                s.pb = y;
+            }
+        }
+        if let Some(g) = cut.groove.as_ref() {
+            // The taper toward the tip, again from where the tip is now.
+            let mut path = cut.path.clone();
+            if x != cut.anchor {
+                path.push(x);
+            }
+            taper::shape_end(g, &mut self.mesh, &path, path.len() - 1);
+        }
     }
 
     /// Loop tool: cut from the anchor back to the stroke's start, then report detached pieces.

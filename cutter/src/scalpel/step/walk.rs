@@ -440,7 +440,7 @@ impl Scalpel {
         let nm = self.mesh.surface_normal(m, &mut self.scratch);
         let far_floor =
             crate::scalpel::groove::floor_under(&self.mesh, m, nm).ok_or_else(|| fail(pv))?;
-        let mut groove = Groove::new(depth, m, 1);
+        let mut groove = Groove::new(depth, m, self.mesh.pos(m), 1);
         groove.set_junction(0, far_floor);
         cut.groove = Some(groove);
         cut.start = m;

@@ -1,0 +1,203 @@
+//! Keeping the opened surface from folding over.
+//!
+//! The opening ([`super::dffd`]) moves each vertex by a field evaluated on its own (nearest cut
+//! segment, side, taper). Where the path bends sharply, or two vertices of one surface triangle
+//! take their frame from different cut segments, the three moved corners can land so that the
+//! triangle turns over: a bright shard or a dark crack on the opened lip. So after the field is
+//! evaluated, every surface triangle with a moved corner is compared with its rest pose; one
+//! whose normal turned more than [`MAX_TURN_DEG`] has its corners' displacements replaced by
+//! the mean over them and their moved neighbours (the lips stay open, the kink goes; a few
+//! passes), then, if it still folds, halved, and the check repeats (at most [`PASSES`] times,
+//! after which such corners stay where they rest).
+//! Groove walls are not checked: they tilt by design as the lips open over a fixed floor.
+//! Deterministic and proportional to the moved vertices, so the window and `cutaway scalpel`
+//! still show the same positions bit for bit.
+
+use std::collections::{HashMap, HashSet};
+
+use glam::DVec3;
+
+use super::dyn_mesh::{DynMesh, prev};
+
+/// A surface triangle may turn at most this far (degrees) from its rest pose when opened.
+pub const MAX_TURN_DEG: f64 = 60.0;
+
+/// Passes that smooth a folding triangle's corners' displacements before halving them.
+const SMOOTHING: usize = 4;
+
+/// Passes in all (smoothing, then halving) before a folding triangle's corners are put back
+/// at rest.
+const PASSES: usize = 10;
+
+/// Shrinks the displacements in `moved` (vertex, opened position) until no surface triangle
+/// with a moved corner turns more than [`MAX_TURN_DEG`] from its rest normal (see the module
+/// doc). Entries that end at rest are dropped.
+pub fn unfold(mesh: &DynMesh, moved: &mut Vec<(u32, DVec3)>) {
+    if moved.is_empty() {
+        return;
+    }
+    let cos_max = MAX_TURN_DEG.to_radians().cos();
+    let at: HashMap<u32, usize> = moved.iter().enumerate().map(|(i, m)| (m.0, i)).collect();
+    // Surface triangles with a moved corner, by their three corners (each once).
+    let mut triangles: Vec<[u32; 3]> = Vec::new();
+    let mut seen: HashSet<u32> = HashSet::new();
+    let mut fan = Vec::new();
+    for &(v, _) in moved.iter() {
+        mesh.fan_into(v, &mut fan);
+        for &h in &fan {
+            let t = h / 3;
+            if mesh.is_wall(t) || !seen.insert(t) {
+                continue;
+            }
+            triangles.push([mesh.origin(h), mesh.dest(h), mesh.origin(prev(h))]);
+        }
+    }
+    let rest = |v: u32| mesh.pos(v);
+    let shown = |v: u32, moved: &[(u32, DVec3)], at: &HashMap<u32, usize>| {
+        at.get(&v).map_or(mesh.pos(v), |&i| moved[i].1)
+    };
+    let normal = |p: [DVec3; 3]| (p[1] - p[0]).cross(p[2] - p[0]);
+    for pass in 0..=PASSES {
+        let mut shrink: Vec<u32> = Vec::new();
+        for tri in &triangles {
+            let n0 = normal(tri.map(rest));
+            let n1 = normal(tri.map(|v| shown(v, moved, &at)));
+            let (l0, l1) = (n0.length(), n1.length());
+            if l0 == 0.0 {
+                continue;
+            }
+            if l1 == 0.0 || n0.dot(n1) < cos_max * l0 * l1 {
+                shrink.extend(tri.iter().copied().filter(|v| at.contains_key(v)));
+            }
+        }
+        if shrink.is_empty() {
+            break;
+        }
+        shrink.sort_unstable();
+        shrink.dedup();
+        if pass < SMOOTHING {
+            // The corners take the mean displacement of themselves and their moved neighbours
+            // over surface triangles (all on their side of the cut: a lip's surface fan never
+            // crosses it): the opening stays, its kink goes.
+            let mut next = Vec::with_capacity(shrink.len());
+            for &v in &shrink {
+                let mut sum = moved[at[&v]].1 - rest(v);
+                let mut count = 1.0;
+                mesh.surface_fan_into(v, &mut fan);
+                for &h in &fan {
+                    for n in [mesh.dest(h), mesh.origin(prev(h))] {
+                        if let Some(&i) = at.get(&n) {
+                            sum += moved[i].1 - rest(n);
+                            count += 1.0;
+                        }
+                    }
+                }
+                next.push(rest(v) + sum / count);
+            }
+            for (&v, p) in shrink.iter().zip(next) {
+                moved[at[&v]].1 = p;
+            }
+            continue;
+        }
+        for v in shrink {
+            let i = at[&v];
+            moved[i].1 = if pass == PASSES {
+                rest(v)
+            } else {
+                rest(v) + (moved[i].1 - rest(v)) * 0.5
+            };
+        }
+    }
+    moved.retain(|&(v, p)| p != mesh.pos(v));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 6 × 6 grid of unit squares on z = 0 as a scalpel mesh, and the id of vertex (i, j).
+    fn grid() -> (DynMesh, impl Fn(u32, u32) -> u32) {
+        let n = 6;
+        let id = move |i: u32, j: u32| j * (n + 1) + i;
+        let mut positions = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                positions.push(DVec3::new(i as f64, j as f64, 0.0));
+            }
+        }
+        let mut triangles = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                triangles.push([a, b, c]);
+                triangles.push([a, c, d]);
+            }
+        }
+        let mesh = csg::Mesh::new(positions, triangles).unwrap();
+        (DynMesh::from_mesh(&mesh), id)
+    }
+
+    /// The largest turn (degrees) of any triangle of `mesh` with `moved` applied.
+    fn largest_turn(mesh: &DynMesh, moved: &[(u32, DVec3)]) -> f64 {
+        let at = |v: u32| moved.iter().find(|m| m.0 == v).map_or(mesh.pos(v), |m| m.1);
+        let mut worst = 0.0f64;
+        for t in 0..mesh.triangle_count() {
+            let [a, b, c] = mesh.triangles()[t];
+            let n0 = (mesh.pos(b) - mesh.pos(a)).cross(mesh.pos(c) - mesh.pos(a));
+            let n1 = (at(b) - at(a)).cross(at(c) - at(a));
+            let turn = if n1.length() == 0.0 {
+                180.0
+            } else {
+                n0.angle_between(n1).to_degrees()
+            };
+            worst = worst.max(turn);
+        }
+        worst
+    }
+
+    #[test]
+    fn a_vertex_moved_past_its_neighbour_is_pulled_back_until_nothing_folds() {
+        let (mesh, id) = grid();
+        let v = id(3, 3);
+        let mut moved = vec![(v, mesh.pos(v) + DVec3::new(1.6, 0.0, 0.0))];
+        assert!(largest_turn(&mesh, &moved) > 90.0, "the input folds");
+        unfold(&mesh, &mut moved);
+        let turn = largest_turn(&mesh, &moved);
+        assert!(turn <= MAX_TURN_DEG, "still turned {turn}°");
+        // Pulled back only as far as needed: it still moves along +x.
+        assert_eq!(moved.len(), 1);
+        assert!(moved[0].1.x > mesh.pos(v).x + 0.5, "{:?}", moved[0].1);
+    }
+
+    #[test]
+    fn a_kink_in_a_moved_patch_is_smoothed_and_the_rest_kept_bit_for_bit() {
+        let (mesh, id) = grid();
+        // Columns 0..=2 move by 0.4 along +x (no fold), except (2, 3), which moves by 1.6 and
+        // passes its neighbour (3, 3).
+        let mut moved = Vec::new();
+        for j in 0..=6 {
+            for i in 0..=2 {
+                let v = id(i, j);
+                let dx = if (i, j) == (2, 3) { 1.6 } else { 0.4 };
+                moved.push((v, mesh.pos(v) + DVec3::new(dx, 0.0, 0.0)));
+            }
+        }
+        let before = moved.clone();
+        assert!(largest_turn(&mesh, &before) > 90.0, "the input folds");
+        unfold(&mesh, &mut moved);
+        assert!(largest_turn(&mesh, &moved) <= MAX_TURN_DEG);
+        let kink = moved.iter().find(|m| m.0 == id(2, 3)).unwrap().1;
+        assert!(
+            kink.x > mesh.pos(id(2, 3)).x + 0.4,
+            "the kinked vertex keeps at least its neighbours' opening: {kink:?}"
+        );
+        // Vertices of no folding triangle (two rings away from the kink) are untouched.
+        for (v, p) in before {
+            let q = mesh.pos(v);
+            if (q - mesh.pos(id(2, 3))).length() > 2.5 {
+                let now = moved.iter().find(|m| m.0 == v).unwrap().1;
+                assert_eq!(now, p, "vertex {v} changed");
+            }
+        }
+    }
+}
