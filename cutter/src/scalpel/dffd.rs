@@ -21,7 +21,7 @@
 //! - `ramp = clamp((now - t_cut) / window, 0, 1)`: the trailing time window over which a freshly
 //!   cut segment opens to its full width;
 //! - `taper` goes from 0 at a crack tip to 1 one width away (or, for a groove, where its depth
-//!   stops tapering, [`super::taper::TAPER_DEPTHS`] blade depths away, when that is farther), so
+//!   stops tapering, [`super::groove::TAPER_DEPTHS`] blade depths away, when that is farther), so
 //!   the lips meet at the tips and a groove never opens wider than it is deep near them;
 //! - `φ(s) = (1 - s²)²` and `r = 3 w` (the support).
 //!
@@ -114,7 +114,7 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
     let fixed: HashSet<u32> = scalpel.fixed.iter().copied().collect();
     // A groove's depth tapers toward its tips over `TAPER_DEPTHS` blade depths: opening it wider
     // than it is deep there would tilt its walls over the lips (folded triangles).
-    let taper_len = w.max(super::taper::TAPER_DEPTHS * scalpel.options().depth);
+    let taper_len = w.max(super::groove::TAPER_DEPTHS * scalpel.options().depth);
     // Nearest point on the cut: (distance, point, segment index).
     let nearest = |p: DVec3| -> Option<(f64, DVec3, usize)> {
         let c0 = cell(p);

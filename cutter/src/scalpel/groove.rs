@@ -78,7 +78,7 @@ pub struct Groove {
     /// runs straight under them, see [`FLOOR_SWAY`]).
     pub floor_run: Vec<DVec3>,
     /// Where the groove starts, while that start is a crack tip (not a trench it opens into):
-    /// floor vertices near it are made shallower ([`super::taper::start_depth`]).
+    /// floor vertices near it are made shallower (`Groove::start_depth`).
     pub start_tip: Option<DVec3>,
 }
 
@@ -168,7 +168,25 @@ pub struct GrooveBackup {
     start_tip: Option<DVec3>,
 }
 
+/// The groove reaches its full depth this many blade depths from a crack tip (a slope of about
+/// 27°; see [`super::taper`]).
+pub const TAPER_DEPTHS: f64 = 2.0;
+
+/// A floor vertex near a tip keeps at least this fraction of the blade depth.
+pub const MIN_DEPTH: f64 = 0.2;
+
 impl Groove {
+    /// Depth of a floor vertex made under the path point `p`: the blade depth, less within the
+    /// taper length of the groove's start when that is a crack tip (see [`super::taper`]).
+    pub(crate) fn start_depth(&self, p: DVec3) -> f64 {
+        match self.start_tip {
+            Some(start) => {
+                self.depth * (p.distance(start) / (TAPER_DEPTHS * self.depth)).clamp(MIN_DEPTH, 1.0)
+            }
+            None => self.depth,
+        }
+    }
+
     /// A groove starting at `start` (at `start_pos`), a vertex the cut made by splitting
     /// `start_split` pieces more into the triangles around it (see [`Groove::split`]).
     pub fn new(depth: f64, start: u32, start_pos: DVec3, start_split: u8) -> Groove {
@@ -275,7 +293,7 @@ impl Groove {
         if self.owns_floor(index)
             && let Some((top, dir)) = self.floor_top
         {
-            let floor_depth = super::taper::start_depth(self, top);
+            let floor_depth = self.start_depth(top);
             let far = |k: f64| {
                 // A floor vertex made shallower near the start reaches as far as it is deep
                 // (its fan would be as thin as a deep one's reaching several times as far);
@@ -304,7 +322,7 @@ impl Groove {
                 self.attach(index);
             }
         }
-        let b = mesh.push_floor_vertex(p - n * super::taper::start_depth(self, p));
+        let b = mesh.push_floor_vertex(p - n * self.start_depth(p));
         self.bottoms[index] = b;
         self.bottom_vertices.push(b);
         self.floor_top = Some((p, p - prev));
@@ -322,7 +340,7 @@ impl Groove {
     pub fn floor_due(&self, index: usize, p: DVec3, prev: DVec3) -> bool {
         self.owns_floor(index)
             && self.floor_top.is_some_and(|top| {
-                let depth = super::taper::start_depth(self, top.0);
+                let depth = self.start_depth(top.0);
                 floor_far(depth, top, &self.floor_run, p, prev, 1.0)
             })
     }

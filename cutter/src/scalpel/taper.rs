@@ -4,9 +4,9 @@
 //! vertex at the full blade depth under a path vertex right next to a tip makes the walls drop
 //! from the surface to the full depth over one path segment: a cliff of long thin triangles,
 //! which showed as a torn end once the incision opened. So the depth tapers over
-//! [`TAPER_DEPTHS`] blade depths at both ends (a slope of about 27°), never below
-//! [`MIN_DEPTH`] of the blade depth (so the walls keep their shape):
-//! - **Start** ([`start_depth`]): a floor vertex made within the taper length of the groove's
+//! [`TAPER_DEPTHS`](super::groove::TAPER_DEPTHS) blade depths at both ends (a slope of about 27°), never below
+//! [`MIN_DEPTH`](super::groove::MIN_DEPTH) of the blade depth (so the walls keep their shape):
+//! - **Start** ([`Groove::start_depth`]): a floor vertex made within the taper length of the groove's
 //!   start (a crack tip, not a trench it opens into) is made shallower, straight below the path
 //!   vertex it belongs to. Only its depth changes, never where it sits along the path: a later
 //!   cut crossing the groove near its start finds the floor vertex under the lip vertex it
@@ -24,28 +24,12 @@ use glam::DVec3;
 
 use super::dyn_mesh::DynMesh;
 use super::groove::Groove;
-
-/// The groove reaches its full depth this many blade depths from a crack tip (a slope of about
-/// 27°).
-pub const TAPER_DEPTHS: f64 = 2.0;
-
-/// A floor vertex near a tip keeps at least this fraction of the blade depth.
-pub const MIN_DEPTH: f64 = 0.2;
+/// The taper's shape constants live with the groove that builds floors at those depths.
+pub use super::groove::{MIN_DEPTH, TAPER_DEPTHS};
 
 /// A floor vertex lies under a stretch of path when it is at most this many blade depths
 /// across from it (see [`shape_end`]).
 const UNDER: f64 = 0.25;
-
-/// Depth of a floor vertex made under the path point `p`: the blade depth, less within the
-/// taper length of the groove's start when that is a crack tip (see the module doc).
-pub(crate) fn start_depth(g: &Groove, p: DVec3) -> f64 {
-    match g.start_tip {
-        Some(start) => {
-            g.depth * (p.distance(start) / (TAPER_DEPTHS * g.depth)).clamp(MIN_DEPTH, 1.0)
-        }
-        None => g.depth,
-    }
-}
 
 /// Raises the groove's floor vertices near the tip at path index `last` (see the module doc).
 /// `path` includes the tip. Walks back from the tip over the path within a taper length (plus
