@@ -16,14 +16,7 @@ fn groove_ends_taper_to_the_tips() {
     let depth = 3.0;
     let reach = TAPER_DEPTHS * depth;
     let sphere = csg::testkit::icosphere(5, r);
-    let path: Vec<DVec3> = (0..=60)
-        .map(|i| {
-            let u = i as f64 / 60.0;
-            let lon = -0.6 + 1.2 * u;
-            let lat = 0.12 * (u * std::f64::consts::TAU).sin();
-            DVec3::new(lat.cos() * lon.sin(), -lat.cos() * lon.cos(), lat.sin()) * r
-        })
-        .collect();
+    let path = wavy_arc(r, 60);
     // Paths of several lengths, so that the end falls at different distances after the last
     // floor change (the last floor vertex is then raised toward the tip).
     let (mut near, mut near_start, mut far) = (0, 0, 0);

@@ -87,14 +87,7 @@ fn a_wavy_groove_follows_the_drawn_path() {
             [a.distance(b), b.distance(c), c.distance(a)]
         })
         .fold(0.0, f64::max);
-    let path: Vec<DVec3> = (0..=60)
-        .map(|i| {
-            let u = i as f64 / 60.0;
-            let lon = -0.6 + 1.2 * u;
-            let lat = 0.12 * (u * std::f64::consts::TAU).sin();
-            DVec3::new(lat.cos() * lon.sin(), -lat.cos() * lon.cos(), lat.sin()) * r
-        })
-        .collect();
+    let path = wavy_arc(r, 60);
     let mut s = Scalpel::new(&sphere, ScalpelOptions::default().with_depth(3.0)).unwrap();
     groove_strokes(&mut s, std::slice::from_ref(&path));
     let (worst, n) = worst_offset(&s, &path, h);

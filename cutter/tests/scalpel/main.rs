@@ -166,6 +166,19 @@ fn great_arc(center: DVec3, dir: DVec3, r: f64, from: f64, to: f64, n: usize) ->
 /// Cuts grooves on a closed mesh, checking after every step that the surface stays closed,
 /// manifold and of the same Euler characteristic and number of components; returns the smallest
 /// angle of the triangles created and, per step, whether the blade was cutting after it.
+/// A wavy arc of `samples + 1` points across the front (-y) of a sphere of radius `r` about the
+/// origin: 1.2 rad of longitude with a latitude wave of 0.12 rad, one period.
+fn wavy_arc(r: f64, samples: usize) -> Vec<DVec3> {
+    (0..=samples)
+        .map(|i| {
+            let u = i as f64 / samples as f64;
+            let lon = -0.6 + 1.2 * u;
+            let lat = 0.12 * (u * std::f64::consts::TAU).sin();
+            DVec3::new(lat.cos() * lon.sin(), -lat.cos() * lon.cos(), lat.sin()) * r
+        })
+        .collect()
+}
+
 fn groove_strokes(s: &mut Scalpel, strokes: &[Vec<DVec3>]) -> (f64, Vec<bool>) {
     let before = topo(s);
     assert!(before.closed);

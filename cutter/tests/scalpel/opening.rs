@@ -44,14 +44,7 @@ fn opened_wavy_groove(w: f64) -> (Scalpel, Vec<DVec3>) {
     let r = 20.0;
     let sphere = csg::testkit::icosphere(5, r);
     let mut s = Scalpel::new(&sphere, ScalpelOptions::default().with_depth(3.0)).unwrap();
-    let path: Vec<DVec3> = (0..=60)
-        .map(|i| {
-            let u = i as f64 / 60.0;
-            let lon = -0.6 + 1.2 * u;
-            let lat = 0.12 * (u * std::f64::consts::TAU).sin();
-            DVec3::new(lat.cos() * lon.sin(), -lat.cos() * lon.cos(), lat.sin()) * r
-        })
-        .collect();
+    let path = wavy_arc(r, 60);
     s.cut_stroke(&path).unwrap();
     s.advance_clock(1.0);
     let open = OpenOptions {

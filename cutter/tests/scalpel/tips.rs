@@ -18,14 +18,7 @@ fn cut_ends_at_the_drawn_tip() {
     let sphere = csg::testkit::icosphere(5, r);
     let [a, b, _] = sphere.triangles[0].map(|v| sphere.positions[v as usize]);
     let h = a.distance(b);
-    let path: Vec<DVec3> = (0..=120)
-        .map(|i| {
-            let u = i as f64 / 120.0;
-            let lon = -0.6 + 1.2 * u;
-            let lat = 0.12 * (u * std::f64::consts::TAU).sin();
-            DVec3::new(lat.cos() * lon.sin(), -lat.cos() * lon.cos(), lat.sin()) * r
-        })
-        .collect();
+    let path = wavy_arc(r, 120);
     for depth in [0.0, 0.75, 3.0] {
         let (mut close, mut strokes, mut worst) = (0, 0, 0.0f64);
         for samples in (30..=120).step_by(3) {

@@ -26,14 +26,7 @@ fn wall_angles(s: &Scalpel) -> Vec<f64> {
 fn groove_walls_are_well_shaped() {
     let r = 20.0;
     let sphere = csg::testkit::icosphere(5, r);
-    let path: Vec<DVec3> = (0..=60)
-        .map(|i| {
-            let u = i as f64 / 60.0;
-            let lon = -0.6 + 1.2 * u;
-            let lat = 0.12 * (u * std::f64::consts::TAU).sin();
-            DVec3::new(lat.cos() * lon.sin(), -lat.cos() * lon.cos(), lat.sin()) * r
-        })
-        .collect();
+    let path = wavy_arc(r, 60);
     for (depth, worst_bound, tenth_bound) in [(0.75, 9.0, 14.0), (3.0, 4.5, 6.5)] {
         let mut s = Scalpel::new(&sphere, ScalpelOptions::default().with_depth(depth)).unwrap();
         groove_strokes(&mut s, std::slice::from_ref(&path));
