@@ -23,7 +23,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::DVec3;
 use window_harness::{apply, harness, no_adapter, shot};
-use window_input::{anatomy, click_mode, count_colour, drag, settle, temp_dir, view_px};
+use window_input::{anatomy, click_mode, count_colour, drag, settle, temp_dir, view_px, wheel_at};
 
 /// Mean absolute channel difference of two equally sized images inside `rect` (pixels).
 fn difference_in(a: &image::RgbaImage, b: &image::RgbaImage, rect: egui::Rect) -> f64 {
@@ -470,16 +470,7 @@ fn edit_mode_orbits_with_the_right_button_and_zooms_off_the_cutter() {
         "right-drag made a cutter"
     );
     // The wheel off any cutter zooms.
-    h.hover_at(c + egui::vec2(0.0, -200.0));
-    h.step();
-    h.event(egui::Event::MouseWheel {
-        unit: egui::MouseWheelUnit::Line,
-        delta: egui::vec2(0.0, 2.0),
-        modifiers: Default::default(),
-        phase: egui::TouchPhase::Move,
-        source: egui::MouseWheelSource::Wheel,
-    });
-    h.run_steps(2);
+    wheel_at(&mut h, c + egui::vec2(0.0, -200.0), 2.0);
     assert!(
         h.state().scene.camera.distance() < after.distance() * 0.95,
         "the wheel did not zoom in Edit mode"

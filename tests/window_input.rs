@@ -1,9 +1,10 @@
 //! Input and looking helpers shared by the window tests that drive the default scene and real
-//! anatomy (`window.rs`, `window_navigation.rs`): a private folder, settling background jobs,
-//! switching modes, mouse drags, the 3D view's pixel rectangle, colour counts, and where the
-//! real anatomy is.
+//! anatomy (`window.rs`, `window_navigation.rs`, `window_scale.rs`): a private folder, settling
+//! background jobs, switching modes, mouse drags and wheel turns, the 3D view's pixel rectangle,
+//! colour counts, and where the real anatomy is. A test file that does not use every helper
+//! includes this module with `#[allow(dead_code)]`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use cutaway::gui::app::Action;
@@ -22,7 +23,7 @@ pub fn temp_dir(name: &str) -> PathBuf {
 
 /// Steps the window until its background jobs are done, then three frames more.
 pub fn settle(h: &mut Harness<'_, CutawayApp>) {
-    let deadline = Instant::now() + Duration::from_secs(180);
+    let deadline = Instant::now() + Duration::from_secs(300);
     while h.state().busy() {
         assert!(Instant::now() < deadline, "background jobs did not finish");
         h.step();
@@ -74,11 +75,25 @@ pub fn drag(h: &mut Harness<'_, CutawayApp>, a: egui::Pos2, b: egui::Pos2) {
     h.run_steps(2);
 }
 
+/// Hovers `at` and turns the wheel by `lines` (positive zooms in), then two frames.
+pub fn wheel_at(h: &mut Harness<'_, CutawayApp>, at: egui::Pos2, lines: f32) {
+    h.hover_at(at);
+    h.step();
+    h.event(egui::Event::MouseWheel {
+        unit: egui::MouseWheelUnit::Line,
+        delta: egui::vec2(0.0, lines),
+        modifiers: Default::default(),
+        phase: egui::TouchPhase::Move,
+        source: egui::MouseWheelSource::Wheel,
+    });
+    h.run_steps(2);
+}
+
 /// `CUTAWAY_ANATOMY/<folder>` (default `../shared/anatomy`) or `None` with the reason printed.
 pub fn anatomy(folder: &str) -> Option<PathBuf> {
     let root = std::env::var_os("CUTAWAY_ANATOMY")
         .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from("../shared/anatomy"));
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/anatomy"));
     let path = root.join(folder);
     if !path.is_dir() {
         println!(

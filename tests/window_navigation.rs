@@ -17,7 +17,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::DVec3;
 use window_harness::{apply, harness, harness_sized, no_adapter, shot};
-use window_input::{anatomy, click_mode, count_colour, drag, settle, temp_dir, view_px};
+use window_input::{anatomy, click_mode, count_colour, drag, settle, temp_dir, view_px, wheel_at};
 
 /// Double-clicks at `at` (points) with real frame times between the clicks.
 fn double_click(h: &mut Harness<'_, CutawayApp>, at: egui::Pos2) {
@@ -255,16 +255,7 @@ fn right_drag_orbits_middle_drag_pans_and_the_wheel_zooms_in_every_mode() {
         );
         // The wheel over empty background, away from any cutter.
         let corner = h.state().viewport.rect.right_top() + egui::vec2(-60.0, 60.0);
-        h.hover_at(corner);
-        h.step();
-        h.event(egui::Event::MouseWheel {
-            unit: egui::MouseWheelUnit::Line,
-            delta: egui::vec2(0.0, 2.0),
-            modifiers: Default::default(),
-            phase: egui::TouchPhase::Move,
-            source: egui::MouseWheelSource::Wheel,
-        });
-        h.run_steps(2);
+        wheel_at(&mut h, corner, 2.0);
         assert!(
             h.state().scene.camera.distance() < panned.distance() * 0.95,
             "{mode:?}: the wheel did not zoom"

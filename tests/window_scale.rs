@@ -14,9 +14,10 @@
 //! `CUTAWAY_ANATOMY` (default `../shared/anatomy`).
 
 mod window_harness;
+#[allow(dead_code)]
+mod window_input;
 
-use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::path::Path;
 
 use cutaway::cutting::cut_scene::PartKind;
 use cutaway::gui::app::Action;
@@ -26,39 +27,7 @@ use cutaway::gui::{CutawayApp, Mode};
 use cutter::EditorSettings;
 use egui_kittest::Harness;
 use window_harness::{apply, harness, no_adapter, shot};
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("cutaway-scale-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
-
-fn settle(h: &mut Harness<'_, CutawayApp>) {
-    let deadline = Instant::now() + Duration::from_secs(300);
-    while h.state().busy() {
-        assert!(Instant::now() < deadline, "background jobs did not finish");
-        h.step();
-        std::thread::sleep(Duration::from_millis(5));
-    }
-    h.run_steps(3);
-}
-
-/// `CUTAWAY_ANATOMY/<folder>` (default `../shared/anatomy`) or `None` with the reason printed.
-fn anatomy(folder: &str) -> Option<PathBuf> {
-    let root = std::env::var_os("CUTAWAY_ANATOMY")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/anatomy"));
-    let path = root.join(folder);
-    if !path.is_dir() {
-        println!(
-            "skipped: {} not found (set CUTAWAY_ANATOMY)",
-            path.display()
-        );
-        return None;
-    }
-    Some(path)
-}
+use window_input::{anatomy, settle, temp_dir};
 
 /// The index of the model loaded from a file whose name contains `name`.
 fn model(h: &Harness<'_, CutawayApp>, name: &str) -> usize {
