@@ -88,6 +88,7 @@ pub mod layers;
 mod local_check;
 pub mod locate;
 pub mod loop_tool;
+pub mod project;
 pub mod relocate;
 pub mod step;
 pub mod survey;

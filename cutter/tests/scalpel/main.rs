@@ -17,6 +17,7 @@ mod fidelity;
 mod fuzz;
 mod grooves;
 mod opening;
+mod projection;
 mod slits;
 mod through;
 mod tips;
