@@ -78,6 +78,7 @@
 //! `csg::exact::orient3d_f64`;
 //! snapping thresholds are relative to local edge lengths, never absolute.
 
+pub mod budget;
 pub mod cross;
 pub mod cut_point;
 pub mod dffd;
@@ -122,10 +123,11 @@ pub struct ScalpelOptions {
     /// Edge crossings at edge parameter below this (or above `1 - snap_edge`) go through the
     /// vertex instead. Default `0.25` (worst new angle ≈ 0.2 × parent's: notes §2).
     pub snap_edge: f64,
-    /// `snap_edge` for grooves (depth > 0 on a closed surface). Coarser than a slit's: a
-    /// groove's lips meet in the trench, and going through a vertex instead of splitting an edge
-    /// keeps a groove within about 3 new triangles per crossed one (walls included). Default
-    /// `1/3` (worst new angle ≈ 11° on grid meshes, 19° on equilateral ones: notes §2).
+    /// `snap_edge` for grooves (depth > 0 on a closed surface). Default `0.25`, as for slits: a
+    /// crossing snapped to a vertex is at most a quarter of the crossed edge off the drawn path
+    /// (notes Q2) even where the vertex cannot be moved onto the cut ([`relocate`]). (It was
+    /// coarser, `0.4`, to keep the floor's changes at mesh vertices within a combined element
+    /// budget; the walls have their own budget now, see [`groove`], "Element budget".)
     pub groove_snap_edge: f64,
     /// End points within this fraction of the last segment from its ends snap to them; end
     /// points near an edge land on it. Default `0.25`.
@@ -144,7 +146,7 @@ impl Default for ScalpelOptions {
             depth: 0.0,
             tool: Tool::Scalpel,
             snap_edge: 0.25,
-            groove_snap_edge: 0.4,
+            groove_snap_edge: 0.25,
             snap_end: 0.25,
             merge_angle_deg: 15.0,
             max_surface_distance: None,
