@@ -71,6 +71,10 @@ pub struct Groove {
 /// linearly to zero) over the path within this many blade depths behind it (see "Wall shape").
 pub const FLOOR_NORMAL_SPAN: f64 = 1.0;
 
+/// The floor vertex under a path vertex follows the path averaged over this many blade depths
+/// behind it, across the path (see [`Groove::across_wobble`]).
+pub const FLOOR_SMOOTH_SPAN: f64 = 0.5;
+
 /// See [`Groove::backup`].
 #[derive(Clone, Debug)]
 pub struct GrooveBackup {
@@ -145,10 +149,11 @@ impl Groove {
         self.frontier.is_empty()
     }
 
-    /// Makes the floor vertex of path vertex `index` (at rest position `p`, surface normal `n`
-    /// there): one per path vertex, under it along the normal averaged over the path behind
-    /// (see "Wall shape"), at the depth [`Groove::start_depth`] gives.
-    pub fn make_bottom(&mut self, mesh: &mut DynMesh, index: usize, p: DVec3, n: DVec3) {
+    /// Makes the floor vertex of path vertex `index` (mesh vertex `v`): one per path vertex,
+    /// under it along the normal averaged over the path behind (see "Wall shape"), at the depth
+    /// [`Groove::start_depth`] gives.
+    pub fn make_bottom(&mut self, mesh: &mut DynMesh, index: usize, v: u32) {
+        let (p, n) = (mesh.pos(v), whole_normal(mesh, v));
         if self.bottoms.len() <= index {
             self.bottoms.resize(index + 1, NO_TWIN);
         }
@@ -160,9 +165,46 @@ impl Groove {
         }
         self.tops[index] = Some((p, n));
         let n = self.floor_normal(index);
-        let b = mesh.push_floor_vertex(p - n * self.start_depth(p));
+        let top = p + self.across_wobble(index);
+        let b = mesh.push_floor_vertex(top - n * self.start_depth(p));
         self.bottoms[index] = b;
         self.bottom_vertices.push(b);
+    }
+
+    /// How far the path behind path vertex `index`, averaged over [`FLOOR_SMOOTH_SPAN`] blade
+    /// depths (weights as in [`Groove::floor_normal`]), lies across the path from the vertex:
+    /// the floor vertex is moved by that, so that it runs under the path's line rather than under
+    /// every wobble of the lips around it (on a noisy surface the cut's vertices sit a few
+    /// hundredths of an edge either side of the drawn line; over segments much shorter than the
+    /// blade is deep, that turned the floor by tens of degrees). Only across: along the path the
+    /// floor vertex stays under its own lip vertex.
+    fn across_wobble(&self, index: usize) -> DVec3 {
+        let Some(Some((p0, _))) = self.tops.get(index).copied() else {
+            return DVec3::ZERO;
+        };
+        let span = FLOOR_SMOOTH_SPAN * self.depth;
+        let (mut sum, mut total, mut arc) = (DVec3::ZERO, 0.0, 0.0);
+        let (mut at, mut oldest) = (p0, p0);
+        for j in (0..index).rev() {
+            let Some((p, _)) = self.tops[j] else {
+                break;
+            };
+            let length = p.distance(at);
+            let w = (1.0 - arc / span).max(0.0) * length;
+            sum += (at + p) * 0.5 * w;
+            total += w;
+            arc += length;
+            (at, oldest) = (p, p);
+            if arc >= span {
+                break;
+            }
+        }
+        let dir = (p0 - oldest).normalize_or_zero();
+        if total <= 0.0 || dir == DVec3::ZERO {
+            return DVec3::ZERO;
+        }
+        let off = sum / total - p0;
+        off - dir * off.dot(dir)
     }
 
     /// The surface normal averaged over the path within [`FLOOR_NORMAL_SPAN`] blade depths
@@ -345,6 +387,18 @@ impl Groove {
         }
         Some(true)
     }
+}
+
+/// Unit surface normal at cut vertex `v` over all its copies: a lip copy's own surface fan is
+/// one side of the cut, whose normal leans to that side (to either side from one path vertex to
+/// the next, which made the floor swing). Zero when degenerate.
+pub fn whole_normal(mesh: &DynMesh, v: u32) -> DVec3 {
+    let mut scratch = Vec::new();
+    let mut n = mesh.surface_normal(v, &mut scratch);
+    for c in mesh.copies(v) {
+        n += mesh.surface_normal(c, &mut scratch);
+    }
+    n.normalize_or_zero()
 }
 
 /// Which diagonal splits the wall quad `u, bu, bw, w` (lip edge `u w`, floor edge `bu bw`) into

@@ -40,12 +40,13 @@
 //!   a crossing reaches a trench lip again gets a middle vertex (a floor of its own between the
 //!   two junctions); one that comes straight back into the trench it crossed, at the same floor
 //!   vertex, ends on the lip in a crack tip instead of opening into it.
-//! - Grooves share floor vertices over about a blade depth of path (walls of well-shaped
-//!   triangles rather than long fans) and snap to vertices a little more than slits
-//!   (`groove_snap_edge`), so a groove costs about 3.3 new triangles per crossed triangle on
-//!   average, walls included, and never more than 4 in one where the floor can change at a
-//!   vertex of the mesh (see [`groove`], "Element budget"; counted by
-//!   [`survey::element_budget`]).
+//! - A groove's walls are strips: every path vertex gets a floor vertex under it, along the
+//!   surface normal averaged over a blade depth of path, so each segment's wall on each lip is a
+//!   quad of two triangles and the floor a smooth polyline under the path (see [`groove`],
+//!   "Wall shape"). Grooves snap to vertices like slits (`groove_snap_edge`, a quarter of an
+//!   edge), so their lips keep within a quarter of an edge of the drawn path (notes Q2). The
+//!   element budget is the notes' two (T1: at most 4 surface pieces in a crossed triangle, 3 edge
+//!   to edge; T4: at most 4 wall triangles per segment), counted by [`budget::element_budget`].
 //! - A cut that cannot leave its anchor toward a sample that is on the surface two triangles
 //!   away (a trench's lip in the way where it cannot cross) ends there and starts again under
 //!   the blade, instead of refusing every later step of the stroke. A groove starting on a

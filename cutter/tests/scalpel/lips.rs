@@ -64,11 +64,9 @@ pub(crate) struct LipFit {
     pub at: DVec3,
 }
 
-/// The Hausdorff distance between the lips of the grooves cut into `mesh` and the drawn `path`
-/// projected onto `mesh` (each sample segment sub-sampled, each sub-sample moved to the nearest
-/// surface point), relative to `h`, the longest edge of the input triangle the path crosses
-/// there (at a path point, its own; at a lip point, the nearest path point's).
-pub(crate) fn lip_fit(mesh: &Mesh, s: &Scalpel, path: &[DVec3]) -> LipFit {
+/// The drawn `path` projected onto `mesh`: each sample segment sub-sampled, each sub-sample
+/// moved to the nearest surface point, with the longest edge of the triangle it lands in.
+pub(crate) fn projected_path(mesh: &Mesh, path: &[DVec3]) -> Vec<(DVec3, f64)> {
     let index = SpatialIndex::build(mesh);
     let project = |x: DVec3| {
         let c = index.closest_point(mesh, x).unwrap();
@@ -80,6 +78,15 @@ pub(crate) fn lip_fit(mesh: &Mesh, s: &Scalpel, path: &[DVec3]) -> LipFit {
             drawn.push(project(w[0].lerp(w[1], i as f64 / SUBSAMPLES as f64)));
         }
     }
+    drawn
+}
+
+/// The Hausdorff distance between the lips of the grooves cut into `mesh` and the drawn `path`
+/// projected onto `mesh` (each sample segment sub-sampled, each sub-sample moved to the nearest
+/// surface point), relative to `h`, the longest edge of the input triangle the path crosses
+/// there (at a path point, its own; at a lip point, the nearest path point's).
+pub(crate) fn lip_fit(mesh: &Mesh, s: &Scalpel, path: &[DVec3]) -> LipFit {
+    let drawn = projected_path(mesh, path);
     let lips = lip_edges(s);
     assert!(!lips.is_empty(), "no lip edges");
     let mut fit = LipFit {

@@ -3,7 +3,7 @@
 //! smooth polyline under the path (its direction averaged along the path, not each vertex's
 //! own normal on a noisy surface).
 
-use super::lips::{REAL_CASES, asset_case};
+use super::lips::{REAL_CASES, asset_case, projected_path};
 use super::*;
 use cutter::scalpel::DynMesh;
 use cutter::scalpel::dyn_mesh::is_real;
@@ -78,34 +78,68 @@ fn floor_polylines(m: &DynMesh) -> Vec<Vec<u32>> {
     out
 }
 
-/// The largest turning angle (degrees) of the floor polylines at the scale of the walls: at
-/// each floor vertex, between the chords to the floor vertices at least `span` along the floor
-/// before and after it (the cut splits some edges close to a vertex: lip edges, and floor edges
-/// under them, much shorter than the blade is deep, where a wobble of the lips by a few
-/// hundredths of an edge turns the floor by tens of degrees over one short edge). Floor vertices
-/// within `ends` of either end of their polyline are left out: there the floor rises to the
-/// crack tips by design ([`cutter::scalpel::taper`]).
-fn worst_floor_turn(m: &DynMesh, span: f64, ends: f64) -> f64 {
+/// The largest turning angle (degrees) of the polyline `p` at the scale of the walls: at each
+/// vertex, between the chords to the vertices at least `span` before and after it (the cut
+/// splits some edges close to a vertex: lip edges, and floor edges under them, much shorter
+/// than the blade is deep, where a wobble of a few hundredths of an edge turns a polyline by
+/// tens of degrees over one short edge). Vertices within `ends` (along the polyline) of either
+/// end are left out: there the floor rises to the crack tips by design
+/// ([`cutter::scalpel::taper`]).
+fn worst_turn(p: &[DVec3], span: f64, ends: f64) -> f64 {
+    let mut arc = vec![0.0];
+    for w in p.windows(2) {
+        arc.push(arc.last().unwrap() + w[0].distance(w[1]));
+    }
+    let total = *arc.last().unwrap();
     let mut worst = 0.0f64;
-    for line in floor_polylines(m) {
-        let p: Vec<DVec3> = line.iter().map(|&v| m.pos(v)).collect();
-        let mut arc = vec![0.0];
-        for w in p.windows(2) {
-            arc.push(arc.last().unwrap() + w[0].distance(w[1]));
+    for i in 1..p.len().saturating_sub(1) {
+        if arc[i] < ends || total - arc[i] < ends {
+            continue;
         }
-        let total = *arc.last().unwrap();
-        for i in 1..p.len().saturating_sub(1) {
-            if arc[i] < ends || total - arc[i] < ends {
-                continue;
-            }
-            let back = (0..i).rev().find(|&j| p[j].distance(p[i]) >= span);
-            let ahead = (i + 1..p.len()).find(|&j| p[j].distance(p[i]) >= span);
-            if let (Some(j), Some(k)) = (back, ahead) {
-                worst = worst.max((p[i] - p[j]).angle_between(p[k] - p[i]).to_degrees());
-            }
+        let back = (0..i).rev().find(|&j| p[j].distance(p[i]) >= span);
+        let ahead = (i + 1..p.len()).find(|&j| p[j].distance(p[i]) >= span);
+        if let (Some(j), Some(k)) = (back, ahead) {
+            worst = worst.max((p[i] - p[j]).angle_between(p[k] - p[i]).to_degrees());
         }
     }
     worst
+}
+
+/// The two lips of the one groove in the mesh, each as its points from one tip to the other:
+/// the lip edges (surface half-edges with a wall across) chain into one loop through both tips
+/// (a crack tip is not duplicated), split at the loop's points nearest the drawn path's ends.
+fn lip_polylines(m: &DynMesh, from: DVec3, to: DVec3) -> Vec<Vec<DVec3>> {
+    let mut next = std::collections::BTreeMap::new();
+    for t in (0..m.triangle_count() as u32).filter(|&t| !m.is_wall(t)) {
+        let tri = m.triangles()[t as usize];
+        for k in 0..3 {
+            let g = m.twin(3 * t + k as u32);
+            if is_real(g) && m.is_wall(g / 3) {
+                next.insert(tri[k], tri[(k + 1) % 3]);
+            }
+        }
+    }
+    let Some(&start) = next.keys().next() else {
+        return Vec::new();
+    };
+    let mut lap = vec![start];
+    while let Some(&w) = next.get(lap.last().unwrap()) {
+        if w == start || lap.len() > next.len() {
+            break;
+        }
+        lap.push(w);
+    }
+    let pts: Vec<DVec3> = lap.iter().map(|&v| m.pos(v)).collect();
+    let nearest = |x: DVec3| {
+        (0..pts.len())
+            .min_by(|&i, &j| pts[i].distance(x).total_cmp(&pts[j].distance(x)))
+            .unwrap()
+    };
+    let (a, b) = (nearest(from), nearest(to));
+    let (a, b) = (a.min(b), a.max(b));
+    let mut other: Vec<DVec3> = pts[b..].to_vec();
+    other.extend_from_slice(&pts[..=a]);
+    vec![pts[a..=b].to_vec(), other]
 }
 
 /// Floor vertices per surface vertex on the lips (one per lip vertex for strip walls, less one
@@ -143,9 +177,24 @@ fn groove_walls_are_strips_under_a_smooth_floor() {
         // Away from the tapers at the tips (two blade depths, and one more: a floor vertex there
         // sits under the path up to a depth across).
         let taper = (cutter::scalpel::taper::TAPER_DEPTHS + 1.0) * depth;
-        let turn = worst_floor_turn(m, 0.5 * depth, taper);
+        let turn = floor_polylines(m)
+            .iter()
+            .map(|l| {
+                let p: Vec<DVec3> = l.iter().map(|&v| m.pos(v)).collect();
+                worst_turn(&p, 0.5 * depth, taper)
+            })
+            .fold(0.0, f64::max);
+        // The floor runs under the lips: it may turn as much as they do (on the noisy head skin
+        // the cut wobbles around the drawn path by up to a quarter of an edge), at the same
+        // scale, no more.
+        let drawn: Vec<DVec3> = projected_path(&mesh, &path).iter().map(|d| d.0).collect();
+        let path_turn = worst_turn(&drawn, 0.5 * depth, taper);
+        let lip_turn = lip_polylines(m, drawn[0], drawn[drawn.len() - 1])
+            .iter()
+            .map(|l| worst_turn(l, 0.5 * depth, taper))
+            .fold(0.0, f64::max);
         println!(
-            "{name}: {} wall triangles on {} lip edges ({:.2} per segment, at most {} around a floor vertex), {floors} floor vertices in {} polyline(s), worst fold {fold:.1}°, worst floor turn {turn:.1}°",
+            "{name}: {} wall triangles on {} lip edges ({:.2} per segment, at most {} around a floor vertex), {floors} floor vertices in {} polyline(s), worst fold {fold:.1}°, worst floor turn {turn:.1}° (lips {lip_turn:.1}°, drawn path {path_turn:.1}°)",
             b.wall_triangles,
             b.lip_edges,
             b.walls_per_segment_mean,
@@ -160,6 +209,9 @@ fn groove_walls_are_strips_under_a_smooth_floor() {
         assert_eq!(lines.len(), 1, "{name}: the floor is one polyline");
         assert_eq!(lines[0].len(), floors, "{name}: every floor vertex on it");
         assert!(fold < 90.0, "{name}: wall triangles folded over by {fold}°");
-        assert!(turn < 45.0, "{name}: the floor turns by {turn}°");
+        assert!(
+            turn <= lip_turn.max(15.0) + 5.0,
+            "{name}: the floor turns by {turn}°, the lips by {lip_turn}°"
+        );
     }
 }

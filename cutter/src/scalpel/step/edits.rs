@@ -240,8 +240,7 @@ impl Scalpel {
         if let Some(g) = cut.groove.as_mut() {
             let k = cut.path.len() - 1;
             if k >= 1 {
-                let pv = self.mesh.pos(v);
-                g.make_bottom(&mut self.mesh, k, pv, n);
+                g.make_bottom(&mut self.mesh, k, v);
             }
         }
         self.open_between(v, x)?;

@@ -278,8 +278,7 @@ impl Scalpel {
             let k = cut.path.len() - 1;
             if x != v {
                 if k >= 1 {
-                    let pv = self.mesh.pos(v);
-                g.make_bottom(&mut self.mesh, k, pv, n);
+                    g.make_bottom(&mut self.mesh, k, v);
                 }
                 cut.path.push(x);
             }

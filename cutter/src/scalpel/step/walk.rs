@@ -376,12 +376,10 @@ impl Scalpel {
             // new vertex gets a floor of its own between the two junctions.
             let a = cut.path[0];
             let mid = self.split_lips(a, v)?;
-            let pm = self.mesh.pos(mid);
-            let nm = self.mesh.surface_normal(mid, &mut self.scratch);
             cut.path.insert(1, mid);
             if let Some(g) = cut.groove.as_mut() {
                 g.insert_vertex(1);
-                g.make_bottom(&mut self.mesh, 1, pm, nm);
+                g.make_bottom(&mut self.mesh, 1, mid);
             }
             k = 2;
         }
