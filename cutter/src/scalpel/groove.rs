@@ -18,9 +18,13 @@
 //! showed as a torn incision once it opened.
 //!
 //! The floor lies along `n̄`, the surface normal averaged over the path within one blade depth
-//! behind the vertex ([`FLOOR_NORMAL_SPAN`]), not the vertex's own normal: on a noisy surface
-//! (the head skin) vertex normals scatter by tens of degrees from one vertex to the next, which
-//! made the floor zigzag and the wall quads twist.
+//! behind the vertex ([`FLOOR_NORMAL_SPAN`], weighted by path length), not the vertex's own
+//! normal: on a noisy surface (the head skin) vertex normals scatter by tens of degrees from one
+//! vertex to the next, which made the floor zigzag and the wall quads twist. Across the path,
+//! the floor vertex also follows the path averaged over half a blade depth behind it
+//! ([`FLOOR_SMOOTH_SPAN`]) rather than every wobble of the lips; along the path it stays under
+//! its own lip vertex. The floor is placed from the path behind only: a floor vertex is made
+//! when the cut leaves its path vertex, and walls trail the cut by one segment.
 //!
 //! ## Element budget
 //! The notes' budgets are separate: the surface pieces the cut leaves in a crossed triangle (T1:

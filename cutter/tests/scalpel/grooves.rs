@@ -304,8 +304,17 @@ fn groove_element_budget_on_a_spiral() {
         );
         // Every new triangle is counted once.
         assert_eq!(b.total_new, s.dyn_mesh().triangle_count() - t0);
-        assert!(b.pieces_max <= 4, "T1: {} pieces in triangle {}", b.pieces_max, b.worst);
-        assert!(b.pieces_mean <= 3.1, "T1: {} pieces on average", b.pieces_mean);
+        assert!(
+            b.pieces_max <= 4,
+            "T1: {} pieces in triangle {}",
+            b.pieces_max,
+            b.worst
+        );
+        assert!(
+            b.pieces_mean <= 3.1,
+            "T1: {} pieces on average",
+            b.pieces_mean
+        );
         assert!(b.walls_per_segment_mean <= 4.0, "T4: {b:?}");
         assert!(b.walls_per_floor_vertex_max <= 8, "T4: {b:?}");
     }
@@ -343,7 +352,12 @@ fn grooves_on_random_strokes_refuse_nothing_and_keep_the_budget() {
                 b.total_new,
                 s.dyn_mesh().triangle_count() - mesh.triangles.len()
             );
-            assert!(b.pieces_max <= 4, "{name}: T1 {} pieces in {}", b.pieces_max, b.worst);
+            assert!(
+                b.pieces_max <= 4,
+                "{name}: T1 {} pieces in {}",
+                b.pieces_max,
+                b.worst
+            );
             assert!(b.walls_per_segment_mean <= 4.0, "{name}: T4 {b:?}");
             assert!(b.walls_per_floor_vertex_max <= 8, "{name}: T4 {b:?}");
             (worst, mean, n) = (worst.max(b.pieces_max), mean + b.pieces_mean, n + 1);

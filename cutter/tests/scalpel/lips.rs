@@ -35,10 +35,7 @@ fn lip_edges(s: &Scalpel) -> Vec<(DVec3, DVec3)> {
         for k in 0..3 {
             let g = m.twin(3 * t + k);
             if is_real(g) && m.is_wall(g / 3) {
-                out.push((
-                    m.pos(tri[k as usize]),
-                    m.pos(tri[(k as usize + 1) % 3]),
-                ));
+                out.push((m.pos(tri[k as usize]), m.pos(tri[(k as usize + 1) % 3])));
             }
         }
     }
@@ -132,7 +129,8 @@ pub(crate) fn lip_fit(mesh: &Mesh, s: &Scalpel, path: &[DVec3]) -> LipFit {
 
 /// The wavy groove over a level-5 icosphere at a shallow and a deep blade: its lips lie within
 /// a quarter of an edge of the drawn path, both ways (every lip point near the path, every path
-/// point near a lip).
+/// point near a lip). Measured 0.13 (0.05 with the coarser groove snap, whose vertices
+/// could all be moved onto the cut on this mesh).
 #[test]
 fn groove_lips_keep_to_the_drawn_path_on_a_sphere() {
     let r = 20.0;
@@ -174,7 +172,10 @@ pub(crate) const REAL_CASES: [(&str, &str, f64); 3] = [
 ];
 
 /// Grooves on the knee and the head: the lips keep within a quarter of an edge of the drawn path
-/// there too, and the surface stays closed and manifold.
+/// there too, and the surface stays closed and manifold. Measured (patella, femur, skin): 0.18,
+/// 0.19, 0.18; 0.36, 0.40, 0.53 when grooves snapped to a vertex up to 0.4 of an edge away (the
+/// vertex stays where it is when moving it onto the cut would spoil its triangles, as on the
+/// patella's thin ones and the skin's noisy ones).
 #[test]
 fn groove_lips_keep_to_the_drawn_path_on_real_meshes() {
     for (mesh, path, depth) in REAL_CASES {

@@ -450,7 +450,12 @@ fn element_budget_straight_cut() {
     // Triangle by triangle (T1): never more than 4 pieces in one crossed triangle (an end
     // inside), 3 on average at most; a slit has no walls (T4).
     let b = survey::element_budget(&mesh, s.dyn_mesh());
-    assert!(b.pieces_max <= 4, "{} pieces in triangle {}", b.pieces_max, b.worst);
+    assert!(
+        b.pieces_max <= 4,
+        "{} pieces in triangle {}",
+        b.pieces_max,
+        b.worst
+    );
     assert!(b.pieces_mean <= 3.0, "{} pieces on average", b.pieces_mean);
     assert_eq!(b.wall_triangles, 0);
     assert_eq!(b.total_new, r.triangles_created);

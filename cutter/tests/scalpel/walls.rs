@@ -26,14 +26,15 @@ fn wall_angles(s: &Scalpel, depth: f64) -> Vec<(f64, f64)> {
 
 /// A wavy groove across a sphere of radius 20 (the patella's size, edges of about 0.75) at a
 /// blade depth of one edge and of four edges (the window's default on the patella), and grooves
-/// on the knee and the head: no wall triangle is thinner than about half of what a strip quad
-/// with its shortest edge gives (a fan reaching `s` along the path from its floor vertex gives
+/// on the knee and the head: no wall triangle is thinner than 0.6 of what a strip quad with its
+/// shortest edge gives (a fan reaching `s` along the path from its floor vertex gives
 /// `d² / (s² + d²)` of it), and at depth one edge, where the strip's quads are nearly square, the
-/// smallest wall angle is above 10°. Measured: the worst ratio 0.52 (sphere, depth 3), 0.51
-/// (patella), 0.62 (femur), 0.41 (skin); smallest angles on the sphere 12.2° and 2.8° (at depth 3
-/// the cut splits some edges near a vertex: lip edges a tenth of the blade depth long). Walls
-/// shared over about a blade depth of path made fans with a worst ratio of 0.2 and a smallest
-/// angle of 5.5° at depth 3; walls shared over six depths, angles of 1.5°.
+/// smallest wall angle is above 10°. Measured: the worst ratio 0.95 and 0.94 (sphere, depths
+/// 0.75 and 3), 0.91 (patella), 0.95 (femur), 0.74 (skin); floor vertices shared over about a
+/// blade depth of path (fans) gave 0.32, 0.55, 0.53, 0.41, 0.37. The smallest angles themselves
+/// are set by the shortest lip edges (the cut splits some edges near a vertex): 11.3° and 3.0° on
+/// the sphere, 0.3° on the patella, whose thin triangles leave lip edges of a hundredth of the
+/// blade depth.
 #[test]
 fn groove_walls_are_well_shaped() {
     let r = 20.0;
@@ -59,7 +60,11 @@ fn groove_walls_are_well_shaped() {
         let mut s = Scalpel::new(&mesh, ScalpelOptions::default().with_depth(depth)).unwrap();
         s.cut_stroke(&path).unwrap();
         let angles = wall_angles(&s, depth);
-        assert!(angles.len() >= 40, "{name}: {} wall triangles", angles.len());
+        assert!(
+            angles.len() >= 40,
+            "{name}: {} wall triangles",
+            angles.len()
+        );
         let smallest = angles.iter().map(|a| a.0).fold(180.0, f64::min);
         println!(
             "{name} depth {depth}: {} wall triangles, smallest angle {smallest:.1}°, worst ratio to a strip {:.2} (at {:.1}°), tenth {:.2}",
@@ -69,7 +74,7 @@ fn groove_walls_are_well_shaped() {
             angles[angles.len() / 10].1,
         );
         assert!(
-            angles[0].1 >= 0.35,
+            angles[0].1 >= 0.6,
             "{name} depth {depth}: a wall triangle of {:.2}° is {:.2} of a strip's",
             angles[0].0,
             angles[0].1

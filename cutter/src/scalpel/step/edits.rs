@@ -87,8 +87,7 @@ impl Scalpel {
             // is where it closes.)
             crate::scalpel::relocate::tip_onto(&mut self.mesh, v, drawn, &mut self.scratch);
         }
-        let mut groove =
-            groove_mode.then(|| Groove::new(self.options.depth, v, self.mesh.pos(v)));
+        let mut groove = groove_mode.then(|| Groove::new(self.options.depth, v, self.mesh.pos(v)));
         stroke.far = None;
         let through = if !groove_mode {
             None
