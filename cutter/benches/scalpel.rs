@@ -3,10 +3,11 @@
 //! A 1,000-step Archimedean spiral (turn spacing 3h, step 1h, h = mean edge length) around the
 //! north pole of geodesic spheres of ~10k, ~130k and ~1M triangles; every step is timed alone,
 //! the first one (`begin_stroke`) included.
-//! Prints first / p50 / p99 / max per size, the 1M/10k median ratio and new triangles per crossed
-//! triangle (per triangle the stroke crossed, and triangle by triangle as counted by
-//! `survey::element_budget`: mean and largest); targets: p50 ≤ 0.5 ms, max ≤ 4 ms at 1M,
-//! ratio ≤ 1.5, ≤ 3 new per crossed on average, never more than 4 in one.
+//! Prints first / p50 / p99 / max per size, the 1M/10k median ratio, new triangles per crossed
+//! triangle and the element budget as counted by `survey::element_budget` (T1: surface pieces
+//! per crossed triangle, mean and largest; T4: wall triangles per path segment and per lip
+//! edge); targets: p50 ≤ 0.5 ms, max ≤ 4 ms at 1M, ratio ≤ 1.5, ≤ 3 pieces per crossed triangle
+//! on average and never more than 4 in one, at most 4 wall triangles per segment.
 //! Then the refusal rate on random strokes (slits and grooves; a real muscle with
 //! `CUTAWAY_ANATOMY` set).
 //! Criterion then measures one step at 1M. Run: `cargo bench -p cutter --bench scalpel`.
@@ -109,7 +110,7 @@ fn bench_scalpel(c: &mut Criterion) {
             slowest.truncate(3);
             eprintln!("  slowest steps (index, ms): {slowest:.3?}");
             eprintln!(
-                "scalpel spiral depth {depth}: {:>9} triangles, {} steps: first {:.4} ms, p50 {:.4} ms, p99 {:.4} ms, max {:.4} ms; {} triangles crossed, {} created ({:.2} new per crossed; triangle by triangle mean {:.2}, max {}, {} over 4)",
+                "scalpel spiral depth {depth}: {:>9} triangles, {} steps: first {:.4} ms, p50 {:.4} ms, p99 {:.4} ms, max {:.4} ms; {} triangles crossed, {} created ({:.2} new per crossed; T1 surface pieces mean {:.2}, max {}; T4 wall triangles per segment {:.2}, around a floor vertex at most {})",
                 f.triangles,
                 f.times.len(),
                 f.times[0].as_secs_f64() * 1e3,
@@ -119,9 +120,10 @@ fn bench_scalpel(c: &mut Criterion) {
                 f.crossed,
                 f.created,
                 f.created as f64 / f.crossed.max(1) as f64,
-                f.budget.mean,
-                f.budget.max,
-                f.budget.over_four,
+                f.budget.pieces_mean,
+                f.budget.pieces_max,
+                f.budget.walls_per_segment_mean,
+                f.budget.walls_per_floor_vertex_max,
             );
             medians.push((depth, frequency, p50));
         }

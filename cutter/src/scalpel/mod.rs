@@ -40,12 +40,13 @@
 //!   a crossing reaches a trench lip again gets a middle vertex (a floor of its own between the
 //!   two junctions); one that comes straight back into the trench it crossed, at the same floor
 //!   vertex, ends on the lip in a crack tip instead of opening into it.
-//! - Grooves share floor vertices over about a blade depth of path (walls of well-shaped
-//!   triangles rather than long fans) and snap to vertices a little more than slits
-//!   (`groove_snap_edge`), so a groove costs about 3.3 new triangles per crossed triangle on
-//!   average, walls included, and never more than 4 in one where the floor can change at a
-//!   vertex of the mesh (see [`groove`], "Element budget"; counted by
-//!   [`survey::element_budget`]).
+//! - A groove's walls are strips: every path vertex gets a floor vertex under it, along the
+//!   surface normal averaged over a blade depth of path, so each segment's wall on each lip is a
+//!   quad of two triangles and the floor a smooth polyline under the path (see [`groove`],
+//!   "Wall shape"). Grooves snap to vertices like slits (`groove_snap_edge`, a quarter of an
+//!   edge), so their lips keep within a quarter of an edge of the drawn path (notes Q2). The
+//!   element budget is the notes' two (T1: at most 4 surface pieces in a crossed triangle, 3 edge
+//!   to edge; T4: at most 4 wall triangles per segment), counted by [`budget::element_budget`].
 //! - A cut that cannot leave its anchor toward a sample that is on the surface two triangles
 //!   away (a trench's lip in the way where it cannot cross) ends there and starts again under
 //!   the blade, instead of refusing every later step of the stroke. A groove starting on a
@@ -78,6 +79,7 @@
 //! `csg::exact::orient3d_f64`;
 //! snapping thresholds are relative to local edge lengths, never absolute.
 
+pub mod budget;
 pub mod cross;
 pub mod cut_point;
 pub mod dffd;
@@ -123,10 +125,11 @@ pub struct ScalpelOptions {
     /// Edge crossings at edge parameter below this (or above `1 - snap_edge`) go through the
     /// vertex instead. Default `0.25` (worst new angle ≈ 0.2 × parent's: notes §2).
     pub snap_edge: f64,
-    /// `snap_edge` for grooves (depth > 0 on a closed surface). Coarser than a slit's: a
-    /// groove's lips meet in the trench, and going through a vertex instead of splitting an edge
-    /// keeps a groove within about 3 new triangles per crossed one (walls included). Default
-    /// `1/3` (worst new angle ≈ 11° on grid meshes, 19° on equilateral ones: notes §2).
+    /// `snap_edge` for grooves (depth > 0 on a closed surface). Default `0.25`, as for slits: a
+    /// crossing snapped to a vertex is at most a quarter of the crossed edge off the drawn path
+    /// (notes Q2) even where the vertex cannot be moved onto the cut ([`relocate`]). (It was
+    /// coarser, `0.4`, to keep the floor's changes at mesh vertices within a combined element
+    /// budget; the walls have their own budget now, see [`groove`], "Element budget".)
     pub groove_snap_edge: f64,
     /// End points within this fraction of the last segment from its ends snap to them; end
     /// points near an edge land on it. Default `0.25`.
@@ -145,7 +148,7 @@ impl Default for ScalpelOptions {
             depth: 0.0,
             tool: Tool::Scalpel,
             snap_edge: 0.25,
-            groove_snap_edge: 0.4,
+            groove_snap_edge: 0.25,
             snap_end: 0.25,
             merge_angle_deg: 15.0,
             max_surface_distance: None,

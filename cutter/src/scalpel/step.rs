@@ -45,10 +45,6 @@ const RESERVED_TRIANGLES: usize = 65_536;
 /// many of the anchor's longest surface edges away.
 const STUCK_REACH: f64 = 2.0;
 
-/// Edge snapping of a groove whose floor is due for a new vertex (see `walk`): every crossing
-/// not blocked from it goes through the nearer end of its edge.
-const FLOOR_DUE_SNAP: f64 = 0.5;
-
 /// At most this many triangles examined when a through-cut looks for its far side under a
 /// sample (see `Scalpel::place_tips`).
 const FAR_SEARCH: usize = 512;

@@ -1,5 +1,5 @@
-//! Refusal survey: many random strokes on a mesh, counting the steps the scalpel refuses; and
-//! the element budget of a cut ([`element_budget`]).
+//! Refusal survey: many random strokes on a mesh, counting the steps the scalpel refuses (the
+//! element budget of a cut, [`element_budget`], lives in [`super::budget`]).
 //!
 //! A refused step (an error other than the blade being off the mesh) leaves the mesh unchanged
 //! and the cut where it was: the user sees the blade lag until a later sample goes through. This
@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 
 use glam::DVec3;
 
-use super::dyn_mesh::{DynMesh, is_real};
+pub use super::budget::{ElementBudget, element_budget};
 use super::{Scalpel, ScalpelError, ScalpelOptions};
 
 /// What a survey counted.
@@ -179,121 +179,4 @@ pub fn survey(
         }
     }
     Ok((r, s))
-}
-
-/// New triangles per triangle crossed, triangle by triangle (DESIGN.md: "≤ 3 new triangles per
-/// triangle crossed edge to edge on average, never more than 4"), for a cut of `original`
-/// (the mesh before the cut) that produced `cut`.
-///
-/// What is counted, per original triangle `T`: `pieces(T) - 1 + walls(T)`, where
-/// - `pieces(T)`: the surface triangles of `cut` lying in `T` (a refinement: each surface
-///   triangle's centroid is in exactly one original triangle, found as the nearest);
-/// - `walls(T)`: groove wall triangles attributed to `T`. A *lip triangle* (one edge on a lip:
-///   two surface vertices and a floor vertex) belongs to the triangle the lip edge was cut
-///   through, the parent of the surface triangle across that edge (a cut along an original edge
-///   gives each of the edge's two triangles its own lip's wall). A *floor triangle* (one surface
-///   vertex `p`, one floor edge: made where the groove's floor changes from one floor vertex to
-///   the next) joins the lip triangles of the two path segments meeting at `p`: it counts ½ for
-///   each of their triangles. Anything else (junction walls, no lip triangle next to it) counts
-///   for the original triangle nearest its centroid.
-///
-/// "Crossed" triangles are those with a positive count. Every new triangle is counted exactly
-/// once, so the counts add up to the number of triangles added ([`ElementBudget::total_new`]).
-/// Costs a spatial index of `original`: for tests and benches.
-pub fn element_budget(original: &csg::Mesh, cut: &DynMesh) -> ElementBudget {
-    let index = csg::SpatialIndex::build(original);
-    let n = original.triangles.len();
-    let count = cut.triangle_count();
-    let nearest = |t: u32| {
-        let [a, b, c] = cut.triangles()[t as usize].map(|v| cut.pos(v));
-        index
-            .closest_point(original, (a + b + c) / 3.0)
-            .map_or(0, |c| c.face)
-    };
-    // Parent of every surface triangle.
-    let mut parent = vec![u32::MAX; count];
-    let mut pieces = vec![0usize; n];
-    for t in 0..count as u32 {
-        if !cut.is_wall(t) {
-            let f = nearest(t);
-            parent[t as usize] = f;
-            pieces[f as usize] += 1;
-        }
-    }
-    // A wall triangle's lip parents (the parents of the surface triangles across its edges).
-    let lip_parents = |t: u32| -> Vec<u32> {
-        (0..3)
-            .filter_map(|k| {
-                let g = cut.twin(3 * t + k);
-                (is_real(g) && !cut.is_wall(g / 3)).then(|| parent[(g / 3) as usize])
-            })
-            .collect()
-    };
-    let mut walls = vec![0.0f64; n];
-    for t in 0..count as u32 {
-        if !cut.is_wall(t) {
-            continue;
-        }
-        let mut to = lip_parents(t);
-        if to.is_empty() {
-            for k in 0..3 {
-                let g = cut.twin(3 * t + k);
-                if is_real(g) && cut.is_wall(g / 3) {
-                    let p = lip_parents(g / 3);
-                    if p.len() == 1 {
-                        to.push(p[0]);
-                    }
-                }
-            }
-        }
-        if to.is_empty() {
-            to.push(nearest(t));
-        }
-        let share = 1.0 / to.len() as f64;
-        for f in to {
-            walls[f as usize] += share;
-        }
-    }
-    let mut b = ElementBudget::default();
-    for f in 0..n {
-        let new = pieces[f] as f64 - 1.0 + walls[f];
-        b.total_new += new;
-        if new > 0.0 {
-            b.crossed += 1;
-            *b.histogram
-                .entry((pieces[f], (2.0 * walls[f]).round() as usize))
-                .or_default() += 1;
-            if new > 4.0 {
-                b.over_four += 1;
-            }
-            if new > b.max {
-                b.max = new;
-                b.worst = (f as u32, pieces[f], walls[f]);
-            }
-        }
-    }
-    b.mean = if b.crossed > 0 {
-        b.total_new / b.crossed as f64
-    } else {
-        0.0
-    };
-    b
-}
-
-/// See [`element_budget`].
-#[derive(Clone, Debug, Default)]
-pub struct ElementBudget {
-    /// Original triangles with new triangles attributed.
-    pub crossed: usize,
-    /// Mean and largest new triangles per crossed triangle.
-    pub mean: f64,
-    pub max: f64,
-    /// Where the largest is: original triangle, its surface pieces, its walls.
-    pub worst: (u32, usize, f64),
-    /// Crossed triangles with more than 4 new.
-    pub over_four: usize,
-    /// All new triangles attributed (the triangles the cut added).
-    pub total_new: f64,
-    /// `(pieces, 2 × walls)` → number of crossed triangles.
-    pub histogram: BTreeMap<(usize, usize), usize>,
 }

@@ -3,6 +3,8 @@
 //! every step is followed by the full validator, an area check (splitting conserves area) and a
 //! sliver check on the triangles the step created.
 
+#[path = "../support/binary_ply.rs"]
+mod binary_ply;
 #[path = "../support/binary_stl.rs"]
 mod binary_stl;
 
@@ -16,9 +18,11 @@ mod ends;
 mod fidelity;
 mod fuzz;
 mod grooves;
+mod lips;
 mod opening;
 mod projection;
 mod slits;
+mod strips;
 mod through;
 mod tips;
 mod unfold;

@@ -72,10 +72,10 @@ impl Scalpel {
                 return Ok(StepReport::default());
             }
         }
-        let (v, start_split) = match cp {
-            CutPoint::Vertex(v) => (v, 0),
-            CutPoint::Edge { h, point } => (self.split_edge_with_mate(h, point)?, 1),
-            CutPoint::Face { t, point } => (self.mesh.split_face(t, point), 2),
+        let v = match cp {
+            CutPoint::Vertex(v) => v,
+            CutPoint::Edge { h, point } => self.split_edge_with_mate(h, point)?,
+            CutPoint::Face { t, point } => self.mesh.split_face(t, point),
         };
         if self.mesh.singular[v as usize] {
             return Err(self.nonmanifold(v));
@@ -87,8 +87,7 @@ impl Scalpel {
             // is where it closes.)
             crate::scalpel::relocate::tip_onto(&mut self.mesh, v, drawn, &mut self.scratch);
         }
-        let mut groove =
-            groove_mode.then(|| Groove::new(self.options.depth, v, self.mesh.pos(v), start_split));
+        let mut groove = groove_mode.then(|| Groove::new(self.options.depth, v, self.mesh.pos(v)));
         stroke.far = None;
         let through = if !groove_mode {
             None
@@ -227,8 +226,7 @@ impl Scalpel {
     }
 
     /// Permanent move of the cut from the anchor `v` to its neighbour `x`, which the cut made
-    /// by splitting the edge `split_edge` (`None`: a vertex it goes through; see
-    /// [`Groove::split`]).
+    /// by splitting the edge `split_edge` (`None`: a vertex it goes through).
     pub(super) fn move_to(
         &mut self,
         cut: &mut Cut,
@@ -240,11 +238,8 @@ impl Scalpel {
         cut.split_edge = split_edge;
         if let Some(g) = cut.groove.as_mut() {
             let k = cut.path.len() - 1;
-            g.set_split(k + 1, u8::from(split_edge.is_some()));
             if k >= 1 {
-                let pv = self.mesh.pos(v);
-                let prev = self.mesh.pos(cut.path[k - 1]);
-                g.make_bottom(&mut self.mesh, k, pv, prev, n);
+                g.make_bottom(&mut self.mesh, k, v);
             }
         }
         self.open_between(v, x)?;

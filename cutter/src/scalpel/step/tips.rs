@@ -277,18 +277,8 @@ impl Scalpel {
             // The tip joins the path only for building the walls (popped again below).
             let k = cut.path.len() - 1;
             if x != v {
-                g.set_split(
-                    k + 1,
-                    match end {
-                        End::OnEdge { .. } => 1,
-                        End::InFace { .. } => 2,
-                        _ => 0,
-                    },
-                );
                 if k >= 1 {
-                    let pv = self.mesh.pos(v);
-                    let prev = self.mesh.pos(cut.path[k - 1]);
-                    g.make_bottom(&mut self.mesh, k, pv, prev, n);
+                    g.make_bottom(&mut self.mesh, k, v);
                 }
                 cut.path.push(x);
             }

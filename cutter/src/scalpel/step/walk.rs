@@ -80,7 +80,7 @@ impl Scalpel {
         crossed: &mut usize,
         tau_end: f64,
     ) -> Result<WalkEnd, ScalpelError> {
-        let tau0 = if cut.groove.is_some() {
+        let tau = if cut.groove.is_some() {
             self.options.groove_snap_edge
         } else {
             self.options.snap_edge
@@ -91,20 +91,7 @@ impl Scalpel {
         let relocating = !cut.through && close_to.is_none();
         for _ in 0..MAX_CROSSINGS {
             let v = cut.anchor;
-            // A groove whose floor is due for a new vertex where the anchor split an edge (no
-            // room for the floor triangles there, see `Groove::make_bottom`) snaps its next
-            // crossing to the nearer vertex, where the floor can change.
             let k = cut.path.len() - 1;
-            let tau = match cut.groove.as_ref() {
-                Some(g)
-                    if k >= 1
-                        && g.split.get(k).is_some_and(|&x| x > 0)
-                        && g.floor_due(k, self.mesh.pos(v), self.mesh.pos(cut.path[k - 1])) =>
-                {
-                    FLOOR_DUE_SNAP
-                }
-                _ => tau0,
-            };
             if let Some(s) = close_to {
                 if self.mesh.same_point(v, s) {
                     return Ok(WalkEnd::Closed);
@@ -389,13 +376,10 @@ impl Scalpel {
             // new vertex gets a floor of its own between the two junctions.
             let a = cut.path[0];
             let mid = self.split_lips(a, v)?;
-            let pm = self.mesh.pos(mid);
-            let nm = self.mesh.surface_normal(mid, &mut self.scratch);
-            let pa = self.mesh.pos(a);
             cut.path.insert(1, mid);
             if let Some(g) = cut.groove.as_mut() {
-                g.insert_split(1);
-                g.make_bottom(&mut self.mesh, 1, pm, pa, nm);
+                g.insert_vertex(1);
+                g.make_bottom(&mut self.mesh, 1, mid);
             }
             k = 2;
         }
@@ -440,7 +424,7 @@ impl Scalpel {
         let nm = self.mesh.surface_normal(m, &mut self.scratch);
         let far_floor =
             crate::scalpel::groove::floor_under(&self.mesh, m, nm).ok_or_else(|| fail(pv))?;
-        let mut groove = Groove::new(depth, m, self.mesh.pos(m), 1);
+        let mut groove = Groove::new(depth, m, self.mesh.pos(m));
         groove.set_junction(0, far_floor);
         cut.groove = Some(groove);
         cut.start = m;
