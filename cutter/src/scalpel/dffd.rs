@@ -73,6 +73,26 @@ pub fn open_positions(scalpel: &Scalpel, options: &OpenOptions, now: f64) -> Vec
 /// The vertices the opening moves at tool time `now`, with their display positions (sparse:
 /// only vertices inside the support; cost proportional to them, not to the mesh).
 pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) -> Vec<(u32, DVec3)> {
+    displacements(scalpel, options, now, true)
+}
+
+/// [`open_displacements`] without moving the lips onto the drawn path: the rest-pose cut
+/// (its zigzag along the mesh edges) shifted sideways, as the opening was before. For
+/// comparisons (tests, benches); the window and the command line show [`open_displacements`].
+pub fn open_displacements_along_cut(
+    scalpel: &Scalpel,
+    options: &OpenOptions,
+    now: f64,
+) -> Vec<(u32, DVec3)> {
+    displacements(scalpel, options, now, false)
+}
+
+fn displacements(
+    scalpel: &Scalpel,
+    options: &OpenOptions,
+    now: f64,
+    onto_path: bool,
+) -> Vec<(u32, DVec3)> {
     let mesh = scalpel.dyn_mesh();
     let mut out = Vec::new();
     let w = options.width;
@@ -115,10 +135,16 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
     // A groove's depth tapers toward its tips over `TAPER_DEPTHS` blade depths: opening it wider
     // than it is deep there would tilt its walls over the lips (folded triangles).
     let taper_len = w.max(super::groove::TAPER_DEPTHS * scalpel.options().depth);
-    // Nearest point on the cut: (distance, point, segment index).
-    let nearest = |p: DVec3| -> Option<(f64, DVec3, usize)> {
+    // Per segment end, the lateral move onto the drawn path (see the module doc).
+    let corrections = if onto_path {
+        super::drawn::corrections(&scalpel.drawn, segments, &frames, w)
+    } else {
+        vec![[DVec3::ZERO; 2]; segments.len()]
+    };
+    // Nearest point on the cut: (distance, point, segment index, parameter on the segment).
+    let nearest = |p: DVec3| -> Option<(f64, DVec3, usize, f64)> {
         let c0 = cell(p);
-        let mut best: Option<(f64, DVec3, usize)> = None;
+        let mut best: Option<(f64, DVec3, usize, f64)> = None;
         for x in c0.0 - 1..=c0.0 + 1 {
             for y in c0.1 - 1..=c0.1 + 1 {
                 for z in c0.2 - 1..=c0.2 + 1 {
@@ -134,7 +160,7 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
                         let c = s.pa + ab * u;
                         let d = c.distance(p);
                         if best.is_none_or(|b| d < b.0) {
-                            best = Some((d, c, i));
+                            best = Some((d, c, i, u));
                         }
                     }
                 }
@@ -145,8 +171,11 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
     // Breadth-first over surface vertices from the lip copies (seeds with their side), within
     // the support; every other vertex takes the side of the vertex it was reached from.
     let mut side: HashMap<u32, f64> = HashMap::new();
+    let mut corrected: Vec<DVec3> = Vec::new();
     let mut queue: VecDeque<u32> = VecDeque::new();
     let mut fan = Vec::new();
+    // Floor vertices next to the lip copies (groove bottoms): moved by the lips' correction.
+    let mut floors: Vec<u32> = Vec::new();
     for s in segments {
         for v in [s.a, s.b] {
             if v >= nv || mesh.copies(v).is_empty() {
@@ -156,9 +185,13 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
                 if side.contains_key(&c) {
                     continue;
                 }
-                let Some((_, _, i)) = nearest(mesh.pos(c)) else {
+                let Some((_, _, i, _)) = nearest(mesh.pos(c)) else {
                     continue;
                 };
+                mesh.fan_into(c, &mut fan);
+                for &h in &fan {
+                    floors.extend(mesh.triangles()[(h / 3) as usize].iter().filter(|&&f| mesh.is_floor(f)));
+                }
                 let sigma = lip_side(mesh, c, &frames[i], &mut fan);
                 if sigma != 0.0 {
                     side.insert(c, sigma);
@@ -169,7 +202,7 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
     }
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
-        let Some((dist, c, i)) = nearest(p) else {
+        let Some((dist, c, i, u)) = nearest(p) else {
             continue;
         };
         if dist >= r {
@@ -206,11 +239,38 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
             (1.0 - s2) * (1.0 - s2)
         };
         let amount = sigma * 0.5 * w * ramp * taper * falloff;
-        if amount != 0.0 {
-            out.push((v, p + lateral * amount));
+        let [ca, cb] = corrections[i];
+        let correction = ca.lerp(cb, u) * (ramp * falloff);
+        if amount != 0.0 || correction != DVec3::ZERO {
+            out.push((v, p + correction + lateral * amount));
+            corrected.push(correction);
+        }
+    }
+    super::unfold::unfold_correction(mesh, &mut out, &mut corrected);
+    // Floor vertices under the lips: the mean correction of the surface vertices their walls
+    // reach (both lips of a groove have the same), so that the floor stays under the drawn path
+    // and the two walls are alike.
+    floors.sort_unstable();
+    floors.dedup();
+    let index: HashMap<u32, usize> = out.iter().enumerate().map(|(k, m)| (m.0, k)).collect();
+    let mut floor_moves = Vec::new();
+    for f in floors {
+        mesh.fan_into(f, &mut fan);
+        let (mut sum, mut count) = (DVec3::ZERO, 0.0);
+        for &h in &fan {
+            for n in [mesh.dest(h), mesh.origin(prev(h))] {
+                if !mesh.is_floor(n) {
+                    sum += index.get(&n).map_or(DVec3::ZERO, |&k| corrected[k]);
+                    count += 1.0;
+                }
+            }
+        }
+        if count > 0.0 && sum != DVec3::ZERO {
+            floor_moves.push((f, mesh.pos(f) + sum / count));
         }
     }
     super::unfold::unfold(mesh, &mut out);
+    out.extend(floor_moves);
     out
 }
 

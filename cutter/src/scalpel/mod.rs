@@ -81,10 +81,12 @@
 pub mod cross;
 pub mod cut_point;
 pub mod dffd;
+pub mod drawn;
 pub mod dyn_mesh;
 pub mod groove;
 pub mod invariants;
 pub mod layers;
+pub mod lip_measure;
 mod local_check;
 pub mod locate;
 pub mod loop_tool;
