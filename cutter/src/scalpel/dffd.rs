@@ -134,7 +134,7 @@ fn displacements(
     let fixed: HashSet<u32> = scalpel.fixed.iter().copied().collect();
     // A groove's depth tapers toward its tips over `TAPER_DEPTHS` blade depths: opening it wider
     // than it is deep there would tilt its walls over the lips (folded triangles).
-    let taper_len = w.max(super::groove::TAPER_DEPTHS * scalpel.options().depth);
+    let taper_len = taper_length(w, scalpel.options().depth);
     // Per segment end, the lateral move onto the drawn path (see the module doc).
     let corrections = if onto_path {
         super::drawn::corrections(&scalpel.drawn, segments, &frames, w)
@@ -168,6 +168,38 @@ fn displacements(
         }
         best
     };
+    // The correction at a point: the cut's corrections at the segment ends near it, weighted
+    // by inverse squared distance (exact at a lip vertex; smooth around the zigzag's corners,
+    // where the nearest segment changes from one vertex to the next and a correction taken
+    // from it alone would squash the small triangles there).
+    let correction_at = |p: DVec3| -> DVec3 {
+        let c0 = cell(p);
+        let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
+        for x in c0.0 - 1..=c0.0 + 1 {
+            for y in c0.1 - 1..=c0.1 + 1 {
+                for z in c0.2 - 1..=c0.2 + 1 {
+                    for &i in grid.get(&(x, y, z)).map(|v| v.as_slice()).unwrap_or(&[]) {
+                        let s = &segments[i];
+                        for (end, c) in [(s.pa, corrections[i][0]), (s.pb, corrections[i][1])] {
+                            let d2 = end.distance_squared(p);
+                            if d2 == 0.0 {
+                                return c;
+                            }
+                            if d2 < r * r {
+                                sum += c / d2;
+                                weight += 1.0 / d2;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        if weight > 0.0 {
+            sum / weight
+        } else {
+            DVec3::ZERO
+        }
+    };
     // Breadth-first over surface vertices from the lip copies (seeds with their side), within
     // the support; every other vertex takes the side of the vertex it was reached from.
     let mut side: HashMap<u32, f64> = HashMap::new();
@@ -190,7 +222,11 @@ fn displacements(
                 };
                 mesh.fan_into(c, &mut fan);
                 for &h in &fan {
-                    floors.extend(mesh.triangles()[(h / 3) as usize].iter().filter(|&&f| mesh.is_floor(f)));
+                    floors.extend(
+                        mesh.triangles()[(h / 3) as usize]
+                            .iter()
+                            .filter(|&&f| mesh.is_floor(f)),
+                    );
                 }
                 let sigma = lip_side(mesh, c, &frames[i], &mut fan);
                 if sigma != 0.0 {
@@ -202,7 +238,7 @@ fn displacements(
     }
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
-        let Some((dist, c, i, u)) = nearest(p) else {
+        let Some((dist, c, i, _)) = nearest(p) else {
             continue;
         };
         if dist >= r {
@@ -239,8 +275,7 @@ fn displacements(
             (1.0 - s2) * (1.0 - s2)
         };
         let amount = sigma * 0.5 * w * ramp * taper * falloff;
-        let [ca, cb] = corrections[i];
-        let correction = ca.lerp(cb, u) * (ramp * falloff);
+        let correction = correction_at(p) * (ramp * falloff);
         if amount != 0.0 || correction != DVec3::ZERO {
             out.push((v, p + correction + lateral * amount));
             corrected.push(correction);
@@ -272,6 +307,11 @@ fn displacements(
     super::unfold::unfold(mesh, &mut out);
     out.extend(floor_moves);
     out
+}
+
+/// How far from a crack tip the opening of `width` tapers, for a blade `depth` deep.
+pub fn taper_length(width: f64, depth: f64) -> f64 {
+    width.max(super::groove::TAPER_DEPTHS * depth)
 }
 
 /// The path's direction at a cut segment, smoothed over the zigzag of the mesh edges it runs

@@ -21,6 +21,8 @@ pub struct Reference {
     points: Vec<DVec3>,
     /// Unit lateral direction at each point.
     lateral: Vec<DVec3>,
+    /// Unit surface normal at each point.
+    normal: Vec<DVec3>,
     /// Taper at each point.
     taper: Vec<f64>,
     /// Arc length at each point.
@@ -34,16 +36,24 @@ pub struct LipReport {
     /// Largest Hausdorff distance of a lip to its offset curve (over the stretch of curve the
     /// lip spans).
     pub hausdorff: f64,
+    /// Largest distance of a lip point to its offset curve (the Hausdorff distance less the
+    /// chords between lip points across a curving path).
+    pub point_distance: f64,
     /// Largest angle (degrees) between consecutive lip edges where the taper is 1 (at their
-    /// three points).
+    /// three points), edges shorter than [`MIN_EDGE`] widths joined with the next.
     pub worst_turn_deg: f64,
     /// Smallest distance from a lip point to the other lip where the taper is 1.
     pub min_gap: f64,
     /// Lip points measured on each side.
     pub points: [usize; 2],
-    /// Pairs of copies that both lie on one side of the path (a lip crossing over).
+    /// Pairs of copies that both lie on one side of the path where the taper is 1 (a lip
+    /// crossing over).
     pub same_side: usize,
 }
+
+/// Lip edges shorter than this many widths are joined with the next for the turn (see
+/// [`LipReport::worst_turn_deg`]).
+pub const MIN_EDGE: f64 = 0.2;
 
 /// Where a point projects onto a polyline: (distance, segment, parameter).
 fn project(points: &[DVec3], p: DVec3) -> (f64, usize, f64) {
@@ -98,6 +108,7 @@ impl Reference {
         for k in 1..m {
             arc[k] = arc[k - 1] + points[k].distance(points[k - 1]);
         }
+        let normal: Vec<DVec3> = normal.iter().map(|n| n.normalize_or_zero()).collect();
         let lateral = (0..m)
             .map(|k| {
                 let t = points[(k + 1).min(m - 1)] - points[k.saturating_sub(1)];
@@ -115,6 +126,7 @@ impl Reference {
         Reference {
             points,
             lateral,
+            normal,
             taper,
             arc,
             width,
@@ -128,39 +140,51 @@ impl Reference {
             .collect()
     }
 
-    /// Arc length, taper and signed lateral offset of `p` at its projection onto the path.
-    fn locate(&self, p: DVec3) -> (f64, f64, f64) {
+    /// Arc length, taper and signed lateral offset of `p` at its projection onto the path,
+    /// and `p` with its offset along the surface normal there taken out (see
+    /// [`Reference::measure`]).
+    fn locate(&self, p: DVec3) -> (f64, f64, f64, DVec3) {
         let (_, k, u) = project(&self.points, p);
         let k1 = (k + 1).min(self.points.len() - 1);
         let c = self.points[k].lerp(self.points[k1], u);
         let s = self.arc[k] + u * (self.arc[k1] - self.arc[k]);
         let taper = self.taper[k] + u * (self.taper[k1] - self.taper[k]);
-        (s, taper, (p - c).dot(self.lateral[k]))
+        let n = self.normal[k];
+        (
+            s,
+            taper,
+            (p - c).dot(self.lateral[k]),
+            p - n * (p - c).dot(n),
+        )
     }
 
     /// Measures the lips given as groups of display positions, one group per rest-pose lip
     /// point: its two copies (one per lip), or one point where the lips meet (a crack tip).
+    /// Distances and turns are measured along the surface: each lip point's offset along the
+    /// surface normal at the path (the surface's own relief under the lips, which the opening
+    /// keeps) is left out.
     pub fn measure(&self, groups: &[Vec<DVec3>]) -> LipReport {
         let mut report = LipReport::default();
         // (arc length, taper, point) per side: 0 is +lateral, 1 is -lateral.
         let mut lips: [Vec<(f64, f64, DVec3)>; 2] = [Vec::new(), Vec::new()];
+        let full = |t: f64| t >= 1.0 - 1e-9;
         for g in groups {
             match g.as_slice() {
                 [p] => {
-                    let (s, t, _) = self.locate(*p);
-                    lips[0].push((s, t, *p));
-                    lips[1].push((s, t, *p));
+                    let (s, t, _, p) = self.locate(*p);
+                    lips[0].push((s, t, p));
+                    lips[1].push((s, t, p));
                 }
                 [p, q] => {
-                    let (s, t, e) = self.locate(*p);
-                    let (s2, t2, e2) = self.locate(*q);
-                    if e * e2 > 0.0 {
+                    let (s, t, e, p) = self.locate(*p);
+                    let (s2, t2, e2, q) = self.locate(*q);
+                    if e * e2 > 0.0 && full(t) && full(t2) {
                         report.same_side += 1;
                     }
                     let (plus, minus) = if e >= e2 {
-                        ((s, t, *p), (s2, t2, *q))
+                        ((s, t, p), (s2, t2, q))
                     } else {
-                        ((s2, t2, *q), (s, t, *p))
+                        ((s2, t2, q), (s, t, p))
                     };
                     lips[0].push(plus);
                     lips[1].push(minus);
@@ -173,7 +197,6 @@ impl Reference {
         }
         report.points = [lips[0].len(), lips[1].len()];
         let polyline = |lip: &[(f64, f64, DVec3)]| lip.iter().map(|x| x.2).collect::<Vec<_>>();
-        let full = |t: f64| t >= 1.0 - 1e-9;
         for (side, sigma) in [(0, 1.0), (1, -1.0)] {
             let lip = &lips[side];
             if lip.is_empty() {
@@ -183,7 +206,16 @@ impl Reference {
             let line = polyline(lip);
             // Lip to curve.
             for p in &line {
-                report.hausdorff = report.hausdorff.max(project(&curve, *p).0);
+                let d = project(&curve, *p).0;
+                report.point_distance = report.point_distance.max(d);
+                report.hausdorff = report.hausdorff.max(d);
+                if std::env::var("LIPDEBUG").is_ok() {
+                    let (s, t, e, _) = self.locate(*p);
+                    eprintln!(
+                        "side {side} s {s:.3} taper {t:.2} e {e:.3} d {:.3}",
+                        project(&curve, *p).0
+                    );
+                }
             }
             // Curve to lip, over the stretch the lip spans.
             let (s0, s1) = (lip[0].0, lip[lip.len() - 1].0);
@@ -192,16 +224,22 @@ impl Reference {
                     report.hausdorff = report.hausdorff.max(project(&line, *c).0);
                 }
             }
-            // Turning between consecutive lip edges where the taper is 1.
+            // Turning between consecutive lip edges where the taper is 1, the edges at least
+            // `MIN_EDGE` widths long (a lip point closer than that to the one before or after is
+            // passed over: its position, not the direction of a tiny edge, is what shows).
+            let min_edge = MIN_EDGE * self.width;
             for k in 1..lip.len().saturating_sub(1) {
-                if !(full(lip[k - 1].1) && full(lip[k].1) && full(lip[k + 1].1)) {
+                let p = lip[k].2;
+                let before = (0..k).rev().find(|&j| lip[j].2.distance(p) >= min_edge);
+                let after = (k + 1..lip.len()).find(|&j| lip[j].2.distance(p) >= min_edge);
+                let (Some(j), Some(m)) = (before, after) else {
+                    continue;
+                };
+                if !(full(lip[j].1) && full(lip[k].1) && full(lip[m].1)) {
                     continue;
                 }
-                let (e1, e2) = (lip[k].2 - lip[k - 1].2, lip[k + 1].2 - lip[k].2);
-                if e1.length() > 0.0 && e2.length() > 0.0 {
-                    let turn = e1.angle_between(e2).to_degrees();
-                    report.worst_turn_deg = report.worst_turn_deg.max(turn);
-                }
+                let turn = (p - lip[j].2).angle_between(lip[m].2 - p).to_degrees();
+                report.worst_turn_deg = report.worst_turn_deg.max(turn);
             }
         }
         // The gap where the taper is 1.
@@ -214,6 +252,32 @@ impl Reference {
         }
         report
     }
+}
+
+/// The lip points of `scalpel`'s cuts as [`Reference::measure`] takes them: for each vertex a
+/// cut segment ends at (groove floors aside), the positions in `shown` of it and its coincident
+/// copies. Each point once.
+pub fn lip_groups(scalpel: &super::Scalpel, shown: &[DVec3]) -> Vec<Vec<DVec3>> {
+    let mesh = scalpel.dyn_mesh();
+    let mut seen = std::collections::HashSet::new();
+    let mut out = Vec::new();
+    for s in scalpel.segments() {
+        for v in [s.a, s.b] {
+            if mesh.is_floor(v) || !seen.insert(v) {
+                continue;
+            }
+            let copies = mesh.copies(v);
+            seen.extend(copies.iter().copied());
+            out.push(
+                std::iter::once(v)
+                    .chain(copies)
+                    .filter(|&c| !mesh.is_floor(c))
+                    .map(|c| shown[c as usize])
+                    .collect(),
+            );
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -233,7 +297,7 @@ mod tests {
             .map(|i| {
                 let x = 0.5 * i as f64;
                 let r = straight();
-                let (_, t, _) = r.locate(DVec3::new(x, 0.0, 0.0));
+                let (_, t, _, _) = r.locate(DVec3::new(x, 0.0, 0.0));
                 let y = 0.5 * t + dy(x);
                 vec![DVec3::new(x, y, 0.0), DVec3::new(x, -y, 0.0)]
             })

@@ -363,7 +363,8 @@ impl Scalpel {
         match result {
             Ok(report) => {
                 self.stroke = Some(stroke);
-                self.drawn.push(super::drawn::Sample::new(self.undo.len(), self.clock, q));
+                self.drawn
+                    .push(super::drawn::Sample::new(self.undo.len(), self.clock, q));
                 Ok(report)
             }
             Err(e) => {

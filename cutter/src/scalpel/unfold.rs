@@ -91,6 +91,16 @@ pub fn unfold_correction(mesh: &DynMesh, moved: &mut [(u32, DVec3)], correction:
             if m.folds(mesh, tri, |i| moved[i].1)
                 && !m.folds(mesh, tri, |i| moved[i].1 - correction[i])
             {
+                if std::env::var("LIPDEBUG").is_ok() {
+                    eprintln!(
+                        "pass {pass} fold {:?}",
+                        tri.map(|v| (
+                            mesh.pos(v),
+                            m.at.get(&v)
+                                .map(|&i| (moved[i].1 - mesh.pos(v), correction[i]))
+                        ))
+                    );
+                }
                 for &v in tri {
                     if m.at.contains_key(&v) {
                         for c in std::iter::once(v).chain(mesh.copies(v)) {

@@ -16,6 +16,7 @@ mod ends;
 mod fidelity;
 mod fuzz;
 mod grooves;
+mod lips;
 mod opening;
 mod slits;
 mod through;
