@@ -137,7 +137,7 @@ fn displacements(
     let taper_len = taper_length(w, scalpel.options().depth);
     // Per segment end, the lateral move onto the drawn path (see the module doc).
     let corrections = if onto_path {
-        super::drawn::corrections(&scalpel.drawn, segments, &frames, w)
+        super::drawn::corrections(mesh, &scalpel.drawn, segments, &frames, w)
     } else {
         vec![[DVec3::ZERO; 2]; segments.len()]
     };

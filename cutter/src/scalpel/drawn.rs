@@ -19,7 +19,9 @@
 
 use glam::DVec3;
 
+use super::cut_point::closest_face_near;
 use super::dffd::Frame;
+use super::dyn_mesh::DynMesh;
 use super::step::CutSegment;
 
 /// One committed step's tool sample.
@@ -42,6 +44,10 @@ impl Sample {
         }
     }
 }
+
+/// Triangles examined to put a sample onto the surface (searched outward from the cut vertex
+/// its step reached).
+const FOOT_SEARCH: usize = 64;
 
 /// A correction is used only when the smoothed path lies within this many (segment length plus
 /// width) of the segment's end.
@@ -127,6 +133,7 @@ fn nearest_on(points: &[DVec3], lo: usize, hi: usize, p: DVec3) -> DVec3 {
 /// is out of reach. Cost: the samples of the strokes the segments come from, plus a few samples
 /// of path per segment.
 pub fn corrections(
+    mesh: &DynMesh,
     samples: &[Sample],
     segments: &[CutSegment],
     frames: &[Frame],
@@ -145,6 +152,15 @@ pub fn corrections(
             start = k + 1;
         }
     }
+    // The cut vertex each sample's step reached (for putting the sample onto the surface): the
+    // end of its last segment, else that of the sample before or after it in its stroke.
+    let mut reached: Vec<Option<u32>> = vec![None; samples.len()];
+    for s in segments {
+        let j = samples.partition_point(|x| x.time < s.time);
+        if j < samples.len() && samples[j].time == s.time && (s.b as usize) < mesh.vertex_count() {
+            reached[j] = Some(s.b);
+        }
+    }
     // Smoothed strokes, made when a segment first needs them.
     let mut smoothed: Vec<DVec3> = samples.iter().map(|s| s.point).collect();
     let mut done: Vec<bool> = vec![false; samples.len()];
@@ -155,7 +171,28 @@ pub fn corrections(
         }
         let (lo, hi) = runs[j];
         if !done[j] {
-            let points: Vec<DVec3> = samples[lo..=hi].iter().map(|x| x.point).collect();
+            // The samples as the tool gave them may be off the surface (a path file's points):
+            // their feet on the surface, as the cut went toward them.
+            let mut last = None;
+            let mut start: Vec<Option<u32>> = (lo..=hi)
+                .map(|k| {
+                    last = reached[k].or(last);
+                    last
+                })
+                .collect();
+            let first = start.iter().flatten().next().copied();
+            start.iter_mut().for_each(|v| *v = v.or(first));
+            let points: Vec<DVec3> = (lo..=hi)
+                .zip(start)
+                .map(|(k, v)| {
+                    let q = samples[k].point;
+                    v.and_then(|v| closest_face_near(mesh, v, q, FOOT_SEARCH))
+                        .map_or(q, |(t, b, _)| {
+                            let [x, y, z] = mesh.triangles()[t as usize].map(|u| mesh.pos(u));
+                            x * b.x + y * b.y + z * b.z
+                        })
+                })
+                .collect();
             smoothed[lo..=hi].copy_from_slice(&smooth(&points, 0.5 * width));
             done[lo..=hi].iter_mut().for_each(|d| *d = true);
         }

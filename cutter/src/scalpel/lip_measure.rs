@@ -209,13 +209,6 @@ impl Reference {
                 let d = project(&curve, *p).0;
                 report.point_distance = report.point_distance.max(d);
                 report.hausdorff = report.hausdorff.max(d);
-                if std::env::var("LIPDEBUG").is_ok() {
-                    let (s, t, e, _) = self.locate(*p);
-                    eprintln!(
-                        "side {side} s {s:.3} taper {t:.2} e {e:.3} d {:.3}",
-                        project(&curve, *p).0
-                    );
-                }
             }
             // Curve to lip, over the stretch the lip spans.
             let (s0, s1) = (lip[0].0, lip[lip.len() - 1].0);

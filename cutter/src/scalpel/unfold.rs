@@ -12,7 +12,7 @@
 //!
 //! The opening also moves the lips sideways onto the drawn path ([`super::drawn`]): where that
 //! correction is larger than the triangles around it allow, [`unfold_correction`] shrinks the
-//! correction (halving it at the corners of each triangle it folds, and at their coincident
+//! correction (shrinking it step by step at the corners of each triangle it folds, and at their coincident
 //! copies, so that the two lips keep their gap), not the opening.
 //! Groove walls are not checked: they tilt by design as the lips open over a fixed floor.
 //! Deterministic and proportional to the moved vertices, so the window and `cutaway scalpel`
@@ -34,8 +34,13 @@ const SMOOTHING: usize = 4;
 /// at rest.
 const PASSES: usize = 10;
 
-/// Passes that halve a folding triangle's corners' corrections before they are dropped.
-const CORRECTION_PASSES: usize = 6;
+/// Passes that shrink a folding triangle's corners' corrections (to [`CORRECTION_KEEP`] of
+/// themselves) before they are dropped.
+const CORRECTION_PASSES: usize = 16;
+
+/// What a pass keeps of a folding correction (small steps keep as much of it as the triangles
+/// allow).
+const CORRECTION_KEEP: f64 = 0.75;
 
 /// The surface triangles with a moved corner, and where each moved vertex is in the list.
 struct Moved {
@@ -77,7 +82,7 @@ impl Moved {
 
 /// Shrinks the path corrections in `correction` (parallel to `moved`: the part of each
 /// displacement that moves the lips onto the drawn path, see [`super::drawn`]) where they fold
-/// a surface triangle that the rest of the displacement does not fold: halved at its corners
+/// a surface triangle that the rest of the displacement does not fold: shrunk at its corners
 /// and their coincident copies, up to [`CORRECTION_PASSES`] times, then dropped. `moved` is
 /// updated with them.
 pub fn unfold_correction(mesh: &DynMesh, moved: &mut [(u32, DVec3)], correction: &mut [DVec3]) {
@@ -91,16 +96,6 @@ pub fn unfold_correction(mesh: &DynMesh, moved: &mut [(u32, DVec3)], correction:
             if m.folds(mesh, tri, |i| moved[i].1)
                 && !m.folds(mesh, tri, |i| moved[i].1 - correction[i])
             {
-                if std::env::var("LIPDEBUG").is_ok() {
-                    eprintln!(
-                        "pass {pass} fold {:?}",
-                        tri.map(|v| (
-                            mesh.pos(v),
-                            m.at.get(&v)
-                                .map(|&i| (moved[i].1 - mesh.pos(v), correction[i]))
-                        ))
-                    );
-                }
                 for &v in tri {
                     if m.at.contains_key(&v) {
                         for c in std::iter::once(v).chain(mesh.copies(v)) {
@@ -118,7 +113,11 @@ pub fn unfold_correction(mesh: &DynMesh, moved: &mut [(u32, DVec3)], correction:
         shrink.sort_unstable();
         shrink.dedup();
         for i in shrink {
-            let keep = if pass == CORRECTION_PASSES { 0.0 } else { 0.5 };
+            let keep = if pass == CORRECTION_PASSES {
+                0.0
+            } else {
+                CORRECTION_KEEP
+            };
             let c = correction[i];
             correction[i] = c * keep;
             moved[i].1 -= c * (1.0 - keep);
