@@ -103,25 +103,7 @@ fn displacements(
     let r = SUPPORT * w;
     let nv = mesh.vertex_count() as u32;
     let frames = frames(segments, w);
-    // Segment grid with cell size r.
-    let cell = |p: DVec3| {
-        let c = (p / r).floor();
-        (c.x as i64, c.y as i64, c.z as i64)
-    };
-    let mut grid: HashMap<(i64, i64, i64), Vec<usize>> = HashMap::new();
-    for (i, s) in segments.iter().enumerate() {
-        if s.a >= nv || s.b >= nv {
-            continue;
-        }
-        let (lo, hi) = (cell(s.pa.min(s.pb)), cell(s.pa.max(s.pb)));
-        for x in lo.0..=hi.0 {
-            for y in lo.1..=hi.1 {
-                for z in lo.2..=hi.2 {
-                    grid.entry((x, y, z)).or_default().push(i);
-                }
-            }
-        }
-    }
+    let mut grid = super::cut_grid::CutGrid::new(segments, nv, r);
     // Crack tips: segment ends whose vertex was never copied.
     let mut tips: Vec<DVec3> = Vec::new();
     for s in segments {
@@ -141,56 +123,43 @@ fn displacements(
     } else {
         vec![[DVec3::ZERO; 2]; segments.len()]
     };
-    // Nearest point on the cut: (distance, point, segment index, parameter on the segment).
-    let nearest = |p: DVec3| -> Option<(f64, DVec3, usize, f64)> {
-        let c0 = cell(p);
-        let mut best: Option<(f64, DVec3, usize, f64)> = None;
-        for x in c0.0 - 1..=c0.0 + 1 {
-            for y in c0.1 - 1..=c0.1 + 1 {
-                for z in c0.2 - 1..=c0.2 + 1 {
-                    for &i in grid.get(&(x, y, z)).map(|v| v.as_slice()).unwrap_or(&[]) {
-                        let s = &segments[i];
-                        let ab = s.pb - s.pa;
-                        let l2 = ab.length_squared();
-                        let u = if l2 > 0.0 {
-                            ((p - s.pa).dot(ab) / l2).clamp(0.0, 1.0)
-                        } else {
-                            0.0
-                        };
-                        let c = s.pa + ab * u;
-                        let d = c.distance(p);
-                        if best.is_none_or(|b| d < b.0) {
-                            best = Some((d, c, i, u));
-                        }
-                    }
-                }
+    // Nearest point on the cut among the segments `near`: (distance, point, segment index).
+    let nearest = |p: DVec3, near: &[usize]| -> Option<(f64, DVec3, usize)> {
+        let mut best: Option<(f64, DVec3, usize)> = None;
+        for &i in near {
+            let s = &segments[i];
+            let ab = s.pb - s.pa;
+            let l2 = ab.length_squared();
+            let u = if l2 > 0.0 {
+                ((p - s.pa).dot(ab) / l2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let c = s.pa + ab * u;
+            let d2 = c.distance_squared(p);
+            if best.is_none_or(|b| d2 < b.0) {
+                best = Some((d2, c, i));
             }
         }
-        best
+        best.map(|(d2, c, i)| (d2.sqrt(), c, i))
     };
-    // The correction at a point: the cut's corrections at the segment ends near it, weighted
-    // by inverse squared distance (exact at a lip vertex; smooth around the zigzag's corners,
-    // where the nearest segment changes from one vertex to the next and a correction taken
-    // from it alone would squash the small triangles there).
-    let correction_at = |p: DVec3| -> DVec3 {
-        let c0 = cell(p);
+    // The correction at a point: the corrections at the ends of the segments `near` within
+    // the support, weighted by inverse squared distance (exact at a lip vertex; smooth around
+    // the zigzag's corners, where the nearest segment changes from one vertex to the next and a
+    // correction taken from it alone would squash the small triangles there).
+    let correction_at = |p: DVec3, near: &[usize]| -> DVec3 {
         let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
-        for x in c0.0 - 1..=c0.0 + 1 {
-            for y in c0.1 - 1..=c0.1 + 1 {
-                for z in c0.2 - 1..=c0.2 + 1 {
-                    for &i in grid.get(&(x, y, z)).map(|v| v.as_slice()).unwrap_or(&[]) {
-                        let s = &segments[i];
-                        for (end, c) in [(s.pa, corrections[i][0]), (s.pb, corrections[i][1])] {
-                            let d2 = end.distance_squared(p);
-                            if d2 == 0.0 {
-                                return c;
-                            }
-                            if d2 < r * r {
-                                sum += c / d2;
-                                weight += 1.0 / d2;
-                            }
-                        }
-                    }
+        for &i in near {
+            let s = &segments[i];
+            for (end, c) in [(s.pa, corrections[i][0]), (s.pb, corrections[i][1])] {
+                let d2 = end.distance_squared(p);
+                if d2 == 0.0 {
+                    return c;
+                }
+                if d2 < r * r {
+                    let k = d2.recip();
+                    sum += c * k;
+                    weight += k;
                 }
             }
         }
@@ -217,7 +186,8 @@ fn displacements(
                 if side.contains_key(&c) {
                     continue;
                 }
-                let Some((_, _, i, _)) = nearest(mesh.pos(c)) else {
+                let p = mesh.pos(c);
+                let Some((_, _, i)) = nearest(p, grid.near(p)) else {
                     continue;
                 };
                 mesh.fan_into(c, &mut fan);
@@ -238,7 +208,8 @@ fn displacements(
     }
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
-        let Some((dist, c, i, _)) = nearest(p) else {
+        let near = grid.near(p);
+        let Some((dist, c, i)) = nearest(p, near) else {
             continue;
         };
         if dist >= r {
@@ -275,7 +246,11 @@ fn displacements(
             (1.0 - s2) * (1.0 - s2)
         };
         let amount = sigma * 0.5 * w * ramp * taper * falloff;
-        let correction = correction_at(p) * (ramp * falloff);
+        let correction = if onto_path {
+            correction_at(p, grid.near(p)) * (ramp * falloff)
+        } else {
+            DVec3::ZERO
+        };
         if amount != 0.0 || correction != DVec3::ZERO {
             out.push((v, p + correction + lateral * amount));
             corrected.push(correction);

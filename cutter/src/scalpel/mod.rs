@@ -79,6 +79,7 @@
 //! snapping thresholds are relative to local edge lengths, never absolute.
 
 pub mod cross;
+pub mod cut_grid;
 pub mod cut_point;
 pub mod dffd;
 pub mod drawn;
