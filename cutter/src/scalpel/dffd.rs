@@ -3,7 +3,7 @@
 //! The DFFD paper inserts a C⁻¹ knot along the incision so that a smooth displacement field
 //! jumps across it. Here the field is evaluated directly at the vertices: a vertex at distance
 //! `dist < r` from the cut (nearest point `c` on a cut segment) moves by
-//! `σ · (w / 2) · ramp · taper · φ(dist / r) · l`, where
+//! `ramp · φ(dist / r) · (δ + σ · (w / 2) · taper · l)`, where
 //! - `l = n × t` is the lateral direction of the *path*, not of the one mesh edge nearest the
 //!   vertex: the cut runs along mesh edges that zigzag around the drawn path (snapping), so the
 //!   tangent `t` and normal `n` are averaged over the cut segments within about one width on
@@ -23,13 +23,22 @@
 //! - `taper` goes from 0 at a crack tip to 1 one width away (or, for a groove, where its depth
 //!   stops tapering, [`super::groove::TAPER_DEPTHS`] blade depths away, when that is farther), so
 //!   the lips meet at the tips and a groove never opens wider than it is deep near them;
-//! - `φ(s) = (1 - s²)²` and `r = 3 w` (the support).
+//! - `φ(s) = (1 - s²)²` and `r = 3 w` (the support);
+//! - `δ` moves the lips onto the drawn path: the rest-pose cut zigzags around the path along
+//!   mesh edges (by up to a fraction of an edge, more than a width on a coarse skin), and
+//!   shifted sideways as it is the lips showed its spikes and notches. [`super::drawn`] gives
+//!   each cut segment's ends their lateral offset to the drawn path (smoothed over about a
+//!   width); `δ` at a vertex is the inverse-squared-distance mean of those near it, so a lip
+//!   vertex gets its own exactly (both copies alike: the gap is kept) and the surface around the
+//!   lips follows smoothly. A groove's floor vertices move by the mean `δ` of the lips their
+//!   walls reach (no opening), so the floor stays under the drawn path and the walls are alike.
 //!
 //! Where that field would turn a surface triangle over (sharp bends, corners framed by
-//! different segments), [`super::unfold`] shrinks the displacements of its corners.
+//! different segments), [`super::unfold`] shrinks first the path corrections `δ` of its corners
+//! (where `δ` is larger than the triangles around it allow), then the displacements.
 //!
-//! Vertices outside the support, and groove bottoms, are never written: their display position
-//! is their rest position bit for bit. The rest pose itself is never changed (cutting continues
+//! Vertices outside the support are never written: their display position is their rest
+//! position bit for bit. The rest pose itself is never changed (cutting continues
 //! in the rest pose).
 
 use std::collections::{HashMap, HashSet, VecDeque};

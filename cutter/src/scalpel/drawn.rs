@@ -140,7 +140,7 @@ pub fn corrections(
     width: f64,
 ) -> Vec<[DVec3; 2]> {
     let mut out = vec![[DVec3::ZERO; 2]; segments.len()];
-    if samples.is_empty() || !(width > 0.0) {
+    if samples.is_empty() || width.is_nan() || width <= 0.0 {
         return out;
     }
     // Each sample's stroke as the range of its samples (first, last), in one pass.
