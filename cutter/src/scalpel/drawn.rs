@@ -152,13 +152,17 @@ pub fn corrections(
             start = k + 1;
         }
     }
-    // The cut vertex each sample's step reached (for putting the sample onto the surface): the
-    // end of its last segment, else that of the sample before or after it in its stroke.
-    let mut reached: Vec<Option<u32>> = vec![None; samples.len()];
+    // A cut vertex each sample's step reached (for putting the sample onto the surface): the
+    // end nearest the sample among its segments' (a through-cut's step also cuts the far side),
+    // else that of the sample before or after it in its stroke.
+    let mut reached: Vec<Option<(u32, f64)>> = vec![None; samples.len()];
     for s in segments {
         let j = samples.partition_point(|x| x.time < s.time);
         if j < samples.len() && samples[j].time == s.time && (s.b as usize) < mesh.vertex_count() {
-            reached[j] = Some(s.b);
+            let d = s.pb.distance(samples[j].point);
+            if reached[j].is_none_or(|(_, e)| d < e) {
+                reached[j] = Some((s.b, d));
+            }
         }
     }
     // Smoothed strokes, made when a segment first needs them.
@@ -176,7 +180,7 @@ pub fn corrections(
             let mut last = None;
             let mut start: Vec<Option<u32>> = (lo..=hi)
                 .map(|k| {
-                    last = reached[k].or(last);
+                    last = reached[k].map(|r| r.0).or(last);
                     last
                 })
                 .collect();
