@@ -47,6 +47,10 @@ struct Moved {
     at: HashMap<u32, usize>,
     /// Surface triangles with a moved corner, by their three corners (each once).
     triangles: Vec<[u32; 3]>,
+    /// Per triangle, where its corners are in the moved list (the checks of every pass look
+    /// them up here, not in `at`), their rest positions and its rest normal.
+    slots: Vec<[Option<usize>; 3]>,
+    rest: Vec<([DVec3; 3], DVec3)>,
 }
 
 impl Moved {
@@ -65,16 +69,33 @@ impl Moved {
                 triangles.push([mesh.origin(h), mesh.dest(h), mesh.origin(prev(h))]);
             }
         }
-        Moved { at, triangles }
+        let slots = triangles
+            .iter()
+            .map(|t| t.map(|v| at.get(&v).copied()))
+            .collect();
+        let rest = triangles
+            .iter()
+            .map(|t| {
+                let p = t.map(|v| mesh.pos(v));
+                (p, (p[1] - p[0]).cross(p[2] - p[0]))
+            })
+            .collect();
+        Moved {
+            at,
+            triangles,
+            slots,
+            rest,
+        }
     }
 
-    /// Whether `tri` turns more than [`MAX_TURN_DEG`] from its rest pose when its moved corners
-    /// are shown at `shown(index in moved)`.
-    fn folds(&self, mesh: &DynMesh, tri: &[u32; 3], shown: impl Fn(usize) -> DVec3) -> bool {
+    /// Whether triangle `k` turns more than [`MAX_TURN_DEG`] from its rest pose when its moved
+    /// corners are shown at `shown(index in moved)`.
+    fn folds(&self, k: usize, shown: impl Fn(usize) -> DVec3) -> bool {
         let cos_max = MAX_TURN_DEG.to_radians().cos();
-        let normal = |p: [DVec3; 3]| (p[1] - p[0]).cross(p[2] - p[0]);
-        let n0 = normal(tri.map(|v| mesh.pos(v)));
-        let n1 = normal(tri.map(|v| self.at.get(&v).map_or(mesh.pos(v), |&i| shown(i))));
+        let (p, n0) = self.rest[k];
+        let s = self.slots[k];
+        let q: [DVec3; 3] = std::array::from_fn(|c| s[c].map_or(p[c], &shown));
+        let n1 = (q[1] - q[0]).cross(q[2] - q[0]);
         let (l0, l1) = (n0.length(), n1.length());
         l0 != 0.0 && (l1 == 0.0 || n0.dot(n1) < cos_max * l0 * l1)
     }
@@ -92,10 +113,8 @@ pub fn unfold_correction(mesh: &DynMesh, moved: &mut [(u32, DVec3)], correction:
     let m = Moved::new(mesh, moved);
     for pass in 0..=CORRECTION_PASSES {
         let mut shrink: Vec<usize> = Vec::new();
-        for tri in &m.triangles {
-            if m.folds(mesh, tri, |i| moved[i].1)
-                && !m.folds(mesh, tri, |i| moved[i].1 - correction[i])
-            {
+        for (k, tri) in m.triangles.iter().enumerate() {
+            if m.folds(k, |i| moved[i].1) && !m.folds(k, |i| moved[i].1 - correction[i]) {
                 for &v in tri {
                     if m.at.contains_key(&v) {
                         for c in std::iter::once(v).chain(mesh.copies(v)) {
@@ -138,8 +157,8 @@ pub fn unfold(mesh: &DynMesh, moved: &mut Vec<(u32, DVec3)>) {
     let mut fan = Vec::new();
     for pass in 0..=PASSES {
         let mut shrink: Vec<u32> = Vec::new();
-        for tri in triangles {
-            if m.folds(mesh, tri, |i| moved[i].1) {
+        for (k, tri) in triangles.iter().enumerate() {
+            if m.folds(k, |i| moved[i].1) {
                 shrink.extend(tri.iter().copied().filter(|v| at.contains_key(v)));
             }
         }
