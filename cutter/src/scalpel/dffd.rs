@@ -3,7 +3,7 @@
 //! The DFFD paper inserts a C⁻¹ knot along the incision so that a smooth displacement field
 //! jumps across it. Here the field is evaluated directly at the vertices: a vertex at distance
 //! `dist < r` from the cut (nearest point `c` on a cut segment) moves by
-//! `σ · (w / 2) · ramp · taper · φ(dist / r) · l`, where
+//! `ramp · φ(dist / r) · (δ + σ · (w / 2) · taper · l)`, where
 //! - `l = n × t` is the lateral direction of the *path*, not of the one mesh edge nearest the
 //!   vertex: the cut runs along mesh edges that zigzag around the drawn path (snapping), so the
 //!   tangent `t` and normal `n` are averaged over the cut segments within about one width on
@@ -23,13 +23,22 @@
 //! - `taper` goes from 0 at a crack tip to 1 one width away (or, for a groove, where its depth
 //!   stops tapering, [`super::groove::TAPER_DEPTHS`] blade depths away, when that is farther), so
 //!   the lips meet at the tips and a groove never opens wider than it is deep near them;
-//! - `φ(s) = (1 - s²)²` and `r = 3 w` (the support).
+//! - `φ(s) = (1 - s²)²` and `r = 3 w` (the support);
+//! - `δ` moves the lips onto the drawn path: the rest-pose cut zigzags around the path along
+//!   mesh edges (by up to a fraction of an edge, more than a width on a coarse skin), and
+//!   shifted sideways as it is the lips showed its spikes and notches. [`super::drawn`] gives
+//!   each cut segment's ends their lateral offset to the drawn path (smoothed over about a
+//!   width); `δ` at a vertex is the inverse-squared-distance mean of those near it, so a lip
+//!   vertex gets its own exactly (both copies alike: the gap is kept) and the surface around the
+//!   lips follows smoothly. A groove's floor vertices move by the mean `δ` of the lips their
+//!   walls reach (no opening), so the floor stays under the drawn path and the walls are alike.
 //!
 //! Where that field would turn a surface triangle over (sharp bends, corners framed by
-//! different segments), [`super::unfold`] shrinks the displacements of its corners.
+//! different segments), [`super::unfold`] shrinks first the path corrections `δ` of its corners
+//! (where `δ` is larger than the triangles around it allow), then the displacements.
 //!
-//! Vertices outside the support, and groove bottoms, are never written: their display position
-//! is their rest position bit for bit. The rest pose itself is never changed (cutting continues
+//! Vertices outside the support are never written: their display position is their rest
+//! position bit for bit. The rest pose itself is never changed (cutting continues
 //! in the rest pose).
 
 use std::collections::{HashMap, HashSet, VecDeque};
@@ -73,6 +82,26 @@ pub fn open_positions(scalpel: &Scalpel, options: &OpenOptions, now: f64) -> Vec
 /// The vertices the opening moves at tool time `now`, with their display positions (sparse:
 /// only vertices inside the support; cost proportional to them, not to the mesh).
 pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) -> Vec<(u32, DVec3)> {
+    displacements(scalpel, options, now, true)
+}
+
+/// [`open_displacements`] without moving the lips onto the drawn path: the rest-pose cut
+/// (its zigzag along the mesh edges) shifted sideways, as the opening was before. For
+/// comparisons (tests, benches); the window and the command line show [`open_displacements`].
+pub fn open_displacements_along_cut(
+    scalpel: &Scalpel,
+    options: &OpenOptions,
+    now: f64,
+) -> Vec<(u32, DVec3)> {
+    displacements(scalpel, options, now, false)
+}
+
+fn displacements(
+    scalpel: &Scalpel,
+    options: &OpenOptions,
+    now: f64,
+    onto_path: bool,
+) -> Vec<(u32, DVec3)> {
     let mesh = scalpel.dyn_mesh();
     let mut out = Vec::new();
     let w = options.width;
@@ -83,25 +112,7 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
     let r = SUPPORT * w;
     let nv = mesh.vertex_count() as u32;
     let frames = frames(segments, w);
-    // Segment grid with cell size r.
-    let cell = |p: DVec3| {
-        let c = (p / r).floor();
-        (c.x as i64, c.y as i64, c.z as i64)
-    };
-    let mut grid: HashMap<(i64, i64, i64), Vec<usize>> = HashMap::new();
-    for (i, s) in segments.iter().enumerate() {
-        if s.a >= nv || s.b >= nv {
-            continue;
-        }
-        let (lo, hi) = (cell(s.pa.min(s.pb)), cell(s.pa.max(s.pb)));
-        for x in lo.0..=hi.0 {
-            for y in lo.1..=hi.1 {
-                for z in lo.2..=hi.2 {
-                    grid.entry((x, y, z)).or_default().push(i);
-                }
-            }
-        }
-    }
+    let mut grid = super::cut_grid::CutGrid::new(segments, nv, r);
     // Crack tips: segment ends whose vertex was never copied.
     let mut tips: Vec<DVec3> = Vec::new();
     for s in segments {
@@ -114,39 +125,67 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
     let fixed: HashSet<u32> = scalpel.fixed.iter().copied().collect();
     // A groove's depth tapers toward its tips over `TAPER_DEPTHS` blade depths: opening it wider
     // than it is deep there would tilt its walls over the lips (folded triangles).
-    let taper_len = w.max(super::groove::TAPER_DEPTHS * scalpel.options().depth);
-    // Nearest point on the cut: (distance, point, segment index).
-    let nearest = |p: DVec3| -> Option<(f64, DVec3, usize)> {
-        let c0 = cell(p);
+    let taper_len = taper_length(w, scalpel.options().depth);
+    // Per segment end, the lateral move onto the drawn path (see the module doc).
+    let corrections = if onto_path {
+        super::drawn::corrections(mesh, &scalpel.drawn, segments, &frames, w)
+    } else {
+        vec![[DVec3::ZERO; 2]; segments.len()]
+    };
+    // Nearest point on the cut among the segments `near`: (distance, point, segment index).
+    let nearest = |p: DVec3, near: &[usize]| -> Option<(f64, DVec3, usize)> {
         let mut best: Option<(f64, DVec3, usize)> = None;
-        for x in c0.0 - 1..=c0.0 + 1 {
-            for y in c0.1 - 1..=c0.1 + 1 {
-                for z in c0.2 - 1..=c0.2 + 1 {
-                    for &i in grid.get(&(x, y, z)).map(|v| v.as_slice()).unwrap_or(&[]) {
-                        let s = &segments[i];
-                        let ab = s.pb - s.pa;
-                        let l2 = ab.length_squared();
-                        let u = if l2 > 0.0 {
-                            ((p - s.pa).dot(ab) / l2).clamp(0.0, 1.0)
-                        } else {
-                            0.0
-                        };
-                        let c = s.pa + ab * u;
-                        let d = c.distance(p);
-                        if best.is_none_or(|b| d < b.0) {
-                            best = Some((d, c, i));
-                        }
-                    }
+        for &i in near {
+            let s = &segments[i];
+            let ab = s.pb - s.pa;
+            let l2 = ab.length_squared();
+            let u = if l2 > 0.0 {
+                ((p - s.pa).dot(ab) / l2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let c = s.pa + ab * u;
+            let d2 = c.distance_squared(p);
+            if best.is_none_or(|b| d2 < b.0) {
+                best = Some((d2, c, i));
+            }
+        }
+        best.map(|(d2, c, i)| (d2.sqrt(), c, i))
+    };
+    // The correction at a point: the corrections at the ends of the segments `near` within
+    // the support, weighted by inverse squared distance (exact at a lip vertex; smooth around
+    // the zigzag's corners, where the nearest segment changes from one vertex to the next and a
+    // correction taken from it alone would squash the small triangles there).
+    let correction_at = |p: DVec3, near: &[usize]| -> DVec3 {
+        let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
+        for &i in near {
+            let s = &segments[i];
+            for (end, c) in [(s.pa, corrections[i][0]), (s.pb, corrections[i][1])] {
+                let d2 = end.distance_squared(p);
+                if d2 == 0.0 {
+                    return c;
+                }
+                if d2 < r * r {
+                    let k = d2.recip();
+                    sum += c * k;
+                    weight += k;
                 }
             }
         }
-        best
+        if weight > 0.0 {
+            sum / weight
+        } else {
+            DVec3::ZERO
+        }
     };
     // Breadth-first over surface vertices from the lip copies (seeds with their side), within
     // the support; every other vertex takes the side of the vertex it was reached from.
     let mut side: HashMap<u32, f64> = HashMap::new();
+    let mut corrected: Vec<DVec3> = Vec::new();
     let mut queue: VecDeque<u32> = VecDeque::new();
     let mut fan = Vec::new();
+    // Floor vertices next to the lip copies (groove bottoms): moved by the lips' correction.
+    let mut floors: Vec<u32> = Vec::new();
     for s in segments {
         for v in [s.a, s.b] {
             if v >= nv || mesh.copies(v).is_empty() {
@@ -156,9 +195,18 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
                 if side.contains_key(&c) {
                     continue;
                 }
-                let Some((_, _, i)) = nearest(mesh.pos(c)) else {
+                let p = mesh.pos(c);
+                let Some((_, _, i)) = nearest(p, grid.near(p)) else {
                     continue;
                 };
+                mesh.fan_into(c, &mut fan);
+                for &h in &fan {
+                    floors.extend(
+                        mesh.triangles()[(h / 3) as usize]
+                            .iter()
+                            .filter(|&&f| mesh.is_floor(f)),
+                    );
+                }
                 let sigma = lip_side(mesh, c, &frames[i], &mut fan);
                 if sigma != 0.0 {
                     side.insert(c, sigma);
@@ -169,7 +217,8 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
     }
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
-        let Some((dist, c, i)) = nearest(p) else {
+        let near = grid.near(p);
+        let Some((dist, c, i)) = nearest(p, near) else {
             continue;
         };
         if dist >= r {
@@ -206,12 +255,47 @@ pub fn open_displacements(scalpel: &Scalpel, options: &OpenOptions, now: f64) ->
             (1.0 - s2) * (1.0 - s2)
         };
         let amount = sigma * 0.5 * w * ramp * taper * falloff;
-        if amount != 0.0 {
-            out.push((v, p + lateral * amount));
+        let correction = if onto_path {
+            correction_at(p, grid.near(p)) * (ramp * falloff)
+        } else {
+            DVec3::ZERO
+        };
+        if amount != 0.0 || correction != DVec3::ZERO {
+            out.push((v, p + correction + lateral * amount));
+            corrected.push(correction);
+        }
+    }
+    super::unfold::unfold_correction(mesh, &mut out, &mut corrected);
+    // Floor vertices under the lips: the mean correction of the surface vertices their walls
+    // reach (both lips of a groove have the same), so that the floor stays under the drawn path
+    // and the two walls are alike.
+    floors.sort_unstable();
+    floors.dedup();
+    let index: HashMap<u32, usize> = out.iter().enumerate().map(|(k, m)| (m.0, k)).collect();
+    let mut floor_moves = Vec::new();
+    for f in floors {
+        mesh.fan_into(f, &mut fan);
+        let (mut sum, mut count) = (DVec3::ZERO, 0.0);
+        for &h in &fan {
+            for n in [mesh.dest(h), mesh.origin(prev(h))] {
+                if !mesh.is_floor(n) {
+                    sum += index.get(&n).map_or(DVec3::ZERO, |&k| corrected[k]);
+                    count += 1.0;
+                }
+            }
+        }
+        if count > 0.0 && sum != DVec3::ZERO {
+            floor_moves.push((f, mesh.pos(f) + sum / count));
         }
     }
     super::unfold::unfold(mesh, &mut out);
+    out.extend(floor_moves);
     out
+}
+
+/// How far from a crack tip the opening of `width` tapers, for a blade `depth` deep.
+pub fn taper_length(width: f64, depth: f64) -> f64 {
+    width.max(super::groove::TAPER_DEPTHS * depth)
 }
 
 /// The path's direction at a cut segment, smoothed over the zigzag of the mesh edges it runs

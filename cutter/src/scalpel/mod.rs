@@ -59,7 +59,9 @@
 //! - [`Tool::Loop`] closes the stroke back to its start and reports the pieces it detached
 //!   ([`loop_tool`]).
 //! - [`dffd`] opens the incision by a displacement that is discontinuous across the cut, over a
-//!   trailing time window; vertices outside its support are never written.
+//!   trailing time window; vertices outside its support are never written. The lips it shows
+//!   follow the drawn path ([`drawn`]: each committed step records its tool sample), not the
+//!   zigzag of mesh edges the cut runs along; [`lip_measure`] measures them against it.
 //! - [`layers`] turns a stroke into strokes on every stacked surface the blade reaches;
 //!   [`through`] cuts a slot through a structure thinner than the blade is deep.
 //! - [`invariants`] validates the whole structure (used after every step in tests);
@@ -81,12 +83,15 @@
 
 pub mod budget;
 pub mod cross;
+pub mod cut_grid;
 pub mod cut_point;
 pub mod dffd;
+pub mod drawn;
 pub mod dyn_mesh;
 pub mod groove;
 pub mod invariants;
 pub mod layers;
+pub mod lip_measure;
 mod local_check;
 pub mod locate;
 pub mod loop_tool;

@@ -192,6 +192,8 @@ pub struct Scalpel {
     pub(crate) segments: Vec<CutSegment>,
     /// Vertices the opening must not move (groove bottoms).
     pub(crate) fixed: Vec<u32>,
+    /// The tool samples of the committed steps, for the opening ([`super::drawn`]).
+    pub(crate) drawn: Vec<super::drawn::Sample>,
     clock: f64,
     scratch: Vec<u32>,
     /// Why the last refused step was refused (a short phrase; statistics only, see
@@ -240,6 +242,7 @@ impl Scalpel {
             undo: Vec::new(),
             segments: Vec::new(),
             fixed: Vec::new(),
+            drawn: Vec::new(),
             clock: 0.0,
             scratch: Vec::new(),
             reason: "",
@@ -364,6 +367,8 @@ impl Scalpel {
         match result {
             Ok(report) => {
                 self.stroke = Some(stroke);
+                self.drawn
+                    .push(super::drawn::Sample::new(self.undo.len(), self.clock, q));
                 Ok(report)
             }
             Err(e) => {
@@ -497,6 +502,7 @@ impl Scalpel {
         self.mesh.rollback(mark);
         self.segments.truncate(segments);
         self.fixed.truncate(fixed);
+        self.drawn.retain(|d| d.stroke < self.undo.len());
         true
     }
 

@@ -9,6 +9,11 @@
 //! the mean over them and their moved neighbours (the lips stay open, the kink goes; a few
 //! passes), then, if it still folds, halved, and the check repeats (at most [`PASSES`] times,
 //! after which such corners stay where they rest).
+//!
+//! The opening also moves the lips sideways onto the drawn path ([`super::drawn`]): where that
+//! correction is larger than the triangles around it allow, [`unfold_correction`] shrinks the
+//! correction (shrinking it step by step at the corners of each triangle it folds, and at their coincident
+//! copies, so that the two lips keep their gap), not the opening.
 //! Groove walls are not checked: they tilt by design as the lips open over a fixed floor.
 //! Deterministic and proportional to the moved vertices, so the window and `cutaway scalpel`
 //! still show the same positions bit for bit.
@@ -29,6 +34,116 @@ const SMOOTHING: usize = 4;
 /// at rest.
 const PASSES: usize = 10;
 
+/// Passes that shrink a folding triangle's corners' corrections (to [`CORRECTION_KEEP`] of
+/// themselves) before they are dropped.
+const CORRECTION_PASSES: usize = 16;
+
+/// What a pass keeps of a folding correction (small steps keep as much of it as the triangles
+/// allow).
+const CORRECTION_KEEP: f64 = 0.75;
+
+/// The surface triangles with a moved corner, and where each moved vertex is in the list.
+struct Moved {
+    at: HashMap<u32, usize>,
+    /// Surface triangles with a moved corner, by their three corners (each once).
+    triangles: Vec<[u32; 3]>,
+    /// Per triangle, where its corners are in the moved list (the checks of every pass look
+    /// them up here, not in `at`), their rest positions and its rest normal.
+    slots: Vec<[Option<usize>; 3]>,
+    rest: Vec<([DVec3; 3], DVec3)>,
+}
+
+impl Moved {
+    fn new(mesh: &DynMesh, moved: &[(u32, DVec3)]) -> Moved {
+        let at: HashMap<u32, usize> = moved.iter().enumerate().map(|(i, m)| (m.0, i)).collect();
+        let mut triangles: Vec<[u32; 3]> = Vec::new();
+        let mut seen: HashSet<u32> = HashSet::new();
+        let mut fan = Vec::new();
+        for &(v, _) in moved.iter() {
+            mesh.fan_into(v, &mut fan);
+            for &h in &fan {
+                let t = h / 3;
+                if mesh.is_wall(t) || !seen.insert(t) {
+                    continue;
+                }
+                triangles.push([mesh.origin(h), mesh.dest(h), mesh.origin(prev(h))]);
+            }
+        }
+        let slots = triangles
+            .iter()
+            .map(|t| t.map(|v| at.get(&v).copied()))
+            .collect();
+        let rest = triangles
+            .iter()
+            .map(|t| {
+                let p = t.map(|v| mesh.pos(v));
+                (p, (p[1] - p[0]).cross(p[2] - p[0]))
+            })
+            .collect();
+        Moved {
+            at,
+            triangles,
+            slots,
+            rest,
+        }
+    }
+
+    /// Whether triangle `k` turns more than [`MAX_TURN_DEG`] from its rest pose when its moved
+    /// corners are shown at `shown(index in moved)`.
+    fn folds(&self, k: usize, shown: impl Fn(usize) -> DVec3) -> bool {
+        let cos_max = MAX_TURN_DEG.to_radians().cos();
+        let (p, n0) = self.rest[k];
+        let s = self.slots[k];
+        let q: [DVec3; 3] = std::array::from_fn(|c| s[c].map_or(p[c], &shown));
+        let n1 = (q[1] - q[0]).cross(q[2] - q[0]);
+        let (l0, l1) = (n0.length(), n1.length());
+        l0 != 0.0 && (l1 == 0.0 || n0.dot(n1) < cos_max * l0 * l1)
+    }
+}
+
+/// Shrinks the path corrections in `correction` (parallel to `moved`: the part of each
+/// displacement that moves the lips onto the drawn path, see [`super::drawn`]) where they fold
+/// a surface triangle that the rest of the displacement does not fold: shrunk at its corners
+/// and their coincident copies, up to [`CORRECTION_PASSES`] times, then dropped. `moved` is
+/// updated with them.
+pub fn unfold_correction(mesh: &DynMesh, moved: &mut [(u32, DVec3)], correction: &mut [DVec3]) {
+    if moved.is_empty() || correction.iter().all(|c| *c == DVec3::ZERO) {
+        return;
+    }
+    let m = Moved::new(mesh, moved);
+    for pass in 0..=CORRECTION_PASSES {
+        let mut shrink: Vec<usize> = Vec::new();
+        for (k, tri) in m.triangles.iter().enumerate() {
+            if m.folds(k, |i| moved[i].1) && !m.folds(k, |i| moved[i].1 - correction[i]) {
+                for &v in tri {
+                    if m.at.contains_key(&v) {
+                        for c in std::iter::once(v).chain(mesh.copies(v)) {
+                            if let Some(&i) = m.at.get(&c) {
+                                shrink.push(i);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        if shrink.is_empty() {
+            break;
+        }
+        shrink.sort_unstable();
+        shrink.dedup();
+        for i in shrink {
+            let keep = if pass == CORRECTION_PASSES {
+                0.0
+            } else {
+                CORRECTION_KEEP
+            };
+            let c = correction[i];
+            correction[i] = c * keep;
+            moved[i].1 -= c * (1.0 - keep);
+        }
+    }
+}
+
 /// Shrinks the displacements in `moved` (vertex, opened position) until no surface triangle
 /// with a moved corner turns more than [`MAX_TURN_DEG`] from its rest normal (see the module
 /// doc). Entries that end at rest are dropped.
@@ -36,37 +151,14 @@ pub fn unfold(mesh: &DynMesh, moved: &mut Vec<(u32, DVec3)>) {
     if moved.is_empty() {
         return;
     }
-    let cos_max = MAX_TURN_DEG.to_radians().cos();
-    let at: HashMap<u32, usize> = moved.iter().enumerate().map(|(i, m)| (m.0, i)).collect();
-    // Surface triangles with a moved corner, by their three corners (each once).
-    let mut triangles: Vec<[u32; 3]> = Vec::new();
-    let mut seen: HashSet<u32> = HashSet::new();
-    let mut fan = Vec::new();
-    for &(v, _) in moved.iter() {
-        mesh.fan_into(v, &mut fan);
-        for &h in &fan {
-            let t = h / 3;
-            if mesh.is_wall(t) || !seen.insert(t) {
-                continue;
-            }
-            triangles.push([mesh.origin(h), mesh.dest(h), mesh.origin(prev(h))]);
-        }
-    }
+    let m = Moved::new(mesh, moved);
+    let (at, triangles) = (&m.at, &m.triangles);
     let rest = |v: u32| mesh.pos(v);
-    let shown = |v: u32, moved: &[(u32, DVec3)], at: &HashMap<u32, usize>| {
-        at.get(&v).map_or(mesh.pos(v), |&i| moved[i].1)
-    };
-    let normal = |p: [DVec3; 3]| (p[1] - p[0]).cross(p[2] - p[0]);
+    let mut fan = Vec::new();
     for pass in 0..=PASSES {
         let mut shrink: Vec<u32> = Vec::new();
-        for tri in &triangles {
-            let n0 = normal(tri.map(rest));
-            let n1 = normal(tri.map(|v| shown(v, moved, &at)));
-            let (l0, l1) = (n0.length(), n1.length());
-            if l0 == 0.0 {
-                continue;
-            }
-            if l1 == 0.0 || n0.dot(n1) < cos_max * l0 * l1 {
+        for (k, tri) in triangles.iter().enumerate() {
+            if m.folds(k, |i| moved[i].1) {
                 shrink.extend(tri.iter().copied().filter(|v| at.contains_key(v)));
             }
         }

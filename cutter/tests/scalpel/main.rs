@@ -19,6 +19,7 @@ mod fidelity;
 mod fuzz;
 mod grooves;
 mod lips;
+mod opened_lips;
 mod opening;
 mod projection;
 mod slits;

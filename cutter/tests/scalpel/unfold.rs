@@ -8,7 +8,7 @@ use super::*;
 
 /// A coarse sphere of radius `r` with every vertex pushed in or out by up to `bump` (fixed
 /// seeds), so cuts along its edges zigzag like on a scanned skin surface.
-fn bumpy_sphere(r: f64, bump: f64, seed: u64) -> Mesh {
+pub(super) fn bumpy_sphere(r: f64, bump: f64, seed: u64) -> Mesh {
     let sphere = csg::testkit::icosphere(5, r);
     let mut rng = csg::testkit::SplitMix(seed);
     let positions = sphere
@@ -21,7 +21,7 @@ fn bumpy_sphere(r: f64, bump: f64, seed: u64) -> Mesh {
 
 /// The largest angle (degrees) by which a surface triangle's normal turns when `shown` replaces
 /// the rest positions.
-fn largest_turn(s: &Scalpel, shown: &[DVec3]) -> f64 {
+pub(super) fn largest_turn(s: &Scalpel, shown: &[DVec3]) -> f64 {
     let m = s.dyn_mesh();
     let mut worst = 0.0f64;
     for tri in 0..m.triangle_count() as u32 {
