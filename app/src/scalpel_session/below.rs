@@ -15,7 +15,7 @@ use glam::DVec3;
 
 use csg::{Mesh, SpatialIndex};
 use cutter::scalpel::StrokeReport;
-use cutter::scalpel::layers::{LayerStroke, Surface, cut_layer, reach, strokes_below};
+use cutter::scalpel::layers::{LayerStroke, Surface, cut_layer_walls, reach, strokes_below};
 
 use super::ScalpelSettings;
 use crate::scene::Scene;
@@ -79,10 +79,11 @@ pub(crate) fn cut_layers(
         if mine.is_empty() {
             continue;
         }
-        match cut_layer(mesh, &mine, settings.options(), &open) {
-            Ok(Some((cut, report))) => {
+        let walls = scene.models[*target].wall_faces();
+        match cut_layer_walls(mesh, walls, &mine, settings.options(), &open) {
+            Ok(Some((cut, walls, report))) => {
                 if let Some(m) = scene.models.get_mut(*target) {
-                    m.replace_mesh(Arc::new(cut));
+                    m.replace_mesh_with_walls(Arc::new(cut), walls);
                     outcome.cut.push((*target, report));
                 }
             }

@@ -279,6 +279,8 @@ impl ScalpelSession {
         if !keep {
             self.session = None;
             let mut made = self.prepared.take(model, &mesh)?;
+            // A mesh saved with its incision walls keeps them walls for the strokes to come.
+            made.scalpel.mark_walls(scene.models[model].wall_faces());
             if self.view {
                 made.start_faces();
             }
@@ -468,7 +470,7 @@ impl ScalpelSession {
         session.shown = shown.clone();
         session.shown_open = open;
         if let Some(m) = scene.models.get_mut(session.model) {
-            m.replace_mesh(shown);
+            m.replace_mesh_with_walls(shown, session.scalpel.wall_faces());
         }
         Ok(true)
     }
@@ -507,6 +509,7 @@ impl ScalpelSession {
         let before_mesh = stroke.before.models.get(model).map(|m| m.mesh.clone());
         // What the model was before the stroke, for putting it back when nothing is kept.
         let before_origin = stroke.before.models.get(model).map(|m| m.origin);
+        let before_walls = stroke.before.models.get(model).and_then(|m| m.walls.clone());
         let report = match session.scalpel.end_stroke() {
             Ok(report) => report,
             Err(e) => {
@@ -515,6 +518,7 @@ impl ScalpelSession {
                 if let (Some(m), Some(mesh)) = (scene.models.get_mut(model), before_mesh) {
                     m.mesh = mesh.clone();
                     m.origin = before_origin.unwrap_or(m.origin);
+                    m.walls = before_walls;
                     session.shown = mesh;
                     session.shown_open = stroke.open_before;
                 }
@@ -535,6 +539,7 @@ impl ScalpelSession {
             if let (Some(m), Some(b)) = (scene.models.get_mut(model), before_mesh) {
                 m.mesh = b.clone();
                 m.origin = before_origin.unwrap_or(m.origin);
+                m.walls = before_walls;
                 session.shown = b;
                 session.shown_open = stroke.open_before;
             }
@@ -569,7 +574,7 @@ impl ScalpelSession {
         });
         if report.detached.is_empty() {
             if let Some(m) = scene.models.get_mut(model) {
-                m.replace_mesh(shown);
+                m.replace_mesh_with_walls(shown, session.scalpel.wall_faces());
             }
             let settings = self.settings;
             if settings.layers && settings.tool == Tool::Scalpel && settings.depth > 0.0 {

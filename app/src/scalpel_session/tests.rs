@@ -22,16 +22,18 @@ fn sphere_scene() -> Scene {
 /// patch) is the scalpel's mesh as the whole-mesh update shows it: the same triangles with
 /// the same vertex positions and normals, bit for bit. Returns the patch's share of it.
 fn assert_view_is_the_cut_mesh(slot: &ScalpelSession) -> f64 {
-    use crate::render::delta::tests::{assert_same_corners, delta_corners, drawn_corners};
+    use crate::render::delta::tests::{assert_same_corners, delta_corners, mesh_corners};
     let delta = slot
         .delta()
         .expect("a stroke in progress is drawn as a delta");
     let session = slot.session.as_ref().expect("a session");
     let full = session.display(&slot.settings.open());
-    let vertices = crate::render::draw_data::mesh_vertices(&full);
+    // The base is the scene's model at the press, drawn with its walls.
+    let before = &slot.stroke.as_ref().expect("a stroke").before.models[session.model];
+    assert!(Arc::ptr_eq(&before.mesh, &delta.base));
     assert_same_corners(
-        delta_corners(&delta),
-        drawn_corners(&full, &vertices),
+        delta_corners(&delta, before.wall_faces()),
+        mesh_corners(&full, &session.scalpel.wall_faces()),
         "the view vs the cut mesh",
     );
     delta.patch.triangle_count() as f64 / full.triangle_count() as f64
