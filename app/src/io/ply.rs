@@ -215,7 +215,11 @@ element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n";
         let mut plain = Vec::new();
         write_binary(&mut plain, &mesh, &[]).unwrap();
         assert!(!String::from_utf8_lossy(&plain[..300]).contains("cutaway_wall"));
-        assert_eq!(plain.len() + mesh.triangles.len(), bytes.len());
+        let property = format!("property uchar {WALL_PROPERTY}\n");
+        assert_eq!(
+            plain.len() + property.len() + mesh.triangles.len(),
+            bytes.len()
+        );
         assert!(parse_marked(&plain).unwrap().1.is_empty());
         let ascii = b"ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n\
 element face 2\nproperty list uchar uint vertex_indices\nproperty uchar cutaway_wall\nend_header\n\

@@ -389,6 +389,11 @@ fn a_saved_scalpel_stroke_reopens_bit_for_bit() {
         "positions differ"
     );
     assert_eq!(back.models[0].name, scene.models[0].name);
+    // The incision walls come back with the mesh (the PLY's wall marks).
+    let walls = scene.models[0].wall_faces().to_vec();
+    assert!(walls.len() > 10, "{} walls", walls.len());
+    assert_eq!(back.models[0].wall_faces(), walls);
+    let first = back.models[0].mesh.clone();
     // A second stroke on the reopened model and a save over the same session: the new cut
     // comes back and only its mesh file is left.
     let mut scene = back;
@@ -407,6 +412,17 @@ fn a_saved_scalpel_stroke_reopens_bit_for_bit() {
     let again = crate::session::load(&path).unwrap();
     let recut = &scene.models[0].mesh;
     assert!(again.models[0].mesh.triangles == recut.triangles);
+    // The scalpel made from the reopened mesh kept its walls walls: every first wall the cross
+    // cut left as it was is still one, and the saved marks come back again.
+    let recut_walls = scene.models[0].wall_faces();
+    for &f in &walls {
+        let f = f as usize;
+        if recut.triangles[f] == first.triangles[f] {
+            assert!(recut_walls.binary_search(&(f as u32)).is_ok(), "wall {f} lost");
+        }
+    }
+    assert!(recut_walls.len() > walls.len());
+    assert_eq!(again.models[0].wall_faces(), recut_walls);
     assert!(position_bits(&again.models[0].mesh) == position_bits(recut));
     assert!(recut.triangle_count() > cut.triangle_count());
     let files = std::fs::read_dir(crate::session_meshes::mesh_dir(&path))
