@@ -32,10 +32,11 @@ fn green_over_red(c: [f64; 3]) -> f64 {
     linear(c[1]) / linear(c[0])
 }
 
-/// Pixels of `image` in the 3D view with the walls' hue: diffuse light scales the channels alike,
-/// so green/red is the base colour's (0.055 for the model, 0.45 for its walls; the white
-/// highlight lifts the model's to 0.3 at most); grey (the background) has 1.
-fn wall_pixels(h: &Harness<'_, CutawayApp>, image: &image::RgbaImage) -> usize {
+/// Pixels of `image` inside the disc (`centre`, `radius`, image pixels: the sphere drawn less
+/// its silhouette, whose edge blends red with the background) with the walls' hue: diffuse
+/// light scales the channels alike, so green/red is the base colour's (0.055 for the model,
+/// 0.45 for its walls; the white highlight lifts the model's to 0.3 at most).
+fn wall_pixels(image: &image::RgbaImage, centre: DVec2, radius: f64) -> usize {
     let wall = RED.map(f64::from);
     let wall = std::array::from_fn(|k| {
         wall[k] + (f64::from(WALL_TINT[k]) - wall[k]) * f64::from(WALL_MIX)
@@ -43,19 +44,15 @@ fn wall_pixels(h: &Harness<'_, CutawayApp>, image: &image::RgbaImage) -> usize {
     let (model, walls) = (green_over_red(RED.map(f64::from)), green_over_red(wall));
     assert!(model < 0.1 && walls > 0.4, "{model} {walls}");
     let low = (walls + 0.3) / 2.0;
-    let ppp = h.ctx.pixels_per_point();
-    let r = h.state().viewport.rect;
-    let mut n = 0;
-    for y in (r.min.y * ppp) as u32..((r.max.y * ppp) as u32).min(image.height()) {
-        for x in (r.min.x * ppp) as u32..((r.max.x * ppp) as u32).min(image.width()) {
-            let p = image.get_pixel(x, y);
+    image
+        .enumerate_pixels()
+        .filter(|&(x, y, p)| {
             let c = [p[0], p[1], p[2]].map(|v| v as f64 / 255.0);
-            if linear(c[0]) > 0.02 && (low..0.7).contains(&green_over_red(c)) {
-                n += 1;
-            }
-        }
-    }
-    n
+            DVec2::new(x as f64, y as f64).distance(centre) < radius
+                && linear(c[0]) > 0.02
+                && (low..0.7).contains(&green_over_red(c))
+        })
+        .count()
 }
 
 /// A red sphere of radius 10 cut in Scalpel mode with a 1.5 deep groove opened 1.2 wide: the
@@ -75,7 +72,12 @@ fn an_opened_incision_shows_its_walls_while_drawn_and_after() {
     cutaway::io::write_mesh(&sphere, &csg::testkit::icosphere(5, 10.0)).unwrap();
     let mut h = harness(&dir.join("state"), vec![sphere]);
     h.run_steps(3);
-    assert_eq!(h.state().scene.models.len(), 1, "{}", h.state().status.message);
+    assert_eq!(
+        h.state().scene.models.len(),
+        1,
+        "{}",
+        h.state().status.message
+    );
     h.state_mut().scene.models[0].color = RED;
     h.state_mut().selected_model = None;
     apply(&mut h, Action::SetMode(Mode::Scalpel));
@@ -87,8 +89,6 @@ fn an_opened_incision_shows_its_walls_while_drawn_and_after() {
         settings.window = 0.05;
     }
     h.run_steps(1);
-    let uncut = shot(&mut h, "scalpel-walls-uncut");
-    assert_eq!(wall_pixels(&h, &uncut), 0, "walls before any cut");
 
     // Aim through the camera at points of the sphere's front.
     let app = h.state();
@@ -96,6 +96,17 @@ fn an_opened_incision_shows_its_walls_while_drawn_and_after() {
     let ppp = h.ctx.pixels_per_point() as f64;
     let camera = app.scene.camera;
     let size = app.viewport.size_px;
+    // The sphere's disc in the screenshot, less its rim.
+    let origin = DVec2::new(rect.min.x as f64, rect.min.y as f64) * ppp;
+    let centre: DVec2 = camera.project(size, glam::DVec3::ZERO).expect("in front") + origin;
+    let rim = camera
+        .project(size, camera.up.normalize() * 10.0)
+        .expect("in front")
+        + origin;
+    let disc = 0.9 * centre.distance(rim);
+    let walls_in = |image: &image::RgbaImage| wall_pixels(image, centre, disc);
+    let uncut = shot(&mut h, "scalpel-walls-uncut");
+    assert_eq!(walls_in(&uncut), 0, "walls before any cut");
     let toward_eye = (camera.eye - camera.target).normalize();
     let right = camera.forward().cross(camera.up).normalize();
     let up = right.cross(camera.forward());
@@ -123,10 +134,16 @@ fn an_opened_incision_shows_its_walls_while_drawn_and_after() {
     stroke(&mut h, 0.25, true);
     let state = h.state();
     assert!(!state.status.is_error, "{}", state.status.message);
-    assert!(!state.scene.models[0].wall_faces().is_empty(), "no wall faces");
+    assert!(
+        !state.scene.models[0].wall_faces().is_empty(),
+        "no wall faces"
+    );
     let first = shot(&mut h, "scalpel-walls-first");
-    let after_first = wall_pixels(&h, &first);
-    assert!(after_first > 300, "{after_first} wall pixels after the first stroke");
+    let after_first = walls_in(&first);
+    assert!(
+        after_first > 300,
+        "{after_first} wall pixels after the first stroke"
+    );
 
     stroke(&mut h, -0.25, false);
     assert!(
@@ -134,7 +151,7 @@ fn an_opened_incision_shows_its_walls_while_drawn_and_after() {
         "the second stroke is drawn as a patch"
     );
     let during = shot(&mut h, "scalpel-walls-during");
-    let while_drawn = wall_pixels(&h, &during);
+    let while_drawn = walls_in(&during);
     assert!(
         while_drawn > after_first + 300,
         "{while_drawn} wall pixels while the second stroke is drawn ({after_first} before it)"
@@ -143,7 +160,7 @@ fn an_opened_incision_shows_its_walls_while_drawn_and_after() {
     h.run_steps(3);
     assert!(h.state().viewport.scalpel.delta().is_none());
     let released = shot(&mut h, "scalpel-walls-released");
-    let after = wall_pixels(&h, &released);
+    let after = walls_in(&released);
     assert!(
         after * 10 >= while_drawn * 9,
         "{after} wall pixels after the release, {while_drawn} while drawn"

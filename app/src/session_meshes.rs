@@ -329,8 +329,14 @@ mod tests {
         assert!(!is_mesh_file_name("bone-1.ply"));
         let mut other = mesh.clone();
         other.triangles.swap(0, 1);
-        assert_ne!(mesh_file_name("a", &mesh, &[]), mesh_file_name("a", &other, &[]));
-        assert_ne!(mesh_file_name("a", &mesh, &[]), mesh_file_name("a", &mesh, &[0]));
+        assert_ne!(
+            mesh_file_name("a", &mesh, &[]),
+            mesh_file_name("a", &other, &[])
+        );
+        assert_ne!(
+            mesh_file_name("a", &mesh, &[]),
+            mesh_file_name("a", &mesh, &[0])
+        );
 
         let dir = temp_dir("stale");
         let session = dir.join("s.json");

@@ -549,7 +549,11 @@ pub(crate) mod tests {
             .filter(|&t| is_wall(t))
             .collect();
         let whole = mesh_corners(&edited, &edited_walls);
-        assert_same_corners(delta_corners(&delta, &walls), whole.clone(), "delta vs edited");
+        assert_same_corners(
+            delta_corners(&delta, &walls),
+            whole.clone(),
+            "delta vs edited",
+        );
         // The split matters: drawn without walls, the same change draws other normals.
         assert_ne!(sorted(mesh_corners(&edited, &[])), sorted(whole));
         assert!(delta.triangles.len() < edited.triangles.len());

@@ -212,7 +212,9 @@ pub(crate) mod tests {
             for (k, &i) in tri.iter().enumerate() {
                 let v = d.vertices[i as usize];
                 // Same position as the mesh's corner.
-                let p = mesh.positions[mesh.triangles[f][k] as usize].as_vec3().to_array();
+                let p = mesh.positions[mesh.triangles[f][k] as usize]
+                    .as_vec3()
+                    .to_array();
                 assert_eq!(v.position_in_world, p);
                 assert_eq!(v.wall, if is_wall(f) { 1.0 } else { 0.0 }, "face {f}");
                 if is_wall(f) {
@@ -256,12 +258,21 @@ pub(crate) mod tests {
         assert_eq!(d.vertices, mesh_vertices(&mesh));
         assert_eq!(d.triangles, mesh.triangles);
         for f in 0..mesh.triangles.len() as u32 {
-            assert_eq!(drawn_triangle(&mesh, &[], f), Some(mesh.triangles[f as usize]));
+            assert_eq!(
+                drawn_triangle(&mesh, &[], f),
+                Some(mesh.triangles[f as usize])
+            );
         }
         let d = drawn(&mesh, &walls);
         for f in 0..mesh.triangles.len() as u32 {
-            assert_eq!(drawn_triangle(&mesh, &walls, f), Some(d.triangles[f as usize]));
+            assert_eq!(
+                drawn_triangle(&mesh, &walls, f),
+                Some(d.triangles[f as usize])
+            );
         }
-        assert_eq!(drawn_triangle(&mesh, &walls, mesh.triangles.len() as u32), None);
+        assert_eq!(
+            drawn_triangle(&mesh, &walls, mesh.triangles.len() as u32),
+            None
+        );
     }
 }

@@ -509,7 +509,11 @@ impl ScalpelSession {
         let before_mesh = stroke.before.models.get(model).map(|m| m.mesh.clone());
         // What the model was before the stroke, for putting it back when nothing is kept.
         let before_origin = stroke.before.models.get(model).map(|m| m.origin);
-        let before_walls = stroke.before.models.get(model).and_then(|m| m.walls.clone());
+        let before_walls = stroke
+            .before
+            .models
+            .get(model)
+            .and_then(|m| m.walls.clone());
         let report = match session.scalpel.end_stroke() {
             Ok(report) => report,
             Err(e) => {

@@ -418,7 +418,10 @@ fn a_saved_scalpel_stroke_reopens_bit_for_bit() {
     for &f in &walls {
         let f = f as usize;
         if recut.triangles[f] == first.triangles[f] {
-            assert!(recut_walls.binary_search(&(f as u32)).is_ok(), "wall {f} lost");
+            assert!(
+                recut_walls.binary_search(&(f as u32)).is_ok(),
+                "wall {f} lost"
+            );
         }
     }
     assert!(recut_walls.len() > walls.len());

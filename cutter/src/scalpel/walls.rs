@@ -51,9 +51,7 @@ mod tests {
         let samples: Vec<DVec3> = (0..=12)
             .map(|i| {
                 let a = -0.5 + i as f64 / 12.0;
-                DVec3::new(10.0 * a.sin(), -10.0 * a.cos() * 0.3, 10.0 * 0.95)
-                    .normalize()
-                    * 10.0
+                DVec3::new(10.0 * a.sin(), -10.0 * a.cos() * 0.3, 10.0 * 0.95).normalize() * 10.0
             })
             .collect();
         scalpel.cut_stroke(&samples).unwrap();
