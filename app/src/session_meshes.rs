@@ -8,8 +8,10 @@
 //! `<session stem>.meshes/` next to the session, and its session entry names that file with
 //! `"exact": true` and `"region": 0` (plus the model's `"name"`). Loading an exact entry reads the
 //! file verbatim ([`crate::io::read_mesh_verbatim`]: no welding, no region split), so the model
-//! comes back bit for bit, as one model, whatever its topology. Other tools that ignore `exact`
-//! still find an ordinary mesh file.
+//! comes back bit for bit, as one model, whatever its topology. The scalpel's incision walls
+//! are marked in the file (the PLY face property `cutaway_wall`, see `crate::io::ply`) and come
+//! back with it. Other tools that ignore `exact` (and the property) still find an ordinary mesh
+//! file.
 //!
 //! ## Why file names carry a content hash
 //! A mesh file is named `<model name>-<64-bit hash of the mesh>.ply` and never overwritten with

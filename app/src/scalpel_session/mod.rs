@@ -37,6 +37,13 @@
 //! wireframe model, or with an opening width different from the one the scene's mesh was shown
 //! with, replaces the scene's mesh per step as before.
 //!
+//! ## Walls
+//! Every mesh the scalpel puts into the scene carries its wall faces (groove and through-cut
+//! walls, `Scalpel::wall_faces`), so the view draws them as the inside of the tissue
+//! (`crate::render::wall_split`); a stroke's delta marks them from the scalpel's mesh the same
+//! way, and a scalpel made for a mesh with marks (a reopened session) marks them walls again
+//! before its first stroke. The layers below are cut with their walls kept likewise.
+//!
 //! ## Undo
 //! A stroke is one step of the window's history: the scene before the stroke and after it
 //! (meshes are shared `Arc`s, so the snapshots are cheap and cutters are never lost). Undo puts
