@@ -95,8 +95,13 @@ pub(crate) fn cut_layers(
 }
 
 /// `mesh` without the triangles of `pieces` (matched by their corner coordinates, bit for bit:
-/// the pieces were copied out of this mesh), compacted.
-pub(crate) fn without_pieces(mesh: &Mesh, pieces: &[Mesh]) -> Mesh {
+/// the pieces were copied out of this mesh), compacted; and which of the kept triangles are
+/// walls, given the walls `walls` (ascending) of `mesh` (the triangles keep their order).
+pub(crate) fn without_pieces_walls(
+    mesh: &Mesh,
+    pieces: &[Mesh],
+    walls: &[u32],
+) -> (Mesh, Vec<u32>) {
     type Key = [[u64; 3]; 3];
     let key = |corners: [DVec3; 3]| -> Key {
         corners.map(|p| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()])
@@ -107,14 +112,21 @@ pub(crate) fn without_pieces(mesh: &Mesh, pieces: &[Mesh]) -> Mesh {
             remove.insert(key(piece.corners(t)));
         }
     }
-    Mesh {
+    let kept: Vec<usize> = (0..mesh.triangle_count())
+        .filter(|&t| !remove.contains(&key(mesh.corners(t))))
+        .collect();
+    let kept_walls = kept
+        .iter()
+        .enumerate()
+        .filter(|&(_, &t)| walls.binary_search(&(t as u32)).is_ok())
+        .map(|(k, _)| k as u32)
+        .collect();
+    let rest = Mesh {
         positions: mesh.positions.clone(),
-        triangles: (0..mesh.triangle_count())
-            .filter(|&t| !remove.contains(&key(mesh.corners(t))))
-            .map(|t| mesh.triangles[t])
-            .collect(),
-    }
-    .compacted()
+        triangles: kept.iter().map(|&t| mesh.triangles[t]).collect(),
+    };
+    // Compacting renumbers vertices only: the triangles keep their order.
+    (rest.compacted(), kept_walls)
 }
 
 /// A lighter shade of the model's colour for a piece cut out of it.

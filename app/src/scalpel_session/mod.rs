@@ -83,7 +83,7 @@ use cutter::scalpel::{OpenOptions, ScalpelOptions, Tool, dffd};
 
 use crate::render::delta::MeshDelta;
 use crate::scene::{MeshOrigin, ModelStyle, Scene, SceneModel};
-use below::{cut_layers, piece_colour, without_pieces};
+use below::{cut_layers, piece_colour, without_pieces_walls};
 use model_cut::{ModelCut, Stroke};
 pub use prepare::Prepared;
 
@@ -644,11 +644,12 @@ impl ScalpelSession {
                 }
             }
         } else {
-            let kept = without_pieces(&shown, &report.detached);
+            let (kept, walls) =
+                without_pieces_walls(&shown, &report.detached, &session.scalpel.wall_faces());
             let Some(original) = scene.models.get(model).cloned() else {
                 return Released::Nothing;
             };
-            scene.models[model].replace_mesh(Arc::new(kept));
+            scene.models[model].replace_mesh_with_walls(Arc::new(kept), walls);
             for (k, piece) in report.detached.into_iter().enumerate() {
                 let mut entry = SceneModel::new(
                     format!("{} piece {}", original.name, k + 1),

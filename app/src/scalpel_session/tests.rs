@@ -727,6 +727,9 @@ fn removing_pieces_matches_triangles_by_their_corners() {
         triangles: cube.triangles[..2].to_vec(),
     }
     .compacted();
-    let rest = without_pieces(&cube, &[piece]);
+    let (rest, walls) = without_pieces_walls(&cube, &[piece], &[1, 3, 5]);
     assert_eq!(rest.triangle_count(), 10);
+    // Triangles 3 and 5 of the cube are the 2nd and 4th kept.
+    assert_eq!(walls, vec![1, 3]);
+    assert_eq!(rest.corners(1), cube.corners(3));
 }
