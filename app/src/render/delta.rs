@@ -338,8 +338,14 @@ fn patch_walls(
 
 /// The kept part of a cut as a delta against the cut's target (`result` from `csg::subtract` on
 /// the index of `target`): the removed and split faces hidden, the kept pieces of split faces
-/// added. Draws exactly what `result.materialize(target)` would.
-pub fn of_cut(target: &Arc<Mesh>, faces: &VertexFaces, result: &csg::CutResult) -> MeshDelta {
+/// added. Draws exactly what `result.materialize(target)` would, with the target's incision
+/// walls `walls` (ascending) and the kept pieces of them as walls.
+pub fn of_cut(
+    target: &Arc<Mesh>,
+    faces: &VertexFaces,
+    result: &csg::CutResult,
+    walls: &[u32],
+) -> MeshDelta {
     let n = target.positions.len() as u32;
     let position = |v: u32| {
         if v < n {
@@ -356,7 +362,15 @@ pub fn of_cut(target: &Arc<Mesh>, faces: &VertexFaces, result: &csg::CutResult) 
         added: &result.kept_new_faces,
         position: &position,
         moved: &[],
-        wall: &|_| false,
+        wall: &|t| {
+            let nb = target.triangles.len() as u32;
+            let from = if t < nb {
+                Some(t)
+            } else {
+                result.kept_new_provenance.get((t - nb) as usize).copied()
+            };
+            from.is_some_and(|f| walls.binary_search(&f).is_ok())
+        },
     })
 }
 
@@ -454,7 +468,7 @@ pub(crate) mod tests {
         let cutter = csg::testkit::cube(DVec3::new(-3.0, -4.0, 5.0), DVec3::new(4.0, 3.0, 12.0));
         let result = csg::subtract(&index, &cutter).unwrap();
         let faces = VertexFaces::build(&target);
-        let delta = of_cut(&target, &faces, &result);
+        let delta = of_cut(&target, &faces, &result, &[]);
         let kept = result.materialize(&target);
         assert_same_corners(
             delta_corners(&delta, &[]),
