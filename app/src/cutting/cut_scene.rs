@@ -646,4 +646,4 @@ mod tests;
 
 #[cfg(test)]
 #[path = "incision_tests.rs"]
-mod incision_tests;
+pub(crate) mod incision_tests;

@@ -15,7 +15,7 @@ use crate::test_support::{box_cutter, plain_cutter};
 /// A sphere of radius 10 with a 1 deep groove across its top (x from -5 to 5 near z = 9.5),
 /// its walls marked, and a box cutter removing the sphere's part with x > 0 and z > 5 (half the
 /// groove). `marked` false: the same mesh without the marks.
-fn grooved_sphere_cut(marked: bool) -> (Scene, Vec<u32>) {
+pub(crate) fn grooved_sphere_cut(marked: bool) -> (Scene, Vec<u32>) {
     let sphere = csg::testkit::icosphere(4, 10.0);
     let options = cutter::scalpel::ScalpelOptions::default().with_depth(1.0);
     let mut scalpel = cutter::scalpel::Scalpel::new(&sphere, options).unwrap();
