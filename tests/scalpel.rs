@@ -4,6 +4,9 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+#[path = "scalpel/walls.rs"]
+mod walls;
+
 fn cutaway() -> Command {
     Command::new(env!("CARGO_BIN_EXE_cutaway"))
 }
@@ -430,6 +433,12 @@ fn read_ply_verbatim(path: &Path) -> (Vec<csg::DVec3>, Vec<[usize; 3]>) {
         })
         .collect();
     let mut o = at + 24 * nv;
+    // A face is its three indices, and its wall mark when the file marks walls.
+    let record = if header.contains("property uchar cutaway_wall") {
+        14
+    } else {
+        13
+    };
     let mut triangles = Vec::with_capacity(nf);
     for _ in 0..nf {
         assert_eq!(bytes[o], 3);
@@ -437,7 +446,7 @@ fn read_ply_verbatim(path: &Path) -> (Vec<csg::DVec3>, Vec<[usize; 3]>) {
             u32::from_le_bytes(bytes[o + 1 + 4 * k..o + 5 + 4 * k].try_into().unwrap()) as usize
         };
         triangles.push([i(0), i(1), i(2)]);
-        o += 13;
+        o += record;
     }
     (positions, triangles)
 }

@@ -45,3 +45,4 @@ pub(crate) mod test_support;
 pub mod thread_time;
 pub mod variants;
 pub mod view;
+pub mod wall_faces;

@@ -23,6 +23,7 @@ use cutter::Camera;
 use glam::DVec3;
 
 use crate::ruler::Ruler;
+use crate::wall_faces::WallFaces;
 
 /// How a model's surface is drawn.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -77,6 +78,9 @@ pub struct SceneModel {
     pub opacity: f32,
     pub style: ModelStyle,
     pub visible: bool,
+    /// The faces of `mesh` that are incision walls (drawn as the inside of the tissue); marks
+    /// made for another mesh count as none ([`SceneModel::wall_faces`]).
+    pub walls: Option<Arc<WallFaces>>,
 }
 
 impl SceneModel {
@@ -99,7 +103,14 @@ impl SceneModel {
             opacity: 1.0,
             style: ModelStyle::Solid,
             visible: true,
+            walls: None,
         }
+    }
+
+    /// The faces of `mesh` that are incision walls, ascending (none when the marks were made for
+    /// another mesh).
+    pub fn wall_faces(&self) -> &[u32] {
+        WallFaces::for_mesh(&self.walls, &self.mesh)
     }
 }
 
@@ -142,6 +153,12 @@ impl SceneModel {
     pub fn replace_mesh(&mut self, mesh: Arc<Mesh>) {
         self.mesh = mesh;
         self.origin = MeshOrigin::Edited;
+    }
+
+    /// [`SceneModel::replace_mesh`] with the faces of the new mesh that are incision walls.
+    pub fn replace_mesh_with_walls(&mut self, mesh: Arc<Mesh>, walls: Vec<u32>) {
+        self.walls = WallFaces::new(&mesh, walls);
+        self.replace_mesh(mesh);
     }
 }
 

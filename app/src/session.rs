@@ -123,15 +123,19 @@ pub fn scene_from_file(
             anyhow::bail!("model {i}: names both a region and a structure; give one of them");
         }
         let exact_model: Vec<crate::io::Model>;
+        // The incision walls an exact mesh file marks (a scalpel-cut model saved with them).
+        let mut exact_walls = Vec::new();
         let regions = if entry.exact {
             let stem = entry.path.file_stem().unwrap_or_default().to_string_lossy();
+            let (mesh, walls) = crate::io::read_mesh_verbatim_walls(&source)?;
+            exact_walls = walls;
             exact_model = vec![crate::io::Model {
                 name: entry.name.clone().unwrap_or_else(|| stem.into_owned()),
                 source: source.clone(),
                 index: 0,
                 color: None,
                 group: entry.group.clone().unwrap_or_default(),
-                mesh: crate::io::read_mesh_verbatim(&source)?,
+                mesh,
             }];
             &exact_model
         } else {
@@ -186,6 +190,8 @@ pub fn scene_from_file(
                 (Some(group), true) => group.clone(),
                 _ => model.group.clone(),
             };
+            let mesh = Arc::new(model.mesh.clone());
+            let walls = crate::wall_faces::WallFaces::new(&mesh, exact_walls.clone());
             scene.models.push(SceneModel {
                 name,
                 source: model.source.clone(),
@@ -196,7 +202,7 @@ pub fn scene_from_file(
                     unit
                 },
                 group,
-                mesh: Arc::new(model.mesh.clone()),
+                mesh,
                 origin: if entry.exact {
                     MeshOrigin::Exact
                 } else {
@@ -206,6 +212,7 @@ pub fn scene_from_file(
                 opacity: entry.opacity,
                 style,
                 visible: entry.visible,
+                walls,
             });
         }
     }

@@ -8,8 +8,10 @@
 //! `<session stem>.meshes/` next to the session, and its session entry names that file with
 //! `"exact": true` and `"region": 0` (plus the model's `"name"`). Loading an exact entry reads the
 //! file verbatim ([`crate::io::read_mesh_verbatim`]: no welding, no region split), so the model
-//! comes back bit for bit, as one model, whatever its topology. Other tools that ignore `exact`
-//! still find an ordinary mesh file.
+//! comes back bit for bit, as one model, whatever its topology. The scalpel's incision walls
+//! are marked in the file (the PLY face property `cutaway_wall`, see `crate::io::ply`) and come
+//! back with it. Other tools that ignore `exact` (and the property) still find an ordinary mesh
+//! file.
 //!
 //! ## Why file names carry a content hash
 //! A mesh file is named `<model name>-<64-bit hash of the mesh>.ply` and never overwritten with
@@ -54,7 +56,8 @@ pub fn write_meshes(session: &Path, scene: &Scene) -> anyhow::Result<Vec<Option<
             written.push(None);
             continue;
         }
-        let path = dir.join(mesh_file_name(&model.name, &model.mesh));
+        let walls = model.wall_faces();
+        let path = dir.join(mesh_file_name(&model.name, &model.mesh, walls));
         if !path.is_file() {
             std::fs::create_dir_all(&dir).with_context(|| {
                 format!(
@@ -62,7 +65,7 @@ pub fn write_meshes(session: &Path, scene: &Scene) -> anyhow::Result<Vec<Option<
                     dir.display()
                 )
             })?;
-            crate::io::write_mesh(&path, &model.mesh)
+            crate::io::write_mesh_walls(&path, &model.mesh, walls)
                 .with_context(|| format!("model {i} ({})", model.name))?;
         }
         written.push(Some(path));
@@ -94,8 +97,9 @@ pub fn remove_stale(session: &Path, written: &[Option<PathBuf>]) {
     std::fs::remove_dir(&dir).ok();
 }
 
-/// `<model name, file-safe>-<16 hex digits of the mesh's hash>.ply`.
-pub fn mesh_file_name(model_name: &str, mesh: &Mesh) -> String {
+/// `<model name, file-safe>-<16 hex digits of the mesh's hash>.ply`; the hash covers the
+/// incision walls `walls` too (a mesh without walls keeps the name it always had).
+pub fn mesh_file_name(model_name: &str, mesh: &Mesh, walls: &[u32]) -> String {
     let mut safe: String = model_name
         .chars()
         .map(|c| {
@@ -114,7 +118,7 @@ pub fn mesh_file_name(model_name: &str, mesh: &Mesh) -> String {
     if safe.is_empty() {
         safe.push_str("mesh");
     }
-    format!("{safe}-{:016x}.ply", mesh_hash(mesh))
+    format!("{safe}-{:016x}.ply", mesh_hash(mesh, walls))
 }
 
 fn is_mesh_file_name(name: &str) -> bool {
@@ -127,9 +131,9 @@ fn is_mesh_file_name(name: &str) -> bool {
     }
 }
 
-/// A 64-bit hash of the positions' bits and the triangles (counts included), stable across runs
-/// and platforms.
-fn mesh_hash(mesh: &Mesh) -> u64 {
+/// A 64-bit hash of the positions' bits, the triangles (counts included) and the wall faces
+/// when there are any, stable across runs and platforms.
+fn mesh_hash(mesh: &Mesh, walls: &[u32]) -> u64 {
     const K: u64 = 0x9e37_79b9_7f4a_7c15;
     let mut h: u64 = 0x243f_6a88_85a3_08d3;
     let mut mix = |w: u64| {
@@ -145,6 +149,12 @@ fn mesh_hash(mesh: &Mesh) -> u64 {
     for t in &mesh.triangles {
         mix(u64::from(t[0]) | u64::from(t[1]) << 32);
         mix(u64::from(t[2]));
+    }
+    if !walls.is_empty() {
+        mix(walls.len() as u64);
+        for &f in walls {
+            mix(u64::from(f));
+        }
     }
     // Final avalanche so that nearby inputs give unrelated names.
     h ^= h >> 33;
@@ -260,7 +270,7 @@ mod tests {
         scene.models.push(model);
         crate::session::save(&session, &scene).unwrap();
         let first_json = std::fs::read(&session).unwrap();
-        let first_mesh = mesh_dir(&session).join(mesh_file_name("m", &scene.models[0].mesh));
+        let first_mesh = mesh_dir(&session).join(mesh_file_name("m", &scene.models[0].mesh, &[]));
         let first_bytes = std::fs::read(&first_mesh).unwrap();
 
         // A second version whose JSON cannot be written (an injected failure at its rename), so
@@ -314,14 +324,21 @@ mod tests {
     #[test]
     fn names_are_safe_and_only_ours_are_removed() {
         let mesh = awkward_mesh();
-        let name = mesh_file_name("../knee skin 1", &mesh);
+        let name = mesh_file_name("../knee skin 1", &mesh, &[]);
         assert!(!name.contains('/') && !name.starts_with('.'), "{name}");
         assert!(is_mesh_file_name(&name));
         assert!(!is_mesh_file_name("notes.ply"));
         assert!(!is_mesh_file_name("bone-1.ply"));
         let mut other = mesh.clone();
         other.triangles.swap(0, 1);
-        assert_ne!(mesh_file_name("a", &mesh), mesh_file_name("a", &other));
+        assert_ne!(
+            mesh_file_name("a", &mesh, &[]),
+            mesh_file_name("a", &other, &[])
+        );
+        assert_ne!(
+            mesh_file_name("a", &mesh, &[]),
+            mesh_file_name("a", &mesh, &[0])
+        );
 
         let dir = temp_dir("stale");
         let session = dir.join("s.json");

@@ -6,6 +6,9 @@
 //! and, with a depth, on every region the blade reaches below it (multi-layer); the opening (if
 //! the file asks for one) is shown after its whole time window, as the window shows a released
 //! stroke. So the written mesh is what Scalpel mode shows after the same strokes, bit for bit.
+//! A `.ply` output marks the incision walls (groove and through-cut walls) with the
+//! `cutaway_wall` face property, so `cutaway render` of a session naming it `"exact"` draws
+//! them as the window does; other formats carry the mesh alone.
 //! `steps` and the step times count the path file's samples; the first step of each stroke
 //! includes its press. Any refusal is an error naming the path file, the stroke and the point;
 //! nothing is written then.
@@ -75,15 +78,19 @@ pub fn run(args: &ScalpelArgs) -> anyhow::Result<()> {
     let done =
         replay(&mut session, &mut scene, &path_file.strokes).map_err(|e| anyhow!("{file}: {e}"))?;
     let mut out = csg::Mesh::default();
+    // The incision walls of every model, in the written mesh's face ids.
+    let mut walls: Vec<u32> = Vec::new();
     let (mut closed, mut manifold) = (true, true);
     for m in &scene.models {
         let topology = validate(&DynMesh::from_mesh(&m.mesh))
             .map_err(|e| anyhow!("{target}: internal error after cutting: {e}"))?;
         closed &= topology.closed;
         manifold &= topology.manifold;
+        let first = out.triangles.len() as u32;
+        walls.extend(m.wall_faces().iter().map(|&f| first + f));
         out.append(&m.mesh);
     }
-    crate::io::write_mesh(&args.out, &out)?;
+    crate::io::write_mesh_walls(&args.out, &out, &walls)?;
     if args.json {
         let mut sorted = done.step_us.clone();
         sorted.sort_by(f64::total_cmp);

@@ -39,7 +39,7 @@ pub use super::cut_parts::{
     contour_polylines, cut_exact, cutter_mesh, cutter_surface, select, sub_cuts,
 };
 pub use super::cut_results::{
-    CutParts, CutReport, PartKind, PreviewGeometry, PreviewPart, SURFACE, Step,
+    CutParts, CutReport, INCISION, PartKind, PreviewGeometry, PreviewPart, SURFACE, Step,
 };
 
 /// A model cut by several cutters in turn.
@@ -237,13 +237,29 @@ pub fn cut_in_turn(
     mesh: &Arc<Mesh>,
     cutters: &[(usize, &SceneCutter)],
     may_skip: impl Fn(usize) -> bool,
+    on_step: impl FnMut(&Step),
+) -> SequenceResult {
+    cut_in_turn_marked(cache, mesh, &[], cutters, may_skip, on_step)
+}
+
+/// [`cut_in_turn`] on a model whose faces `incisions` (ascending) are scalpel walls: they start
+/// tagged [`INCISION`] instead of [`SURFACE`] and keep that tag through the cuts, so the preview
+/// draws what is left of them as walls. Such a model's cut prefixes are neither cached nor read
+/// from the cache (a cached prefix holds the tags of whoever cut it).
+pub fn cut_in_turn_marked(
+    cache: &mut CutCache,
+    mesh: &Arc<Mesh>,
+    incisions: &[u32],
+    cutters: &[(usize, &SceneCutter)],
+    may_skip: impl Fn(usize) -> bool,
     mut on_step: impl FnMut(&Step),
 ) -> SequenceResult {
     let mut notes = Vec::new();
+    let cached = incisions.is_empty();
     // The longest cached prefix of skippable cutters.
     let mut start = 0;
     let mut stage = None;
-    for k in (1..=cutters.len()).rev() {
+    for k in (1..=cutters.len()).rev().filter(|_| cached) {
         if !cutters[..k].iter().all(|(i, _)| may_skip(*i)) {
             continue;
         }
@@ -263,9 +279,15 @@ pub fn cut_in_turn(
                     None
                 }
             };
+            let mut tags = vec![SURFACE; mesh.triangle_count()];
+            for &f in incisions {
+                if let Some(t) = tags.get_mut(f as usize) {
+                    *t = INCISION;
+                }
+            }
             Stage {
                 mesh: mesh.clone(),
-                tags: Arc::new(vec![SURFACE; mesh.triangle_count()]),
+                tags: Arc::new(tags),
                 index,
                 reports: Vec::new(),
             }
@@ -359,7 +381,7 @@ pub fn cut_in_turn(
             index: next_index,
             reports,
         };
-        if k + 1 < cutters.len() && stage.index.is_some() {
+        if cached && k + 1 < cutters.len() && stage.index.is_some() {
             let mut cached = stage.clone();
             // A cached prefix is not cut again: its time is not this cut's.
             for (_, r) in &mut cached.reports {
@@ -529,9 +551,10 @@ fn model_preview(
         let v = &scene.cutters[c].views;
         v.transparency.is_some() || v.ribbons.is_some() || v.slices.is_some()
     };
-    let sequence = cut_in_turn(
+    let sequence = cut_in_turn_marked(
         cache,
         &model.mesh,
+        model.wall_faces(),
         cutters,
         |c| !needs_step(c),
         |step| {
@@ -587,6 +610,16 @@ fn model_preview(
     for line in tag_contours(closed, tags, shows_walls) {
         out.contours.push((model_index, line));
     }
+    // What is left of the model's scalpel incisions: walls on their own (a hard edge at the lips).
+    let incisions = select(closed, |t| tags[t] == INCISION);
+    push_part(
+        &mut out,
+        model_index,
+        usize::MAX,
+        PartKind::Wall,
+        1.0,
+        incisions,
+    );
     let kept = select(closed, |t| tags[t] == SURFACE);
     push_part(&mut out, model_index, usize::MAX, PartKind::Kept, 1.0, kept);
     let mut notes = sequence.notes;
@@ -610,3 +643,7 @@ fn model_preview(
 #[cfg(test)]
 #[path = "cut_scene_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "incision_tests.rs"]
+pub(crate) mod incision_tests;

@@ -424,8 +424,14 @@ impl LiveCache {
         }
     }
 
-    /// The live cut of `mesh` by `cutter` (None: the exact boolean refused it).
-    fn model(&mut self, mesh: &Arc<Mesh>, cutter: &SceneCutter) -> Option<ModelLive> {
+    /// The live cut of `mesh` (incision walls `walls`, which belong to it) by `cutter` (None:
+    /// the exact boolean refused it).
+    fn model(
+        &mut self,
+        mesh: &Arc<Mesh>,
+        walls: &[u32],
+        cutter: &SceneCutter,
+    ) -> Option<ModelLive> {
         if let Some((_, _, live, used)) = self
             .models
             .iter_mut()
@@ -448,7 +454,7 @@ impl LiveCache {
         } else {
             let result = csg::subtract(&index, &surface).ok()?;
             let faces = self.faces(mesh);
-            let kept = Arc::new(delta::of_cut(mesh, &faces, &result));
+            let kept = Arc::new(delta::of_cut(mesh, &faces, &result, walls));
             let contours = crate::cutting::cut_scene::contour_polylines(result.contours);
             ModelLive {
                 walls: Arc::new(result.walls.mesh),
@@ -483,7 +489,7 @@ fn live_geometry(scene: &Scene, cache: &mut LiveCache) -> (PreviewGeometry, Vec<
         if model.style != crate::scene::ModelStyle::Solid {
             continue;
         }
-        let Some(live) = cache.model(&model.mesh, &scene.cutters[c]) else {
+        let Some(live) = cache.model(&model.mesh, model.wall_faces(), &scene.cutters[c]) else {
             continue;
         };
         // Drawn here: the remaining scene leaves this cutter out.

@@ -36,7 +36,7 @@ use glam::DVec3;
 use gltf_json as json;
 use json::validation::{Checked::Valid, USize64};
 
-use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
+use crate::cutting::cut_scene::{PartKind, PreviewGeometry, select};
 use crate::render::{CONTOUR_COLOR, WALL_MIX, WALL_TINT, srgb_to_linear};
 use crate::scene::{ModelStyle, Scene};
 
@@ -99,8 +99,17 @@ pub fn scene_document(scene: &Scene, geometry: &PreviewGeometry) -> Document {
         }
         let mut primitives = Vec::new();
         let replaced = geometry.replaced.get(m).copied().unwrap_or(false);
-        if !replaced {
+        let walls = model.wall_faces();
+        if !replaced && walls.is_empty() {
             primitives.extend(builder.surface(scene, m, &model.mesh, MaterialKey::Surface(m)));
+        } else if !replaced {
+            // A scalpel-cut model: its incision walls in the walls' material, on vertices of
+            // their own (a hard edge at the lips), as the view draws them.
+            let is_wall = |t: usize| walls.binary_search(&(t as u32)).is_ok();
+            let surface = select(&model.mesh, |t| !is_wall(t)).compacted();
+            let incision = select(&model.mesh, is_wall).compacted();
+            primitives.extend(builder.surface(scene, m, &surface, MaterialKey::Surface(m)));
+            primitives.extend(builder.surface(scene, m, &incision, MaterialKey::Wall(m)));
         }
         for part in geometry.parts.iter().filter(|p| p.model == m) {
             if let Some(layer) = image_on(scene, part.kind) {
@@ -523,5 +532,39 @@ fn primitive(
         material: Some(material),
         mode: Valid(mode),
         targets: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A scalpel-cut model without cutters exports its incision walls as a primitive of their
+    /// own in the walls' material; without the marks it is one surface primitive.
+    #[test]
+    fn incision_walls_export_in_the_wall_material() {
+        use crate::cutting::cut_scene::incision_tests::grooved_sphere_cut;
+        for marked in [true, false] {
+            let (mut scene, walls) = grooved_sphere_cut(marked);
+            scene.cutters.clear();
+            let geometry = crate::cutting::cut_scene::preview_geometry(&scene);
+            let doc = scene_document(&scene, &geometry);
+            let primitives = &doc.root.meshes[0].primitives;
+            let materials: Vec<String> = primitives
+                .iter()
+                .map(|p| {
+                    let m = p.material.expect("a material").value();
+                    doc.root.materials[m].name.clone().unwrap_or_default()
+                })
+                .collect();
+            if marked {
+                assert_eq!(primitives.len(), 2, "{materials:?}");
+                assert_ne!(materials[0], materials[1]);
+                let index = primitives[1].indices.expect("indexed").value();
+                assert_eq!(doc.root.accessors[index].count.0, 3 * walls.len() as u64);
+            } else {
+                assert_eq!(primitives.len(), 1, "{materials:?}");
+            }
+        }
     }
 }

@@ -374,7 +374,10 @@ mod view {
             // The way before: the whole mesh in the scene.
             let mut whole = scene.clone();
             let session = slot.session.as_ref().unwrap();
-            whole.models[0].replace_mesh(session.display(&slot.settings.open()));
+            whole.models[0].replace_mesh_with_walls(
+                session.display(&slot.settings.open()),
+                session.scalpel.wall_faces(),
+            );
             let expected = renderer.render(&frame(&whole, None)).expect("render");
             assert_ne!(differing_pixels(&got, &uncut), 0, "step {k}: nothing cut");
             assert_eq!(
@@ -493,7 +496,8 @@ mod timings {
             let delta = started.elapsed().as_secs_f64() * 1000.0;
             // The way before: the whole mesh into the scene, uploaded.
             let started = Instant::now();
-            whole_scene.models[0].replace_mesh(session.display(&open));
+            whole_scene.models[0]
+                .replace_mesh_with_walls(session.display(&open), session.scalpel.wall_faces());
             let copy = started.elapsed().as_secs_f64() * 1000.0;
             let whole_frame = whole
                 .time_prepare(&frame_of(&whole_scene, None))

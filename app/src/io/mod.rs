@@ -372,20 +372,30 @@ pub fn read_mesh(path: &Path) -> anyhow::Result<Mesh> {
 /// bit (positions and triangles in the same order; OBJ goes through `tobj`, which may reorder). Indices are checked and coordinates
 /// must be finite; a file without triangles gives an empty mesh.
 pub fn read_mesh_verbatim(path: &Path) -> anyhow::Result<Mesh> {
+    read_mesh_verbatim_walls(path).map(|(mesh, _)| mesh)
+}
+
+/// [`read_mesh_verbatim`], and the triangles a PLY file marks as incision walls (ascending;
+/// none for other formats): a scalpel-cut mesh as [`write_mesh_walls`] wrote it.
+pub fn read_mesh_verbatim_walls(path: &Path) -> anyhow::Result<(Mesh, Vec<u32>)> {
     read_mesh_verbatim_inner(path).with_context(|| path.display().to_string())
 }
 
-fn read_mesh_verbatim_inner(path: &Path) -> anyhow::Result<Mesh> {
+fn read_mesh_verbatim_inner(path: &Path) -> anyhow::Result<(Mesh, Vec<u32>)> {
     let format = Format::from_path(path)
         .ok_or_else(|| anyhow::anyhow!("unknown mesh format; expected .obj, .stl, .ply or .vtk"))?;
     let bytes = bounded::read_bytes(path, bounded::MESH_MAX_BYTES)?;
     if bytes.is_empty() {
         anyhow::bail!("the file is empty");
     }
+    let mut walls = Vec::new();
     let parsed = match format {
         Format::Obj => guarded(format, || obj::parse(&bytes)),
         Format::Stl => stl::parse(&bytes),
-        Format::Ply => guarded(format, || ply::parse(&bytes)),
+        Format::Ply => guarded(format, || ply::parse_marked(&bytes)).map(|(parts, marked)| {
+            walls = marked;
+            parts
+        }),
         Format::Vtk => guarded(format, || vtk::parse(&bytes)),
     };
     let raw = parsed.map_err(|e| explain_mismatch(format, &bytes, e))?;
@@ -404,7 +414,7 @@ fn read_mesh_verbatim_inner(path: &Path) -> anyhow::Result<Mesh> {
             mesh.append(&part);
         }
     }
-    Ok(mesh)
+    Ok((mesh, walls))
 }
 
 /// Loads a file or every mesh file of a directory, split into regions, one [`Model`] per region,
@@ -445,13 +455,23 @@ pub fn models_of_parts(source: &Path, parts: &[Part]) -> Vec<Model> {
 /// Writes a triangle mesh; format by extension (`.obj`, `.stl` binary, `.ply` binary). Atomic
 /// (temporary file, then rename).
 pub fn write_mesh(path: &Path, mesh: &Mesh) -> anyhow::Result<()> {
-    mesh_writer(path, mesh)
+    write_mesh_walls(path, mesh, &[])
+}
+
+/// [`write_mesh`] with the faces `walls` (ascending) marked as incision walls where the format
+/// can say so (PLY's `cutaway_wall` face property; other formats write the mesh alone).
+pub fn write_mesh_walls(path: &Path, mesh: &Mesh, walls: &[u32]) -> anyhow::Result<()> {
+    mesh_writer(path, mesh, walls)
         .and_then(|fill| atomic::write(path, fill))
         .with_context(|| path.display().to_string())
 }
 
 /// A function writing `mesh` in the format `path`'s extension names, after checking the mesh.
-fn mesh_writer<'a>(path: &Path, mesh: &'a Mesh) -> anyhow::Result<Box<MeshFill<'a>>> {
+fn mesh_writer<'a>(
+    path: &Path,
+    mesh: &'a Mesh,
+    walls: &'a [u32],
+) -> anyhow::Result<Box<MeshFill<'a>>> {
     mesh.sanity_check()
         .context("refusing to write an invalid mesh")?;
     Ok(match Format::from_path(path) {
@@ -461,7 +481,9 @@ fn mesh_writer<'a>(path: &Path, mesh: &'a Mesh) -> anyhow::Result<Box<MeshFill<'
                 .map_err(|_| anyhow::anyhow!("binary STL holds at most {} triangles", u32::MAX))?;
             Box::new(move |w: &mut dyn std::io::Write| stl::write_binary(w, mesh, count))
         }
-        Some(Format::Ply) => Box::new(|w: &mut dyn std::io::Write| ply::write_binary(w, mesh)),
+        Some(Format::Ply) => {
+            Box::new(move |w: &mut dyn std::io::Write| ply::write_binary(w, mesh, walls))
+        }
         Some(Format::Vtk) => anyhow::bail!("writing VTK is not supported; use .obj, .stl or .ply"),
         None => anyhow::bail!("unknown mesh extension; use .obj, .stl or .ply"),
     })
@@ -493,7 +515,7 @@ pub fn write_obj_polylines(path: &Path, polylines: &[Vec<glam::DVec3>]) -> anyho
 impl OutputSet {
     /// Stages `mesh` as the file `relative` of the set, as [`write_mesh`] writes it.
     pub fn write_mesh(&mut self, relative: &Path, mesh: &Mesh) -> anyhow::Result<()> {
-        let fill = mesh_writer(relative, mesh)
+        let fill = mesh_writer(relative, mesh, &[])
             .with_context(|| self.final_path(relative).display().to_string())?;
         self.write(relative, fill)
     }

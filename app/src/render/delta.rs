@@ -34,6 +34,7 @@ use csg::Mesh;
 use glam::DVec3;
 
 use super::gpu_data::Vertex;
+use super::wall_split::wall_corner_normal;
 
 /// For every vertex of a mesh, the faces that use it, ascending (a face that uses a vertex twice
 /// is listed twice, as the normal sum counts it twice). Compressed rows: `faces[offsets[v] ..
@@ -97,8 +98,12 @@ pub struct MeshDelta {
     /// The changed faces, the ring of unchanged faces around them and the added faces, in the
     /// changed mesh's order, compacted.
     pub patch: Mesh,
-    /// `patch`'s vertices as the GPU takes them, normals those of the whole changed mesh.
+    /// `patch`'s vertices as the GPU takes them, normals those of the whole changed mesh; the
+    /// corners of wall faces follow `patch`'s vertices ([`super::wall_split`]).
     pub vertices: Vec<Vertex>,
+    /// `patch`'s triangles as drawn: wall faces on corners of their own, the others as in
+    /// `patch`.
+    pub triangles: Vec<[u32; 3]>,
 }
 
 impl MeshDelta {
@@ -139,6 +144,9 @@ pub struct Change<'a> {
     pub position: &'a dyn Fn(u32) -> DVec3,
     /// Base vertices whose position changed (any order; duplicates allowed).
     pub moved: &'a [u32],
+    /// Whether a face of the changed mesh is an incision wall (a base face that did not change
+    /// keeps what the base was drawn with).
+    pub wall: &'a dyn Fn(u32) -> bool,
 }
 
 /// Builds the delta of `change` (cost proportional to the change and its ring).
@@ -185,6 +193,8 @@ pub fn build(change: &Change) -> MeshDelta {
     // interleaved), then the added faces.
     let mut hidden = Vec::with_capacity(touched.len() + ring.len());
     let mut faces: Vec<[u32; 3]> = Vec::with_capacity(touched.len() + ring.len());
+    // The changed mesh's id of each patch face.
+    let mut ids: Vec<u32> = Vec::with_capacity(touched.len() + ring.len() + change.added.len());
     let (mut i, mut j) = (0, 0);
     while i < touched.len() || j < ring.len() {
         let take_touched = j >= ring.len() || (i < touched.len() && touched[i] < ring[j]);
@@ -194,15 +204,18 @@ pub fn build(change: &Change) -> MeshDelta {
             hidden.push(t);
             if let Some(tri) = (change.current)(t) {
                 faces.push(tri);
+                ids.push(t);
             }
         } else {
             let f = ring[j];
             j += 1;
             hidden.push(f);
             faces.push(base.triangles[f as usize]);
+            ids.push(f);
         }
     }
     faces.extend_from_slice(change.added);
+    ids.extend((0..change.added.len() as u32).map(|k| nb + k));
     // Compact the vertices.
     let mut id_of: HashMap<u32, u32> = HashMap::with_capacity(faces.len());
     let mut source: Vec<u32> = Vec::with_capacity(faces.len());
@@ -222,10 +235,14 @@ pub fn build(change: &Change) -> MeshDelta {
         positions,
         triangles,
     };
-    // Normals: summed over the patch in order (complete for dirty vertices), base normals for
-    // the others.
+    let wall: Vec<bool> = ids.iter().map(|&t| (change.wall)(t)).collect();
+    // Surface normals: summed over the patch's surface faces in order (complete for dirty
+    // vertices), from the base's surface faces for the others.
     let mut normals = vec![DVec3::ZERO; patch.positions.len()];
     for t in 0..patch.triangles.len() {
+        if wall[t] {
+            continue;
+        }
         let n = patch.face_normal_scaled(t);
         for &k in &patch.triangles[t] {
             normals[k as usize] += n;
@@ -235,24 +252,100 @@ pub fn build(change: &Change) -> MeshDelta {
         if v < nv && !is_dirty(v) {
             let mut n = DVec3::ZERO;
             for &f in change.faces.of(v) {
-                n += base.face_normal_scaled(f as usize);
+                if !(change.wall)(f) {
+                    n += base.face_normal_scaled(f as usize);
+                }
             }
             normals[k] = n;
         }
     }
-    let vertices = super::draw_data::vertices_with_normals(&patch.positions, &normals);
+    let mut vertices = super::draw_data::vertices_with_normals(&patch.positions, &normals);
+    let triangles = patch_walls(&patch, &source, &wall, &mut vertices, &|v| {
+        (v < nv && !is_dirty(v)).then(|| {
+            change
+                .faces
+                .of(v)
+                .iter()
+                .filter(|&&f| (change.wall)(f))
+                .map(|&f| base.face_normal_scaled(f as usize))
+                .collect()
+        })
+    });
     MeshDelta {
         base: change.base.clone(),
         hidden,
         patch,
         vertices,
+        triangles,
     }
+}
+
+/// The patch's wall faces on corners of their own (appended to `vertices`, as
+/// [`super::wall_split::drawn`] draws the whole mesh): each corner's normal sums the wall faces
+/// of its vertex, from the patch for a dirty vertex and from `clean_walls` (the scaled normals
+/// of the base's wall faces of a clean vertex, ascending) for the others. Returns the drawn
+/// triangles.
+fn patch_walls(
+    patch: &Mesh,
+    source: &[u32],
+    wall: &[bool],
+    vertices: &mut Vec<Vertex>,
+    clean_walls: &dyn Fn(u32) -> Option<Vec<DVec3>>,
+) -> Vec<[u32; 3]> {
+    let mut triangles = patch.triangles.clone();
+    if !wall.contains(&true) {
+        return triangles;
+    }
+    let normals: Vec<DVec3> = (0..patch.triangles.len())
+        .map(|t| {
+            if wall[t] {
+                patch.face_normal_scaled(t)
+            } else {
+                DVec3::ZERO
+            }
+        })
+        .collect();
+    let mut around: HashMap<u32, Vec<usize>> = HashMap::new();
+    for t in (0..patch.triangles.len()).filter(|&t| wall[t]) {
+        for &k in &patch.triangles[t] {
+            around.entry(k).or_default().push(t);
+        }
+    }
+    let mut clean: HashMap<u32, Vec<DVec3>> = HashMap::new();
+    for t in (0..patch.triangles.len()).filter(|&t| wall[t]) {
+        let first = vertices.len() as u32;
+        for &k in &patch.triangles[t] {
+            let v = source[k as usize];
+            if !clean.contains_key(&k)
+                && let Some(n) = clean_walls(v)
+            {
+                clean.insert(k, n);
+            }
+            let n = match clean.get(&k) {
+                Some(base) => wall_corner_normal(normals[t], base.iter().copied()),
+                None => wall_corner_normal(normals[t], around[&k].iter().map(|&u| normals[u])),
+            };
+            vertices.push(super::wall_split::vertex(
+                patch.positions[k as usize],
+                n,
+                true,
+            ));
+        }
+        triangles[t] = [first, first + 1, first + 2];
+    }
+    triangles
 }
 
 /// The kept part of a cut as a delta against the cut's target (`result` from `csg::subtract` on
 /// the index of `target`): the removed and split faces hidden, the kept pieces of split faces
-/// added. Draws exactly what `result.materialize(target)` would.
-pub fn of_cut(target: &Arc<Mesh>, faces: &VertexFaces, result: &csg::CutResult) -> MeshDelta {
+/// added. Draws exactly what `result.materialize(target)` would, with the target's incision
+/// walls `walls` (ascending) and the kept pieces of them as walls.
+pub fn of_cut(
+    target: &Arc<Mesh>,
+    faces: &VertexFaces,
+    result: &csg::CutResult,
+    walls: &[u32],
+) -> MeshDelta {
     let n = target.positions.len() as u32;
     let position = |v: u32| {
         if v < n {
@@ -269,39 +362,55 @@ pub fn of_cut(target: &Arc<Mesh>, faces: &VertexFaces, result: &csg::CutResult) 
         added: &result.kept_new_faces,
         position: &position,
         moved: &[],
+        wall: &|t| {
+            let nb = target.triangles.len() as u32;
+            let from = if t < nb {
+                Some(t)
+            } else {
+                result.kept_new_provenance.get((t - nb) as usize).copied()
+            };
+            from.is_some_and(|f| walls.binary_search(&f).is_ok())
+        },
     })
 }
 
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::render::draw_data::mesh_vertices;
 
-    /// The vertex data of every triangle corner, as the renderer would draw `mesh`: (position,
-    /// normal) bits per corner, triangles in order.
-    pub(crate) fn drawn_corners(mesh: &Mesh, vertices: &[Vertex]) -> Vec<[[u32; 3]; 6]> {
-        mesh.triangles
+    /// One drawn triangle: (position, normal, wall flag) bits of each corner.
+    pub(crate) type Corners = [[u32; 7]; 3];
+
+    /// The vertex data of every triangle corner as the renderer draws `triangles` over
+    /// `vertices`, triangles in order.
+    pub(crate) fn drawn_corners(triangles: &[[u32; 3]], vertices: &[Vertex]) -> Vec<Corners> {
+        triangles
             .iter()
             .map(|tri| {
-                let mut out = [[0u32; 3]; 6];
-                for k in 0..3 {
-                    let v = vertices[tri[k] as usize];
-                    out[2 * k] = v.position_in_world.map(f32::to_bits);
-                    out[2 * k + 1] = v.normal_in_world.map(f32::to_bits);
-                }
-                out
+                tri.map(|i| {
+                    let v = vertices[i as usize];
+                    let [x, y, z] = v.position_in_world.map(f32::to_bits);
+                    let [a, b, c] = v.normal_in_world.map(f32::to_bits);
+                    [x, y, z, a, b, c, v.wall.to_bits()]
+                })
             })
             .collect()
     }
 
+    /// What the renderer draws for the whole of `mesh` with wall faces `walls`.
+    pub(crate) fn mesh_corners(mesh: &Mesh, walls: &[u32]) -> Vec<Corners> {
+        let d = crate::render::wall_split::drawn(mesh, walls);
+        drawn_corners(&d.triangles, &d.vertices)
+    }
+
     /// Corner lists compared as multisets (the patch draws the ring after the other faces).
-    pub(crate) fn sorted(mut corners: Vec<[[u32; 3]; 6]>) -> Vec<[[u32; 3]; 6]> {
+    pub(crate) fn sorted(mut corners: Vec<Corners>) -> Vec<Corners> {
         corners.sort_unstable();
         corners
     }
 
     /// Panics (with counts, not the lists) unless `a` and `b` are the same multiset.
-    pub(crate) fn assert_same_corners(a: Vec<[[u32; 3]; 6]>, b: Vec<[[u32; 3]; 6]>, what: &str) {
+    pub(crate) fn assert_same_corners(a: Vec<Corners>, b: Vec<Corners>, what: &str) {
         let (a, b) = (sorted(a), sorted(b));
         if a != b {
             let set_b: std::collections::HashSet<_> = b.iter().collect();
@@ -315,23 +424,20 @@ pub(crate) mod tests {
     }
 
     /// What a delta draws, corner by corner: the base faces not hidden (with the base's vertex
-    /// data), then the patch (with its own).
-    pub(crate) fn delta_corners(delta: &MeshDelta) -> Vec<[[u32; 3]; 6]> {
-        let base_vertices = mesh_vertices(&delta.base);
-        let mut kept = Mesh {
-            positions: delta.base.positions.clone(),
-            triangles: Vec::new(),
-        };
+    /// data, its walls `base_walls`), then the patch (with its own).
+    pub(crate) fn delta_corners(delta: &MeshDelta, base_walls: &[u32]) -> Vec<Corners> {
+        let base = crate::render::wall_split::drawn(&delta.base, base_walls);
+        let mut kept = Vec::new();
         let mut hidden = delta.hidden.iter().peekable();
-        for (t, tri) in delta.base.triangles.iter().enumerate() {
+        for (t, tri) in base.triangles.iter().enumerate() {
             if hidden.peek() == Some(&&(t as u32)) {
                 hidden.next();
             } else {
-                kept.triangles.push(*tri);
+                kept.push(*tri);
             }
         }
-        let mut out = drawn_corners(&kept, &base_vertices);
-        out.extend(drawn_corners(&delta.patch, &delta.vertices));
+        let mut out = drawn_corners(&kept, &base.vertices);
+        out.extend(drawn_corners(&delta.triangles, &delta.vertices));
         out
     }
 
@@ -362,11 +468,11 @@ pub(crate) mod tests {
         let cutter = csg::testkit::cube(DVec3::new(-3.0, -4.0, 5.0), DVec3::new(4.0, 3.0, 12.0));
         let result = csg::subtract(&index, &cutter).unwrap();
         let faces = VertexFaces::build(&target);
-        let delta = of_cut(&target, &faces, &result);
+        let delta = of_cut(&target, &faces, &result, &[]);
         let kept = result.materialize(&target);
         assert_same_corners(
-            delta_corners(&delta),
-            drawn_corners(&kept, &mesh_vertices(&kept)),
+            delta_corners(&delta, &[]),
+            mesh_corners(&kept, &[]),
             "delta vs kept",
         );
         assert!(delta.hidden.windows(2).all(|w| w[0] < w[1]));
@@ -408,11 +514,62 @@ pub(crate) mod tests {
             added: &edited.triangles[nb..],
             position: &position,
             moved: &[3],
+            wall: &|_| false,
         });
         assert_same_corners(
-            delta_corners(&delta),
-            drawn_corners(&edited, &mesh_vertices(&edited)),
+            delta_corners(&delta, &[]),
+            mesh_corners(&edited, &[]),
             "delta vs edited",
         );
+    }
+
+    /// On a mesh with incision walls, a change that splits a wall face and moves a lip vertex
+    /// draws as the whole changed mesh would, walls split from the surface, bit for bit.
+    #[test]
+    fn a_delta_on_a_grooved_mesh_draws_its_split_lips_bit_for_bit() {
+        let (mesh, walls) = crate::render::wall_split::tests::grooved_sheet();
+        let base = Arc::new(mesh);
+        let mut edited = (*base).clone();
+        let w = walls[5];
+        let [a, b, c] = edited.triangles[w as usize];
+        let centroid = edited.corners(w as usize).iter().sum::<DVec3>() / 3.0;
+        let m = edited.positions.len() as u32;
+        edited.positions.push(centroid + DVec3::new(0.0, 0.1, 0.0));
+        edited.triangles[w as usize] = [a, b, m];
+        edited.triangles.push([b, c, m]);
+        edited.triangles.push([c, a, m]);
+        let lip = edited
+            .positions
+            .iter()
+            .position(|&p| p == DVec3::new(0.0, -1.0, 0.0))
+            .unwrap() as u32;
+        edited.positions[lip as usize].z += 0.1;
+        let faces = VertexFaces::build(&base);
+        let nb = base.triangles.len() as u32;
+        let current = |t: u32| Some(edited.triangles[t as usize]);
+        let position = |v: u32| edited.positions[v as usize];
+        let is_wall = |t: u32| t >= nb || walls.binary_search(&t).is_ok();
+        let delta = build(&Change {
+            base: &base,
+            faces: &faces,
+            touched: &[w],
+            current: &current,
+            added: &edited.triangles[nb as usize..],
+            position: &position,
+            moved: &[lip],
+            wall: &is_wall,
+        });
+        let edited_walls: Vec<u32> = (0..edited.triangles.len() as u32)
+            .filter(|&t| is_wall(t))
+            .collect();
+        let whole = mesh_corners(&edited, &edited_walls);
+        assert_same_corners(
+            delta_corners(&delta, &walls),
+            whole.clone(),
+            "delta vs edited",
+        );
+        // The split matters: drawn without walls, the same change draws other normals.
+        assert_ne!(sorted(mesh_corners(&edited, &[])), sorted(whole));
+        assert!(delta.triangles.len() < edited.triangles.len());
     }
 }

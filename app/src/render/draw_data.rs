@@ -37,6 +37,7 @@ pub fn vertices_with_normals(positions: &[DVec3], normal_sums: &[DVec3]) -> Vec<
                 .unwrap_or(DVec3::ZERO)
                 .as_vec3()
                 .to_array(),
+            wall: 0.0,
         })
         .collect()
 }

@@ -10,6 +10,9 @@ pub struct Vertex {
     pub position_in_world: [f32; 3],
     /// Area-weighted vertex normal, unit length (zero for isolated vertices).
     pub normal_in_world: [f32; 3],
+    /// 1 for a corner of an incision wall (drawn in the draw's wall colour), 0 elsewhere
+    /// ([`super::wall_split`]).
+    pub wall: f32,
 }
 
 /// One line segment, drawn as a screen-space quad of the draw's width. Keep in sync with
@@ -47,6 +50,9 @@ pub struct DrawUniform {
     /// z: line width in pixels (lines only); w: world-space offset toward the eye (lines only,
     /// keeps lines lying on a surface in front of it).
     pub params: [f32; 4],
+    /// Linear-light RGB of the incision walls of a mesh drawn with this uniform (vertices with
+    /// `wall` 1); w unused.
+    pub wall_color: [f32; 4],
 }
 
 /// Blit settings. Keep in sync with `Blit` in `blit.wgsl`.
@@ -72,11 +78,11 @@ mod tests {
 
     #[test]
     fn uniform_sizes_match_the_wgsl_layouts() {
-        // WGSL sizes: mat4x4<f32> 64 + 3 × vec4<f32> 48 = 112; Draw 2 × vec4 = 32; Blit 4 × u32.
+        // WGSL sizes: mat4x4<f32> 64 + 3 × vec4<f32> 48 = 112; Draw 3 × vec4 = 48; Blit 4 × u32.
         assert_eq!(size_of::<FrameUniform>(), 112);
-        assert_eq!(size_of::<DrawUniform>(), 32);
+        assert_eq!(size_of::<DrawUniform>(), 48);
         assert_eq!(size_of::<BlitUniform>(), 16);
-        assert_eq!(size_of::<Vertex>(), 24);
+        assert_eq!(size_of::<Vertex>(), 28);
         assert_eq!(size_of::<Segment>(), 24);
         assert!(size_of::<FrameUniform>() as u64 <= DRAW_UNIFORM_STRIDE);
     }

@@ -71,6 +71,7 @@ pub mod headless;
 pub mod image_layer;
 mod pipelines;
 mod renderer;
+pub mod wall_split;
 
 pub use headless::{
     HeadlessRenderer, RenderPngOptions, render_mode, render_png, render_with, render_with_preview,

@@ -52,6 +52,9 @@ struct CachedMesh {
     /// delta they were hidden for.
     hidden: Vec<u32>,
     hidden_for: Option<Weak<MeshDelta>>,
+    /// The model's wall faces `gpu` was made with (address and length of the list): other
+    /// marks on the same mesh upload it again.
+    walls: (usize, usize),
 }
 
 /// The patch mesh of a [`MeshDelta`], uploaded.

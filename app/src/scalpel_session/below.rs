@@ -15,7 +15,7 @@ use glam::DVec3;
 
 use csg::{Mesh, SpatialIndex};
 use cutter::scalpel::StrokeReport;
-use cutter::scalpel::layers::{LayerStroke, Surface, cut_layer, reach, strokes_below};
+use cutter::scalpel::layers::{LayerStroke, Surface, cut_layer_walls, reach, strokes_below};
 
 use super::ScalpelSettings;
 use crate::scene::Scene;
@@ -79,10 +79,11 @@ pub(crate) fn cut_layers(
         if mine.is_empty() {
             continue;
         }
-        match cut_layer(mesh, &mine, settings.options(), &open) {
-            Ok(Some((cut, report))) => {
+        let walls = scene.models[*target].wall_faces();
+        match cut_layer_walls(mesh, walls, &mine, settings.options(), &open) {
+            Ok(Some((cut, walls, report))) => {
                 if let Some(m) = scene.models.get_mut(*target) {
-                    m.replace_mesh(Arc::new(cut));
+                    m.replace_mesh_with_walls(Arc::new(cut), walls);
                     outcome.cut.push((*target, report));
                 }
             }
@@ -94,8 +95,13 @@ pub(crate) fn cut_layers(
 }
 
 /// `mesh` without the triangles of `pieces` (matched by their corner coordinates, bit for bit:
-/// the pieces were copied out of this mesh), compacted.
-pub(crate) fn without_pieces(mesh: &Mesh, pieces: &[Mesh]) -> Mesh {
+/// the pieces were copied out of this mesh), compacted; and which of the kept triangles are
+/// walls, given the walls `walls` (ascending) of `mesh` (the triangles keep their order).
+pub(crate) fn without_pieces_walls(
+    mesh: &Mesh,
+    pieces: &[Mesh],
+    walls: &[u32],
+) -> (Mesh, Vec<u32>) {
     type Key = [[u64; 3]; 3];
     let key = |corners: [DVec3; 3]| -> Key {
         corners.map(|p| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()])
@@ -106,14 +112,21 @@ pub(crate) fn without_pieces(mesh: &Mesh, pieces: &[Mesh]) -> Mesh {
             remove.insert(key(piece.corners(t)));
         }
     }
-    Mesh {
+    let kept: Vec<usize> = (0..mesh.triangle_count())
+        .filter(|&t| !remove.contains(&key(mesh.corners(t))))
+        .collect();
+    let kept_walls = kept
+        .iter()
+        .enumerate()
+        .filter(|&(_, &t)| walls.binary_search(&(t as u32)).is_ok())
+        .map(|(k, _)| k as u32)
+        .collect();
+    let rest = Mesh {
         positions: mesh.positions.clone(),
-        triangles: (0..mesh.triangle_count())
-            .filter(|&t| !remove.contains(&key(mesh.corners(t))))
-            .map(|t| mesh.triangles[t])
-            .collect(),
-    }
-    .compacted()
+        triangles: kept.iter().map(|&t| mesh.triangles[t]).collect(),
+    };
+    // Compacting renumbers vertices only: the triangles keep their order.
+    (rest.compacted(), kept_walls)
 }
 
 /// A lighter shade of the model's colour for a piece cut out of it.

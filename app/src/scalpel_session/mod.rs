@@ -37,6 +37,13 @@
 //! wireframe model, or with an opening width different from the one the scene's mesh was shown
 //! with, replaces the scene's mesh per step as before.
 //!
+//! ## Walls
+//! Every mesh the scalpel puts into the scene carries its wall faces (groove and through-cut
+//! walls, `Scalpel::wall_faces`), so the view draws them as the inside of the tissue
+//! (`crate::render::wall_split`); a stroke's delta marks them from the scalpel's mesh the same
+//! way, and a scalpel made for a mesh with marks (a reopened session) marks them walls again
+//! before its first stroke. The layers below are cut with their walls kept likewise.
+//!
 //! ## Undo
 //! A stroke is one step of the window's history: the scene before the stroke and after it
 //! (meshes are shared `Arc`s, so the snapshots are cheap and cutters are never lost). Undo puts
@@ -76,7 +83,7 @@ use cutter::scalpel::{OpenOptions, ScalpelOptions, Tool, dffd};
 
 use crate::render::delta::MeshDelta;
 use crate::scene::{MeshOrigin, ModelStyle, Scene, SceneModel};
-use below::{cut_layers, piece_colour, without_pieces};
+use below::{cut_layers, piece_colour, without_pieces_walls};
 use model_cut::{ModelCut, Stroke};
 pub use prepare::Prepared;
 
@@ -279,6 +286,8 @@ impl ScalpelSession {
         if !keep {
             self.session = None;
             let mut made = self.prepared.take(model, &mesh)?;
+            // A mesh saved with its incision walls keeps them walls for the strokes to come.
+            made.scalpel.mark_walls(scene.models[model].wall_faces());
             if self.view {
                 made.start_faces();
             }
@@ -468,7 +477,7 @@ impl ScalpelSession {
         session.shown = shown.clone();
         session.shown_open = open;
         if let Some(m) = scene.models.get_mut(session.model) {
-            m.replace_mesh(shown);
+            m.replace_mesh_with_walls(shown, session.scalpel.wall_faces());
         }
         Ok(true)
     }
@@ -507,6 +516,11 @@ impl ScalpelSession {
         let before_mesh = stroke.before.models.get(model).map(|m| m.mesh.clone());
         // What the model was before the stroke, for putting it back when nothing is kept.
         let before_origin = stroke.before.models.get(model).map(|m| m.origin);
+        let before_walls = stroke
+            .before
+            .models
+            .get(model)
+            .and_then(|m| m.walls.clone());
         let report = match session.scalpel.end_stroke() {
             Ok(report) => report,
             Err(e) => {
@@ -515,6 +529,7 @@ impl ScalpelSession {
                 if let (Some(m), Some(mesh)) = (scene.models.get_mut(model), before_mesh) {
                     m.mesh = mesh.clone();
                     m.origin = before_origin.unwrap_or(m.origin);
+                    m.walls = before_walls;
                     session.shown = mesh;
                     session.shown_open = stroke.open_before;
                 }
@@ -535,6 +550,7 @@ impl ScalpelSession {
             if let (Some(m), Some(b)) = (scene.models.get_mut(model), before_mesh) {
                 m.mesh = b.clone();
                 m.origin = before_origin.unwrap_or(m.origin);
+                m.walls = before_walls;
                 session.shown = b;
                 session.shown_open = stroke.open_before;
             }
@@ -569,7 +585,7 @@ impl ScalpelSession {
         });
         if report.detached.is_empty() {
             if let Some(m) = scene.models.get_mut(model) {
-                m.replace_mesh(shown);
+                m.replace_mesh_with_walls(shown, session.scalpel.wall_faces());
             }
             let settings = self.settings;
             if settings.layers && settings.tool == Tool::Scalpel && settings.depth > 0.0 {
@@ -628,11 +644,12 @@ impl ScalpelSession {
                 }
             }
         } else {
-            let kept = without_pieces(&shown, &report.detached);
+            let (kept, walls) =
+                without_pieces_walls(&shown, &report.detached, &session.scalpel.wall_faces());
             let Some(original) = scene.models.get(model).cloned() else {
                 return Released::Nothing;
             };
-            scene.models[model].replace_mesh(Arc::new(kept));
+            scene.models[model].replace_mesh_with_walls(Arc::new(kept), walls);
             for (k, piece) in report.detached.into_iter().enumerate() {
                 let mut entry = SceneModel::new(
                     format!("{} piece {}", original.name, k + 1),

@@ -264,6 +264,7 @@ impl ModelCut {
             }
         }
         let current = |t: u32| Some(mesh.triangles()[t as usize]);
+        let wall = |t: u32| (t as usize) < mesh.triangle_count() && mesh.is_wall(t);
         let added = &mesh.triangles()[(nb as usize).min(mesh.triangle_count())..];
         Arc::new(delta::build(&delta::Change {
             base: &base,
@@ -273,6 +274,7 @@ impl ModelCut {
             added,
             position: &position,
             moved: &moved,
+            wall: &wall,
         }))
     }
 

@@ -22,16 +22,18 @@ fn sphere_scene() -> Scene {
 /// patch) is the scalpel's mesh as the whole-mesh update shows it: the same triangles with
 /// the same vertex positions and normals, bit for bit. Returns the patch's share of it.
 fn assert_view_is_the_cut_mesh(slot: &ScalpelSession) -> f64 {
-    use crate::render::delta::tests::{assert_same_corners, delta_corners, drawn_corners};
+    use crate::render::delta::tests::{assert_same_corners, delta_corners, mesh_corners};
     let delta = slot
         .delta()
         .expect("a stroke in progress is drawn as a delta");
     let session = slot.session.as_ref().expect("a session");
     let full = session.display(&slot.settings.open());
-    let vertices = crate::render::draw_data::mesh_vertices(&full);
+    // The base is the scene's model at the press, drawn with its walls.
+    let before = &slot.stroke.as_ref().expect("a stroke").before.models[session.model];
+    assert!(Arc::ptr_eq(&before.mesh, &delta.base));
     assert_same_corners(
-        delta_corners(&delta),
-        drawn_corners(&full, &vertices),
+        delta_corners(&delta, before.wall_faces()),
+        mesh_corners(&full, &session.scalpel.wall_faces()),
         "the view vs the cut mesh",
     );
     delta.patch.triangle_count() as f64 / full.triangle_count() as f64
@@ -387,6 +389,11 @@ fn a_saved_scalpel_stroke_reopens_bit_for_bit() {
         "positions differ"
     );
     assert_eq!(back.models[0].name, scene.models[0].name);
+    // The incision walls come back with the mesh (the PLY's wall marks).
+    let walls = scene.models[0].wall_faces().to_vec();
+    assert!(walls.len() > 10, "{} walls", walls.len());
+    assert_eq!(back.models[0].wall_faces(), walls);
+    let first = back.models[0].mesh.clone();
     // A second stroke on the reopened model and a save over the same session: the new cut
     // comes back and only its mesh file is left.
     let mut scene = back;
@@ -405,6 +412,20 @@ fn a_saved_scalpel_stroke_reopens_bit_for_bit() {
     let again = crate::session::load(&path).unwrap();
     let recut = &scene.models[0].mesh;
     assert!(again.models[0].mesh.triangles == recut.triangles);
+    // The scalpel made from the reopened mesh kept its walls walls: every first wall the cross
+    // cut left as it was is still one, and the saved marks come back again.
+    let recut_walls = scene.models[0].wall_faces();
+    for &f in &walls {
+        let f = f as usize;
+        if recut.triangles[f] == first.triangles[f] {
+            assert!(
+                recut_walls.binary_search(&(f as u32)).is_ok(),
+                "wall {f} lost"
+            );
+        }
+    }
+    assert!(recut_walls.len() > walls.len());
+    assert_eq!(again.models[0].wall_faces(), recut_walls);
     assert!(position_bits(&again.models[0].mesh) == position_bits(recut));
     assert!(recut.triangle_count() > cut.triangle_count());
     let files = std::fs::read_dir(crate::session_meshes::mesh_dir(&path))
@@ -706,6 +727,9 @@ fn removing_pieces_matches_triangles_by_their_corners() {
         triangles: cube.triangles[..2].to_vec(),
     }
     .compacted();
-    let rest = without_pieces(&cube, &[piece]);
+    let (rest, walls) = without_pieces_walls(&cube, &[piece], &[1, 3, 5]);
     assert_eq!(rest.triangle_count(), 10);
+    // Triangles 3 and 5 of the cube are the 2nd and 4th kept.
+    assert_eq!(walls, vec![1, 3]);
+    assert_eq!(rest.corners(1), cube.corners(3));
 }

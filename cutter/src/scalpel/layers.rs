@@ -92,7 +92,20 @@ pub fn cut_layer(
     options: super::ScalpelOptions,
     open: &super::OpenOptions,
 ) -> Result<Option<(csg::Mesh, super::StrokeReport)>, super::ScalpelError> {
+    cut_layer_walls(mesh, &[], strokes, options, open).map(|c| c.map(|(m, _, r)| (m, r)))
+}
+
+/// [`cut_layer`] on a mesh whose triangles `walls` are walls already (see
+/// [`super::Scalpel::mark_walls`]); also returns the cut mesh's walls, ascending.
+pub fn cut_layer_walls(
+    mesh: &csg::Mesh,
+    walls: &[u32],
+    strokes: &[&LayerStroke],
+    options: super::ScalpelOptions,
+    open: &super::OpenOptions,
+) -> Result<Option<(csg::Mesh, Vec<u32>, super::StrokeReport)>, super::ScalpelError> {
     let mut scalpel = super::Scalpel::new(mesh, options)?;
+    scalpel.mark_walls(walls);
     let mut total = super::StrokeReport::default();
     for stroke in strokes {
         scalpel.set_options(options.with_depth(stroke.depth));
@@ -110,7 +123,7 @@ pub fn cut_layer(
     if cut.triangles == mesh.triangles && cut.positions == mesh.positions {
         return Ok(None);
     }
-    Ok(Some((cut, total)))
+    Ok(Some((cut, scalpel.wall_faces(), total)))
 }
 
 /// Strokes from per-sample hits: `hits[i]` lists the surfaces (`id`, hit point, blade depth left)

@@ -102,6 +102,7 @@ pub mod survey;
 pub mod taper;
 pub mod through;
 pub mod unfold;
+pub mod walls;
 
 pub use cut_point::CutPoint;
 pub use dffd::OpenOptions;

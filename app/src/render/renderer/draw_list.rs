@@ -15,6 +15,7 @@ use super::{CONTOUR_COLOR, CachedDelta, CachedMesh, Renderer, WALL_MIX, WALL_TIN
 use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
 use crate::render::draw_data::{GpuMesh, GpuSegments, cutter_outline_segments, polyline_segments};
 use crate::render::gpu_data::DrawUniform;
+use crate::render::wall_split;
 use crate::render::{FrameInputs, ViewMode, srgb_to_linear};
 use crate::scene::ModelStyle;
 
@@ -81,6 +82,8 @@ impl Renderer {
         let mut list = DrawList::default();
         let mut uniforms: Vec<DrawUniform> = Vec::new();
         let mut push_uniform = |color: [f32; 3], opacity: f32, lit: bool, width: f32, bias: f32| {
+            // Incision walls of a mesh (scalpel grooves) in the colour the cut's walls have.
+            let wall = mix(color, WALL_TINT, WALL_MIX);
             uniforms.push(DrawUniform {
                 color: [
                     srgb_to_linear(color[0]),
@@ -89,6 +92,12 @@ impl Renderer {
                     opacity,
                 ],
                 params: [BACK_FACE, if lit { 1.0 } else { 0.0 }, width, bias],
+                wall_color: [
+                    srgb_to_linear(wall[0]),
+                    srgb_to_linear(wall[1]),
+                    srgb_to_linear(wall[2]),
+                    1.0,
+                ],
             });
             (uniforms.len() - 1) as u32
         };
@@ -144,13 +153,22 @@ impl Renderer {
                 continue;
             }
             let key = Arc::as_ptr(&model.mesh) as usize;
+            let walls = model.wall_faces();
+            let walls_id = (walls.as_ptr() as usize, walls.len());
             let fresh = self.models.get(&key).is_some_and(|c| {
-                c.mesh
-                    .upgrade()
-                    .is_some_and(|m| Arc::ptr_eq(&m, &model.mesh))
+                c.walls == walls_id
+                    && c.mesh
+                        .upgrade()
+                        .is_some_and(|m| Arc::ptr_eq(&m, &model.mesh))
             });
             if !fresh {
-                let gpu = GpuMesh::upload(device, &model.name, &model.mesh);
+                let gpu = if walls.is_empty() {
+                    GpuMesh::upload(device, &model.name, &model.mesh)
+                } else {
+                    // Incision walls on vertices of their own: a hard edge at the lips.
+                    let drawn = wall_split::drawn(&model.mesh, walls);
+                    GpuMesh::upload_vertices(device, &model.name, &drawn.vertices, &drawn.triangles)
+                };
                 self.uploads.mesh(gpu.as_ref());
                 self.models.insert(
                     key,
@@ -161,6 +179,7 @@ impl Renderer {
                         edges_drawn: 0,
                         hidden: Vec::new(),
                         hidden_for: None,
+                        walls: walls_id,
                     },
                 );
             }
@@ -179,7 +198,8 @@ impl Renderer {
             };
             if !same {
                 let wanted: &[u32] = delta.map_or(&[], |d| &d.hidden);
-                let words = hidden_patches(&model.mesh, &cached.hidden, wanted);
+                let triangle = |f: u32| wall_split::drawn_triangle(&model.mesh, walls, f);
+                let words = hidden_patches(&triangle, &cached.hidden, wanted);
                 self.uploads.bytes += (words.len() * size_of::<[u32; 2]>()) as u64;
                 self.uploads.triangles += (words.len() / 3) as u64;
                 if !words.is_empty() {
@@ -199,7 +219,7 @@ impl Renderer {
                         device,
                         &format!("{} patch", model.name),
                         &d.vertices,
-                        &d.patch.triangles,
+                        &d.triangles,
                     );
                     self.uploads.mesh(gpu.as_ref());
                     self.deltas.insert(

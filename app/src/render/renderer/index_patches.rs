@@ -4,7 +4,6 @@
 //! it again) with the scatter compute shader. The words a change needs are proportional to the
 //! faces hidden or shown, not to the model.
 
-use csg::Mesh;
 use wgpu::util::DeviceExt as _;
 
 use super::Renderer;
@@ -89,13 +88,18 @@ impl Renderer {
 }
 
 /// The index words that turn the hidden faces `old` into `new` (both ascending): a face no
-/// longer hidden gets its three indices back from `mesh`, a newly hidden one becomes the
-/// degenerate triangle at its first corner (no pixels). Proportional to the two lists.
-pub(super) fn hidden_patches(mesh: &Mesh, old: &[u32], new: &[u32]) -> Vec<[u32; 2]> {
+/// longer hidden gets its three drawn indices back from `triangle` (what the model's index
+/// buffer holds for it, `None` for no such face), a newly hidden one becomes the degenerate
+/// triangle at its first corner (no pixels). Proportional to the two lists.
+pub(super) fn hidden_patches(
+    triangle: &dyn Fn(u32) -> Option<[u32; 3]>,
+    old: &[u32],
+    new: &[u32],
+) -> Vec<[u32; 2]> {
     let mut out = Vec::new();
     let (mut i, mut j) = (0, 0);
     let emit = |f: u32, show: bool, out: &mut Vec<[u32; 2]>| {
-        let Some(tri) = mesh.triangles.get(f as usize) else {
+        let Some(tri) = triangle(f) else {
             return;
         };
         for k in 0..3 {

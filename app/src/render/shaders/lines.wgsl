@@ -13,6 +13,7 @@ struct Frame {
 struct Draw {
     color: vec4<f32>,
     params: vec4<f32>,
+    wall_color: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;

@@ -17,6 +17,8 @@ struct Draw {
     // x: back-face brightness; y: 1 lit / 0 flat; z: line width px; w: offset toward the eye in
     // world units (negative: away; the cutter overlay yields to the walls it coincides with).
     params: vec4<f32>,
+    // Linear RGB of the incision walls (vertices with `wall` 1).
+    wall_color: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -26,12 +28,15 @@ struct Draw {
 struct VertexIn {
     @location(0) position_in_world: vec3<f32>,
     @location(1) normal_in_world: vec3<f32>,
+    // 1 on an incision wall, 0 elsewhere (the same at the three corners of a triangle).
+    @location(2) wall: f32,
 };
 
 struct VertexOut {
     @builtin(position) position_in_clip: vec4<f32>,
     @location(0) position_in_world: vec3<f32>,
     @location(1) normal_in_world: vec3<f32>,
+    @location(2) wall: f32,
 };
 
 @vertex
@@ -42,6 +47,7 @@ fn vs_main(v: VertexIn) -> VertexOut {
     out.position_in_clip = frame.clip_from_world * vec4<f32>(moved, 1.0);
     out.position_in_world = v.position_in_world;
     out.normal_in_world = v.normal_in_world;
+    out.wall = v.wall;
     return out;
 }
 
@@ -56,7 +62,8 @@ fn face_normal(p: vec3<f32>) -> vec3<f32> {
 // a software rasterizer (lavapipe) compiles a shader variant per value of a uniform that decides
 // a branch, and with one draw uniform per model those variants pile up frame after frame.
 fn shade(in: VertexOut, front_facing: bool, flat_normal: vec3<f32>) -> vec3<f32> {
-    return shade_color(draw.color.rgb, in, front_facing, flat_normal);
+    let base = mix(draw.color.rgb, draw.wall_color.rgb, clamp(in.wall, 0.0, 1.0));
+    return shade_color(base, in, front_facing, flat_normal);
 }
 
 // `shade` with a base colour of the fragment's own (the image on a wall, image.wgsl).
