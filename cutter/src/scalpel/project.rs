@@ -11,13 +11,9 @@
 //! file format promises exactly that: samples are "projected onto it").
 //!
 //! The search is local (best-first outward from the anchor over at most [`PROJECT_SEARCH`]
-//! triangles), so a step's cost does not depend on the mesh size; groove walls are passed
-//! through but never projected onto (a sample over an open trench lands on a lip's surface, not
-//! inside it). It stops once every triangle left is an edge length (the longest seen) farther
-//! from the sample than the best point, not as soon as none is nearer: the triangles under the
-//! sample may be reachable from the anchor only through triangles whose boxes are farther than a
-//! point found early (around the end of a slit, whose lips are not joined), and stopping there
-//! moved samples lying on a flat sheet by a tenth of an edge.
+//! triangles, stopping once no unvisited triangle's box can be nearer than the best point), so
+//! a step's cost does not depend on the mesh size; groove walls are passed through but never
+//! projected onto (a sample over an open trench lands on a lip's surface, not inside it).
 
 use glam::DVec3;
 
@@ -31,12 +27,10 @@ pub const PROJECT_SEARCH: usize = 512;
 /// copies), or `None` when the search met no surface triangle.
 pub fn onto_surface(mesh: &DynMesh, near: u32, q: DVec3) -> Option<DVec3> {
     let mut best: Option<(DVec3, f64)> = None;
-    let mut edge = 0.0f64;
     visit_near(mesh, near, q, PROJECT_SEARCH, |t, box_distance| {
-        if best.is_some_and(|(_, d)| box_distance >= d + edge) {
+        if best.is_some_and(|(_, d)| box_distance >= d) {
             return false;
         }
-        edge = edge.max(mesh.longest_edge(t));
         if !mesh.is_wall(t) {
             let [a, b, c] = mesh.triangles[t as usize].map(|x| mesh.pos(x));
             let w = closest_on_triangle(q, a, b, c);
