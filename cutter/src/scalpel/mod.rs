@@ -95,7 +95,6 @@ pub mod lip_measure;
 mod local_check;
 pub mod locate;
 pub mod loop_tool;
-pub mod project;
 pub mod relocate;
 pub mod step;
 pub mod survey;

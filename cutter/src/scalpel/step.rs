@@ -23,7 +23,6 @@ use super::cut_point::{CutPoint, classify, classify_on_edges, closest_face_near,
 use super::dyn_mesh::{DynMesh, Mark, NO_TWIN, NONMANIFOLD, is_real, next, prev};
 use super::groove::{Groove, GrooveBackup};
 use super::locate::Locator;
-use super::project;
 use super::{ScalpelError, ScalpelOptions, Tool};
 
 mod edits;
@@ -343,13 +342,6 @@ impl Scalpel {
         self.clock += SAMPLE_PERIOD;
         self.reason = "";
         self.undo_tip(&mut stroke);
-        // A sample near the surface is cut where it projects onto it (`super::project`).
-        let q = stroke
-            .cut
-            .as_ref()
-            .and_then(|cut| project::onto_surface(&self.mesh, cut.anchor, q))
-            .filter(|p| p.distance(q) <= self.tolerance)
-            .unwrap_or(q);
         let mark = self.mesh.mark();
         let saved = stroke.clone();
         let (segments, fixed) = (self.segments.len(), self.fixed.len());

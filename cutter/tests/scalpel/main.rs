@@ -21,7 +21,6 @@ mod grooves;
 mod lips;
 mod opened_lips;
 mod opening;
-mod projection;
 mod slits;
 mod strips;
 mod through;
