@@ -46,7 +46,8 @@ use std::collections::{HashMap, HashSet, VecDeque};
 use glam::DVec3;
 
 use super::dyn_mesh::{DynMesh, prev};
-use super::step::{CutSegment, Scalpel};
+pub use super::frames::{Frame, frames};
+use super::step::Scalpel;
 
 /// How the incision opens.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -296,60 +297,6 @@ fn displacements(
 /// How far from a crack tip the opening of `width` tapers, for a blade `depth` deep.
 pub fn taper_length(width: f64, depth: f64) -> f64 {
     width.max(super::groove::TAPER_DEPTHS * depth)
-}
-
-/// The path's direction at a cut segment, smoothed over the zigzag of the mesh edges it runs
-/// along (see the module doc).
-#[derive(Clone, Copy, Debug)]
-pub struct Frame {
-    /// Unit tangent of the path (the direction it was cut in).
-    pub tangent: DVec3,
-    /// Unit `normal × tangent`: the side a lip copy with `σ = +1` moves to.
-    pub lateral: DVec3,
-}
-
-/// Segments on either side of a segment averaged into its [`Frame`], at most.
-const SMOOTH_SEGMENTS: usize = 24;
-
-/// One [`Frame`] per segment: the sum of the segment vectors and of the normals of the connected
-/// segments (each one's end is the next one's start) within `width` (and at least two segments)
-/// of it on either side, normalised.
-pub fn frames(segments: &[CutSegment], width: f64) -> Vec<Frame> {
-    let linked = |j: usize| segments[j].pb == segments[j + 1].pa;
-    (0..segments.len())
-        .map(|i| {
-            let s = &segments[i];
-            let mut tangent = s.pb - s.pa;
-            let mut normal = s.normal;
-            let reach = width.max(2.0 * tangent.length());
-            let (mut back, mut len) = (i, 0.0);
-            while back > 0 && i - back < SMOOTH_SEGMENTS && linked(back - 1) {
-                back -= 1;
-                let t = segments[back].pb - segments[back].pa;
-                len += t.length();
-                tangent += t;
-                normal += segments[back].normal;
-                if len >= reach && i - back >= 2 {
-                    break;
-                }
-            }
-            let (mut ahead, mut len) = (i, 0.0);
-            while ahead + 1 < segments.len() && ahead - i < SMOOTH_SEGMENTS && linked(ahead) {
-                ahead += 1;
-                let t = segments[ahead].pb - segments[ahead].pa;
-                len += t.length();
-                tangent += t;
-                normal += segments[ahead].normal;
-                if len >= reach && ahead - i >= 2 {
-                    break;
-                }
-            }
-            let tangent = tangent.normalize_or_zero();
-            let normal = normal.normalize_or_zero();
-            let lateral = normal.cross(tangent).normalize_or_zero();
-            Frame { tangent, lateral }
-        })
-        .collect()
 }
 
 /// The side (`±1` along the frame's lateral) lip copy `v` opens to, from its own surface

@@ -20,30 +20,11 @@
 use glam::DVec3;
 
 use super::cut_point::closest_face_near;
-use super::dffd::Frame;
 use super::dyn_mesh::DynMesh;
+use super::frames::Frame;
 use super::step::CutSegment;
 
-/// One committed step's tool sample.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sample {
-    /// Number of the stroke (the strokes committed before it).
-    pub stroke: usize,
-    /// Tool clock of the step (the time of the segments it cut).
-    pub time: f64,
-    /// The sample as the tool gave it.
-    pub point: DVec3,
-}
-
-impl Sample {
-    pub fn new(stroke: usize, time: f64, point: DVec3) -> Sample {
-        Sample {
-            stroke,
-            time,
-            point,
-        }
-    }
-}
+pub use super::sample::Sample;
 
 /// Triangles examined to put a sample onto the surface (searched outward from the cut vertex
 /// its step reached).

@@ -192,7 +192,7 @@ pub struct Scalpel {
     /// Vertices the opening must not move (groove bottoms).
     pub(crate) fixed: Vec<u32>,
     /// The tool samples of the committed steps, for the opening ([`super::drawn`]).
-    pub(crate) drawn: Vec<super::drawn::Sample>,
+    pub(crate) drawn: Vec<super::sample::Sample>,
     clock: f64,
     scratch: Vec<u32>,
     /// Why the last refused step was refused (a short phrase; statistics only, see
@@ -360,7 +360,7 @@ impl Scalpel {
             Ok(report) => {
                 self.stroke = Some(stroke);
                 self.drawn
-                    .push(super::drawn::Sample::new(self.undo.len(), self.clock, q));
+                    .push(super::sample::Sample::new(self.undo.len(), self.clock, q));
                 Ok(report)
             }
             Err(e) => {
