@@ -230,6 +230,62 @@ fn bad_path_files_and_off_mesh_points_are_one_line_errors() {
     assert!(!out.exists(), "nothing written on error");
 }
 
+/// A session camera looking at one mesh (up +Z, 30° vertical field of view) and the image size.
+struct View {
+    eye: [f64; 3],
+    look_at: [f64; 3],
+    size: (u32, u32),
+}
+
+impl View {
+    /// `cutaway render` of `mesh` (loaded `exact` when given) from this view, written to
+    /// `stem`.png (its session to `stem`.json); `None`, after saying so, when there is no GPU
+    /// adapter.
+    fn render(&self, mesh: &Path, exact: Option<bool>, stem: &Path) -> Option<image::RgbImage> {
+        let mut model = serde_json::json!({"path": mesh, "color": [0.9, 0.75, 0.65]});
+        if let Some(exact) = exact {
+            model["exact"] = exact.into();
+        }
+        let s = serde_json::json!({"format": "cutaway-session/1", "models": [model],
+            "camera": {"eye": self.eye, "target": self.look_at, "up": [0, 0, 1], "fov_y_deg": 30}});
+        let (session, png) = (stem.with_extension("json"), stem.with_extension("png"));
+        std::fs::write(&session, s.to_string()).unwrap();
+        let (w, h) = self.size;
+        let o = cutaway()
+            .arg("render")
+            .arg(&session)
+            .arg("--out")
+            .arg(&png)
+            .args(["--width", &w.to_string(), "--height", &h.to_string()])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        if !o.status.success() && err.contains("adapter") {
+            eprintln!("skipped: no GPU adapter ({err})");
+            return None;
+        }
+        assert!(o.status.success(), "render: {err}");
+        Some(image::open(&png).unwrap().to_rgb8())
+    }
+
+    /// The pixel a point lands on (the session camera's perspective: right-handed look-at,
+    /// vertical field of view).
+    fn pixel(&self, p: [f64; 3]) -> (f64, f64) {
+        let (e, t) = (csg::DVec3::from(self.eye), csg::DVec3::from(self.look_at));
+        let f = (t - e).normalize();
+        let r = f.cross(csg::DVec3::Z).normalize();
+        let u = r.cross(f);
+        let k = (15.0f64).to_radians().tan();
+        let d = csg::DVec3::from(p) - e;
+        let (x, y, z) = (d.dot(r), d.dot(u), d.dot(f));
+        let (w, h) = (self.size.0 as f64, self.size.1 as f64);
+        (
+            (x / (z * k * w / h) + 1.0) / 2.0 * w,
+            (1.0 - y / (z * k)) / 2.0 * h,
+        )
+    }
+}
+
 fn patella() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/knee/patella.ply")
 }
@@ -326,44 +382,23 @@ fn opened_groove_on_the_patella_shows_along_its_whole_path_at_1280x800() {
             "points": points, "open": {"width": width, "window": 0.5}});
         std::fs::write(&path, json.to_string()).unwrap();
         run_json(&target, &path, &out);
-        let session = dir.join(format!("s{width}.json"));
-        let s = serde_json::json!({"format": "cutaway-session/1",
-            "models": [{"path": out, "color": [0.9, 0.75, 0.65]}],
-            "camera": {"eye": eye, "target": look_at, "up": [0, 0, 1], "fov_y_deg": 30}});
-        std::fs::write(&session, s.to_string()).unwrap();
-        let png = dir.join(format!("groove{width}.png"));
-        let o = cutaway()
-            .arg("render")
-            .arg(&session)
-            .arg("--out")
-            .arg(&png)
-            .args(["--width", &w.to_string(), "--height", &h.to_string()])
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
-        if !o.status.success() && err.contains("adapter") {
-            eprintln!("skipped: no GPU adapter ({err})");
+        let view = View {
+            eye,
+            look_at,
+            size: (w, h),
+        };
+        let Some(image) = view.render(&out, None, &dir.join(format!("groove{width}"))) else {
             return;
-        }
-        assert!(o.status.success(), "render: {err}");
-        images.push(image::open(&png).unwrap().to_rgb8());
+        };
+        images.push(image);
     }
     let (shut, open) = (&images[0], &images[1]);
-    // Pixel of a point: the session camera's perspective (right-handed look-at, vertical fov).
-    let (e, t) = (csg::DVec3::from(eye), csg::DVec3::from(look_at));
-    let f = (t - e).normalize();
-    let r = f.cross(csg::DVec3::Z).normalize();
-    let u = r.cross(f);
-    let k = (15.0f64).to_radians().tan();
-    let pixel = |p: [f64; 3]| {
-        let d = csg::DVec3::from(p) - e;
-        let (x, y, z) = (d.dot(r), d.dot(u), d.dot(f));
-        let aspect = w as f64 / h as f64;
-        (
-            (x / (z * k * aspect) + 1.0) / 2.0 * w as f64,
-            (1.0 - y / (z * k)) / 2.0 * h as f64,
-        )
+    let view = View {
+        eye,
+        look_at,
+        size: (w, h),
     };
+    let pixel = |p: [f64; 3]| view.pixel(p);
     let drawn: Vec<(f64, f64)> = points.iter().map(|&p| pixel(p)).collect();
     let (first, last) = (points[0], points[points.len() - 1]);
     let dist = |a: [f64; 3], b: [f64; 3]| csg::DVec3::from(a).distance(csg::DVec3::from(b));

@@ -57,45 +57,20 @@ fn opened_groove_on_the_patella_draws_its_walls_in_the_wall_colour_at_1280x800()
     let header = String::from_utf8_lossy(&header[..400]);
     assert!(header.contains("property uchar cutaway_wall"), "{header}");
     let mut images = Vec::new();
+    let view = View {
+        eye,
+        look_at,
+        size: (w, h),
+    };
     for exact in [true, false] {
-        let session = dir.join(format!("s{exact}.json"));
-        let s = serde_json::json!({"format": "cutaway-session/1",
-            "models": [{"path": out, "color": [0.9, 0.75, 0.65], "exact": exact}],
-            "camera": {"eye": eye, "target": look_at, "up": [0, 0, 1], "fov_y_deg": 30}});
-        std::fs::write(&session, s.to_string()).unwrap();
-        let png = dir.join(format!("walls-{exact}.png"));
-        let o = cutaway()
-            .arg("render")
-            .arg(&session)
-            .arg("--out")
-            .arg(&png)
-            .args(["--width", &w.to_string(), "--height", &h.to_string()])
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
-        if !o.status.success() && err.contains("adapter") {
-            eprintln!("skipped: no GPU adapter ({err})");
+        let Some(image) = view.render(&out, Some(exact), &dir.join(format!("walls-{exact}")))
+        else {
             return;
-        }
-        assert!(o.status.success(), "render: {err}");
-        images.push(image::open(&png).unwrap().to_rgb8());
+        };
+        images.push(image);
     }
     let (walls, plain) = (&images[0], &images[1]);
-    // Pixel of a point: the session camera's perspective (right-handed look-at, vertical fov).
-    let (e, t) = (csg::DVec3::from(eye), csg::DVec3::from(look_at));
-    let f = (t - e).normalize();
-    let r = f.cross(csg::DVec3::Z).normalize();
-    let u = r.cross(f);
-    let k = (15.0f64).to_radians().tan();
-    let pixel = |p: [f64; 3]| {
-        let d = csg::DVec3::from(p) - e;
-        let (x, y, z) = (d.dot(r), d.dot(u), d.dot(f));
-        let aspect = w as f64 / h as f64;
-        (
-            (x / (z * k * aspect) + 1.0) / 2.0 * w as f64,
-            (1.0 - y / (z * k)) / 2.0 * h as f64,
-        )
-    };
+    let pixel = |p: [f64; 3]| view.pixel(p);
     let drawn: Vec<(f64, f64)> = points.iter().map(|&p| pixel(p)).collect();
     let (first, last) = (points[0], points[points.len() - 1]);
     let dist = |a: [f64; 3], b: [f64; 3]| csg::DVec3::from(a).distance(csg::DVec3::from(b));

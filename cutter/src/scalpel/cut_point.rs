@@ -88,6 +88,18 @@ pub fn classify_on_edges(mesh: &DynMesh, t: u32, bary: DVec3, tau: f64) -> CutPo
     }
 }
 
+/// Parameter in `[0, 1]` of the point of segment `a → b` closest to `p` (0 for a degenerate
+/// segment).
+pub fn segment_parameter(a: DVec3, b: DVec3, p: DVec3) -> f64 {
+    let ab = b - a;
+    let l2 = ab.length_squared();
+    if l2 > 0.0 {
+        ((p - a).dot(ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    }
+}
+
 /// Closest point of triangle `(a, b, c)` to `p`, as barycentric weights (Ericson, RTCD 5.1.5).
 pub fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     let ab = b - a;

@@ -19,7 +19,7 @@
 
 use glam::DVec3;
 
-use super::cut_point::closest_face_near;
+use super::cut_point::{closest_face_near, segment_parameter};
 use super::dyn_mesh::DynMesh;
 use super::frames::Frame;
 use super::step::CutSegment;
@@ -91,14 +91,7 @@ fn nearest_on(points: &[DVec3], lo: usize, hi: usize, p: DVec3) -> DVec3 {
     let mut best_d = best.distance_squared(p);
     for k in lo..hi {
         let (a, b) = (points[k], points[k + 1]);
-        let ab = b - a;
-        let l2 = ab.length_squared();
-        let u = if l2 > 0.0 {
-            ((p - a).dot(ab) / l2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let c = a + ab * u;
+        let c = a.lerp(b, segment_parameter(a, b, p));
         let d = c.distance_squared(p);
         if d < best_d {
             best = c;

@@ -14,6 +14,8 @@
 
 use glam::DVec3;
 
+use super::cut_point::segment_parameter;
+
 /// The drawn path's offset curves (see the module doc).
 #[derive(Clone, Debug)]
 pub struct Reference {
@@ -60,14 +62,8 @@ fn project(points: &[DVec3], p: DVec3) -> (f64, usize, f64) {
     let mut best = (f64::INFINITY, 0, 0.0);
     for k in 0..points.len().saturating_sub(1) {
         let (a, b) = (points[k], points[k + 1]);
-        let ab = b - a;
-        let l2 = ab.length_squared();
-        let u = if l2 > 0.0 {
-            ((p - a).dot(ab) / l2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let d = (a + ab * u).distance(p);
+        let u = segment_parameter(a, b, p);
+        let d = a.lerp(b, u).distance(p);
         if d < best.0 {
             best = (d, k, u);
         }
