@@ -2,20 +2,14 @@
 //! vertices it snaps to, and the triangles around the cut stay well shaped while it does.
 
 use super::*;
+use cutter::scalpel::cut_point::segment_parameter;
 
 /// Distance from `x` to the polyline `path`.
 fn to_polyline(x: DVec3, path: &[DVec3]) -> f64 {
     path.windows(2)
         .map(|w| {
             let (a, b) = (w[0], w[1]);
-            let ab = b - a;
-            let l2 = ab.length_squared();
-            let u = if l2 > 0.0 {
-                ((x - a).dot(ab) / l2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            x.distance(a + ab * u)
+            x.distance(a.lerp(b, segment_parameter(a, b, x)))
         })
         .fold(f64::INFINITY, f64::min)
 }

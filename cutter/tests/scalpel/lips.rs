@@ -5,6 +5,7 @@
 
 use super::*;
 use csg::SpatialIndex;
+use cutter::scalpel::cut_point::segment_parameter;
 use cutter::scalpel::dyn_mesh::is_real;
 
 /// The notes' edge snapping threshold τ_edge: the bound on the lips' distance from the path.
@@ -15,14 +16,7 @@ const SUBSAMPLES: usize = 16;
 
 /// Distance from `x` to the segment `a b`.
 fn to_segment(x: DVec3, a: DVec3, b: DVec3) -> f64 {
-    let ab = b - a;
-    let l2 = ab.length_squared();
-    let u = if l2 > 0.0 {
-        ((x - a).dot(ab) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    x.distance(a + ab * u)
+    x.distance(a.lerp(b, segment_parameter(a, b, x)))
 }
 
 /// The lip edges of the grooves in the scalpel's mesh (rest pose): surface edges with a wall
@@ -170,6 +164,28 @@ pub(crate) const REAL_CASES: [(&str, &str, f64); 3] = [
     ("knee/femur.ply", "femur.txt", 3.0),
     ("spl_head/skin.ply", "skin.txt", 4.0),
 ];
+
+/// The wavy groove on a level-5 icosphere of radius 20 at each of `sphere_depths`, then the
+/// [`REAL_CASES`]: (name, mesh, drawn path, blade depth).
+pub(crate) fn groove_cases(sphere_depths: &[f64]) -> Vec<(String, Mesh, Vec<DVec3>, f64)> {
+    let r = 20.0;
+    let mut cases: Vec<_> = sphere_depths
+        .iter()
+        .map(|&depth| {
+            (
+                "sphere".to_string(),
+                csg::testkit::icosphere(5, r),
+                wavy_arc(r, 60),
+                depth,
+            )
+        })
+        .collect();
+    for (mesh, path, depth) in REAL_CASES {
+        let (m, pts) = asset_case(mesh, path);
+        cases.push((mesh.to_string(), m, pts, depth));
+    }
+    cases
+}
 
 /// Grooves on the knee and the head: the lips keep within a quarter of an edge of the drawn path
 /// there too, and the surface stays closed and manifold. Measured (patella, femur, skin): 0.18,

@@ -3,7 +3,7 @@
 //! smooth polyline under the path (its direction averaged along the path, not each vertex's
 //! own normal on a noisy surface).
 
-use super::lips::{REAL_CASES, asset_case, projected_path};
+use super::lips::{groove_cases, projected_path};
 use super::*;
 use cutter::scalpel::DynMesh;
 use cutter::scalpel::dyn_mesh::is_real;
@@ -163,18 +163,7 @@ fn floor_vertices(m: &DynMesh) -> usize {
 /// 58° (18°, 16°, 24°, 115° under 13°, 34°, 45°, 139°).
 #[test]
 fn groove_walls_are_strips_under_a_smooth_floor() {
-    let r = 20.0;
-    let mut cases = vec![(
-        "sphere".to_string(),
-        csg::testkit::icosphere(5, r),
-        wavy_arc(r, 60),
-        3.0,
-    )];
-    for (mesh, path, depth) in REAL_CASES {
-        let (m, pts) = asset_case(mesh, path);
-        cases.push((mesh.to_string(), m, pts, depth));
-    }
-    for (name, mesh, path, depth) in cases {
+    for (name, mesh, path, depth) in groove_cases(&[3.0]) {
         let mut s = Scalpel::new(&mesh, ScalpelOptions::default().with_depth(depth)).unwrap();
         s.cut_stroke(&path).unwrap();
         let m = s.dyn_mesh();

@@ -1,7 +1,7 @@
 //! Groove walls are well shaped (`scalpel::groove`, "Wall shape"): strips of quads, no fan of
 //! long thin wall triangles from a floor vertex shared far along the path.
 
-use super::lips::{REAL_CASES, asset_case};
+use super::lips::groove_cases;
 use super::*;
 
 /// For each wall triangle of the groove: its smallest angle (degrees) and that angle over what
@@ -37,26 +37,7 @@ fn wall_angles(s: &Scalpel, depth: f64) -> Vec<(f64, f64)> {
 /// blade depth.
 #[test]
 fn groove_walls_are_well_shaped() {
-    let r = 20.0;
-    let mut cases = vec![
-        (
-            "sphere".to_string(),
-            csg::testkit::icosphere(5, r),
-            wavy_arc(r, 60),
-            0.75,
-        ),
-        (
-            "sphere".to_string(),
-            csg::testkit::icosphere(5, r),
-            wavy_arc(r, 60),
-            3.0,
-        ),
-    ];
-    for (mesh, path, depth) in REAL_CASES {
-        let (m, pts) = asset_case(mesh, path);
-        cases.push((mesh.to_string(), m, pts, depth));
-    }
-    for (name, mesh, path, depth) in cases {
+    for (name, mesh, path, depth) in groove_cases(&[0.75, 3.0]) {
         let mut s = Scalpel::new(&mesh, ScalpelOptions::default().with_depth(depth)).unwrap();
         s.cut_stroke(&path).unwrap();
         let angles = wall_angles(&s, depth);
