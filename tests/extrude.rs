@@ -8,7 +8,7 @@ use glam::{DVec2, DVec3};
 
 use csg::Mesh;
 use cutaway::cli::extrude::replay;
-use cutaway::gesture::{CutSettings, Gesture, parse_gesture, read_gesture};
+use cutaway::io::gesture::{CutSettings, Gesture, parse_gesture, read_gesture};
 use cutter::{Camera, CutKind, EditorEvent, EditorSettings};
 
 fn gestures() -> PathBuf {
@@ -490,7 +490,7 @@ fn gestures_on_real_anatomy() {
         // Through the CLI too (writes the OBJ).
         let scratch = scratch("anatomy");
         let g = scratch.join("g.json");
-        cutaway::gesture::write_gesture(&g, &gesture).unwrap();
+        cutaway::io::gesture::write_gesture(&g, &gesture).unwrap();
         let run = run_cli(&path, &g, &scratch);
         check_contract(&run, kind.name());
     }
@@ -598,7 +598,7 @@ fn runaway_gestures_stop_with_an_error() {
     let gesture = parse_gesture(&fine.to_string()).unwrap();
     let sphere = csg::testkit::icosphere(5, 50.0);
     let e = format!("{:#}", replay(&sphere, &gesture).unwrap_err());
-    let limit = cutaway::gesture::MAX_REPLAY_BOXES;
+    let limit = cutaway::io::gesture::MAX_REPLAY_BOXES;
     assert!(
         e.contains(&format!("more than the limit of {limit}")),
         "{e}"

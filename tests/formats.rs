@@ -465,9 +465,9 @@ fn special_and_oversized_files_are_refused_before_reading() {
         line.contains("s.json") && line.contains("character device"),
         "{line}"
     );
-    let line = error_of(cutaway::gesture::read_gesture(&session));
+    let line = error_of(cutaway::io::gesture::read_gesture(&session));
     assert!(line.contains("character device"), "{line}");
-    let line = error_of(cutaway::path_file::read_path_file(&session));
+    let line = error_of(cutaway::io::path_file::read_path_file(&session));
     assert!(line.contains("character device"), "{line}");
 }
 
@@ -660,8 +660,8 @@ proptest! {
         let text = String::from_utf8_lossy(&bytes);
         match which {
             0 => { let _ = cutaway::session::parse(&text); }
-            1 => { let _ = cutaway::gesture::parse_gesture(&text); }
-            _ => { let _ = cutaway::path_file::parse_path_file(&text); }
+            1 => { let _ = cutaway::io::gesture::parse_gesture(&text); }
+            _ => { let _ = cutaway::io::path_file::parse_path_file(&text); }
         }
     }
 }

@@ -20,7 +20,7 @@
 //! models are not cut again and their indexes go), a preview the cutters no longer match is
 //! dropped in Edit mode, Camera mode's copy of the cut lives only in Camera and Scalpel modes, and
 //! wireframe edges go as soon as a frame does not draw them. Each step prints the allocator's totals
-//! and the counts of what the window holds ([`cutaway::memory_census`]); run with
+//! and the counts of what the window holds ([`cutaway::platform::memory_census`]); run with
 //! `CUTAWAY_MEMORY_MAPS=1` to see the mappings per step.
 //!
 //! It is the only test of this binary, so no other test allocates in the process while it

@@ -4,7 +4,7 @@
 //! with drags of many frames (every frame drawn), turns every view on and off, and undoes and
 //! redoes everything. The process's resident size is read from `/proc/self/status` after every
 //! step, printed with the allocator's totals and what the window holds
-//! ([`cutaway::memory_census`]: the live cut's indexes and cuts, the kept preview, the renderer's
+//! ([`cutaway::platform::memory_census`]: the live cut's indexes and cuts, the kept preview, the renderer's
 //! uploads).
 
 use std::path::PathBuf;

@@ -9,7 +9,7 @@ use std::process::Command;
 
 use csg::{Mesh, TargetIndex};
 use cutaway::cli::extrude::replay;
-use cutaway::gesture::{read_gesture, write_gesture};
+use cutaway::io::gesture::{read_gesture, write_gesture};
 
 fn gestures() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/gestures");

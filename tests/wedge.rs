@@ -24,14 +24,14 @@ use glam::{DVec2, DVec3};
 
 /// The embedded knee's skin, patella and femur (skin first: the target).
 fn knee() -> Scene {
-    let knee = cutaway::assets::scene("knee").expect("embedded knee");
+    let knee = cutaway::anatomy::assets::scene("knee").expect("embedded knee");
     let mut scene = Scene::default();
-    let mut models = cutaway::assets::load_scene(knee).expect("knee loads");
+    let mut models = cutaway::anatomy::assets::load_scene(knee).expect("knee loads");
     models.sort_by_key(|m| !m.name.starts_with("skin"));
     for m in models {
         let part = m.name.split(' ').next().unwrap_or("").to_string();
         if part == "skin" || part == "patella" || part == "femur" {
-            let color = cutaway::assets::default_color(&part);
+            let color = cutaway::anatomy::assets::default_color(&part);
             scene
                 .models
                 .push(SceneModel::new(m.name, m.source, Arc::new(m.mesh), color));

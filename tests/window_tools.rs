@@ -264,7 +264,7 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
     h.get_by_label("Duplicate").click();
     h.run_steps(2);
     assert_eq!(
-        cutaway::variants::names(&h.state().scene),
+        cutaway::scene::variants::names(&h.state().scene),
         ["current", "current 2"]
     );
     assert_eq!(h.state().scene.variants.active, 1);
@@ -274,7 +274,7 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
     cutaway::gui::variants_panel::apply(h.state_mut(), VariantCommand::Rename("corner".into()));
     h.run_steps(2);
     assert_eq!(
-        cutaway::variants::names(&h.state().scene),
+        cutaway::scene::variants::names(&h.state().scene),
         ["current", "corner"]
     );
 
@@ -296,7 +296,7 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
     h.get_by_label("Delete").click();
     h.run_steps(2);
     assert_eq!(
-        cutaway::variants::names(&h.state().scene),
+        cutaway::scene::variants::names(&h.state().scene),
         ["current", "corner"]
     );
 
@@ -304,8 +304,8 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
     let saved = dir.join("variants.json");
     apply(&mut h, Action::SaveSessionTo(saved.clone()));
     let reread = cutaway::session::load(&saved).unwrap();
-    assert_eq!(cutaway::variants::names(&reread), ["current", "corner"]);
-    let all = cutaway::variants::all(&reread);
+    assert_eq!(cutaway::scene::variants::names(&reread), ["current", "corner"]);
+    let all = cutaway::scene::variants::all(&reread);
     assert_eq!((all[0].1.len(), all[1].1.len()), (2, 1));
 
     // Compare: both variants drawn from one camera with their measures under them.

@@ -117,7 +117,7 @@ fn main() {
         }
     };
     let cold = best(None);
-    let atlas = best(Some(cutaway::default_anatomy::NAME));
+    let atlas = best(Some(cutaway::anatomy::default_scene::NAME));
     let knee = best(Some("knee"));
     println!(
         "{{\"scene\":\"head atlas (default)\",\"start_to_first_frame_ms\":{:.1},\"start_to_all_labels_ms\":{:.1},\"open_to_first_frame_ms\":{:.1},\"open_to_all_labels_ms\":{:.1},\"triangles\":{},\"goal_ms\":1500,\"runs\":{runs}}}",

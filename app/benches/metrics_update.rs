@@ -42,7 +42,7 @@ fn box_cutter(target: usize, min: DVec3, max: DVec3) -> SceneCutter {
 fn cut_scene(models: Vec<cutaway::io::Model>) -> Scene {
     let mut scene = Scene::default();
     for (i, model) in models.into_iter().enumerate() {
-        let color = cutaway::anatomy_colors::structure_color(&model.name, model.color, i);
+        let color = cutaway::anatomy::colors::structure_color(&model.name, model.color, i);
         scene.models.push(SceneModel::structure(model, color));
     }
     let skin = scene
@@ -118,9 +118,9 @@ fn bench(name: &str, scene: &Scene, focus: &str, critical: &str) {
 }
 
 fn main() {
-    let knee = cutaway::assets::scene("knee").expect("the knee scene");
-    let knee = cut_scene(cutaway::assets::load_scene_structures(knee).expect("load the knee"));
+    let knee = cutaway::anatomy::assets::scene("knee").expect("the knee scene");
+    let knee = cut_scene(cutaway::anatomy::assets::load_scene_structures(knee).expect("load the knee"));
     bench("knee", &knee, "femur", "popliteal");
-    let head = cut_scene(cutaway::default_anatomy::load().expect("load the SPL head"));
+    let head = cut_scene(cutaway::anatomy::default_scene::load().expect("load the SPL head"));
     bench("SPL head", &head, "left lateral ventricle", "optic chiasm");
 }

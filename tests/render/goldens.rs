@@ -194,13 +194,13 @@ fn golden_edit_mode_cutter_overlay() {
 /// A rounded (smooth) cutter across the front of the embedded knee phantom: a wavy path of
 /// seven planes at the height of the joint, from just outside the skin 45 mm deep.
 fn rounded_knee_scene() -> Scene {
-    let knee = cutaway::assets::scene("knee").expect("embedded knee");
-    let models = cutaway::assets::load_scene(knee).expect("knee loads");
+    let knee = cutaway::anatomy::assets::scene("knee").expect("embedded knee");
+    let models = cutaway::anatomy::assets::load_scene(knee).expect("knee loads");
     let mut scene = Scene::default();
     for m in models {
         let part = m.name.split(' ').next().unwrap_or("").to_string();
         if part == "skin" || part == "patella" || part == "femur" {
-            let color = cutaway::assets::default_color(&part);
+            let color = cutaway::anatomy::assets::default_color(&part);
             scene
                 .models
                 .push(SceneModel::new(m.name, m.source, Arc::new(m.mesh), color));

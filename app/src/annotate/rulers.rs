@@ -1,4 +1,4 @@
-//! The scene's saved rulers ([`crate::ruler`]) drawn over a rendered picture, as the window draws
+//! The scene's saved rulers ([`crate::scene::ruler`]) drawn over a rendered picture, as the window draws
 //! them over its view: a yellow line with black edges between the two ends, a dot at each end and
 //! the length in millimetres in a yellow box beside the middle.
 
@@ -66,7 +66,7 @@ pub fn draw_rulers(image: &mut RgbaImage, scene: &Scene) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ruler::Ruler;
+    use crate::scene::ruler::Ruler;
     use glam::DVec3;
 
     #[test]

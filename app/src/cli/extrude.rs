@@ -17,7 +17,7 @@ use glam::DVec2;
 use csg::{EdgeAdjacency, Mesh, SpatialIndex};
 use cutter::{Cutter, Editor, EditorEvent, EditorSettings};
 
-use crate::gesture::{Gesture, MAX_REPLAY_BOXES, MAX_REPLAY_TIME, read_gesture};
+use crate::io::gesture::{Gesture, MAX_REPLAY_BOXES, MAX_REPLAY_TIME, read_gesture};
 
 #[derive(Debug, clap::Args)]
 pub struct ExtrudeArgs {
@@ -71,7 +71,7 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
         delta,
     };
     let mut editor = Editor::new(mesh, index, gesture.camera, gesture.viewport, settings);
-    let started = crate::thread_time::thread_cpu_time();
+    let started = crate::platform::thread_time::thread_cpu_time();
     for (i, &event) in gesture.events.iter().enumerate() {
         editor.handle(event);
         // One event adds a bounded number of boxes, so checking after each bounds the replay.
@@ -82,7 +82,7 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
             );
         }
         // One event costs at most a bounded re-fit, so checking after each bounds the time.
-        if crate::thread_time::thread_cpu_time() - started > MAX_REPLAY_TIME {
+        if crate::platform::thread_time::thread_cpu_time() - started > MAX_REPLAY_TIME {
             bail!(
                 "event {i} of {}: the replay used more than {:.1} s of CPU time and stopped (the cutter has {boxes} boxes; a tiny viewport makes every move re-fit many of them)",
                 gesture.events.len(),

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
 
-pub use crate::errors::error_line;
+pub use crate::platform::errors::error_line;
 
 pub mod compare;
 pub mod export;

@@ -23,7 +23,7 @@ pub fn run(args: &OpenArgs) -> anyhow::Result<()> {
     let sessions = args
         .paths
         .iter()
-        .filter(|p| crate::dropped::is_session_path(p))
+        .filter(|p| crate::io::dropped::is_session_path(p))
         .count();
     if sessions > 0 && args.paths.len() > 1 {
         anyhow::bail!(

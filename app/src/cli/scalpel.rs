@@ -55,7 +55,7 @@ pub fn region_scene(mesh: &csg::Mesh, source: &std::path::Path) -> Scene {
 }
 
 /// The settings the window would cut a path file's strokes with.
-pub fn path_settings(path_file: &crate::path_file::PathFile) -> ScalpelSettings {
+pub fn path_settings(path_file: &crate::io::path_file::PathFile) -> ScalpelSettings {
     ScalpelSettings {
         tool: path_file.tool,
         depth: path_file.depth,
@@ -66,7 +66,7 @@ pub fn path_settings(path_file: &crate::path_file::PathFile) -> ScalpelSettings 
 }
 
 pub fn run(args: &ScalpelArgs) -> anyhow::Result<()> {
-    let path_file = crate::path_file::read_path_file(&args.path)?;
+    let path_file = crate::io::path_file::read_path_file(&args.path)?;
     let mesh = crate::io::read_mesh(&args.target)?;
     let target = args.target.display();
     if mesh.triangles.is_empty() {

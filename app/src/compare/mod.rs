@@ -21,18 +21,18 @@ pub struct VariantMetrics {
     pub metrics: Metrics,
 }
 
-/// Measures every variant of `scene` ([`crate::variants::all`]) with the same options; errors
+/// Measures every variant of `scene` ([`crate::scene::variants::all`]) with the same options; errors
 /// name the variant.
 pub fn measure_variants(
     scene: &Scene,
     options: &MetricsOptions,
 ) -> anyhow::Result<Vec<VariantMetrics>> {
-    let names = crate::variants::names(scene);
+    let names = crate::scene::variants::names(scene);
     names
         .iter()
         .enumerate()
         .map(|(k, name)| {
-            let shown = crate::variants::variant_scene(scene, k).expect("k < variant count");
+            let shown = crate::scene::variants::variant_scene(scene, k).expect("k < variant count");
             let metrics =
                 measure(&shown, options).map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
             Ok(VariantMetrics {
@@ -51,10 +51,10 @@ pub fn render_variants(
     width: u32,
     height: u32,
 ) -> anyhow::Result<Vec<image::RgbaImage>> {
-    let names = crate::variants::names(scene);
+    let names = crate::scene::variants::names(scene);
     let mut images = Vec::with_capacity(names.len());
     for (k, name) in names.iter().enumerate() {
-        let shown = crate::variants::variant_scene(scene, k).expect("k < variant count");
+        let shown = crate::scene::variants::variant_scene(scene, k).expect("k < variant count");
         let options = RenderPngOptions::new(width, height);
         let preview = Arc::new(preview_geometry(&shown));
         if let Some(note) = preview.notes.first() {

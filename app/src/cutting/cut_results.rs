@@ -88,7 +88,7 @@ impl PreviewGeometry {
 pub const SURFACE: u32 = u32::MAX;
 
 /// Tag of a triangle of a cut model that is a wall of a scalpel incision in the model's own mesh
-/// (`crate::wall_faces`): drawn as a wall, not cut surface; no cutter's contour runs along it.
+/// (`crate::scene::wall_faces`): drawn as a wall, not cut surface; no cutter's contour runs along it.
 pub const INCISION: u32 = u32::MAX - 1;
 
 /// What one cutter of a sequence did (see [`super::cut_scene::cut_in_turn`]); borrowed by the step callback.

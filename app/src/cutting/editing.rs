@@ -13,7 +13,7 @@ use glam::DVec2;
 use csg::{Mesh, SpatialIndex};
 use cutter::{Editor, EditorEvent, EditorSettings};
 
-use crate::jobs::Progress;
+use crate::platform::jobs::Progress;
 use crate::scene::{Scene, SceneCutter};
 use cutter::CutKind;
 

@@ -313,7 +313,7 @@ fn worker(shared: &Shared, results: &Sender<LiveResult>) {
                     cache = LiveCache::default();
                     slot.census = cache.census();
                     // The caches were model-sized and freed on this thread: hand the pages back.
-                    crate::free_pages::trim_now();
+                    crate::platform::free_pages::trim_now();
                 }
                 if let Some(r) = slot.request.take() {
                     break r;

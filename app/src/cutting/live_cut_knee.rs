@@ -9,10 +9,10 @@ use glam::DVec2;
 
 #[test]
 fn live_cut_follows_the_editor_on_the_knee() {
-    let knee = crate::assets::scene("knee").expect("embedded knee");
+    let knee = crate::anatomy::assets::scene("knee").expect("embedded knee");
     let mut scene = Scene::default();
-    for model in crate::assets::load_scene(knee).expect("load the knee") {
-        let color = crate::assets::default_color(&model.name);
+    for model in crate::anatomy::assets::load_scene(knee).expect("load the knee") {
+        let color = crate::anatomy::assets::default_color(&model.name);
         scene.models.push(crate::scene::SceneModel::new(
             model.name,
             model.source,

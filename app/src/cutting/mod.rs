@@ -3,7 +3,7 @@
 //! The window (`gui/`), the CLI and the tests drive the same code here, so what a user does in
 //! the window can be replayed and checked headless. Nothing in this module knows egui or wgpu:
 //! it speaks scenes, `cutter` cutters and `csg` meshes, and reports progress through
-//! [`crate::jobs::Progress`].
+//! [`crate::platform::jobs::Progress`].
 //!
 //! - [`cut_scene`]: the scene-cutting model: every cutter of a model cut in turn, the parts
 //!   Preview draws, and the cache that makes re-cutting one edited cutter cost one boolean;

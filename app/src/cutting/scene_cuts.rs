@@ -7,7 +7,7 @@ use std::time::Instant;
 use csg::Mesh;
 
 use super::cut_scene::{self, PreviewGeometry};
-use crate::jobs::Progress;
+use crate::platform::jobs::Progress;
 use crate::scene::{Scene, SceneCutter, SceneModel};
 
 /// Cuts every model by its cutters in turn ([`cut_scene::cut_in_turn`]: each cutter cuts
@@ -67,7 +67,7 @@ pub fn compute_preview(scene: &Scene) -> (Arc<PreviewGeometry>, f64) {
     let ms = started.elapsed().as_secs_f64() * 1000.0;
     // The cut's indexes and intermediate meshes were freed on this thread as its cache went:
     // hand their pages back now rather than leave them resident in this thread's arena.
-    crate::free_pages::trim_now();
+    crate::platform::free_pages::trim_now();
     (Arc::new(geometry), ms)
 }
 

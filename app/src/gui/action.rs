@@ -93,7 +93,7 @@ pub enum Action {
     /// Centre the camera on a model.
     FocusModel(usize),
     RemoveModel(usize),
-    /// One model per connected region of model `i` ([`crate::scene_regions`]).
+    /// One model per connected region of model `i` ([`crate::scene::regions`]).
     SplitRegions(usize),
     StartGesture,
     StopGesture,

@@ -76,7 +76,7 @@ impl std::ops::DerefMut for CutawayApp {
 
 impl CutawayApp {
     pub fn new(cc: &eframe::CreationContext<'_>, start: StartOptions) -> CutawayApp {
-        crate::large_blocks::return_large_blocks_to_the_system();
+        crate::platform::large_blocks::return_large_blocks_to_the_system();
         super::menus::apply_style(&cc.egui_ctx);
         let recovery = Recovery::new(start.state_dir.clone());
         let pending_recovery = if start.offer_recovery {
@@ -299,7 +299,7 @@ pub fn new_scene() -> Scene {
     scene
 }
 
-pub use crate::dropped::is_session_path;
+pub use crate::io::dropped::is_session_path;
 
 /// A small mesh for tests of the window's state handling: a closed box.
 pub fn box_mesh(min: DVec3, max: DVec3) -> Mesh {

@@ -28,7 +28,7 @@ impl CutawayApp {
 
     /// The skin at once (milliseconds), the atlas's labels from a background job.
     pub(super) fn load_default_scene(&mut self, ctx: &egui::Context) {
-        match crate::default_anatomy::load_skin() {
+        match crate::anatomy::default_scene::load_skin() {
             Ok(skin) => self.add_models(skin, true, &[]),
             Err(e) => return self.state.complain(&e),
         }
@@ -36,7 +36,7 @@ impl CutawayApp {
     }
 
     pub(super) fn load_example(&mut self, ctx: &egui::Context, name: String) {
-        if name == crate::default_anatomy::NAME {
+        if name == crate::anatomy::default_scene::NAME {
             return self.load_default_scene(ctx);
         }
         self.spawn(
@@ -241,11 +241,11 @@ impl CutawayApp {
         }
         let first_new = self.state.scene.models.len();
         let count = models.len();
-        let default_scene = crate::default_anatomy::is_default_scene(&models);
+        let default_scene = crate::anatomy::default_scene::is_default_scene(&models);
         let from_volume = sources.iter().any(|p| crate::io::volume::is_volume(p));
         for (i, model) in models.into_iter().enumerate() {
             let color =
-                crate::anatomy_colors::structure_color(&model.name, model.color, first_new + i);
+                crate::anatomy::colors::structure_color(&model.name, model.color, first_new + i);
             self.state
                 .scene
                 .models

@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use crate::dropped::DropIntent;
+use crate::io::dropped::DropIntent;
 use crate::scene::Scene;
 
 use super::action::{Action, Mode, Purpose};
@@ -118,7 +118,7 @@ impl CutawayApp {
                     return;
                 };
                 let before = self.state.scene.clone();
-                match crate::scene_regions::split_into_regions(&mut self.state.scene, index) {
+                match crate::scene::regions::split_into_regions(&mut self.state.scene, index) {
                     Ok(count) => {
                         self.state.record(&format!("split {name}"), before);
                         self.state
@@ -313,8 +313,8 @@ impl CutawayApp {
         if dropped.is_empty() {
             return Vec::new();
         }
-        // The rule lives in `dropped.rs`: a session opens, the rest opens or is added.
-        match crate::dropped::intent_of_drop(dropped, self.state.scene.models.is_empty()) {
+        // The rule lives in `io/dropped.rs`: a session opens, the rest opens or is added.
+        match crate::io::dropped::intent_of_drop(dropped, self.state.scene.models.is_empty()) {
             Some(DropIntent::Session(path)) => vec![Action::Open(vec![path])],
             Some(DropIntent::Open(paths)) => vec![Action::Open(paths)],
             Some(DropIntent::Add(paths)) => vec![Action::Add(paths)],

@@ -42,7 +42,7 @@ fn add_structures(app: &mut AppState, models: Vec<Model>, took: Duration) {
         .into_iter()
         .enumerate()
         .map(|(i, model)| {
-            let color = crate::anatomy_colors::structure_color(&model.name, model.color, first + i);
+            let color = crate::anatomy::colors::structure_color(&model.name, model.color, first + i);
             SceneModel::structure(model, color)
         })
         .collect();

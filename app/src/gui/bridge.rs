@@ -155,17 +155,17 @@ pub fn example_scene_models(
     progress: &Progress,
 ) -> anyhow::Result<Vec<crate::io::Model>> {
     progress.set_message(name.to_string());
-    let mut models = if name == crate::default_anatomy::NAME {
-        crate::default_anatomy::load()?
-    } else if name == crate::default_anatomy::ALL_NAME {
-        crate::default_anatomy::load_all(&|fraction| {
+    let mut models = if name == crate::anatomy::default_scene::NAME {
+        crate::anatomy::default_scene::load()?
+    } else if name == crate::anatomy::default_scene::ALL_NAME {
+        crate::anatomy::default_scene::load_all(&|fraction| {
             progress.set((fraction.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
             !progress.is_cancelled()
         })?
     } else {
-        let scene = crate::assets::scene(name)
+        let scene = crate::anatomy::assets::scene(name)
             .ok_or_else(|| anyhow::anyhow!("{name}: no such example scene"))?;
-        crate::assets::load_scene_structures(scene)?
+        crate::anatomy::assets::load_scene_structures(scene)?
     };
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     for model in &mut models {
@@ -203,7 +203,7 @@ pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
         match unit {
             crate::scene::ModelUnit::Region => crate::io::load_models(file),
             crate::scene::ModelUnit::Structure => {
-                crate::session_volumes::structures(file, only, &|f| {
+                crate::session::volumes::structures(file, only, &|f| {
                     progress.set((f.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
                     !progress.is_cancelled()
                 })
@@ -392,9 +392,9 @@ pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &AppState)
 #[path = "bridge_tests.rs"]
 mod tests;
 
-/// What the window holds now, counted ([`crate::memory_census`]).
-pub fn memory_census(app: &AppState) -> crate::memory_census::MemoryCensus {
-    crate::memory_census::MemoryCensus {
+/// What the window holds now, counted ([`crate::platform::memory_census`]).
+pub fn memory_census(app: &AppState) -> crate::platform::memory_census::MemoryCensus {
+    crate::platform::memory_census::MemoryCensus {
         live: app.viewport.live.census(),
         preview_triangles: app.viewport.preview.as_ref().map(|p| p.triangle_count()),
         derived_cut: super::cut_view::holds_derived(),

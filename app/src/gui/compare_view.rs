@@ -1,4 +1,4 @@
-//! The Compare view: the scene's cut variants ([`crate::variants`]) side by side in 2 to 4
+//! The Compare view: the scene's cut variants ([`crate::scene::variants`]) side by side in 2 to 4
 //! viewports that share one camera (the scene's), each variant's metrics under it — what
 //! `cutaway compare` writes as a sheet, live in the window.
 //!
@@ -35,7 +35,7 @@ fn compare_one(
     options: &MetricsOptions,
     camera: [f64; 9],
 ) -> anyhow::Result<(image::RgbaImage, VariantMetrics)> {
-    let shown = crate::variants::variant_scene(scene, k).expect("k < variant count");
+    let shown = crate::scene::variants::variant_scene(scene, k).expect("k < variant count");
     let key = (
         shown.cutters.clone(),
         shown
@@ -117,7 +117,7 @@ pub fn update(app: &mut AppState, ctx: &egui::Context) {
                 ));
             }
         }
-        view.shown = Some(result.map_err(|e| crate::errors::error_line(&e)));
+        view.shown = Some(result.map_err(|e| crate::platform::errors::error_line(&e)));
         view.shown_request = Some(request.clone());
         view.job = None;
     }
@@ -193,7 +193,7 @@ pub fn compare_ui(ui: &mut egui::Ui, app: &mut AppState) {
 }
 
 fn compare_contents(ui: &mut egui::Ui, app: &mut AppState) {
-    let names = crate::variants::names(&app.scene);
+    let names = crate::scene::variants::names(&app.scene);
     let shown = names.len().min(MAX_SHOWN);
     ui.horizontal(|ui| {
         ui.heading("Compare variants");

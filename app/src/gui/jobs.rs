@@ -1,9 +1,9 @@
 //! The progress window of the window's background jobs (the jobs themselves, with progress and
-//! cancel, are egui-free in [`crate::jobs`], so the cutting layer and the CLI use them too).
+//! cancel, are egui-free in [`crate::platform::jobs`], so the cutting layer and the CLI use them too).
 
 use std::time::Duration;
 
-pub use crate::jobs::*;
+pub use crate::platform::jobs::*;
 
 /// The progress window of the running jobs: label, bar, current step, Cancel. Returns the indices
 /// of jobs whose Cancel button was pressed.

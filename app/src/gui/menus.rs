@@ -73,15 +73,15 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
                 app.export_turntable.open = true;
             }
             ui.menu_button("Open Example", |ui| {
-                let atlas = crate::default_anatomy::NAME;
+                let atlas = crate::anatomy::default_scene::NAME;
                 if ui.button(format!("{atlas} (real anatomy)")).clicked() {
                     actions.push(Action::OpenExample(atlas.to_string()));
                 }
-                let all = crate::default_anatomy::ALL_NAME;
+                let all = crate::anatomy::default_scene::ALL_NAME;
                 if ui.button(format!("{all}, real anatomy")).clicked() {
                     actions.push(Action::OpenExample(all.to_string()));
                 }
-                for scene in crate::assets::scenes() {
+                for scene in crate::anatomy::assets::scenes() {
                     if ui.button(format!("{} (synthetic)", scene.name)).clicked() {
                         actions.push(Action::OpenExample(scene.name.to_string()));
                     }

@@ -26,7 +26,7 @@ pub fn update(app: &mut AppState, ctx: &egui::Context) {
     if let Some((request, job)) = &mut panel.job
         && let Some(result) = job.poll()
     {
-        panel.shown = Some(result.map_err(|e| crate::errors::error_line(&e)));
+        panel.shown = Some(result.map_err(|e| crate::platform::errors::error_line(&e)));
         panel.shown_request = Some(request.clone());
         panel.job = None;
     }

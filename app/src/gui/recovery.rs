@@ -104,8 +104,8 @@ impl Recovery {
     /// A clean exit (or the user declined recovery): the autosave is no longer needed.
     pub fn discard(&mut self) {
         let _ = std::fs::remove_file(self.session_path());
-        // The autosave's cut meshes (`recovery-session.meshes/`, see `crate::session_meshes`).
-        let _ = std::fs::remove_dir_all(crate::session_meshes::mesh_dir(&self.session_path()));
+        // The autosave's cut meshes (`recovery-session.meshes/`, see `crate::session::meshes`).
+        let _ = std::fs::remove_dir_all(crate::session::meshes::mesh_dir(&self.session_path()));
         let _ = std::fs::remove_file(self.owner_path());
         self.dirty = false;
     }

@@ -1,5 +1,5 @@
 //! The Ruler tool: while it is on, a click on a surface sets a ruler's first end and the next
-//! click its second; the distance is shown in millimetres ([`crate::ruler`]), the ruler is drawn
+//! click its second; the distance is shown in millimetres ([`crate::scene::ruler`]), the ruler is drawn
 //! over the 3D view, listed in the Metrics panel (removable there) and saved in the session.
 //! Drags keep turning the camera, so both ends can be picked from the best side. Adding and
 //! removing rulers are undo steps.
@@ -9,7 +9,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::ruler::Ruler;
+use crate::scene::ruler::Ruler;
 
 use super::state::AppState;
 

@@ -1,10 +1,10 @@
 //! The Variants section of the Metrics panel: the scene's named cutter sets
-//! ([`crate::variants`]), the active one highlighted. Click a variant to switch to it; New starts
+//! ([`crate::scene::variants`]), the active one highlighted. Click a variant to switch to it; New starts
 //! an empty cutter set, Duplicate copies the active one, Rename and Delete act on the active one.
 //! Every change is an undo step, and the variants are saved in the session.
 
 use super::state::AppState;
-use crate::variants;
+use crate::scene::variants;
 
 /// A change to the scene's variants.
 #[derive(Clone, Debug, PartialEq)]

@@ -65,14 +65,14 @@ fn window_with_labels_held(name: &str) -> (Harness<'static, CutawayApp>, Arc<Ato
     let open = Arc::new(AtomicBool::new(false));
     let gate = open.clone();
     let ctx = h.ctx.clone();
-    let skin = crate::default_anatomy::load_skin().unwrap();
+    let skin = crate::anatomy::default_scene::load_skin().unwrap();
     h.state_mut().add_models(skin, true, &[]);
     h.state_mut().atlas.start_with(&ctx, move |progress| {
         while !gate.load(Ordering::Relaxed) {
             progress.check()?;
             std::thread::sleep(Duration::from_millis(5));
         }
-        crate::default_anatomy::load_structures(&|_| !progress.is_cancelled())
+        crate::anatomy::default_scene::load_structures(&|_| !progress.is_cancelled())
     });
     h.run_steps(2);
     assert_eq!(h.state().scene.models.len(), 1, "the skin, alone");
@@ -84,14 +84,14 @@ fn window_with_labels_held(name: &str) -> (Harness<'static, CutawayApp>, Arc<Ato
 fn atlas_file() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../assets/spl_head")
-        .join(crate::default_anatomy::ATLAS_FILE)
+        .join(crate::anatomy::default_scene::ATLAS_FILE)
 }
 
 /// A small mesh to start the window with instead of the default scene.
 fn skin_file() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../assets/spl_head")
-        .join(crate::default_anatomy::SKIN_FILE)
+        .join(crate::anatomy::default_scene::SKIN_FILE)
 }
 
 #[test]
@@ -103,7 +103,7 @@ fn the_default_scene_shows_its_skin_first_and_the_labels_arrive_with_progress() 
     h.run_steps(2);
     assert_eq!(
         h.state().scene.models.len(),
-        1 + crate::default_anatomy::selection::default_labels().count()
+        1 + crate::anatomy::default_scene::selection::default_labels().count()
     );
     // The same with the labels held: the skin alone first, frames keep coming while the labels
     // surface, and the status bar shows their progress.
@@ -136,7 +136,7 @@ fn the_default_scene_shows_its_skin_first_and_the_labels_arrive_with_progress() 
     assert_eq!(app.scene.models[0].name, "skin", "the skin stays first");
     assert_eq!(
         app.scene.models.len(),
-        1 + crate::default_anatomy::selection::default_labels().count(),
+        1 + crate::anatomy::default_scene::selection::default_labels().count(),
         "the skin and the default's structures"
     );
     let hippocampus = app
@@ -166,7 +166,7 @@ fn an_edit_made_while_the_labels_surface_undoes_without_losing_them() {
     let arrived = h.state().scene.models.len();
     assert_eq!(
         arrived,
-        crate::default_anatomy::selection::default_labels().count(),
+        crate::anatomy::default_scene::selection::default_labels().count(),
         "{arrived} models arrived"
     );
     h.state_mut().apply(&ctx, Action::Undo);
@@ -207,7 +207,7 @@ fn the_atlas_with_all_structures_opens_from_the_examples_in_the_background() {
     let mut h = window("all-structures", vec![skin_file()]);
     step_until(&mut h, "the skin", |app| !app.busy());
     let ctx = h.ctx.clone();
-    let all = crate::default_anatomy::ALL_NAME;
+    let all = crate::anatomy::default_scene::ALL_NAME;
     h.state_mut()
         .apply(&ctx, Action::OpenExample(all.to_string()));
     // Frames keep coming and the fraction of labels done moves while it surfaces.
@@ -228,7 +228,7 @@ fn the_atlas_with_all_structures_opens_from_the_examples_in_the_background() {
     );
     let app = h.state();
     assert!(!app.status.is_error, "{}", app.status.message);
-    let named = crate::default_anatomy::table_values().unwrap();
+    let named = crate::anatomy::default_scene::table_values().unwrap();
     // The skin and every label the table names (311: all but the one unnamed voxel of label 1).
     assert_eq!(app.scene.models.len(), 1 + 311);
     assert!(named.len() >= 311);
@@ -244,7 +244,7 @@ fn the_atlas_with_all_structures_opens_from_the_examples_in_the_background() {
     let camera = app.scene.camera;
     let toward_eye = (camera.eye - camera.target).normalize();
     assert!(
-        toward_eye.dot(crate::default_anatomy::FRONT) > 0.9,
+        toward_eye.dot(crate::anatomy::default_scene::FRONT) > 0.9,
         "{camera:?}"
     );
 }

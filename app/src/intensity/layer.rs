@@ -1,6 +1,6 @@
 //! The scene's image layer: which image, its window, where it is shown and how it mixes with the
 //! structure colour. Part of [`crate::scene::Scene`]; stored in sessions as the `"image"` object
-//! (`crate::session_image`).
+//! (`crate::session::image`).
 
 use std::sync::Arc;
 

@@ -134,7 +134,7 @@ pub struct Renderer {
     frame_index: u64,
     image: super::image_layer::ImageRenderer,
     /// Hands the allocator's free pages back after a preview or model uploads were dropped.
-    free_pages: crate::free_pages::FreePages,
+    free_pages: crate::platform::free_pages::FreePages,
 }
 
 impl Renderer {

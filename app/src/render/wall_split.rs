@@ -4,7 +4,7 @@
 //! averaged over every face of a lip vertex blend the wall into the surface, which draws bright
 //! smeared shards along the lips, and in the model's colour the opened incision does not read as
 //! two lips and the inside of the tissue. So a mesh with wall faces
-//! ([`crate::wall_faces::WallFaces`]) is drawn with its lip vertices split:
+//! ([`crate::scene::wall_faces::WallFaces`]) is drawn with its lip vertices split:
 //!
 //! - vertex `v` of the mesh stays vertex `v` of the draw data with the **surface** normal: the
 //!   area-weighted sum over its non-wall faces only (zero for a floor vertex, which no surface

@@ -21,7 +21,7 @@
 //! own half-edge copy in the rest pose; the scene shows that pose opened by the DFFD when an
 //! opening width is set. Every mesh the scalpel puts into the scene (and every detached piece)
 //! marks its model [`MeshOrigin::Edited`], so Save Session writes the cut mesh instead of naming
-//! the file it was loaded from (`crate::session_meshes`).
+//! the file it was loaded from (`crate::session::meshes`).
 //!
 //! ## Drawing a stroke in progress (a step touches only its neighbourhood)
 //! Copying a 2M-triangle mesh into the scene and uploading it after every step costs the UI

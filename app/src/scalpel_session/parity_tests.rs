@@ -114,7 +114,7 @@ fn a_stroke_replayed_by_the_command_line_gives_the_windows_meshes_bit_for_bit() 
     });
     let path = dir.join("path.json");
     std::fs::write(&path, json.to_string()).unwrap();
-    let parsed = crate::path_file::read_path_file(&path).unwrap();
+    let parsed = crate::io::path_file::read_path_file(&path).unwrap();
     assert_eq!(
         parsed.strokes, fed,
         "the path file holds the window's points exactly"

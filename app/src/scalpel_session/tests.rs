@@ -177,8 +177,8 @@ fn a_drag_across_a_sphere_cuts_a_closed_groove_step_by_step() {
 
 #[test]
 fn a_drag_across_the_knee_skin_cuts_a_closed_groove() {
-    let knee = crate::assets::scene("knee").expect("embedded knee");
-    let models = crate::assets::load_scene(knee).expect("knee loads");
+    let knee = crate::anatomy::assets::scene("knee").expect("embedded knee");
+    let models = crate::anatomy::assets::load_scene(knee).expect("knee loads");
     let skin = models
         .into_iter()
         .find(|m| m.name.to_ascii_lowercase().contains("skin"))
@@ -428,7 +428,7 @@ fn a_saved_scalpel_stroke_reopens_bit_for_bit() {
     assert_eq!(again.models[0].wall_faces(), recut_walls);
     assert!(position_bits(&again.models[0].mesh) == position_bits(recut));
     assert!(recut.triangle_count() > cut.triangle_count());
-    let files = std::fs::read_dir(crate::session_meshes::mesh_dir(&path))
+    let files = std::fs::read_dir(crate::session::meshes::mesh_dir(&path))
         .unwrap()
         .count();
     assert_eq!(files, 1);

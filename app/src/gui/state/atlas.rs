@@ -16,7 +16,7 @@ impl AtlasArrival {
     /// Starts surfacing the atlas's labels (a running job is cancelled first).
     pub fn start(&mut self, ctx: &egui::Context) {
         self.start_with(ctx, |progress| {
-            crate::default_anatomy::load_structures(&|fraction| {
+            crate::anatomy::default_scene::load_structures(&|fraction| {
                 progress.set((fraction.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
                 !progress.is_cancelled()
             })

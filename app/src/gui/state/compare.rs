@@ -28,7 +28,7 @@ pub(in crate::gui) struct Request {
 impl Request {
     pub(in crate::gui) fn of(scene: &Scene, tile: [u32; 2], options: &MetricsOptions) -> Request {
         let c = scene.camera;
-        let mut variants = crate::variants::all(scene);
+        let mut variants = crate::scene::variants::all(scene);
         variants.truncate(MAX_SHOWN);
         Request {
             variants,

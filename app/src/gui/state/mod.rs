@@ -128,7 +128,7 @@ impl AppState {
 
     /// Sets an error message (one line, kept until the next message).
     pub fn complain(&mut self, error: &anyhow::Error) {
-        self.status.message = crate::errors::error_line(error);
+        self.status.message = crate::platform::errors::error_line(error);
         self.status.is_error = true;
     }
 

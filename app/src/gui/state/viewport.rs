@@ -156,7 +156,7 @@ impl ViewportState {
             anyhow::bail!("{}: no gesture is being recorded", path.display());
         };
         let gesture = recording.gesture();
-        crate::gesture::write_gesture(path, &gesture)?;
+        crate::io::gesture::write_gesture(path, &gesture)?;
         Ok(gesture.events.len())
     }
 
@@ -175,11 +175,11 @@ impl ViewportState {
 
 impl Recording {
     /// The recording as a gesture (the format `cutaway extrude` replays).
-    pub fn gesture(&self) -> crate::gesture::Gesture {
-        crate::gesture::Gesture {
+    pub fn gesture(&self) -> crate::io::gesture::Gesture {
+        crate::io::gesture::Gesture {
             viewport: self.viewport,
             camera: self.camera,
-            cut: crate::gesture::CutSettings {
+            cut: crate::io::gesture::CutSettings {
                 kind: self.init.kind,
                 spacing: self.init.spacing,
                 smooth: self.init.smooth,
@@ -276,7 +276,7 @@ mod tests {
             std::env::temp_dir().join(format!("cutaway-gesture-{}.json", std::process::id()));
         assert_eq!(state.save_recording(&path).unwrap(), 5);
         assert!(state.recording.is_none());
-        let back = crate::gesture::read_gesture(&path).unwrap();
+        let back = crate::io::gesture::read_gesture(&path).unwrap();
         assert_eq!(back, recording.gesture());
         let text = std::fs::read_to_string(&path).unwrap();
         assert!(text.contains("cutaway-gesture/1"));

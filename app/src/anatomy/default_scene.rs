@@ -51,9 +51,9 @@ pub const ATLAS_FILE: &str = "hncma-atlas.nrrd";
 /// The skin surface's file name under `assets/spl_head/`.
 pub const SKIN_FILE: &str = "skin.ply";
 
-static ATLAS: &[u8] = include_bytes!("../../assets/spl_head/hncma-atlas.nrrd");
-static TABLE: &str = include_str!("../../assets/spl_head/hncma-atlas-lut.ctbl");
-static SKIN: &[u8] = include_bytes!("../../assets/spl_head/skin.ply");
+static ATLAS: &[u8] = include_bytes!("../../../assets/spl_head/hncma-atlas.nrrd");
+static TABLE: &str = include_str!("../../../assets/spl_head/hncma-atlas-lut.ctbl");
+static SKIN: &[u8] = include_bytes!("../../../assets/spl_head/skin.ply");
 
 /// Smoothing of the label surfaces: the reader's default, so the default scene is what opening
 /// `hncma-atlas.nrrd` gives.

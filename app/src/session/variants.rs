@@ -1,4 +1,4 @@
-//! The session fields of cut variants ([`crate::variants`]), kept apart from the rest of the
+//! The session fields of cut variants ([`crate::scene::variants`]), kept apart from the rest of the
 //! session format so they can grow without touching it:
 //!
 //! ```json
@@ -14,13 +14,13 @@
 //!   writes the file; on load the top-level `cutters` are what counts for the active variant.
 //! - Variant names are 1 to 80 characters, distinct, without control characters;
 //!   `active_variant` (default 0) indexes `variants`. Every variant's cutters obey the rules and
-//!   limits of `cutters` ([`crate::session_limits`]); errors name the variant.
+//!   limits of `cutters` ([`crate::session::limits`]); errors name the variant.
 
 use serde::{Deserialize, Serialize};
 
 use crate::scene::Scene;
-use crate::session_cutters::{CutterEntry, cutter_entry, cutter_from_entry};
-use crate::variants::{Variant, Variants};
+use crate::session::cutters::{CutterEntry, cutter_entry, cutter_from_entry};
+use crate::scene::variants::{Variant, Variants};
 
 /// One variant as stored.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -81,7 +81,7 @@ pub fn entries(scene: &Scene) -> (Vec<VariantEntry>, usize) {
     if scene.variants.is_empty() {
         return (Vec::new(), 0);
     }
-    let list = crate::variants::all(scene)
+    let list = crate::scene::variants::all(scene)
         .into_iter()
         .map(|(name, cutters)| VariantEntry {
             name,
@@ -128,8 +128,8 @@ mod tests {
         );
         let file = parse(&text(&variants, 0)).unwrap();
         let scene = scene_from_file(&file, Path::new("/s"), &mut one_sphere).unwrap();
-        assert_eq!(crate::variants::names(&scene), ["straight", "wedge"]);
-        let all = crate::variants::all(&scene);
+        assert_eq!(crate::scene::variants::names(&scene), ["straight", "wedge"]);
+        let all = crate::scene::variants::all(&scene);
         assert_eq!(all[1].1[0].cutter.kind, cutter::CutKind::Wedge);
         assert_eq!(all[1].1[0].cutter.planes[0].front_top.x, 0.5);
         let saved = file_from_scene(&scene, Path::new("/s"));
@@ -175,7 +175,7 @@ mod tests {
         assert!(e.contains("variant 1 ('b'): cutter 0: kind"), "{e}");
         let e = error(r#"[{"name": "a"}, {"name": "a"}]"#, 0);
         assert!(e.contains("used twice"), "{e}");
-        let many = vec![r#"{"name": "x"}"#; crate::session_limits::MAX_VARIANTS + 1].join(",");
+        let many = vec![r#"{"name": "x"}"#; crate::session::limits::MAX_VARIANTS + 1].join(",");
         let e = error(&format!("[{many}]"), 0);
         assert!(e.contains("variants: 65 variants"), "{e}");
         let e = error(&text_plane_flood(), 0);

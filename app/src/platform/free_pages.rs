@@ -1,6 +1,6 @@
 //! Pages the allocator keeps after large frees go back to the system.
 //!
-//! Blocks of [`LARGE_BLOCK`](crate::large_blocks::LARGE_BLOCK) or more are mapped on their own and
+//! Blocks of [`LARGE_BLOCK`](crate::platform::large_blocks::LARGE_BLOCK) or more are mapped on their own and
 //! returned when freed, but everything smaller comes from glibc's arenas, one per thread that
 //! allocates (the UI thread, the live-cut worker, the parallel cut's workers, and on a software
 //! adapter the driver's threads). A freed chunk inside an arena stays resident until the same

@@ -1,5 +1,5 @@
 //! The session file's types as they are on disk (serde), with the format tags: what
-//! [`crate::session`] parses and writes, what [`crate::session_limits`] bounds before anything is
+//! [`crate::session`] parses and writes, what [`crate::session::limits`] bounds before anything is
 //! loaded. In a file of their own so that the bounds check and the loader both build on them
 //! without importing each other.
 
@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
-pub use crate::session_cutters::{
+pub use crate::session::cutters::{
     CutterEntry, SubCutterEntry, ViewsEntry, cutter_entry, cutter_from_entry,
 };
 
@@ -32,18 +32,18 @@ pub struct SessionFile {
     /// The patient's axes in world space; absent in older files (then guessed from the data).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub orientation: Option<OrientationEntry>,
-    /// The intensity image on the walls ([`crate::session_image`]).
+    /// The intensity image on the walls ([`crate::session::image`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub image: Option<crate::session_image::ImageEntry>,
-    /// Named cutter sets ([`crate::session_variants`]); `cutters` are the active one's.
+    pub image: Option<crate::session::image::ImageEntry>,
+    /// Named cutter sets ([`crate::session::variants`]); `cutters` are the active one's.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub variants: Vec<crate::session_variants::VariantEntry>,
+    pub variants: Vec<crate::session::variants::VariantEntry>,
     /// Index into `variants` of the variant `cutters` belong to.
-    #[serde(default, skip_serializing_if = "crate::session_variants::is_zero")]
+    #[serde(default, skip_serializing_if = "crate::session::variants::is_zero")]
     pub active_variant: usize,
-    /// Measured distances ([`crate::session_rulers`]).
+    /// Measured distances ([`crate::session::rulers`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub rulers: Vec<crate::session_rulers::RulerEntry>,
+    pub rulers: Vec<crate::session::rulers::RulerEntry>,
 }
 
 /// `orientation`: world directions of the patient's superior and anterior (unit, orthogonal).
@@ -78,7 +78,7 @@ pub struct ModelEntry {
     #[serde(default = "yes")]
     pub visible: bool,
     /// The file is this one model exactly as stored (a mesh Cutaway wrote for an edited model,
-    /// see [`crate::session_meshes`]): read verbatim, no welding, no region split.
+    /// see [`crate::session::meshes`]): read verbatim, no welding, no region split.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub exact: bool,
     /// The model's display name (written for `exact` entries, whose file name is not the name,

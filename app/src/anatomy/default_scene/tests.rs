@@ -288,7 +288,7 @@ fn a_session_of_the_default_scene_surfaces_only_the_structures_it_picks() {
     let surfaced = |path: &Path| {
         let mut surfaced = 0;
         let scene = crate::session::load_with(path, |file, unit, only| {
-            let models = crate::assets::load_or_embedded_picking(file, unit, only)?;
+            let models = crate::anatomy::assets::load_or_embedded_picking(file, unit, only)?;
             surfaced += models.len();
             Ok(models)
         });

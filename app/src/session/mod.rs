@@ -19,17 +19,28 @@
 //!   `"region": k` (0-based) to every entry, so per-region colours survive a round trip.
 //! - A model edited since it was loaded (scalpel strokes, a detached piece, Remove All Cut
 //!   Geometry) is saved as a mesh file of its own next to the session, named with `"exact": true`
-//!   (read verbatim, one model); see [`crate::session_meshes`].
+//!   (read verbatim, one model); see [`crate::session::meshes`].
 //! - Unknown fields are ignored, never an error; missing optional fields take their defaults
 //!   (colour: distinct colours, opacity 1, solid, visible, no cutters, a framing camera, default
 //!   render settings).
 //! - Saving is atomic: the JSON goes to a temporary file next to the target, then is renamed over
 //!   it ([`crate::io::write_file`]), so a crash never leaves a half-written session; with its
-//!   meshes folder it is replaced as a set (see [`crate::session_meshes`] for why the order of
+//!   meshes folder it is replaced as a set (see [`crate::session::meshes`] for why the order of
 //!   the writes is enough).
-//! - Counts and sizes are bounded when the file is parsed ([`crate::session_limits`]), before
+//! - Counts and sizes are bounded when the file is parsed ([`crate::session::limits`]), before
 //!   anything is loaded or built.
 //! - Every error is one line naming the session file and the problem.
+
+pub mod cutters;
+pub mod format;
+pub mod image;
+pub mod limits;
+pub mod meshes;
+pub mod paths;
+pub mod picks;
+pub mod rulers;
+pub mod variants;
+pub mod volumes;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -42,8 +53,8 @@ use crate::scene::{
     MeshOrigin, ModelStyle, ModelUnit, RenderSettings, Scene, SceneModel, Stereo, distinct_colors,
 };
 
-pub use crate::session_format::*;
-pub use crate::session_paths::relative_path;
+pub use crate::session::format::*;
+pub use crate::session::paths::relative_path;
 
 /// Parses a session's text (no file access). Errors say what is wrong and where (line, column).
 pub fn parse(text: &str) -> anyhow::Result<SessionFile> {
@@ -55,7 +66,7 @@ pub fn parse(text: &str) -> anyhow::Result<SessionFile> {
             file.format
         );
     }
-    crate::session_limits::check(&file)?;
+    crate::session::limits::check(&file)?;
     Ok(file)
 }
 
@@ -64,7 +75,7 @@ pub fn parse(text: &str) -> anyhow::Result<SessionFile> {
 /// (`…/assets/<scene>/<part>.ply`) that do not exist on disk are served from the embedded
 /// phantoms, so sessions saved from the examples open anywhere.
 pub fn load(path: &Path) -> anyhow::Result<Scene> {
-    load_with(path, crate::assets::load_or_embedded_picking)
+    load_with(path, crate::anatomy::assets::load_or_embedded_picking)
 }
 
 /// Loads one model file or folder as a list of models of one [`ModelUnit`]: its regions in file
@@ -75,7 +86,7 @@ pub type LoadModels<'a> = dyn FnMut(&Path, ModelUnit) -> anyhow::Result<Vec<crat
 /// session file (or the model file that failed).
 /// `load_models` also gets the positions of the structures the session picks from the file
 /// (`None`: all of them, or regions); it may return just those, each with its position as
-/// `index` (see [`crate::session_picks`]).
+/// `index` (see [`crate::session::picks`]).
 pub fn load_with(
     path: &Path,
     mut load_models: impl FnMut(
@@ -88,10 +99,10 @@ pub fn load_with(
         .with_context(|| format!("{}", path.display()))?;
     let file = parse(&text).with_context(|| format!("{}", path.display()))?;
     let folder = path.parent().unwrap_or(Path::new(""));
-    let picks = crate::session_picks::structure_picks(&file, folder);
+    let picks = crate::session::picks::structure_picks(&file, folder);
     let mut load_picked = |source: &Path, unit: ModelUnit| {
         let only = match unit {
-            ModelUnit::Structure => crate::session_picks::picks_of(&picks, source),
+            ModelUnit::Structure => crate::session::picks::picks_of(&picks, source),
             ModelUnit::Region => None,
         };
         load_models(source, unit, only)
@@ -164,7 +175,7 @@ pub fn scene_from_file(
             ModelUnit::Structure => (entry.structure, "structure"),
         };
         let picked: Vec<(usize, &crate::io::Model)> = match picked_index {
-            Some(r) => match crate::session_picks::at_position(regions, r) {
+            Some(r) => match crate::session::picks::at_position(regions, r) {
                 Some(m) => vec![(r, m)],
                 None => anyhow::bail!(
                     "model {i}: {what} {r} of {} does not exist (it has {} {what}s)",
@@ -179,7 +190,7 @@ pub fn scene_from_file(
             let color = entry.color.unwrap_or_else(|| match unit {
                 ModelUnit::Region => distinct_colors(index + 1)[index],
                 ModelUnit::Structure => {
-                    crate::anatomy_colors::structure_color(&model.name, model.color, index)
+                    crate::anatomy::colors::structure_color(&model.name, model.color, index)
                 }
             });
             let name = match (&entry.name, entry.exact, unit) {
@@ -191,7 +202,7 @@ pub fn scene_from_file(
                 _ => model.group.clone(),
             };
             let mesh = Arc::new(model.mesh.clone());
-            let walls = crate::wall_faces::WallFaces::new(&mesh, exact_walls.clone());
+            let walls = crate::scene::wall_faces::WallFaces::new(&mesh, exact_walls.clone());
             scene.models.push(SceneModel {
                 name,
                 source: model.source.clone(),
@@ -230,8 +241,8 @@ pub fn scene_from_file(
         })?,
         None => crate::view::Orientation::guess(&scene.bbox(), false),
     };
-    scene.variants = crate::session_variants::from_entries(&file.variants, file.active_variant)?;
-    scene.rulers = crate::session_rulers::from_entries(&file.rulers)?;
+    scene.variants = crate::session::variants::from_entries(&file.variants, file.active_variant)?;
+    scene.rulers = crate::session::rulers::from_entries(&file.rulers)?;
     scene.camera = match file.camera {
         Some(c) => Camera {
             eye: DVec3::from_array(c.eye),
@@ -254,7 +265,7 @@ pub fn scene_from_file(
         };
     }
     if let Some(entry) = &file.image {
-        scene.image = Some(crate::session_image::load(entry, folder, &scene)?);
+        scene.image = Some(crate::session::image::load(entry, folder, &scene)?);
     }
     scene.sanity_check().map_err(anyhow::Error::msg)?;
     Ok(scene)
@@ -287,7 +298,7 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
         })
         .collect();
     let cutters = scene.cutters.iter().map(cutter_entry).collect();
-    let (variants, active_variant) = crate::session_variants::entries(scene);
+    let (variants, active_variant) = crate::session::variants::entries(scene);
     let c = scene.camera;
     SessionFile {
         format: if structures_format { FORMAT } else { FORMAT_V1 }.to_string(),
@@ -311,20 +322,20 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
         image: scene
             .image
             .as_ref()
-            .map(|layer| crate::session_image::entry(layer, folder)),
+            .map(|layer| crate::session::image::entry(layer, folder)),
         variants,
         active_variant,
-        rulers: crate::session_rulers::entries(&scene.rulers),
+        rulers: crate::session::rulers::entries(&scene.rulers),
     }
 }
 
 /// Saves `scene` to `path` atomically (temporary file in the same folder, then rename). Models
 /// whose mesh no file holds (edited since loaded) are written next to the session first, and the
 /// mesh files the new session no longer names are removed after it is in place
-/// ([`crate::session_meshes`]).
+/// ([`crate::session::meshes`]).
 pub fn save(path: &Path, scene: &Scene) -> anyhow::Result<()> {
     let folder = path.parent().unwrap_or(Path::new(""));
-    let meshes = crate::session_meshes::write_meshes(path, scene)
+    let meshes = crate::session::meshes::write_meshes(path, scene)
         .with_context(|| format!("{}", path.display()))?;
     let mut file = file_from_scene(scene, folder);
     point_entries(&mut file, scene, &meshes, folder);
@@ -332,11 +343,11 @@ pub fn save(path: &Path, scene: &Scene) -> anyhow::Result<()> {
         serde_json::to_string_pretty(&file).with_context(|| format!("{}", path.display()))?;
     text.push('\n');
     crate::io::write_file(path, text.as_bytes())?;
-    crate::session_meshes::remove_stale(path, &meshes);
+    crate::session::meshes::remove_stale(path, &meshes);
     Ok(())
 }
 
-/// Points the entries of models with a mesh file of their own (from [`crate::session_meshes::write_meshes`]) at that
+/// Points the entries of models with a mesh file of their own (from [`crate::session::meshes::write_meshes`]) at that
 /// file: path relative to `folder` (the session's folder), `exact`, region 0, the model's name.
 fn point_entries(
     file: &mut SessionFile,

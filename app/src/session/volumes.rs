@@ -16,7 +16,7 @@ pub fn structures(
     progress: &(dyn Fn(f32) -> bool + Sync),
 ) -> anyhow::Result<Vec<Model>> {
     if !(file.is_file() && crate::io::volume::is_volume(file)) {
-        return crate::assets::load_or_embedded_picking(
+        return crate::anatomy::assets::load_or_embedded_picking(
             file,
             crate::scene::ModelUnit::Structure,
             only,

@@ -18,7 +18,7 @@
 //! the limit of 1000`); the caller adds the file name.
 
 use crate::io::MAX_ABS_COORDINATE;
-use crate::session_format::{CutterEntry, SessionFile, SubCutterEntry};
+use crate::session::format::{CutterEntry, SessionFile, SubCutterEntry};
 
 /// Most model entries in one session.
 pub const MAX_MODELS: usize = 10_000;
@@ -46,7 +46,7 @@ pub fn check(file: &SessionFile) -> anyhow::Result<()> {
         );
     }
     check_cutters(&file.cutters, "")?;
-    crate::session_rulers::check(&file.rulers)?;
+    crate::session::rulers::check(&file.rulers)?;
     if file.variants.len() > MAX_VARIANTS {
         anyhow::bail!(
             "variants: {} variants, more than the limit of {MAX_VARIANTS}",

@@ -4,7 +4,7 @@
 //! in metres and a knee in millimetres both read in mm.
 //!
 //! Egui-free: the window picks the points and draws the rulers, `cutaway render` draws saved ones
-//! over its image, and the session stores them ([`crate::session_rulers`]).
+//! over its image, and the session stores them ([`crate::session::rulers`]).
 
 use glam::DVec3;
 

@@ -40,7 +40,7 @@ pub const MAX_WHEEL_DELTA: f64 = 1000.0;
 /// count), and 100 keep a replay well within 2 s.
 pub const MAX_REPLAY_BOXES: usize = 100;
 /// Most CPU time a replay's events may use before it stops with an error (the replaying thread's
-/// own time, [`crate::thread_time`]: the machine's load does not count). The box cap alone does not
+/// own time, [`crate::platform::thread_time`]: the machine's load does not count). The box cap alone does not
 /// bound a replay: thousands of moves that each re-fit a cutter of many boxes (a 16-pixel
 /// viewport, each pixel a large step) stay under the cap and took 38 s; so the replay also
 /// stops at this deadline, which leaves room for reading the target, indexing it and writing

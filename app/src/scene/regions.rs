@@ -42,7 +42,7 @@ impl std::fmt::Display for SplitRefused {
 /// `<group>/<name>`. Returns how many models the structure became.
 pub fn split_into_regions(scene: &mut Scene, index: usize) -> Result<usize, SplitRefused> {
     let model = scene.models.get(index).ok_or(SplitRefused::NoModel)?;
-    let cut = crate::variants::all(scene)
+    let cut = crate::scene::variants::all(scene)
         .iter()
         .any(|(_, cutters)| cutters.iter().any(|c| c.target == index));
     if cut {

@@ -1,4 +1,4 @@
-//! The session field of rulers ([`crate::ruler`]), kept apart from the rest of the session
+//! The session field of rulers ([`crate::scene::ruler`]), kept apart from the rest of the session
 //! format:
 //!
 //! ```json
@@ -13,7 +13,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::io::MAX_ABS_COORDINATE;
-use crate::ruler::Ruler;
+use crate::scene::ruler::Ruler;
 
 /// Most rulers in one session (far above what a person measures by hand).
 pub const MAX_RULERS: usize = 1_000;

@@ -10,7 +10,7 @@
 use std::sync::OnceLock;
 
 /// The table's text, as shipped.
-const TABLE: &str = include_str!("../../assets/anatomy_colors.txt");
+const TABLE: &str = include_str!("../../../assets/anatomy_colors.txt");
 
 /// One entry: its words (lower case) and its sRGB colour in 0..=1.
 #[derive(Debug)]

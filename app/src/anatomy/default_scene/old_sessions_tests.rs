@@ -73,7 +73,7 @@ fn check(scene: &Scene, how: &str) {
 fn a_session_of_the_model_file_default_opens_from_the_cli_and_the_window() {
     let scene = crate::session::load(&fixture()).unwrap_or_else(|e| panic!("{e:#}"));
     check(&scene, "session::load");
-    let progress = crate::jobs::Progress::default();
+    let progress = crate::platform::jobs::Progress::default();
     let scene =
         crate::gui::bridge::load_session(&fixture(), &progress).unwrap_or_else(|e| panic!("{e:#}"));
     check(&scene, "the window's loader");

@@ -83,7 +83,7 @@ pub fn entry(layer: &ImageLayer, folder: &Path) -> ImageEntry {
         on.push("slices".to_string());
     }
     ImageEntry {
-        path: crate::session_paths::relative_path(&layer.image.source, folder),
+        path: crate::session::paths::relative_path(&layer.image.source, folder),
         window: Some([layer.window.level, layer.window.width]),
         on: Some(on),
         display: Some(layer.display.name().to_string()),

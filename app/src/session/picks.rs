@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::io::Model;
-use crate::session_format::SessionFile;
+use crate::session::format::SessionFile;
 
 /// Per file that session entries read as structures: the positions they pick, or `None` when an
 /// entry takes every structure of the file.
@@ -18,7 +18,7 @@ pub type StructurePicks = Vec<(PathBuf, Option<Vec<usize>>)>;
 /// session's reader resolves them.
 pub fn structure_picks(file: &SessionFile, folder: &Path) -> StructurePicks {
     let mut picks: StructurePicks = Vec::new();
-    if file.format == crate::session_format::FORMAT_V1 {
+    if file.format == crate::session::format::FORMAT_V1 {
         return picks;
     }
     for entry in file

@@ -15,6 +15,11 @@
 //! Colours are sRGB-encoded components in 0..=1, as the colour picker shows them and as the
 //! session file stores them; the renderer converts them to linear light.
 
+pub mod regions;
+pub mod ruler;
+pub mod variants;
+pub mod wall_faces;
+
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -22,8 +27,8 @@ use csg::{Aabb, Mesh};
 use cutter::Camera;
 use glam::DVec3;
 
-use crate::ruler::Ruler;
-use crate::wall_faces::WallFaces;
+use crate::scene::ruler::Ruler;
+use crate::scene::wall_faces::WallFaces;
 
 /// How a model's surface is drawn.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -114,7 +119,7 @@ impl SceneModel {
     }
 }
 
-/// Where a model's mesh came from (see `crate::session_meshes`).
+/// Where a model's mesh came from (see `crate::session::meshes`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum MeshOrigin {
     /// Region `region` of `source`, as loading that file gives it: a session names the file and
@@ -317,9 +322,9 @@ pub struct Scene {
     pub unit: crate::view::LengthUnit,
     /// The intensity image shown on the walls, slices and ribbons (`None`: no image).
     pub image: Option<crate::intensity::ImageLayer>,
-    /// Named cutter sets; `cutters` are those of the active one (see `variants.rs`).
+    /// Named cutter sets; `cutters` are those of the active one (see `scene/variants.rs`).
     pub variants: Variants,
-    /// Distances measured between surface points ([`crate::ruler`]).
+    /// Distances measured between surface points ([`crate::scene::ruler`]).
     pub rulers: Vec<Ruler>,
 }
 
@@ -516,7 +521,7 @@ fn hsv_to_rgb(h: f32, s: f32, v: f32) -> [f32; 3] {
     }
 }
 
-/// One named cutter set (`variants.rs` switches and creates them).
+/// One named cutter set (`scene/variants.rs` switches and creates them).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Variant {
     pub name: String,
