@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 
 use cutaway::gui::app::Action;
 use cutaway::gui::bridge::frame_inputs;
-use cutaway::gui::view_menu::ViewCommand;
+use cutaway::gui::viewport::view_menu::ViewCommand;
 use cutaway::gui::{CutawayApp, Mode, StartOptions};
 use cutaway::view::{LengthUnit, Orientation, ViewPreset};
 use egui_kittest::Harness;
@@ -392,7 +392,7 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
     let listed = dir.join("listed");
     std::fs::create_dir_all(listed.join("models")).unwrap();
     std::fs::write(listed.join("one.json"), "{}").unwrap();
-    h.state_mut().browser = Some(cutaway::gui::file_browser::FileBrowser::new(
+    h.state_mut().browser = Some(cutaway::gui::panels::file_browser::FileBrowser::new(
         cutaway::gui::app::Purpose::OpenSession,
         Some(listed),
     ));
@@ -409,7 +409,7 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
     // A native dialog believed available that closes at once (a D-Bus session without a file
     // portal) brings the browser too. Only where nothing could really open, so the test never
     // waits on a person.
-    if cutaway::gui::file_browser::native_dialogs_available() {
+    if cutaway::gui::panels::file_browser::native_dialogs_available() {
         println!("a native dialog may open here: the closes-at-once fallback is not tried");
     } else {
         h.state_mut().native_dialogs = true;

@@ -22,7 +22,7 @@ use std::path::Path;
 use cutaway::cutting::cut_scene::PartKind;
 use cutaway::gui::app::Action;
 use cutaway::gui::bridge::frame_inputs;
-use cutaway::gui::view_menu::ViewCommand;
+use cutaway::gui::viewport::view_menu::ViewCommand;
 use cutaway::gui::{CutawayApp, Mode};
 use cutter::EditorSettings;
 use egui_kittest::Harness;

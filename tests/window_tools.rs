@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 
 use cutaway::gui::CutawayApp;
 use cutaway::gui::app::Action;
-use cutaway::gui::variants_panel::VariantCommand;
+use cutaway::gui::panels::variants_panel::VariantCommand;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::{DVec2, DVec3};
@@ -271,7 +271,10 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
     apply(&mut h, Action::RemoveCutter(1));
     assert_eq!(h.state().scene.cutters.len(), 1);
     // Rename the active variant through the name field.
-    cutaway::gui::variants_panel::apply(h.state_mut(), VariantCommand::Rename("corner".into()));
+    cutaway::gui::panels::variants_panel::apply(
+        h.state_mut(),
+        VariantCommand::Rename("corner".into()),
+    );
     h.run_steps(2);
     assert_eq!(
         cutaway::scene::variants::names(&h.state().scene),
@@ -290,7 +293,7 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
     assert_eq!(h.state().scene.cutters.len(), 2);
 
     // A new empty variant, then deleted.
-    cutaway::gui::variants_panel::apply(h.state_mut(), VariantCommand::New("empty".into()));
+    cutaway::gui::panels::variants_panel::apply(h.state_mut(), VariantCommand::New("empty".into()));
     assert!(h.state().scene.cutters.is_empty());
     h.run_steps(2);
     h.get_by_label("Delete").click();
@@ -304,7 +307,10 @@ fn variants_are_made_switched_saved_and_compared_side_by_side() {
     let saved = dir.join("variants.json");
     apply(&mut h, Action::SaveSessionTo(saved.clone()));
     let reread = cutaway::session::load(&saved).unwrap();
-    assert_eq!(cutaway::scene::variants::names(&reread), ["current", "corner"]);
+    assert_eq!(
+        cutaway::scene::variants::names(&reread),
+        ["current", "corner"]
+    );
     let all = cutaway::scene::variants::all(&reread);
     assert_eq!((all[0].1.len(), all[1].1.len()), (2, 1));
 

@@ -119,7 +119,8 @@ fn bench(name: &str, scene: &Scene, focus: &str, critical: &str) {
 
 fn main() {
     let knee = cutaway::anatomy::assets::scene("knee").expect("the knee scene");
-    let knee = cut_scene(cutaway::anatomy::assets::load_scene_structures(knee).expect("load the knee"));
+    let knee =
+        cut_scene(cutaway::anatomy::assets::load_scene_structures(knee).expect("load the knee"));
     bench("knee", &knee, "femur", "popliteal");
     let head = cut_scene(cutaway::anatomy::default_scene::load().expect("load the SPL head"));
     bench("SPL head", &head, "left lateral ventricle", "optic chiasm");

@@ -123,8 +123,8 @@ fn decode_parts(scene: &Scene) -> anyhow::Result<Vec<Part>> {
         .iter()
         .map(|&(name, bytes)| {
             let path = scene.part_path(name);
-            let mesh =
-                crate::anatomy::phantom::ply::decode(bytes).with_context(|| path.display().to_string())?;
+            let mesh = crate::anatomy::phantom::ply::decode(bytes)
+                .with_context(|| path.display().to_string())?;
             Ok(Part {
                 name: name.to_string(),
                 color: None,
@@ -293,7 +293,8 @@ mod tests {
             .find(|p| p.name == "patella")
             .expect("patella");
         let mesh = crate::anatomy::phantom::generate_part(&spec).expect("generates");
-        let bytes = crate::anatomy::phantom::ply::encode(&mesh, crate::anatomy::phantom::PLY_COMMENT);
+        let bytes =
+            crate::anatomy::phantom::ply::encode(&mesh, crate::anatomy::phantom::PLY_COMMENT);
         let embedded = scene("knee")
             .and_then(|s| s.parts.iter().find(|p| p.0 == "patella"))
             .expect("embedded");

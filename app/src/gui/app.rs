@@ -16,15 +16,15 @@ use csg::Mesh;
 use crate::cutting::editing::CutterInit;
 use crate::scene::Scene;
 
-use super::jobs;
-use super::recovery::{self, RecentFiles, Recovery};
-use super::state::AppState;
-use super::state::viewport::ViewportState;
-use super::status_bar::StatusInfo;
-use super::undo::History;
+use crate::gui::jobs;
+use crate::gui::panels::status_bar::StatusInfo;
+use crate::gui::recovery::{self, RecentFiles, Recovery};
+use crate::gui::state::AppState;
+use crate::gui::state::viewport::ViewportState;
+use crate::gui::undo::History;
 
-pub use super::action::{Action, Mode, Purpose};
-pub use super::job_output::JobOutput;
+pub use crate::gui::action::{Action, Mode, Purpose};
+pub use crate::gui::job_output::JobOutput;
 
 /// Triangles of all models of `scene`.
 pub fn triangle_count(scene: &Scene) -> usize {
@@ -77,14 +77,14 @@ impl std::ops::DerefMut for CutawayApp {
 impl CutawayApp {
     pub fn new(cc: &eframe::CreationContext<'_>, start: StartOptions) -> CutawayApp {
         crate::platform::large_blocks::return_large_blocks_to_the_system();
-        super::menus::apply_style(&cc.egui_ctx);
+        crate::gui::panels::menus::apply_style(&cc.egui_ctx);
         let recovery = Recovery::new(start.state_dir.clone());
         let pending_recovery = if start.offer_recovery {
             recovery.pending()
         } else {
             None
         };
-        let gpu = super::bridge::install_renderer(cc.wgpu_render_state.as_ref());
+        let gpu = crate::gui::bridge::install_renderer(cc.wgpu_render_state.as_ref());
         let state = AppState {
             scene: new_scene(),
             mode: Mode::Camera,
@@ -106,7 +106,7 @@ impl CutawayApp {
             viewport: ViewportState::new(gpu),
             pending_recovery,
             browser: None,
-            native_dialogs: super::file_browser::native_dialogs_available(),
+            native_dialogs: crate::gui::panels::file_browser::native_dialogs_available(),
             pending_manual: None,
             export_image: Default::default(),
             export_meshes: Default::default(),
@@ -138,24 +138,24 @@ impl eframe::App for CutawayApp {
         self.state.frame_started = Instant::now();
         self.state.status.frame_ms = 0.9 * self.state.status.frame_ms + 0.1 * frame_ms;
         self.poll_jobs(&ctx);
-        super::atlas_arrival::poll(&mut self.state);
+        crate::gui::atlas_arrival::poll(&mut self.state);
         // Pick trees of new or replaced meshes are built on a worker, not at the first press.
         self.state.viewport.picks.prepare(&self.state.scene);
 
         let mut actions = self.shortcuts(&ctx);
-        actions.extend(super::view_menu::view_shortcuts(&ctx));
+        actions.extend(crate::gui::viewport::view_menu::view_shortcuts(&ctx));
         actions.extend(self.dropped_files(&ctx));
 
         egui::Panel::top("cutaway-menu").show(ui, |ui| {
-            actions.extend(super::menus::menu_bar_ui(ui, &mut self.state));
+            actions.extend(crate::gui::panels::menus::menu_bar_ui(ui, &mut self.state));
         });
         egui::Panel::top("cutaway-toolbar").show(ui, |ui| {
-            actions.extend(super::menus::toolbar_ui(ui, &mut self.state));
+            actions.extend(crate::gui::panels::menus::toolbar_ui(ui, &mut self.state));
         });
         egui::Panel::bottom("cutaway-status").show(ui, |ui| {
             self.refresh_status();
-            super::atlas_arrival::status_ui(ui, &mut self.state);
-            super::status_bar::status_bar_ui(ui, &self.state.status);
+            crate::gui::atlas_arrival::status_ui(ui, &mut self.state);
+            crate::gui::panels::status_bar::status_bar_ui(ui, &self.state.status);
         });
         egui::Panel::left("cutaway-side")
             .resizable(true)
@@ -165,29 +165,35 @@ impl eframe::App for CutawayApp {
                 // Both ways: a wide row (a long name, a note) scrolls instead of widening the
                 // panel, so the view keeps the width the user gave it.
                 egui::ScrollArea::both().show(ui, |ui| {
-                    actions.extend(super::models_panel::models_panel_ui(ui, &mut self.state));
+                    actions.extend(crate::gui::panels::models_panel::models_panel_ui(
+                        ui,
+                        &mut self.state,
+                    ));
                     ui.add_space(10.0);
-                    actions.extend(super::cutter_panel::cutter_panel_ui(ui, &mut self.state));
-                    super::image_panel::image_panel_ui(ui, &mut self.state);
+                    actions.extend(crate::gui::panels::cutter_panel::cutter_panel_ui(
+                        ui,
+                        &mut self.state,
+                    ));
+                    crate::gui::panels::image_panel::image_panel_ui(ui, &mut self.state);
                     if self.state.mode == Mode::Scalpel {
                         ui.add_space(10.0);
-                        super::scalpel_mode::scalpel_panel_ui(ui, &mut self.state);
+                        crate::gui::viewport::scalpel_mode::scalpel_panel_ui(ui, &mut self.state);
                     }
                 });
             });
-        if super::metrics_panel::side_panel_open(&self.state) {
+        if crate::gui::panels::metrics_panel::side_panel_open(&self.state) {
             egui::Panel::right("cutaway-metrics")
                 .resizable(true)
                 .default_size(300.0)
                 .show(ui, |ui| {
-                    super::metrics_panel::side_panel_ui(ui, &mut self.state)
+                    crate::gui::panels::metrics_panel::side_panel_ui(ui, &mut self.state)
                 });
         }
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {
                 if self.state.compare.open {
-                    super::compare_view::compare_ui(ui, &mut self.state);
+                    crate::gui::panels::compare_view::compare_ui(ui, &mut self.state);
                     return;
                 }
                 // No gap between the strip and the view (the window's clear colour showed there).
@@ -198,9 +204,9 @@ impl eframe::App for CutawayApp {
                     .inner_margin(egui::Margin::symmetric(8, 4))
                     .show(ui, |ui| {
                         ui.set_width(ui.available_width());
-                        super::key_reference::key_reference_ui(ui, self.state.mode);
+                        crate::gui::panels::key_reference::key_reference_ui(ui, self.state.mode);
                     });
-                actions.extend(super::viewport::viewport_ui(ui, &mut self.state));
+                actions.extend(crate::gui::viewport::viewport_ui(ui, &mut self.state));
             });
 
         actions.extend(self.dialogs_ui(&ctx));
@@ -220,16 +226,16 @@ impl eframe::App for CutawayApp {
         }
         self.state.commit_edit_if_idle(&ctx);
         self.update_preview(&ctx);
-        super::live_cut::update_live(&mut self.state, &ctx);
-        super::metrics_panel::update(&mut self.state, &ctx);
-        super::compare_view::update(&mut self.state, &ctx);
+        crate::gui::viewport::live_cut::update_live(&mut self.state, &ctx);
+        crate::gui::panels::metrics_panel::update(&mut self.state, &ctx);
+        crate::gui::panels::compare_view::update(&mut self.state, &ctx);
 
         if !self.state.exiting && self.state.recovery.due() {
             let result = self
                 .state
                 .recovery
                 .begin_save()
-                .and_then(|path| super::bridge::save_session(&self.state, &path));
+                .and_then(|path| crate::gui::bridge::save_session(&self.state, &path));
             if let Err(e) = result {
                 self.state.complain(&e.context("autosave"));
             }

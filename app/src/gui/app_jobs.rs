@@ -1,7 +1,7 @@
 //! The window's background work: what each job starts with, and how its result lands in the
 //! scene once it finishes.
 //!
-//! Loads, index builds, cuts and exports run on worker threads ([`super::jobs`]) so a frame never
+//! Loads, index builds, cuts and exports run on worker threads ([`crate::gui::jobs`]) so a frame never
 //! waits for them; every job ends as one [`JobOutput`] that [`CutawayApp::poll_jobs`] hands to
 //! `finish_job` on the UI thread, the only place a finished job changes the window's state.
 
@@ -9,9 +9,9 @@ use std::path::{Path, PathBuf};
 
 use crate::scene::SceneModel;
 
-use super::app::{CutawayApp, is_session_path, new_scene, triangle_count};
-use super::job_output::JobOutput;
-use super::jobs::{self, Job, Progress};
+use crate::gui::app::{CutawayApp, is_session_path, new_scene, triangle_count};
+use crate::gui::job_output::JobOutput;
+use crate::gui::jobs::{self, Job, Progress};
 
 impl CutawayApp {
     pub(super) fn spawn(
@@ -43,7 +43,7 @@ impl CutawayApp {
             ctx,
             format!("Loading the {name} example"),
             move |progress| {
-                let models = super::bridge::example_scene_models(&name, progress)?;
+                let models = crate::gui::bridge::example_scene_models(&name, progress)?;
                 Ok(JobOutput::Models {
                     models,
                     replace: true,
@@ -86,7 +86,7 @@ impl CutawayApp {
         self.spawn(ctx, format!("Indexing {name}"), move |progress| {
             progress.set_message(format!(
                 "{} triangles",
-                super::status_bar::grouped(mesh.triangle_count())
+                crate::gui::panels::status_bar::grouped(mesh.triangle_count())
             ));
             let (weak, index) = crate::cutting::editing::build_index(&mesh, progress)?;
             Ok(JobOutput::Index {
@@ -135,7 +135,9 @@ impl CutawayApp {
             } => {
                 // A dialog that "closes" within a blink never opened: no portal and no zenity.
                 if paths.is_empty() && took < std::time::Duration::from_millis(150) {
-                    self.state.browser = Some(super::file_browser::FileBrowser::new(purpose, None));
+                    self.state.browser = Some(crate::gui::panels::file_browser::FileBrowser::new(
+                        purpose, None,
+                    ));
                     self.state
                         .say("No native file dialog opened; choose in the window's browser");
                 } else {
@@ -148,10 +150,11 @@ impl CutawayApp {
                 sources,
                 image,
             } => {
-                let image = image.or_else(|| super::image_panel::image_kept(&self.state, replace));
+                let image = image
+                    .or_else(|| crate::gui::panels::image_panel::image_kept(&self.state, replace));
                 self.add_models(models, replace, &sources);
                 if let Some(layer) = image {
-                    super::image_panel::image_loaded(&mut self.state, layer);
+                    crate::gui::panels::image_panel::image_loaded(&mut self.state, layer);
                 }
             }
             JobOutput::Session { path, scene } => {
@@ -176,7 +179,9 @@ impl CutawayApp {
                     self.state.scene.cutters.len()
                 ));
             }
-            JobOutput::Image(layer) => super::image_panel::image_loaded(&mut self.state, layer),
+            JobOutput::Image(layer) => {
+                crate::gui::panels::image_panel::image_loaded(&mut self.state, layer)
+            }
             JobOutput::Index { model, mesh, index } => {
                 self.state.viewport.editor.store_index(mesh, index);
                 self.state.say(format!(
@@ -252,7 +257,11 @@ impl CutawayApp {
                 .push(SceneModel::structure(model, color));
         }
         if replace {
-            super::view_menu::orient_new_scene(&mut self.state, default_scene, from_volume);
+            crate::gui::viewport::view_menu::orient_new_scene(
+                &mut self.state,
+                default_scene,
+                from_volume,
+            );
             self.state.last_committed = self.state.scene.clone();
             self.state.recovery.mark_dirty();
         } else {
@@ -265,12 +274,12 @@ impl CutawayApp {
         };
         self.state.say(format!(
             "Loaded {what}: {count} models, {} triangles",
-            super::status_bar::grouped(triangle_count(&self.state.scene))
+            crate::gui::panels::status_bar::grouped(triangle_count(&self.state.scene))
         ));
     }
 
     pub(super) fn save_session(&mut self, path: &Path) -> anyhow::Result<()> {
-        super::bridge::save_session(&self.state, path)
+        crate::gui::bridge::save_session(&self.state, path)
     }
 
     pub(super) fn load_session(&mut self, ctx: &egui::Context, path: &Path) {
@@ -279,7 +288,7 @@ impl CutawayApp {
             ctx,
             format!("Opening {}", file_label(&path)),
             move |progress| {
-                let scene = super::bridge::load_session(&path, progress)?;
+                let scene = crate::gui::bridge::load_session(&path, progress)?;
                 Ok(JobOutput::Session {
                     path,
                     scene: Box::new(scene),
@@ -291,15 +300,15 @@ impl CutawayApp {
     pub(super) fn export_image_to(&mut self, ctx: &egui::Context, path: PathBuf) {
         let scene = self.state.scene.clone();
         // Camera and Scalpel modes show the cut too: the picture shows it as well.
-        let preview =
-            super::cut_view::shows_cut(self.state.mode) && !self.state.scene.cutters.is_empty();
+        let preview = crate::gui::viewport::cut_view::shows_cut(self.state.mode)
+            && !self.state.scene.cutters.is_empty();
         let settings = self.state.export_image.clone();
         self.spawn(
             ctx,
             format!("Exporting {}×{} image", settings.width, settings.height),
             move |progress| {
                 progress.set_message(file_label(&path));
-                Ok(JobOutput::Done(super::bridge::export_image(
+                Ok(JobOutput::Done(crate::gui::bridge::export_image(
                     &scene, preview, &settings, &path,
                 )?))
             },
@@ -310,7 +319,7 @@ impl CutawayApp {
         let scene = self.state.scene.clone();
         let settings = self.state.export_meshes.clone();
         self.spawn(ctx, "Exporting cut meshes", move |progress| {
-            let files = super::bridge::export_meshes(&scene, &settings, &dir, progress)?;
+            let files = crate::gui::bridge::export_meshes(&scene, &settings, &dir, progress)?;
             Ok(JobOutput::Done(format!(
                 "Exported {} meshes to {}",
                 files.len(),
@@ -321,16 +330,17 @@ impl CutawayApp {
 
     pub(super) fn export_turntable_to(&mut self, ctx: &egui::Context, dir: PathBuf) {
         let scene = self.state.scene.clone();
-        let preview =
-            super::cut_view::shows_cut(self.state.mode) && !self.state.scene.cutters.is_empty();
+        let preview = crate::gui::viewport::cut_view::shows_cut(self.state.mode)
+            && !self.state.scene.cutters.is_empty();
         let settings = self.state.export_turntable.clone();
         let label = format!(
             "Exporting a turntable of {} frames",
             settings.options.frames
         );
         self.spawn(ctx, label, move |progress| {
-            let message =
-                super::turntable_export::export(&scene, preview, &settings, &dir, progress)?;
+            let message = crate::gui::panels::turntable_export::export(
+                &scene, preview, &settings, &dir, progress,
+            )?;
             Ok(JobOutput::Done(message))
         });
     }
@@ -340,7 +350,9 @@ impl CutawayApp {
     /// it, and it holds every cut model's kept part and walls.
     pub(super) fn update_preview(&mut self, ctx: &egui::Context) {
         let key = crate::cutting::scene_cuts::PreviewKey::of(&self.state.scene);
-        if !super::cut_view::shows_cut(self.state.mode) || self.state.scene.cutters.is_empty() {
+        if !crate::gui::viewport::cut_view::shows_cut(self.state.mode)
+            || self.state.scene.cutters.is_empty()
+        {
             if self.state.viewport.preview_key.as_ref() != Some(&key) {
                 self.state.viewport.preview = None;
                 self.state.viewport.preview_key = None;

@@ -9,11 +9,11 @@ use std::sync::Arc;
 use crate::io::dropped::DropIntent;
 use crate::scene::Scene;
 
-use super::action::{Action, Mode, Purpose};
-use super::app::CutawayApp;
-use super::app_jobs::file_label;
-use super::job_output::JobOutput;
-use super::undo::Apply;
+use crate::gui::action::{Action, Mode, Purpose};
+use crate::gui::app::CutawayApp;
+use crate::gui::app_jobs::file_label;
+use crate::gui::job_output::JobOutput;
+use crate::gui::undo::Apply;
 use crate::view::camera_controls;
 
 impl CutawayApp {
@@ -185,7 +185,9 @@ impl CutawayApp {
                 self.state.pending_recovery = None;
                 self.state.recovery.discard();
             }
-            Action::View(command) => super::view_menu::apply(&mut self.state, command),
+            Action::View(command) => {
+                crate::gui::viewport::view_menu::apply(&mut self.state, command)
+            }
         }
     }
 
@@ -193,13 +195,13 @@ impl CutawayApp {
         if mode == self.state.mode {
             return;
         }
-        if mode == Mode::Scalpel && !super::bridge::SCALPEL_AVAILABLE {
+        if mode == Mode::Scalpel && !crate::gui::bridge::SCALPEL_AVAILABLE {
             self.state.say("The scalpel is not available in this build");
             return;
         }
         self.state.viewport.cancel_drag();
         if self.state.mode == Mode::Scalpel {
-            super::scalpel_mode::finish_stroke(&mut self.state);
+            crate::gui::viewport::scalpel_mode::finish_stroke(&mut self.state);
         }
         self.state.mode = mode;
         self.state.say(format!("{} mode", mode.label()));

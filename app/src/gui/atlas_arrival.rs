@@ -1,6 +1,6 @@
 //! The default scene in two steps, so its first frame never waits on the label surfaces: the
 //! skin is read at once (milliseconds) and drawn, and the atlas's label surfaces arrive from a
-//! background [`Job`](super::jobs::Job) with their progress and a Cancel in the status bar. While they surface the
+//! background [`Job`](crate::gui::jobs::Job) with their progress and a Cancel in the status bar. While they surface the
 //! window works as usual; the user may already orbit, select the skin and cut into it.
 //!
 //! Arriving structures are appended after the skin (no cutter's target index moves) and to every
@@ -11,9 +11,9 @@
 
 use std::time::Duration;
 
-use super::jobs::is_cancelled;
-use super::state::AppState;
-pub use super::state::atlas::AtlasArrival;
+use crate::gui::jobs::is_cancelled;
+use crate::gui::state::AppState;
+pub use crate::gui::state::atlas::AtlasArrival;
 use crate::io::Model;
 use crate::scene::SceneModel;
 
@@ -42,7 +42,8 @@ fn add_structures(app: &mut AppState, models: Vec<Model>, took: Duration) {
         .into_iter()
         .enumerate()
         .map(|(i, model)| {
-            let color = crate::anatomy::colors::structure_color(&model.name, model.color, first + i);
+            let color =
+                crate::anatomy::colors::structure_color(&model.name, model.color, first + i);
             SceneModel::structure(model, color)
         })
         .collect();
@@ -52,7 +53,7 @@ fn add_structures(app: &mut AppState, models: Vec<Model>, took: Duration) {
     app.say(format!(
         "Loaded the head atlas: {count} structures in {:.1} s, {} triangles",
         took.as_secs_f64(),
-        super::status_bar::grouped(
+        crate::gui::panels::status_bar::grouped(
             app.scene
                 .models
                 .iter()

@@ -7,10 +7,10 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec2;
 
-use super::jobs::Progress;
-use super::state::AppState;
 use crate::cutting::cut_scene;
 use crate::cutting::scene_cuts::cut_each_in_turn;
+use crate::gui::jobs::Progress;
+use crate::gui::state::AppState;
 use crate::render::{CutterOverlay, FrameInputs, OutputTarget, Renderer, ViewMode};
 use crate::scene::Scene;
 
@@ -59,16 +59,16 @@ impl egui_wgpu::CallbackTrait for ViewCallback {
 
 /// What the renderer draws for the window's current state.
 pub fn frame_inputs(app: &AppState, size: [u32; 2]) -> FrameInputs {
-    use super::action::Mode;
+    use crate::gui::action::Mode;
     // Camera and Scalpel draw the cut (without the removed-piece views) as Preview does.
     let cut = match app.mode {
-        Mode::Camera | Mode::Scalpel => super::cut_view::cut_without_views(app),
+        Mode::Camera | Mode::Scalpel => crate::gui::viewport::cut_view::cut_without_views(app),
         Mode::Preview => {
-            super::cut_view::drop_derived();
+            crate::gui::viewport::cut_view::drop_derived();
             app.viewport.preview.clone()
         }
         Mode::Edit => {
-            super::cut_view::drop_derived();
+            crate::gui::viewport::cut_view::drop_derived();
             None
         }
     };
@@ -80,7 +80,7 @@ pub fn frame_inputs(app: &AppState, size: [u32; 2]) -> FrameInputs {
     };
     let mut inputs = FrameInputs::new(app.scene.clone(), size, mode);
     inputs.preview = cut;
-    super::cut_view::highlight_selection(app, &mut inputs.scene);
+    crate::gui::viewport::cut_view::highlight_selection(app, &mut inputs.scene);
     if app.mode == Mode::Edit && app.viewport.live.enabled && !app.scene.cutters.is_empty() {
         inputs.preview = app.viewport.live.geometry();
         inputs.deltas = app.viewport.live.deltas();
@@ -220,7 +220,7 @@ pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
 pub fn export_image(
     scene: &Scene,
     preview: bool,
-    settings: &super::state::export_settings::ExportImageSettings,
+    settings: &crate::gui::state::export_settings::ExportImageSettings,
     path: &Path,
 ) -> anyhow::Result<String> {
     let mut options = crate::render::RenderPngOptions::new(settings.width, settings.height);
@@ -250,7 +250,7 @@ pub fn export_image(
 /// and writes the chosen parts into `dir`; returns the files written.
 pub fn export_meshes(
     scene: &Scene,
-    settings: &super::state::export_settings::ExportMeshSettings,
+    settings: &crate::gui::state::export_settings::ExportMeshSettings,
     dir: &Path,
     progress: &Progress,
 ) -> anyhow::Result<Vec<PathBuf>> {
@@ -397,7 +397,7 @@ pub fn memory_census(app: &AppState) -> crate::platform::memory_census::MemoryCe
     crate::platform::memory_census::MemoryCensus {
         live: app.viewport.live.census(),
         preview_triangles: app.viewport.preview.as_ref().map(|p| p.triangle_count()),
-        derived_cut: super::cut_view::holds_derived(),
+        derived_cut: crate::gui::viewport::cut_view::holds_derived(),
         editor_indexes: app.viewport.editor.index_count(),
         pick_trees: app.viewport.picks.tree_count(),
         gpu: app.wgpu.as_ref().and_then(|rs| {

@@ -22,7 +22,7 @@ fn remove_all_cut_geometry_leaves_the_closed_kept_part() {
 fn export_cut_meshes_writes_the_chosen_parts() {
     let scene = scene_with_cube_cut(CutterViews::default());
     let dir = std::env::temp_dir().join(format!("cutaway-export-{}", std::process::id()));
-    let settings = super::super::menus::ExportMeshSettings {
+    let settings = crate::gui::panels::menus::ExportMeshSettings {
         removed: true,
         ..Default::default()
     };

@@ -4,9 +4,9 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use super::action::{Action, Purpose};
-use super::app::CutawayApp;
-use super::job_output::JobOutput;
+use crate::gui::action::{Action, Purpose};
+use crate::gui::app::CutawayApp;
+use crate::gui::job_output::JobOutput;
 
 impl CutawayApp {
     pub(super) fn open_dialog(&mut self, ctx: &egui::Context, purpose: Purpose) {
@@ -23,7 +23,9 @@ impl CutawayApp {
                     .and_then(|p| p.parent().map(Path::to_path_buf))
             });
         if !self.state.native_dialogs {
-            self.state.browser = Some(super::file_browser::FileBrowser::new(purpose, start_dir));
+            self.state.browser = Some(crate::gui::panels::file_browser::FileBrowser::new(
+                purpose, start_dir,
+            ));
             return;
         }
         self.spawn(ctx, purpose.title(), move |_| {

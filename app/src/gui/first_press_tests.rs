@@ -2,8 +2,8 @@
 //! so the first press on a model after a load finds its tree (or waits for that worker) instead
 //! of building one on the UI thread.
 
-use super::app::{Action, Mode};
 use super::{CutawayApp, StartOptions};
+use crate::gui::app::{Action, Mode};
 
 /// One primary press and release at the centre of the view, nothing else.
 fn press_centre(h: &mut egui_kittest::Harness<'_, CutawayApp>) {
@@ -34,7 +34,7 @@ fn the_first_press_after_a_load_builds_no_pick_tree_on_the_ui_thread() {
         state_dir: dir.join("state"),
         offer_recovery: false,
     };
-    let mut h = super::test_window::open(start, 1024.0, 800.0);
+    let mut h = crate::gui::test_window::open(start, 1024.0, 800.0);
     assert_eq!(
         h.state().scene.models.len(),
         1,

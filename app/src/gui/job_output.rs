@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use crate::scene::Scene;
 
-use super::action::Purpose;
+use crate::gui::action::Purpose;
 
 /// Result of a background job.
 pub enum JobOutput {

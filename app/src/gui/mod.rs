@@ -9,52 +9,32 @@
 //! The UI thread only draws and translates input. Loads, index builds, cuts, exports and native
 //! file dialogs run on worker threads ([`jobs`]) with a progress window and Cancel for anything
 //! longer than half a second, so a 2M-triangle model never freezes the window. While a cutter is
-//! painted in Edit mode, [`live_cut`] has [`crate::cutting::live_cut`] re-cut it on its own worker
+//! painted in Edit mode, [`viewport::live_cut`] has [`crate::cutting::live_cut`] re-cut it on its own worker
 //! (latest request wins) and the view shows the result under the translucent cutter. What is
 //! cut, picked and edited lives in [`crate::cutting`]; this module maps input to it and draws.
 
 use std::path::PathBuf;
 
-pub mod about;
 pub mod action;
 pub mod app;
 pub mod app_jobs;
 pub mod apply;
 pub mod atlas_arrival;
 pub mod bridge;
-pub mod compare_view;
-pub mod cut_view;
-pub mod cutter_panel;
 pub mod dialogs;
-pub mod export_labels;
-pub mod file_browser;
 #[cfg(test)]
 mod first_press_tests;
-pub mod help;
-pub mod image_panel;
 pub mod job_output;
 pub mod jobs;
-pub mod key_reference;
-pub mod live_cut;
-pub mod menus;
-pub mod metrics_panel;
 pub mod model_groups;
-pub mod models_panel;
-pub mod navigation;
-pub mod orientation_marker;
+pub mod panels;
 pub mod recovery;
-pub mod ruler;
-pub mod scalpel_mode;
 #[cfg(test)]
 mod smoothness_tests;
 pub mod state;
-pub mod status_bar;
 #[cfg(test)]
 pub mod test_window;
-pub mod turntable_export;
 pub mod undo;
-pub mod variants_panel;
-pub mod view_menu;
 pub mod viewport;
 #[cfg(test)]
 mod volume_jobs_tests;

@@ -1,8 +1,8 @@
 //! The Initialization tab's Smoothness slider in the window: it changes the edited smooth
 //! cutter's subdivision levels, so the surface it cuts with changes, as one undo step.
 
-use super::app::Action;
 use super::{CutawayApp, StartOptions};
+use crate::gui::app::Action;
 use egui_kittest::kittest::Queryable;
 
 /// The surface the scene's first cutter cuts with, in triangles.
@@ -22,7 +22,7 @@ fn the_smoothness_slider_changes_the_edited_cutters_surface_and_undoes() {
         state_dir: dir.join("state"),
         offer_recovery: false,
     };
-    let mut h = super::test_window::open(start, 1280.0, 800.0);
+    let mut h = crate::gui::test_window::open(start, 1280.0, 800.0);
     assert_eq!(
         h.state().scene.models.len(),
         1,
@@ -44,7 +44,7 @@ fn the_smoothness_slider_changes_the_edited_cutters_surface_and_undoes() {
         ));
     let ctx = h.ctx.clone();
     h.state_mut().apply(&ctx, Action::EditCutter(0));
-    super::test_window::settle(&mut h);
+    crate::gui::test_window::settle(&mut h);
     assert_eq!(
         h.state().viewport.editor.active_cutter(),
         Some(0),

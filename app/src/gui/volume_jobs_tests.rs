@@ -11,8 +11,8 @@ use std::time::{Duration, Instant};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 
-use super::app::Action;
 use super::{CutawayApp, StartOptions};
+use crate::gui::app::Action;
 
 fn state_dir(name: &str) -> PathBuf {
     let dir =
@@ -108,7 +108,7 @@ fn the_default_scene_shows_its_skin_first_and_the_labels_arrive_with_progress() 
     // The same with the labels held: the skin alone first, frames keep coming while the labels
     // surface, and the status bar shows their progress.
     let (mut h, open) = window_with_labels_held("default");
-    let label = super::atlas_arrival::AtlasArrival::LABEL;
+    let label = crate::gui::atlas_arrival::AtlasArrival::LABEL;
     let mut frames_with_progress = 0;
     let deadline = Instant::now() + Duration::from_secs(120);
     while h.state().atlas.busy() {

@@ -19,8 +19,8 @@
 use serde::{Deserialize, Serialize};
 
 use crate::scene::Scene;
-use crate::session::cutters::{CutterEntry, cutter_entry, cutter_from_entry};
 use crate::scene::variants::{Variant, Variants};
+use crate::session::cutters::{CutterEntry, cutter_entry, cutter_from_entry};
 
 /// One variant as stored.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -14,8 +14,8 @@ use crate::cutting::editing::CutterInit;
 use crate::gui::action::{Mode, Purpose};
 use crate::gui::job_output::JobOutput;
 use crate::gui::jobs::Job;
+use crate::gui::panels::status_bar::StatusInfo;
 use crate::gui::recovery::{RecentFiles, Recovery};
-use crate::gui::status_bar::StatusInfo;
 use crate::gui::undo::History;
 use crate::scene::Scene;
 
@@ -55,7 +55,7 @@ pub struct AppState {
     /// A recovery file found at start-up, offered until answered.
     pub pending_recovery: Option<PathBuf>,
     /// The in-window file browser, open when no native file dialog is available.
-    pub browser: Option<crate::gui::file_browser::FileBrowser>,
+    pub browser: Option<crate::gui::panels::file_browser::FileBrowser>,
     /// A native file dialog can open (see `file_browser::native_dialogs_available`).
     pub native_dialogs: bool,
     /// What the in-window browser picked, handled after the frame's panels.

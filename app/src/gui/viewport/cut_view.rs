@@ -10,8 +10,8 @@ use std::sync::{Arc, Weak};
 
 use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
 
-use super::action::Mode;
-use super::state::AppState;
+use crate::gui::action::Mode;
+use crate::gui::state::AppState;
 
 /// True in the modes that show the computed cut (the preview job runs in them).
 pub fn shows_cut(mode: Mode) -> bool {

@@ -7,15 +7,23 @@
 //! convention as the gesture format, so a recorded gesture replays identically in `cutaway
 //! extrude`.
 
+pub mod cut_view;
+pub mod live_cut;
+pub mod navigation;
+pub mod orientation_marker;
+pub mod ruler;
+pub mod scalpel_mode;
+pub mod view_menu;
+
 use glam::{DVec2, DVec3};
 
 use cutter::Camera;
 use cutter::events::{EditorEvent, Key};
 
-use super::action::{Action, Mode};
-use super::state::AppState;
-use super::state::viewport::Drag;
-pub use super::state::viewport::{CursorWarp, Recording, ViewportState};
+use crate::gui::action::{Action, Mode};
+use crate::gui::state::AppState;
+use crate::gui::state::viewport::Drag;
+pub use crate::gui::state::viewport::{CursorWarp, Recording, ViewportState};
 use crate::view::camera_controls;
 
 /// The viewport panel: fills the remaining space.
@@ -40,18 +48,27 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
 
     // Interact: the image window drag (Shift + right drag, every mode), then navigation and
     // selection (every mode), then the mode's own input.
-    let windowing = super::image_panel::window_drag(app, &response, ui);
+    let windowing = crate::gui::panels::image_panel::window_drag(app, &response, ui);
     let navigating = windowing
-        || super::navigation::navigation_input(ui, &response, app, ppp, to_px, &mut actions);
+        || crate::gui::viewport::navigation::navigation_input(
+            ui,
+            &response,
+            app,
+            ppp,
+            to_px,
+            &mut actions,
+        );
     if !navigating && app.ruler.active {
         // The Ruler tool takes clicks; drags keep turning the camera.
-        if !super::ruler::ruler_input(&response, app, to_px) {
+        if !crate::gui::viewport::ruler::ruler_input(&response, app, to_px) {
             camera_input(ui, &response, app, ppp);
         }
     } else if !navigating {
         match app.mode {
             Mode::Camera | Mode::Preview => camera_input(ui, &response, app, ppp),
-            Mode::Scalpel => super::scalpel_mode::scalpel_input(ui, &response, app, ppp, to_px),
+            Mode::Scalpel => {
+                crate::gui::viewport::scalpel_mode::scalpel_input(ui, &response, app, ppp, to_px)
+            }
             Mode::Edit => edit_input(ui, &response, app, to_px, &mut actions),
         }
     }
@@ -61,13 +78,13 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
 
     // Paint.
     let painter = ui.painter_at(rect);
-    if !super::bridge::paint_scene(ui, rect, app) {
-        super::bridge::paint_fallback(&painter, rect, app);
+    if !crate::gui::bridge::paint_scene(ui, rect, app) {
+        crate::gui::bridge::paint_fallback(&painter, rect, app);
     }
-    super::ruler::paint_rulers(&painter, rect, app);
-    super::metrics_panel::paint_closest_points(&painter, rect, app);
+    crate::gui::viewport::ruler::paint_rulers(&painter, rect, app);
+    crate::gui::panels::metrics_panel::paint_closest_points(&painter, rect, app);
     if app.viewport.show_marker && !app.scene.models.is_empty() {
-        super::orientation_marker::orientation_marker_ui(&painter, rect, &app.scene);
+        crate::gui::viewport::orientation_marker::orientation_marker_ui(&painter, rect, &app.scene);
     }
     if app.scene.models.is_empty() && !app.busy() {
         painter.text(
@@ -123,7 +140,7 @@ fn camera_input(ui: &egui::Ui, response: &egui::Response, app: &mut AppState, pp
         app.viewport.drag = None;
     }
     if response.hovered() {
-        let (notches, _) = super::navigation::wheel_notches(ui);
+        let (notches, _) = crate::gui::viewport::navigation::wheel_notches(ui);
         if notches != 0.0 {
             let min = app.scene.bbox().diagonal().max(1e-6) * 1e-3;
             camera_controls::zoom(&mut app.scene.camera, notches, min);
@@ -255,8 +272,9 @@ fn edit_input(
         );
     }
     if response.hovered() {
-        let (notches, wheel_ctrl) = super::navigation::wheel_notches(ui);
-        if notches != 0.0 && super::navigation::wheel_goes_to_editor(app, wheel_ctrl) {
+        let (notches, wheel_ctrl) = crate::gui::viewport::navigation::wheel_notches(ui);
+        if notches != 0.0 && crate::gui::viewport::navigation::wheel_goes_to_editor(app, wheel_ctrl)
+        {
             changed |= app.viewport.editor_event(
                 &mut app.scene,
                 EditorEvent::Wheel {

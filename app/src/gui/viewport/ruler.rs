@@ -11,9 +11,9 @@ use glam::{DVec2, DVec3};
 
 use crate::scene::ruler::Ruler;
 
-use super::state::AppState;
+use crate::gui::state::AppState;
 
-pub use super::state::RulerTool;
+pub use crate::gui::state::RulerTool;
 
 /// The surface point under pixel `px` of the 3D view as drawn (the cut's walls and kept parts
 /// where the view shows the cut), if any.
@@ -21,10 +21,11 @@ pub fn surface_point(app: &mut AppState, px: DVec2) -> Option<DVec3> {
     let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, px);
     let current = app.viewport.preview_key.as_ref()
         == Some(&crate::cutting::scene_cuts::PreviewKey::of(&app.scene));
-    let preview =
-        (super::cut_view::shows_cut(app.mode) && current && !app.scene.cutters.is_empty())
-            .then(|| app.viewport.preview.clone())
-            .flatten();
+    let preview = (crate::gui::viewport::cut_view::shows_cut(app.mode)
+        && current
+        && !app.scene.cutters.is_empty())
+    .then(|| app.viewport.preview.clone())
+    .flatten();
     crate::cutting::drawn_hit::first_hit(
         &mut app.viewport.picks,
         &app.scene,

@@ -1,7 +1,7 @@
 //! Help → Keyboard and Mouse: the whole reference of every mode in one window (the line above the
 //! view shows only the current mode's), the view keys, and the Debug menu's switch.
 
-use super::action::Mode;
+use crate::gui::action::Mode;
 
 /// The environment variable that shows the Debug menu (gesture recording).
 pub const DEBUG_ENV: &str = "CUTAWAY_DEBUG";
@@ -11,7 +11,7 @@ pub fn debug_menu_enabled() -> bool {
     std::env::var_os(DEBUG_ENV).is_some_and(|v| !v.is_empty() && v != "0")
 }
 
-/// Navigation that works in every mode ([`super::navigation`]).
+/// Navigation that works in every mode ([`crate::gui::viewport::navigation`]).
 pub const EVERY_MODE: &[(&str, &str)] = &[
     ("Right-drag", "orbit"),
     ("Middle-drag", "pan"),
@@ -61,7 +61,7 @@ pub fn help_window_ui(ctx: &egui::Context) {
                         section_ui(
                             ui,
                             &format!("{} mode", mode.label()),
-                            super::key_reference::commands(mode),
+                            crate::gui::panels::key_reference::commands(mode),
                         );
                     }
                     ui.label(

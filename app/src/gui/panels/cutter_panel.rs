@@ -1,14 +1,14 @@
 //! The cutter tabs (thesis 3.5 E): Initialization (segment spacing ω, type Freeform/Wedge,
 //! smoothing and its Smoothness levels) for the next cutter and the one being edited, and Visualization per cutter (Normal Cut, Transparency with
 //! its opacity, Slices, Ribbons with count and width) for Preview mode, and the "Live cut" toggle
-//! (the cut shown while painting in Edit mode, see [`super::live_cut`]).
+//! (the cut shown while painting in Edit mode, see [`crate::gui::viewport::live_cut`]).
 
-use super::action::Action;
-use super::state::AppState;
+use crate::gui::action::Action;
+use crate::gui::state::AppState;
 use crate::scene::SubCutterView;
 use cutter::CutKind;
 
-pub use super::state::CutterTab;
+pub use crate::gui::state::CutterTab;
 
 pub fn cutter_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();

@@ -9,13 +9,13 @@
 
 use glam::DVec2;
 
-use super::state::AppState;
+use crate::gui::state::AppState;
 use crate::scalpel_session::Released;
 use crate::view::camera_controls;
 use cutter::scalpel::Tool;
 
-use super::state::viewport::CameraDrag;
-pub use super::state::viewport::ScalpelSlot;
+use crate::gui::state::viewport::CameraDrag;
+pub use crate::gui::state::viewport::ScalpelSlot;
 pub use crate::scalpel_session::ScalpelSettings;
 
 /// Viewport input in Scalpel mode: primary drag cuts; Alt+drag or right drag orbits,

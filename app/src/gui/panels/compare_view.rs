@@ -20,10 +20,10 @@ use crate::metrics::MetricsOptions;
 use crate::render::{HeadlessRenderer, RenderPngOptions};
 use crate::scene::Scene;
 
-use super::jobs::Job;
-use super::state::AppState;
-use super::state::compare::{Cached, Request, Worker};
-pub use super::state::compare::{CompareView, Compared, MAX_SHOWN};
+use crate::gui::jobs::Job;
+use crate::gui::state::AppState;
+use crate::gui::state::compare::{Cached, Request, Worker};
+pub use crate::gui::state::compare::{CompareView, Compared, MAX_SHOWN};
 
 /// Draws and measures variant `k` of `scene` with the worker's renderer and cache.
 fn compare_one(
@@ -99,7 +99,10 @@ fn compare_one(
 /// size changed and no pointer button is held. Call once per frame.
 pub fn update(app: &mut AppState, ctx: &egui::Context) {
     if !app.compare.open && app.compare.framed_for.take().is_some() {
-        super::view_menu::apply(app, super::view_menu::ViewCommand::ZoomToFit);
+        crate::gui::viewport::view_menu::apply(
+            app,
+            crate::gui::viewport::view_menu::ViewCommand::ZoomToFit,
+        );
     }
     let view = &mut app.compare;
     if let Some((request, job)) = &mut view.job
@@ -295,7 +298,7 @@ fn camera_input(ui: &egui::Ui, response: &egui::Response, app: &mut AppState, pp
         }
     }
     if response.hovered() {
-        let (notches, _) = super::navigation::wheel_notches(ui);
+        let (notches, _) = crate::gui::viewport::navigation::wheel_notches(ui);
         if notches != 0.0 {
             let min = app.scene.bbox().diagonal().max(1e-6) * 1e-3;
             crate::view::camera_controls::zoom(&mut app.scene.camera, notches, min);

@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::action::Purpose;
+use crate::gui::action::Purpose;
 
 /// True when a native dialog can be expected to open: not turned off with `CUTAWAY_NO_DIALOGS`,
 /// and a desktop portal (reached over the session D-Bus) or zenity is there. A native dialog

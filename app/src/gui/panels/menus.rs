@@ -4,11 +4,11 @@
 //! Menus describe what the user asked for as [`Action`]s; only the Rendering menu's toggles change
 //! settings in place (they are view settings, not undoable scene edits).
 
-use super::action::{Action, Mode, Purpose};
-use super::state::AppState;
+use crate::gui::action::{Action, Mode, Purpose};
+use crate::gui::state::AppState;
 use crate::scene::Stereo;
 
-pub use super::state::export_settings::{
+pub use crate::gui::state::export_settings::{
     ExportImageSettings, ExportMeshSettings, MAX_EXPORT_SIDE, MeshFormat,
 };
 
@@ -187,9 +187,9 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
             });
         });
         ui.menu_button("View", |ui| {
-            actions.extend(super::view_menu::view_items_ui(ui, app));
+            actions.extend(crate::gui::viewport::view_menu::view_items_ui(ui, app));
             ui.separator();
-            super::metrics_panel::view_menu_items(ui, app);
+            crate::gui::panels::metrics_panel::view_menu_items(ui, app);
             ui.separator();
             let label = if app.cutters_hidden {
                 "Show Current Cutters"
@@ -203,27 +203,30 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
                 actions.push(Action::RemoveAllCutGeometry);
             }
         });
-        if super::help::debug_menu_enabled() {
+        if crate::gui::panels::help::debug_menu_enabled() {
             debug_menu_ui(ui, app, &mut actions);
         }
         ui.menu_button("Help", |ui| {
             if ui.button("Keyboard and Mouse…").clicked() {
-                super::help::open(ui.ctx());
+                crate::gui::panels::help::open(ui.ctx());
             }
             if ui.button("About Cutaway…").clicked() {
-                super::about::open(ui.ctx());
+                crate::gui::panels::about::open(ui.ctx());
             }
         });
     });
-    super::about::about_window_ui(ui.ctx());
-    super::help::help_window_ui(ui.ctx());
+    crate::gui::panels::about::about_window_ui(ui.ctx());
+    crate::gui::panels::help::help_window_ui(ui.ctx());
     actions.extend(export_image_window_ui(ui.ctx(), app));
     actions.extend(export_meshes_window_ui(ui.ctx(), app));
-    actions.extend(super::turntable_export::window_ui(ui.ctx(), app));
+    actions.extend(crate::gui::panels::turntable_export::window_ui(
+        ui.ctx(),
+        app,
+    ));
     actions
 }
 
-/// The Debug menu (only with the debug environment variable, see [`super::help::DEBUG_ENV`]).
+/// The Debug menu (only with the debug environment variable, see [`crate::gui::panels::help::DEBUG_ENV`]).
 fn debug_menu_ui(ui: &mut egui::Ui, app: &AppState, actions: &mut Vec<Action>) {
     ui.menu_button("Debug", |ui| {
         if app.viewport.recording.is_none() {
@@ -268,13 +271,13 @@ pub fn toolbar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
             egui::RichText::new("Scalpel").strong(),
         )
         .min_size(egui::vec2(78.0, 24.0));
-        let tip = if super::bridge::SCALPEL_AVAILABLE {
+        let tip = if crate::gui::bridge::SCALPEL_AVAILABLE {
             "Progressive scalpel cut along a path (F4)"
         } else {
             "The scalpel is not part of this build"
         };
         if ui
-            .add_enabled(super::bridge::SCALPEL_AVAILABLE, scalpel)
+            .add_enabled(crate::gui::bridge::SCALPEL_AVAILABLE, scalpel)
             .on_hover_text(tip)
             .on_disabled_hover_text(tip)
             .clicked()
@@ -372,7 +375,7 @@ fn export_image_window_ui(ctx: &egui::Context, app: &mut AppState) -> Vec<Action
             });
             ui.checkbox(&mut s.transparent, "Transparent background");
             ui.separator();
-            super::export_labels::annotation_ui(ui, &mut s.annotations, &app.scene);
+            crate::gui::panels::export_labels::annotation_ui(ui, &mut s.annotations, &app.scene);
             ui.add_space(6.0);
             if ui.button("Export…").clicked() {
                 actions.push(Action::Dialog(Purpose::ExportImage));

@@ -5,14 +5,14 @@
 
 use std::path::Path;
 
-use super::action::{Action, Purpose};
-use super::jobs::Progress;
-use super::state::AppState;
 use crate::export::turntable::{MAX_FRAMES, TurntableProgress, export_turntable};
+use crate::gui::action::{Action, Purpose};
+use crate::gui::jobs::Progress;
+use crate::gui::state::AppState;
 use crate::render::{RenderPngOptions, ViewMode};
 use crate::scene::Scene;
 
-pub use super::state::export_settings::{MAX_TURNTABLE_SIDE, TurntableSettings};
+pub use crate::gui::state::export_settings::{MAX_TURNTABLE_SIDE, TurntableSettings};
 
 /// The job's progress bar counts frames; its Cancel stops the export.
 impl TurntableProgress for Progress {

@@ -7,9 +7,9 @@
 
 use crate::view::{LengthUnit, Orientation, ViewPreset, fit};
 
-use super::action::Action;
-pub use super::action::ViewCommand;
-use super::state::AppState;
+use crate::gui::action::Action;
+pub use crate::gui::action::ViewCommand;
+use crate::gui::state::AppState;
 
 /// Orients, scales and frames a scene that replaced the previous one: the default scene is RAS;
 /// anything else is guessed from its size and shape ([`Orientation::guess`],

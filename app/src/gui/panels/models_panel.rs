@@ -5,9 +5,9 @@
 //! undoable; a slider drag or a colour-picker drag is one step. When the selection changes (a
 //! double-click in the view), the list opens the model's groups and scrolls to its row.
 
-use super::action::Action;
-use super::model_groups::GroupNode;
-use super::state::AppState;
+use crate::gui::action::Action;
+use crate::gui::model_groups::GroupNode;
+use crate::gui::state::AppState;
 use crate::scene::ModelStyle;
 
 fn srgb_u8(c: [f32; 3]) -> [u8; 3] {
@@ -132,7 +132,7 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     ui.label(
         egui::RichText::new(format!(
             "{} triangles",
-            super::status_bar::grouped(triangles)
+            crate::gui::panels::status_bar::grouped(triangles)
         ))
         .weak()
         .small(),

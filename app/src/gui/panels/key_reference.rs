@@ -2,7 +2,7 @@
 //! mouse/keyboard commands used in the editing of a cutaway region are displayed above the
 //! viewport"). It follows the mode, so it always tells what the mouse does right now.
 
-use super::action::Mode;
+use crate::gui::action::Mode;
 
 /// The (keys, action) pairs for `mode`, in the order shown.
 pub fn commands(mode: Mode) -> &'static [(&'static str, &'static str)] {

@@ -3,7 +3,7 @@
 //! an empty cutter set, Duplicate copies the active one, Rename and Delete act on the active one.
 //! Every change is an undo step, and the variants are saved in the session.
 
-use super::state::AppState;
+use crate::gui::state::AppState;
 use crate::scene::variants;
 
 /// A change to the scene's variants.

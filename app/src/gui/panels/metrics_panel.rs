@@ -14,10 +14,10 @@ use glam::DVec2;
 
 use crate::metrics::Metrics;
 
-use super::jobs::Job;
-use super::state::AppState;
-use super::state::metrics::Request;
-pub use super::state::metrics::{Measured, MetricsPanel, Scope};
+use crate::gui::jobs::Job;
+use crate::gui::state::AppState;
+use crate::gui::state::metrics::Request;
+pub use crate::gui::state::metrics::{Measured, MetricsPanel, Scope};
 
 /// Takes a finished measurement and starts the next one when the scene changed and no pointer
 /// button is held. Call once per frame.
@@ -303,7 +303,7 @@ pub fn side_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
     egui::ScrollArea::vertical()
         .id_salt("metrics-side")
         .show(ui, |ui| {
-            super::variants_panel::variants_ui(ui, app);
+            crate::gui::panels::variants_panel::variants_ui(ui, app);
             ui.separator();
             if app.metrics.open {
                 metrics_panel_ui(ui, app);
@@ -311,7 +311,7 @@ pub fn side_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
                 app.metrics.open = true;
             }
             ui.separator();
-            super::ruler::rulers_ui(ui, app);
+            crate::gui::viewport::ruler::rulers_ui(ui, app);
         });
 }
 

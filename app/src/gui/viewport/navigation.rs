@@ -11,9 +11,9 @@
 
 use glam::DVec2;
 
-use super::action::{Action, Mode};
-use super::state::AppState;
-pub use super::state::viewport::NavDrag;
+use crate::gui::action::{Action, Mode};
+use crate::gui::state::AppState;
+pub use crate::gui::state::viewport::NavDrag;
 use crate::view::camera_controls;
 
 /// Wheel notches of this frame (positive = wheel up, away from the user), and whether Ctrl/Cmd

@@ -5,7 +5,7 @@
 
 use crate::intensity::{ImageLayer, WallDisplay, WindowPreset};
 
-use super::state::AppState;
+use crate::gui::state::AppState;
 
 /// A freshly read image joins the scene, unless it lies outside the models.
 pub fn image_loaded(app: &mut AppState, layer: ImageLayer) {
@@ -165,8 +165,8 @@ mod tests {
     use egui_kittest::kittest::Queryable as _;
     use glam::DVec3;
 
-    use super::super::app::Action;
-    use super::super::{CutawayApp, StartOptions};
+    use crate::gui::app::Action;
+    use crate::gui::{CutawayApp, StartOptions};
 
     /// An int16 NRRD ramp along x over [-1, 3]³ (RAS), `shift` mm along x.
     fn write_image(path: &std::path::Path, shift: f64) {
@@ -196,7 +196,7 @@ mod tests {
         let cube = dir.join("cube.ply");
         crate::io::write_mesh(
             &cube,
-            &super::super::app::box_mesh(DVec3::ZERO, DVec3::splat(2.0)),
+            &crate::gui::app::box_mesh(DVec3::ZERO, DVec3::splat(2.0)),
         )
         .unwrap();
         let ct = dir.join("ct.nrrd");
@@ -276,7 +276,7 @@ mod tests {
         let cube = dir.join("cube.ply");
         crate::io::write_mesh(
             &cube,
-            &super::super::app::box_mesh(DVec3::ZERO, DVec3::splat(2.0)),
+            &crate::gui::app::box_mesh(DVec3::ZERO, DVec3::splat(2.0)),
         )
         .unwrap();
         let ct = dir.join("ct.nrrd");
@@ -353,7 +353,7 @@ mod tests {
         let cube = dir.join("cube.ply");
         crate::io::write_mesh(
             &cube,
-            &super::super::app::box_mesh(DVec3::ZERO, DVec3::splat(2.0)),
+            &crate::gui::app::box_mesh(DVec3::ZERO, DVec3::splat(2.0)),
         )
         .unwrap();
         let (near, far) = (dir.join("ct.nrrd"), dir.join("far.nrrd"));
