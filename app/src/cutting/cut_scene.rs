@@ -641,9 +641,7 @@ fn model_preview(
 }
 
 #[cfg(test)]
-#[path = "cut_scene_tests.rs"]
 mod tests;
 
 #[cfg(test)]
-#[path = "incision_tests.rs"]
 pub(crate) mod incision_tests;

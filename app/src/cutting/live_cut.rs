@@ -527,7 +527,6 @@ fn live_geometry(scene: &Scene, cache: &mut LiveCache) -> (PreviewGeometry, Vec<
 }
 
 #[cfg(test)]
-#[path = "live_cut_tests.rs"]
 mod tests;
 
 /// The live cut driven by the editor on the embedded knee, as the window does it: the editor
@@ -536,19 +535,16 @@ mod tests;
 /// cut"); for release figures run
 /// `cargo test --release -p cutaway --lib live_cut_follows_the_editor_on_the_knee -- --nocapture`.
 #[cfg(test)]
-#[path = "live_cut_knee.rs"]
-mod knee;
+mod knee_tests;
 
 /// The live cut drawn from its delta looks exactly as the whole kept part did, and a re-cut
 /// uploads only what changed.
 #[cfg(test)]
-#[path = "live_cut_view.rs"]
-mod view;
+mod view_tests;
 
 /// The UI thread's cost of a live re-cut on a 2M-triangle model: what a frame does when a new
 /// live cut arrives (take it, hand it to the renderer, which uploads what changed). Prints
 /// figures; no timing assertion. Heavy, so it runs only with
 /// `CUTAWAY_UI_TIMINGS=1 WGPU_BACKEND=vulkan cargo test -p cutaway --lib ui_thread_cost -- --nocapture`.
 #[cfg(test)]
-#[path = "live_cut_timings.rs"]
-mod timings;
+mod timings_tests;

@@ -237,5 +237,4 @@ pub fn encode_gif(frames: Vec<RgbaImage>, delay_ms: u32) -> anyhow::Result<Vec<u
 }
 
 #[cfg(test)]
-#[path = "turntable_tests.rs"]
 mod tests;

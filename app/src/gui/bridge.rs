@@ -389,7 +389,6 @@ pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &AppState)
 }
 
 #[cfg(test)]
-#[path = "bridge_tests.rs"]
 mod tests;
 
 /// What the window holds now, counted ([`crate::platform::memory_census`]).

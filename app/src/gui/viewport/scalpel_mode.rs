@@ -190,5 +190,4 @@ pub fn scalpel_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
 }
 
 #[cfg(test)]
-#[path = "scalpel_mode_tests.rs"]
 mod tests;
