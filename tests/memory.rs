@@ -28,7 +28,7 @@
 //! `mesa-vulkan-drivers` and set `WGPU_BACKEND=vulkan`; CI does). The same script on the real
 //! anatomy, with peak figures: `cargo bench -p cutaway --bench memory`.
 
-#[path = "memory_script.rs"]
+#[path = "support/memory_script.rs"]
 mod memory_script;
 
 use memory_script::{Options, mb};

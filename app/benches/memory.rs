@@ -12,7 +12,7 @@
 //! Run: `cargo bench -p cutaway --bench memory` with `CUTAWAY_ANATOMY` set to the anatomy folder
 //! (`WGPU_BACKEND=vulkan` on lavapipe).
 
-#[path = "../../tests/memory_script.rs"]
+#[path = "../../tests/support/memory_script.rs"]
 mod memory_script;
 
 use std::path::{Path, PathBuf};

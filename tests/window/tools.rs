@@ -8,8 +8,6 @@
 //! Skipped, with the reason printed, when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with
 //! Mesa's lavapipe installed).
 
-mod scene_files;
-mod window_harness;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -21,10 +19,10 @@ use cutaway::gui::panels::variants_panel::VariantCommand;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::{DVec2, DVec3};
-use scene_files::{
+use crate::scene_files::{
     box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
 };
-use window_harness::{apply, harness, no_adapter, shot};
+use crate::harness::{apply, harness, no_adapter, shot};
 
 /// Steps until no job (loads, measurements, compare pictures) runs, twice over: a finished job
 /// may start the next one.

@@ -20,15 +20,19 @@ use cutaway::scene::{
 use cutter::{BoundedPlane, Camera, CutKind};
 use glam::DVec3;
 
-#[path = "image_compare.rs"]
+#[path = "../support/image_compare.rs"]
 mod image_compare;
 
-#[path = "render/exports.rs"]
+mod annotate;
+mod compare;
 mod exports;
-#[path = "render/goldens.rs"]
 mod goldens;
-#[path = "render/sessions.rs"]
+mod image_walls;
+#[allow(dead_code)] // helpers shared with other test binaries
+#[path = "../support/scene_files.rs"]
+mod scene_files;
 mod sessions;
+mod wedge;
 
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 120;

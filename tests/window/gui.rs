@@ -12,8 +12,7 @@ use cutaway::gui::{CutawayApp, Mode, StartOptions};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 
-#[path = "image_compare.rs"]
-mod image_compare;
+use crate::image_compare;
 
 /// `Some(reason)` when there is no adapter to run the window on.
 fn no_adapter() -> Option<String> {
@@ -94,13 +93,9 @@ fn click_menu_item(h: &mut Harness<'_, CutawayApp>, text: &str, not: &str) {
     h.run_steps(2);
 }
 
-#[path = "gui/big_load.rs"]
 mod big_load;
-#[path = "gui/export_image.rs"]
 mod export_image;
-#[path = "gui/live_cut.rs"]
 mod live_cut;
-#[path = "gui/models_list.rs"]
 mod models_list;
 /// Steps until `done()` or the deadline; returns the frames stepped.
 fn step_until(
@@ -119,5 +114,4 @@ fn step_until(
     frames
 }
 
-#[path = "gui/window_basics.rs"]
 mod window_basics;

@@ -1,13 +1,12 @@
 //! End-to-end tests of `cutaway export`: the cut scene as glTF 2.0 binary, read back with the
 //! `gltf` crate and checked by the Khronos glTF validator when it is installed.
 
-mod scene_files;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use cutaway::cutting::cut_scene::{PartKind, preview_geometry};
-use scene_files::{
+use crate::scene_files::{
     box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
 };
 

@@ -6,13 +6,11 @@
 //! The command renders on the GPU (lavapipe with `WGPU_BACKEND=vulkan`); with no adapter the
 //! tests print "skipped: …" and pass.
 
-#[allow(dead_code)] // helpers shared with other test binaries
-mod scene_files;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use scene_files::{box_obj, box_planes, cut_view, cutter, model, scratch, write_session};
+use crate::scene_files::{box_obj, box_planes, cut_view, cutter, model, scratch, write_session};
 
 fn cutaway(args: &[&str], session: &Path, extra: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_cutaway"))

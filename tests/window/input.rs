@@ -11,7 +11,7 @@ use cutaway::gui::app::Action;
 use cutaway::gui::{CutawayApp, Mode};
 use egui_kittest::Harness;
 
-use super::window_harness::apply;
+use crate::harness::apply;
 
 /// A fresh private folder for one test.
 pub fn temp_dir(name: &str) -> PathBuf {

@@ -13,9 +13,6 @@
 //! Skipped, with the reason printed, without a wgpu adapter; the body is read from
 //! `CUTAWAY_ANATOMY` (default `../shared/anatomy`).
 
-mod window_harness;
-#[allow(dead_code)]
-mod window_input;
 
 use std::path::Path;
 
@@ -26,8 +23,8 @@ use cutaway::gui::viewport::view_menu::ViewCommand;
 use cutaway::gui::{CutawayApp, Mode};
 use cutter::EditorSettings;
 use egui_kittest::Harness;
-use window_harness::{apply, harness, no_adapter, shot};
-use window_input::{anatomy, settle, temp_dir};
+use crate::harness::{apply, harness, no_adapter, shot};
+use crate::input::{anatomy, settle, temp_dir};
 
 /// The index of the model loaded from a file whose name contains `name`.
 fn model(h: &Harness<'_, CutawayApp>, name: &str) -> usize {

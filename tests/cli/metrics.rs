@@ -2,12 +2,11 @@
 //! against the boolean's own removed piece, exposure on a sphere behind a plate with a hole, and
 //! distances from the walls to critical structures.
 
-mod scene_files;
 
 use std::path::Path;
 use std::process::Command;
 
-use scene_files::{
+use crate::scene_files::{
     box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
 };
 

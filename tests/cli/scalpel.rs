@@ -4,7 +4,6 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-#[path = "scalpel/walls.rs"]
 mod walls;
 
 fn cutaway() -> Command {

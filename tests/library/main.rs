@@ -1,0 +1,7 @@
+//! The library's inputs end to end: every mesh format (fixtures, round trips, bad input, random
+//! bytes), the real anatomy folder against an independent reader's figures, and segmentation
+//! label volumes. One test binary, one file per concern.
+
+mod anatomy;
+mod formats;
+mod volumes;
