@@ -139,7 +139,7 @@ fn a_small_hubmap_structure_is_cut_with_its_own_sizes_and_its_session_renders() 
     let Some(body) = anatomy("hubmap_vhf_body") else {
         return;
     };
-    let dir = temp_dir("hubmap");
+    let dir = temp_dir("scale-hubmap");
     let mut h = harness(&dir, vec![body]);
     settle(&mut h);
     assert!(!h.state().status.is_error, "{}", h.state().status.message);
