@@ -13,8 +13,10 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use cutaway::render::headless::{HeadlessRenderer, render_with_preview};
-use cutaway::render::{RenderPngOptions, ViewMode};
+use cutaway::render::ViewMode;
+use cutaway::render::headless::HeadlessRenderer;
+use cutaway::view::RenderPngOptions;
+use cutaway::view::render_with_preview;
 
 const FRAMES: usize = 10;
 

@@ -1,6 +1,6 @@
 //! Peak resident memory of the window on real anatomy, against `cutaway render` of the same
 //! session: the scripted session of the `memory` test (10 cutters of 50 drag frames each, every
-//! view toggled, everything undone and redone; `tests/memory_script.rs`) on the HuBMAP female
+//! view toggled, everything undone and redone; `tests/support/memory_script.rs`) on the HuBMAP female
 //! body and on the SPL brain atlas. Each measurement runs in a fresh child process, so one does
 //! not inherit another's memory.
 //!

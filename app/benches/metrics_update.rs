@@ -54,7 +54,7 @@ fn cut_scene(models: Vec<cutaway::io::Model>) -> Scene {
     let (c, e) = (b.center(), b.max - b.min);
     // The window's guess of the patient's axes: the box reaches from outside the front (anterior,
     // along ±y) to the middle, and the camera looks at the front.
-    scene.orientation = cutaway::view::Orientation::guess(&scene.bbox(), false);
+    scene.orientation = cutaway::scene::Orientation::guess(&scene.bbox(), false);
     let front = scene.orientation.anterior.y.signum();
     let (y0, y1) = if front >= 0.0 {
         (c.y, b.max.y + e.y * 0.1)

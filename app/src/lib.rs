@@ -10,7 +10,6 @@ pub mod compare;
 pub mod cutting;
 pub mod export;
 pub mod gui;
-pub mod intensity;
 pub mod io;
 pub mod metrics;
 pub mod platform;

@@ -57,7 +57,7 @@ pub fn with_sphere(mut scene: Scene, sphere: Arc<Mesh>, file: &str) -> Scene {
 /// The frame of `scene` at `size` pixels in `mode`, drawn without supersampling so that two
 /// renders compare pixel for pixel.
 pub fn deterministic_frame(scene: &Scene, size: [u32; 2], mode: ViewMode) -> FrameInputs {
-    let mut frame = FrameInputs::new(scene.clone(), size, mode);
+    let mut frame = crate::view::frame::frame_of(scene, size, mode);
     frame.deterministic = true;
     frame
 }

@@ -34,6 +34,10 @@ use std::time::Instant;
 use criterion::{Criterion, criterion_group, criterion_main};
 use csg::{DVec3, Mesh, TargetIndex};
 
+#[path = "../tests/support/mesh_files.rs"]
+mod mesh_files;
+use mesh_files::read_obj;
+
 /// A closed strip of `boxes` quad boxes swept along a great-circle arc of the sphere of radius
 /// `r` (from angle `a0` to `a1` in the plane spanned by `u` and `v`), `width` wide, radially from
 /// `below` under the surface to `above` over it.
@@ -98,39 +102,6 @@ fn process_cpu_ms() -> f64 {
         }
     }
     ns * 1e-6
-}
-
-/// Minimal OBJ reader for the peerbench files (`v` and `f` records, polygons fanned); the bench
-/// cannot use the app's readers (csg sees no file formats), and these files are plain.
-fn read_obj(path: &str) -> Mesh {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let mut m = Mesh::default();
-    for line in text.lines() {
-        let mut it = line.split_whitespace();
-        match it.next() {
-            Some("v") => {
-                let c: Vec<f64> = it.take(3).map(|x| x.parse().expect("coordinate")).collect();
-                m.positions.push(DVec3::new(c[0], c[1], c[2]));
-            }
-            Some("f") => {
-                let idx: Vec<u32> = it
-                    .map(|x| {
-                        x.split('/')
-                            .next()
-                            .unwrap_or("")
-                            .parse::<u32>()
-                            .expect("index")
-                            - 1
-                    })
-                    .collect();
-                for k in 1..idx.len() - 1 {
-                    m.triangles.push([idx[0], idx[k], idx[k + 1]]);
-                }
-            }
-            _ => {}
-        }
-    }
-    m
 }
 
 /// Median and minimum of `n` runs of `f`: wall ms and the process's CPU ms (median).

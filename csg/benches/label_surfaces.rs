@@ -10,7 +10,7 @@
 //! reason printed. Also prints the peak resident memory against the goal (volume bytes + twice the
 //! output meshes) and the distribution of per-label volume and centroid errors against the voxels.
 
-#[path = "../tests/label_atlas/nrrd.rs"]
+#[path = "../tests/support/nrrd.rs"]
 mod nrrd;
 
 use std::path::{Path, PathBuf};

@@ -6,7 +6,7 @@
 //! The boolean's cutter checks are exact: closed, oriented, positive volume, and no two
 //! triangles touching or crossing (each surface is used as a cutter inside a box target).
 
-#[path = "label_atlas/nrrd.rs"]
+#[path = "support/nrrd.rs"]
 mod nrrd;
 
 use csg::labels::{LabelGrid, SurfaceOptions, label_surfaces};

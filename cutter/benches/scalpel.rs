@@ -19,9 +19,10 @@ use glam::DVec3;
 
 use cutter::scalpel::{Scalpel, ScalpelOptions, survey};
 
-#[path = "../tests/support/binary_stl.rs"]
-mod binary_stl;
-use binary_stl::read_binary_stl;
+#[allow(dead_code)] // the bench reads STL only
+#[path = "../tests/support/mesh_files.rs"]
+mod mesh_files;
+use mesh_files::read_binary_stl;
 
 const RADIUS: f64 = 50.0;
 

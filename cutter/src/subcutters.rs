@@ -56,16 +56,31 @@ impl Placement {
     }
 }
 
-/// Which sub-cutters to make.
+/// Which sub-cutters to make: the ribbons or slices of a cutter (thesis 3.4.2), evenly spaced
+/// along the path, centred on the cutting planes, or horizontal layers at depth steps. The app's
+/// scene keeps a cutter's ribbon and slice views as this type.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SubCutterSpec {
-    /// Number of sub-cutters (not used by [`Placement::Planes`]).
+    /// Number of sub-cutters, at least 1 (not used by [`Placement::Planes`]: one per plane).
     pub count: usize,
-    /// Width: model units, or with `relative` the fraction (0..1] of the spacing each fills.
+    /// Width of each sub-cutter (across the path, or the layer's thickness); positive. Model
+    /// units, or with `relative` the fraction (0..1] of the spacing between sub-cutters each
+    /// one fills.
     pub width: f64,
     pub placement: Placement,
     /// `width` is relative to the cut instead of absolute.
     pub relative: bool,
+}
+
+impl SubCutterSpec {
+    /// What a new ribbon or slice view starts with: five evenly spaced sub-cutters, each filling
+    /// a third of its interval (relative, so it looks the same in millimetres and metres).
+    pub const NEW: SubCutterSpec = SubCutterSpec {
+        count: 5,
+        width: 0.35,
+        placement: Placement::Even,
+        relative: true,
+    };
 }
 
 /// The sub-cutters of `cutter` for `spec`; each passes [`Cutter::sanity_check`] (candidates that

@@ -200,7 +200,7 @@ fn rounded_knee_scene() -> Scene {
     for m in models {
         let part = m.name.split(' ').next().unwrap_or("").to_string();
         if part == "skin" || part == "patella" || part == "femur" {
-            let color = cutaway::anatomy::assets::default_color(&part);
+            let color = cutaway::anatomy::colors::class_color(&part);
             scene
                 .models
                 .push(SceneModel::new(m.name, m.source, Arc::new(m.mesh), color));
@@ -276,7 +276,7 @@ fn golden_rounded_cut_on_the_knee_overlay_is_the_wall() {
     options.deterministic = true;
     options.mode = Some(ViewMode::Edit);
     let image =
-        cutaway::render::render_with_preview(&mut r, &scene, &options, Some(Arc::new(preview)))
+        cutaway::view::render_with_preview(&mut r, &scene, &options, Some(Arc::new(preview)))
             .unwrap();
     assert!(coverage(&image, [255, 255, 255]) > 0.2);
     compare_to_golden("rounded_knee_edit", &image, r.is_software());

@@ -10,10 +10,13 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use cutaway::intensity::{ImageLayer, IntensityImage, WallDisplay, Window};
-use cutaway::render::headless::{HeadlessRenderer, render_with};
-use cutaway::render::{RenderPngOptions, ViewMode};
+use cutaway::io::intensity::{IntensityImage, Window};
+use cutaway::render::ViewMode;
+use cutaway::render::headless::HeadlessRenderer;
 use cutaway::scene::{CutterViews, Scene, SceneCutter, SceneModel};
+use cutaway::scene::{ImageLayer, WallDisplay};
+use cutaway::view::RenderPngOptions;
+use cutaway::view::render_with;
 use cutter::Camera;
 use cutter::{BoundedPlane, CutKind};
 use glam::{DAffine3, DMat3, DVec2, DVec3};
@@ -580,7 +583,7 @@ fn an_image_over_the_texture_limit_is_shown_reduced() {
         DVec3::splat(-1.0),
     );
     let image = IntensityImage::from_fn([n, 13, 13], m, |p| ramp(p) as f32);
-    let notice = cutaway::intensity::fit::notice(&image, limit).expect("over the limit");
+    let notice = cutaway::io::intensity::fit::notice(&image, limit).expect("over the limit");
     println!("{notice}");
     assert!(notice.contains(&format!("exceeds the GPU's 3-D texture limit {limit}")));
     assert!(notice.contains("half resolution"), "{notice}");

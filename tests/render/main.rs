@@ -1,22 +1,26 @@
-//! End-to-end tests of the renderer, sessions and `cutaway render`.
+//! End-to-end tests of everything that renders headless: the renderer, sessions and `cutaway
+//! render` (goldens, exports, sessions), the image on the walls, wedges on the knee, labelled
+//! images and turntables (`annotate.rs`), and variant comparison (`compare.rs`).
 //!
 //! Golden images: small (160×120), deterministic mode (no supersampling), rendered on the software
 //! adapter with `WGPU_BACKEND=vulkan` (lavapipe; Vulkan is used when the variable is unset).
 //! `UPDATE_GOLDEN=1 cargo test --test render` rewrites `tests/golden/*.png`. The tolerances live
-//! in `image_compare.rs` only. On a machine with no adapter the GPU tests print
+//! in `tests/support/image_compare.rs` only. On a machine with no adapter the GPU tests print
 //! "skipped: <why>" and pass; on a hardware GPU the pictures are checked for content but not
 //! compared (rasterizers differ). This file holds the scenes and helpers; the tests are in
-//! `render/`, one file per concern.
+//! `tests/render/`, one file per concern.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use csg::Mesh;
-use cutaway::render::headless::{HeadlessRenderer, render_with};
-use cutaway::render::{RenderPngOptions, ViewMode};
+use cutaway::render::ViewMode;
+use cutaway::render::headless::HeadlessRenderer;
 use cutaway::scene::{
-    CutterViews, ModelStyle, Scene, SceneCutter, SceneModel, Stereo, SubCutterView,
+    CutterViews, ModelStyle, Scene, SceneCutter, SceneModel, Stereo, SubCutterSpec,
 };
+use cutaway::view::RenderPngOptions;
+use cutaway::view::render_with;
 use cutter::{BoundedPlane, Camera, CutKind};
 use glam::DVec3;
 
@@ -172,8 +176,8 @@ fn with_cutter(mut scene: Scene, views: CutterViews) -> Scene {
 }
 
 /// `count` sub-cutters `width` model units wide, spread evenly through the cutter.
-fn even_sub_cutters(count: u32, width: f64) -> SubCutterView {
-    SubCutterView {
+fn even_sub_cutters(count: usize, width: f64) -> SubCutterSpec {
+    SubCutterSpec {
         count,
         width,
         placement: cutter::subcutters::Placement::Even,

@@ -12,9 +12,11 @@ use std::sync::Arc;
 
 use csg::Mesh;
 use cutaway::cutting::cut_scene::{PartKind, preview_geometry};
-use cutaway::render::headless::{HeadlessRenderer, render_with_preview};
-use cutaway::render::{RenderPngOptions, ViewMode};
+use cutaway::render::ViewMode;
+use cutaway::render::headless::HeadlessRenderer;
 use cutaway::scene::{Scene, SceneCutter, SceneModel};
+use cutaway::view::RenderPngOptions;
+use cutaway::view::render_with_preview;
 use cutter::CutKind;
 use cutter::extrude::{RollSettings, extrude_move, initialize};
 use cutter::surface::Surface;
@@ -31,7 +33,7 @@ fn knee() -> Scene {
     for m in models {
         let part = m.name.split(' ').next().unwrap_or("").to_string();
         if part == "skin" || part == "patella" || part == "femur" {
-            let color = cutaway::anatomy::assets::default_color(&part);
+            let color = cutaway::anatomy::colors::class_color(&part);
             scene
                 .models
                 .push(SceneModel::new(m.name, m.source, Arc::new(m.mesh), color));

@@ -1,5 +1,5 @@
 //! The one place the image tolerances of the end-to-end tests are set, shared by the golden
-//! images (`render.rs`) and the window's exports (`gui.rs`). Included with `#[path]`; not a test
+//! images (`tests/render/`) and the window's exports (`tests/window/gui/`). Included with `#[path]`; not a test
 //! target of its own.
 //!
 //! A pixel differs when any channel is off by more than [`CHANNEL_TOLERANCE`]; at most

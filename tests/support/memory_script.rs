@@ -457,9 +457,9 @@ pub fn run(options: Options) -> Report {
     for i in 0..cutters {
         change(&mut h, "cutter view change", |app| {
             let views = &mut app.scene.cutters[i].views;
-            let sub = cutaway::scene::SubCutterView {
+            let sub = cutaway::scene::SubCutterSpec {
                 count: 3,
-                ..cutaway::scene::SubCutterView::NEW
+                ..cutaway::scene::SubCutterSpec::NEW
             };
             views.transparency = Some(0.3);
             views.ribbons = Some(sub);

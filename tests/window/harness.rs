@@ -1,4 +1,4 @@
-//! The window opened headless for the window tests (`window.rs`, `window_tools.rs`): egui_kittest
+//! The window opened headless for the window tests (`window.rs`, `tools.rs` and the others of this binary): egui_kittest
 //! on the real wgpu renderer at 1280×800 with real frame times (two clicks a frame apart are a
 //! double-click), screenshots saved for a person to look at, and the skip reason when no adapter
 //! exists.

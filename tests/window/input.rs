@@ -1,5 +1,5 @@
 //! Input and looking helpers shared by the window tests that drive the default scene and real
-//! anatomy (`window.rs`, `window_navigation.rs`, `window_scale.rs`): a private folder, settling
+//! anatomy (`window.rs`, `navigation.rs`, `scale.rs`): a private folder, settling
 //! background jobs, switching modes, mouse drags and wheel turns, the 3D view's pixel rectangle,
 //! colour counts, and where the real anatomy is. A test file that does not use every helper
 //! includes this module with `#[allow(dead_code)]`.

@@ -13,18 +13,17 @@
 //! Skipped, with the reason printed, without a wgpu adapter; the body is read from
 //! `CUTAWAY_ANATOMY` (default `../shared/anatomy`).
 
-
 use std::path::Path;
 
+use crate::harness::{apply, harness, no_adapter, shot};
+use crate::input::{anatomy, settle, temp_dir};
 use cutaway::cutting::cut_scene::PartKind;
 use cutaway::gui::app::Action;
-use cutaway::gui::bridge::frame_inputs;
+use cutaway::gui::bridge::shown_cut;
 use cutaway::gui::viewport::view_menu::ViewCommand;
 use cutaway::gui::{CutawayApp, Mode};
 use cutter::EditorSettings;
 use egui_kittest::Harness;
-use crate::harness::{apply, harness, no_adapter, shot};
-use crate::input::{anatomy, settle, temp_dir};
 
 /// The index of the model loaded from a file whose name contains `name`.
 fn model(h: &Harness<'_, CutawayApp>, name: &str) -> usize {
@@ -104,8 +103,7 @@ fn paint_cutter(h: &mut Harness<'_, CutawayApp>, target: usize, length: f32) -> 
 fn assert_cut(h: &mut Harness<'_, CutawayApp>, k: usize) {
     apply(h, Action::SetMode(Mode::Camera));
     settle(h);
-    let inputs = frame_inputs(h.state(), [64, 48]);
-    let cut = inputs.preview.expect("Camera mode draws the cut");
+    let cut = shown_cut(h.state()).expect("Camera mode draws the cut");
     assert!(
         cut.notes.is_empty(),
         "a cutter was refused: {:?}",

@@ -8,21 +8,20 @@
 //! Skipped, with the reason printed, when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with
 //! Mesa's lavapipe installed).
 
-
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
+use crate::harness::{apply, harness, no_adapter, shot};
+use crate::scene_files::{
+    box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
+};
 use cutaway::gui::CutawayApp;
 use cutaway::gui::app::Action;
 use cutaway::gui::panels::variants_panel::VariantCommand;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::{DVec2, DVec3};
-use crate::scene_files::{
-    box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
-};
-use crate::harness::{apply, harness, no_adapter, shot};
 
 /// Steps until no job (loads, measurements, compare pictures) runs, twice over: a finished job
 /// may start the next one.
@@ -584,7 +583,7 @@ fn export_image_with_labels_writes_the_labelled_picture() {
 
     // The same choice through the shared code: both structures labelled, then the ball off.
     let scene = h.state().scene.clone();
-    let mut options = cutaway::render::RenderPngOptions::new(640, 400);
+    let mut options = cutaway::view::RenderPngOptions::new(640, 400);
     options.mode = Some(cutaway::render::ViewMode::Camera);
     let (_, drawn) =
         cutaway::annotate::picture::render_annotated(&scene, &options, &choice).unwrap();

@@ -8,20 +8,19 @@
 //! Skipped, with the reason printed, when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with
 //! Mesa's lavapipe installed); the real-data test reads `CUTAWAY_ANATOMY` (default `../shared/anatomy`).
 
-
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use crate::harness::{apply, harness, no_adapter, shot};
+use crate::input::{anatomy, click_mode, count_colour, drag, settle, temp_dir, view_px, wheel_at};
 use cutaway::gui::app::Action;
-use cutaway::gui::bridge::frame_inputs;
+use cutaway::gui::bridge::{frame_inputs, shown_cut};
 use cutaway::gui::viewport::view_menu::ViewCommand;
 use cutaway::gui::{CutawayApp, Mode, StartOptions};
-use cutaway::view::{LengthUnit, Orientation, ViewPreset};
+use cutaway::scene::{LengthUnit, Orientation, ViewPreset};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::DVec3;
-use crate::harness::{apply, harness, no_adapter, shot};
-use crate::input::{anatomy, click_mode, count_colour, drag, settle, temp_dir, view_px, wheel_at};
 
 /// Mean absolute channel difference of two equally sized images inside `rect` (pixels).
 fn difference_in(a: &image::RgbaImage, b: &image::RgbaImage, rect: egui::Rect) -> f64 {
@@ -147,7 +146,7 @@ fn a_double_click_selects_and_highlights_in_every_mode() {
         assert_eq!(app.scene.cutters.len(), 0, "{mode:?}: a double-click cut");
         // Edit mode paints the selection: no tint there, so the live cut looks like the
         // committed one; every other mode tints it.
-        let drawn = frame_inputs(app, [64, 48]).scene.models[0].color;
+        let drawn = frame_inputs(app, [64, 48]).models[0].color;
         assert_eq!(
             drawn == app.scene.models[0].color,
             mode == Mode::Edit,
@@ -159,10 +158,7 @@ fn a_double_click_selects_and_highlights_in_every_mode() {
     let d = difference_in(&selected, &plain, view_px(&h));
     assert!(d > 1.5, "the selected skin is not highlighted ({d})");
     let inputs = frame_inputs(h.state(), [64, 48]);
-    assert_ne!(
-        inputs.scene.models[0].color,
-        h.state().scene.models[0].color
-    );
+    assert_ne!(inputs.models[0].color, h.state().scene.models[0].color);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -241,8 +237,7 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
     // The cut stays visible in Camera mode: the preview is computed and drawn there too.
     click_mode(&mut h, Mode::Camera);
     settle(&mut h);
-    let inputs = frame_inputs(h.state(), [64, 48]);
-    let cut = inputs.preview.expect("Camera mode draws the cut");
+    let cut = shown_cut(h.state()).expect("Camera mode draws the cut");
     assert!(
         cut.parts
             .iter()
@@ -254,10 +249,7 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
     for mode in [Mode::Scalpel, Mode::Preview] {
         click_mode(&mut h, mode);
         settle(&mut h);
-        let inputs = frame_inputs(h.state(), [64, 48]);
-        let cut = inputs
-            .preview
-            .unwrap_or_else(|| panic!("{mode:?} mode draws no cut"));
+        let cut = shown_cut(h.state()).unwrap_or_else(|| panic!("{mode:?} mode draws no cut"));
         assert!(
             cut.parts
                 .iter()

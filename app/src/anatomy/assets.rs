@@ -11,8 +11,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 
+use crate::anatomy::colors::class_color;
+use crate::io::ModelUnit;
 use crate::io::{Model, Part};
-use crate::scene::ModelUnit;
 
 /// One embedded scene.
 #[derive(Debug)]
@@ -98,12 +99,12 @@ pub fn load_scene(scene: &Scene) -> anyhow::Result<Vec<Model>> {
 
 /// Parses every part of `scene` and welds it: one structure [`Model`] per part, named as
 /// [`crate::io::load_structures`] names a file (`femur_marrow` → `femur marrow`), in part order,
-/// coloured by [`default_color`].
+/// coloured by [`class_color`].
 pub fn load_scene_structures(scene: &Scene) -> anyhow::Result<Vec<Model>> {
     let mut models = Vec::new();
     for part in decode_parts(scene)? {
         let path = scene.part_path(&part.name);
-        let color = default_color(&part.name);
+        let color = class_color(&part.name);
         models.extend(
             crate::io::structures_of_parts(&path, vec![part], "")
                 .into_iter()
@@ -203,38 +204,6 @@ pub fn load_or_embedded_picking(
     }
 }
 
-/// The display colour (linear-ish sRGB in `0..=1`) of a part, by anatomical class: skin beige,
-/// fat yellow, muscle red, bone ivory, marrow ochre, vessel dark red, brain pink, ventricles
-/// (CSF) light blue, disc blue-grey. Accepts a part name or a model name (`"femur 1"`); unknown
-/// names get a neutral grey.
-pub fn default_color(part_name: &str) -> [f32; 3] {
-    let name = part_name.to_ascii_lowercase();
-    let has = |words: &[&str]| words.iter().any(|w| name.contains(w));
-    if has(&["marrow"]) {
-        [0.80, 0.55, 0.25]
-    } else if has(&["ventricle", "csf"]) {
-        [0.55, 0.75, 0.95]
-    } else if has(&["vessel", "artery", "vein", "popliteal"]) {
-        [0.55, 0.07, 0.09]
-    } else if has(&["disc", "disk"]) {
-        [0.55, 0.62, 0.72]
-    } else if has(&["skin"]) {
-        [0.93, 0.76, 0.62]
-    } else if has(&["fat"]) {
-        [0.97, 0.86, 0.38]
-    } else if has(&["muscle", "quadriceps", "vastus", "rectus"]) {
-        [0.72, 0.20, 0.18]
-    } else if has(&["brain", "cerebr", "cortex"]) {
-        [0.93, 0.63, 0.66]
-    } else if has(&[
-        "bone", "femur", "tibia", "patella", "fibula", "skull", "vertebra", "spine",
-    ]) {
-        [0.95, 0.92, 0.80]
-    } else {
-        [0.70, 0.70, 0.70]
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -306,18 +275,18 @@ mod tests {
 
     #[test]
     fn colours_follow_anatomy() {
-        assert_eq!(default_color("skin"), default_color("skin 1"));
-        assert_ne!(default_color("skin"), default_color("fat"));
-        assert_eq!(default_color("femur"), default_color("vertebra_l4"));
-        assert_eq!(default_color("skull"), default_color("patella"));
-        assert_ne!(default_color("femur_marrow"), default_color("femur"));
-        assert_ne!(default_color("brain"), default_color("ventricles"));
-        let muscle = default_color("quadriceps");
+        assert_eq!(class_color("skin"), class_color("skin 1"));
+        assert_ne!(class_color("skin"), class_color("fat"));
+        assert_eq!(class_color("femur"), class_color("vertebra_l4"));
+        assert_eq!(class_color("skull"), class_color("patella"));
+        assert_ne!(class_color("femur_marrow"), class_color("femur"));
+        assert_ne!(class_color("brain"), class_color("ventricles"));
+        let muscle = class_color("quadriceps");
         assert!(muscle[0] > 2.0 * muscle[1], "muscle is red");
         for s in scenes() {
             for (part, _) in s.parts {
                 assert_ne!(
-                    default_color(part),
+                    class_color(part),
                     [0.70, 0.70, 0.70],
                     "{part} has an anatomical colour"
                 );

@@ -1,11 +1,14 @@
 //! Colours for structures by anatomical name, so a folder of atlas files opens looking like
 //! anatomy (ventricles blue, hippocampus yellow, muscle red) instead of in random hues.
 //!
-//! The table is data, `assets/anatomy_colors.txt` (values from 3D Slicer's public
-//! GenericAnatomyColors and SPL brain atlas tables; provenance in `assets/README.md`), compiled
-//! into the binary and parsed once. A structure's colour is, in order: the colour its file gives it, the colour of
-//! the best-matching entry of this table ([`color_for_name`]), a distinct palette colour
-//! ([`structure_color`]).
+//! The one module that decides structure colours. The table is data,
+//! `assets/anatomy_colors.txt` (values from 3D Slicer's public GenericAnatomyColors and SPL brain
+//! atlas tables; provenance in `assets/README.md`), compiled into the binary and parsed once. A
+//! structure's colour is, in order: the colour its file gives it, the colour of the
+//! best-matching entry of this table ([`color_for_name`]), a distinct palette colour
+//! ([`distinct_colors`]); all three in [`structure_color`]. The embedded phantoms' parts are
+//! coloured by class ([`class_color`]). A label volume colours a label its table does not name
+//! as part of reading the file (`crate::io::volume::default_color`, by the label's value).
 
 use std::sync::OnceLock;
 
@@ -84,7 +87,65 @@ pub fn color_for_name(name: &str) -> Option<[f32; 3]> {
 pub fn structure_color(name: &str, file_color: Option<[f32; 3]>, index: usize) -> [f32; 3] {
     file_color
         .or_else(|| color_for_name(name))
-        .unwrap_or_else(|| crate::scene::distinct_colors(index + 1)[index])
+        .unwrap_or_else(|| distinct_colors(index + 1)[index])
+}
+
+/// The colour (sRGB in `0..=1`) of an embedded phantom's part, by anatomical class: skin beige,
+/// fat yellow, muscle red, bone ivory, marrow ochre, vessel dark red, brain pink, ventricles
+/// (CSF) light blue, disc blue-grey. Accepts a part name or a model name (`"femur 1"`); unknown
+/// names get a neutral grey.
+pub fn class_color(part_name: &str) -> [f32; 3] {
+    let name = part_name.to_ascii_lowercase();
+    let has = |words: &[&str]| words.iter().any(|w| name.contains(w));
+    if has(&["marrow"]) {
+        [0.80, 0.55, 0.25]
+    } else if has(&["ventricle", "csf"]) {
+        [0.55, 0.75, 0.95]
+    } else if has(&["vessel", "artery", "vein", "popliteal"]) {
+        [0.55, 0.07, 0.09]
+    } else if has(&["disc", "disk"]) {
+        [0.55, 0.62, 0.72]
+    } else if has(&["skin"]) {
+        [0.93, 0.76, 0.62]
+    } else if has(&["fat"]) {
+        [0.97, 0.86, 0.38]
+    } else if has(&["muscle", "quadriceps", "vastus", "rectus"]) {
+        [0.72, 0.20, 0.18]
+    } else if has(&["brain", "cerebr", "cortex"]) {
+        [0.93, 0.63, 0.66]
+    } else if has(&[
+        "bone", "femur", "tibia", "patella", "fibula", "skull", "vertebra", "spine",
+    ]) {
+        [0.95, 0.92, 0.80]
+    } else {
+        [0.70, 0.70, 0.70]
+    }
+}
+
+/// `count` colours that are easy to tell apart (golden-angle hues, moderate saturation), for
+/// models loaded without a colour.
+pub fn distinct_colors(count: usize) -> Vec<[f32; 3]> {
+    (0..count)
+        .map(|i| {
+            let hue = (0.08 + i as f32 * 0.381_966) % 1.0;
+            hsv_to_rgb(hue, 0.45, 0.9)
+        })
+        .collect()
+}
+
+fn hsv_to_rgb(h: f32, s: f32, v: f32) -> [f32; 3] {
+    let h6 = h * 6.0;
+    let sector = h6.floor() as i32 % 6;
+    let f = h6 - h6.floor();
+    let (p, q, t) = (v * (1.0 - s), v * (1.0 - s * f), v * (1.0 - s * (1.0 - f)));
+    match sector {
+        0 => [v, t, p],
+        1 => [q, v, p],
+        2 => [p, v, t],
+        3 => [p, q, v],
+        4 => [t, p, v],
+        _ => [v, p, q],
+    }
 }
 
 #[cfg(test)]
@@ -132,5 +193,21 @@ mod tests {
         let a = structure_color("widget", None, 0);
         let b = structure_color("gadget", None, 1);
         assert_ne!(a, b);
+    }
+
+    #[test]
+    fn distinct_colors_differ() {
+        let colors = distinct_colors(6);
+        for i in 0..6 {
+            for j in 0..i {
+                let d: f32 = (0..3).map(|k| (colors[i][k] - colors[j][k]).abs()).sum();
+                assert!(
+                    d > 0.1,
+                    "{i} and {j} look alike: {:?} {:?}",
+                    colors[i],
+                    colors[j]
+                );
+            }
+        }
     }
 }

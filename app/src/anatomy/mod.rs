@@ -4,4 +4,5 @@
 pub mod assets;
 pub mod colors;
 pub mod default_scene;
+pub mod examples;
 pub mod phantom;

@@ -5,7 +5,7 @@
 
 use cutter::Camera;
 
-use crate::view::Orientation;
+use crate::scene::Orientation;
 use crate::view::marker::marker_axes;
 
 /// One world axis as the camera sees it.

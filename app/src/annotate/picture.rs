@@ -10,8 +10,9 @@ use image::RgbaImage;
 use super::labelled::{Annotations, Extras, annotate_with};
 use super::visible::is_opaque;
 use crate::cutting::cut_scene::preview_geometry;
-use crate::render::{HeadlessRenderer, RenderPngOptions, ViewMode, render_mode};
+use crate::render::{HeadlessRenderer, ViewMode};
 use crate::scene::Scene;
+use crate::view::{RenderPngOptions, render_mode};
 
 /// What to draw over an exported picture.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -51,7 +52,7 @@ pub fn render_annotated(
     let preview = (render_mode(scene, options) == ViewMode::Preview)
         .then(|| Arc::new(preview_geometry(scene)));
     let mut image =
-        crate::render::render_with_preview(&mut renderer, scene, options, preview.clone())?;
+        crate::view::render_with_preview(&mut renderer, scene, options, preview.clone())?;
     super::rulers::draw_rulers(&mut image, scene);
     if !choice.any() {
         return Ok((image, None));

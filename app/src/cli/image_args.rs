@@ -6,8 +6,9 @@ use std::sync::Arc;
 
 use anyhow::Context as _;
 
-use crate::intensity::{ImageLayer, WallDisplay, Window};
+use crate::io::intensity::Window;
 use crate::scene::Scene;
+use crate::scene::{ImageLayer, WallDisplay};
 
 /// Reads `image` (if given) into the scene's image layer, checking that it meets the models, then
 /// applies `window` and `display` to whatever image the scene has.
@@ -19,7 +20,7 @@ pub fn apply(
 ) -> anyhow::Result<()> {
     if let Some(path) = image {
         let read = crate::io::volume::intensity::read_image(path)?;
-        crate::intensity::check_overlap(&read, scene.bbox())
+        crate::io::intensity::check_overlap(&read, scene.bbox())
             .with_context(|| path.display().to_string())?;
         scene.image = Some(ImageLayer::new(Arc::new(read)));
     }

@@ -120,7 +120,7 @@ fn volume_info(path: &Path, labels: Option<&Path>) -> anyhow::Result<Info> {
 
 /// An intensity image: no surfaces (the mesh fields are zero, the box is the grid's world box),
 /// its grid, and what it holds.
-fn image_info(image: &crate::intensity::IntensityImage, reason: String) -> Info {
+fn image_info(image: &crate::io::intensity::IntensityImage, reason: String) -> Info {
     let bbox = image.world_bbox();
     let m = image.world_from_voxel.matrix3;
     let (min, max) = image.range();

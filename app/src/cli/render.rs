@@ -27,7 +27,8 @@ use std::sync::Arc;
 use anyhow::Context as _;
 
 use crate::cutting::cut_scene::{CutReport, preview_geometry};
-use crate::render::{HeadlessRenderer, RenderPngOptions, ViewMode, render_mode};
+use crate::render::{HeadlessRenderer, ViewMode};
+use crate::view::{RenderPngOptions, render_mode};
 
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
@@ -101,7 +102,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         HeadlessRenderer::new().with_context(|| format!("{}", args.session.display()))?;
     if let Some(layer) = &scene.image {
         let limit = renderer.max_texture_dimension_3d() as usize;
-        if let Some(notice) = crate::intensity::fit::notice(&layer.image, limit) {
+        if let Some(notice) = crate::io::intensity::fit::notice(&layer.image, limit) {
             eprintln!("{}: {notice}", layer.image.source.display());
         }
     }
@@ -109,7 +110,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let preview = (render_mode(&scene, &options) == ViewMode::Preview)
         .then(|| Arc::new(preview_geometry(&scene)));
     let mut image =
-        crate::render::render_with_preview(&mut renderer, &scene, &options, preview.clone())
+        crate::view::render_with_preview(&mut renderer, &scene, &options, preview.clone())
             .with_context(|| format!("{}", args.session.display()))?;
     crate::annotate::rulers::draw_rulers(&mut image, &scene);
     if let Some(models) = &labelled {

@@ -7,7 +7,7 @@ use std::io::IsTerminal as _;
 use std::path::{Path, PathBuf};
 
 use crate::export::turntable::{MAX_FRAMES, TurntableOptions, TurntableProgress, export_turntable};
-use crate::render::RenderPngOptions;
+use crate::view::RenderPngOptions;
 
 #[derive(Debug, clap::Args)]
 pub struct TurntableArgs {

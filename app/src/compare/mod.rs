@@ -11,8 +11,9 @@ use std::sync::Arc;
 
 use crate::cutting::cut_scene::preview_geometry;
 use crate::metrics::{Metrics, MetricsOptions, measure};
-use crate::render::{HeadlessRenderer, RenderPngOptions};
+use crate::render::HeadlessRenderer;
 use crate::scene::Scene;
+use crate::view::RenderPngOptions;
 
 /// One variant's measures.
 #[derive(Clone, Debug, PartialEq)]
@@ -60,7 +61,7 @@ pub fn render_variants(
         if let Some(note) = preview.notes.first() {
             anyhow::bail!("variant '{name}': {note}");
         }
-        let image = crate::render::render_with_preview(renderer, &shown, &options, Some(preview))
+        let image = crate::view::render_with_preview(renderer, &shown, &options, Some(preview))
             .map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
         images.push(image);
     }

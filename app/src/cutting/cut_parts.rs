@@ -74,7 +74,7 @@ pub fn contour_polylines(contours: Vec<csg::Contour>) -> Vec<Vec<DVec3>> {
 pub fn sub_cuts(
     step: &Step,
     cutter: &SceneCutter,
-    view: &crate::scene::SubCutterView,
+    view: &crate::scene::SubCutterSpec,
     with_walls: bool,
 ) -> Result<(Mesh, Mesh), csg::CutError> {
     use cutter::subcutters::Placement;
@@ -83,7 +83,7 @@ pub fn sub_cuts(
         return Ok((Mesh::default(), Mesh::default()));
     }
     let clip = whole.smooth;
-    let mut subs = cutter::subcutters::sub_cutters(whole, &view.spec());
+    let mut subs = cutter::subcutters::sub_cutters(whole, view);
     if clip && view.placement != Placement::Horizontal {
         for sub in &mut subs {
             for p in &mut sub.planes {

@@ -103,15 +103,7 @@ pub struct CutCache {
 const CACHE_ENTRIES: usize = 4;
 
 /// How many entries a [`CutCache`] holds.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct CacheCensus {
-    /// Exact indexes of model meshes.
-    pub indexes: usize,
-    /// Closed results of leading runs of cutters (each with its own index).
-    pub prefixes: usize,
-    /// Whole-model previews.
-    pub previews: usize,
-}
+pub use crate::platform::memory_census::CacheCensus;
 
 impl CutCache {
     /// The exact index of `mesh`, built on first use.

@@ -16,7 +16,7 @@
 //! ## Drawn from the cut's delta
 //! The boolean returns the kept part as a delta against the cached target (faces removed, kept
 //! pieces of split faces added). A model cut by one cutter is shown from that delta
-//! ([`crate::render::delta`]): the model's mesh stays in its GPU buffers as it was uploaded, the
+//! ([`crate::cutting::delta`]): the model's mesh stays in its GPU buffers as it was uploaded, the
 //! renderer hides the removed faces (and the ring of faces whose vertex normals the cut changed)
 //! in place and draws a small patch. So per re-cut the UI thread uploads the patch, the walls
 //! and the contour, never the model; the O(N) work that remains (the per-model vertex-to-face
@@ -33,7 +33,7 @@ use csg::Mesh;
 use super::cut_scene::{
     CutCache, PartKind, PreviewGeometry, PreviewPart, cutter_mesh, preview_geometry_with,
 };
-use crate::render::delta::{self, MeshDelta, VertexFaces};
+use crate::cutting::delta::{self, MeshDelta, VertexFaces};
 use crate::scene::{CutterViews, Scene, SceneCutter};
 
 use super::scene_cuts::PreviewKey;
@@ -77,15 +77,7 @@ struct Slot {
 }
 
 /// What the live-cut worker keeps between cuts (see [`LiveCut::census`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct LiveCensus {
-    /// Indexes, cut prefixes and whole-model previews of models cut by several cutters.
-    pub cuts: super::cut_scene::CacheCensus,
-    /// Vertex-to-face tables of model meshes (for the deltas' normals).
-    pub face_tables: usize,
-    /// Live cuts of models cut by one cutter (walls, contour and kept delta each).
-    pub model_cuts: usize,
-}
+pub use crate::platform::memory_census::LiveCensus;
 
 struct Shared {
     slot: Mutex<Slot>,

@@ -21,9 +21,13 @@
 pub mod cut_parts;
 pub mod cut_results;
 pub mod cut_scene;
+pub mod delta;
 pub mod drawn_hit;
 pub mod editing;
 pub mod live_cut;
 pub mod overlay;
 pub mod pick;
 pub mod scene_cuts;
+pub mod vertices;
+pub mod wall_pick;
+pub mod wall_split;

@@ -12,8 +12,22 @@ use std::sync::Arc;
 use csg::Mesh;
 
 use super::cut_parts::cutter_surface;
-use crate::render::CutterOverlay;
 use crate::scene::SceneCutter;
+
+/// A cutter as the editor shows it in Edit mode.
+#[derive(Clone, Debug, Default)]
+pub struct CutterOverlay {
+    /// The corners of each bounded cutting plane (front-top, back-top, back-bottom,
+    /// front-bottom), for the outline and the highlighted plane.
+    pub planes: Vec<[glam::DVec3; 4]>,
+    /// The closed cutter surface, exactly the one the boolean cuts with
+    /// ([`cutter_surface`], smooth cutters subdivided).
+    pub surface: Arc<csg::Mesh>,
+    /// Index into `planes` of the plane under the mouse or selected; drawn in orange.
+    pub highlighted_plane: Option<usize>,
+    /// The cutter being edited (drawn a little stronger than the others).
+    pub active: bool,
+}
 
 /// Surfaces kept between frames (the cutters a scene usually shows at once).
 const KEPT_SURFACES: usize = 8;

@@ -106,3 +106,23 @@ impl PreviewKey {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::CutterViews;
+    use crate::test_support::scene_with_cube_cut;
+
+    #[test]
+    fn remove_all_cut_geometry_leaves_the_closed_kept_part() {
+        // A 2-unit cube with a 1-unit corner cut away.
+        let scene = scene_with_cube_cut(CutterViews::default());
+        let applied = apply_all_cuts(&scene, &Progress::default()).unwrap();
+        assert_eq!(applied.len(), 1);
+        let (model, mesh) = &applied[0];
+        assert_eq!(*model, 0);
+        let report = mesh.report();
+        assert!(report.closed, "{report:?}");
+        assert!((mesh.volume() - 7.0).abs() < 1e-9, "{}", mesh.volume());
+    }
+}

@@ -22,7 +22,7 @@
 //! on glTF's +Y up, anterior on +Z (the front of a glTF asset faces +Z) and the patient's right on
 //! −X (glTF's right side of the asset).
 //!
-//! With an image on the walls (the scene's [`crate::intensity::ImageLayer`]), walls, slices and
+//! With an image on the walls (the scene's [`crate::scene::ImageLayer`]), walls, slices and
 //! ribbons that show it are subdivided and carry the image as `COLOR_0` on a white `image`
 //! material ([`super::image_colors`]).
 //!
@@ -187,7 +187,7 @@ pub fn scene_document(scene: &Scene, geometry: &PreviewGeometry) -> Document {
 }
 
 /// The image layer a part of `kind` shows, if any (walls; slices and ribbons).
-fn image_on(scene: &Scene, kind: PartKind) -> Option<&crate::intensity::ImageLayer> {
+fn image_on(scene: &Scene, kind: PartKind) -> Option<&crate::scene::ImageLayer> {
     let layer = scene.image.as_ref()?;
     let shown = match kind {
         PartKind::Wall => layer.on_walls,
@@ -195,7 +195,7 @@ fn image_on(scene: &Scene, kind: PartKind) -> Option<&crate::intensity::ImageLay
         PartKind::Ribbon => layer.on_slices,
         PartKind::Kept | PartKind::Removed => false,
     };
-    (shown && layer.display != crate::intensity::WallDisplay::Color).then_some(layer)
+    (shown && layer.display != crate::scene::WallDisplay::Color).then_some(layer)
 }
 
 /// Accumulates the JSON objects and the binary buffer.
@@ -244,7 +244,7 @@ impl Builder {
         &mut self,
         scene: &Scene,
         mesh: &Mesh,
-        layer: &crate::intensity::ImageLayer,
+        layer: &crate::scene::ImageLayer,
         base: [f32; 3],
     ) -> Option<json::mesh::Primitive> {
         if mesh.triangles.is_empty() {

@@ -10,7 +10,7 @@
 use csg::Mesh;
 use glam::DVec3;
 
-use crate::intensity::ImageLayer;
+use crate::scene::ImageLayer;
 
 /// Most triangles one baked part may have; a larger wall gets coarser colours.
 pub const MAX_TRIANGLES: usize = 400_000;
@@ -74,7 +74,7 @@ pub fn bake(mesh: &Mesh, layer: &ImageLayer, base: [f32; 3]) -> (Mesh, Vec<[f32;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::intensity::{IntensityImage, Window};
+    use crate::io::intensity::{IntensityImage, Window};
     use glam::DAffine3;
     use std::sync::Arc;
 

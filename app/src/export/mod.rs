@@ -11,6 +11,7 @@
 pub mod glb;
 pub mod gltf;
 pub mod image_colors;
+pub mod meshes;
 pub mod turntable;
 
 use std::path::Path;

@@ -17,8 +17,9 @@ use image::RgbaImage;
 
 use crate::cutting::cut_scene::{PreviewGeometry, preview_geometry};
 use crate::io::OutputSet;
-use crate::render::{RenderPngOptions, ViewMode, render_mode};
+use crate::render::ViewMode;
 use crate::scene::Scene;
+use crate::view::{RenderPngOptions, render_mode};
 
 /// Most frames of one turntable.
 pub const MAX_FRAMES: u32 = 720;
@@ -179,13 +180,9 @@ fn write_turntable(
         }
         let clock = std::time::Instant::now();
         frame_scene.camera = orbit(&scene.camera, k, options.frames);
-        let mut image = crate::render::render_with_preview(
-            &mut renderer,
-            &frame_scene,
-            picture,
-            preview.clone(),
-        )
-        .with_context(|| format!("{}", out.display()))?;
+        let mut image =
+            crate::view::render_with_preview(&mut renderer, &frame_scene, picture, preview.clone())
+                .with_context(|| format!("{}", out.display()))?;
         if let Some(decorate) = decorate {
             decorate(&mut image, &frame_scene, preview.as_deref());
         }

@@ -7,7 +7,7 @@
 
 use std::path::PathBuf;
 
-use crate::view::{Orientation, ViewPreset};
+use crate::scene::{Orientation, ViewPreset};
 
 /// What the mouse does in the viewport (thesis 3.5 C).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

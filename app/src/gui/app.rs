@@ -18,10 +18,10 @@ use crate::scene::Scene;
 
 use crate::gui::jobs;
 use crate::gui::panels::status_bar::StatusInfo;
-use crate::gui::recovery::{self, RecentFiles, Recovery};
 use crate::gui::state::AppState;
 use crate::gui::state::viewport::ViewportState;
-use crate::gui::undo::History;
+use crate::session::recovery::{self, RecentFiles, Recovery};
+use crate::session::undo::History;
 
 pub use crate::gui::action::{Action, Mode, Purpose};
 pub use crate::gui::job_output::JobOutput;

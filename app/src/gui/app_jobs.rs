@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::scene::SceneModel;
+use crate::scene::open::{file_label, load_paths};
 
 use crate::gui::app::{CutawayApp, is_session_path, new_scene, triangle_count};
 use crate::gui::job_output::JobOutput;
@@ -43,7 +43,7 @@ impl CutawayApp {
             ctx,
             format!("Loading the {name} example"),
             move |progress| {
-                let models = crate::gui::bridge::example_scene_models(&name, progress)?;
+                let models = crate::anatomy::examples::example_models(&name, progress)?;
                 Ok(JobOutput::Models {
                     models,
                     replace: true,
@@ -248,14 +248,8 @@ impl CutawayApp {
         let count = models.len();
         let default_scene = crate::anatomy::default_scene::is_default_scene(&models);
         let from_volume = sources.iter().any(|p| crate::io::volume::is_volume(p));
-        for (i, model) in models.into_iter().enumerate() {
-            let color =
-                crate::anatomy::colors::structure_color(&model.name, model.color, first_new + i);
-            self.state
-                .scene
-                .models
-                .push(SceneModel::structure(model, color));
-        }
+        let added = crate::scene::open::structures(models, first_new);
+        self.state.scene.models.extend(added);
         if replace {
             crate::gui::viewport::view_menu::orient_new_scene(
                 &mut self.state,
@@ -288,7 +282,7 @@ impl CutawayApp {
             ctx,
             format!("Opening {}", file_label(&path)),
             move |progress| {
-                let scene = crate::gui::bridge::load_session(&path, progress)?;
+                let scene = crate::session::load::load_with_progress(&path, progress)?;
                 Ok(JobOutput::Session {
                     path,
                     scene: Box::new(scene),
@@ -319,7 +313,14 @@ impl CutawayApp {
         let scene = self.state.scene.clone();
         let settings = self.state.export_meshes.clone();
         self.spawn(ctx, "Exporting cut meshes", move |progress| {
-            let files = crate::gui::bridge::export_meshes(&scene, &settings, &dir, progress)?;
+            let parts = crate::export::meshes::CutMeshParts {
+                kept: settings.kept,
+                walls: settings.walls,
+                removed: settings.removed,
+            };
+            let extension = settings.format.extension();
+            let files =
+                crate::export::meshes::write_cut_meshes(&scene, parts, extension, &dir, progress)?;
             Ok(JobOutput::Done(format!(
                 "Exported {} meshes to {}",
                 files.len(),
@@ -390,69 +391,3 @@ impl CutawayApp {
 }
 
 const PREVIEW_JOB: &str = "Cutting (Preview)";
-
-pub(super) fn file_label(path: &Path) -> String {
-    path.file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| path.display().to_string())
-}
-
-/// Reads files and folders (recursively) as structures, one file at a time, reporting progress
-/// per file and stopping between files when cancelled. A folder's files are grouped by the
-/// folders between it and them, its own name first. A volume file whose values are not labels
-/// becomes the scene's image.
-pub fn load_paths(
-    paths: &[PathBuf],
-    progress: &Progress,
-) -> anyhow::Result<(Vec<crate::io::Model>, Option<crate::intensity::ImageLayer>)> {
-    let mut files: Vec<(PathBuf, String)> = Vec::new();
-    for path in paths {
-        if path.is_dir() {
-            let found = crate::io::mesh_files(path)?;
-            if found.is_empty() {
-                anyhow::bail!(
-                    "{}: no .obj, .stl, .ply or .vtk files in this folder",
-                    path.display()
-                );
-            }
-            let root = path.parent().unwrap_or(Path::new(""));
-            files.extend(found.into_iter().map(|f| {
-                let group = crate::io::group_of(&f, root);
-                (f, group)
-            }));
-        } else {
-            files.push((path.clone(), String::new()));
-        }
-    }
-    let mut models = Vec::new();
-    let mut image = None;
-    // Per mille of each file, so a volume's label surfacing moves the bar within its file.
-    let total = files.len() as u64 * 1000;
-    for (i, (file, group)) in files.iter().enumerate() {
-        progress.check()?;
-        let start = i as u64 * 1000;
-        progress.set(start, total);
-        progress.set_message(file_label(file));
-        let surfacing = |fraction: f32| {
-            progress.set(start + (fraction.clamp(0.0, 1.0) * 1000.0) as u64, total);
-            !progress.is_cancelled()
-        };
-        crate::intensity::open::read_file_into(file, group, &mut models, &mut image, &surfacing)?;
-    }
-    progress.set(total, total);
-    Ok((models, image))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn load_paths_names_an_empty_folder() {
-        let dir = std::env::temp_dir().join(format!("cutaway-empty-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let err = load_paths(std::slice::from_ref(&dir), &Progress::default()).unwrap_err();
-        assert!(format!("{err:#}").contains(&dir.display().to_string()));
-        let _ = std::fs::remove_dir_all(&dir);
-    }
-}

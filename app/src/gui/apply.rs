@@ -11,9 +11,9 @@ use crate::scene::Scene;
 
 use crate::gui::action::{Action, Mode, Purpose};
 use crate::gui::app::CutawayApp;
-use crate::gui::app_jobs::file_label;
 use crate::gui::job_output::JobOutput;
-use crate::gui::undo::Apply;
+use crate::scene::open::file_label;
+use crate::session::undo::Apply;
 use crate::view::camera_controls;
 
 impl CutawayApp {
@@ -27,9 +27,9 @@ impl CutawayApp {
                 let label = format!("Loading image {}", file_label(&path));
                 self.spawn(ctx, label, move |_| {
                     let image = crate::io::volume::intensity::read_image(&path)?;
-                    Ok(JobOutput::Image(crate::intensity::ImageLayer::new(
-                        Arc::new(image),
-                    )))
+                    Ok(JobOutput::Image(crate::scene::ImageLayer::new(Arc::new(
+                        image,
+                    ))))
                 });
             }
             Action::SaveSession => match self.state.session_path.clone() {
@@ -77,7 +77,7 @@ impl CutawayApp {
                 self.state.scene.camera = self
                     .state
                     .scene
-                    .preset_camera(crate::view::ViewPreset::Anterior);
+                    .preset_camera(crate::scene::ViewPreset::Anterior);
             }
             Action::SelectModel(index) => {
                 self.state.selected_model = index.filter(|&i| i < self.state.scene.models.len());

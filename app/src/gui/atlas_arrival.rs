@@ -15,7 +15,6 @@ use crate::gui::jobs::is_cancelled;
 use crate::gui::state::AppState;
 pub use crate::gui::state::atlas::AtlasArrival;
 use crate::io::Model;
-use crate::scene::SceneModel;
 
 /// Takes the finished job's result, once per frame: the structures join the scene and every
 /// undo snapshot; a failure is said in the status bar, the skin stays.
@@ -38,15 +37,7 @@ pub fn poll(app: &mut AppState) {
 fn add_structures(app: &mut AppState, models: Vec<Model>, took: Duration) {
     let first = app.scene.models.len();
     let count = models.len();
-    let added: Vec<SceneModel> = models
-        .into_iter()
-        .enumerate()
-        .map(|(i, model)| {
-            let color =
-                crate::anatomy::colors::structure_color(&model.name, model.color, first + i);
-            SceneModel::structure(model, color)
-        })
-        .collect();
+    let added = crate::scene::open::structures(models, first);
     for scene in app.scenes_mut() {
         scene.models.extend(added.iter().cloned());
     }

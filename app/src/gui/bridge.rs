@@ -3,13 +3,12 @@
 //! one file so the panels never depend on those APIs directly. Cutting itself (the editor slot,
 //! the whole-scene cut, the live cut, picks) is egui-free in [`crate::cutting`].
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
+use std::sync::Arc;
 
 use glam::DVec2;
 
-use crate::cutting::cut_scene;
-use crate::cutting::scene_cuts::cut_each_in_turn;
-use crate::gui::jobs::Progress;
+use crate::cutting::cut_scene::PreviewGeometry;
 use crate::gui::state::AppState;
 use crate::render::{CutterOverlay, FrameInputs, OutputTarget, Renderer, ViewMode};
 use crate::scene::Scene;
@@ -57,11 +56,12 @@ impl egui_wgpu::CallbackTrait for ViewCallback {
     }
 }
 
-/// What the renderer draws for the window's current state.
-pub fn frame_inputs(app: &AppState, size: [u32; 2]) -> FrameInputs {
+/// The cut the window draws in its current mode, with its parts and notes: Camera and Scalpel
+/// draw the cut without the removed-piece views as Preview does, Preview the whole computed cut,
+/// Edit the live cut (when it is on and there are cutters).
+pub fn shown_cut(app: &AppState) -> Option<Arc<PreviewGeometry>> {
     use crate::gui::action::Mode;
-    // Camera and Scalpel draw the cut (without the removed-piece views) as Preview does.
-    let cut = match app.mode {
+    match app.mode {
         Mode::Camera | Mode::Scalpel => crate::gui::viewport::cut_view::cut_without_views(app),
         Mode::Preview => {
             crate::gui::viewport::cut_view::drop_derived();
@@ -69,20 +69,26 @@ pub fn frame_inputs(app: &AppState, size: [u32; 2]) -> FrameInputs {
         }
         Mode::Edit => {
             crate::gui::viewport::cut_view::drop_derived();
-            None
+            let live = app.viewport.live.enabled && !app.scene.cutters.is_empty();
+            live.then(|| app.viewport.live.geometry()).flatten()
         }
-    };
+    }
+}
+
+/// What the renderer draws for the window's current state.
+pub fn frame_inputs(app: &AppState, size: [u32; 2]) -> FrameInputs {
+    use crate::gui::action::Mode;
+    let cut = shown_cut(app);
     let mode = match app.mode {
         Mode::Edit => ViewMode::Edit,
         Mode::Preview => ViewMode::Preview,
         Mode::Camera | Mode::Scalpel if cut.is_some() => ViewMode::Preview,
         Mode::Camera | Mode::Scalpel => ViewMode::Camera,
     };
-    let mut inputs = FrameInputs::new(app.scene.clone(), size, mode);
-    inputs.preview = cut;
-    crate::gui::viewport::cut_view::highlight_selection(app, &mut inputs.scene);
+    let mut inputs = crate::view::frame::frame_of(&app.scene, size, mode);
+    inputs.show_cut(cut);
+    crate::gui::viewport::cut_view::highlight_selection(app, &mut inputs.models);
     if app.mode == Mode::Edit && app.viewport.live.enabled && !app.scene.cutters.is_empty() {
-        inputs.preview = app.viewport.live.geometry();
         inputs.deltas = app.viewport.live.deltas();
     }
     if app.mode == Mode::Scalpel {
@@ -147,73 +153,9 @@ pub fn paint_scene(ui: &mut egui::Ui, rect: egui::Rect, app: &AppState) -> bool 
     true
 }
 
-/// An embedded example scene by name. Models keep the virtual `assets/<scene>/<part>.ply`
-/// source unless the source tree's copy exists, whose absolute path is used instead so that a
-/// session saved from the example opens anywhere on this machine.
-pub fn example_scene_models(
-    name: &str,
-    progress: &Progress,
-) -> anyhow::Result<Vec<crate::io::Model>> {
-    progress.set_message(name.to_string());
-    let mut models = if name == crate::anatomy::default_scene::NAME {
-        crate::anatomy::default_scene::load()?
-    } else if name == crate::anatomy::default_scene::ALL_NAME {
-        crate::anatomy::default_scene::load_all(&|fraction| {
-            progress.set((fraction.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
-            !progress.is_cancelled()
-        })?
-    } else {
-        let scene = crate::anatomy::assets::scene(name)
-            .ok_or_else(|| anyhow::anyhow!("{name}: no such example scene"))?;
-        crate::anatomy::assets::load_scene_structures(scene)?
-    };
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    for model in &mut models {
-        let on_disk = root.join(&model.source);
-        if on_disk.is_file()
-            && let Ok(absolute) = std::fs::canonicalize(&on_disk)
-        {
-            model.source = absolute;
-        }
-    }
-    Ok(models)
-}
-
 /// Writes the window's scene as a session file (atomic).
 pub fn save_session(app: &AppState, path: &Path) -> anyhow::Result<()> {
     crate::session::save(path, &app.scene)
-}
-
-/// Reads a session (models included) in a worker.
-pub fn load_session(path: &Path, progress: &Progress) -> anyhow::Result<Scene> {
-    progress.set_message(
-        path.file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default(),
-    );
-    let mut files = 0u64;
-    let scene = crate::session::load_with(path, |file, unit, only| {
-        progress.check()?;
-        files += 1;
-        progress.set_message(
-            file.file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_default(),
-        );
-        match unit {
-            crate::scene::ModelUnit::Region => crate::io::load_models(file),
-            crate::scene::ModelUnit::Structure => {
-                crate::session::volumes::structures(file, only, &|f| {
-                    progress.set((f.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
-                    !progress.is_cancelled()
-                })
-            }
-        }
-    })?;
-    scene
-        .sanity_check()
-        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    Ok(scene)
 }
 
 /// Renders `scene` headless into a PNG at `path` (worker thread).
@@ -223,7 +165,7 @@ pub fn export_image(
     settings: &crate::gui::state::export_settings::ExportImageSettings,
     path: &Path,
 ) -> anyhow::Result<String> {
-    let mut options = crate::render::RenderPngOptions::new(settings.width, settings.height);
+    let mut options = crate::view::RenderPngOptions::new(settings.width, settings.height);
     options.transparent_background = settings.transparent;
     options.mode = Some(if preview {
         ViewMode::Preview
@@ -244,64 +186,6 @@ pub fn export_image(
         settings.height,
         path.display()
     ))
-}
-
-/// Cuts every cutter out of its target (cutters on one model one after another, as Preview does)
-/// and writes the chosen parts into `dir`; returns the files written.
-pub fn export_meshes(
-    scene: &Scene,
-    settings: &crate::gui::state::export_settings::ExportMeshSettings,
-    dir: &Path,
-    progress: &Progress,
-) -> anyhow::Result<Vec<PathBuf>> {
-    if scene.cutters.is_empty() {
-        anyhow::bail!(
-            "{}: there are no cutters to export (make one in Edit mode first)",
-            dir.display()
-        );
-    }
-    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))?;
-    let ext = settings.format.extension();
-    let mut written = Vec::new();
-    cut_each_in_turn(scene, progress, |step, model| {
-        use cut_scene::{SURFACE, select};
-        let stem = sanitize(&format!("cutter{}_{}", step.cutter + 1, model.name));
-        let tags = step.after_tags;
-        for (wanted, part) in [
-            (settings.kept, "kept"),
-            (settings.walls, "walls"),
-            (settings.removed, "removed"),
-        ] {
-            if !wanted {
-                continue;
-            }
-            let mesh = match part {
-                "kept" => select(step.after, |t| tags[t] == SURFACE),
-                "walls" => select(step.after, |t| tags[t] != SURFACE),
-                _ => step.removed.clone(),
-            };
-            if !mesh.triangles.is_empty() {
-                let path = dir.join(format!("{stem}_{part}.{ext}"));
-                crate::io::write_mesh(&path, &mesh)?;
-                written.push(path);
-            }
-        }
-        Ok(())
-    })?;
-    Ok(written)
-}
-
-/// File-name-safe version of a model name.
-fn sanitize(name: &str) -> String {
-    name.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
 }
 
 /// At most this many triangles are drawn by the CPU fallback.
@@ -387,9 +271,6 @@ pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &AppState)
         );
     }
 }
-
-#[cfg(test)]
-mod tests;
 
 /// What the window holds now, counted ([`crate::platform::memory_census`]).
 pub fn memory_census(app: &AppState) -> crate::platform::memory_census::MemoryCensus {

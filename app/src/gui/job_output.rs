@@ -22,12 +22,12 @@ pub enum JobOutput {
         replace: bool,
         sources: Vec<PathBuf>,
         /// A volume among the files that holds an intensity image, not labels.
-        image: Option<crate::intensity::ImageLayer>,
+        image: Option<crate::scene::ImageLayer>,
     },
     /// A session was read (models included).
     Session { path: PathBuf, scene: Box<Scene> },
     /// An intensity image was read, to show on the walls.
-    Image(crate::intensity::ImageLayer),
+    Image(crate::scene::ImageLayer),
     /// A target's spatial index was built.
     Index {
         model: usize,

@@ -26,15 +26,12 @@ pub mod dialogs;
 mod first_press_tests;
 pub mod job_output;
 pub mod jobs;
-pub mod model_groups;
 pub mod panels;
-pub mod recovery;
 #[cfg(test)]
 mod smoothness_tests;
 pub mod state;
 #[cfg(test)]
 pub mod test_window;
-pub mod undo;
 pub mod viewport;
 #[cfg(test)]
 mod volume_jobs_tests;

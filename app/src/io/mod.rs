@@ -59,6 +59,7 @@ pub mod bounded;
 mod dir;
 pub mod dropped;
 pub mod gesture;
+pub mod intensity;
 mod obj;
 pub mod path_file;
 mod ply;
@@ -104,6 +105,19 @@ pub struct Model {
     pub group: String,
     /// Welded, validated, compacted mesh: the whole structure (all its regions) or one region.
     pub mesh: Mesh,
+}
+
+/// What one model of a file is: the piece of `source` that `crate::scene::SceneModel::region` indexes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ModelUnit {
+    /// One connected region of the file, counted through the whole file in file order: the
+    /// meaning `cutaway-session/1` gives its models, kept for scenes loaded from such files.
+    #[default]
+    Region,
+    /// One structure: the whole mesh file, or one label of a segmentation volume (ascending
+    /// label value). What the model list shows and what `cutaway-session/2` indexes; a cutter on
+    /// it cuts every region of it.
+    Structure,
 }
 
 /// The mesh file formats Cutaway reads.

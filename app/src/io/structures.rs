@@ -62,7 +62,7 @@ pub fn structures_of_file(file: &Path, group: &str) -> anyhow::Result<Vec<Model>
 pub enum FileContent {
     Structures(Vec<Model>),
     Image {
-        image: Box<crate::intensity::IntensityImage>,
+        image: Box<crate::io::intensity::IntensityImage>,
         /// Why it is not a label map.
         reason: String,
     },

@@ -19,8 +19,8 @@ pub mod removal;
 use csg::Mesh;
 
 use crate::cutting::cut_scene::{PartKind, preview_geometry};
+use crate::scene::LengthUnit;
 use crate::scene::{ModelStyle, Scene};
-use crate::view::LengthUnit;
 
 /// What to measure besides the removal of every cut.
 #[derive(Clone, Debug)]

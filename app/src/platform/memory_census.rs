@@ -2,11 +2,11 @@
 //! picture kept between frames, the editor's and the picker's indexes, and the renderer's
 //! uploads. The memory test prints it next to the resident size after every step, so growth can
 //! be traced to what holds it rather than guessed from the allocator's totals.
+//!
+//! The count types of the parts live here too (the live cut's, the cut cache's, the renderer's),
+//! so this module names what it counts without depending on the layers that hold it.
 
 use std::fmt;
-
-use crate::cutting::live_cut::LiveCensus;
-use crate::render::GpuCensus;
 
 /// Counts of what the window holds (see the module documentation).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -61,4 +61,43 @@ impl fmt::Display for MemoryCensus {
         }
         Ok(())
     }
+}
+
+/// What the live-cut worker keeps between cuts (`crate::cutting::live_cut::LiveCut::census`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LiveCensus {
+    /// Indexes, cut prefixes and whole-model previews of models cut by several cutters.
+    pub cuts: CacheCensus,
+    /// Vertex-to-face tables of model meshes (for the deltas' normals).
+    pub face_tables: usize,
+    /// Live cuts of models cut by one cutter (walls, contour and kept delta each).
+    pub model_cuts: usize,
+}
+
+/// How many entries the cut cache holds (`crate::cutting::cut_scene::CutCache`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CacheCensus {
+    /// Exact indexes of model meshes.
+    pub indexes: usize,
+    /// Closed results of leading runs of cutters (each with its own index).
+    pub prefixes: usize,
+    /// Whole-model previews.
+    pub previews: usize,
+}
+
+/// The uploads the renderer keeps between frames, by kind (`crate::render::Renderer::census`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GpuCensus {
+    /// Whole model meshes, and their bytes.
+    pub models: usize,
+    pub model_bytes: u64,
+    /// Wireframe edge buffers (of models and preview parts), and their bytes.
+    pub edge_sets: usize,
+    pub edge_bytes: u64,
+    /// Parts of the preview or live cut being drawn, and their bytes (contours included).
+    pub preview_parts: usize,
+    pub preview_bytes: u64,
+    /// Patches of deltas (live cut, scalpel), and their bytes.
+    pub deltas: usize,
+    pub delta_bytes: u64,
 }

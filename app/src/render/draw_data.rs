@@ -1,5 +1,6 @@
-//! Per-mesh and per-frame GPU data: CPU conversions (f64 meshes → f32 vertices with smooth
-//! normals, edges and polylines → line segments) and the buffers that hold them.
+//! Per-mesh and per-frame GPU data: CPU conversions (edges and polylines → line segments; f64
+//! meshes → f32 vertices with smooth normals are `crate::cutting::vertices`) and the buffers that
+//! hold them.
 //!
 //! Model meshes and preview parts are uploaded once and cached by the renderer; cutter overlays
 //! are small and re-uploaded every frame.
@@ -11,36 +12,7 @@ use glam::DVec3;
 use wgpu::util::DeviceExt as _;
 
 use super::gpu_data::{Segment, Vertex};
-
-/// Vertices of `mesh` with area-weighted smooth normals (each face adds its unnormalized normal,
-/// which is twice its area long, to its three corners).
-pub fn mesh_vertices(mesh: &Mesh) -> Vec<Vertex> {
-    let mut normals = vec![DVec3::ZERO; mesh.positions.len()];
-    for t in 0..mesh.triangles.len() {
-        let n = mesh.face_normal_scaled(t);
-        for &i in &mesh.triangles[t] {
-            normals[i as usize] += n;
-        }
-    }
-    vertices_with_normals(&mesh.positions, &normals)
-}
-
-/// GPU vertices from positions and summed (unnormalized) normals; a zero sum gives a zero normal.
-pub fn vertices_with_normals(positions: &[DVec3], normal_sums: &[DVec3]) -> Vec<Vertex> {
-    positions
-        .iter()
-        .zip(normal_sums)
-        .map(|(p, n)| Vertex {
-            position_in_world: p.as_vec3().to_array(),
-            normal_in_world: n
-                .try_normalize()
-                .unwrap_or(DVec3::ZERO)
-                .as_vec3()
-                .to_array(),
-            wall: 0.0,
-        })
-        .collect()
-}
+use crate::cutting::vertices::mesh_vertices;
 
 /// Every undirected edge of `mesh` once, as a segment (for wireframe drawing).
 pub fn mesh_edges(mesh: &Mesh) -> Vec<Segment> {
@@ -117,7 +89,7 @@ impl GpuMesh {
 
     /// Uploads prepared vertices and triangles (`None` when there is no triangle). The index
     /// buffer is also a storage buffer, so the renderer can hide faces in place (see
-    /// [`super::delta`]).
+    /// `crate::cutting::delta`).
     pub fn upload_vertices(
         device: &wgpu::Device,
         label: &str,

@@ -3,17 +3,9 @@
 
 use bytemuck::{Pod, Zeroable};
 
-/// One mesh vertex. Keep in sync with `VertexIn` in `mesh.wgsl`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-pub struct Vertex {
-    pub position_in_world: [f32; 3],
-    /// Area-weighted vertex normal, unit length (zero for isolated vertices).
-    pub normal_in_world: [f32; 3],
-    /// 1 for a corner of an incision wall (drawn in the draw's wall colour), 0 elsewhere
-    /// ([`super::wall_split`]).
-    pub wall: f32,
-}
+/// One mesh vertex, made by the cutting layer (`crate::cutting::vertices`), which builds the
+/// vertices of deltas and walls. Keep in sync with `VertexIn` in `mesh.wgsl`.
+pub use crate::cutting::vertices::Vertex;
 
 /// One line segment, drawn as a screen-space quad of the draw's width. Keep in sync with
 /// `SegmentIn` in `lines.wgsl`.

@@ -1,46 +1,16 @@
 //! Rendering with no window: a device of its own, the same [`Renderer`] as the window, tiles for
-//! images larger than the device's maximum texture size, PNG pixels read back.
+//! images larger than the device's maximum texture size, PNG pixels read back. A scene is made
+//! into a frame by `crate::view` (`render_png`, `render_with`), which also computes its cut.
 //!
 //! On a machine with no GPU, Mesa's lavapipe (`WGPU_BACKEND=vulkan`) or llvmpipe over EGL
 //! (`WGPU_BACKEND=gl`) serve; snapshot tests pin Vulkan because the two differ in a few pixels.
 
-use std::sync::Arc;
-
 use anyhow::Context as _;
 
-use super::{FrameInputs, OutputTarget, Renderer, Tile, ViewMode};
-use crate::cutting::cut_scene::preview_geometry;
-use crate::scene::Scene;
+use super::{FrameInputs, OutputTarget, Renderer, Tile};
 
 /// Largest tile rendered at once (output pixels per side); bigger images are tiled.
 const MAX_TILE: u32 = 2048;
-
-/// Options of [`render_png`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RenderPngOptions {
-    /// Image size in pixels, each 1..=16384.
-    pub width: u32,
-    pub height: u32,
-    /// Clear to a fully transparent background instead of the scene's background colour.
-    /// Default: false.
-    pub transparent_background: bool,
-    /// No supersampling whatever the scene says (golden images). Default: false.
-    pub deterministic: bool,
-    /// Default: Preview (cuts executed) when the scene has cutters, else Camera.
-    pub mode: Option<ViewMode>,
-}
-
-impl RenderPngOptions {
-    pub fn new(width: u32, height: u32) -> RenderPngOptions {
-        RenderPngOptions {
-            width,
-            height,
-            transparent_background: false,
-            deterministic: false,
-            mode: None,
-        }
-    }
-}
 
 /// A device, a queue and a renderer painting into `Rgba8Unorm` images.
 pub struct HeadlessRenderer {
@@ -107,7 +77,7 @@ impl HeadlessRenderer {
     }
 
     /// The device's largest 3-D texture side: an intensity image larger than this is shown at
-    /// reduced resolution (`crate::intensity::fit`).
+    /// reduced resolution (`crate::io::intensity::fit`).
     pub fn max_texture_dimension_3d(&self) -> u32 {
         self.device.limits().max_texture_dimension_3d
     }
@@ -124,11 +94,7 @@ impl HeadlessRenderer {
         if width == 0 || height == 0 || width > 16384 || height > 16384 {
             anyhow::bail!("image size {width}x{height} is outside 1..16384");
         }
-        let supersample = if frame.scene.render.antialias && !frame.deterministic {
-            2
-        } else {
-            1
-        };
+        let supersample = frame.supersample();
         let max_tile =
             (self.device.limits().max_texture_dimension_2d / supersample).clamp(64, MAX_TILE);
         let mut image = image::RgbaImage::new(width, height);
@@ -287,64 +253,6 @@ impl HeadlessRenderer {
         readback.unmap();
         Ok(pixels)
     }
-}
-
-/// Renders `scene` as `cutaway render` does: Preview (cuts executed) when it has cutters, from
-/// the scene camera, at the requested size.
-pub fn render_png(scene: &Scene, options: &RenderPngOptions) -> anyhow::Result<image::RgbaImage> {
-    let mut renderer = HeadlessRenderer::new()?;
-    render_with(&mut renderer, scene, options)
-}
-
-/// [`render_png`] with an existing headless renderer (tests render several images with one).
-pub fn render_with(
-    renderer: &mut HeadlessRenderer,
-    scene: &Scene,
-    options: &RenderPngOptions,
-) -> anyhow::Result<image::RgbaImage> {
-    render_with_preview(renderer, scene, options, None)
-}
-
-/// The mode [`render_png`] draws `scene` in with `options`.
-pub fn render_mode(scene: &Scene, options: &RenderPngOptions) -> ViewMode {
-    options.mode.unwrap_or(if scene.cutters.is_empty() {
-        ViewMode::Camera
-    } else {
-        ViewMode::Preview
-    })
-}
-
-/// [`render_with`] with the cut parts already computed (`None`: computed here when the mode
-/// needs them), so a caller can report on the cuts it shows. In Edit mode, given parts are drawn
-/// under the cutter overlays (the GUI's live cut).
-pub fn render_with_preview(
-    renderer: &mut HeadlessRenderer,
-    scene: &Scene,
-    options: &RenderPngOptions,
-    preview: Option<Arc<crate::cutting::cut_scene::PreviewGeometry>>,
-) -> anyhow::Result<image::RgbaImage> {
-    let mut scene = scene.clone();
-    if options.transparent_background {
-        scene.render.background[3] = 0.0;
-    }
-    let mode = render_mode(&scene, options);
-    let mut frame = FrameInputs::new(scene, [options.width, options.height], mode);
-    frame.deterministic = options.deterministic;
-    if mode == ViewMode::Preview {
-        frame.preview = Some(preview.unwrap_or_else(|| Arc::new(preview_geometry(&frame.scene))));
-    } else if mode == ViewMode::Edit {
-        // Edit mode with the cut parts drawn under the cutters, as the GUI's live cut does.
-        frame.preview = preview;
-    }
-    if mode == ViewMode::Edit {
-        frame.overlays = frame
-            .scene
-            .cutters
-            .iter()
-            .map(crate::cutting::overlay::cutter_overlay)
-            .collect();
-    }
-    renderer.render(&frame)
 }
 
 /// The folder to use as `XDG_RUNTIME_DIR` when the process has none: `None` when the variable

@@ -16,9 +16,10 @@ use std::sync::{Arc, Weak};
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt as _;
 
+use super::frame::ImageDraw;
 use super::gpu_data::Vertex;
 use super::pipelines::{COLOR_FORMAT, Pipelines, depth_state};
-use crate::intensity::{ImageLayer, IntensityImage, SampleKind};
+use crate::io::intensity::{IntensityImage, SampleKind};
 
 /// Largest piece of the image staged for upload at once.
 pub const UPLOAD_SLAB_BYTES: usize = 32 << 20;
@@ -37,7 +38,7 @@ pub struct ImageUniform {
 }
 
 impl ImageUniform {
-    pub fn new(layer: &ImageLayer) -> ImageUniform {
+    pub fn new(layer: &ImageDraw) -> ImageUniform {
         let image = &layer.image;
         let kind = match image.kind() {
             SampleKind::U8 => 0.0,
@@ -60,9 +61,12 @@ impl ImageUniform {
                 slope as f32,
                 intercept as f32,
                 layer.window.low() as f32,
-                (1.0 / layer.window.width.max(crate::intensity::Window::MIN_WIDTH)) as f32,
+                (1.0 / layer
+                    .window
+                    .width
+                    .max(crate::io::intensity::Window::MIN_WIDTH)) as f32,
             ],
-            mix: [layer.display.image_weight(), 0.0, 0.0, 0.0],
+            mix: [layer.image_weight, 0.0, 0.0, 0.0],
         }
     }
 }
@@ -87,7 +91,7 @@ pub struct ImageRenderer {
     /// Bytes of image data sent this frame (0 when the texture was already there).
     pub uploaded_bytes: u64,
     /// Set while the image on the GPU is a reduced copy because the scan is larger than the
-    /// device's 3-D texture limit (`crate::intensity::fit::notice`).
+    /// device's 3-D texture limit (`crate::io::intensity::fit::notice`).
     pub notice: Option<String>,
 }
 
@@ -100,7 +104,7 @@ impl ImageRenderer {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         pipelines: &Pipelines,
-        layer: Option<&ImageLayer>,
+        layer: Option<&ImageDraw>,
     ) -> bool {
         self.uploaded_bytes = 0;
         let Some(layer) = layer else {
@@ -125,8 +129,8 @@ impl ImageRenderer {
             // The old texture goes first, so two scans are never on the GPU together.
             self.uploaded = None;
             // Larger than the texture limit: a block-averaged copy, only while it is uploaded.
-            let fitted = crate::intensity::fit::fit_to_limit(&layer.image, limit);
-            self.notice = crate::intensity::fit::notice(&layer.image, limit);
+            let fitted = crate::io::intensity::fit::fit_to_limit(&layer.image, limit);
+            self.notice = crate::io::intensity::fit::notice(&layer.image, limit);
             self.uploaded = Some(upload(device, queue, &layout, &layer.image, &fitted));
             self.uploaded_bytes = fitted.bytes().len() as u64;
         }

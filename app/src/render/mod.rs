@@ -30,21 +30,23 @@
 //! ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ViewCallback { inputs }));
 //! ```
 //!
-//! [`FrameInputs::scene`] is a [`Scene`] clone: cheap, since meshes are `Arc`s. The renderer
-//! uploads a mesh once and re-uploads only when the `Arc` is replaced (see `scene.rs`). A model
-//! that changes a little at a time (the live cut while painting, a scalpel stroke) comes as a
-//! [`delta::MeshDelta`] in [`FrameInputs::deltas`] instead: the uploaded mesh stays, some of its
-//! faces are hidden in place and a small patch is drawn with it, so a change uploads only what
-//! changed ([`Renderer::last_frame_uploads`] counts it). Preview
-//! geometry (the cut parts) is computed on the CPU by [`crate::cutting::cut_scene::preview_geometry`]
-//! — the GUI should do that on a worker thread and pass the `Arc` result every frame.
+//! The renderer draws what it is given and knows no scene: a [`FrameInputs`] lists the models
+//! (a mesh behind an `Arc`, a colour, a style), the look, the image and the cut to show, and the
+//! caller makes it from its scene (`crate::view::frame`). The renderer uploads a mesh once and
+//! re-uploads only when the `Arc` is replaced. A model that changes a little at a time (the live
+//! cut while painting, a scalpel stroke) comes as a [`crate::cutting::delta::MeshDelta`] in
+//! [`FrameInputs::deltas`] instead: the uploaded mesh stays, some of its faces are hidden in
+//! place and a small patch is drawn with it, so a change uploads only what changed
+//! ([`Renderer::last_frame_uploads`] counts it). The cut ([`FrameInputs::cut`], a
+//! [`CutDrawing`]) is computed by the caller, on a worker thread in the window; the renderer
+//! runs no boolean and keeps a cut's uploads while the same `Arc` comes every frame.
 //!
 //! ## What is drawn (thesis 3.4)
 //! - Models: per-model colour, opacity (< 1 → order-independent transparency), solid or
 //!   wireframe, visibility. Two-sided headlight shading; back faces darker.
 //! - [`ViewMode::Edit`]: the cutters of [`FrameInputs::overlays`] semi-transparent, plane outlines
 //!   on top, the highlighted plane in orange.
-//! - [`ViewMode::Preview`] with [`FrameInputs::preview`]: per cutter the kept part, the walls in
+//! - [`ViewMode::Preview`] with [`FrameInputs::cut`]: per cutter the kept part, the walls in
 //!   their own colour, a thick screen-space contour line, the removed piece by weighted-blended
 //!   order-independent transparency (McGuire and Bavoil 2013; correct for any number of
 //!   overlapping layers without sorting), ribbons and solid slices.
@@ -52,112 +54,25 @@
 //!   [`FrameInputs::deterministic`] turns it off for golden images.
 //! - Red/blue anaglyph: the scene rendered from two eye cameras, combined in the blit.
 //!
-//! Colour pipeline: sRGB colours from the scene → linear light → shaded into `Rgba16Float`
+//! Colour pipeline: sRGB colours → linear light → shaded into `Rgba16Float`
 //! premultiplied targets → gamma-encoded by the blit shader when the output format is not sRGB
 //! (egui's `Bgra8Unorm` surface is not), so lighting never looks dark.
 
-use std::sync::Arc;
-
-use cutter::Camera;
-
-use crate::cutting::cut_scene::PreviewGeometry;
-use crate::scene::Scene;
-
-pub mod delta;
 pub mod device_memory;
 pub mod draw_data;
+pub mod frame;
 pub mod gpu_data;
 pub mod headless;
 pub mod image_layer;
 mod pipelines;
 mod renderer;
-pub mod wall_split;
 
-pub use headless::{
-    HeadlessRenderer, RenderPngOptions, render_mode, render_png, render_with, render_with_preview,
+pub use frame::{
+    CutDrawing, CutterOverlay, DrawStyle, FrameInputs, ImageDraw, Look, ModelDraw, PartDraw,
+    PartLook, Tile, ViewMode,
 };
+pub use headless::HeadlessRenderer;
 pub use renderer::{CONTOUR_COLOR, GpuCensus, Renderer, UploadStats, WALL_MIX, WALL_TINT};
-
-/// What the view shows (the GUI's mode buttons; Scalpel draws like Camera).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum ViewMode {
-    /// The models as they are; cutters hidden.
-    #[default]
-    Camera,
-    /// The models as they are and the cutters of [`FrameInputs::overlays`], semi-transparent;
-    /// with [`FrameInputs::preview`] (the GUI's live cut) the cut models are drawn by its parts.
-    Edit,
-    /// Cuts executed: [`FrameInputs::preview`] replaces the cut models; cutters hidden.
-    Preview,
-}
-
-/// A cutter as the editor shows it in Edit mode.
-#[derive(Clone, Debug, Default)]
-pub struct CutterOverlay {
-    /// The corners of each bounded cutting plane (front-top, back-top, back-bottom,
-    /// front-bottom), for the outline and the highlighted plane.
-    pub planes: Vec<[glam::DVec3; 4]>,
-    /// The closed cutter surface, exactly the one the boolean cuts with
-    /// ([`crate::cutting::cut_scene::cutter_mesh`], smooth cutters subdivided).
-    pub surface: Arc<csg::Mesh>,
-    /// Index into `planes` of the plane under the mouse or selected; drawn in orange.
-    pub highlighted_plane: Option<usize>,
-    /// The cutter being edited (drawn a little stronger than the others).
-    pub active: bool,
-}
-
-/// A rectangle of a larger image, for rendering exports bigger than the device's maximum texture
-/// size tile by tile. The camera still frames the full image.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Tile {
-    /// Size of the full image in pixels.
-    pub full_size: [u32; 2],
-    /// Top-left pixel of this tile in the full image (y down); the tile's size is
-    /// [`FrameInputs::size`].
-    pub origin: [u32; 2],
-}
-
-/// Everything that may change from one frame to the next. `Send + Sync + 'static`, so it can
-/// live in an egui paint callback.
-#[derive(Clone, Debug)]
-pub struct FrameInputs {
-    /// Snapshot of the scene (cheap clone: meshes are shared).
-    pub scene: Scene,
-    /// The camera to render with (usually `scene.camera`).
-    pub camera: Camera,
-    /// Output size in physical pixels, each at least 1.
-    pub size: [u32; 2],
-    pub mode: ViewMode,
-    /// Cut parts for Preview mode; `None` draws the models uncut.
-    pub preview: Option<Arc<PreviewGeometry>>,
-    /// Cutters to draw in Edit mode.
-    pub overlays: Vec<CutterOverlay>,
-    /// No supersampling whatever `scene.render.antialias` says (golden-image tests).
-    pub deterministic: bool,
-    /// Render only this part of a larger image (`None`: the whole image is `size`).
-    pub tile: Option<Tile>,
-    /// Models drawn as their uploaded mesh plus a small change (the live cut's kept part, a
-    /// scalpel stroke in progress): a delta applies to the scene model whose mesh is its
-    /// `base` (same `Arc`), replaced by the preview or not. See [`delta`].
-    pub deltas: Vec<Arc<delta::MeshDelta>>,
-}
-
-impl FrameInputs {
-    /// A frame of `scene` from its own camera, in `mode`, with no preview and no overlays.
-    pub fn new(scene: Scene, size: [u32; 2], mode: ViewMode) -> FrameInputs {
-        FrameInputs {
-            camera: scene.camera,
-            scene,
-            size,
-            mode,
-            preview: None,
-            overlays: Vec::new(),
-            deterministic: false,
-            tile: None,
-            deltas: Vec::new(),
-        }
-    }
-}
 
 /// The render target [`Renderer::paint`] draws into.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -19,12 +19,11 @@ use std::sync::{Arc, Weak};
 
 use csg::Mesh;
 
-use super::delta::MeshDelta;
 use super::draw_data::{GpuMesh, GpuSegments};
 use super::gpu_data::{BlitUniform, DRAW_UNIFORM_STRIDE, DrawUniform, FrameUniform};
 use super::pipelines::Pipelines;
 use super::{FrameInputs, OutputTarget, srgb_to_linear};
-use crate::scene::Stereo;
+use crate::cutting::delta::MeshDelta;
 use draw_list::CachedPreview;
 use index_patches::IndexPatch;
 use targets::Targets;
@@ -89,22 +88,8 @@ impl UploadStats {
     }
 }
 
-/// The uploads a [`Renderer`] keeps between frames, by kind (see [`Renderer::census`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct GpuCensus {
-    /// Whole model meshes, and their bytes.
-    pub models: usize,
-    pub model_bytes: u64,
-    /// Wireframe edge buffers (of models and preview parts), and their bytes.
-    pub edge_sets: usize,
-    pub edge_bytes: u64,
-    /// Parts of the preview or live cut being drawn, and their bytes (contours included).
-    pub preview_parts: usize,
-    pub preview_bytes: u64,
-    /// Patches of deltas (live cut, scalpel), and their bytes.
-    pub deltas: usize,
-    pub delta_bytes: u64,
-}
+/// The uploads a [`Renderer`] keeps between frames (see [`Renderer::census`]).
+pub use crate::platform::memory_census::GpuCensus;
 
 /// See the module documentation of [`crate::render`].
 pub struct Renderer {
@@ -129,7 +114,8 @@ pub struct Renderer {
     uploads: UploadStats,
     /// Bounding box of each model mesh seen (by address), so a frame does not scan the models.
     bboxes: HashMap<usize, (Weak<Mesh>, csg::Aabb)>,
-    /// This frame's [`Scene::bbox`](crate::scene::Scene::bbox), the deltas' patches included.
+    /// The box of this frame's models (see [`Renderer::scene_bbox`]), the deltas' patches
+    /// included.
     scene_bbox: csg::Aabb,
     frame_index: u64,
     image: super::image_layer::ImageRenderer,
@@ -238,21 +224,13 @@ impl Renderer {
     ) {
         self.frame_index += 1;
         self.uploads = UploadStats::default();
-        let supersample = if frame.scene.render.antialias && !frame.deterministic {
-            2
-        } else {
-            1
-        };
+        let supersample = frame.supersample();
         let max_dim = device.limits().max_texture_dimension_2d;
         let size = [
             (frame.size[0].max(1) * supersample).min(max_dim),
             (frame.size[1].max(1) * supersample).min(max_dim),
         ];
-        let eyes = if frame.scene.render.stereo == Stereo::Anaglyph {
-            2
-        } else {
-            1
-        };
+        let eyes = if frame.look.anaglyph { 2 } else { 1 };
         if self
             .targets
             .as_ref()
@@ -264,7 +242,7 @@ impl Renderer {
         self.scene_bbox = self.scene_bbox(frame);
 
         // Phase 1: uploads (mutable caches).
-        let image = frame.scene.image.as_ref();
+        let image = frame.image.as_ref();
         let image_ready = self.image.prepare(device, queue, &self.pipelines, image);
         let on = |walls: bool| {
             image_ready && image.is_some_and(|l| if walls { l.on_walls } else { l.on_slices })
@@ -315,7 +293,7 @@ impl Renderer {
         queue.write_buffer(&self.blit_buffer, 0, bytemuck::bytes_of(&blit));
 
         // Phase 3: passes.
-        let background = frame.scene.render.background;
+        let background = frame.look.background;
         let alpha = background[3] as f64;
         let clear = wgpu::Color {
             r: srgb_to_linear(background[0]) as f64 * alpha,
@@ -340,14 +318,15 @@ impl Renderer {
         pass.draw(0..3, 0..1);
     }
 
-    /// `Scene::bbox` of the frame's scene with each mesh's box computed once, and each model
+    /// The box of the frame's visible models (of all when none is visible), as a scene's box is,
+    /// with each mesh's box computed once, and each model
     /// drawn with a delta grown by its patch (a scalpel step can open a cut a little past the
     /// mesh's old box; what a delta hides lies inside the base's box anyway).
     fn scene_bbox(&mut self, frame: &FrameInputs) -> csg::Aabb {
         self.bboxes.retain(|_, (w, _)| w.strong_count() > 0);
         let mut visible = csg::Aabb::EMPTY;
         let mut all = csg::Aabb::EMPTY;
-        for model in &frame.scene.models {
+        for model in &frame.models {
             let key = Arc::as_ptr(&model.mesh) as usize;
             let cached = self
                 .bboxes

@@ -40,7 +40,7 @@
 //! ## Walls
 //! Every mesh the scalpel puts into the scene carries its wall faces (groove and through-cut
 //! walls, `Scalpel::wall_faces`), so the view draws them as the inside of the tissue
-//! (`crate::render::wall_split`); a stroke's delta marks them from the scalpel's mesh the same
+//! (`crate::cutting::wall_split`); a stroke's delta marks them from the scalpel's mesh the same
 //! way, and a scalpel made for a mesh with marks (a reopened session) marks them walls again
 //! before its first stroke. The layers below are cut with their walls kept likewise.
 //!
@@ -69,6 +69,7 @@ pub mod model_cut;
 mod parity_tests;
 pub mod prepare;
 pub mod replay;
+pub mod target;
 #[cfg(test)]
 pub(crate) mod tests;
 
@@ -81,7 +82,7 @@ use csg::{Mesh, SpatialIndex};
 use cutter::Camera;
 use cutter::scalpel::{OpenOptions, ScalpelOptions, Tool, dffd};
 
-use crate::render::delta::MeshDelta;
+use crate::cutting::delta::MeshDelta;
 use crate::scene::{MeshOrigin, ModelStyle, Scene, SceneModel};
 use below::{cut_layers, piece_colour, without_pieces_walls};
 use model_cut::{ModelCut, Stroke};

@@ -16,7 +16,7 @@ use glam::{DVec2, DVec3};
 use csg::{Mesh, PickIndex, SpatialIndex};
 use cutter::scalpel::{OpenOptions, Scalpel, ScalpelOptions, dffd};
 
-use crate::render::delta::{self, MeshDelta, VertexFaces};
+use crate::cutting::delta::{self, MeshDelta, VertexFaces};
 use crate::scene::Scene;
 
 /// A scalpel working on one model of the scene.

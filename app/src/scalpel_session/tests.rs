@@ -22,7 +22,7 @@ fn sphere_scene() -> Scene {
 /// patch) is the scalpel's mesh as the whole-mesh update shows it: the same triangles with
 /// the same vertex positions and normals, bit for bit. Returns the patch's share of it.
 fn assert_view_is_the_cut_mesh(slot: &ScalpelSession) -> f64 {
-    use crate::render::delta::tests::{assert_same_corners, delta_corners, mesh_corners};
+    use crate::cutting::delta::tests::{assert_same_corners, delta_corners, mesh_corners};
     let delta = slot
         .delta()
         .expect("a stroke in progress is drawn as a delta");

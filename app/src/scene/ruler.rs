@@ -1,6 +1,6 @@
 //! Rulers: straight distances between two points the user picked on surfaces, kept with the
 //! scene so a saved session shows the same measurements again. Lengths are in file units and
-//! shown in millimetres through the scene's unit guess ([`crate::view::LengthUnit`]), so a body
+//! shown in millimetres through the scene's unit guess ([`crate::scene::LengthUnit`]), so a body
 //! in metres and a knee in millimetres both read in mm.
 //!
 //! Egui-free: the window picks the points and draws the rulers, `cutaway render` draws saved ones
@@ -8,7 +8,7 @@
 
 use glam::DVec3;
 
-use crate::view::LengthUnit;
+use crate::scene::LengthUnit;
 
 /// One measured distance: from `a` to `b`, both points on a surface (file units).
 #[derive(Clone, Copy, Debug, PartialEq)]

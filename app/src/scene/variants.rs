@@ -10,7 +10,88 @@
 //! [`DEFAULT_NAME`].
 
 use crate::scene::{Scene, SceneCutter};
-pub use crate::scene::{Variant, Variants};
+
+/// One named cutter set (`scene/variants.rs` switches and creates them).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Variant {
+    pub name: String,
+    /// The variant's cutters; for the active variant this copy is stale: the scene's `cutters`
+    /// are its cutters.
+    pub cutters: Vec<SceneCutter>,
+}
+
+/// The variants of a scene: empty (one implicit variant, the scene's cutters) or every variant,
+/// the active one included, in the order they are shown.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Variants {
+    pub list: Vec<Variant>,
+    /// Index into `list` of the variant whose cutters the scene holds (0 when `list` is empty).
+    pub active: usize,
+}
+
+impl Variants {
+    /// Longest variant name, in characters.
+    pub const MAX_NAME_CHARS: usize = 80;
+
+    /// Whether the scene defines variants of its own.
+    pub fn is_empty(&self) -> bool {
+        self.list.is_empty()
+    }
+
+    /// A variant name is 1..=[`Self::MAX_NAME_CHARS`] characters without control characters.
+    pub fn check_name(name: &str) -> Result<(), String> {
+        if name.trim().is_empty() {
+            return Err("a variant name cannot be empty".to_string());
+        }
+        if name.chars().count() > Self::MAX_NAME_CHARS {
+            return Err(format!(
+                "variant name '{}…' is longer than {} characters",
+                name.chars().take(20).collect::<String>(),
+                Self::MAX_NAME_CHARS
+            ));
+        }
+        if name.chars().any(char::is_control) {
+            return Err(format!("variant name {name:?} holds a control character"));
+        }
+        Ok(())
+    }
+}
+
+impl Scene {
+    /// Checks the variants: names usable and distinct, the active index inside the list, every
+    /// other variant's cutters valid for the models (the same rules as the scene's cutters).
+    pub fn check_variants(&self) -> Result<(), String> {
+        let v = &self.variants;
+        if v.is_empty() {
+            return Ok(());
+        }
+        if v.active >= v.list.len() {
+            return Err(format!(
+                "active variant {} does not exist (there are {})",
+                v.active,
+                v.list.len()
+            ));
+        }
+        for (k, variant) in v.list.iter().enumerate() {
+            Variants::check_name(&variant.name).map_err(|e| format!("variant {k}: {e}"))?;
+            if v.list[..k].iter().any(|w| w.name == variant.name) {
+                return Err(format!(
+                    "variant {k}: the name '{}' is used twice",
+                    variant.name
+                ));
+            }
+            if k != v.active {
+                let mut shown = self.clone();
+                shown.cutters = variant.cutters.clone();
+                shown.variants = Variants::default();
+                shown
+                    .sanity_check()
+                    .map_err(|e| format!("variant {k} ('{}'): {e}", variant.name))?;
+            }
+        }
+        Ok(())
+    }
+}
 
 /// The name of the one variant of a scene that defines none.
 pub const DEFAULT_NAME: &str = "current";

@@ -1,6 +1,6 @@
 //! Which faces of a model's mesh are incision walls (the scalpel's groove and through-cut walls,
 //! below the surface), so that every view draws them as the inside of the tissue: their own
-//! colour and a hard edge at the lips (`render::wall_split`).
+//! colour and a hard edge at the lips (`crate::cutting::wall_split`).
 //!
 //! The marks belong to one mesh: a [`WallFaces`] remembers the mesh it was made for (a weak
 //! pointer, compared by identity), and a model whose mesh is replaced without new marks simply
@@ -15,7 +15,7 @@ use csg::Mesh;
 #[derive(Debug, Default)]
 pub struct WallFaces {
     mesh: Weak<Mesh>,
-    faces: Vec<u32>,
+    faces: Arc<[u32]>,
 }
 
 impl WallFaces {
@@ -29,7 +29,7 @@ impl WallFaces {
         (!faces.is_empty()).then(|| {
             Arc::new(WallFaces {
                 mesh: Arc::downgrade(mesh),
-                faces,
+                faces: faces.into(),
             })
         })
     }
@@ -39,6 +39,15 @@ impl WallFaces {
         match walls {
             Some(w) if std::ptr::eq(w.mesh.as_ptr(), Arc::as_ptr(mesh)) => &w.faces,
             _ => &[],
+        }
+    }
+
+    /// [`WallFaces::for_mesh`] as a shared list (the same allocation every call, so a renderer
+    /// can tell the marks it uploaded by identity); `None` for no wall.
+    pub fn shared_for_mesh(walls: &Option<Arc<WallFaces>>, mesh: &Arc<Mesh>) -> Option<Arc<[u32]>> {
+        match walls {
+            Some(w) if std::ptr::eq(w.mesh.as_ptr(), Arc::as_ptr(mesh)) => Some(w.faces.clone()),
+            _ => None,
         }
     }
 }

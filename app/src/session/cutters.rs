@@ -6,7 +6,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use crate::scene::{CutterViews, SceneCutter, SubCutterView};
+use crate::scene::{CutterViews, SceneCutter, SubCutterSpec};
 use cutter::subcutters::Placement;
 use cutter::{BoundedPlane, CutKind, Cutter};
 
@@ -26,8 +26,8 @@ pub fn cutter_from_entry(i: usize, c: &CutterEntry) -> anyhow::Result<SceneCutte
                 v.placement
             )
         })?;
-        Ok(Some(SubCutterView {
-            count: v.count,
+        Ok(Some(SubCutterSpec {
+            count: v.count as usize,
             width: v.width,
             placement,
             relative: v.relative,
@@ -63,9 +63,9 @@ pub fn cutter_from_entry(i: usize, c: &CutterEntry) -> anyhow::Result<SceneCutte
 
 /// The session entry of a scene cutter.
 pub fn cutter_entry(c: &SceneCutter) -> CutterEntry {
-    let sub = |v: Option<SubCutterView>| {
+    let sub = |v: Option<SubCutterSpec>| {
         v.map(|v| SubCutterEntry {
-            count: v.count,
+            count: u32::try_from(v.count).unwrap_or(u32::MAX),
             width: v.width,
             placement: v.placement.name().to_string(),
             relative: v.relative,

@@ -16,8 +16,9 @@ use std::sync::Arc;
 use anyhow::Context as _;
 use serde::{Deserialize, Serialize};
 
-use crate::intensity::{ImageLayer, WallDisplay, Window};
+use crate::io::intensity::Window;
 use crate::scene::Scene;
+use crate::scene::{ImageLayer, WallDisplay};
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ImageEntry {
@@ -39,7 +40,7 @@ pub fn load(entry: &ImageEntry, folder: &Path, scene: &Scene) -> anyhow::Result<
         folder.join(&entry.path)
     };
     let image = crate::io::volume::intensity::read_image(&path)?;
-    crate::intensity::check_overlap(&image, scene.bbox())
+    crate::io::intensity::check_overlap(&image, scene.bbox())
         .with_context(|| path.display().to_string())?;
     let mut layer = ImageLayer::new(Arc::new(image));
     apply(entry, &mut layer).context("image")?;
@@ -96,9 +97,10 @@ mod tests {
     use glam::DAffine3;
 
     fn layer() -> ImageLayer {
-        let image = crate::intensity::IntensityImage::from_fn([2, 2, 2], DAffine3::IDENTITY, |p| {
-            p.x as f32
-        });
+        let image =
+            crate::io::intensity::IntensityImage::from_fn([2, 2, 2], DAffine3::IDENTITY, |p| {
+                p.x as f32
+            });
         ImageLayer::new(Arc::new(image))
     }
 

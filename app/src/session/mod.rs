@@ -35,11 +35,16 @@ pub mod cutters;
 pub mod format;
 pub mod image;
 pub mod limits;
+pub mod load;
 pub mod meshes;
 pub mod paths;
 pub mod picks;
+pub mod recovery;
 pub mod rulers;
+pub mod undo;
 pub mod variants;
+#[cfg(test)]
+mod view_tests;
 pub mod volumes;
 
 use std::path::{Path, PathBuf};
@@ -49,9 +54,7 @@ use anyhow::Context as _;
 use cutter::Camera;
 use glam::DVec3;
 
-use crate::scene::{
-    MeshOrigin, ModelStyle, ModelUnit, RenderSettings, Scene, SceneModel, Stereo, distinct_colors,
-};
+use crate::scene::{MeshOrigin, ModelStyle, ModelUnit, RenderSettings, Scene, SceneModel, Stereo};
 
 pub use crate::session::format::*;
 pub use crate::session::paths::relative_path;
@@ -188,7 +191,7 @@ pub fn scene_from_file(
         for (region, model) in picked {
             let index = scene.models.len();
             let color = entry.color.unwrap_or_else(|| match unit {
-                ModelUnit::Region => distinct_colors(index + 1)[index],
+                ModelUnit::Region => crate::anatomy::colors::distinct_colors(index + 1)[index],
                 ModelUnit::Structure => {
                     crate::anatomy::colors::structure_color(&model.name, model.color, index)
                 }
@@ -230,16 +233,16 @@ pub fn scene_from_file(
     for (i, c) in file.cutters.iter().enumerate() {
         scene.cutters.push(cutter_from_entry(i, c)?);
     }
-    scene.unit = crate::view::LengthUnit::guess(&scene.bbox(), false);
+    scene.unit = crate::scene::LengthUnit::guess(&scene.bbox(), false);
     scene.orientation = match file.orientation {
-        Some(o) => crate::view::Orientation::checked(
+        Some(o) => crate::scene::Orientation::checked(
             DVec3::from_array(o.superior),
             DVec3::from_array(o.anterior),
         )
         .ok_or_else(|| {
             anyhow::anyhow!("orientation: superior and anterior must be orthogonal unit vectors")
         })?,
-        None => crate::view::Orientation::guess(&scene.bbox(), false),
+        None => crate::scene::Orientation::guess(&scene.bbox(), false),
     };
     scene.variants = crate::session::variants::from_entries(&file.variants, file.active_variant)?;
     scene.rulers = crate::session::rulers::from_entries(&file.rulers)?;
@@ -475,7 +478,10 @@ mod tests {
         assert_eq!(scene.models[0].unit, ModelUnit::Structure);
         assert_eq!(scene.models[0].mesh.triangle_count(), 2 * 80);
         // The structure's colour comes from the palette (no anatomical name, no file colour).
-        assert_eq!(scene.models[0].color, distinct_colors(1)[0]);
+        assert_eq!(
+            scene.models[0].color,
+            crate::anatomy::colors::distinct_colors(1)[0]
+        );
         let err = scene_from_file(
             &session(FORMAT, r#"[{"path": "pair.obj"}]"#, 1),
             folder,

@@ -9,7 +9,7 @@ use glam::{DVec2, DVec3};
 
 use cutter::Camera;
 
-use super::Orientation;
+use crate::scene::Orientation;
 
 /// One labelled direction of the marker.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,7 +52,7 @@ pub fn marker_axes(camera: &Camera, orientation: &Orientation) -> Vec<MarkerAxis
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::view::ViewPreset;
+    use crate::scene::ViewPreset;
 
     fn axis<'a>(axes: &'a [MarkerAxis], label: &str) -> &'a MarkerAxis {
         axes.iter().find(|a| a.label == label).unwrap()

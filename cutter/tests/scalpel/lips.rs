@@ -143,7 +143,7 @@ fn groove_lips_keep_to_the_drawn_path_on_a_sphere() {
 pub(crate) fn asset_case(mesh: &str, path: &str) -> (Mesh, Vec<DVec3>) {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let file = root.join("../assets").join(mesh);
-    let m = binary_ply::read_binary_ply(&file)
+    let m = crate::mesh_files::read_binary_ply(&file)
         .unwrap_or_else(|| panic!("cannot read {}", file.display()));
     let text = std::fs::read_to_string(root.join("tests/data/scalpel_paths").join(path)).unwrap();
     let pts = text

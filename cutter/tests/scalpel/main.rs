@@ -3,15 +3,14 @@
 //! every step is followed by the full validator, an area check (splitting conserves area) and a
 //! sliver check on the triangles the step created.
 
-#[path = "../support/binary_ply.rs"]
-mod binary_ply;
-#[path = "../support/binary_stl.rs"]
-mod binary_stl;
+#[allow(dead_code)] // not every reader is used by every includer
+#[path = "../support/mesh_files.rs"]
+mod mesh_files;
 
-use binary_stl::read_binary_stl;
 use csg::{DVec3, Mesh};
 use cutter::scalpel::invariants::{min_angle_deg, t_junction_near, validate};
 use cutter::scalpel::{Scalpel, ScalpelOptions, Tool, TopologyReport, survey};
+use mesh_files::read_binary_stl;
 
 mod anatomy;
 mod ends;

@@ -126,6 +126,6 @@ fn painting_in_edit_mode_shows_the_live_cut() {
     h.run_steps(2);
     assert!(!h.state().viewport.live.enabled);
     let inputs = cutaway::gui::bridge::frame_inputs(h.state(), [64, 48]);
-    assert!(inputs.preview.is_none());
+    assert!(inputs.cut.is_none());
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -74,8 +74,8 @@ fn a_session_of_the_model_file_default_opens_from_the_cli_and_the_window() {
     let scene = crate::session::load(&fixture()).unwrap_or_else(|e| panic!("{e:#}"));
     check(&scene, "session::load");
     let progress = crate::platform::jobs::Progress::default();
-    let scene =
-        crate::gui::bridge::load_session(&fixture(), &progress).unwrap_or_else(|e| panic!("{e:#}"));
+    let scene = crate::session::load::load_with_progress(&fixture(), &progress)
+        .unwrap_or_else(|e| panic!("{e:#}"));
     check(&scene, "the window's loader");
     // Saved again, it names the same files, so it opens again.
     let dir = std::env::temp_dir().join(format!("cutaway-old-session-{}", std::process::id()));

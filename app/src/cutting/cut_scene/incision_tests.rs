@@ -7,8 +7,8 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use super::*;
-use crate::render::delta::tests::{assert_same_corners, delta_corners, mesh_corners};
-use crate::render::delta::{VertexFaces, of_cut};
+use crate::cutting::delta::tests::{assert_same_corners, delta_corners, mesh_corners};
+use crate::cutting::delta::{VertexFaces, of_cut};
 use crate::scene::SceneModel;
 use crate::test_support::{box_cutter, plain_cutter};
 

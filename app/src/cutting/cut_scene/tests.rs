@@ -30,13 +30,13 @@ fn preview_has_every_requested_view() {
     let views = crate::scene::CutterViews {
         cut: true,
         transparency: Some(0.3),
-        ribbons: Some(crate::scene::SubCutterView {
+        ribbons: Some(crate::scene::SubCutterSpec {
             count: 2,
             width: 0.2,
             placement: cutter::subcutters::Placement::Even,
             relative: false,
         }),
-        slices: Some(crate::scene::SubCutterView {
+        slices: Some(crate::scene::SubCutterSpec {
             count: 2,
             width: 0.2,
             placement: cutter::subcutters::Placement::Even,
@@ -271,7 +271,7 @@ fn ribbons_of_a_smooth_cutter_lie_inside_its_surface() {
             sphere.clone(),
             [0.8, 0.6, 0.5],
         ));
-        let view = crate::scene::SubCutterView {
+        let view = crate::scene::SubCutterSpec {
             count: 3,
             width: 0.4,
             placement,

@@ -12,7 +12,7 @@ fn live_cut_follows_the_editor_on_the_knee() {
     let knee = crate::anatomy::assets::scene("knee").expect("embedded knee");
     let mut scene = Scene::default();
     for model in crate::anatomy::assets::load_scene(knee).expect("load the knee") {
-        let color = crate::anatomy::assets::default_color(&model.name);
+        let color = crate::anatomy::colors::class_color(&model.name);
         scene.models.push(crate::scene::SceneModel::new(
             model.name,
             model.source,

@@ -35,7 +35,7 @@ fn live_recut_ui_thread_cost_on_two_million_triangles() {
         assert!(live.request(&scene, None));
         assert!(live.wait(Duration::from_secs(600)), "no live cut");
         let mut frame = deterministic_frame(&scene, [640, 400], ViewMode::Edit);
-        frame.preview = live.geometry();
+        frame.show_cut(live.geometry());
         frame.deltas = live.deltas();
         let ms = renderer.time_prepare(&frame).expect("frame");
         let uploaded = renderer.last_frame_uploads().bytes as f64 / 1e6;
@@ -43,7 +43,7 @@ fn live_recut_ui_thread_cost_on_two_million_triangles() {
         let started = Instant::now();
         let geometry = preview_geometry_with(&live_scene(&scene), &mut whole_cache);
         let whole_cut = started.elapsed().as_secs_f64() * 1000.0;
-        frame.preview = Some(Arc::new(geometry));
+        frame.show_cut(Some(Arc::new(geometry)));
         frame.deltas.clear();
         let whole_frame = whole.time_prepare(&frame).expect("frame");
         if k > 0 {

@@ -33,12 +33,12 @@ fn the_live_cut_from_its_delta_looks_as_the_whole_kept_part_and_uploads_little()
         );
         // The way before: the whole kept part as a preview part.
         let mut whole = frame(&scene);
-        whole.preview = Some(Arc::new(crate::cutting::cut_scene::preview_geometry(
+        whole.show_cut(Some(Arc::new(crate::cutting::cut_scene::preview_geometry(
             &live_scene(&scene),
-        )));
+        ))));
         let expected = renderer.render(&whole).expect("render");
         let mut delta = frame(&scene);
-        delta.preview = live.geometry();
+        delta.show_cut(live.geometry());
         delta.deltas = live.deltas();
         let got = renderer.render(&delta).expect("render");
         let uploads = renderer.last_frame_uploads();

@@ -17,8 +17,9 @@ use glam::DVec2;
 use crate::compare::VariantMetrics;
 use crate::cutting::cut_scene::preview_geometry;
 use crate::metrics::MetricsOptions;
-use crate::render::{HeadlessRenderer, RenderPngOptions};
+use crate::render::HeadlessRenderer;
 use crate::scene::Scene;
+use crate::view::RenderPngOptions;
 
 use crate::gui::jobs::Job;
 use crate::gui::state::AppState;
@@ -83,9 +84,8 @@ fn compare_one(
     }
     let renderer = worker.renderer.as_mut().expect("renderer");
     let render_options = RenderPngOptions::new(tile[0], tile[1]);
-    let image =
-        crate::render::render_with_preview(renderer, &shown, &render_options, Some(geometry))
-            .map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
+    let image = crate::view::render_with_preview(renderer, &shown, &render_options, Some(geometry))
+        .map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
     Ok((
         image,
         VariantMetrics {

@@ -5,7 +5,7 @@
 
 use crate::gui::action::Action;
 use crate::gui::state::AppState;
-use crate::scene::SubCutterView;
+use crate::scene::SubCutterSpec;
 use cutter::CutKind;
 
 pub use crate::gui::state::CutterTab;
@@ -191,13 +191,13 @@ fn visualization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Act
 fn sub_cutter_ui(
     ui: &mut egui::Ui,
     label: &str,
-    value: &mut Option<SubCutterView>,
+    value: &mut Option<SubCutterSpec>,
     cut: &cutter::Cutter,
-    unit: crate::view::LengthUnit,
+    unit: crate::scene::LengthUnit,
 ) {
     use cutter::subcutters::Placement;
     let mut on = value.is_some();
-    let mut v = value.unwrap_or(SubCutterView::NEW);
+    let mut v = value.unwrap_or(SubCutterSpec::NEW);
     ui.horizontal(|ui| {
         ui.checkbox(&mut on, label);
         ui.add_enabled_ui(on, |ui| {
@@ -227,13 +227,13 @@ fn sub_cutter_ui(
             {
                 // Absolute starts at the size the relative width had (the target's scale).
                 v.width = if v.relative {
-                    SubCutterView::NEW.width
+                    SubCutterSpec::NEW.width
                 } else {
-                    let was = SubCutterView {
+                    let was = SubCutterSpec {
                         relative: true,
                         ..v
                     };
-                    cutter::subcutters::absolute_width(cut, &was.spec())
+                    cutter::subcutters::absolute_width(cut, &was)
                 };
             }
             if v.relative {

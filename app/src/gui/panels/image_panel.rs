@@ -3,13 +3,14 @@
 //! The image itself is read on a worker (`Action::OpenImage`); [`image_loaded`] puts it in the
 //! scene.
 
-use crate::intensity::{ImageLayer, WallDisplay, WindowPreset};
+use crate::io::intensity::WindowPreset;
+use crate::scene::{ImageLayer, WallDisplay};
 
 use crate::gui::state::AppState;
 
 /// A freshly read image joins the scene, unless it lies outside the models.
 pub fn image_loaded(app: &mut AppState, layer: ImageLayer) {
-    if let Err(e) = crate::intensity::check_overlap(&layer.image, app.scene.bbox()) {
+    if let Err(e) = crate::io::intensity::check_overlap(&layer.image, app.scene.bbox()) {
         app.complain(&e.context(layer.image.source.display().to_string()));
         return;
     }
@@ -24,7 +25,7 @@ pub fn image_loaded(app: &mut AppState, layer: ImageLayer) {
         .wgpu
         .as_ref()
         .map(|rs| rs.device.limits().max_texture_dimension_3d as usize)
-        .and_then(|limit| crate::intensity::fit::notice(&layer.image, limit))
+        .and_then(|limit| crate::io::intensity::fit::notice(&layer.image, limit))
         .map(|notice| format!("; {notice}"))
         .unwrap_or_default();
     app.say(format!(
@@ -103,7 +104,7 @@ pub fn image_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
                 ui.add(
                     egui::DragValue::new(&mut layer.window.width)
                         .speed(speed)
-                        .range(crate::intensity::Window::MIN_WIDTH..=f64::MAX),
+                        .range(crate::io::intensity::Window::MIN_WIDTH..=f64::MAX),
                 );
             });
             ui.weak("Shift + right drag on a wall: sideways width, up and down level");
@@ -130,7 +131,7 @@ pub fn window_drag(app: &mut AppState, response: &egui::Response, ui: &egui::Ui)
                     (pos.y - rect.top()) as f64 * ppp,
                 );
                 let ray = app.scene.camera.ray_through_pixel(app.viewport.size_px, px);
-                crate::intensity::wall_pick::image_wall_under(
+                crate::cutting::wall_pick::image_wall_under(
                     &app.scene,
                     app.viewport.preview.as_deref(),
                     &ray,
@@ -210,7 +211,7 @@ mod tests {
         let message = h.state().status.message.clone();
         assert!(h.state().scene.models.is_empty(), "{message}");
         let layer = h.state().scene.image.clone().expect("the CT is the image");
-        assert_eq!(layer.image.kind(), crate::intensity::SampleKind::I16);
+        assert_eq!(layer.image.kind(), crate::io::intensity::SampleKind::I16);
         assert!(message.contains("no segmentation yet"), "{message}");
 
         // The segmentation, opened next, replaces the empty scene and keeps the image.
@@ -392,7 +393,7 @@ mod tests {
         h.get_by_label("Blend").click();
         h.run_steps(2);
         let layer = h.state().scene.image.clone().unwrap();
-        assert_eq!(layer.display, crate::intensity::WallDisplay::Blend);
+        assert_eq!(layer.display, crate::scene::WallDisplay::Blend);
 
         let session = dir.join("s.json");
         h.state_mut()

@@ -6,9 +6,9 @@
 //! double-click in the view), the list opens the model's groups and scrolls to its row.
 
 use crate::gui::action::Action;
-use crate::gui::model_groups::GroupNode;
 use crate::gui::state::AppState;
 use crate::scene::ModelStyle;
+use crate::scene::model_groups::GroupNode;
 
 fn srgb_u8(c: [f32; 3]) -> [u8; 3] {
     c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)

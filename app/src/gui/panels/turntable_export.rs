@@ -9,8 +9,9 @@ use crate::export::turntable::{MAX_FRAMES, TurntableProgress, export_turntable};
 use crate::gui::action::{Action, Purpose};
 use crate::gui::jobs::Progress;
 use crate::gui::state::AppState;
-use crate::render::{RenderPngOptions, ViewMode};
+use crate::render::ViewMode;
 use crate::scene::Scene;
+use crate::view::RenderPngOptions;
 
 pub use crate::gui::state::export_settings::{MAX_TURNTABLE_SIDE, TurntableSettings};
 

@@ -15,9 +15,9 @@ use crate::gui::action::{Mode, Purpose};
 use crate::gui::job_output::JobOutput;
 use crate::gui::jobs::Job;
 use crate::gui::panels::status_bar::StatusInfo;
-use crate::gui::recovery::{RecentFiles, Recovery};
-use crate::gui::undo::History;
 use crate::scene::Scene;
+use crate::session::recovery::{RecentFiles, Recovery};
+use crate::session::undo::History;
 
 pub mod atlas;
 pub mod compare;

@@ -203,7 +203,7 @@ pub struct ScalpelSlot {
     /// The viewport in egui points at the last frame (tests aim with it).
     pub rect: egui::Rect,
     /// The target the depth and opening were sized for (they follow the selected model).
-    pub sizing: crate::view::target::ScalpelSizing,
+    pub sizing: crate::scalpel_session::target::ScalpelSizing,
 }
 
 impl Default for ScalpelSlot {

@@ -63,14 +63,14 @@ const HIGHLIGHT: [f32; 3] = [1.0, 0.78, 0.22];
 /// How far the selected model's colour moves toward [`HIGHLIGHT`].
 const HIGHLIGHT_MIX: f32 = 0.3;
 
-/// Tints the selected model in the drawn copy of the scene (never in the scene itself, so
+/// Tints the selected model in the frame's models (never in the scene itself, so
 /// exports and sessions keep its colour). Not in Edit mode, where the selection is the target
 /// being painted and the live cut must look like the committed one.
-pub fn highlight_selection(app: &AppState, drawn: &mut crate::scene::Scene) {
+pub fn highlight_selection(app: &AppState, drawn: &mut [crate::render::ModelDraw]) {
     if app.mode == Mode::Edit {
         return;
     }
-    if let Some(model) = app.selected_model.and_then(|i| drawn.models.get_mut(i)) {
+    if let Some(model) = app.selected_model.and_then(|i| drawn.get_mut(i)) {
         model.color = highlighted(model.color);
     }
 }

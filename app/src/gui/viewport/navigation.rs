@@ -112,8 +112,8 @@ pub fn wheel_goes_to_editor(app: &AppState, ctrl: bool) -> bool {
 fn edit_wheel_zoom(ui: &egui::Ui, app: &mut AppState) {
     let (notches, ctrl) = wheel_notches(ui);
     if notches != 0.0 && !wheel_goes_to_editor(app, ctrl) {
-        let min =
-            crate::view::target::defaults_for(&app.scene, app.selected_model).min_camera_distance;
+        let min = crate::scalpel_session::target::defaults_for(&app.scene, app.selected_model)
+            .min_camera_distance;
         camera_controls::zoom(&mut app.scene.camera, notches, min);
     }
 }

@@ -66,7 +66,8 @@ pub fn scalpel_input(
     if response.hovered() {
         let notches = ui.input(|i| i.smooth_scroll_delta.y as f64 / 50.0);
         if notches != 0.0 {
-            let min = crate::view::target::defaults_for(&app.scene, selected).min_camera_distance;
+            let min = crate::scalpel_session::target::defaults_for(&app.scene, selected)
+                .min_camera_distance;
             camera_controls::zoom(&mut app.scene.camera, notches, min);
         }
     }

@@ -5,7 +5,8 @@
 //! headless renders agree with the window; this file only turns menu items and keys into
 //! [`ViewCommand`]s and applies them to the window's camera.
 
-use crate::view::{LengthUnit, Orientation, ViewPreset, fit};
+use crate::scene::{LengthUnit, Orientation, ViewPreset};
+use crate::view::fit;
 
 use crate::gui::action::Action;
 pub use crate::gui::action::ViewCommand;
@@ -24,7 +25,7 @@ pub fn orient_new_scene(app: &mut AppState, default_scene: bool, from_volume: bo
     };
     app.scene.unit = LengthUnit::guess(&bbox, from_volume);
     app.scene.camera = app.scene.preset_camera(ViewPreset::Anterior);
-    // From here on they follow the selected model (`crate::view::target::ScalpelSizing`).
+    // From here on they follow the selected model (`crate::scalpel_session::target::ScalpelSizing`).
     let slot = &mut app.viewport.scalpel;
     slot.sizing
         .resize(&app.scene, None, &mut slot.session.settings);

@@ -11,7 +11,7 @@ use anyhow::Context as _;
 pub use super::content_rule::MAX_LABEL_VALUES;
 use super::content_rule::RawContent;
 use super::{LabelVolume, VolumeFormat};
-use crate::intensity::IntensityImage;
+use crate::io::intensity::IntensityImage;
 
 /// A volume file or mask folder, read once, as what it holds.
 #[derive(Debug)]

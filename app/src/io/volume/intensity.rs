@@ -13,7 +13,7 @@ use anyhow::Context as _;
 
 use super::samples::{Endian, SampleType};
 use super::{RawSamples, VolumeFormat};
-use crate::intensity::{IntensityImage, SampleKind};
+use crate::io::intensity::{IntensityImage, SampleKind};
 
 /// Reads an intensity image. Errors are one line naming the file.
 pub fn read_image(path: &Path) -> anyhow::Result<IntensityImage> {

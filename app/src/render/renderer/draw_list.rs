@@ -12,12 +12,10 @@ use glam::DVec3;
 
 use super::index_patches::{IndexPatch, hidden_patches};
 use super::{CONTOUR_COLOR, CachedDelta, CachedMesh, Renderer, WALL_MIX, WALL_TINT};
-use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
+use crate::cutting::wall_split;
 use crate::render::draw_data::{GpuMesh, GpuSegments, cutter_outline_segments, polyline_segments};
 use crate::render::gpu_data::DrawUniform;
-use crate::render::wall_split;
-use crate::render::{FrameInputs, ViewMode, srgb_to_linear};
-use crate::scene::ModelStyle;
+use crate::render::{CutDrawing, DrawStyle, FrameInputs, PartLook, ViewMode, srgb_to_linear};
 
 /// Contour line width in pixels at 800 px image height.
 const CONTOUR_WIDTH_PX: f32 = 3.0;
@@ -30,8 +28,8 @@ const HIGHLIGHT: [f32; 3] = [1.0, 0.55, 0.1];
 const BACK_FACE: f32 = 0.55;
 
 pub(super) struct CachedPreview {
-    pub(super) preview: Weak<PreviewGeometry>,
-    /// One per `PreviewGeometry::parts` entry.
+    pub(super) preview: Weak<dyn CutDrawing>,
+    /// One per part of the cut.
     pub(super) parts: Vec<Option<GpuMesh>>,
     /// Per model: its contour polylines.
     pub(super) contours: HashMap<usize, GpuSegments>,
@@ -42,9 +40,9 @@ pub(super) struct CachedPreview {
 pub(super) enum Source {
     /// A scene model's mesh, by cache key.
     Model(usize),
-    /// `PreviewGeometry::parts[i]`.
+    /// Part `i` of the cut.
     Part(usize),
-    /// The patch of a [`MeshDelta`](crate::render::delta::MeshDelta), by cache key.
+    /// The patch of a [`MeshDelta`](crate::cutting::delta::MeshDelta), by cache key.
     Delta(usize),
     /// A per-frame overlay mesh.
     Overlay(usize),
@@ -78,7 +76,7 @@ impl Renderer {
         image_on: [bool; 2],
     ) -> (DrawList, Vec<DrawUniform>) {
         let [image_walls, image_slices] = image_on;
-        let scene = &frame.scene;
+        let models = &frame.models;
         let mut list = DrawList::default();
         let mut uniforms: Vec<DrawUniform> = Vec::new();
         let mut push_uniform = |color: [f32; 3], opacity: f32, lit: bool, width: f32, bias: f32| {
@@ -107,7 +105,7 @@ impl Renderer {
         // Preview parts.
         // Edit mode shows the live cut under the cutters when the GUI provides one.
         let preview = if matches!(frame.mode, ViewMode::Preview | ViewMode::Edit) {
-            frame.preview.clone()
+            frame.cut.clone()
         } else {
             None
         };
@@ -115,7 +113,7 @@ impl Renderer {
             let stale = self
                 .preview
                 .as_ref()
-                .is_none_or(|c| !c.preview.upgrade().is_some_and(|q| Arc::ptr_eq(&q, p)));
+                .is_none_or(|c| !c.preview.upgrade().is_some_and(|q| same_cut(&q, p)));
             if stale {
                 let cache = upload_preview(device, p);
                 for part in &cache.parts {
@@ -137,14 +135,10 @@ impl Renderer {
                 self.free_pages.note_large_free();
             }
         }
-        let replaced = |m: usize| {
-            preview
-                .as_ref()
-                .is_some_and(|p| p.replaced.get(m).copied().unwrap_or(false))
-        };
+        let replaced = |m: usize| preview.as_ref().is_some_and(|p| p.replaced(m));
 
         // Models (uncut, or the kept parts of cut ones).
-        for (index, model) in scene.models.iter().enumerate() {
+        for (index, model) in models.iter().enumerate() {
             let delta = frame
                 .deltas
                 .iter()
@@ -239,7 +233,7 @@ impl Renderer {
             let mut sources = vec![Source::Model(key)];
             sources.extend(delta_key.map(|(k, _)| Source::Delta(k)));
             match model.style {
-                ModelStyle::Solid => {
+                DrawStyle::Solid => {
                     let u = push_uniform(model.color, model.opacity, true, 0.0, 0.0);
                     for source in sources {
                         if model.opacity < 1.0 {
@@ -249,7 +243,7 @@ impl Renderer {
                         }
                     }
                 }
-                ModelStyle::Wireframe => {
+                DrawStyle::Wireframe => {
                     // The base's edges include those of hidden faces: a wireframe under a
                     // delta shows the old edges too until the change is committed.
                     let frame_index = self.frame_index;
@@ -283,8 +277,9 @@ impl Renderer {
         }
 
         if let (Some(p), Some(cache)) = (&preview, self.preview.as_mut()) {
-            for (i, part) in p.parts.iter().enumerate() {
-                let Some(model) = scene.models.get(part.model) else {
+            for i in 0..p.part_count() {
+                let part = p.part(i);
+                let Some(model) = models.get(part.model) else {
                     continue;
                 };
                 if !model.visible {
@@ -294,10 +289,10 @@ impl Renderer {
                     continue;
                 };
                 let wall = mix(model.color, WALL_TINT, WALL_MIX);
-                match part.kind {
-                    PartKind::Kept => match model.style {
-                        ModelStyle::Solid if model.opacity <= 0.0 => {}
-                        ModelStyle::Solid => {
+                match part.look {
+                    PartLook::Kept => match model.style {
+                        DrawStyle::Solid if model.opacity <= 0.0 => {}
+                        DrawStyle::Solid => {
                             let u = push_uniform(model.color, model.opacity, true, 0.0, 0.0);
                             if model.opacity < 1.0 {
                                 list.transparent.push(Draw::Mesh(Source::Part(i), u));
@@ -305,26 +300,26 @@ impl Renderer {
                                 list.opaque.push(Draw::Mesh(Source::Part(i), u));
                             }
                         }
-                        ModelStyle::Wireframe => {
+                        DrawStyle::Wireframe => {
                             if gpu.edges.is_none() {
-                                gpu.ensure_edges(device, &model.name, &part.mesh);
+                                gpu.ensure_edges(device, &model.name, part.mesh);
                                 self.free_pages.note_large_free();
                             }
                             let u = push_uniform(model.color, 1.0, false, WIREFRAME_WIDTH_PX, 0.0);
                             list.opaque.push(Draw::Edges(Source::Part(i), u));
                         }
                     },
-                    PartKind::Wall | PartKind::SliceWall => {
+                    PartLook::Wall | PartLook::SliceWall => {
                         let u = push_uniform(wall, 1.0, true, 0.0, 0.0);
                         let image =
-                            image_walls || (part.kind == PartKind::SliceWall && image_slices);
+                            image_walls || (part.look == PartLook::SliceWall && image_slices);
                         list.opaque.push(if image {
                             Draw::ImageMesh(Source::Part(i), u)
                         } else {
                             Draw::Mesh(Source::Part(i), u)
                         });
                     }
-                    PartKind::Ribbon => {
+                    PartLook::Ribbon => {
                         let u = push_uniform(model.color, 1.0, true, 0.0, 0.0);
                         list.opaque.push(if image_slices {
                             Draw::ImageMesh(Source::Part(i), u)
@@ -332,7 +327,7 @@ impl Renderer {
                             Draw::Mesh(Source::Part(i), u)
                         });
                     }
-                    PartKind::Removed => {
+                    PartLook::Removed => {
                         let u = push_uniform(model.color, part.opacity, true, 0.0, 0.0);
                         list.transparent.push(Draw::Mesh(Source::Part(i), u));
                     }
@@ -341,7 +336,7 @@ impl Renderer {
             let mut models: Vec<usize> = cache.contours.keys().copied().collect();
             models.sort_unstable();
             for m in models {
-                if scene.models.get(m).is_some_and(|model| model.visible) {
+                if frame.models.get(m).is_some_and(|model| model.visible) {
                     let u = push_uniform(CONTOUR_COLOR, 1.0, false, CONTOUR_WIDTH_PX, contour_bias);
                     list.opaque.push(Draw::Contour(m, u));
                 }
@@ -426,20 +421,19 @@ impl Renderer {
     }
 }
 
-fn upload_preview(device: &wgpu::Device, preview: &Arc<PreviewGeometry>) -> CachedPreview {
-    let parts = preview
-        .parts
-        .iter()
-        .map(|p| {
+fn upload_preview(device: &wgpu::Device, preview: &Arc<dyn CutDrawing>) -> CachedPreview {
+    let parts = (0..preview.part_count())
+        .map(|i| {
+            let p = preview.part(i);
             GpuMesh::upload(
                 device,
-                &format!("preview part {:?} of model {}", p.kind, p.model),
-                &p.mesh,
+                &format!("preview part {:?} of model {}", p.look, p.model),
+                p.mesh,
             )
         })
         .collect();
     let mut by_model: HashMap<usize, Vec<&[DVec3]>> = HashMap::new();
-    for (model, line) in &preview.contours {
+    for (model, line) in preview.contours() {
         by_model.entry(*model).or_default().push(line);
     }
     let contours = by_model
@@ -455,6 +449,11 @@ fn upload_preview(device: &wgpu::Device, preview: &Arc<PreviewGeometry>) -> Cach
         parts,
         contours,
     }
+}
+
+/// Whether two handles hold the same cut (the same allocation; vtables are not compared).
+fn same_cut(a: &Arc<dyn CutDrawing>, b: &Arc<dyn CutDrawing>) -> bool {
+    std::ptr::addr_eq(Arc::as_ptr(a), Arc::as_ptr(b))
 }
 
 fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {

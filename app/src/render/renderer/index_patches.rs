@@ -1,4 +1,4 @@
-//! Hiding faces in place: a [`MeshDelta`](crate::render::delta::MeshDelta) replaces some faces
+//! Hiding faces in place: a [`MeshDelta`](crate::cutting::delta::MeshDelta) replaces some faces
 //! of a model, and instead of uploading the model again the renderer overwrites those faces'
 //! index words in the model's index buffer (a degenerate triangle hides a face, its indices show
 //! it again) with the scatter compute shader. The words a change needs are proportional to the

@@ -7,7 +7,6 @@ use glam::{DMat4, DVec2, DVec4};
 use crate::render::gpu_data::{DRAW_UNIFORM_STRIDE, DrawUniform, FrameUniform};
 use crate::render::pipelines::Pipelines;
 use crate::render::{FrameInputs, ViewMode};
-use crate::scene::Stereo;
 
 /// Eye separation of the anaglyph as a fraction of the camera distance.
 const EYE_SEPARATION: f64 = 0.035;
@@ -93,7 +92,7 @@ fn near_far(bbox: &csg::Aabb, camera: &cutter::Camera) -> (f64, f64, f64) {
 /// The camera of each eye: the scene camera, or two toed-in cameras for the anaglyph.
 pub(super) fn eye_cameras(frame: &FrameInputs) -> Vec<cutter::Camera> {
     let camera = frame.camera;
-    if frame.scene.render.stereo != Stereo::Anaglyph {
+    if !frame.look.anaglyph {
         return vec![camera];
     }
     let (right, _, _) = camera.basis();

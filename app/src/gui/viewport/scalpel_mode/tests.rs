@@ -333,8 +333,8 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
 #[cfg(test)]
 mod view {
     use super::*;
+    use crate::cutting::delta::MeshDelta;
     use crate::render::ViewMode;
-    use crate::render::delta::MeshDelta;
     use crate::test_support::{
         deterministic_frame, differing_pixels, renderer_or_skip, with_sphere,
     };
@@ -432,8 +432,8 @@ mod view {
 #[cfg(test)]
 mod timings {
     use super::*;
+    use crate::cutting::delta::MeshDelta;
     use crate::render::ViewMode;
-    use crate::render::delta::MeshDelta;
     use crate::test_support::{
         deterministic_frame, median_and_max, two_renderers_or_skip, ui_timings_requested,
         with_sphere,

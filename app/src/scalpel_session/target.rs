@@ -15,9 +15,9 @@ use std::sync::Arc;
 
 use csg::{Aabb, Mesh};
 
-use super::units::SizeDefaults;
 use crate::scalpel_session::ScalpelSettings;
 use crate::scene::Scene;
+use crate::scene::units::SizeDefaults;
 
 /// The box a tool on `model` is sized from: that model's, else (no model, or an empty one) the
 /// scene's ([`Scene::bbox`]: the models shown).

@@ -11,7 +11,7 @@
 //! the bus. Every frame still draws the base with one draw call.
 //!
 //! ## Same pixels as the whole mesh
-//! The renderer shades with area-weighted smooth normals ([`super::draw_data::mesh_vertices`]):
+//! The renderer shades with area-weighted smooth normals ([`super::vertices::mesh_vertices`]):
 //! a face that changes changes the normals of its corners, and those corners are shared with
 //! unchanged faces. So the patch holds, besides the changed faces, the **ring**: every unchanged
 //! face that uses a *dirty* vertex (a corner of a changed face, before or after the change, or a
@@ -33,7 +33,7 @@ use std::sync::Arc;
 use csg::Mesh;
 use glam::DVec3;
 
-use super::gpu_data::Vertex;
+use super::vertices::Vertex;
 use super::wall_split::wall_corner_normal;
 
 /// For every vertex of a mesh, the faces that use it, ascending (a face that uses a vertex twice
@@ -259,7 +259,7 @@ pub fn build(change: &Change) -> MeshDelta {
             normals[k] = n;
         }
     }
-    let mut vertices = super::draw_data::vertices_with_normals(&patch.positions, &normals);
+    let mut vertices = super::vertices::vertices_with_normals(&patch.positions, &normals);
     let triangles = patch_walls(&patch, &source, &wall, &mut vertices, &|v| {
         (v < nv && !is_dirty(v)).then(|| {
             change
@@ -399,7 +399,7 @@ pub(crate) mod tests {
 
     /// What the renderer draws for the whole of `mesh` with wall faces `walls`.
     pub(crate) fn mesh_corners(mesh: &Mesh, walls: &[u32]) -> Vec<Corners> {
-        let d = crate::render::wall_split::drawn(mesh, walls);
+        let d = crate::cutting::wall_split::drawn(mesh, walls);
         drawn_corners(&d.triangles, &d.vertices)
     }
 
@@ -426,7 +426,7 @@ pub(crate) mod tests {
     /// What a delta draws, corner by corner: the base faces not hidden (with the base's vertex
     /// data, its walls `base_walls`), then the patch (with its own).
     pub(crate) fn delta_corners(delta: &MeshDelta, base_walls: &[u32]) -> Vec<Corners> {
-        let base = crate::render::wall_split::drawn(&delta.base, base_walls);
+        let base = crate::cutting::wall_split::drawn(&delta.base, base_walls);
         let mut kept = Vec::new();
         let mut hidden = delta.hidden.iter().peekable();
         for (t, tri) in base.triangles.iter().enumerate() {
@@ -527,7 +527,7 @@ pub(crate) mod tests {
     /// draws as the whole changed mesh would, walls split from the surface, bit for bit.
     #[test]
     fn a_delta_on_a_grooved_mesh_draws_its_split_lips_bit_for_bit() {
-        let (mesh, walls) = crate::render::wall_split::tests::grooved_sheet();
+        let (mesh, walls) = crate::cutting::wall_split::tests::grooved_sheet();
         let base = Arc::new(mesh);
         let mut edited = (*base).clone();
         let w = walls[5];

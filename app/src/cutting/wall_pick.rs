@@ -142,8 +142,9 @@ mod tests {
     use glam::DVec3;
 
     use super::*;
-    use crate::intensity::{ImageLayer, IntensityImage, WallDisplay};
+    use crate::io::intensity::IntensityImage;
     use crate::scene::{CutterViews, SceneCutter, SceneModel};
+    use crate::scene::{ImageLayer, WallDisplay};
     use crate::test_support::{box_cutter, cube};
     use cutter::CutKind;
 

@@ -8,7 +8,7 @@ use glam::DVec3;
 use crate::scene::ModelUnit;
 use crate::session::{self, FORMAT};
 
-use super::{LengthUnit, Orientation};
+use crate::scene::{LengthUnit, Orientation};
 
 /// Serves `body.obj`: a box 0.5 × 1.6 × 0.3 (a standing body in metres, Y up).
 fn body_loader(path: &Path, _unit: ModelUnit) -> anyhow::Result<Vec<crate::io::Model>> {

@@ -82,21 +82,3 @@ fn disjoint_boxes_are_refused() {
     let err = check_overlap(&img, far).unwrap_err().to_string();
     assert!(err.contains("disjoint"), "{err}");
 }
-
-#[test]
-fn layer_colour_mixes_by_display() {
-    let img = Arc::new(image_i16([2, 1, 1], DAffine3::IDENTITY, &[0, 100]));
-    let mut layer = ImageLayer::new(img);
-    layer.window = Window {
-        level: 50.0,
-        width: 100.0,
-    };
-    let base = [1.0, 0.0, 0.0];
-    assert_eq!(layer.color_at(DVec3::ZERO, base), [0.0, 0.0, 0.0]);
-    assert_eq!(layer.color_at(DVec3::X, base), [1.0, 1.0, 1.0]);
-    layer.display = WallDisplay::Blend;
-    assert_eq!(layer.color_at(DVec3::ZERO, base), [0.5, 0.0, 0.0]);
-    layer.display = WallDisplay::Color;
-    assert_eq!(layer.color_at(DVec3::X, base), base);
-    assert_eq!(layer.color_at(DVec3::splat(50.0), base), base, "outside");
-}

@@ -1,9 +1,14 @@
-//! A binary little-endian PLY reader for the cutter's tests, which read the repository's meshes
-//! (`assets/`) but cannot use the app's loaders (the app depends on `cutter`, not the other way
-//! round). Only the layout those files use: `float` or `double` x y z (the first three vertex
-//! properties, nothing else per vertex) and triangles as `list uchar uint`. `None` for
-//! anything else or anything malformed.
-//! Included with `#[path]` by `tests/scalpel/main.rs`.
+//! The mesh files the cutter's tests and benches read (the repository's binary PLY assets, the
+//! real anatomy's binary STL), in one place: the cutter never sees a file format in its library
+//! code and cannot use the app's loaders (the app depends on `cutter`, not the other way round),
+//! so its dev-only code reads them here. Included with `#[path]` by `tests/scalpel/main.rs` and
+//! `benches/scalpel.rs`; `None` for anything malformed.
+//!
+//! - [`read_binary_ply`]: binary little-endian PLY, only the layout those files use: `float` or
+//!   `double` x y z (the first three vertex properties, nothing else per vertex) and triangles as
+//!   `list uchar uint`.
+//! - [`read_binary_stl`]: binary STL; bit-identical corners are welded, triangles with a
+//!   repeated corner dropped.
 
 use glam::DVec3;
 
@@ -63,6 +68,34 @@ pub fn read_binary_ply(path: &std::path::Path) -> Option<csg::Mesh> {
         }
         triangles.push(tri);
         at += 13;
+    }
+    csg::Mesh::new(positions, triangles).ok()
+}
+
+/// Reads the binary STL at `path` (see the module doc).
+pub fn read_binary_stl(path: &std::path::Path) -> Option<csg::Mesh> {
+    let bytes = std::fs::read(path).ok()?;
+    let n = u32::from_le_bytes(bytes.get(80..84)?.try_into().ok()?) as usize;
+    let mut map = std::collections::HashMap::new();
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for t in 0..n {
+        let base = 84 + 50 * t + 12;
+        let mut tri = [0u32; 3];
+        for (k, corner) in tri.iter_mut().enumerate() {
+            let mut c = [0f32; 3];
+            for (a, x) in c.iter_mut().enumerate() {
+                let o = base + 12 * k + 4 * a;
+                *x = f32::from_le_bytes(bytes.get(o..o + 4)?.try_into().ok()?);
+            }
+            *corner = *map.entry(c.map(f32::to_bits)).or_insert_with(|| {
+                positions.push(DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64));
+                positions.len() as u32 - 1
+            });
+        }
+        if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
+            triangles.push(tri);
+        }
     }
     csg::Mesh::new(positions, triangles).ok()
 }

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
-use super::{IntensityImage, Window};
+use crate::io::intensity::{IntensityImage, Window};
 
 /// What a wall shows.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -81,5 +81,39 @@ impl ImageLayer {
             }
             _ => base,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DAffine3;
+
+    use super::*;
+    use crate::io::intensity::SampleKind;
+
+    #[test]
+    fn layer_colour_mixes_by_display() {
+        let img = Arc::new(IntensityImage::new(
+            "t".into(),
+            [2, 1, 1],
+            DAffine3::IDENTITY,
+            SampleKind::I16,
+            [0i16, 100].iter().flat_map(|v| v.to_le_bytes()).collect(),
+            (1.0, 0.0),
+        )
+        .unwrap());
+        let mut layer = ImageLayer::new(img);
+        layer.window = Window {
+            level: 50.0,
+            width: 100.0,
+        };
+        let base = [1.0, 0.0, 0.0];
+        assert_eq!(layer.color_at(DVec3::ZERO, base), [0.0, 0.0, 0.0]);
+        assert_eq!(layer.color_at(DVec3::X, base), [1.0, 1.0, 1.0]);
+        layer.display = WallDisplay::Blend;
+        assert_eq!(layer.color_at(DVec3::ZERO, base), [0.5, 0.0, 0.0]);
+        layer.display = WallDisplay::Color;
+        assert_eq!(layer.color_at(DVec3::X, base), base);
+        assert_eq!(layer.color_at(DVec3::splat(50.0), base), base, "outside");
     }
 }

@@ -17,7 +17,7 @@
 //!
 //! The faces keep their order and ids, so the renderer's hidden faces
 //! ([`super::delta`]) address the same index words; [`drawn_triangle`] gives a face's indices
-//! back. A mesh without walls is drawn exactly as [`super::draw_data::mesh_vertices`] draws it.
+//! back. A mesh without walls is drawn exactly as [`super::vertices::mesh_vertices`] draws it.
 //!
 //! Sums run over faces in ascending order, as the delta's patch sums them, so a patch draws bit
 //! for bit what the whole mesh would (see [`super::delta`], "Same pixels as the whole mesh").
@@ -27,7 +27,7 @@ use std::collections::HashMap;
 use csg::Mesh;
 use glam::DVec3;
 
-use super::gpu_data::Vertex;
+use super::vertices::Vertex;
 
 /// Wall faces meeting at a vertex at less than this angle share a smooth normal there; more,
 /// and the edge between them stays hard (the two walls at a groove's floor).
@@ -139,7 +139,7 @@ pub fn drawn_triangle(mesh: &Mesh, walls: &[u32], f: u32) -> Option<[u32; 3]> {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::render::draw_data::mesh_vertices;
+    use crate::cutting::vertices::mesh_vertices;
 
     /// A sheet in z = 0 (normals up) with a V groove along x: the sheet is split into two lips
     /// at y = ±1, the groove's walls go down to a floor line at depth 2. Returns the mesh and its

@@ -1,32 +1,19 @@
-//! Tests of [`super`] (`bridge.rs`), kept in their own file.
+//! Tests of [`super`] (`meshes.rs`), kept in their own file.
 
 use super::*;
-use crate::cutting::scene_cuts::apply_all_cuts;
 use crate::scene::CutterViews;
 use crate::test_support::scene_with_cube_cut;
-
-#[test]
-fn remove_all_cut_geometry_leaves_the_closed_kept_part() {
-    // A 2-unit cube with a 1-unit corner cut away.
-    let scene = scene_with_cube_cut(CutterViews::default());
-    let applied = apply_all_cuts(&scene, &Progress::default()).unwrap();
-    assert_eq!(applied.len(), 1);
-    let (model, mesh) = &applied[0];
-    assert_eq!(*model, 0);
-    let report = mesh.report();
-    assert!(report.closed, "{report:?}");
-    assert!((mesh.volume() - 7.0).abs() < 1e-9, "{}", mesh.volume());
-}
 
 #[test]
 fn export_cut_meshes_writes_the_chosen_parts() {
     let scene = scene_with_cube_cut(CutterViews::default());
     let dir = std::env::temp_dir().join(format!("cutaway-export-{}", std::process::id()));
-    let settings = crate::gui::panels::menus::ExportMeshSettings {
+    let parts = CutMeshParts {
+        kept: true,
+        walls: true,
         removed: true,
-        ..Default::default()
     };
-    let written = export_meshes(&scene, &settings, &dir, &Progress::default()).unwrap();
+    let written = write_cut_meshes(&scene, parts, "obj", &dir, &Progress::default()).unwrap();
     let names: Vec<String> = written
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
@@ -44,6 +31,6 @@ fn export_cut_meshes_writes_the_chosen_parts() {
     // No cutters: a clear error naming the folder.
     let mut empty = scene.clone();
     empty.cutters.clear();
-    let err = export_meshes(&empty, &settings, &dir, &Progress::default()).unwrap_err();
+    let err = write_cut_meshes(&empty, parts, "obj", &dir, &Progress::default()).unwrap_err();
     assert!(format!("{err:#}").contains(&dir.display().to_string()));
 }

@@ -20,12 +20,8 @@ use std::sync::Arc;
 use glam::{DAffine3, DVec3};
 
 pub mod fit;
-pub mod layer;
-pub mod open;
-pub mod wall_pick;
 pub mod window;
 
-pub use layer::{ImageLayer, WallDisplay};
 pub use window::{Window, WindowPreset};
 
 /// How the voxels are stored (the types kept as they are in the file; every other type is
