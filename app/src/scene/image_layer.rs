@@ -93,15 +93,17 @@ mod tests {
 
     #[test]
     fn layer_colour_mixes_by_display() {
-        let img = Arc::new(IntensityImage::new(
-            "t".into(),
-            [2, 1, 1],
-            DAffine3::IDENTITY,
-            SampleKind::I16,
-            [0i16, 100].iter().flat_map(|v| v.to_le_bytes()).collect(),
-            (1.0, 0.0),
-        )
-        .unwrap());
+        let img = Arc::new(
+            IntensityImage::new(
+                "t".into(),
+                [2, 1, 1],
+                DAffine3::IDENTITY,
+                SampleKind::I16,
+                [0i16, 100].iter().flat_map(|v| v.to_le_bytes()).collect(),
+                (1.0, 0.0),
+            )
+            .unwrap(),
+        );
         let mut layer = ImageLayer::new(img);
         layer.window = Window {
             level: 50.0,
