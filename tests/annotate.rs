@@ -10,6 +10,7 @@
 #[allow(dead_code)] // helpers shared with other test binaries
 mod scene_files;
 
+use csg::testkit::{Resource, skip};
 use std::path::Path;
 use std::process::Command;
 
@@ -42,7 +43,7 @@ fn renderer() -> Option<HeadlessRenderer> {
     match HeadlessRenderer::new() {
         Ok(r) => Some(r),
         Err(e) => {
-            println!("skipped: no GPU adapter ({e})");
+            skip(Resource::Gpu, format!("no GPU adapter ({e})"));
             None
         }
     }
@@ -112,8 +113,7 @@ fn render_labels_on_the_command_line() {
     let plain = run(&[], "plain.png");
     let stderr = String::from_utf8_lossy(&plain.stderr);
     if !plain.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
-        return;
+        return skip(Resource::Gpu, stderr);
     }
     assert!(plain.status.success(), "{stderr}");
     let one = run(&["--labels", "cube 1"], "one.png");
@@ -160,8 +160,7 @@ fn turntable_writes_every_frame_and_a_gif_of_them() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     if !run.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
-        return;
+        return skip(Resource::Gpu, stderr);
     }
     assert!(run.status.success(), "{stderr}");
     let frames: Vec<image::RgbaImage> = (1..=4)
@@ -214,8 +213,7 @@ fn render_turntable_writes_n_different_frames_a_gif_and_clean_json() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     if !run.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
-        return;
+        return skip(Resource::Gpu, stderr);
     }
     assert!(run.status.success(), "{stderr}");
     assert!(

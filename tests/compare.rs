@@ -9,6 +9,7 @@
 #[allow(dead_code)] // helpers shared with other test binaries
 mod scene_files;
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -42,7 +43,7 @@ fn compare(session: &Path, out: &Path, extra: &[&str]) -> Option<serde_json::Val
     let run = cutaway(&["compare"], session, &args);
     let stderr = String::from_utf8_lossy(&run.stderr);
     if !run.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
+        skip(Resource::Gpu, stderr);
         return None;
     }
     assert!(run.status.success(), "{stderr}");

@@ -11,6 +11,7 @@
 mod window_harness;
 mod window_input;
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -43,8 +44,7 @@ fn difference_in(a: &image::RgbaImage, b: &image::RgbaImage, rect: egui::Rect) -
 #[test]
 fn the_first_frame_has_the_orientation_marker_and_every_preset_turns_the_view() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("presets");
     let mut h = harness(&dir, Vec::new());
@@ -108,8 +108,7 @@ fn the_first_frame_has_the_orientation_marker_and_every_preset_turns_the_view() 
 #[test]
 fn a_double_click_selects_and_highlights_in_every_mode() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("select");
     let mut h = harness(&dir, Vec::new());
@@ -171,8 +170,7 @@ fn a_double_click_selects_and_highlights_in_every_mode() {
 #[test]
 fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_ones() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("cutters");
     let mut h = harness(&dir, Vec::new());
@@ -274,8 +272,7 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
 #[test]
 fn the_help_menu_opens_the_keyboard_and_mouse_reference() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("help");
     let mut h = harness(&dir, Vec::new());
@@ -314,8 +311,7 @@ fn the_help_menu_opens_the_keyboard_and_mouse_reference() {
 #[test]
 fn the_hubmap_body_opens_upright_in_metres_and_the_knee_in_millimetres() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let (Some(body), Some(knee)) = (anatomy("hubmap_vhf_body"), anatomy("knee_vhf_left_denver"))
     else {
@@ -362,8 +358,7 @@ fn the_hubmap_body_opens_upright_in_metres_and_the_knee_in_millimetres() {
 #[test]
 fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("browser");
     let start = StartOptions {
@@ -431,8 +426,7 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
 #[test]
 fn edit_mode_orbits_with_the_right_button_and_zooms_off_the_cutter() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("navigate");
     let mut h = harness(&dir, Vec::new());
@@ -505,8 +499,7 @@ fn drop_files(h: &mut Harness<'_, CutawayApp>, paths: Vec<PathBuf>) {
 #[test]
 fn dropped_folders_and_sessions_open_and_messages_stay_in_the_status_bar() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("drop");
     let mut h = harness(&dir, Vec::new());
@@ -574,8 +567,7 @@ fn dropped_folders_and_sessions_open_and_messages_stay_in_the_status_bar() {
 #[test]
 fn files_given_skip_the_recovery_prompt_and_an_undo_keeps_anaglyph_off() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("prompt");
     // An autosave left by a crash, and two meshes named on the command line.
