@@ -28,6 +28,7 @@ pub struct Tolerance {
 }
 
 /// Golden images (see the module docs for the measured noise): 20 pixels of 1280 × 800.
+#[allow(dead_code)] // the golden images' binary (`render.rs`) only
 pub const GOLDEN: Tolerance = Tolerance {
     channel: 2,
     max_differing: 20.0 / (1280.0 * 800.0),
@@ -35,6 +36,7 @@ pub const GOLDEN: Tolerance = Tolerance {
 };
 
 /// The same picture made by two paths of the app.
+#[allow(dead_code)] // the window's binary (`gui.rs`) only
 pub const SAME_PICTURE: Tolerance = Tolerance {
     channel: 24,
     max_differing: 0.01,
