@@ -860,7 +860,8 @@ fn measure_real_scene(h: &mut Harness<'_, CutawayApp>, name: &str, focus: &str, 
         "{name}: the panel differs from a fresh measurement"
     );
     // An independent oracle for what the panel shows of the skin: the skin's solid inside the
-    // cutter's box, integrated column by column along y by ray parity (no boolean involved).
+    // cutter's box, integrated column by column along y by ray parity (no boolean involved;
+    // measured agreement: 4e-6 on the SPL head, 1e-6 on the knee).
     let skin_measures = &measured.metrics.structures[skin];
     let removed = skin_measures
         .removed_volume
@@ -874,7 +875,7 @@ fn measure_real_scene(h: &mut Harness<'_, CutawayApp>, name: &str, focus: &str, 
     println!("{name}: skin removed {removed:.1} mm³, by ray parity {estimate:.1} mm³");
     assert!(removed > 0.0, "{name}: the box removed nothing");
     assert!(
-        (removed - estimate).abs() <= 0.01 * estimate,
+        (removed - estimate).abs() <= 1e-3 * estimate,
         "{name}: the panel says the skin loses {removed:.1} mm³, ray parity {estimate:.1} mm³"
     );
     println!(
