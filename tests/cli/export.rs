@@ -2,6 +2,7 @@
 //! `gltf` crate and checked by the Khronos glTF validator when it is installed.
 
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -221,15 +222,14 @@ fn validate(package: &Path, file: &Path) -> serde_json::Value {
 #[test]
 fn export_passes_the_khronos_validator_with_no_errors() {
     let Some(package) = validator_package() else {
-        eprintln!(
-            "skipped: CUTAWAY_GLTF_VALIDATOR is not set (npm install gltf-validator, then set it \
-             to the package folder, as .ci/run does)"
+        return skip(
+            Resource::Validator,
+            "CUTAWAY_GLTF_VALIDATOR is not set (npm install gltf-validator, then set it to the \
+             package folder, as .ci/run does)",
         );
-        return;
     };
     if Command::new("node").arg("--version").output().is_err() {
-        eprintln!("skipped: node is not installed");
-        return;
+        return skip(Resource::Validator, "node is not installed");
     }
     let dir = scratch("export-validator");
     let session = cut_scene(&dir);

@@ -7,6 +7,7 @@
 //! tests print "skipped: …" and pass.
 
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -40,7 +41,7 @@ fn compare(session: &Path, out: &Path, extra: &[&str]) -> Option<serde_json::Val
     let run = cutaway(&["compare"], session, &args);
     let stderr = String::from_utf8_lossy(&run.stderr);
     if !run.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
+        skip(Resource::Gpu, stderr);
         return None;
     }
     assert!(run.status.success(), "{stderr}");

@@ -169,8 +169,8 @@ impl HeadlessRenderer {
 
     /// The UI thread's share of a frame, as in the window's paint callback: [`Renderer::prepare`]
     /// (uploads and command recording) and the queue submission, in milliseconds. Then waits for
-    /// the GPU (not timed), so the next call starts idle. For the timing tests
-    /// (`CUTAWAY_UI_TIMINGS=1`); the image is not read back.
+    /// the GPU (not timed), so the next call starts idle. For the timing benchmarks (ignored
+    /// tests run with `--ignored`); the image is not read back.
     pub fn time_prepare(&mut self, frame: &FrameInputs) -> anyhow::Result<f64> {
         let started = std::time::Instant::now();
         let mut encoder = self
