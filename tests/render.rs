@@ -27,6 +27,8 @@ mod image_compare;
 mod exports;
 #[path = "render/goldens.rs"]
 mod goldens;
+#[path = "render/risk.rs"]
+mod risk;
 #[path = "render/sessions.rs"]
 mod sessions;
 

@@ -10,7 +10,9 @@ use csg::Mesh;
 use glam::DVec3;
 use wgpu::util::DeviceExt as _;
 
-use super::gpu_data::{Segment, Vertex};
+use super::gpu_data::{RiskVertex, Segment, Vertex};
+use crate::cutting::wall_risk::RiskWall;
+use crate::scene::risk::RiskSettings;
 
 /// Vertices of `mesh` with area-weighted smooth normals (each face adds its unnormalized normal,
 /// which is twice its area long, to its three corners).
@@ -40,6 +42,28 @@ pub fn vertices_with_normals(positions: &[DVec3], normal_sums: &[DVec3]) -> Vec<
             wall: 0.0,
         })
         .collect()
+}
+
+/// The vertices and triangles of a wall coloured by the risk map: one vertex per triangle
+/// corner (a corner's distance belongs to its triangle, see [`crate::cutting::wall_risk`]) with
+/// the refined wall's smooth normal and the corner's ramp position under `settings`.
+pub fn risk_vertices(wall: &RiskWall, settings: &RiskSettings) -> (Vec<RiskVertex>, Vec<[u32; 3]>) {
+    let smooth = mesh_vertices(&wall.mesh);
+    let mut vertices = Vec::with_capacity(wall.mesh.triangles.len() * 3);
+    for (t, corners) in wall.mesh.triangles.iter().zip(&wall.corner_mm) {
+        for (&v, &mm) in t.iter().zip(corners) {
+            let s = &smooth[v as usize];
+            vertices.push(RiskVertex {
+                position_in_world: s.position_in_world,
+                normal_in_world: s.normal_in_world,
+                ramp: settings.ramp_position(f64::from(mm)),
+            });
+        }
+    }
+    let triangles = (0..wall.mesh.triangles.len() as u32)
+        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+        .collect();
+    (vertices, triangles)
 }
 
 /// Every undirected edge of `mesh` once, as a segment (for wireframe drawing).
@@ -118,10 +142,10 @@ impl GpuMesh {
     /// Uploads prepared vertices and triangles (`None` when there is no triangle). The index
     /// buffer is also a storage buffer, so the renderer can hide faces in place (see
     /// [`super::delta`]).
-    pub fn upload_vertices(
+    pub fn upload_vertices<V: bytemuck::Pod>(
         device: &wgpu::Device,
         label: &str,
-        vertices: &[Vertex],
+        vertices: &[V],
         triangles: &[[u32; 3]],
     ) -> Option<GpuMesh> {
         if triangles.is_empty() || vertices.is_empty() {

@@ -1,0 +1,452 @@
+//! The risk map's distances: every cut wall's distance to the critical structures
+//! ([`crate::scene::risk`]), per vertex, on a wall refined where the colour changes, so that what
+//! the view, `cutaway render` and the glTF export show never makes a wall look safer than it is.
+//!
+//! ## The distance
+//! `d(p)` is the distance from wall point `p` to the nearest critical *solid*: 0 inside a closed
+//! structure (a wall through a vessel is at distance 0, not at the distance to the vessel's
+//! surface), else the distance to its surface. The surface distance is the exact closest point
+//! through the structure's [`SpatialIndex`] (the query `crate::metrics::distance` makes for
+//! `metrics --critical`, vertex by vertex); inside is the structure's generalized winding number
+//! above ½ ([`WindingTree`]; it errs only within rounding of the surface, where `d` is about 0
+//! anyway). `d` is 1-Lipschitz: it changes no faster than the point moves.
+//!
+//! ## Refinement, and why the picture cannot lie
+//! The renderer interpolates a value linearly across each triangle and maps it to the ramp per
+//! fragment (so the 2 mm and 10 mm lines stay sharp). Linear interpolation of exact vertex
+//! distances is not a bound: a structure close to the middle of a large wall triangle whose
+//! corners are all 10 mm away would be shown as 10 mm. Since `d` is 1-Lipschitz, on a triangle
+//! `T` with corner distances `dᵢ` and longest edge `ℓ`, every point has
+//! `max dᵢ − ℓ ≤ d(p) ≤ min dᵢ + ℓ`, and `d(p) ≥ Σ λᵢ (dᵢ − ℓ)` (λ its barycentric
+//! coordinates). So each wall triangle is split at its edge midpoints, level by level, until:
+//! - the bounds put all of `T` beyond `far_mm` or within `near_mm`: its corners carry their
+//!   exact distances and the whole triangle shows one side of the line, correctly;
+//! - the bounds put all of `T` inside the graded band: split to [`BAND_EDGE_MM`], corners exact
+//!   (the shade errs by at most that much, never across a line);
+//! - `T` may straddle a line: split to [`FINEST_EDGE_MM`], and its corners carry `dᵢ − ℓ`, a
+//!   lower bound at every point of `T`. A wall point within `near_mm` is then always red; a
+//!   point at most [`WallRisk::margin_mm`] beyond the line may be red too (the error is toward
+//!   danger, and bounded).
+//!
+//! Each triangle is split on its own (as the image baking does), so differently split
+//! neighbours meet with T-junctions: the new vertices lie on the shared edge, the surface has no
+//! gap. A wall refined past [`MAX_TRIANGLES`] is refined again with coarser steps (the bounds
+//! hold at any step; only the margin grows, and [`WallRisk::margin_mm`] says how much).
+//!
+//! The work runs where the cuts run: a worker in the window (cached per cut), the headless
+//! render before it draws. The renderer only draws the result.
+
+use std::collections::HashMap;
+use std::sync::{Arc, Weak};
+
+use csg::winding::WindingTree;
+use csg::{Mesh, SpatialIndex};
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::cut_results::{PartKind, PreviewGeometry, PreviewPart};
+use crate::scene::Scene;
+use crate::scene::risk::RiskSettings;
+
+/// Longest edge (mm) of a wall triangle that may straddle the near or far line: the most the
+/// map errs toward danger.
+pub const FINEST_EDGE_MM: f64 = 0.25;
+/// Longest edge (mm) of a wall triangle inside the graded band.
+pub const BAND_EDGE_MM: f64 = 1.0;
+/// Most triangles one refined wall may have.
+pub const MAX_TRIANGLES: usize = 400_000;
+
+/// One cutter's walls on one structure, refined, with a distance at every triangle corner.
+#[derive(Clone, Debug)]
+pub struct RiskWall {
+    /// The preview part it colours: its model and cutter (a [`PartKind::Wall`] part).
+    pub model: usize,
+    pub cutter: usize,
+    /// Triangle and vertex counts of that part's mesh, so a drawer can tell a part of another
+    /// cut from the one this was computed for.
+    pub source: (usize, usize),
+    /// The wall, refined (shared vertices; see the module doc).
+    pub mesh: Mesh,
+    /// Per triangle of `mesh`, per corner: the distance in mm whose linear interpolation over
+    /// the triangle is at most the true distance at every point of it (or, where the whole
+    /// triangle lies on one side of a line, the exact corner distances).
+    pub corner_mm: Vec<[f32; 3]>,
+}
+
+impl RiskWall {
+    /// Whether `part` is the wall this was computed for.
+    pub fn matches(&self, part: &PreviewPart) -> bool {
+        part.kind == PartKind::Wall
+            && part.model == self.model
+            && part.cutter == self.cutter
+            && self.source == (part.mesh.triangle_count(), part.mesh.positions.len())
+    }
+}
+
+/// The wall point nearest a critical structure.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Nearest {
+    /// mm (0 when a wall touches or enters it), exact at a wall vertex.
+    pub distance_mm: f64,
+    /// The critical structure's name.
+    pub structure: String,
+}
+
+/// The distances of every cutter wall of a preview to the critical structures.
+#[derive(Clone, Debug)]
+pub struct WallRisk {
+    /// What the map was computed for (the ramp's distances).
+    pub settings: RiskSettings,
+    pub walls: Vec<RiskWall>,
+    /// The wall vertex nearest a critical structure (`None` without walls).
+    pub nearest: Option<Nearest>,
+    /// How far beyond the near or far line (mm) a wall point may still be coloured as inside it
+    /// (the finest edge used; never the other way).
+    pub margin_mm: f64,
+    /// Critical names no structure of the scene has (they are left out).
+    pub missing: Vec<String>,
+}
+
+impl WallRisk {
+    /// The legend's title: which structures, and the closest wall
+    /// (`Distance to optic chiasm, closest wall 3.4 mm`).
+    pub fn caption(&self) -> String {
+        let names: Vec<&str> = self
+            .settings
+            .critical
+            .iter()
+            .filter(|n| !self.missing.contains(n))
+            .map(String::as_str)
+            .collect();
+        let joined = names.join(", ");
+        let what = if names.len() == 1 || joined.chars().count() <= 40 {
+            joined
+        } else {
+            format!("{} critical structures", names.len())
+        };
+        match &self.nearest {
+            Some(n) => format!(
+                "Distance to {what}, closest wall {:.1} mm",
+                n.distance_mm
+            ),
+            None => format!("Distance to {what}, no cut walls"),
+        }
+    }
+
+    /// The refined wall for preview part `part`, if this map has it.
+    pub fn wall_for(&self, part: &PreviewPart) -> Option<&RiskWall> {
+        self.walls.iter().find(|w| w.matches(part))
+    }
+}
+
+/// What a risk map depends on besides the cut: the settings, the critical structures' meshes
+/// and the length unit. A map computed for a preview stays right while this and the preview
+/// stay the same.
+#[derive(Clone, Debug)]
+pub struct RiskKey {
+    settings: RiskSettings,
+    critical: Vec<Weak<Mesh>>,
+    mm_per_unit: f64,
+}
+
+impl RiskKey {
+    pub fn of(scene: &Scene) -> RiskKey {
+        RiskKey {
+            settings: scene.risk.clone(),
+            critical: scene
+                .models
+                .iter()
+                .filter(|m| scene.risk.critical.contains(&m.name))
+                .map(|m| Arc::downgrade(&m.mesh))
+                .collect(),
+            mm_per_unit: scene.unit.mm_per_unit(),
+        }
+    }
+}
+
+impl PartialEq for RiskKey {
+    fn eq(&self, other: &RiskKey) -> bool {
+        self.settings == other.settings
+            && self.mm_per_unit == other.mm_per_unit
+            && self.critical.len() == other.critical.len()
+            && self
+                .critical
+                .iter()
+                .zip(&other.critical)
+                .all(|(a, b)| a.strong_count() > 0 && Weak::ptr_eq(a, b))
+    }
+}
+
+/// The last map computed, and what for: a turntable or a repeated render of one cut computes
+/// it once.
+#[derive(Default)]
+pub struct RiskCache {
+    last: Option<(Weak<PreviewGeometry>, RiskKey, Option<Arc<WallRisk>>)>,
+    indexes: CriticalIndexes,
+}
+
+impl RiskCache {
+    /// The risk map of `preview` in `scene` (see [`wall_risk`]), computed unless the last one
+    /// was for the same preview and key.
+    pub fn map(
+        &mut self,
+        scene: &Scene,
+        preview: &Arc<PreviewGeometry>,
+    ) -> Option<Arc<WallRisk>> {
+        if !scene.risk.is_on() {
+            return None;
+        }
+        let key = RiskKey::of(scene);
+        if let Some((p, k, risk)) = &self.last
+            && p.upgrade().is_some_and(|p| Arc::ptr_eq(&p, preview))
+            && *k == key
+        {
+            return risk.clone();
+        }
+        let risk = wall_risk(scene, preview, &mut self.indexes).map(Arc::new);
+        self.last = Some((Arc::downgrade(preview), key, risk.clone()));
+        risk
+    }
+}
+
+/// A critical structure's indexes: closest points and (closed ones) inside.
+struct CriticalSolid {
+    name: String,
+    mesh: Arc<Mesh>,
+    index: SpatialIndex,
+    winding: Option<WindingTree>,
+}
+
+/// The indexes of critical structures, built once per mesh and kept while it lives (the
+/// window's risk worker keeps one across cuts).
+#[derive(Default)]
+pub struct CriticalIndexes {
+    solids: Vec<(Weak<Mesh>, Arc<CriticalSolid>)>,
+}
+
+impl CriticalIndexes {
+    fn solid(&mut self, name: &str, mesh: &Arc<Mesh>) -> Arc<CriticalSolid> {
+        self.solids.retain(|(w, _)| w.strong_count() > 0);
+        if let Some((_, s)) = self
+            .solids
+            .iter()
+            .find(|(w, s)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, mesh)) && s.name == name)
+        {
+            return s.clone();
+        }
+        let closed = mesh.report().closed;
+        let solid = Arc::new(CriticalSolid {
+            name: name.to_string(),
+            mesh: mesh.clone(),
+            index: SpatialIndex::build(mesh),
+            winding: closed.then(|| WindingTree::build(mesh)),
+        });
+        self.solids.push((Arc::downgrade(mesh), solid.clone()));
+        solid
+    }
+
+    /// Drops the indexes of meshes other than `keep`'s.
+    fn keep_only(&mut self, keep: &[Arc<CriticalSolid>]) {
+        self.solids
+            .retain(|(_, s)| keep.iter().any(|k| Arc::ptr_eq(k, s)));
+    }
+}
+
+/// The risk map of `preview`'s cutter walls in `scene` (`None` when the map is off, or no
+/// critical name is a structure of the scene). `indexes` keeps the critical structures' indexes
+/// between calls.
+pub fn wall_risk(
+    scene: &Scene,
+    preview: &PreviewGeometry,
+    indexes: &mut CriticalIndexes,
+) -> Option<WallRisk> {
+    let settings = &scene.risk;
+    if !settings.is_on() || settings.check().is_err() {
+        return None;
+    }
+    let mut solids = Vec::new();
+    let mut missing = Vec::new();
+    for name in &settings.critical {
+        let models: Vec<_> = scene.models.iter().filter(|m| &m.name == name).collect();
+        if models.is_empty() {
+            missing.push(name.clone());
+        }
+        for model in models {
+            if !model.mesh.triangles.is_empty() {
+                solids.push(indexes.solid(name, &model.mesh));
+            }
+        }
+    }
+    indexes.keep_only(&solids);
+    if solids.is_empty() {
+        return None;
+    }
+    let field = Field {
+        solids: &solids,
+        mm_per_unit: scene.unit.mm_per_unit(),
+    };
+    let mut walls = Vec::new();
+    let mut nearest: Option<(f64, usize)> = None;
+    let mut margin_mm: f64 = 0.0;
+    for part in &preview.parts {
+        if part.kind != PartKind::Wall || part.cutter == usize::MAX || part.mesh.is_empty() {
+            continue;
+        }
+        let mut finest = FINEST_EDGE_MM;
+        let refined = loop {
+            if let Some(r) = refine(&part.mesh, &field, settings, finest) {
+                break r;
+            }
+            finest *= 2.0;
+        };
+        margin_mm = margin_mm.max(finest);
+        if let Some((d, k)) = refined.nearest
+            && nearest.is_none_or(|(best, _)| d < best)
+        {
+            nearest = Some((d, k));
+        }
+        walls.push(RiskWall {
+            model: part.model,
+            cutter: part.cutter,
+            source: (part.mesh.triangle_count(), part.mesh.positions.len()),
+            mesh: refined.mesh,
+            corner_mm: refined.corner_mm,
+        });
+    }
+    Some(WallRisk {
+        settings: settings.clone(),
+        walls,
+        nearest: nearest.map(|(d, k)| Nearest {
+            distance_mm: d,
+            structure: solids[k].name.clone(),
+        }),
+        margin_mm: if margin_mm > 0.0 {
+            margin_mm
+        } else {
+            FINEST_EDGE_MM
+        },
+        missing,
+    })
+}
+
+/// The distance field of the critical solids.
+struct Field<'a> {
+    solids: &'a [Arc<CriticalSolid>],
+    mm_per_unit: f64,
+}
+
+impl Field<'_> {
+    /// The distance (mm) from `p` to the nearest critical solid, and which solid.
+    fn at(&self, p: DVec3) -> (f64, usize) {
+        let mut best = f64::INFINITY;
+        let mut which = 0;
+        for (k, s) in self.solids.iter().enumerate() {
+            if let Some(c) = s.index.closest_point_within(&s.mesh, p, best)
+                && c.distance < best
+            {
+                best = c.distance;
+                which = k;
+            }
+        }
+        if best > 0.0 {
+            for (k, s) in self.solids.iter().enumerate() {
+                if let Some(tree) = &s.winding
+                    && tree.winding_number(&s.mesh, p).abs() > 0.5
+                {
+                    return (0.0, k);
+                }
+            }
+        }
+        (best * self.mm_per_unit, which)
+    }
+}
+
+/// A refined wall.
+struct Refined {
+    mesh: Mesh,
+    corner_mm: Vec<[f32; 3]>,
+    /// The smallest vertex distance (mm) and its solid.
+    nearest: Option<(f64, usize)>,
+}
+
+/// Refines `wall` as the module doc says, straddling triangles down to `finest` mm; `None` when
+/// that would pass [`MAX_TRIANGLES`].
+fn refine(wall: &Mesh, field: &Field, settings: &RiskSettings, finest: f64) -> Option<Refined> {
+    let (near, far) = (settings.near_mm, settings.far_mm);
+    let band_edge = BAND_EDGE_MM.max(finest);
+    let mut positions: Vec<DVec3> = Vec::new();
+    let mut ids: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut vertex = |p: DVec3, positions: &mut Vec<DVec3>| -> u32 {
+        *ids.entry(p.to_array().map(f64::to_bits)).or_insert_with(|| {
+            positions.push(p);
+            (positions.len() - 1) as u32
+        })
+    };
+    let mut active: Vec<[u32; 3]> = wall
+        .triangles
+        .iter()
+        .map(|t| t.map(|v| vertex(wall.positions[v as usize], &mut positions)))
+        .collect();
+    let mut distances: Vec<(f64, usize)> = Vec::new();
+    let mut out = Mesh::default();
+    let mut corner_mm = Vec::new();
+    while !active.is_empty() {
+        // The distances of the vertices made since the last level, in parallel.
+        let fresh: Vec<(f64, usize)> = positions[distances.len()..]
+            .par_iter()
+            .map(|&p| field.at(p))
+            .collect();
+        distances.extend(fresh);
+        let mut next = Vec::new();
+        for t in active {
+            let p = t.map(|v| positions[v as usize]);
+            let d = t.map(|v| distances[v as usize].0);
+            let longest = (0..3)
+                .map(|k| (p[k] - p[(k + 1) % 3]).length())
+                .fold(0.0, f64::max)
+                * field.mm_per_unit;
+            let lower = d.iter().copied().fold(f64::NEG_INFINITY, f64::max) - longest;
+            let upper = d.iter().copied().fold(f64::INFINITY, f64::min) + longest;
+            let one_side = lower >= far || upper <= near || !longest.is_finite();
+            let in_band = lower > near && upper < far;
+            let corners = if one_side || (in_band && longest <= band_edge) {
+                Some(d)
+            } else if !in_band && longest <= finest {
+                Some(d.map(|x| x - longest))
+            } else {
+                None
+            };
+            match corners {
+                Some(c) => {
+                    out.triangles.push(t);
+                    corner_mm.push(c.map(|x| x as f32));
+                }
+                None => {
+                    let [a, b, c] = t;
+                    let ab = vertex((p[0] + p[1]) * 0.5, &mut positions);
+                    let bc = vertex((p[1] + p[2]) * 0.5, &mut positions);
+                    let ca = vertex((p[2] + p[0]) * 0.5, &mut positions);
+                    next.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+                }
+            }
+        }
+        if out.triangles.len() + next.len() > MAX_TRIANGLES {
+            return None;
+        }
+        active = next;
+    }
+    let nearest = distances
+        .iter()
+        .copied()
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    out.positions = positions;
+    Some(Refined {
+        mesh: out,
+        corner_mm,
+        nearest,
+    })
+}
+
+#[cfg(test)]
+#[path = "wall_risk_tests.rs"]
+mod tests;
