@@ -21,12 +21,12 @@
 //! coordinates). So each wall triangle is split at its edge midpoints, level by level, until:
 //! - the bounds put all of `T` beyond `far_mm` or within `near_mm`: its corners carry their
 //!   exact distances and the whole triangle shows one side of the line, correctly;
-//! - the bounds put all of `T` inside the graded band: split to [`BAND_EDGE_MM`], corners exact
-//!   (the shade errs by at most that much, never across a line);
-//! - `T` may straddle a line: split to [`FINEST_EDGE_MM`], and its corners carry `dᵢ − ℓ`, a
-//!   lower bound at every point of `T`. A wall point within `near_mm` is then always red; a
-//!   point at most [`WallRisk::margin_mm`] beyond the line may be red too (the error is toward
-//!   danger, and bounded).
+//! - otherwise its corners carry `dᵢ − ℓ`, a lower bound at every point of `T`, once `T` is at
+//!   most [`FINEST_EDGE_MM`] across, or [`BAND_EDGE_MM`] where those lowered corners stay inside
+//!   the graded band (the shade there is at most that much too dangerous, never red). A wall
+//!   point within `near_mm` is then always red, and no point shows safer than it is; a point at
+//!   most about twice [`WallRisk::margin_mm`] beyond a line may be coloured as inside it (the
+//!   error is toward danger, and bounded).
 //!
 //! Each triangle is split on its own (as the image baking does), so differently split
 //! neighbours meet with T-junctions: the new vertices lie on the shared edge, the surface has no
@@ -408,18 +408,21 @@ fn refine(wall: &Mesh, field: &Field, settings: &RiskSettings, finest: f64) -> O
             let lower = d.iter().copied().fold(f64::NEG_INFINITY, f64::max) - longest;
             let upper = d.iter().copied().fold(f64::INFINITY, f64::min) + longest;
             let one_side = lower >= far || upper <= near || !longest.is_finite();
-            let in_band = lower > near && upper < far;
-            let corners = if one_side || (in_band && longest <= band_edge) {
+            // Lowered by the longest edge, the corners bound every point from below; inside
+            // the band they may stay coarser as long as they stay out of the red.
+            let lowered = d.map(|x| x - longest);
+            let in_band = lowered.iter().all(|&x| x > near) && upper < far;
+            let corners = if one_side {
                 Some(d)
-            } else if !in_band && longest <= finest {
-                Some(d.map(|x| x - longest))
+            } else if longest <= finest || (in_band && longest <= band_edge) {
+                Some(lowered)
             } else {
                 None
             };
             match corners {
                 Some(c) => {
                     out.triangles.push(t);
-                    corner_mm.push(c.map(|x| x as f32));
+                    corner_mm.push(c.map(at_most));
                 }
                 None => {
                     let [a, b, c] = t;
@@ -445,6 +448,12 @@ fn refine(wall: &Mesh, field: &Field, settings: &RiskSettings, finest: f64) -> O
         corner_mm,
         nearest,
     })
+}
+
+/// `x` as the largest `f32` not above it, so storing a bound never makes it safer.
+fn at_most(x: f64) -> f32 {
+    let y = x as f32;
+    if f64::from(y) > x { y.next_down() } else { y }
 }
 
 #[cfg(test)]
