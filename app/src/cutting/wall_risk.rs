@@ -41,7 +41,7 @@ use std::sync::{Arc, Weak};
 
 use csg::winding::WindingTree;
 use csg::{Mesh, SpatialIndex};
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::cut_results::{PartKind, PreviewGeometry, PreviewPart};
@@ -67,6 +67,10 @@ pub struct RiskWall {
     pub source: (usize, usize),
     /// The wall, refined (shared vertices; see the module doc).
     pub mesh: Mesh,
+    /// Where each vertex of `mesh` lies on the part's own wall: a triangle of it and the
+    /// barycentric coordinates there, so a drawer interpolates what it computes per vertex of the
+    /// wall (its normals) and the refined wall looks exactly as the wall does.
+    pub origin: Vec<VertexOrigin>,
     /// Per triangle of `mesh`, per corner: the distance in mm whose linear interpolation over
     /// the triangle is at most the true distance at every point of it (or, where the whole
     /// triangle lies on one side of a line, the exact corner distances).
@@ -80,6 +84,25 @@ impl RiskWall {
             && part.model == self.model
             && part.cutter == self.cutter
             && self.source == (part.mesh.triangle_count(), part.mesh.positions.len())
+    }
+}
+
+/// Where a refined vertex lies on the wall it was refined from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VertexOrigin {
+    /// The wall's triangle.
+    pub triangle: u32,
+    /// `[u, v]`: the point is `a + (b − a) u + (c − a) v` of that triangle's corners.
+    pub bary: [f64; 2],
+}
+
+impl VertexOrigin {
+    /// The value at this point of what `per_vertex` gives at the wall triangle's corners,
+    /// interpolated linearly.
+    pub fn interpolate(&self, wall: &Mesh, per_vertex: impl Fn(u32) -> DVec3) -> DVec3 {
+        let [a, b, c] = wall.triangles[self.triangle as usize].map(per_vertex);
+        let [u, v] = self.bary;
+        a + (b - a) * u + (c - a) * v
     }
 }
 
@@ -311,6 +334,7 @@ pub fn wall_risk(
             source: (part.mesh.triangle_count(), part.mesh.positions.len()),
             mesh: refined.mesh,
             corner_mm: refined.corner_mm,
+            origin: refined.origin,
         });
     }
     Some(WallRisk {
@@ -365,8 +389,17 @@ impl Field<'_> {
 struct Refined {
     mesh: Mesh,
     corner_mm: Vec<[f32; 3]>,
+    origin: Vec<VertexOrigin>,
     /// The smallest vertex distance (mm) and its solid.
     nearest: Option<(f64, usize)>,
+}
+
+/// A triangle being refined: its vertices, the wall triangle it lies in, and its corners'
+/// barycentric coordinates there.
+struct Piece {
+    vertices: [u32; 3],
+    source: u32,
+    bary: [DVec2; 3],
 }
 
 /// Refines `wall` as the module doc says, straddling triangles down to `finest` mm; `None` when
@@ -375,18 +408,39 @@ fn refine(wall: &Mesh, field: &Field, settings: &RiskSettings, finest: f64) -> O
     let (near, far) = (settings.near_mm, settings.far_mm);
     let band_edge = BAND_EDGE_MM.max(finest);
     let mut positions: Vec<DVec3> = Vec::new();
+    let mut origin: Vec<VertexOrigin> = Vec::new();
     let mut ids: HashMap<[u64; 3], u32> = HashMap::new();
-    let mut vertex = |p: DVec3, positions: &mut Vec<DVec3>| -> u32 {
+    // The vertex at `p` (made on first use; a point on an edge two wall triangles share gets the
+    // same interpolated values from either, so the first one's origin serves both).
+    let mut vertex = |p: DVec3, at: VertexOrigin, positions: &mut Vec<DVec3>, origin: &mut Vec<VertexOrigin>| -> u32 {
         *ids.entry(p.to_array().map(f64::to_bits)).or_insert_with(|| {
             positions.push(p);
+            origin.push(at);
             (positions.len() - 1) as u32
         })
     };
-    let mut active: Vec<[u32; 3]> = wall
-        .triangles
-        .iter()
-        .map(|t| t.map(|v| vertex(wall.positions[v as usize], &mut positions)))
-        .collect();
+    let corners = [DVec2::ZERO, DVec2::X, DVec2::Y];
+    let mut active: Vec<Piece> = Vec::with_capacity(wall.triangles.len());
+    for (t, tri) in wall.triangles.iter().enumerate() {
+        let mut vertices = [0; 3];
+        for k in 0..3 {
+            let at = VertexOrigin {
+                triangle: t as u32,
+                bary: corners[k].to_array(),
+            };
+            vertices[k] = vertex(
+                wall.positions[tri[k] as usize],
+                at,
+                &mut positions,
+                &mut origin,
+            );
+        }
+        active.push(Piece {
+            vertices,
+            source: t as u32,
+            bary: corners,
+        });
+    }
     let mut distances: Vec<(f64, usize)> = Vec::new();
     let mut out = Mesh::default();
     let mut corner_mm = Vec::new();
@@ -398,7 +452,8 @@ fn refine(wall: &Mesh, field: &Field, settings: &RiskSettings, finest: f64) -> O
             .collect();
         distances.extend(fresh);
         let mut next = Vec::new();
-        for t in active {
+        for piece in active {
+            let t = piece.vertices;
             let p = t.map(|v| positions[v as usize]);
             let d = t.map(|v| distances[v as usize].0);
             let longest = (0..3)
@@ -412,26 +467,40 @@ fn refine(wall: &Mesh, field: &Field, settings: &RiskSettings, finest: f64) -> O
             // the band they may stay coarser as long as they stay out of the red.
             let lowered = d.map(|x| x - longest);
             let in_band = lowered.iter().all(|&x| x > near) && upper < far;
-            let corners = if one_side {
+            let shown = if one_side {
                 Some(d)
             } else if longest <= finest || (in_band && longest <= band_edge) {
                 Some(lowered)
             } else {
                 None
             };
-            match corners {
-                Some(c) => {
-                    out.triangles.push(t);
-                    corner_mm.push(c.map(at_most));
-                }
-                None => {
-                    let [a, b, c] = t;
-                    let ab = vertex((p[0] + p[1]) * 0.5, &mut positions);
-                    let bc = vertex((p[1] + p[2]) * 0.5, &mut positions);
-                    let ca = vertex((p[2] + p[0]) * 0.5, &mut positions);
-                    next.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
-                }
+            if let Some(c) = shown {
+                out.triangles.push(t);
+                corner_mm.push(c.map(at_most));
+                continue;
             }
+            let [a, b, c] = t;
+            let [ba, bb, bc] = piece.bary;
+            let mut mid = |i: usize, j: usize, bi: DVec2, bj: DVec2| {
+                let at = VertexOrigin {
+                    triangle: piece.source,
+                    bary: ((bi + bj) * 0.5).to_array(),
+                };
+                vertex((p[i] + p[j]) * 0.5, at, &mut positions, &mut origin)
+            };
+            let (ab, bc_, ca) = (mid(0, 1, ba, bb), mid(1, 2, bb, bc), mid(2, 0, bc, ba));
+            let (mab, mbc, mca) = ((ba + bb) * 0.5, (bb + bc) * 0.5, (bc + ba) * 0.5);
+            let child = |vertices: [u32; 3], bary: [DVec2; 3]| Piece {
+                vertices,
+                source: piece.source,
+                bary,
+            };
+            next.extend([
+                child([a, ab, ca], [ba, mab, mca]),
+                child([ab, b, bc_], [mab, bb, mbc]),
+                child([ca, bc_, c], [mca, mbc, bc]),
+                child([ab, bc_, ca], [mab, mbc, mca]),
+            ]);
         }
         if out.triangles.len() + next.len() > MAX_TRIANGLES {
             return None;
@@ -446,6 +515,7 @@ fn refine(wall: &Mesh, field: &Field, settings: &RiskSettings, finest: f64) -> O
     Some(Refined {
         mesh: out,
         corner_mm,
+        origin,
         nearest,
     })
 }

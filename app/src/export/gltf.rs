@@ -125,13 +125,20 @@ pub fn scene_document(
         for part in geometry.parts.iter().filter(|p| p.model == m) {
             if let Some((wall, r)) = risk.and_then(|r| r.wall_for(part).map(|w| (w, r))) {
                 let base = mix(model.color, WALL_TINT, WALL_MIX);
-                let (mesh, colors) = super::risk_colors::bake(
+                let baked = super::risk_colors::bake(
                     wall,
+                    &part.mesh,
                     &r.settings,
                     image_on(scene, part.kind),
                     base,
                 );
-                primitives.extend(builder.colored_surface(scene, &mesh, &colors, MaterialKey::Risk));
+                primitives.extend(builder.colored_surface(
+                    scene,
+                    &baked.mesh,
+                    &baked.colors,
+                    Some(&baked.normals),
+                    MaterialKey::Risk,
+                ));
                 continue;
             }
             if let Some(layer) = image_on(scene, part.kind) {
@@ -144,6 +151,7 @@ pub fn scene_document(
                     scene,
                     &mesh,
                     &colors,
+                    None,
                     MaterialKey::Image,
                 ));
                 continue;
@@ -274,13 +282,17 @@ impl Builder {
         scene: &Scene,
         mesh: &Mesh,
         colors: &[[f32; 3]],
+        normals: Option<&[DVec3]>,
         key: MaterialKey,
     ) -> Option<json::mesh::Primitive> {
         if mesh.triangles.is_empty() {
             return None;
         }
         let positions = self.positions(&mesh.positions);
-        let normals = self.normals(mesh);
+        let normals = match normals {
+            Some(n) => self.normals_of(n),
+            None => self.normals(mesh),
+        };
         let linear: Vec<[f32; 3]> = colors
             .iter()
             .map(|c| c.map(|v| srgb_to_linear(v.clamp(0.0, 1.0))))
@@ -391,14 +403,12 @@ impl Builder {
 
     /// Area-weighted unit vertex normals of `mesh` (+Z for a vertex whose faces have no area).
     fn normals(&mut self, mesh: &Mesh) -> json::Index<json::Accessor> {
-        let mut sums = vec![DVec3::ZERO; mesh.positions.len()];
-        for t in 0..mesh.triangles.len() {
-            let n = mesh.face_normal_scaled(t);
-            for &v in &mesh.triangles[t] {
-                sums[v as usize] += n;
-            }
-        }
-        let data: Vec<[f32; 3]> = sums
+        self.normals_of(&vertex_normals(mesh))
+    }
+
+    /// A normal accessor of `normals`, each made unit length (+Z for a zero one).
+    fn normals_of(&mut self, normals: &[DVec3]) -> json::Index<json::Accessor> {
+        let data: Vec<[f32; 3]> = normals
             .iter()
             .map(|n| {
                 let unit = n.try_normalize().unwrap_or(DVec3::Z).as_vec3();
@@ -535,6 +545,18 @@ impl Builder {
         self.materials.insert(key, index);
         index
     }
+}
+
+/// Area-weighted vertex normals of `mesh` (sums of the faces' scaled normals, not unit length).
+pub fn vertex_normals(mesh: &Mesh) -> Vec<DVec3> {
+    let mut sums = vec![DVec3::ZERO; mesh.positions.len()];
+    for t in 0..mesh.triangles.len() {
+        let n = mesh.face_normal_scaled(t);
+        for &v in &mesh.triangles[t] {
+            sums[v as usize] += n;
+        }
+    }
+    sums
 }
 
 fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {

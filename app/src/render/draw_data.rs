@@ -46,16 +46,27 @@ pub fn vertices_with_normals(positions: &[DVec3], normal_sums: &[DVec3]) -> Vec<
 
 /// The vertices and triangles of a wall coloured by the risk map: one vertex per triangle
 /// corner (a corner's distance belongs to its triangle, see [`crate::cutting::wall_risk`]) with
-/// the refined wall's smooth normal and the corner's ramp position under `settings`.
-pub fn risk_vertices(wall: &RiskWall, settings: &RiskSettings) -> (Vec<RiskVertex>, Vec<[u32; 3]>) {
-    let smooth = mesh_vertices(&wall.mesh);
+/// the corner's ramp position under `settings`, and the normal of `source` (the wall it was
+/// refined from) interpolated there, unnormalized, so the refined wall shades exactly as
+/// `source` drawn as it is.
+pub fn risk_vertices(
+    wall: &RiskWall,
+    settings: &RiskSettings,
+    source: &Mesh,
+) -> (Vec<RiskVertex>, Vec<[u32; 3]>) {
+    let smooth = mesh_vertices(source);
+    let normal = |v: u32| DVec3::from(smooth[v as usize].normal_in_world.map(f64::from));
+    let normals: Vec<[f32; 3]> = wall
+        .origin
+        .iter()
+        .map(|o| o.interpolate(source, normal).as_vec3().to_array())
+        .collect();
     let mut vertices = Vec::with_capacity(wall.mesh.triangles.len() * 3);
     for (t, corners) in wall.mesh.triangles.iter().zip(&wall.corner_mm) {
         for (&v, &mm) in t.iter().zip(corners) {
-            let s = &smooth[v as usize];
             vertices.push(RiskVertex {
-                position_in_world: s.position_in_world,
-                normal_in_world: s.normal_in_world,
+                position_in_world: wall.mesh.positions[v as usize].as_vec3().to_array(),
+                normal_in_world: normals[v as usize],
                 ramp: settings.ramp_position(f64::from(mm)),
             });
         }

@@ -21,7 +21,8 @@ pub struct Vertex {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct RiskVertex {
     pub position_in_world: [f32; 3],
-    /// Area-weighted vertex normal of the refined wall, unit length.
+    /// The smooth normal of the wall it was refined from, interpolated at this point (not unit
+    /// length; the shader normalizes per fragment).
     pub normal_in_world: [f32; 3],
     /// Where the corner's distance lies on the ramp
     /// ([`crate::scene::risk::RiskSettings::ramp_position`]): ≤ 0 red, 0..1 graded, ≥ 1 beyond.

@@ -161,11 +161,14 @@ impl Renderer {
                     .as_ref()
                     .is_none_or(|c| !c.risk.upgrade().is_some_and(|q| Arc::ptr_eq(&q, r)));
                 if stale {
+                    let parts = preview.as_ref().map_or(&[][..], |p| &p.parts[..]);
                     let walls: Vec<Option<GpuMesh>> = r
                         .walls
                         .iter()
                         .map(|w| {
-                            let (vertices, triangles) = risk_vertices(w, &r.settings);
+                            let source = parts.iter().find(|p| w.matches(p))?;
+                            let (vertices, triangles) =
+                                risk_vertices(w, &r.settings, &source.mesh);
                             GpuMesh::upload_vertices(device, "risk map wall", &vertices, &triangles)
                         })
                         .collect();

@@ -49,11 +49,19 @@ fn risk_ramp(s: f32) -> vec4<f32> {
     return vec4<f32>(rgb, select(0.0, 1.0, s < 1.0));
 }
 
+// The ramp's colour shaded without the specular highlight (the shading less that of black, which
+// is the highlight alone), so red reads red under the headlight.
+fn risk_shaded(rgb: vec3<f32>, v: VertexOut, front_facing: bool, flat_normal: vec3<f32>) -> vec3<f32> {
+    let highlight = shade_color(vec3<f32>(0.0), v, front_facing, flat_normal);
+    return shade_color(rgb, v, front_facing, flat_normal) - highlight;
+}
+
 @fragment
 fn fs_risk(in: RiskOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let v = risk_as_vertex_out(in);
     let flat_normal = face_normal(in.position_in_world);
     let r = risk_ramp(in.ramp);
-    let base = mix(draw.color.rgb, r.rgb, r.a);
-    return vec4<f32>(shade_color(base, v, front_facing, flat_normal), 1.0);
+    let wall = shade(v, front_facing, flat_normal);
+    let warned = risk_shaded(r.rgb, v, front_facing, flat_normal);
+    return vec4<f32>(mix(wall, warned, r.a), 1.0);
 }

@@ -8,6 +8,6 @@ fn fs_risk_image(in: RiskOut, @builtin(front_facing) front_facing: bool) -> @loc
     let flat_normal = face_normal(in.position_in_world);
     let wall = image_wall_color(v, front_facing, flat_normal);
     let r = risk_ramp(in.ramp);
-    let warned = shade_color(r.rgb, v, front_facing, flat_normal);
+    let warned = risk_shaded(r.rgb, v, front_facing, flat_normal);
     return vec4<f32>(mix(wall, warned, r.a), 1.0);
 }
