@@ -33,6 +33,7 @@ mod image_walls;
 #[allow(dead_code)] // helpers shared with other test binaries
 #[path = "../support/scene_files.rs"]
 mod scene_files;
+mod risk;
 mod sessions;
 mod wedge;
 

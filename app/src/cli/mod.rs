@@ -19,6 +19,7 @@ pub mod metrics;
 pub mod open;
 pub mod phantom;
 pub mod render;
+pub mod risk_args;
 pub mod scalpel;
 pub mod subtract;
 pub mod surfaces;

@@ -60,7 +60,12 @@ pub fn render_variants(
         if let Some(note) = preview.notes.first() {
             anyhow::bail!("variant '{name}': {note}");
         }
-        let image = crate::render::render_with_preview(renderer, &shown, &options, Some(preview))
+        let image = crate::annotate::risk_legend::render_with_legend(
+            renderer,
+            &shown,
+            &options,
+            Some(preview),
+        )
             .map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
         images.push(image);
     }

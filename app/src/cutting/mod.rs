@@ -17,6 +17,8 @@
 //! - [`overlay`]: the cutter as Edit mode draws it, the surface the boolean cuts with.
 //! - [`pick`]: which model a ray meets first, through each model's BVH; [`drawn_hit`]: the point
 //!   a ray meets on the scene as drawn (cut walls and kept parts where a cut is shown).
+//! - [`wall_risk`]: the risk map's distances from the cut walls to the critical structures, on
+//!   walls refined so the colours never make a wall look safer than it is.
 
 pub mod cut_parts;
 pub mod cut_results;
@@ -27,3 +29,4 @@ pub mod live_cut;
 pub mod overlay;
 pub mod pick;
 pub mod scene_cuts;
+pub mod wall_risk;

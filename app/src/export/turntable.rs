@@ -179,7 +179,7 @@ fn write_turntable(
         }
         let clock = std::time::Instant::now();
         frame_scene.camera = orbit(&scene.camera, k, options.frames);
-        let mut image = crate::render::render_with_preview(
+        let mut image = crate::annotate::risk_legend::render_with_legend(
             &mut renderer,
             &frame_scene,
             picture,

@@ -29,6 +29,7 @@ pub mod jobs;
 pub mod model_groups;
 pub mod panels;
 pub mod recovery;
+pub mod risk_map;
 #[cfg(test)]
 mod smoothness_tests;
 pub mod state;

@@ -10,7 +10,9 @@ use csg::Mesh;
 use glam::DVec3;
 use wgpu::util::DeviceExt as _;
 
-use super::gpu_data::{Segment, Vertex};
+use super::gpu_data::{RiskVertex, Segment, Vertex};
+use crate::cutting::wall_risk::RiskWall;
+use crate::scene::risk::RiskSettings;
 
 /// Vertices of `mesh` with area-weighted smooth normals (each face adds its unnormalized normal,
 /// which is twice its area long, to its three corners).
@@ -40,6 +42,39 @@ pub fn vertices_with_normals(positions: &[DVec3], normal_sums: &[DVec3]) -> Vec<
             wall: 0.0,
         })
         .collect()
+}
+
+/// The vertices and triangles of a wall coloured by the risk map: one vertex per triangle
+/// corner (a corner's distance belongs to its triangle, see [`crate::cutting::wall_risk`]) with
+/// the corner's ramp position under `settings`, and the normal of `source` (the wall it was
+/// refined from) interpolated there, unnormalized, so the refined wall shades exactly as
+/// `source` drawn as it is.
+pub fn risk_vertices(
+    wall: &RiskWall,
+    settings: &RiskSettings,
+    source: &Mesh,
+) -> (Vec<RiskVertex>, Vec<[u32; 3]>) {
+    let smooth = mesh_vertices(source);
+    let normal = |v: u32| DVec3::from(smooth[v as usize].normal_in_world.map(f64::from));
+    let normals: Vec<[f32; 3]> = wall
+        .origin
+        .iter()
+        .map(|o| o.interpolate(source, normal).as_vec3().to_array())
+        .collect();
+    let mut vertices = Vec::with_capacity(wall.mesh.triangles.len() * 3);
+    for (t, corners) in wall.mesh.triangles.iter().zip(&wall.corner_mm) {
+        for (&v, &mm) in t.iter().zip(corners) {
+            vertices.push(RiskVertex {
+                position_in_world: wall.mesh.positions[v as usize].as_vec3().to_array(),
+                normal_in_world: normals[v as usize],
+                ramp: settings.ramp_position(f64::from(mm)),
+            });
+        }
+    }
+    let triangles = (0..wall.mesh.triangles.len() as u32)
+        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+        .collect();
+    (vertices, triangles)
 }
 
 /// Every undirected edge of `mesh` once, as a segment (for wireframe drawing).
@@ -118,10 +153,10 @@ impl GpuMesh {
     /// Uploads prepared vertices and triangles (`None` when there is no triangle). The index
     /// buffer is also a storage buffer, so the renderer can hide faces in place (see
     /// [`super::delta`]).
-    pub fn upload_vertices(
+    pub fn upload_vertices<V: bytemuck::Pod>(
         device: &wgpu::Device,
         label: &str,
-        vertices: &[Vertex],
+        vertices: &[V],
         triangles: &[[u32; 3]],
     ) -> Option<GpuMesh> {
         if triangles.is_empty() || vertices.is_empty() {

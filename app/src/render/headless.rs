@@ -48,6 +48,10 @@ pub struct HeadlessRenderer {
     queue: wgpu::Queue,
     renderer: Renderer,
     adapter: wgpu::AdapterInfo,
+    /// The risk map of the last preview drawn (computed by the cutting layer, not here).
+    risk: crate::cutting::wall_risk::RiskCache,
+    /// The risk map the last [`render_with_preview`] drew, if any.
+    drawn: Option<Arc<crate::cutting::wall_risk::WallRisk>>,
 }
 
 impl HeadlessRenderer {
@@ -93,6 +97,8 @@ impl HeadlessRenderer {
             queue,
             renderer,
             adapter: adapter.get_info(),
+            risk: Default::default(),
+            drawn: None,
         })
     }
 
@@ -110,6 +116,11 @@ impl HeadlessRenderer {
     /// reduced resolution (`crate::intensity::fit`).
     pub fn max_texture_dimension_3d(&self) -> u32 {
         self.device.limits().max_texture_dimension_3d
+    }
+
+    /// The risk map the last [`render_with_preview`] drew (for its legend), if any.
+    pub fn drawn_risk(&self) -> Option<Arc<crate::cutting::wall_risk::WallRisk>> {
+        self.drawn.clone()
     }
 
     /// True for software rasterizers (lavapipe, llvmpipe).
@@ -316,7 +327,8 @@ pub fn render_mode(scene: &Scene, options: &RenderPngOptions) -> ViewMode {
 
 /// [`render_with`] with the cut parts already computed (`None`: computed here when the mode
 /// needs them), so a caller can report on the cuts it shows. In Edit mode, given parts are drawn
-/// under the cutter overlays (the GUI's live cut).
+/// under the cutter overlays (the GUI's live cut). With the scene's risk map on, the walls are
+/// coloured by distance ([`crate::cutting::wall_risk`], computed once per preview).
 pub fn render_with_preview(
     renderer: &mut HeadlessRenderer,
     scene: &Scene,
@@ -336,6 +348,10 @@ pub fn render_with_preview(
         // Edit mode with the cut parts drawn under the cutters, as the GUI's live cut does.
         frame.preview = preview;
     }
+    if let Some(preview) = &frame.preview {
+        frame.risk = renderer.risk.map(&frame.scene, preview);
+    }
+    renderer.drawn = frame.risk.clone();
     if mode == ViewMode::Edit {
         frame.overlays = frame
             .scene

@@ -42,6 +42,8 @@
 //! ## What is drawn (thesis 3.4)
 //! - Models: per-model colour, opacity (< 1 → order-independent transparency), solid or
 //!   wireframe, visibility. Two-sided headlight shading; back faces darker.
+//! - With [`FrameInputs::risk`], the cut walls it covers coloured by their distance to the
+//!   critical structures (red, graded, then the wall's own look; `shaders/risk.wgsl`).
 //! - [`ViewMode::Edit`]: the cutters of [`FrameInputs::overlays`] semi-transparent, plane outlines
 //!   on top, the highlighted plane in orange.
 //! - [`ViewMode::Preview`] with [`FrameInputs::preview`]: per cutter the kept part, the walls in
@@ -71,6 +73,7 @@ pub mod headless;
 pub mod image_layer;
 mod pipelines;
 mod renderer;
+pub mod risk_layer;
 pub mod wall_split;
 
 pub use headless::{
@@ -140,6 +143,9 @@ pub struct FrameInputs {
     /// scalpel stroke in progress): a delta applies to the scene model whose mesh is its
     /// `base` (same `Arc`), replaced by the preview or not. See [`delta`].
     pub deltas: Vec<Arc<delta::MeshDelta>>,
+    /// The risk map of `preview`'s walls ([`crate::cutting::wall_risk`]): a wall part it has a
+    /// refined wall for is drawn coloured by distance instead. `None`: walls as usual.
+    pub risk: Option<Arc<crate::cutting::wall_risk::WallRisk>>,
 }
 
 impl FrameInputs {
@@ -155,6 +161,7 @@ impl FrameInputs {
             deterministic: false,
             tile: None,
             deltas: Vec::new(),
+            risk: None,
         }
     }
 }
@@ -225,6 +232,33 @@ pub mod shaders {
         include_str!("shaders/mesh.wgsl"),
         include_str!("shaders/image.wgsl")
     );
+    pub const RISK: &str = include_str!("shaders/risk.wgsl");
+    pub const RISK_IMAGE: &str = include_str!("shaders/risk_image.wgsl");
+
+    /// The risk map's shader: the ramp's colours from [`crate::scene::risk`] (linear light)
+    /// as WGSL constants, `mesh.wgsl`, with `image.wgsl` when the walls show the image, and
+    /// `risk.wgsl` (+ `risk_image.wgsl`). One definition of the colours serves the shader, the
+    /// glTF export and the legends.
+    pub fn risk(with_image: bool) -> String {
+        use crate::scene::risk::{RISK_BAND_END, RISK_BAND_START, RISK_NEAR_COLOR};
+        let constant = |name: &str, srgb: [f32; 3]| {
+            let [r, g, b] = srgb.map(super::srgb_to_linear);
+            format!("const {name}: vec3<f32> = vec3<f32>({r:.8}, {g:.8}, {b:.8});\n")
+        };
+        let mut source = constant("RISK_NEAR_COLOR", RISK_NEAR_COLOR)
+            + &constant("RISK_BAND_START", RISK_BAND_START)
+            + &constant("RISK_BAND_END", RISK_BAND_END)
+            + MESH;
+        if with_image {
+            source += include_str!("shaders/image.wgsl");
+        }
+        source += RISK;
+        if with_image {
+            source += RISK_IMAGE;
+        }
+        source
+    }
+
     /// Every shader with its file name.
     pub const ALL: [(&str, &str); 6] = [
         ("mesh.wgsl", MESH),
@@ -244,7 +278,12 @@ mod tests {
     /// GPU-less CI machine.
     #[test]
     fn shaders_validate_with_naga() {
-        for (name, source) in shaders::ALL {
+        let risk = [
+            ("risk.wgsl", shaders::risk(false)),
+            ("risk.wgsl + image", shaders::risk(true)),
+        ];
+        let assembled = risk.iter().map(|(n, s)| (*n, s.as_str()));
+        for (name, source) in shaders::ALL.into_iter().chain(assembled) {
             let module = naga::front::wgsl::parse_str(source)
                 .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
             let mut validator = naga::valid::Validator::new(

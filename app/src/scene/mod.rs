@@ -16,6 +16,7 @@
 //! session file stores them; the renderer converts them to linear light.
 
 pub mod regions;
+pub mod risk;
 pub mod ruler;
 pub mod variants;
 pub mod wall_faces;
@@ -326,6 +327,8 @@ pub struct Scene {
     pub variants: Variants,
     /// Distances measured between surface points ([`crate::scene::ruler`]).
     pub rulers: Vec<Ruler>,
+    /// The walls coloured by their distance to critical structures ([`crate::scene::risk`]).
+    pub risk: risk::RiskSettings,
 }
 
 impl Default for Scene {
@@ -345,6 +348,7 @@ impl Default for Scene {
             image: None,
             variants: Variants::default(),
             rulers: Vec::new(),
+            risk: Default::default(),
         }
     }
 }
@@ -405,7 +409,9 @@ impl Scene {
             image,
             variants: _,
             rulers,
+            risk,
         } = self;
+        risk.check().map_err(|e| format!("risk: {e}"))?;
         if let Some(i) = rulers
             .iter()
             .position(|r| !(r.a.is_finite() && r.b.is_finite()))

@@ -108,6 +108,7 @@ impl AppState {
             || self.metrics.busy()
             || self.compare.busy()
             || self.atlas.busy()
+            || self.viewport.risk.busy()
     }
 
     /// Every scene this window holds: the current one, the last committed, the one before a

@@ -13,7 +13,10 @@ use glam::DVec3;
 use super::index_patches::{IndexPatch, hidden_patches};
 use super::{CONTOUR_COLOR, CachedDelta, CachedMesh, Renderer, WALL_MIX, WALL_TINT};
 use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
-use crate::render::draw_data::{GpuMesh, GpuSegments, cutter_outline_segments, polyline_segments};
+use crate::cutting::wall_risk::WallRisk;
+use crate::render::draw_data::{
+    GpuMesh, GpuSegments, cutter_outline_segments, polyline_segments, risk_vertices,
+};
 use crate::render::gpu_data::DrawUniform;
 use crate::render::wall_split;
 use crate::render::{FrameInputs, ViewMode, srgb_to_linear};
@@ -37,6 +40,13 @@ pub(super) struct CachedPreview {
     pub(super) contours: HashMap<usize, GpuSegments>,
 }
 
+/// The refined walls of a risk map, uploaded.
+pub(super) struct CachedRisk {
+    pub(super) risk: Weak<WallRisk>,
+    /// One per `WallRisk::walls` entry.
+    pub(super) walls: Vec<Option<GpuMesh>>,
+}
+
 /// What one draw call draws.
 #[derive(Clone, Copy)]
 pub(super) enum Source {
@@ -48,6 +58,8 @@ pub(super) enum Source {
     Delta(usize),
     /// A per-frame overlay mesh.
     Overlay(usize),
+    /// `WallRisk::walls[i]` of the frame's risk map.
+    Risk(usize),
 }
 
 #[derive(Clone, Copy)]
@@ -55,6 +67,9 @@ pub(super) enum Draw {
     Mesh(Source, u32),
     /// A mesh showing the intensity image ([`crate::render::image_layer`]).
     ImageMesh(Source, u32),
+    /// A wall coloured by the risk map ([`crate::render::risk_layer`]); true: beyond the far
+    /// distance it shows the image.
+    RiskMesh(Source, u32, bool),
     Edges(Source, u32),
     Contour(usize, u32),
     Lines(usize, u32),
@@ -136,6 +151,37 @@ impl Renderer {
             if self.preview.take().is_some() {
                 self.free_pages.note_large_free();
             }
+        }
+        // The risk map's walls, drawn in place of the preview's walls they were refined from.
+        let risk = frame.risk.clone().filter(|_| preview.is_some());
+        match &risk {
+            Some(r) => {
+                let stale = self
+                    .risk
+                    .as_ref()
+                    .is_none_or(|c| !c.risk.upgrade().is_some_and(|q| Arc::ptr_eq(&q, r)));
+                if stale {
+                    let parts = preview.as_ref().map_or(&[][..], |p| &p.parts[..]);
+                    let walls: Vec<Option<GpuMesh>> = r
+                        .walls
+                        .iter()
+                        .map(|w| {
+                            let source = parts.iter().find(|p| w.matches(p))?;
+                            let (vertices, triangles) =
+                                risk_vertices(w, &r.settings, &source.mesh);
+                            GpuMesh::upload_vertices(device, "risk map wall", &vertices, &triangles)
+                        })
+                        .collect();
+                    for w in &walls {
+                        self.uploads.mesh(w.as_ref());
+                    }
+                    self.risk = Some(CachedRisk {
+                        risk: Arc::downgrade(r),
+                        walls,
+                    });
+                }
+            }
+            None => self.risk = None,
         }
         let replaced = |m: usize| {
             preview
@@ -316,6 +362,14 @@ impl Renderer {
                     },
                     PartKind::Wall | PartKind::SliceWall => {
                         let u = push_uniform(wall, 1.0, true, 0.0, 0.0);
+                        let warned = risk.as_ref().and_then(|r| {
+                            r.walls.iter().position(|w| w.matches(part))
+                        });
+                        if let Some(j) = warned {
+                            list.opaque
+                                .push(Draw::RiskMesh(Source::Risk(j), u, image_walls));
+                            continue;
+                        }
                         let image =
                             image_walls || (part.kind == PartKind::SliceWall && image_slices);
                         list.opaque.push(if image {
@@ -413,6 +467,7 @@ impl Renderer {
             Source::Part(i) => self.preview.as_ref()?.parts.get(i)?.as_ref(),
             Source::Overlay(i) => self.overlay_meshes.get(i)?.as_ref(),
             Source::Delta(key) => self.deltas.get(&key)?.gpu.as_ref(),
+            Source::Risk(i) => self.risk.as_ref()?.walls.get(i)?.as_ref(),
         }
     }
 
@@ -421,7 +476,7 @@ impl Renderer {
             Draw::Edges(source, _) => self.mesh(source)?.edges.as_ref(),
             Draw::Contour(model, _) => self.preview.as_ref()?.contours.get(&model),
             Draw::Lines(i, _) => self.overlay_lines.get(i)?.as_ref(),
-            Draw::Mesh(..) | Draw::ImageMesh(..) => None,
+            Draw::Mesh(..) | Draw::ImageMesh(..) | Draw::RiskMesh(..) => None,
         }
     }
 }
