@@ -7,11 +7,14 @@
 //! - [`image_colors`]: the intensity image baked into wall vertex colours.
 //! - [`turntable`]: an orbit around the cut as a PNG sequence and a looping GIF, with progress
 //!   and cancel.
+//! - [`webpage`]: the cut scene as one self-contained web page (the `.glb` of every variant, a
+//!   three.js viewer and the page's data), with progress and cancel.
 
 pub mod glb;
 pub mod gltf;
 pub mod image_colors;
 pub mod turntable;
+pub mod webpage;
 
 use std::path::Path;
 

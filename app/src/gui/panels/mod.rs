@@ -15,3 +15,4 @@ pub mod models_panel;
 pub mod status_bar;
 pub mod turntable_export;
 pub mod variants_panel;
+pub mod webpage_export;
