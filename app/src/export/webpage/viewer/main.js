@@ -39,8 +39,9 @@ class Viewer {
     $('cutaway-title').textContent = data.title;
     const canvas = $('cutaway-canvas');
     this.canvas = canvas;
-    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true });
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: false });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+    this.linear = linearTarget(this.renderer);
     this.scene = new THREE.Scene();
     const [r, g, b] = data.background;
     this.scene.background = new THREE.Color().setRGB(r, g, b, THREE.SRGBColorSpace);
@@ -221,7 +222,9 @@ class Viewer {
     const width = Math.max(view.clientWidth, 1);
     const height = Math.max(view.clientHeight, 1);
     this.renderer.setSize(width, height, false);
+    this.linear.resize();
     this.camera.aspect = width / height;
+    this.camera.fov = fieldOfView(this.data.camera.fov_y_deg, this.camera.aspect);
     this.camera.updateProjectionMatrix();
     this.resizeLines();
     this.requestRender();
@@ -269,7 +272,7 @@ class Viewer {
     this.camera.near = Math.max(distance - this.radius * 1.05, closest);
     this.camera.far = far;
     this.camera.updateProjectionMatrix();
-    this.renderer.render(this.scene, this.camera);
+    this.linear.draw(this.scene, this.camera);
     this.marker.draw(this.camera);
     this.drawScaleBar();
     this.frames += 1;
@@ -385,6 +388,63 @@ class Viewer {
       nextFrame: () => this.nextFrame(),
     };
   }
+}
+
+/**
+ * The vertical field of view for a view of `aspect` (width / height): the session's, or wider
+ * on a view narrower than `cutaway render`'s 1280 × 800 (a phone held upright), so the page shows
+ * at least the width the render shows.
+ */
+function fieldOfView(sessionDeg, aspect) {
+  const half = THREE.MathUtils.degToRad(sessionDeg) / 2;
+  const widened = 2 * Math.atan(Math.tan(half) * (1280 / 800) / Math.max(aspect, 1e-3));
+  return THREE.MathUtils.radToDeg(Math.min(Math.max(2 * half, widened), THREE.MathUtils.degToRad(120)));
+}
+
+/**
+ * Drawing in linear light, as the renderer does: the scene goes into a multisampled half-float
+ * image (so translucent layers blend in linear light, not in the screen's sRGB encoding, which
+ * would darken a removed piece over a dark structure), then onto the canvas sRGB-encoded.
+ */
+function linearTarget(renderer) {
+  const gl = renderer.getContext();
+  const halfFloat = renderer.extensions.has('EXT_color_buffer_half_float') ||
+    renderer.extensions.has('EXT_color_buffer_float');
+  const samples = Math.min(4, gl.getParameter(gl.MAX_SAMPLES) || 0);
+  const target = new THREE.WebGLRenderTarget(1, 1, {
+    type: halfFloat ? THREE.HalfFloatType : THREE.UnsignedByteType,
+    samples,
+    minFilter: THREE.NearestFilter,
+    magFilter: THREE.NearestFilter,
+  });
+  const output = new THREE.Mesh(
+    new THREE.PlaneGeometry(2, 2),
+    new THREE.ShaderMaterial({
+      uniforms: { image: { value: target.texture } },
+      vertexShader: 'varying vec2 vUv; void main() { vUv = uv; gl_Position = vec4(position.xy, 0.0, 1.0); }',
+      fragmentShader: 'uniform sampler2D image; varying vec2 vUv;' +
+        'void main() { gl_FragColor = linearToOutputTexel(texture2D(image, vUv)); }',
+      depthTest: false,
+      depthWrite: false,
+    }),
+  );
+  output.frustumCulled = false;
+  const screen = new THREE.Scene();
+  screen.add(output);
+  const screenCamera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
+  const size = new THREE.Vector2();
+  return {
+    resize() {
+      renderer.getDrawingBufferSize(size);
+      target.setSize(Math.max(size.x, 1), Math.max(size.y, 1));
+    },
+    draw(scene, camera) {
+      renderer.setRenderTarget(target);
+      renderer.render(scene, camera);
+      renderer.setRenderTarget(null);
+      renderer.render(screen, screenCamera);
+    },
+  };
 }
 
 function status(text) {

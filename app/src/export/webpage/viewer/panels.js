@@ -161,7 +161,7 @@ export function metricsTable(container, metrics, variants) {
   }
   table.append(body);
   const note = [];
-  note.push('Exact cuts, as `cutaway metrics` measures them; lengths in mm.');
+  note.push('Exact cuts, measured as cutaway metrics measures them; lengths in mm.');
   if (metrics.focus) note.push(`Exposure of ${metrics.focus} from the session\u2019s camera, ${metrics.samples} samples.`);
   if (metrics.critical.length) note.push(`Critical: ${metrics.critical.join(', ')}.`);
   container.append(table, element('p', { className: 'note' }, note.join(' ')));
@@ -178,7 +178,9 @@ export function metricsTable(container, metrics, variants) {
 export function footer(container, data) {
   container.replaceChildren();
   if (data.attribution) {
-    const line = element('p', { className: 'attribution' }, data.attribution.text + ' ');
+    const line = element('p', { className: 'attribution', title: data.attribution.text }, data.attribution.text + ' ');
+    // On a phone the line is one line until tapped.
+    line.addEventListener('click', () => line.classList.toggle('open'));
     data.attribution.links.forEach(([text, href], k) => {
       if (k) line.append(' \u00b7 ');
       line.append(element('a', { href, target: '_blank', rel: 'noopener noreferrer' }, text));
