@@ -35,6 +35,7 @@ mod image_walls;
 mod scene_files;
 mod risk;
 mod sessions;
+mod webpage;
 mod wedge;
 
 const WIDTH: u32 = 1280;

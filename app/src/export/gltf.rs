@@ -77,6 +77,35 @@ pub struct Document {
     pub root: json::Root,
     pub bin: Vec<u8>,
     pub stats: ExportStats,
+    /// What each material of `root.materials` draws, by material index (a viewer that shades
+    /// walls or removed pieces its own way reads this instead of parsing material names).
+    pub materials: Vec<MaterialRole>,
+}
+
+/// What a material draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct MaterialRole {
+    pub part: MaterialPart,
+    /// The scene model whose colour it carries (`None` for the contour and image materials,
+    /// which several models share).
+    pub model: Option<usize>,
+}
+
+/// The kind of geometry a material draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MaterialPart {
+    /// A model's own surface (kept part, uncut model, wireframe edges).
+    Surface,
+    /// Cut walls, slice walls and scalpel incision walls.
+    Wall,
+    /// The removed piece, translucent.
+    Removed,
+    Ribbon,
+    /// Contour lines where walls meet the surface.
+    Contour,
+    /// Walls, slices and ribbons showing the intensity image in their vertex colours.
+    Image,
 }
 
 /// The material a primitive uses; the key that shares one material between primitives.
@@ -219,6 +248,7 @@ pub fn scene_document(
         root: builder.root,
         bin: builder.bin,
         stats: builder.stats,
+        materials: builder.roles,
     }
 }
 
@@ -240,6 +270,8 @@ struct Builder {
     root: json::Root,
     bin: Vec<u8>,
     materials: HashMap<MaterialKey, json::Index<json::Material>>,
+    /// One per material of `root.materials`, in order.
+    roles: Vec<MaterialRole>,
     stats: ExportStats,
 }
 
@@ -543,6 +575,7 @@ impl Builder {
             ..Default::default()
         });
         self.materials.insert(key, index);
+        self.roles.push(key.role());
         index
     }
 }
@@ -557,6 +590,20 @@ pub fn vertex_normals(mesh: &Mesh) -> Vec<DVec3> {
         }
     }
     sums
+}
+
+impl MaterialKey {
+    fn role(self) -> MaterialRole {
+        let (part, model) = match self {
+            MaterialKey::Surface(m) => (MaterialPart::Surface, Some(m)),
+            MaterialKey::Wall(m) => (MaterialPart::Wall, Some(m)),
+            MaterialKey::Removed(m, _) => (MaterialPart::Removed, Some(m)),
+            MaterialKey::Ribbon(m) => (MaterialPart::Ribbon, Some(m)),
+            MaterialKey::Contour => (MaterialPart::Contour, None),
+            MaterialKey::Image => (MaterialPart::Image, None),
+        };
+        MaterialRole { part, model }
+    }
 }
 
 fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {

@@ -8,12 +8,15 @@
 //! - [`risk_colors`]: the risk map baked into wall vertex colours.
 //! - [`turntable`]: an orbit around the cut as a PNG sequence and a looping GIF, with progress
 //!   and cancel.
+//! - [`webpage`]: the cut scene as one self-contained web page (the `.glb` of every variant, a
+//!   three.js viewer and the page's data), with progress and cancel.
 
 pub mod glb;
 pub mod gltf;
 pub mod image_colors;
 pub mod risk_colors;
 pub mod turntable;
+pub mod webpage;
 
 use std::path::Path;
 

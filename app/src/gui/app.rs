@@ -111,6 +111,7 @@ impl CutawayApp {
             export_image: Default::default(),
             export_meshes: Default::default(),
             export_turntable: Default::default(),
+            export_webpage: Default::default(),
             wgpu: cc.wgpu_render_state.clone(),
             cutter_tab: Default::default(),
             metrics: Default::default(),

@@ -79,7 +79,10 @@ pub mod wall_split;
 pub use headless::{
     HeadlessRenderer, RenderPngOptions, render_mode, render_png, render_with, render_with_preview,
 };
-pub use renderer::{CONTOUR_COLOR, GpuCensus, Renderer, UploadStats, WALL_MIX, WALL_TINT};
+pub use renderer::{
+    BACK_FACE, CONTOUR_COLOR, CONTOUR_OFFSET, CONTOUR_WIDTH_PX, GpuCensus, Renderer, UploadStats,
+    WALL_MIX, WALL_TINT,
+};
 
 /// What the view shows (the GUI's mode buttons; Scalpel draws like Camera).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

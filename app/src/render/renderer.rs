@@ -39,6 +39,13 @@ pub const WALL_TINT: [f32; 3] = [0.98, 0.93, 0.78];
 pub const WALL_MIX: f32 = 0.6;
 /// Contour line colour (sRGB).
 pub const CONTOUR_COLOR: [f32; 3] = [0.08, 0.07, 0.1];
+/// Contour line width in pixels at 800 px image height.
+pub const CONTOUR_WIDTH_PX: f32 = 3.0;
+/// Brightness of back faces relative to front faces.
+pub const BACK_FACE: f32 = 0.55;
+/// How far contour lines are pulled toward the eye (so they win the depth test against the
+/// surfaces they lie on), as a fraction of the scene's bounding radius.
+pub const CONTOUR_OFFSET: f64 = 0.004;
 /// Cached uploads not used for this many frames are dropped.
 const CACHE_FRAMES: u64 = 120;
 

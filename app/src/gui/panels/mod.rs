@@ -16,3 +16,4 @@ pub mod risk_panel;
 pub mod status_bar;
 pub mod turntable_export;
 pub mod variants_panel;
+pub mod webpage_export;

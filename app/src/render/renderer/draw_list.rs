@@ -11,7 +11,10 @@ use csg::Mesh;
 use glam::DVec3;
 
 use super::index_patches::{IndexPatch, hidden_patches};
-use super::{CONTOUR_COLOR, CachedDelta, CachedMesh, Renderer, WALL_MIX, WALL_TINT};
+use super::{
+    BACK_FACE, CONTOUR_COLOR, CONTOUR_OFFSET, CONTOUR_WIDTH_PX, CachedDelta, CachedMesh, Renderer,
+    WALL_MIX, WALL_TINT,
+};
 use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
 use crate::cutting::wall_risk::WallRisk;
 use crate::render::draw_data::{
@@ -22,15 +25,11 @@ use crate::render::wall_split;
 use crate::render::{FrameInputs, ViewMode, srgb_to_linear};
 use crate::scene::ModelStyle;
 
-/// Contour line width in pixels at 800 px image height.
-const CONTOUR_WIDTH_PX: f32 = 3.0;
 const WIREFRAME_WIDTH_PX: f32 = 1.0;
 /// Cutter overlay colours (sRGB) and opacities.
 const CUTTER_FILL: [f32; 3] = [0.35, 0.6, 0.95];
 const CUTTER_OUTLINE: [f32; 3] = [0.08, 0.28, 0.75];
 const HIGHLIGHT: [f32; 3] = [1.0, 0.55, 0.1];
-/// Brightness of back faces relative to front faces.
-const BACK_FACE: f32 = 0.55;
 
 pub(super) struct CachedPreview {
     pub(super) preview: Weak<PreviewGeometry>,
@@ -117,7 +116,7 @@ impl Renderer {
             (uniforms.len() - 1) as u32
         };
         let radius = 0.5 * self.scene_bbox.diagonal().max(1e-9);
-        let contour_bias = (radius * 0.004) as f32;
+        let contour_bias = (radius * CONTOUR_OFFSET) as f32;
 
         // Preview parts.
         // Edit mode shows the live cut under the cutters when the GUI provides one.
