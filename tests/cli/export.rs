@@ -1,15 +1,14 @@
 //! End-to-end tests of `cutaway export`: the cut scene as glTF 2.0 binary, read back with the
 //! `gltf` crate and checked by the Khronos glTF validator when it is installed.
 
-
 use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use cutaway::cutting::cut_scene::{PartKind, preview_geometry};
 use crate::scene_files::{
     box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
 };
+use cutaway::cutting::cut_scene::{PartKind, preview_geometry};
 
 fn cutaway() -> Command {
     Command::new(env!("CARGO_BIN_EXE_cutaway"))

@@ -2,7 +2,6 @@
 //! against the boolean's own removed piece, exposure on a sphere behind a plate with a hole, and
 //! distances from the walls to critical structures.
 
-
 use std::path::Path;
 use std::process::Command;
 

@@ -7,14 +7,13 @@
 //! Rendering needs a GPU adapter (lavapipe with `WGPU_BACKEND=vulkan`); without one the tests
 //! print "skipped: …" and pass.
 
-
 use csg::testkit::{Resource, skip};
 use std::path::Path;
 use std::process::Command;
 
+use crate::scene_files::{box_obj, box_planes, cut_view, cutter, model, scratch, write_session};
 use cutaway::annotate::labelled::{annotate, chosen, pixel};
 use cutaway::render::{HeadlessRenderer, RenderPngOptions, render_with};
-use crate::scene_files::{box_obj, box_planes, cut_view, cutter, model, scratch, write_session};
 
 /// A red 10 mm cube (a corner cut away) and a blue box beside it, seen from the front.
 fn two_boxes(dir: &Path) -> std::path::PathBuf {

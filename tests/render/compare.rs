@@ -6,7 +6,6 @@
 //! The command renders on the GPU (lavapipe with `WGPU_BACKEND=vulkan`); with no adapter the
 //! tests print "skipped: …" and pass.
 
-
 use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -30,10 +30,10 @@ mod compare;
 mod exports;
 mod goldens;
 mod image_walls;
+mod risk;
 #[allow(dead_code)] // helpers shared with other test binaries
 #[path = "../support/scene_files.rs"]
 mod scene_files;
-mod risk;
 mod sessions;
 mod webpage;
 mod wedge;

@@ -84,7 +84,10 @@ fn a_wall_near_a_critical_vessel_is_red_and_far_from_it_keeps_its_colour() {
     // 1 mm from the vessel: red (the plain wall is cream there).
     let [x, y] = pixel_of(&scene, size, DVec3::ZERO);
     let at_vessel = pixel(&mapped, x, y);
-    assert!(is_red(at_vessel), "{at_vessel:?} at the wall point 1 mm from the vessel");
+    assert!(
+        is_red(at_vessel),
+        "{at_vessel:?} at the wall point 1 mm from the vessel"
+    );
     assert!(!is_red(pixel(&plain, x, y)));
     // 1.5 mm (within 2 mm) off the closest point, still red.
     let [x, y] = pixel_of(&scene, size, DVec3::new(2.0, 0.0, 0.5));
@@ -99,7 +102,10 @@ fn a_wall_near_a_critical_vessel_is_red_and_far_from_it_keeps_its_colour() {
     // 17 mm away: the wall's own colour, as drawn without the map.
     let [x, y] = pixel_of(&scene, size, DVec3::new(15.0, 0.0, 15.0));
     let (far, far_plain) = (pixel(&mapped, x, y), pixel(&plain, x, y));
-    assert!(close(far, far_plain, 3), "{far:?} vs {far_plain:?} far from the vessel");
+    assert!(
+        close(far, far_plain, 3),
+        "{far:?} vs {far_plain:?} far from the vessel"
+    );
     // The kept tissue around the cut is untouched by the map.
     let [x, y] = pixel_of(&scene, size, DVec3::new(30.0, -40.0, 30.0));
     assert!(close(pixel(&mapped, x, y), pixel(&plain, x, y), 3));
@@ -180,7 +186,11 @@ fn the_cli_draws_the_legend_and_refuses_an_unknown_critical_name() {
     }
     assert!(run.status.success(), "{stderr}");
     let run = cli(&[], &without);
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     let with = image::open(&with).unwrap().to_rgba8();
     let without = image::open(&without).unwrap().to_rgba8();
     // The legend: a bar whose left part is the ramp's red, in the bottom band, which the picture
@@ -195,10 +205,18 @@ fn the_cli_draws_the_legend_and_refuses_an_unknown_critical_name() {
     // `--no-risk` on a session that has a map draws none.
     scene.risk.critical = vec!["vessel".into()];
     cutaway::session::save(&session, &scene).unwrap();
-    assert!(std::fs::read_to_string(&session).unwrap().contains("\"risk\""));
+    assert!(
+        std::fs::read_to_string(&session)
+            .unwrap()
+            .contains("\"risk\"")
+    );
     let off = dir.join("off.png");
     let run = cli(&["--no-risk"], &off);
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     let off = image::open(&off).unwrap().to_rgba8();
     assert_eq!(bottom(&off), 0);
     let mut red = 0;

@@ -769,9 +769,17 @@ fn the_head_page_in_a_browser_shows_what_render_shows() {
     );
     same_picture("head, crown", &second, 20.0, 0.85);
     // And the first variant's picture is not that one: the switch changed the picture.
-    let differ = agreement(&crown_scene, &report.shot("head-page"), &render_1, &overlays);
+    let differ = agreement(
+        &crown_scene,
+        &report.shot("head-page"),
+        &render_1,
+        &overlays,
+    );
     assert!(
-        differ.structures.iter().any(|(_, _, _, share)| *share < 0.8),
+        differ
+            .structures
+            .iter()
+            .any(|(_, _, _, share)| *share < 0.8),
         "the variant switch changed nothing: {differ:?}"
     );
 }

@@ -8,15 +8,14 @@
 //! Mesa's lavapipe installed); the real-data test reads `CUTAWAY_ANATOMY` (default
 //! `../shared/anatomy`) and runs on the default scene without it.
 
-
+use crate::harness::{apply, harness, harness_sized, no_adapter, shot};
+use crate::input::{anatomy, click_mode, count_colour, drag, settle, temp_dir, view_px, wheel_at};
 use csg::testkit::{Resource, skip};
 use cutaway::gui::app::Action;
 use cutaway::gui::{CutawayApp, Mode};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::DVec3;
-use crate::harness::{apply, harness, harness_sized, no_adapter, shot};
-use crate::input::{anatomy, click_mode, count_colour, drag, settle, temp_dir, view_px, wheel_at};
 
 /// Double-clicks at `at` (points) with real frame times between the clicks.
 fn double_click(h: &mut Harness<'_, CutawayApp>, at: egui::Pos2) {

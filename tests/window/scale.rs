@@ -13,10 +13,11 @@
 //! Skipped, with the reason printed, without a wgpu adapter; the body is read from
 //! `CUTAWAY_ANATOMY` (default `../shared/anatomy`).
 
-
 use csg::testkit::{Resource, skip};
 use std::path::Path;
 
+use crate::harness::{apply, harness, no_adapter, shot};
+use crate::input::{anatomy, settle, temp_dir};
 use cutaway::cutting::cut_scene::PartKind;
 use cutaway::gui::app::Action;
 use cutaway::gui::bridge::frame_inputs;
@@ -24,8 +25,6 @@ use cutaway::gui::viewport::view_menu::ViewCommand;
 use cutaway::gui::{CutawayApp, Mode};
 use cutter::EditorSettings;
 use egui_kittest::Harness;
-use crate::harness::{apply, harness, no_adapter, shot};
-use crate::input::{anatomy, settle, temp_dir};
 
 /// The index of the model loaded from a file whose name contains `name`.
 fn model(h: &Harness<'_, CutawayApp>, name: &str) -> usize {

@@ -6,14 +6,13 @@
 //! Skipped, with the reason printed, when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with
 //! Mesa's lavapipe installed).
 
-
+use crate::harness::{apply, harness, no_adapter, shot};
 use csg::testkit::{Resource, skip};
 use cutaway::gui::app::Action;
 use cutaway::gui::{CutawayApp, Mode};
 use cutaway::render::{WALL_MIX, WALL_TINT};
 use egui_kittest::Harness;
 use glam::DVec2;
-use crate::harness::{apply, harness, no_adapter, shot};
 
 /// The model's colour (sRGB): red, so its walls (the mix toward the cream wall tint) differ from
 /// it in hue, not only in brightness.

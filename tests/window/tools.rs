@@ -8,22 +8,21 @@
 //! Skipped, with the reason printed, when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with
 //! Mesa's lavapipe installed).
 
-
 use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
+use crate::harness::{apply, harness, no_adapter, shot};
+use crate::scene_files::{
+    box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
+};
 use cutaway::gui::CutawayApp;
 use cutaway::gui::app::Action;
 use cutaway::gui::panels::variants_panel::VariantCommand;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::{DVec2, DVec3};
-use crate::scene_files::{
-    box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
-};
-use crate::harness::{apply, harness, no_adapter, shot};
 
 /// Steps until no job (loads, measurements, compare pictures) runs, twice over: a finished job
 /// may start the next one.

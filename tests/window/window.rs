@@ -8,11 +8,12 @@
 //! Skipped, with the reason printed, when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with
 //! Mesa's lavapipe installed); the real-data test reads `CUTAWAY_ANATOMY` (default `../shared/anatomy`).
 
-
 use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use crate::harness::{apply, harness, no_adapter, shot};
+use crate::input::{anatomy, click_mode, count_colour, drag, settle, temp_dir, view_px, wheel_at};
 use cutaway::gui::app::Action;
 use cutaway::gui::bridge::frame_inputs;
 use cutaway::gui::viewport::view_menu::ViewCommand;
@@ -21,8 +22,6 @@ use cutaway::view::{LengthUnit, Orientation, ViewPreset};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::DVec3;
-use crate::harness::{apply, harness, no_adapter, shot};
-use crate::input::{anatomy, click_mode, count_colour, drag, settle, temp_dir, view_px, wheel_at};
 
 /// Mean absolute channel difference of two equally sized images inside `rect` (pixels).
 fn difference_in(a: &image::RgbaImage, b: &image::RgbaImage, rect: egui::Rect) -> f64 {

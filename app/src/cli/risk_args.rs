@@ -38,7 +38,9 @@ pub fn apply(scene: &mut Scene, args: &RiskArgs) -> anyhow::Result<()> {
     if let Some(text) = &args.risk_mm {
         let (near, far) = parse_mm(text)?;
         if scene.risk.critical.is_empty() {
-            anyhow::bail!("--risk-mm needs critical structures (--critical, or a session with a risk map)");
+            anyhow::bail!(
+                "--risk-mm needs critical structures (--critical, or a session with a risk map)"
+            );
         }
         scene.risk.near_mm = near;
         scene.risk.far_mm = far;
@@ -107,7 +109,10 @@ mod tests {
         )
         .unwrap_err()
         .to_string();
-        assert!(err.contains("'liver'") && err.contains("skin, vessel"), "{err}");
+        assert!(
+            err.contains("'liver'") && err.contains("skin, vessel"),
+            "{err}"
+        );
 
         for bad in ["2", "a,b", "10,2", "-1,5"] {
             let err = parse_mm(bad).unwrap_err().to_string();

@@ -66,7 +66,7 @@ pub fn render_variants(
             &options,
             Some(preview),
         )
-            .map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
+        .map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
         images.push(image);
     }
     Ok(images)

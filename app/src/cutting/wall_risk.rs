@@ -148,10 +148,7 @@ impl WallRisk {
             format!("{} critical structures", names.len())
         };
         match &self.nearest {
-            Some(n) => format!(
-                "Distance to {what}, closest wall {:.1} mm",
-                n.distance_mm
-            ),
+            Some(n) => format!("Distance to {what}, closest wall {:.1} mm", n.distance_mm),
             None => format!("Distance to {what}, no cut walls"),
         }
     }
@@ -211,11 +208,7 @@ pub struct RiskCache {
 impl RiskCache {
     /// The risk map of `preview` in `scene` (see [`wall_risk`]), computed unless the last one
     /// was for the same preview and key.
-    pub fn map(
-        &mut self,
-        scene: &Scene,
-        preview: &Arc<PreviewGeometry>,
-    ) -> Option<Arc<WallRisk>> {
+    pub fn map(&mut self, scene: &Scene, preview: &Arc<PreviewGeometry>) -> Option<Arc<WallRisk>> {
         if !scene.risk.is_on() {
             return None;
         }
@@ -412,12 +405,17 @@ fn refine(wall: &Mesh, field: &Field, settings: &RiskSettings, finest: f64) -> O
     let mut ids: HashMap<[u64; 3], u32> = HashMap::new();
     // The vertex at `p` (made on first use; a point on an edge two wall triangles share gets the
     // same interpolated values from either, so the first one's origin serves both).
-    let mut vertex = |p: DVec3, at: VertexOrigin, positions: &mut Vec<DVec3>, origin: &mut Vec<VertexOrigin>| -> u32 {
-        *ids.entry(p.to_array().map(f64::to_bits)).or_insert_with(|| {
-            positions.push(p);
-            origin.push(at);
-            (positions.len() - 1) as u32
-        })
+    let mut vertex = |p: DVec3,
+                      at: VertexOrigin,
+                      positions: &mut Vec<DVec3>,
+                      origin: &mut Vec<VertexOrigin>|
+     -> u32 {
+        *ids.entry(p.to_array().map(f64::to_bits))
+            .or_insert_with(|| {
+                positions.push(p);
+                origin.push(at);
+                (positions.len() - 1) as u32
+            })
     };
     let corners = [DVec2::ZERO, DVec2::X, DVec2::Y];
     let mut active: Vec<Piece> = Vec::with_capacity(wall.triangles.len());
@@ -507,10 +505,7 @@ fn refine(wall: &Mesh, field: &Field, settings: &RiskSettings, finest: f64) -> O
         }
         active = next;
     }
-    let nearest = distances
-        .iter()
-        .copied()
-        .min_by(|a, b| a.0.total_cmp(&b.0));
+    let nearest = distances.iter().copied().min_by(|a, b| a.0.total_cmp(&b.0));
     out.positions = positions;
     Some(Refined {
         mesh: out,

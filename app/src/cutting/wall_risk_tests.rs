@@ -240,7 +240,12 @@ fn no_map_when_off_or_when_no_critical_name_is_a_structure() {
     // A scalpel incision (no cutter) and a kept part get no map.
     let mut other = preview.clone();
     other.parts[0].cutter = usize::MAX;
-    assert!(wall_risk(&scene, &other, &mut indexes).unwrap().walls.is_empty());
+    assert!(
+        wall_risk(&scene, &other, &mut indexes)
+            .unwrap()
+            .walls
+            .is_empty()
+    );
 }
 
 #[test]

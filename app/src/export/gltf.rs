@@ -106,6 +106,8 @@ pub enum MaterialPart {
     Contour,
     /// Walls, slices and ribbons showing the intensity image in their vertex colours.
     Image,
+    /// Walls showing the risk map in their vertex colours.
+    Risk,
 }
 
 /// The material a primitive uses; the key that shares one material between primitives.
@@ -601,6 +603,7 @@ impl MaterialKey {
             MaterialKey::Ribbon(m) => (MaterialPart::Ribbon, Some(m)),
             MaterialKey::Contour => (MaterialPart::Contour, None),
             MaterialKey::Image => (MaterialPart::Image, None),
+            MaterialKey::Risk => (MaterialPart::Risk, None),
         };
         MaterialRole { part, model }
     }

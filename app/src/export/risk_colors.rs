@@ -105,10 +105,7 @@ mod tests {
             corner_mm: vec![[1.0, 6.0, 30.0], [12.0, 14.0, 20.0]],
             origin: [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
                 .into_iter()
-                .map(|bary| VertexOrigin {
-                    triangle: 0,
-                    bary,
-                })
+                .map(|bary| VertexOrigin { triangle: 0, bary })
                 .collect(),
         };
         let source = Mesh {
@@ -126,7 +123,11 @@ mod tests {
                 .all(|n| n.normalize().distance(DVec3::Z) < 1e-12)
         );
         assert_eq!(mesh.triangle_count(), 2);
-        assert_eq!(mesh.positions.len(), 6, "vertices of their own per triangle");
+        assert_eq!(
+            mesh.positions.len(),
+            6,
+            "vertices of their own per triangle"
+        );
         assert_eq!(colors[0], RISK_NEAR_COLOR);
         assert_eq!(Some(colors[1]), settings.color_at(6.0));
         assert_eq!(colors[2], base);

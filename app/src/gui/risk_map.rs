@@ -214,7 +214,12 @@ mod tests {
 
         // The cutter moves: the old map stays on the old cut while that is on screen, and is
         // not drawn on the new cut once it is.
-        let old_cut = h.state().viewport.preview.clone().expect("the cut on screen");
+        let old_cut = h
+            .state()
+            .viewport
+            .preview
+            .clone()
+            .expect("the cut on screen");
         {
             let app = h.state_mut();
             let planes = &mut app.scene.cutters[0].cutter.planes;
@@ -234,7 +239,10 @@ mod tests {
             if let Some(m) = current(h.state()) {
                 assert!(Arc::ptr_eq(&m, &map), "a map of another cut");
             }
-            assert!(std::time::Instant::now() < deadline, "the cut was not redone");
+            assert!(
+                std::time::Instant::now() < deadline,
+                "the cut was not redone"
+            );
             std::thread::sleep(std::time::Duration::from_millis(5));
         }
         let drawn = crate::gui::bridge::frame_inputs(h.state(), [640, 400]).risk;
@@ -250,6 +258,10 @@ mod tests {
         h.state_mut().scene.risk.shown = false;
         h.step();
         assert!(current(h.state()).is_none());
-        assert!(crate::gui::bridge::frame_inputs(h.state(), [640, 400]).risk.is_none());
+        assert!(
+            crate::gui::bridge::frame_inputs(h.state(), [640, 400])
+                .risk
+                .is_none()
+        );
     }
 }

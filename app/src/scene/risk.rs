@@ -65,7 +65,11 @@ impl RiskSettings {
     /// Checks the distances: finite, `0 ≤ near < far ≤` [`RiskSettings::MAX_MM`].
     pub fn check(&self) -> Result<(), String> {
         let (near, far) = (self.near_mm, self.far_mm);
-        if !(near.is_finite() && far.is_finite() && 0.0 <= near && near < far && far <= Self::MAX_MM)
+        if !(near.is_finite()
+            && far.is_finite()
+            && 0.0 <= near
+            && near < far
+            && far <= Self::MAX_MM)
         {
             return Err(format!(
                 "near_mm {near} and far_mm {far} must satisfy 0 <= near_mm < far_mm <= {}",
@@ -166,9 +170,15 @@ mod tests {
         assert_eq!(risk.color_at(0.0), Some(RISK_NEAR_COLOR));
         assert_eq!(risk.color_at(2.0), Some(RISK_NEAR_COLOR));
         let just_past = risk.color_at(2.001).unwrap();
-        assert!((just_past[1] - RISK_BAND_START[1]).abs() < 1e-3, "{just_past:?}");
+        assert!(
+            (just_past[1] - RISK_BAND_START[1]).abs() < 1e-3,
+            "{just_past:?}"
+        );
         let mid = risk.color_at(6.0).unwrap();
-        assert!(mid[1] > RISK_BAND_START[1] && mid[1] < RISK_BAND_END[1], "{mid:?}");
+        assert!(
+            mid[1] > RISK_BAND_START[1] && mid[1] < RISK_BAND_END[1],
+            "{mid:?}"
+        );
         let end = risk.color_at(9.9999).unwrap();
         assert!((end[1] - RISK_BAND_END[1]).abs() < 1e-3, "{end:?}");
         assert_eq!(risk.color_at(10.0), None);

@@ -179,7 +179,12 @@ fn variant_page(shown: &Scene, name: &str) -> anyhow::Result<VariantPage> {
     if let Some(note) = geometry.notes.first() {
         anyhow::bail!("variant '{name}': {note}");
     }
-    let document = super::gltf::scene_document(shown, &geometry);
+    let risk = crate::cutting::wall_risk::wall_risk(
+        shown,
+        &geometry,
+        &mut crate::cutting::wall_risk::CriticalIndexes::default(),
+    );
+    let document = super::gltf::scene_document(shown, &geometry, risk.as_ref());
     let json = serde_json::to_vec(&document.root).context("could not encode the glTF JSON")?;
     let glb = super::glb::glb_bytes(&json, &document.bin)?;
     let removed_opacity = shown.cutters.iter().find_map(|c| c.views.transparency);
@@ -263,7 +268,9 @@ mod tests {
         // Every material of the skin carries structure 0; the hidden box has none.
         for m in &data.variants[0].materials {
             match m.part {
-                MaterialPart::Contour | MaterialPart::Image => assert_eq!(m.structure, None),
+                MaterialPart::Contour | MaterialPart::Image | MaterialPart::Risk => {
+                    assert_eq!(m.structure, None)
+                },
                 _ => assert_eq!(m.structure, Some(0)),
             }
         }

@@ -78,8 +78,10 @@ pub fn risk_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
                     .selected_text("Add…")
                     .width(120.0)
                     .show_ui(ui, |ui| {
-                        let candidates: Vec<&String> =
-                            names.iter().filter(|n| !risk.critical.contains(n)).collect();
+                        let candidates: Vec<&String> = names
+                            .iter()
+                            .filter(|n| !risk.critical.contains(n))
+                            .collect();
                         for name in candidates {
                             if ui.selectable_label(false, name).clicked() {
                                 risk.critical.push(name.clone());
@@ -118,7 +120,8 @@ fn status_ui(ui: &mut egui::Ui, app: &AppState) {
     } else if app.viewport.risk.busy() {
         "Measuring the walls' distances…".to_string()
     } else {
-        "Shown where the cut is shown (Camera, Preview; Edit once the cutter is released).".to_string()
+        "Shown where the cut is shown (Camera, Preview; Edit once the cutter is released)."
+            .to_string()
     };
     ui.label(egui::RichText::new(text).weak().small());
 }

@@ -33,7 +33,10 @@ pub fn paint_risk_legend(painter: &egui::Painter, rect: egui::Rect, app: &AppSta
         ink,
     );
     let bar = egui::Rect::from_min_size(
-        egui::pos2(frame.center().x - bar_w / 2.0, frame.top() + pad + 13.0 + 8.0),
+        egui::pos2(
+            frame.center().x - bar_w / 2.0,
+            frame.top() + pad + 13.0 + 8.0,
+        ),
         egui::vec2(bar_w, bar_h),
     );
     let columns = bar_w.round() as usize;
@@ -62,7 +65,10 @@ pub fn paint_risk_legend(painter: &egui::Painter, rect: egui::Rect, app: &AppSta
     for (at, caption) in map.settings.legend_marks() {
         let x = bar.left() + at as f32 * bar_w;
         painter.line_segment(
-            [egui::pos2(x, bar.center().y), egui::pos2(x, bar.bottom() + 3.0)],
+            [
+                egui::pos2(x, bar.center().y),
+                egui::pos2(x, bar.bottom() + 3.0),
+            ],
             egui::Stroke::new(1.5, ink),
         );
         painter.text(

@@ -166,8 +166,7 @@ impl Renderer {
                         .iter()
                         .map(|w| {
                             let source = parts.iter().find(|p| w.matches(p))?;
-                            let (vertices, triangles) =
-                                risk_vertices(w, &r.settings, &source.mesh);
+                            let (vertices, triangles) = risk_vertices(w, &r.settings, &source.mesh);
                             GpuMesh::upload_vertices(device, "risk map wall", &vertices, &triangles)
                         })
                         .collect();
@@ -361,9 +360,9 @@ impl Renderer {
                     },
                     PartKind::Wall | PartKind::SliceWall => {
                         let u = push_uniform(wall, 1.0, true, 0.0, 0.0);
-                        let warned = risk.as_ref().and_then(|r| {
-                            r.walls.iter().position(|w| w.matches(part))
-                        });
+                        let warned = risk
+                            .as_ref()
+                            .and_then(|r| r.walls.iter().position(|w| w.matches(part)));
                         if let Some(j) = warned {
                             list.opaque
                                 .push(Draw::RiskMesh(Source::Risk(j), u, image_walls));

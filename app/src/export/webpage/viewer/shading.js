@@ -169,7 +169,8 @@ export function shadeDocument(gltf, variant, data) {
           color: source.color,
           opacity,
           backFace: style.back_face,
-          image: role.part === 'image',
+          // Image and risk-map walls carry their colours per vertex.
+          image: role.part === 'image' || role.part === 'risk',
         });
         material.name = source.name;
         material.userData.part = role.part;
