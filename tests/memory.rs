@@ -31,13 +31,13 @@
 #[path = "support/memory_script.rs"]
 mod memory_script;
 
+use csg::testkit::{Resource, skip};
 use memory_script::{Options, mb};
 
 #[test]
 fn window_memory_stays_flat_over_a_scripted_session() {
     if let Some(reason) = memory_script::no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let report = memory_script::run(Options {
         paths: vec![std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/knee")],

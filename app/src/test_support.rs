@@ -15,12 +15,13 @@ use glam::DVec3;
 use crate::render::{FrameInputs, HeadlessRenderer, ViewMode};
 use crate::scene::{CutterViews, Scene, SceneCutter, SceneModel};
 
-/// A headless renderer, or `None` after printing why the test is skipped (no adapter).
+/// A headless renderer, or `None` after [`csg::testkit::skip`] (no adapter: the test is skipped,
+/// or fails where `CUTAWAY_REQUIRE_GPU=1`).
 pub fn renderer_or_skip() -> Option<HeadlessRenderer> {
     match HeadlessRenderer::new() {
         Ok(renderer) => Some(renderer),
         Err(e) => {
-            println!("skipped: {e}");
+            csg::testkit::skip(csg::testkit::Resource::Gpu, e);
             None
         }
     }
@@ -32,16 +33,6 @@ pub fn two_renderers_or_skip() -> Option<(HeadlessRenderer, HeadlessRenderer)> {
     let first = renderer_or_skip()?;
     let second = renderer_or_skip()?;
     Some((first, second))
-}
-
-/// True when the heavy UI-thread timings were asked for (`CUTAWAY_UI_TIMINGS=1`); otherwise
-/// prints that they are skipped.
-pub fn ui_timings_requested() -> bool {
-    let requested = std::env::var_os("CUTAWAY_UI_TIMINGS").is_some();
-    if !requested {
-        println!("skipped: set CUTAWAY_UI_TIMINGS=1 to measure");
-    }
-    requested
 }
 
 /// `scene` with one more model, `sphere` (read from `file`, skin-coloured), and the camera

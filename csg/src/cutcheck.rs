@@ -1,7 +1,7 @@
 //! Checks of the boolean's robustness contract, and the body of its fuzz target.
 //!
 //! Public (not `cfg(test)`) for two callers that must agree on what "a correct cut" means: the
-//! cargo-fuzz target in `csg/fuzz/` (nightly, run by hand) and the stable seeded runner
+//! fuzz target in `csg/fuzz/` (built and run briefly by CI with `csg/fuzz/run-stable`) and the stable seeded runner
 //! `csg/tests/fuzz_transforms.rs` (run by `cargo test`, so CI exercises the same body).
 //!
 //! [`check_closed_cut`] checks every promise the contract makes for a closed, edge-manifold

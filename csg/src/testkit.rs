@@ -9,6 +9,9 @@ use glam::DVec3;
 
 use crate::mesh::Mesh;
 
+pub mod resources;
+pub use resources::{Resource, skip};
+
 /// The golden ratio, for the icosahedron's corners.
 const PHI: f64 = 1.618_033_988_749_895;
 

@@ -114,17 +114,18 @@ fn coplanar_faces() {
     // Two cubes sharing part of a face plane: the cutter's bottom face lies in the target's top
     // face plane, and both cubes overlap in that plane.
     let target = cube(v(0.0, 0.0, 0.0), v(2.0, 2.0, 2.0));
-    for cutter in [
-        cube(v(0.5, 0.5, 2.0), v(1.5, 1.5, 3.0)), // touching from outside, face on face
-        cube(v(0.5, 0.5, 1.0), v(1.5, 1.5, 2.0)), // inside, top face flush with the target's
-        cube(v(0.5, 0.5, 1.0), v(2.0, 2.0, 3.0)), // flush on two sides, crossing the top
-        cube(v(-1.0, 0.0, 1.0), v(3.0, 2.0, 3.0)), // shares the y faces
+    // Each with the volume of the cutter box inside the target.
+    for (case, (cutter, removes)) in [
+        (cube(v(0.5, 0.5, 2.0), v(1.5, 1.5, 3.0)), 0.0), // touching from outside, face on face
+        (cube(v(0.5, 0.5, 1.0), v(1.5, 1.5, 2.0)), 1.0), // inside, top face flush with the target's
+        (cube(v(0.5, 0.5, 1.0), v(2.0, 2.0, 3.0)), 2.25), // flush on two sides, crossing the top
+        (cube(v(-1.0, 0.0, 1.0), v(3.0, 2.0, 3.0)), 4.0), // shares the y faces
     ]
     .iter()
     .enumerate()
     {
-        eprintln!("coplanar case {}", cutter.0);
-        cut_and_check(&target, cutter.1);
+        let r = cut_and_check(&target, cutter);
+        assert_removes(&r, *removes, &format!("coplanar case {case}"));
     }
     // The cutter equal to the target: the tie-break translates the cutter by δ, so kept is a
     // shell of zero thickness on the −x, −y, −z sides. Symbolically it is closed; after rounding
@@ -140,52 +141,67 @@ fn coplanar_faces() {
 #[test]
 fn cutter_vertex_on_target_vertex() {
     let target = cube(v(0.0, 0.0, 0.0), v(2.0, 2.0, 2.0));
-    // Cutter corner exactly at the target corner (2,2,2), reaching inside.
-    cut_and_check(&target, &cube(v(1.0, 1.0, 1.0), v(2.0, 2.0, 2.0)));
-    // And reaching outside from the corner.
-    cut_and_check(&target, &cube(v(2.0, 2.0, 2.0), v(3.0, 3.0, 3.0)));
-    // A tetrahedral cutter whose apex is a sphere vertex.
+    // Cutter corner exactly at the target corner (2,2,2), reaching inside: the unit cube
+    // [1, 2]³ goes.
+    let r = cut_and_check(&target, &cube(v(1.0, 1.0, 1.0), v(2.0, 2.0, 2.0)));
+    assert_removes(&r, 1.0, "corner box inside");
+    // And reaching outside from the corner: nothing goes.
+    let r = cut_and_check(&target, &cube(v(2.0, 2.0, 2.0), v(3.0, 3.0, 3.0)));
+    assert_removes(&r, 0.0, "corner box outside");
+    // A tetrahedral cutter whose apex is a sphere vertex and whose other corners are well inside
+    // the (convex) sphere: the whole tetrahedron goes.
     let sphere = icosphere(2, 1.0);
     let apex = sphere.positions[0];
-    let tet = tetra(
+    let corners = [
         apex,
         apex * 0.5 + v(0.3, 0.0, 0.0),
         apex * 0.5 + v(-0.2, 0.3, 0.0),
         apex * 0.5 + v(0.0, -0.2, 0.3),
+    ];
+    let tet = tetra(corners[0], corners[1], corners[2], corners[3]);
+    let r = cut_and_check(&sphere, &tet);
+    assert_removes(
+        &r,
+        tetra_volume(corners[0], corners[1], corners[2], corners[3]),
+        "tetrahedron at a sphere vertex",
     );
-    cut_and_check(&sphere, &tet);
 }
 
 #[test]
 fn cutter_vertex_on_target_edge() {
     let target = cube(v(0.0, 0.0, 0.0), v(2.0, 2.0, 2.0));
-    // Box with a vertex at the midpoint of the target's top edge (x from 0 to 2, y=2, z=2).
-    cut_and_check(&target, &cube(v(1.0, 1.0, 1.0), v(3.0, 2.0, 2.0)));
-    cut_and_check(&target, &cube(v(1.0, 2.0, 2.0), v(3.0, 3.0, 3.0)));
+    // Box with a vertex at the midpoint of the target's top edge (x from 0 to 2, y=2, z=2):
+    // inside it cuts the unit cube [1, 2]³, outside it touches the edge only.
+    let r = cut_and_check(&target, &cube(v(1.0, 1.0, 1.0), v(3.0, 2.0, 2.0)));
+    assert_removes(&r, 1.0, "box below the edge");
+    let r = cut_and_check(&target, &cube(v(1.0, 2.0, 2.0), v(3.0, 3.0, 3.0)));
+    assert_removes(&r, 0.0, "box above the edge");
 }
 
 #[test]
 fn cutter_vertex_on_target_face() {
     let target = cube(v(0.0, 0.0, 0.0), v(2.0, 2.0, 2.0));
-    // A tetrahedron with one vertex on the top face, the others above.
-    cut_and_check(
-        &target,
-        &tetra(
-            v(0.7, 0.6, 2.0),
-            v(0.2, 0.2, 3.0),
-            v(1.5, 0.3, 3.0),
-            v(0.8, 1.6, 3.0),
-        ),
-    );
-    // ... and the others below.
-    cut_and_check(
-        &target,
-        &tetra(
-            v(0.7, 0.6, 2.0),
-            v(0.2, 0.2, 1.0),
-            v(1.5, 0.3, 1.0),
-            v(0.8, 1.6, 1.0),
-        ),
+    // A tetrahedron with one vertex on the top face, the others above: it only touches.
+    let above = [
+        v(0.7, 0.6, 2.0),
+        v(0.2, 0.2, 3.0),
+        v(1.5, 0.3, 3.0),
+        v(0.8, 1.6, 3.0),
+    ];
+    let r = cut_and_check(&target, &tetra(above[0], above[1], above[2], above[3]));
+    assert_removes(&r, 0.0, "tetrahedron above the face");
+    // ... and the others below: all of it is inside the cube.
+    let below = [
+        v(0.7, 0.6, 2.0),
+        v(0.2, 0.2, 1.0),
+        v(1.5, 0.3, 1.0),
+        v(0.8, 1.6, 1.0),
+    ];
+    let r = cut_and_check(&target, &tetra(below[0], below[1], below[2], below[3]));
+    assert_removes(
+        &r,
+        tetra_volume(below[0], below[1], below[2], below[3]),
+        "tetrahedron below the face",
     );
 }
 
@@ -194,28 +210,40 @@ fn cutter_edge_along_target_edge() {
     let target = cube(v(0.0, 0.0, 0.0), v(2.0, 2.0, 2.0));
     // Cutter edge along the target's top front edge (y=0, z=2) and along the diagonal of a
     // face's triangulation.
-    cut_and_check(&target, &cube(v(0.5, -1.0, 2.0), v(1.5, 0.0, 3.0)));
-    cut_and_check(&target, &cube(v(0.5, 0.0, 1.0), v(1.5, 1.0, 2.0)));
-    let diag = tetra(
+    let r = cut_and_check(&target, &cube(v(0.5, -1.0, 2.0), v(1.5, 0.0, 3.0)));
+    assert_removes(&r, 0.0, "box outside along the edge");
+    let r = cut_and_check(&target, &cube(v(0.5, 0.0, 1.0), v(1.5, 1.0, 2.0)));
+    assert_removes(&r, 1.0, "box inside along the edge");
+    // The tetrahedron's edge a–b lies on the top face's diagonal, c is above the face and d
+    // below: the plane z = 2 through a–b meets c–d at e, and the piece a b e d below it is inside
+    // the cube, |de| / |dc| = 0.5 / 1.3 of the whole.
+    let (a, b, c, d) = (
         v(0.0, 0.0, 2.0),
         v(2.0, 2.0, 2.0),
         v(1.0, 0.2, 2.8),
         v(0.9, 0.5, 1.5),
     );
-    cut_and_check(&target, &diag);
+    let r = cut_and_check(&target, &tetra(a, b, c, d));
+    assert_removes(
+        &r,
+        tetra_volume(a, b, c, d) * 0.5 / 1.3,
+        "tetrahedron along the diagonal",
+    );
 }
 
 #[test]
 fn zero_area_target_triangle() {
     let flat = flat_sliver_cube();
     check_closed_oriented(&flat).unwrap();
-    for cutter in [
-        cube(v(0.7, -1.0, 1.5), v(1.2, 1.0, 3.0)), // crosses the sliver's edges
-        cube(v(1.2, -1.0, 1.0), v(1.7, 1.0, 3.0)),
-        cube(v(0.5, -0.5, 1.9), v(1.5, 0.5, 2.5)), // contains part of the sliver
-        cube(v(1.0, -1.0, 1.0), v(2.0, 1.0, 3.0)), // cutter face through the sliver's middle vertex
+    // Each with the volume of the box inside the cube [0, 2]³ (the sliver adds none).
+    for (cutter, removes) in [
+        (cube(v(0.7, -1.0, 1.5), v(1.2, 1.0, 3.0)), 0.25), // crosses the sliver's edges
+        (cube(v(1.2, -1.0, 1.0), v(1.7, 1.0, 3.0)), 0.5),
+        (cube(v(0.5, -0.5, 1.9), v(1.5, 0.5, 2.5)), 0.05), // contains part of the sliver
+        (cube(v(1.0, -1.0, 1.0), v(2.0, 1.0, 3.0)), 1.0), // cutter face through the sliver's middle vertex
     ] {
-        cut_and_check(&flat, &cutter);
+        let r = cut_and_check(&flat, &cutter);
+        assert_removes(&r, removes, &format!("box {:?}", cutter.positions[0]));
     }
 }
 

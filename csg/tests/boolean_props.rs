@@ -1,6 +1,9 @@
 //! Property tests of the boolean: random strip cutters on spheres and tori, with coordinates
 //! snapped to coarse grids so that many vertices lie exactly on cutter planes (coincidences are
-//! the point). Every cut must satisfy the robustness contract (see `boolean_common::check_cut`).
+//! the point). Every cut must satisfy the robustness contract (see `boolean_common::check_cut`)
+//! and put sample points where they belong: inside target and cutter in the removed solid, inside
+//! the target only in the kept one, by ray parity against the inputs
+//! (`boolean_common::check_membership`), which a cut that removes nothing fails.
 
 mod boolean_common;
 
@@ -246,6 +249,7 @@ fn random_cutter_transforms() {
         seed ^= seed << 17;
         (seed >> 11) as f64 / (1u64 << 53) as f64
     };
+    let mut classified = Membership::default();
     for _ in 0..40 {
         let axis = DVec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize_or(DVec3::Z);
         let rot = glam::DQuat::from_axis_angle(axis, rnd() * 6.3);
@@ -258,7 +262,17 @@ fn random_cutter_transforms() {
         let r = cut_checked(&index, &target, &cutter).unwrap();
         // Generic placements: the merged files are closed by position too.
         check_cut_welded(&target, &r).unwrap();
+        let m = check_membership(&target, &cutter, &r, MEMBERSHIP_SAMPLES).unwrap();
+        classified.removed += m.removed;
+        classified.kept += m.kept;
+        classified.outside += m.outside;
     }
+    // The membership check is not vacuous: many sample points fell in each class.
+    println!("membership samples over 40 cuts: {classified:?}");
+    assert!(
+        classified.removed >= 200 && classified.kept >= 1000 && classified.outside >= 1000,
+        "{classified:?}"
+    );
 }
 
 /// Shrunk proptest case: a box whose bottom face is tangent to the torus bottom along a target

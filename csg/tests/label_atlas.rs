@@ -10,6 +10,7 @@
 mod nrrd;
 
 use csg::labels::{LabelGrid, SurfaceOptions, label_surfaces};
+use csg::testkit::{Resource, skip};
 use csg::{DVec3, Mesh, TargetIndex, testkit};
 use rayon::prelude::*;
 
@@ -28,8 +29,10 @@ const CENTROID_TOLERANCE_VOXELS: f64 = 0.6;
 #[test]
 fn atlas_labels_are_valid_and_faithful() {
     let Some(root) = std::env::var_os("CUTAWAY_ANATOMY") else {
-        println!("skipped: CUTAWAY_ANATOMY is not set (the anatomy data folder)");
-        return;
+        return skip(
+            Resource::Data,
+            "CUTAWAY_ANATOMY is not set (the anatomy data folder)",
+        );
     };
     let path = std::path::Path::new(&root).join(ATLAS);
     let volume = nrrd::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -77,8 +80,10 @@ fn atlas_labels_are_valid_and_faithful() {
 #[test]
 fn atlas_labels_decimate_to_valid_surfaces() {
     let Some(root) = std::env::var_os("CUTAWAY_ANATOMY") else {
-        println!("skipped: CUTAWAY_ANATOMY is not set (the anatomy data folder)");
-        return;
+        return skip(
+            Resource::Data,
+            "CUTAWAY_ANATOMY is not set (the anatomy data folder)",
+        );
     };
     let path = std::path::Path::new(&root).join(ATLAS);
     let volume = nrrd::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));

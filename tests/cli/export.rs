@@ -1,6 +1,7 @@
 //! End-to-end tests of `cutaway export`: the cut scene as glTF 2.0 binary, read back with the
 //! `gltf` crate and checked by the Khronos glTF validator when it is installed.
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -220,15 +221,14 @@ fn validate(package: &Path, file: &Path) -> serde_json::Value {
 #[test]
 fn export_passes_the_khronos_validator_with_no_errors() {
     let Some(package) = validator_package() else {
-        eprintln!(
-            "skipped: CUTAWAY_GLTF_VALIDATOR is not set (npm install gltf-validator, then set it \
-             to the package folder, as .ci/run does)"
+        return skip(
+            Resource::Validator,
+            "CUTAWAY_GLTF_VALIDATOR is not set (npm install gltf-validator, then set it to the \
+             package folder, as .ci/run does)",
         );
-        return;
     };
     if Command::new("node").arg("--version").output().is_err() {
-        eprintln!("skipped: node is not installed");
-        return;
+        return skip(Resource::Validator, "node is not installed");
     }
     let dir = scratch("export-validator");
     let session = cut_scene(&dir);
@@ -333,4 +333,87 @@ fn export_errors_are_one_line_and_leave_no_file() {
         .map(|e| e.unwrap().file_name())
         .collect();
     assert_eq!(names.len(), 2, "no partial or temporary files: {names:?}");
+}
+
+/// `export --critical` bakes the risk map into the walls' vertex colours: red within 2 mm of the
+/// critical vessel, the wall colour beyond 10 mm, on a white `risk map` material.
+#[test]
+fn export_bakes_the_risk_map_into_the_walls_vertex_colours() {
+    let dir = scratch("export-risk");
+    // A 80 mm block cut in front of y = 0; a vessel of radius 5 centred 6 mm behind that wall.
+    let session = write_session(
+        &dir,
+        &[
+            ("skin.obj", box_obj([-40.0; 3], [40.0; 3])),
+            ("vessel.obj", sphere_obj([0.0, 6.0, 0.0], 5.0, 48, 24)),
+        ],
+        vec![
+            model("skin.obj", [0.9, 0.75, 0.65]),
+            model("vessel.obj", [0.8, 0.2, 0.2]),
+        ],
+        vec![cutter(
+            0,
+            box_planes(-20.0, 20.0, -60.0, 0.0, -20.0, 20.0),
+            cut_view(),
+        )],
+        [0.0, -200.0, 0.0],
+    );
+    let out = dir.join("risk.glb");
+    let output = cutaway()
+        .arg("export")
+        .arg(&session)
+        .args(["--out"])
+        .arg(&out)
+        .args(["--critical", "vessel 1", "--json"])
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let gltf = gltf::Gltf::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    let blob = gltf.blob.clone().unwrap();
+    let risk = gltf
+        .meshes()
+        .flat_map(|m| m.primitives().collect::<Vec<_>>())
+        .find(|p| p.material().name() == Some("risk map"))
+        .expect("a risk map primitive");
+    assert_eq!(
+        risk.material().pbr_metallic_roughness().base_color_factor(),
+        [1.0; 4]
+    );
+    let reader = risk.reader(|_| Some(&blob[..]));
+    let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+    let colors: Vec<[f32; 3]> = reader.read_colors(0).unwrap().into_rgb_f32().collect();
+    assert_eq!(positions.len(), colors.len());
+    let linear = |c: [f32; 3]| c.map(cutaway::render::srgb_to_linear);
+    let red = linear(cutaway::scene::risk::RISK_NEAR_COLOR);
+    let wall_srgb: [f32; 3] = std::array::from_fn(|k| {
+        let skin = [0.9, 0.75, 0.65][k];
+        skin + (cutaway::render::WALL_TINT[k] - skin) * cutaway::render::WALL_MIX
+    });
+    let wall = linear(wall_srgb);
+    let same = |a: [f32; 3], b: [f32; 3]| (0..3).all(|k| (a[k] - b[k]).abs() < 1e-4);
+    let (mut near, mut far) = (0, 0);
+    for (p, &c) in positions.iter().zip(&colors) {
+        let p = glam::DVec3::from_array(p.map(f64::from));
+        // The sphere file's vertices lie on the radius, so its surface is at least this far.
+        let d = (p - glam::DVec3::new(0.0, 6.0, 0.0)).length() - 5.0;
+        if d <= 1.9 {
+            near += 1;
+            assert!(same(c, red), "{p} is {d:.2} mm from the vessel: {c:?}");
+        }
+        if d >= 10.6 {
+            far += 1;
+            assert!(same(c, wall), "{p} is {d:.2} mm from the vessel: {c:?}");
+        }
+    }
+    assert!(near > 10 && far > 10, "{near} near, {far} far vertices");
+    // Without a risk map the walls keep their material.
+    let plain = dir.join("plain.glb");
+    let summary = export_json(&session, &plain);
+    assert_eq!(summary["exact"], true);
+    let gltf = gltf::Gltf::from_slice(&std::fs::read(&plain).unwrap()).unwrap();
+    assert!(gltf.materials().all(|m| m.name() != Some("risk map")));
 }

@@ -1,6 +1,7 @@
 //! End-to-end tests of `cutaway extrude`: recorded gestures (tests/data/gestures) replayed on
 //! generated targets and on real anatomy, through the binary and through the library.
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -391,8 +392,7 @@ fn gesture_for(mesh: &Mesh, kind: CutKind) -> Gesture {
 #[test]
 fn gestures_on_real_anatomy() {
     let Some(dir) = anatomy() else {
-        eprintln!("skipped: no anatomy folder (set CUTAWAY_ANATOMY)");
-        return;
+        return skip(Resource::Data, "no anatomy folder (set CUTAWAY_ANATOMY)");
     };
     // (file, kind, largest front-face gap allowed over the surface in δ: the contract's surface-gap goal is 3δ).
     for (file, kind, bound) in [
@@ -414,7 +414,7 @@ fn gestures_on_real_anatomy() {
     ] {
         let path = dir.join(file);
         if !path.exists() {
-            eprintln!("skipped {file}: not present");
+            skip(Resource::Data, format!("{}: not present", path.display()));
             continue;
         }
         let mesh = cutaway::io::read_mesh(&path).expect("anatomy loads");

@@ -1,5 +1,6 @@
 //! End-to-end tests of `cutaway scalpel` (CONTRACT.md: `cutaway-path/1` and its JSON).
 
+use csg::testkit::{Resource, skip};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -131,28 +132,103 @@ fn slit_on_a_sheet_reports_the_contract_json() {
     assert_eq!(v.as_object().unwrap().len(), 8);
 }
 
+/// The distances from the drawn line (each point moved onto `before`, the surface it was drawn
+/// on) to the surface in `after`, leaving out points within `margin` of the path's ends: about
+/// zero where the cut is shut, about half the opening where it opened.
+fn gaps_along_path(
+    before: &csg::Mesh,
+    after: &csg::Mesh,
+    points: &[[f64; 3]],
+    margin: f64,
+) -> Vec<f64> {
+    let (on_before, on_after) = (
+        csg::SpatialIndex::build(before),
+        csg::SpatialIndex::build(after),
+    );
+    let on_surface: Vec<csg::DVec3> = points
+        .iter()
+        .map(|&p| on_before.closest_point(before, p.into()).unwrap().point)
+        .collect();
+    let (first, last) = (on_surface[0], on_surface[on_surface.len() - 1]);
+    on_surface
+        .iter()
+        .filter(|p| p.distance(first) >= margin && p.distance(last) >= margin)
+        .map(|&p| on_after.closest_point(after, p).unwrap().point.distance(p))
+        .collect()
+}
+
+/// A groove drawn on a sphere and opened 1 mm wide: the output, read back, is closed and has
+/// left the drawn line (the lips apart) along the path away from its ends, while the same groove
+/// cut shut (`open` width 0) still passes through it: the measure tells the two apart.
 #[test]
 fn groove_on_a_sphere_stays_closed_and_opens() {
     let dir = scratch("groove");
-    let (target, path, out) = (
-        dir.join("sphere.obj"),
-        dir.join("p.json"),
-        dir.join("out.obj"),
-    );
+    let target = dir.join("sphere.obj");
     write_sphere(&target);
+    let sphere = cutaway::io::read_mesh(&target).unwrap();
     let points: Vec<[f64; 3]> = (0..=30)
         .map(|i| {
             let a = 0.2 + 1.0 * i as f64 / 30.0;
             [10.0 * a.cos(), 10.0 * a.sin(), 0.0]
         })
         .collect();
-    let json = serde_json::json!({"format": "cutaway-path/1", "depth": 1.0, "tool": "scalpel",
-        "points": points, "open": {"width": 1.0, "window": 0.5}});
-    std::fs::write(&path, json.to_string()).unwrap();
-    let v = run_json(&target, &path, &out);
-    assert_eq!(v["closed"], true, "{v}");
-    assert_eq!(v["manifold"], true, "{v}");
-    assert!(v["triangles_created"].as_u64().unwrap() > 0);
+    let width = 1.0;
+    let mut means = Vec::new();
+    for open in [0.0, width] {
+        let (path, out) = (
+            dir.join(format!("p{open}.json")),
+            dir.join(format!("out{open}.obj")),
+        );
+        let json = serde_json::json!({"format": "cutaway-path/1", "depth": 1.0, "tool": "scalpel",
+            "points": points, "open": {"width": open, "window": 0.5}});
+        std::fs::write(&path, json.to_string()).unwrap();
+        let v = run_json(&target, &path, &out);
+        assert_eq!(v["closed"], true, "{v}");
+        assert_eq!(v["manifold"], true, "{v}");
+        assert!(v["triangles_created"].as_u64().unwrap() > 0);
+        // As written: a shut groove's two lips are coincident copies, which welding would join.
+        let cut = cutaway::io::read_mesh_verbatim(&out).unwrap();
+        let report = cut.report();
+        assert!(
+            report.closed,
+            "open {open}: the output read back is not closed: {report:?}"
+        );
+        let gaps = gaps_along_path(&sphere, &cut, &points, 2.0 * width);
+        assert!(gaps.len() >= 15, "{gaps:?}");
+        let mean = gaps.iter().sum::<f64>() / gaps.len() as f64;
+        println!(
+            "open {open}: mean gap {mean:.3} mm over {} points",
+            gaps.len()
+        );
+        if open > 0.0 {
+            let close = gaps.iter().filter(|&&g| g < 0.15 * width).count();
+            assert!(
+                6 * close <= gaps.len(),
+                "the opened surface passes within 0.15 widths of the cut at {close} of {} points: {gaps:?}",
+                gaps.len()
+            );
+            assert!(mean >= 0.2 * width, "mean gap {mean} mm: {gaps:?}");
+        }
+        means.push(mean);
+    }
+    assert!(
+        means[0] < 0.02 * width,
+        "the shut groove is open: mean gap {}",
+        means[0]
+    );
+}
+
+/// The connected pieces of a mesh file as written (no welding: a cut loop leaves its two sides
+/// on vertices of their own), with the area of each.
+fn pieces(path: &Path) -> Vec<f64> {
+    let mesh = cutaway::io::read_mesh_verbatim(path).unwrap();
+    let regions = csg::regions::Regions::components(&mesh, &csg::EdgeAdjacency::build(&mesh));
+    let mut areas = vec![0.0; regions.count];
+    for (t, &r) in mesh.triangles.iter().zip(&regions.region_of_triangle) {
+        let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+        areas[r as usize] += 0.5 * (b - a).cross(c - a).length();
+    }
+    areas
 }
 
 #[test]
@@ -175,6 +251,10 @@ fn strokes_cross_and_loop_detaches() {
     let v = run_json(&target, &path, &out);
     assert_eq!(v["steps"], 42);
     assert_eq!(v["manifold"], true);
+    // Two crossing slits open the sheet but cut nothing off: one piece, all of its area.
+    let areas = pieces(&out);
+    assert_eq!(areas.len(), 1, "crossing slits: pieces of areas {areas:?}");
+    assert!((areas[0] - 400.0).abs() < 1e-6, "{areas:?}");
 
     let circle: Vec<[f64; 3]> = (0..40)
         .map(|i| {
@@ -187,6 +267,22 @@ fn strokes_cross_and_loop_detaches() {
     let v = run_json(&target, &path, &out);
     assert_eq!(v["steps"], 40);
     assert_eq!(v["manifold"], true);
+    // The loop cuts out the disc it encloses: two pieces, the disc with about the area of the
+    // drawn 40-gon (radius 4; measured 49.19 of its 50.06: the cut runs through the sheet's
+    // triangles near, not exactly on, the drawn corners) and the sheet with the rest of the
+    // 20 × 20.
+    let mut areas = pieces(&out);
+    areas.sort_by(f64::total_cmp);
+    let disc = 0.5 * 40.0 * 16.0 * (std::f64::consts::TAU / 40.0).sin();
+    assert_eq!(areas.len(), 2, "the loop: pieces of areas {areas:?}");
+    assert!(
+        (areas[0] - disc).abs() < 0.03 * disc,
+        "disc {areas:?}, expected {disc}"
+    );
+    assert!(
+        (areas[0] + areas[1] - 400.0).abs() < 1e-9 * 400.0,
+        "{areas:?}"
+    );
 }
 
 #[test]
@@ -260,7 +356,7 @@ impl View {
             .unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         if !o.status.success() && err.contains("adapter") {
-            eprintln!("skipped: no GPU adapter ({err})");
+            skip(Resource::Gpu, format!("no GPU adapter ({err})"));
             return None;
         }
         assert!(o.status.success(), "render: {err}");

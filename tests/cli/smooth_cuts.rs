@@ -4,6 +4,7 @@
 //! checked by `csg::cutcheck`) and through `cutaway extrude` + `cutaway subtract`; and
 //! `cutaway render --json` of a session with a smooth cutter, which must report an exact cut.
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -65,7 +66,7 @@ fn render_json(dir: &Path, name: &str, session: &serde_json::Value) -> Option<se
         "--json".as_ref(),
     ]);
     if !ok && err.contains("adapter") {
-        eprintln!("skipped: no GPU adapter ({err})");
+        skip(Resource::Gpu, format!("no GPU adapter ({err})"));
         return None;
     }
     assert!(ok, "{name}: render failed: {err}");

@@ -1,6 +1,7 @@
 //! End-to-end tests of `cutaway subtract` (contract in `../shared/CONTRACT.md`), and cuts of the
 //! real anatomy through the library (no panic, exact kept/removed area partition).
 
+use csg::testkit::{Resource, skip};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -351,8 +352,7 @@ fn mesh_files(dir: &Path, out: &mut Vec<PathBuf>) {
 #[test]
 fn cuts_every_anatomy_mesh() {
     let Some(dir) = anatomy_dir() else {
-        eprintln!("skipped: no anatomy folder (set CUTAWAY_ANATOMY)");
-        return;
+        return skip(Resource::Data, "no anatomy folder (set CUTAWAY_ANATOMY)");
     };
     let mut files = Vec::new();
     mesh_files(&dir, &mut files);
@@ -506,8 +506,7 @@ fn nested_cubes_are_cut_per_region() {
 #[test]
 fn spl_atlas_with_skin_is_cut_closed_per_region() {
     let Some(dir) = anatomy_dir() else {
-        eprintln!("skipped: no anatomy folder (set CUTAWAY_ANATOMY)");
-        return;
+        return skip(Resource::Data, "no anatomy folder (set CUTAWAY_ANATOMY)");
     };
     let folder = dir.join("head_brain_spl_atlas");
     let mut files: Vec<PathBuf> = std::fs::read_dir(&folder)

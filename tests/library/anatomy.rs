@@ -19,6 +19,7 @@
 //! runs), else `../shared/anatomy` next to the workspace; when neither exists the test prints why
 //! and passes without checking.
 
+use csg::testkit::{Resource, skip};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -193,10 +194,7 @@ fn components_through_two_face_edges(mesh: &csg::Mesh) -> usize {
 fn every_anatomy_file_matches_the_independent_reader() {
     let dir = match anatomy_dir() {
         Ok(dir) => dir,
-        Err(why) => {
-            eprintln!("skipped: {why}");
-            return;
-        }
+        Err(why) => return skip(Resource::Data, why),
     };
     let sources = std::fs::read_to_string(dir.join("SOURCES.md")).unwrap();
     let table = reference_table(&sources);

@@ -5,6 +5,7 @@
 //! The real volumes are under `$CUTAWAY_ANATOMY/volumes` (else `../shared/anatomy` beside the
 //! workspace); tests that need them print why and skip when the folder is absent.
 
+use csg::testkit::{Resource, skip};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -37,9 +38,12 @@ fn volumes() -> Option<PathBuf> {
     if dir.is_dir() {
         Some(dir)
     } else {
-        eprintln!(
-            "skipped: no anatomy volumes at {} (set CUTAWAY_ANATOMY)",
-            dir.display()
+        skip(
+            Resource::Data,
+            format!(
+                "no anatomy volumes at {} (set CUTAWAY_ANATOMY)",
+                dir.display()
+            ),
         );
         None
     }

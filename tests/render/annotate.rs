@@ -7,6 +7,7 @@
 //! Rendering needs a GPU adapter (lavapipe with `WGPU_BACKEND=vulkan`); without one the tests
 //! print "skipped: …" and pass.
 
+use csg::testkit::{Resource, skip};
 use std::path::Path;
 use std::process::Command;
 
@@ -40,7 +41,7 @@ fn renderer() -> Option<HeadlessRenderer> {
     match HeadlessRenderer::new() {
         Ok(r) => Some(r),
         Err(e) => {
-            println!("skipped: no GPU adapter ({e})");
+            skip(Resource::Gpu, format!("no GPU adapter ({e})"));
             None
         }
     }
@@ -110,8 +111,7 @@ fn render_labels_on_the_command_line() {
     let plain = run(&[], "plain.png");
     let stderr = String::from_utf8_lossy(&plain.stderr);
     if !plain.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
-        return;
+        return skip(Resource::Gpu, stderr);
     }
     assert!(plain.status.success(), "{stderr}");
     let one = run(&["--labels", "cube 1"], "one.png");
@@ -158,8 +158,7 @@ fn turntable_writes_every_frame_and_a_gif_of_them() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     if !run.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
-        return;
+        return skip(Resource::Gpu, stderr);
     }
     assert!(run.status.success(), "{stderr}");
     let frames: Vec<image::RgbaImage> = (1..=4)
@@ -212,8 +211,7 @@ fn render_turntable_writes_n_different_frames_a_gif_and_clean_json() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     if !run.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
-        return;
+        return skip(Resource::Gpu, stderr);
     }
     assert!(run.status.success(), "{stderr}");
     assert!(

@@ -6,6 +6,7 @@
 //! The command renders on the GPU (lavapipe with `WGPU_BACKEND=vulkan`); with no adapter the
 //! tests print "skipped: …" and pass.
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -39,7 +40,7 @@ fn compare(session: &Path, out: &Path, extra: &[&str]) -> Option<serde_json::Val
     let run = cutaway(&["compare"], session, &args);
     let stderr = String::from_utf8_lossy(&run.stderr);
     if !run.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
+        skip(Resource::Gpu, stderr);
         return None;
     }
     assert!(run.status.success(), "{stderr}");

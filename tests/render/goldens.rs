@@ -3,17 +3,22 @@
 
 use super::*;
 
+/// The plain scene: skin, organ, and a wireframe sphere whose centre is `wire`.
+fn plain_scene(wire: DVec3) -> Scene {
+    let mut scene = layered_scene();
+    scene
+        .models
+        .push(model("wire", icosphere(wire, 0.45, 1), [0.2, 0.35, 0.8]));
+    scene.models[2].style = ModelStyle::Wireframe;
+    scene
+}
+
+const WIRE: DVec3 = DVec3::new(-1.3, 0.6, -0.5);
+
 #[test]
 fn golden_plain_scene() {
     let Some(mut r) = renderer() else { return };
-    let mut scene = layered_scene();
-    scene.models.push(model(
-        "wire",
-        icosphere(DVec3::new(-1.3, 0.6, -0.5), 0.45, 1),
-        [0.2, 0.35, 0.8],
-    ));
-    scene.models[2].style = ModelStyle::Wireframe;
-    let image = render(&mut r, &scene, None);
+    let image = render(&mut r, &plain_scene(WIRE), None);
     // The skin hides the organ; the picture is neither empty nor all model.
     let c = coverage(&image, [255, 255, 255]);
     assert!(c > 0.15 && c < 0.8, "coverage {c}");
@@ -272,7 +277,7 @@ fn golden_rounded_cut_on_the_knee_overlay_is_the_wall() {
     );
 
     let Some(mut r) = renderer() else { return };
-    let mut options = RenderPngOptions::new(2 * WIDTH, 2 * HEIGHT);
+    let mut options = RenderPngOptions::new(WIDTH, HEIGHT);
     options.deterministic = true;
     options.mode = Some(ViewMode::Edit);
     let image =
@@ -280,4 +285,47 @@ fn golden_rounded_cut_on_the_knee_overlay_is_the_wall() {
             .unwrap();
     assert!(coverage(&image, [255, 255, 255]) > 0.2);
     compare_to_golden("rounded_knee_edit", &image, r.is_software());
+}
+
+/// The golden comparison can fail: the same state rendered twice in one run compares equal to
+/// the golden image (the noise, printed), but a 10 × 10 patch of another colour (100 pixels) or
+/// the wireframe sphere moved by 0.02 units (about 5 pixels at 1280 × 800) does not.
+#[test]
+fn a_changed_or_moved_feature_fails_the_golden_comparison() {
+    let Some(mut r) = renderer() else { return };
+    if !r.is_software() {
+        return println!("hardware adapter: golden comparison not made");
+    }
+    let scene = plain_scene(WIRE);
+    for run in 0..2 {
+        let again = render(&mut r, &scene, None);
+        let noise = golden_difference("plain", &again);
+        println!("noise, render {run} of the plain scene: {noise}");
+        assert!(noise.within(&image_compare::GOLDEN), "{noise}");
+    }
+    let mut patched = render(&mut r, &scene, None);
+    let (x0, y0) = (WIDTH / 2 - 5, HEIGHT / 2 - 5);
+    for y in y0..y0 + 10 {
+        for x in x0..x0 + 10 {
+            let p = patched.get_pixel_mut(x, y);
+            p[1] = p[1].wrapping_add(64);
+        }
+    }
+    let patch = golden_difference("plain", &patched);
+    println!("a 10 x 10 patch recoloured: {patch}");
+    assert!(
+        !patch.within(&image_compare::GOLDEN),
+        "a changed 10 x 10 patch passes: {patch}"
+    );
+    let moved = render(
+        &mut r,
+        &plain_scene(WIRE + DVec3::new(0.02, 0.0, 0.0)),
+        None,
+    );
+    let shift = golden_difference("plain", &moved);
+    println!("the wireframe sphere moved by 0.02: {shift}");
+    assert!(
+        !shift.within(&image_compare::GOLDEN),
+        "a moved sphere passes: {shift}"
+    );
 }

@@ -7,6 +7,7 @@
 //! "skipped: <why>" and pass. Renders are written to `target/test-output/image_walls/` to be
 //! looked at.
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -32,7 +33,7 @@ fn renderer() -> Option<HeadlessRenderer> {
             Some(r)
         }
         Err(e) => {
-            println!("skipped: {e:#}");
+            skip(Resource::Gpu, format!("{e:#}"));
             None
         }
     }
@@ -332,7 +333,7 @@ fn chest_dir() -> Option<PathBuf> {
     if dir.join("CTChest4.nrrd").is_file() && dir.join("Segmentation.seg.nrrd").is_file() {
         Some(dir)
     } else {
-        println!("skipped: no chest CT in {}", dir.display());
+        skip(Resource::Data, format!("no chest CT in {}", dir.display()));
         None
     }
 }
@@ -573,8 +574,10 @@ fn an_image_over_the_texture_limit_is_shown_reduced() {
     let Some(mut r) = renderer() else { return };
     let limit = r.max_texture_dimension_3d() as usize;
     if limit > 16384 {
-        println!("skipped: the 3-D texture limit {limit} is too large for a small test image");
-        return;
+        return skip(
+            Resource::Gpu,
+            format!("the 3-D texture limit {limit} is too large for a small test image"),
+        );
     }
     let n = limit + 1;
     let dx = 12.0 / (n - 1) as f64;

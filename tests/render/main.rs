@@ -2,14 +2,16 @@
 //! render` (goldens, exports, sessions), the image on the walls, wedges on the knee, labelled
 //! images and turntables (`annotate.rs`), and variant comparison (`compare.rs`).
 //!
-//! Golden images: small (160×120), deterministic mode (no supersampling), rendered on the software
-//! adapter with `WGPU_BACKEND=vulkan` (lavapipe; Vulkan is used when the variable is unset).
-//! `UPDATE_GOLDEN=1 cargo test --test render` rewrites `tests/golden/*.png`. The tolerances live
-//! in `tests/support/image_compare.rs` only. On a machine with no adapter the GPU tests print
-//! "skipped: <why>" and pass; on a hardware GPU the pictures are checked for content but not
-//! compared (rasterizers differ). This file holds the scenes and helpers; the tests are in
-//! `tests/render/`, one file per concern.
+//! Golden images: full size (1280×800, the window's default 3D view), deterministic mode (no
+//! supersampling), rendered on the software adapter with `WGPU_BACKEND=vulkan` (lavapipe; Vulkan
+//! is used when the variable is unset). `UPDATE_GOLDEN=1 cargo test --test render` rewrites
+//! `tests/golden/*.png`. The tolerances, and the noise they were set from, live in
+//! `tests/support/image_compare.rs` only. On a machine with no adapter the GPU tests print "skipped: <why>" and
+//! pass, or fail where `CUTAWAY_REQUIRE_GPU=1` (CI); on a hardware GPU the pictures are checked
+//! for content but not compared (rasterizers differ). This file holds the scenes and helpers; the tests are in
+//! `render/`, one file per concern.
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -32,14 +34,16 @@ mod compare;
 mod exports;
 mod goldens;
 mod image_walls;
+mod risk;
 #[allow(dead_code)] // helpers shared with other test binaries
 #[path = "../support/scene_files.rs"]
 mod scene_files;
 mod sessions;
+mod webpage;
 mod wedge;
 
-const WIDTH: u32 = 160;
-const HEIGHT: u32 = 120;
+const WIDTH: u32 = 1280;
+const HEIGHT: u32 = 800;
 
 fn golden_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/golden")
@@ -70,6 +74,18 @@ fn compare_to_golden(name: &str, actual: &image::RgbaImage, software: bool) {
         );
         return;
     }
+    let difference = golden_difference(name, actual);
+    println!("{name}: {difference}");
+    assert!(
+        difference.within(&image_compare::GOLDEN),
+        "{name}: {difference}; actual image at {}",
+        actual_path.display()
+    );
+}
+
+/// How `actual` differs from the golden image `name` (tolerance [`image_compare::GOLDEN`]).
+fn golden_difference(name: &str, actual: &image::RgbaImage) -> image_compare::Difference {
+    let path = golden_dir().join(format!("{name}.png"));
     let expected = image::open(&path)
         .unwrap_or_else(|e| {
             panic!(
@@ -83,12 +99,7 @@ fn compare_to_golden(name: &str, actual: &image::RgbaImage, software: bool) {
         actual.dimensions(),
         "{name}: size differs"
     );
-    let difference = image_compare::difference(actual, &expected);
-    assert!(
-        difference.within_tolerance(),
-        "{name}: {difference}; actual image at {}",
-        actual_path.display()
-    );
+    image_compare::difference(actual, &expected, &image_compare::GOLDEN)
 }
 
 /// The headless renderer on `WGPU_BACKEND` (Vulkan when unset), or `None` with the reason printed.
@@ -100,7 +111,7 @@ fn renderer() -> Option<HeadlessRenderer> {
             Some(r)
         }
         Err(e) => {
-            println!("skipped: {e:#}");
+            skip(Resource::Gpu, format!("{e:#}"));
             None
         }
     }

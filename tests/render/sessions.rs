@@ -44,7 +44,7 @@ fn software_render(mut command: std::process::Command) -> std::process::Output {
 fn rendered(run: &std::process::Output, out: &Path) -> Option<image::RgbaImage> {
     let stderr = String::from_utf8_lossy(&run.stderr);
     if !run.status.success() && stderr.contains("no GPU adapter") {
-        println!("skipped: {stderr}");
+        skip(Resource::Gpu, stderr);
         return None;
     }
     assert!(run.status.success(), "{stderr}");
@@ -198,6 +198,28 @@ fn cli_render_writes_the_png_headless() {
         return;
     };
     assert_eq!(image.dimensions(), (96, 64));
+    // The picture is the session's: its dark blue background in the four corners, its first
+    // sphere (blue, [0, 0.5, 0.9]) in the middle, and the spheres covering a plausible share of
+    // the image (the unit sphere alone is about a fifth of it from this camera). A blank or
+    // black PNG fails here.
+    let corner = pixel(&image, 0, 0);
+    for (x, y) in [(95, 0), (0, 63), (95, 63)] {
+        assert_eq!(pixel(&image, x, y), corner, "corner ({x}, {y})");
+    }
+    assert!(
+        corner[2] > corner[1] && corner[1] > corner[0] && corner[2] < 140,
+        "background {corner:?} is not the session's [0.1, 0.2, 0.3]"
+    );
+    let [r, g, b, _] = pixel(&image, 48, 32);
+    assert!(
+        b > r + 60 && b > g && (b as i32 - corner[2] as i32).abs() > 40,
+        "centre pixel {r} {g} {b} is not the blue sphere"
+    );
+    let covered = coverage(&image, [corner[0], corner[1], corner[2]]);
+    assert!(
+        covered > 0.12 && covered < 0.6,
+        "the models cover {covered:.3} of the image"
+    );
     // Bad session: one line on stderr naming the file, non-zero exit.
     std::fs::write(&file, "{not json").unwrap();
     let run = std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))

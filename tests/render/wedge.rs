@@ -7,6 +7,7 @@
 //! test's temporary folder (`CARGO_TARGET_TMPDIR`) for a person to look at; it is skipped with the
 //! reason printed when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with lavapipe).
 
+use csg::testkit::{Resource, skip};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -164,10 +165,7 @@ fn cut_and_render(scene: &mut Scene, wedge: &Cutter, camera: Camera, name: &str)
     let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
     let mut renderer = match HeadlessRenderer::with_backends(backends) {
         Ok(r) => r,
-        Err(e) => {
-            println!("skipped the render: {e:#}");
-            return;
-        }
+        Err(e) => return skip(Resource::Gpu, format!("the render: {e:#}")),
     };
     let mut options = RenderPngOptions::new(1280, 800);
     options.mode = Some(ViewMode::Preview);
@@ -213,11 +211,10 @@ fn a_wedge_on_the_real_patella_cuts_a_sector_out_of_it() {
         .unwrap_or_else(|| std::path::PathBuf::from("../shared/anatomy"));
     let folder = root.join("knee_vhf_left_denver");
     if !folder.is_dir() {
-        println!(
-            "skipped: {} not found (set CUTAWAY_ANATOMY)",
-            folder.display()
+        return skip(
+            Resource::Data,
+            format!("{} not found (set CUTAWAY_ANATOMY)", folder.display()),
         );
-        return;
     }
     // The patella (the target) with the bones and cartilage around it.
     let mut scene = Scene::default();

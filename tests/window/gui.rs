@@ -5,6 +5,7 @@
 //! and set `WGPU_BACKEND=vulkan`; CI does). This file holds the scaffolding every test uses; the
 //! tests are in `gui/`, one file per concern.
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 

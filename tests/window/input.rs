@@ -4,6 +4,7 @@
 //! colour counts, and where the real anatomy is. A test file that does not use every helper
 //! includes this module with `#[allow(dead_code)]`.
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -96,9 +97,9 @@ pub fn anatomy(folder: &str) -> Option<PathBuf> {
         .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/anatomy"));
     let path = root.join(folder);
     if !path.is_dir() {
-        println!(
-            "skipped: {} not found (set CUTAWAY_ANATOMY)",
-            path.display()
+        skip(
+            Resource::Data,
+            format!("{} not found (set CUTAWAY_ANATOMY)", path.display()),
         );
         return None;
     }

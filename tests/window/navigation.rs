@@ -10,6 +10,7 @@
 
 use crate::harness::{apply, harness, harness_sized, no_adapter, shot};
 use crate::input::{anatomy, click_mode, count_colour, drag, settle, temp_dir, view_px, wheel_at};
+use csg::testkit::{Resource, skip};
 use cutaway::gui::app::Action;
 use cutaway::gui::{CutawayApp, Mode};
 use egui_kittest::Harness;
@@ -35,8 +36,7 @@ fn double_click(h: &mut Harness<'_, CutawayApp>, at: egui::Pos2) {
 #[test]
 fn a_double_click_on_a_deep_structure_scrolls_the_list_to_it_and_zoom_to_selection_frames_it() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("reveal");
     let mut h = harness(&dir, Vec::new());
@@ -125,8 +125,7 @@ fn a_double_click_on_a_deep_structure_scrolls_the_list_to_it_and_zoom_to_selecti
 #[test]
 fn at_1600_by_1000_the_view_grows_and_the_marker_and_status_stay_in_place() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("large");
     let mut paths = Vec::new();
@@ -215,8 +214,7 @@ fn button_drag(
 #[test]
 fn right_drag_orbits_middle_drag_pans_and_the_wheel_zooms_in_every_mode() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("every-mode");
     let mut h = harness(&dir, Vec::new());

@@ -13,6 +13,7 @@
 //! Skipped, with the reason printed, without a wgpu adapter; the body is read from
 //! `CUTAWAY_ANATOMY` (default `../shared/anatomy`).
 
+use csg::testkit::{Resource, skip};
 use std::path::Path;
 
 use crate::harness::{apply, harness, no_adapter, shot};
@@ -131,8 +132,7 @@ fn editor_delta(h: &Harness<'_, CutawayApp>) -> f64 {
 #[test]
 fn a_small_hubmap_structure_is_cut_with_its_own_sizes_and_its_session_renders() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let Some(body) = anatomy("hubmap_vhf_body") else {
         return;
@@ -231,8 +231,7 @@ fn a_small_hubmap_structure_is_cut_with_its_own_sizes_and_its_session_renders() 
 #[test]
 fn on_the_knee_in_millimetres_the_same_steps_give_proportionate_lengths() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let knee = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/knee");
     let dir = temp_dir("knee");
@@ -290,8 +289,7 @@ fn on_the_knee_in_millimetres_the_same_steps_give_proportionate_lengths() {
 #[test]
 fn on_the_default_head_atlas_a_small_structure_gets_its_own_lengths() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("head");
     let mut h = harness(&dir, Vec::new());

@@ -7,6 +7,7 @@
 //! Mesa's lavapipe installed).
 
 use crate::harness::{apply, harness, no_adapter, shot};
+use csg::testkit::{Resource, skip};
 use cutaway::gui::app::Action;
 use cutaway::gui::{CutawayApp, Mode};
 use cutaway::render::{WALL_MIX, WALL_TINT};
@@ -60,8 +61,7 @@ fn wall_pixels(image: &image::RgbaImage, centre: DVec2, radius: f64) -> usize {
 #[test]
 fn an_opened_incision_shows_its_walls_while_drawn_and_after() {
     if let Some(why) = no_adapter() {
-        eprintln!("skipped: {why}");
-        return;
+        return skip(Resource::Gpu, why);
     }
     let dir = std::env::temp_dir().join(format!("cutaway-window-scalpel-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);

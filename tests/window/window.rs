@@ -8,6 +8,7 @@
 //! Skipped, with the reason printed, when no wgpu adapter exists (set `WGPU_BACKEND=vulkan` with
 //! Mesa's lavapipe installed); the real-data test reads `CUTAWAY_ANATOMY` (default `../shared/anatomy`).
 
+use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -40,8 +41,7 @@ fn difference_in(a: &image::RgbaImage, b: &image::RgbaImage, rect: egui::Rect) -
 #[test]
 fn the_first_frame_has_the_orientation_marker_and_every_preset_turns_the_view() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("presets");
     let mut h = harness(&dir, Vec::new());
@@ -105,8 +105,7 @@ fn the_first_frame_has_the_orientation_marker_and_every_preset_turns_the_view() 
 #[test]
 fn a_double_click_selects_and_highlights_in_every_mode() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("select");
     let mut h = harness(&dir, Vec::new());
@@ -165,8 +164,7 @@ fn a_double_click_selects_and_highlights_in_every_mode() {
 #[test]
 fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_ones() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("cutters");
     let mut h = harness(&dir, Vec::new());
@@ -264,8 +262,7 @@ fn dragging_outside_the_cutter_starts_another_and_hide_hides_only_the_current_on
 #[test]
 fn the_help_menu_opens_the_keyboard_and_mouse_reference() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("help");
     let mut h = harness(&dir, Vec::new());
@@ -304,8 +301,7 @@ fn the_help_menu_opens_the_keyboard_and_mouse_reference() {
 #[test]
 fn the_hubmap_body_opens_upright_in_metres_and_the_knee_in_millimetres() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let (Some(body), Some(knee)) = (anatomy("hubmap_vhf_body"), anatomy("knee_vhf_left_denver"))
     else {
@@ -352,8 +348,7 @@ fn the_hubmap_body_opens_upright_in_metres_and_the_knee_in_millimetres() {
 #[test]
 fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("browser");
     let start = StartOptions {
@@ -421,8 +416,7 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
 #[test]
 fn edit_mode_orbits_with_the_right_button_and_zooms_off_the_cutter() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("navigate");
     let mut h = harness(&dir, Vec::new());
@@ -495,8 +489,7 @@ fn drop_files(h: &mut Harness<'_, CutawayApp>, paths: Vec<PathBuf>) {
 #[test]
 fn dropped_folders_and_sessions_open_and_messages_stay_in_the_status_bar() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("drop");
     let mut h = harness(&dir, Vec::new());
@@ -564,8 +557,7 @@ fn dropped_folders_and_sessions_open_and_messages_stay_in_the_status_bar() {
 #[test]
 fn files_given_skip_the_recovery_prompt_and_an_undo_keeps_anaglyph_off() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("prompt");
     // An autosave left by a crash, and two meshes named on the command line.

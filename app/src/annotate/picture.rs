@@ -52,7 +52,7 @@ pub fn render_annotated(
     let preview = (render_mode(scene, options) == ViewMode::Preview)
         .then(|| Arc::new(preview_geometry(scene)));
     let mut image =
-        crate::view::render_with_preview(&mut renderer, scene, options, preview.clone())?;
+        super::risk_legend::render_with_legend(&mut renderer, scene, options, preview.clone())?;
     super::rulers::draw_rulers(&mut image, scene);
     if !choice.any() {
         return Ok((image, None));

@@ -19,6 +19,7 @@ pub mod metrics;
 pub mod open;
 pub mod phantom;
 pub mod render;
+pub mod risk_args;
 pub mod scalpel;
 pub mod subtract;
 pub mod surfaces;
@@ -48,7 +49,7 @@ pub enum Command {
     Scalpel(scalpel::ScalpelArgs),
     /// One closed surface per label of a segmentation volume, one mesh file each.
     Surfaces(surfaces::SurfacesArgs),
-    /// Write the cut scene of a session as glTF 2.0 binary (.glb).
+    /// Write the cut scene of a session as glTF 2.0 binary (.glb) or as one web page (.html).
     Export(export::ExportArgs),
     /// Measure the cuts of a session: removed volume and area, exposure, distances.
     Metrics(metrics::MetricsArgs),

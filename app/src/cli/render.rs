@@ -4,7 +4,10 @@
 //! `--labels` draws structure names with leader lines (every opaque visible structure, or the ones
 //! named), a scale bar in mm and the orientation marker ([`crate::annotate`]); the image options
 //! replace or adjust the session's `"image"`. The session's rulers are drawn over the picture
-//! ([`crate::annotate::rulers`]).
+//! ([`crate::annotate::rulers`]). `--critical NAME…` colours the cut walls by their distance to
+//! those structures (`--risk-mm NEAR,FAR`, `--no-risk`: [`crate::cli::risk_args`]), with the
+//! legend drawn at the bottom ([`crate::annotate::risk_legend`]); a session's `"risk"` does the
+//! same without flags.
 //!
 //! `--turntable N` writes an orbit instead of one picture: `--out` is then a folder that gets
 //! `frames/frame-0001.png` … `frame-000N.png` (and `turntable.gif` with `--gif`) as one output
@@ -71,6 +74,8 @@ pub struct RenderArgs {
     /// With `--turntable`: time each GIF frame is shown, in milliseconds.
     #[arg(long, default_value_t = 80, requires = "turntable")]
     pub delay_ms: u32,
+    #[command(flatten)]
+    pub risk: crate::cli::risk_args::RiskArgs,
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
@@ -86,6 +91,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         args.window.as_deref(),
         args.display.as_deref(),
     )?;
+    crate::cli::risk_args::apply(&mut scene, &args.risk)
+        .with_context(|| format!("{}", args.session.display()))?;
     let labelled = match &args.labels {
         Some(names) => Some(
             crate::annotate::labelled::chosen(&scene, names)
@@ -109,9 +116,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
     let preview = (render_mode(&scene, &options) == ViewMode::Preview)
         .then(|| Arc::new(preview_geometry(&scene)));
-    let mut image =
-        crate::view::render_with_preview(&mut renderer, &scene, &options, preview.clone())
-            .with_context(|| format!("{}", args.session.display()))?;
+    let mut image = crate::annotate::risk_legend::render_with_legend(
+        &mut renderer,
+        &scene,
+        &options,
+        preview.clone(),
+    )
+    .with_context(|| format!("{}", args.session.display()))?;
     crate::annotate::rulers::draw_rulers(&mut image, &scene);
     if let Some(models) = &labelled {
         crate::annotate::labelled::annotate(&mut image, &scene, preview.as_deref(), models);

@@ -1,7 +1,8 @@
 //! `cutaway turntable SESSION.json --out DIR --frames N [--width W] [--height H] [--gif]
 //! [--delay-ms MS]`: an orbit around the cut scene, written as one output set by
 //! [`crate::export::turntable`] (the same code as `cutaway render --turntable N` and the window's
-//! File → Export Turntable…). Progress goes to stderr only when stderr is a terminal.
+//! File → Export Turntable…). Progress goes to stderr only when stderr is a terminal. The risk
+//! map's flags are `render`'s ([`crate::cli::risk_args`]).
 
 use std::io::IsTerminal as _;
 use std::path::{Path, PathBuf};
@@ -31,6 +32,8 @@ pub struct TurntableArgs {
     /// Time each GIF frame is shown, in milliseconds.
     #[arg(long, default_value_t = 80)]
     pub delay_ms: u32,
+    #[command(flatten)]
+    pub risk: crate::cli::risk_args::RiskArgs,
 }
 
 /// Progress of a CLI turntable: `frame k/N` rewritten in place on stderr when stderr is a
@@ -108,7 +111,9 @@ pub fn run(args: &TurntableArgs) -> anyhow::Result<()> {
         }
     }
     let options = checked_options(&args.out, "--frames", args.frames, args.gif, args.delay_ms)?;
-    let scene = crate::session::load(&args.session)?;
+    let mut scene = crate::session::load(&args.session)?;
+    crate::cli::risk_args::apply(&mut scene, &args.risk)
+        .map_err(|e| e.context(args.session.display().to_string()))?;
     let progress = TerminalProgress::new();
     let result = export_turntable(
         &scene,

@@ -61,8 +61,13 @@ pub fn render_variants(
         if let Some(note) = preview.notes.first() {
             anyhow::bail!("variant '{name}': {note}");
         }
-        let image = crate::view::render_with_preview(renderer, &shown, &options, Some(preview))
-            .map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
+        let image = crate::annotate::risk_legend::render_with_legend(
+            renderer,
+            &shown,
+            &options,
+            Some(preview),
+        )
+        .map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
         images.push(image);
     }
     Ok(images)

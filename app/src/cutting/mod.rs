@@ -17,6 +17,8 @@
 //! - [`overlay`]: the cutter as Edit mode draws it, the surface the boolean cuts with.
 //! - [`pick`]: which model a ray meets first, through each model's BVH; [`drawn_hit`]: the point
 //!   a ray meets on the scene as drawn (cut walls and kept parts where a cut is shown).
+//! - [`wall_risk`]: the risk map's distances from the cut walls to the critical structures, on
+//!   walls refined so the colours never make a wall look safer than it is.
 
 pub mod cut_parts;
 pub mod cut_results;
@@ -30,4 +32,5 @@ pub mod pick;
 pub mod scene_cuts;
 pub mod vertices;
 pub mod wall_pick;
+pub mod wall_risk;
 pub mod wall_split;

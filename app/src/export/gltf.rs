@@ -24,7 +24,10 @@
 //!
 //! With an image on the walls (the scene's [`crate::scene::ImageLayer`]), walls, slices and
 //! ribbons that show it are subdivided and carry the image as `COLOR_0` on a white `image`
-//! material ([`super::image_colors`]).
+//! material ([`super::image_colors`]). With the risk map on, each cutter's walls are the refined
+//! walls of [`crate::cutting::wall_risk`] carrying the map's colours as `COLOR_0` on a white
+//! `risk map` material ([`super::risk_colors`]; beyond the far distance the wall colour, or the
+//! image where the walls show it).
 //!
 //! Colours: the scene's colours are sRGB; glTF's `baseColorFactor` is linear, so they are
 //! converted. Materials are dielectric (metallic 0) with a matte roughness.
@@ -37,6 +40,7 @@ use gltf_json as json;
 use json::validation::{Checked::Valid, USize64};
 
 use crate::cutting::cut_scene::{PartKind, PreviewGeometry, select};
+use crate::cutting::wall_risk::WallRisk;
 use crate::render::{CONTOUR_COLOR, WALL_MIX, WALL_TINT, srgb_to_linear};
 use crate::scene::{ModelStyle, Scene};
 
@@ -73,6 +77,37 @@ pub struct Document {
     pub root: json::Root,
     pub bin: Vec<u8>,
     pub stats: ExportStats,
+    /// What each material of `root.materials` draws, by material index (a viewer that shades
+    /// walls or removed pieces its own way reads this instead of parsing material names).
+    pub materials: Vec<MaterialRole>,
+}
+
+/// What a material draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct MaterialRole {
+    pub part: MaterialPart,
+    /// The scene model whose colour it carries (`None` for the contour and image materials,
+    /// which several models share).
+    pub model: Option<usize>,
+}
+
+/// The kind of geometry a material draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MaterialPart {
+    /// A model's own surface (kept part, uncut model, wireframe edges).
+    Surface,
+    /// Cut walls, slice walls and scalpel incision walls.
+    Wall,
+    /// The removed piece, translucent.
+    Removed,
+    Ribbon,
+    /// Contour lines where walls meet the surface.
+    Contour,
+    /// Walls, slices and ribbons showing the intensity image in their vertex colours.
+    Image,
+    /// Walls showing the risk map in their vertex colours.
+    Risk,
 }
 
 /// The material a primitive uses; the key that shares one material between primitives.
@@ -87,10 +122,17 @@ enum MaterialKey {
     Contour,
     /// Walls, slices and ribbons showing the image in their vertex colours.
     Image,
+    /// Walls showing the risk map in their vertex colours.
+    Risk,
 }
 
-/// Builds the document of `scene` as drawn with `geometry` (its [`crate::cutting::cut_scene::preview_geometry`]).
-pub fn scene_document(scene: &Scene, geometry: &PreviewGeometry) -> Document {
+/// Builds the document of `scene` as drawn with `geometry` (its [`crate::cutting::cut_scene::preview_geometry`])
+/// and, when the risk map is on, `risk` (its [`crate::cutting::wall_risk::wall_risk`]).
+pub fn scene_document(
+    scene: &Scene,
+    geometry: &PreviewGeometry,
+    risk: Option<&WallRisk>,
+) -> Document {
     let mut builder = Builder::default();
     let mut children = Vec::new();
     for (m, model) in scene.models.iter().enumerate() {
@@ -112,12 +154,37 @@ pub fn scene_document(scene: &Scene, geometry: &PreviewGeometry) -> Document {
             primitives.extend(builder.surface(scene, m, &incision, MaterialKey::Wall(m)));
         }
         for part in geometry.parts.iter().filter(|p| p.model == m) {
+            if let Some((wall, r)) = risk.and_then(|r| r.wall_for(part).map(|w| (w, r))) {
+                let base = mix(model.color, WALL_TINT, WALL_MIX);
+                let baked = super::risk_colors::bake(
+                    wall,
+                    &part.mesh,
+                    &r.settings,
+                    image_on(scene, part.kind),
+                    base,
+                );
+                primitives.extend(builder.colored_surface(
+                    scene,
+                    &baked.mesh,
+                    &baked.colors,
+                    Some(&baked.normals),
+                    MaterialKey::Risk,
+                ));
+                continue;
+            }
             if let Some(layer) = image_on(scene, part.kind) {
                 let base = match part.kind {
                     PartKind::Ribbon => model.color,
                     _ => mix(model.color, WALL_TINT, WALL_MIX),
                 };
-                primitives.extend(builder.image_surface(scene, &part.mesh, layer, base));
+                let (mesh, colors) = super::image_colors::bake(&part.mesh, layer, base);
+                primitives.extend(builder.colored_surface(
+                    scene,
+                    &mesh,
+                    &colors,
+                    None,
+                    MaterialKey::Image,
+                ));
                 continue;
             }
             let key = match part.kind {
@@ -183,6 +250,7 @@ pub fn scene_document(scene: &Scene, geometry: &PreviewGeometry) -> Document {
         root: builder.root,
         bin: builder.bin,
         stats: builder.stats,
+        materials: builder.roles,
     }
 }
 
@@ -204,6 +272,8 @@ struct Builder {
     root: json::Root,
     bin: Vec<u8>,
     materials: HashMap<MaterialKey, json::Index<json::Material>>,
+    /// One per material of `root.materials`, in order.
+    roles: Vec<MaterialRole>,
     stats: ExportStats,
 }
 
@@ -238,21 +308,25 @@ impl Builder {
         ))
     }
 
-    /// A wall showing the image: subdivided, the image baked into `COLOR_0` (linear, as glTF
-    /// wants), on a white material ([`super::image_colors`]).
-    fn image_surface(
+    /// A surface whose colours are in its vertices (sRGB per vertex, written linear as glTF
+    /// wants) on the white material of `key`: a wall showing the image or the risk map, baked by
+    /// [`super::image_colors`] or [`super::risk_colors`].
+    fn colored_surface(
         &mut self,
         scene: &Scene,
         mesh: &Mesh,
-        layer: &crate::scene::ImageLayer,
-        base: [f32; 3],
+        colors: &[[f32; 3]],
+        normals: Option<&[DVec3]>,
+        key: MaterialKey,
     ) -> Option<json::mesh::Primitive> {
         if mesh.triangles.is_empty() {
             return None;
         }
-        let (mesh, colors) = super::image_colors::bake(mesh, layer, base);
         let positions = self.positions(&mesh.positions);
-        let normals = self.normals(&mesh);
+        let normals = match normals {
+            Some(n) => self.normals_of(n),
+            None => self.normals(mesh),
+        };
         let linear: Vec<[f32; 3]> = colors
             .iter()
             .map(|c| c.map(|v| srgb_to_linear(v.clamp(0.0, 1.0))))
@@ -267,7 +341,7 @@ impl Builder {
         );
         let indices = self.indices(mesh.triangles.iter().flatten().copied());
         self.stats.triangles += mesh.triangles.len();
-        let material = self.material(scene, MaterialKey::Image);
+        let material = self.material(scene, key);
         let mut primitive = primitive(
             positions,
             Some(normals),
@@ -363,14 +437,12 @@ impl Builder {
 
     /// Area-weighted unit vertex normals of `mesh` (+Z for a vertex whose faces have no area).
     fn normals(&mut self, mesh: &Mesh) -> json::Index<json::Accessor> {
-        let mut sums = vec![DVec3::ZERO; mesh.positions.len()];
-        for t in 0..mesh.triangles.len() {
-            let n = mesh.face_normal_scaled(t);
-            for &v in &mesh.triangles[t] {
-                sums[v as usize] += n;
-            }
-        }
-        let data: Vec<[f32; 3]> = sums
+        self.normals_of(&vertex_normals(mesh))
+    }
+
+    /// A normal accessor of `normals`, each made unit length (+Z for a zero one).
+    fn normals_of(&mut self, normals: &[DVec3]) -> json::Index<json::Accessor> {
+        let data: Vec<[f32; 3]> = normals
             .iter()
             .map(|n| {
                 let unit = n.try_normalize().unwrap_or(DVec3::Z).as_vec3();
@@ -482,8 +554,9 @@ impl Builder {
                 true,
             ),
             MaterialKey::Contour => ("contour".to_string(), CONTOUR_COLOR, 1.0, false),
-            // White: the vertex colours are the image.
+            // White: the vertex colours are the image, or the risk map.
             MaterialKey::Image => ("image".to_string(), [1.0; 3], 1.0, false),
+            MaterialKey::Risk => ("risk map".to_string(), [1.0; 3], 1.0, false),
         };
         let opacity = opacity.clamp(0.0, 1.0);
         let [r, g, b] = srgb.map(|c| srgb_to_linear(c.clamp(0.0, 1.0)));
@@ -504,7 +577,35 @@ impl Builder {
             ..Default::default()
         });
         self.materials.insert(key, index);
+        self.roles.push(key.role());
         index
+    }
+}
+
+/// Area-weighted vertex normals of `mesh` (sums of the faces' scaled normals, not unit length).
+pub fn vertex_normals(mesh: &Mesh) -> Vec<DVec3> {
+    let mut sums = vec![DVec3::ZERO; mesh.positions.len()];
+    for t in 0..mesh.triangles.len() {
+        let n = mesh.face_normal_scaled(t);
+        for &v in &mesh.triangles[t] {
+            sums[v as usize] += n;
+        }
+    }
+    sums
+}
+
+impl MaterialKey {
+    fn role(self) -> MaterialRole {
+        let (part, model) = match self {
+            MaterialKey::Surface(m) => (MaterialPart::Surface, Some(m)),
+            MaterialKey::Wall(m) => (MaterialPart::Wall, Some(m)),
+            MaterialKey::Removed(m, _) => (MaterialPart::Removed, Some(m)),
+            MaterialKey::Ribbon(m) => (MaterialPart::Ribbon, Some(m)),
+            MaterialKey::Contour => (MaterialPart::Contour, None),
+            MaterialKey::Image => (MaterialPart::Image, None),
+            MaterialKey::Risk => (MaterialPart::Risk, None),
+        };
+        MaterialRole { part, model }
     }
 }
 
@@ -548,7 +649,7 @@ mod tests {
             let (mut scene, walls) = grooved_sphere_cut(marked);
             scene.cutters.clear();
             let geometry = crate::cutting::cut_scene::preview_geometry(&scene);
-            let doc = scene_document(&scene, &geometry);
+            let doc = scene_document(&scene, &geometry, None);
             let primitives = &doc.root.meshes[0].primitives;
             let materials: Vec<String> = primitives
                 .iter()

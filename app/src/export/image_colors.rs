@@ -17,51 +17,11 @@ pub const MAX_TRIANGLES: usize = 400_000;
 
 /// The subdivided mesh and one sRGB colour (0..=1) per vertex.
 pub fn bake(mesh: &Mesh, layer: &ImageLayer, base: [f32; 3]) -> (Mesh, Vec<[f32; 3]>) {
-    let spacing = layer.image.world_from_voxel.matrix3;
-    let voxel = [spacing.x_axis, spacing.y_axis, spacing.z_axis]
-        .iter()
-        .map(|c| c.length())
-        .fold(f64::INFINITY, f64::min)
-        .max(1e-6);
-    let longest = |t: &[u32; 3]| {
-        let p = t.map(|v| mesh.positions[v as usize]);
-        (0..3)
-            .map(|k| (p[k] - p[(k + 1) % 3]).length())
-            .fold(0.0, f64::max)
-    };
-    // The target edge length: a voxel, or longer when that would pass the triangle budget.
-    let area_in_voxels: f64 = mesh
-        .triangles
-        .iter()
-        .map(|t| (longest(t) / voxel).powi(2))
-        .sum();
-    let target = voxel * (area_in_voxels / MAX_TRIANGLES as f64).sqrt().max(1.0);
+    let target = target_edge(mesh, layer);
     let mut out = Mesh::default();
-    for t in &mesh.triangles {
-        let n = ((longest(t) / target).ceil() as u32).clamp(1, 256);
-        let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
-        // Row i has n - i + 1 points: a + (b - a) j / n + (c - a) i / n.
-        let mut row_start = Vec::with_capacity(n as usize + 1);
-        for i in 0..=n {
-            row_start.push(out.positions.len() as u32);
-            for j in 0..=(n - i) {
-                let p: DVec3 =
-                    a + (b - a) * (j as f64 / n as f64) + (c - a) * (i as f64 / n as f64);
-                out.positions.push(p);
-            }
-        }
-        for i in 0..n {
-            for j in 0..(n - i) {
-                let v0 = row_start[i as usize] + j;
-                let v1 = v0 + 1;
-                let v2 = row_start[i as usize + 1] + j;
-                out.triangles.push([v0, v1, v2]);
-                if j + 1 < n - i {
-                    let v3 = v2 + 1;
-                    out.triangles.push([v1, v3, v2]);
-                }
-            }
-        }
+    for t in 0..mesh.triangles.len() {
+        let n = ((longest_edge(mesh, t) / target).ceil() as u32).clamp(1, 256);
+        push_grid(&mut out, mesh.corners(t), n, |_, _| {});
     }
     let colors = out
         .positions
@@ -69,6 +29,57 @@ pub fn bake(mesh: &Mesh, layer: &ImageLayer, base: [f32; 3]) -> (Mesh, Vec<[f32;
         .map(|&p| layer.color_at(p, base))
         .collect();
     (out, colors)
+}
+
+/// Appends triangle `corners` split into an n × n grid of smaller ones to `out` (vertices of its
+/// own), calling `at(u, v)` for each new vertex in order: the point `a + (b − a) u + (c − a) v`.
+pub fn push_grid(out: &mut Mesh, corners: [DVec3; 3], n: u32, mut at: impl FnMut(f64, f64)) {
+    let [a, b, c] = corners;
+    // Row i has n - i + 1 points: a + (b - a) j / n + (c - a) i / n.
+    let mut row_start = Vec::with_capacity(n as usize + 1);
+    for i in 0..=n {
+        row_start.push(out.positions.len() as u32);
+        for j in 0..=(n - i) {
+            let (u, v) = (j as f64 / n as f64, i as f64 / n as f64);
+            out.positions.push(a + (b - a) * u + (c - a) * v);
+            at(u, v);
+        }
+    }
+    for i in 0..n {
+        for j in 0..(n - i) {
+            let v0 = row_start[i as usize] + j;
+            let v1 = v0 + 1;
+            let v2 = row_start[i as usize + 1] + j;
+            out.triangles.push([v0, v1, v2]);
+            if j + 1 < n - i {
+                let v3 = v2 + 1;
+                out.triangles.push([v1, v3, v2]);
+            }
+        }
+    }
+}
+
+/// The edge length a bake aims at for `mesh` under `layer`: about a voxel, longer where that
+/// would pass [`MAX_TRIANGLES`].
+pub fn target_edge(mesh: &Mesh, layer: &ImageLayer) -> f64 {
+    let spacing = layer.image.world_from_voxel.matrix3;
+    let voxel = [spacing.x_axis, spacing.y_axis, spacing.z_axis]
+        .iter()
+        .map(|c| c.length())
+        .fold(f64::INFINITY, f64::min)
+        .max(1e-6);
+    let area_in_voxels: f64 = (0..mesh.triangles.len())
+        .map(|t| (longest_edge(mesh, t) / voxel).powi(2))
+        .sum();
+    voxel * (area_in_voxels / MAX_TRIANGLES as f64).sqrt().max(1.0)
+}
+
+/// The longest edge of triangle `t` of `mesh`.
+pub fn longest_edge(mesh: &Mesh, t: usize) -> f64 {
+    let p = mesh.corners(t);
+    (0..3)
+        .map(|k| (p[k] - p[(k + 1) % 3]).length())
+        .fold(0.0, f64::max)
 }
 
 #[cfg(test)]

@@ -4,15 +4,20 @@
 //! - [`gltf`]: the scene as Preview draws it (kept parts, walls, removed pieces, ribbons, slices,
 //!   contours; one named node per structure) as a glTF 2.0 document;
 //! - [`glb`]: the binary container it is written in;
-//! - [`image_colors`]: the intensity image baked into wall vertex colours.
+//! - [`image_colors`]: the intensity image baked into wall vertex colours;
+//! - [`risk_colors`]: the risk map baked into wall vertex colours.
 //! - [`turntable`]: an orbit around the cut as a PNG sequence and a looping GIF, with progress
 //!   and cancel.
+//! - [`webpage`]: the cut scene as one self-contained web page (the `.glb` of every variant, a
+//!   three.js viewer and the page's data), with progress and cancel.
 
 pub mod glb;
 pub mod gltf;
 pub mod image_colors;
 pub mod meshes;
+pub mod risk_colors;
 pub mod turntable;
+pub mod webpage;
 
 use std::path::Path;
 
@@ -41,8 +46,13 @@ pub struct GlbExport {
 pub fn glb_of_scene(scene: &Scene) -> anyhow::Result<(Vec<u8>, GlbExport)> {
     let clock = std::time::Instant::now();
     let geometry = preview_geometry(scene);
+    let risk = crate::cutting::wall_risk::wall_risk(
+        scene,
+        &geometry,
+        &mut crate::cutting::wall_risk::CriticalIndexes::default(),
+    );
     let cut_ms = clock.elapsed().as_secs_f64() * 1e3;
-    let document = gltf::scene_document(scene, &geometry);
+    let document = gltf::scene_document(scene, &geometry, risk.as_ref());
     let json = serde_json::to_vec(&document.root).context("could not encode the glTF JSON")?;
     let bytes = glb::glb_bytes(&json, &document.bin)?;
     let summary = GlbExport {

@@ -180,9 +180,13 @@ fn write_turntable(
         }
         let clock = std::time::Instant::now();
         frame_scene.camera = orbit(&scene.camera, k, options.frames);
-        let mut image =
-            crate::view::render_with_preview(&mut renderer, &frame_scene, picture, preview.clone())
-                .with_context(|| format!("{}", out.display()))?;
+        let mut image = crate::annotate::risk_legend::render_with_legend(
+            &mut renderer,
+            &frame_scene,
+            picture,
+            preview.clone(),
+        )
+        .with_context(|| format!("{}", out.display()))?;
         if let Some(decorate) = decorate {
             decorate(&mut image, &frame_scene, preview.as_deref());
         }

@@ -44,6 +44,7 @@ pub enum Purpose {
     ExportImage,
     ExportMeshes,
     ExportTurntable,
+    ExportWebPage,
     SaveGesture,
     OpenImage,
 }
@@ -59,6 +60,7 @@ impl Purpose {
             Purpose::ExportImage => "Export Image",
             Purpose::ExportMeshes => "Export Cut Meshes to Folder",
             Purpose::ExportTurntable => "Export Turntable to Folder",
+            Purpose::ExportWebPage => "Export Web Page",
             Purpose::SaveGesture => "Save Gesture",
             Purpose::OpenImage => "Open Image",
         }
@@ -82,6 +84,8 @@ pub enum Action {
     ExportMeshesTo(PathBuf),
     /// Write the turntable of the Export Turntable dialog into this folder.
     ExportTurntableTo(PathBuf),
+    /// Write the scene as the web page of the Export Web Page dialog to this file.
+    ExportWebPageTo(PathBuf),
     Exit,
     Undo,
     Redo,

@@ -111,6 +111,7 @@ impl CutawayApp {
             export_image: Default::default(),
             export_meshes: Default::default(),
             export_turntable: Default::default(),
+            export_webpage: Default::default(),
             wgpu: cc.wgpu_render_state.clone(),
             cutter_tab: Default::default(),
             metrics: Default::default(),
@@ -174,6 +175,7 @@ impl eframe::App for CutawayApp {
                         ui,
                         &mut self.state,
                     ));
+                    crate::gui::panels::risk_panel::risk_panel_ui(ui, &mut self.state);
                     crate::gui::panels::image_panel::image_panel_ui(ui, &mut self.state);
                     if self.state.mode == Mode::Scalpel {
                         ui.add_space(10.0);
@@ -227,6 +229,7 @@ impl eframe::App for CutawayApp {
         self.state.commit_edit_if_idle(&ctx);
         self.update_preview(&ctx);
         crate::gui::viewport::live_cut::update_live(&mut self.state, &ctx);
+        crate::gui::risk_map::update(&mut self.state, &ctx);
         crate::gui::panels::metrics_panel::update(&mut self.state, &ctx);
         crate::gui::panels::compare_view::update(&mut self.state, &ctx);
 

@@ -346,6 +346,18 @@ impl CutawayApp {
         });
     }
 
+    pub(super) fn export_webpage_to(&mut self, ctx: &egui::Context, path: PathBuf) {
+        let scene = self.state.scene.clone();
+        let settings = self.state.export_webpage.clone();
+        let metrics = self.state.metrics.options();
+        self.spawn(ctx, "Exporting a web page", move |progress| {
+            let message = crate::gui::panels::webpage_export::export(
+                &scene, &settings, metrics, &path, progress,
+            )?;
+            Ok(JobOutput::Done(message))
+        });
+    }
+
     /// In Preview, recompute the cut parts whenever the cutters or their targets changed.
     /// Elsewhere (Edit mode) a preview the cutters no longer match is dropped: nothing draws
     /// it, and it holds every cut model's kept part and walls.

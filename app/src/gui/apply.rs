@@ -47,6 +47,7 @@ impl CutawayApp {
             Action::ExportImageTo(path) => self.export_image_to(ctx, path),
             Action::ExportMeshesTo(dir) => self.export_meshes_to(ctx, dir),
             Action::ExportTurntableTo(dir) => self.export_turntable_to(ctx, dir),
+            Action::ExportWebPageTo(path) => self.export_webpage_to(ctx, path),
             Action::Exit => {
                 self.state.exiting = true;
                 self.state.recovery.discard();

@@ -94,6 +94,7 @@ pub fn frame_inputs(app: &AppState, size: [u32; 2]) -> FrameInputs {
     if app.mode == Mode::Scalpel {
         inputs.deltas.extend(app.viewport.scalpel.delta());
     }
+    inputs.risk = crate::gui::risk_map::current(app);
     if app.mode == Mode::Edit {
         let active = app.viewport.editor.active_cutter();
         let hidden = |i: usize| app.cutters_hidden && i < app.hidden_cutters && Some(i) != active;

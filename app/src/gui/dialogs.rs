@@ -73,6 +73,13 @@ impl CutawayApp {
                         .await
                         .map(|f| vec![f.path().to_path_buf()])
                         .unwrap_or_default(),
+                    Purpose::ExportWebPage => dialog
+                        .add_filter("Web page", &["html"])
+                        .set_file_name("scene.html")
+                        .save_file()
+                        .await
+                        .map(|f| vec![f.path().to_path_buf()])
+                        .unwrap_or_default(),
                     Purpose::ExportImage => dialog
                         .add_filter("PNG image", &["png"])
                         .set_file_name("cutaway.png")
@@ -114,6 +121,9 @@ impl CutawayApp {
             }
             Purpose::ExportMeshes => self.apply(ctx, Action::ExportMeshesTo(first)),
             Purpose::ExportTurntable => self.apply(ctx, Action::ExportTurntableTo(first)),
+            Purpose::ExportWebPage => {
+                self.apply(ctx, Action::ExportWebPageTo(web_page_path(first)))
+            }
             Purpose::OpenImage => self.apply(ctx, Action::OpenImage(first)),
             Purpose::SaveGesture => {
                 let path = with_extension(first, "json");
@@ -167,5 +177,21 @@ fn with_extension(path: PathBuf, ext: &str) -> PathBuf {
         path
     } else {
         path.with_extension(ext)
+    }
+}
+
+/// A page's file: `.html` or `.htm` as chosen, else `.html` added (`scene` → `scene.html`,
+/// `scene.v2` → `scene.v2.html`), so the file opens as a page.
+fn web_page_path(path: PathBuf) -> PathBuf {
+    let is_page = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"));
+    if is_page {
+        path
+    } else {
+        let mut name = path.into_os_string();
+        name.push(".html");
+        PathBuf::from(name)
     }
 }

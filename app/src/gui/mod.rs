@@ -27,6 +27,7 @@ mod first_press_tests;
 pub mod job_output;
 pub mod jobs;
 pub mod panels;
+pub mod risk_map;
 #[cfg(test)]
 mod smoothness_tests;
 pub mod state;

@@ -11,8 +11,42 @@ use csg::Mesh;
 use glam::DVec3;
 use wgpu::util::DeviceExt as _;
 
-use super::gpu_data::{Segment, Vertex};
+use super::gpu_data::{RiskVertex, Segment};
 use crate::cutting::vertices::mesh_vertices;
+use crate::cutting::wall_risk::{RiskWall, WallRisk};
+
+/// The vertices and triangles of a wall coloured by the risk map: one vertex per triangle
+/// corner (a corner's distance belongs to its triangle, see [`crate::cutting::wall_risk`]) with
+/// the corner's ramp position under the map's settings, and the normal of `source` (the wall it was
+/// refined from) interpolated there, unnormalized, so the refined wall shades exactly as
+/// `source` drawn as it is.
+pub fn risk_vertices(
+    wall: &RiskWall,
+    risk: &WallRisk,
+    source: &Mesh,
+) -> (Vec<RiskVertex>, Vec<[u32; 3]>) {
+    let smooth = mesh_vertices(source);
+    let normal = |v: u32| DVec3::from(smooth[v as usize].normal_in_world.map(f64::from));
+    let normals: Vec<[f32; 3]> = wall
+        .origin
+        .iter()
+        .map(|o| o.interpolate(source, normal).as_vec3().to_array())
+        .collect();
+    let mut vertices = Vec::with_capacity(wall.mesh.triangles.len() * 3);
+    for (t, corners) in wall.mesh.triangles.iter().zip(&wall.corner_mm) {
+        for (&v, &mm) in t.iter().zip(corners) {
+            vertices.push(RiskVertex {
+                position_in_world: wall.mesh.positions[v as usize].as_vec3().to_array(),
+                normal_in_world: normals[v as usize],
+                ramp: risk.settings.ramp_position(f64::from(mm)),
+            });
+        }
+    }
+    let triangles = (0..wall.mesh.triangles.len() as u32)
+        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+        .collect();
+    (vertices, triangles)
+}
 
 /// Every undirected edge of `mesh` once, as a segment (for wireframe drawing).
 pub fn mesh_edges(mesh: &Mesh) -> Vec<Segment> {
@@ -90,10 +124,10 @@ impl GpuMesh {
     /// Uploads prepared vertices and triangles (`None` when there is no triangle). The index
     /// buffer is also a storage buffer, so the renderer can hide faces in place (see
     /// `crate::cutting::delta`).
-    pub fn upload_vertices(
+    pub fn upload_vertices<V: bytemuck::Pod>(
         device: &wgpu::Device,
         label: &str,
-        vertices: &[Vertex],
+        vertices: &[V],
         triangles: &[[u32; 3]],
     ) -> Option<GpuMesh> {
         if triangles.is_empty() || vertices.is_empty() {

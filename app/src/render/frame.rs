@@ -12,6 +12,7 @@ use cutter::Camera;
 use glam::DVec3;
 
 use crate::cutting::delta::MeshDelta;
+use crate::cutting::wall_risk::WallRisk;
 use crate::io::intensity::{IntensityImage, Window};
 
 /// A cutter as the editor shows it in Edit mode (built by `crate::cutting::overlay`).
@@ -139,6 +140,11 @@ pub trait CutDrawing: fmt::Debug + Send + Sync {
     fn part(&self, index: usize) -> PartDraw<'_>;
     /// Thick contour lines: (model index, polyline).
     fn contours(&self) -> &[(usize, Vec<DVec3>)];
+    /// The index into `risk.walls` of the refined wall computed for part `index`, if any.
+    fn risk_wall(&self, risk: &WallRisk, index: usize) -> Option<usize> {
+        let _ = (risk, index);
+        None
+    }
 }
 
 /// A rectangle of a larger image, for rendering exports bigger than the device's maximum texture
@@ -179,6 +185,10 @@ pub struct FrameInputs {
     /// scalpel stroke in progress): a delta applies to the model whose mesh is its `base` (same
     /// `Arc`), replaced by the cut or not. See [`crate::cutting::delta`].
     pub deltas: Vec<Arc<MeshDelta>>,
+    /// The risk map of `cut`'s walls ([`crate::cutting::wall_risk`]): a wall part it has a
+    /// refined wall for ([`CutDrawing::risk_wall`]) is drawn coloured by distance instead.
+    /// `None`: walls as usual.
+    pub risk: Option<Arc<WallRisk>>,
 }
 
 impl FrameInputs {
@@ -197,6 +207,7 @@ impl FrameInputs {
             deterministic: false,
             tile: None,
             deltas: Vec::new(),
+            risk: None,
         }
     }
 

@@ -7,6 +7,20 @@ use bytemuck::{Pod, Zeroable};
 /// vertices of deltas and walls. Keep in sync with `VertexIn` in `mesh.wgsl`.
 pub use crate::cutting::vertices::Vertex;
 
+/// One vertex of a wall coloured by the risk map. Keep in sync with `RiskIn` in `risk.wgsl`.
+/// Laid out as [`Vertex`] (the same buffer layout), with the ramp position in the last place.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct RiskVertex {
+    pub position_in_world: [f32; 3],
+    /// The smooth normal of the wall it was refined from, interpolated at this point (not unit
+    /// length; the shader normalizes per fragment).
+    pub normal_in_world: [f32; 3],
+    /// Where the corner's distance lies on the ramp
+    /// ([`crate::scene::risk::RiskSettings::ramp_position`]): ≤ 0 red, 0..1 graded, ≥ 1 beyond.
+    pub ramp: f32,
+}
+
 /// One line segment, drawn as a screen-space quad of the draw's width. Keep in sync with
 /// `SegmentIn` in `lines.wgsl`.
 #[repr(C)]
@@ -75,6 +89,7 @@ mod tests {
         assert_eq!(size_of::<DrawUniform>(), 48);
         assert_eq!(size_of::<BlitUniform>(), 16);
         assert_eq!(size_of::<Vertex>(), 28);
+        assert_eq!(size_of::<RiskVertex>(), size_of::<Vertex>());
         assert_eq!(size_of::<Segment>(), 24);
         assert!(size_of::<FrameUniform>() as u64 <= DRAW_UNIFORM_STRIDE);
     }

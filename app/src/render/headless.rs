@@ -5,6 +5,8 @@
 //! On a machine with no GPU, Mesa's lavapipe (`WGPU_BACKEND=vulkan`) or llvmpipe over EGL
 //! (`WGPU_BACKEND=gl`) serve; snapshot tests pin Vulkan because the two differ in a few pixels.
 
+use std::sync::Arc;
+
 use anyhow::Context as _;
 
 use super::{FrameInputs, OutputTarget, Renderer, Tile};
@@ -18,6 +20,10 @@ pub struct HeadlessRenderer {
     queue: wgpu::Queue,
     renderer: Renderer,
     adapter: wgpu::AdapterInfo,
+    /// The risk map of the last preview drawn (computed by the cutting layer, not here).
+    risk: crate::cutting::wall_risk::RiskCache,
+    /// The risk map the last `crate::view::render_with_preview` drew, if any.
+    drawn: Option<Arc<crate::cutting::wall_risk::WallRisk>>,
 }
 
 impl HeadlessRenderer {
@@ -63,6 +69,8 @@ impl HeadlessRenderer {
             queue,
             renderer,
             adapter: adapter.get_info(),
+            risk: Default::default(),
+            drawn: None,
         })
     }
 
@@ -80,6 +88,22 @@ impl HeadlessRenderer {
     /// reduced resolution (`crate::io::intensity::fit`).
     pub fn max_texture_dimension_3d(&self) -> u32 {
         self.device.limits().max_texture_dimension_3d
+    }
+
+    /// The risk map the last `crate::view::render_with_preview` drew (for its legend), if any.
+    pub fn drawn_risk(&self) -> Option<Arc<crate::cutting::wall_risk::WallRisk>> {
+        self.drawn.clone()
+    }
+
+    /// The risk maps computed for this renderer's frames (the caller computes them; a map is
+    /// kept while its preview is drawn again), and the one drawn last.
+    pub fn risk_maps(
+        &mut self,
+    ) -> (
+        &mut crate::cutting::wall_risk::RiskCache,
+        &mut Option<Arc<crate::cutting::wall_risk::WallRisk>>,
+    ) {
+        (&mut self.risk, &mut self.drawn)
     }
 
     /// True for software rasterizers (lavapipe, llvmpipe).
@@ -135,8 +159,8 @@ impl HeadlessRenderer {
 
     /// The UI thread's share of a frame, as in the window's paint callback: [`Renderer::prepare`]
     /// (uploads and command recording) and the queue submission, in milliseconds. Then waits for
-    /// the GPU (not timed), so the next call starts idle. For the timing tests
-    /// (`CUTAWAY_UI_TIMINGS=1`); the image is not read back.
+    /// the GPU (not timed), so the next call starts idle. For the timing benchmarks (ignored
+    /// tests run with `--ignored`); the image is not read back.
     pub fn time_prepare(&mut self, frame: &FrameInputs) -> anyhow::Result<f64> {
         let started = std::time::Instant::now();
         let mut encoder = self

@@ -147,6 +147,17 @@ impl ImageRenderer {
         true
     }
 
+    /// The layout of the image's bind group, once an image was prepared (the risk map's
+    /// pipeline over the image is made with it).
+    pub fn layout(&self) -> Option<&wgpu::BindGroupLayout> {
+        self.layout.as_ref()
+    }
+
+    /// The uploaded image's bind group (group 2), when there is one this frame.
+    pub fn bind_group(&self) -> Option<&wgpu::BindGroup> {
+        self.uploaded.as_ref().map(|u| &u.bind_group)
+    }
+
     /// Sets the image pipeline and its bind group (group 2) on `pass`; false when there is no
     /// image this frame.
     pub fn bind(&self, pass: &mut wgpu::RenderPass<'_>) -> bool {

@@ -44,6 +44,8 @@
 //! ## What is drawn (thesis 3.4)
 //! - Models: per-model colour, opacity (< 1 → order-independent transparency), solid or
 //!   wireframe, visibility. Two-sided headlight shading; back faces darker.
+//! - With [`FrameInputs::risk`], the cut walls it covers coloured by their distance to the
+//!   critical structures (red, graded, then the wall's own look; `shaders/risk.wgsl`).
 //! - [`ViewMode::Edit`]: the cutters of [`FrameInputs::overlays`] semi-transparent, plane outlines
 //!   on top, the highlighted plane in orange.
 //! - [`ViewMode::Preview`] with [`FrameInputs::cut`]: per cutter the kept part, the walls in
@@ -66,13 +68,17 @@ pub mod headless;
 pub mod image_layer;
 mod pipelines;
 mod renderer;
+pub mod risk_layer;
 
 pub use frame::{
     CutDrawing, CutterOverlay, DrawStyle, FrameInputs, ImageDraw, Look, ModelDraw, PartDraw,
     PartLook, Tile, ViewMode,
 };
 pub use headless::HeadlessRenderer;
-pub use renderer::{CONTOUR_COLOR, GpuCensus, Renderer, UploadStats, WALL_MIX, WALL_TINT};
+pub use renderer::{
+    BACK_FACE, CONTOUR_COLOR, CONTOUR_OFFSET, CONTOUR_WIDTH_PX, GpuCensus, Renderer, UploadStats,
+    WALL_MIX, WALL_TINT,
+};
 
 /// The render target [`Renderer::paint`] draws into.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -140,6 +146,33 @@ pub mod shaders {
         include_str!("shaders/mesh.wgsl"),
         include_str!("shaders/image.wgsl")
     );
+    pub const RISK: &str = include_str!("shaders/risk.wgsl");
+    pub const RISK_IMAGE: &str = include_str!("shaders/risk_image.wgsl");
+
+    /// The risk map's shader: the ramp's colours of [`crate::cutting::wall_risk`] (linear light)
+    /// as WGSL constants, `mesh.wgsl`, with `image.wgsl` when the walls show the image, and
+    /// `risk.wgsl` (+ `risk_image.wgsl`). One definition of the colours serves the shader, the
+    /// glTF export and the legends.
+    pub fn risk(with_image: bool) -> String {
+        use crate::cutting::wall_risk::{RISK_BAND_END, RISK_BAND_START, RISK_NEAR_COLOR};
+        let constant = |name: &str, srgb: [f32; 3]| {
+            let [r, g, b] = srgb.map(super::srgb_to_linear);
+            format!("const {name}: vec3<f32> = vec3<f32>({r:.8}, {g:.8}, {b:.8});\n")
+        };
+        let mut source = constant("RISK_NEAR_COLOR", RISK_NEAR_COLOR)
+            + &constant("RISK_BAND_START", RISK_BAND_START)
+            + &constant("RISK_BAND_END", RISK_BAND_END)
+            + MESH;
+        if with_image {
+            source += include_str!("shaders/image.wgsl");
+        }
+        source += RISK;
+        if with_image {
+            source += RISK_IMAGE;
+        }
+        source
+    }
+
     /// Every shader with its file name.
     pub const ALL: [(&str, &str); 6] = [
         ("mesh.wgsl", MESH),
@@ -159,7 +192,12 @@ mod tests {
     /// GPU-less CI machine.
     #[test]
     fn shaders_validate_with_naga() {
-        for (name, source) in shaders::ALL {
+        let risk = [
+            ("risk.wgsl", shaders::risk(false)),
+            ("risk.wgsl + image", shaders::risk(true)),
+        ];
+        let assembled = risk.iter().map(|(n, s)| (*n, s.as_str()));
+        for (name, source) in shaders::ALL.into_iter().chain(assembled) {
             let module = naga::front::wgsl::parse_str(source)
                 .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
             let mut validator = naga::valid::Validator::new(

@@ -24,7 +24,7 @@ use super::gpu_data::{BlitUniform, DRAW_UNIFORM_STRIDE, DrawUniform, FrameUnifor
 use super::pipelines::Pipelines;
 use super::{FrameInputs, OutputTarget, srgb_to_linear};
 use crate::cutting::delta::MeshDelta;
-use draw_list::CachedPreview;
+use draw_list::{CachedPreview, CachedRisk};
 use index_patches::IndexPatch;
 use targets::Targets;
 use uniforms::{
@@ -38,6 +38,13 @@ pub const WALL_TINT: [f32; 3] = [0.98, 0.93, 0.78];
 pub const WALL_MIX: f32 = 0.6;
 /// Contour line colour (sRGB).
 pub const CONTOUR_COLOR: [f32; 3] = [0.08, 0.07, 0.1];
+/// Contour line width in pixels at 800 px image height.
+pub const CONTOUR_WIDTH_PX: f32 = 3.0;
+/// Brightness of back faces relative to front faces.
+pub const BACK_FACE: f32 = 0.55;
+/// How far contour lines are pulled toward the eye (so they win the depth test against the
+/// surfaces they lie on), as a fraction of the scene's bounding radius.
+pub const CONTOUR_OFFSET: f64 = 0.004;
 /// Cached uploads not used for this many frames are dropped.
 const CACHE_FRAMES: u64 = 120;
 
@@ -105,6 +112,8 @@ pub struct Renderer {
     targets: Option<Targets>,
     models: HashMap<usize, CachedMesh>,
     preview: Option<CachedPreview>,
+    /// The refined walls of the risk map being drawn.
+    risk: Option<CachedRisk>,
     overlay_meshes: Vec<Option<GpuMesh>>,
     overlay_lines: Vec<Option<GpuSegments>>,
     /// Uploaded delta patches, by the delta's address.
@@ -119,6 +128,7 @@ pub struct Renderer {
     scene_bbox: csg::Aabb,
     frame_index: u64,
     image: super::image_layer::ImageRenderer,
+    risk_pipelines: super::risk_layer::RiskRenderer,
     /// Hands the allocator's free pages back after a preview or model uploads were dropped.
     free_pages: crate::platform::free_pages::FreePages,
 }
@@ -160,6 +170,7 @@ impl Renderer {
             targets: None,
             models: HashMap::new(),
             preview: None,
+            risk: None,
             overlay_meshes: Vec::new(),
             overlay_lines: Vec::new(),
             deltas: HashMap::new(),
@@ -169,6 +180,7 @@ impl Renderer {
             scene_bbox: csg::Aabb::EMPTY,
             frame_index: 0,
             image: Default::default(),
+            risk_pipelines: Default::default(),
             free_pages: Default::default(),
         }
     }
@@ -210,6 +222,10 @@ impl Renderer {
             }
             c.preview_bytes += p.contours.values().map(|s| s.byte_size()).sum::<u64>();
         }
+        for gpu in self.risk.iter().flat_map(|r| r.walls.iter().flatten()) {
+            c.preview_parts += 1;
+            c.preview_bytes += gpu.byte_size();
+        }
         c
     }
 
@@ -247,6 +263,11 @@ impl Renderer {
         let on = |walls: bool| {
             image_ready && image.is_some_and(|l| if walls { l.on_walls } else { l.on_slices })
         };
+        if frame.risk.is_some() {
+            let image_layout = on(true).then(|| self.image.layout()).flatten();
+            self.risk_pipelines
+                .prepare(device, &self.pipelines, image_layout);
+        }
         let draws = self.upload_and_list(device, frame, [on(true), on(false)]);
         let (draws, uniforms) = draws;
         self.apply_patches(device, encoder);

@@ -22,6 +22,7 @@ pub mod model_groups;
 pub mod open;
 pub mod orientation;
 pub mod regions;
+pub mod risk;
 pub mod ruler;
 mod settings;
 pub mod units;
@@ -60,6 +61,8 @@ pub struct Scene {
     pub variants: Variants,
     /// Distances measured between surface points ([`crate::scene::ruler`]).
     pub rulers: Vec<Ruler>,
+    /// The walls coloured by their distance to critical structures ([`crate::scene::risk`]).
+    pub risk: risk::RiskSettings,
 }
 
 impl Default for Scene {
@@ -79,6 +82,7 @@ impl Default for Scene {
             image: None,
             variants: Variants::default(),
             rulers: Vec::new(),
+            risk: Default::default(),
         }
     }
 }
@@ -139,7 +143,9 @@ impl Scene {
             image,
             variants: _,
             rulers,
+            risk,
         } = self;
+        risk.check().map_err(|e| format!("risk: {e}"))?;
         if let Some(i) = rulers
             .iter()
             .position(|r| !(r.a.is_finite() && r.b.is_finite()))

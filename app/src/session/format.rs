@@ -44,6 +44,9 @@ pub struct SessionFile {
     /// Measured distances ([`crate::session::rulers`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub rulers: Vec<crate::session::rulers::RulerEntry>,
+    /// Walls coloured by their distance to critical structures ([`crate::session::risk`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub risk: Option<crate::session::risk::RiskEntry>,
 }
 
 /// `orientation`: world directions of the patient's superior and anterior (unit, orthogonal).

@@ -13,6 +13,7 @@
 //! | `planes` of one cutter | [`MAX_PLANES_PER_CUTTER`] |
 //! | `views.ribbons.count`, `views.slices.count` | [`MAX_SUB_CUTTERS`] |
 //! | `views.*.width`, plane and camera coordinates | finite, magnitude ≤ [`crate::io::MAX_ABS_COORDINATE`] |
+//! | `risk.critical` names | [`MAX_MODELS`] |
 //!
 //! Errors are one line naming the field (`cutter 2: views.ribbons.count 1000000000 is more than
 //! the limit of 1000`); the caller adds the file name.
@@ -47,6 +48,14 @@ pub fn check(file: &SessionFile) -> anyhow::Result<()> {
     }
     check_cutters(&file.cutters, "")?;
     crate::session::rulers::check(&file.rulers)?;
+    if let Some(risk) = &file.risk
+        && risk.critical.len() > MAX_MODELS
+    {
+        anyhow::bail!(
+            "risk.critical: {} names, more than the limit of {MAX_MODELS}",
+            risk.critical.len()
+        );
+    }
     if file.variants.len() > MAX_VARIANTS {
         anyhow::bail!(
             "variants: {} variants, more than the limit of {MAX_VARIANTS}",

@@ -40,6 +40,7 @@ pub mod meshes;
 pub mod paths;
 pub mod picks;
 pub mod recovery;
+pub mod risk;
 pub mod rulers;
 pub mod undo;
 pub mod variants;
@@ -270,6 +271,9 @@ pub fn scene_from_file(
     if let Some(entry) = &file.image {
         scene.image = Some(crate::session::image::load(entry, folder, &scene)?);
     }
+    if let Some(entry) = &file.risk {
+        scene.risk = crate::session::risk::load(entry, &scene).context("risk")?;
+    }
     scene.sanity_check().map_err(anyhow::Error::msg)?;
     Ok(scene)
 }
@@ -329,6 +333,7 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
         variants,
         active_variant,
         rulers: crate::session::rulers::entries(&scene.rulers),
+        risk: crate::session::risk::entry(&scene.risk),
     }
 }
 

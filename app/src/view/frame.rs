@@ -7,6 +7,7 @@
 use std::sync::Arc;
 
 use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
+use crate::cutting::wall_risk::WallRisk;
 use crate::render::{
     CutDrawing, DrawStyle, FrameInputs, ImageDraw, Look, ModelDraw, PartDraw, PartLook, ViewMode,
 };
@@ -83,6 +84,11 @@ impl CutDrawing for PreviewGeometry {
 
     fn contours(&self) -> &[(usize, Vec<glam::DVec3>)] {
         &self.contours
+    }
+
+    fn risk_wall(&self, risk: &WallRisk, index: usize) -> Option<usize> {
+        let part = self.parts.get(index)?;
+        risk.walls.iter().position(|w| w.matches(part))
     }
 }
 

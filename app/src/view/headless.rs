@@ -63,7 +63,8 @@ pub fn render_mode(scene: &Scene, options: &RenderPngOptions) -> ViewMode {
 
 /// [`render_with`] with the cut parts already computed (`None`: computed here when the mode
 /// needs them), so a caller can report on the cuts it shows. In Edit mode, given parts are drawn
-/// under the cutter overlays (the GUI's live cut).
+/// under the cutter overlays (the GUI's live cut). With the scene's risk map on, the walls are
+/// coloured by distance ([`crate::cutting::wall_risk`], computed once per preview).
 pub fn render_with_preview(
     renderer: &mut HeadlessRenderer,
     scene: &Scene,
@@ -76,15 +77,19 @@ pub fn render_with_preview(
         frame.look.background[3] = 0.0;
     }
     frame.deterministic = options.deterministic;
-    if mode == ViewMode::Preview {
+    let shown = if mode == ViewMode::Preview {
         // The cut is computed here, not by the renderer.
-        frame.show_cut(Some(
-            preview.unwrap_or_else(|| Arc::new(preview_geometry(scene))),
-        ));
+        Some(preview.unwrap_or_else(|| Arc::new(preview_geometry(scene))))
     } else if mode == ViewMode::Edit {
         // Edit mode with the cut parts drawn under the cutters, as the GUI's live cut does.
-        frame.show_cut(preview);
-    }
+        preview
+    } else {
+        None
+    };
+    let (risk_maps, drawn_risk) = renderer.risk_maps();
+    frame.risk = shown.as_ref().and_then(|cut| risk_maps.map(scene, cut));
+    *drawn_risk = frame.risk.clone();
+    frame.show_cut(shown);
     if mode == ViewMode::Edit {
         frame.overlays = scene
             .cutters

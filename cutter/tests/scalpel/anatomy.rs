@@ -1,17 +1,16 @@
 //! Strokes on real anatomy (`CUTAWAY_ANATOMY`; skipped with a printed reason when absent).
 
 use super::*;
+use csg::testkit::{Resource, skip};
 
 #[test]
 fn strokes_on_real_anatomy() {
     let Some(dir) = anatomy_dir() else {
-        println!("skipped: no anatomy (set CUTAWAY_ANATOMY)");
-        return;
+        return skip(Resource::Data, "no anatomy (set CUTAWAY_ANATOMY)");
     };
     let path = dir.join("knee_vhf_left_denver/VHF_Left_Muscle_Gracilis_smooth.stl");
     let Some(mesh) = read_binary_stl(&path) else {
-        println!("skipped: cannot read {}", path.display());
-        return;
+        return skip(Resource::Data, format!("cannot read {}", path.display()));
     };
     // A stroke along the muscle's long axis on its surface, as a groove and as a slit.
     let bb = mesh.bbox();
@@ -102,13 +101,11 @@ fn strokes_on_real_anatomy() {
 fn refusal_rate_on_real_anatomy() {
     use cutter::scalpel::survey::{mean_edge, random_strokes, survey};
     let Some(dir) = anatomy_dir() else {
-        println!("skipped: no anatomy (set CUTAWAY_ANATOMY)");
-        return;
+        return skip(Resource::Data, "no anatomy (set CUTAWAY_ANATOMY)");
     };
     let path = dir.join("knee_vhf_left_denver/VHF_Left_Muscle_Gracilis_smooth.stl");
     let Some(mesh) = read_binary_stl(&path) else {
-        println!("skipped: cannot read {}", path.display());
-        return;
+        return skip(Resource::Data, format!("cannot read {}", path.display()));
     };
     let strokes = random_strokes(&mesh, 10, 11);
     let h = mean_edge(&mesh);

@@ -6,8 +6,7 @@ use super::*;
 #[test]
 fn a_two_million_triangle_load_and_index_never_block_the_window() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("big");
     // 1,997,120 triangles, written as binary PLY.

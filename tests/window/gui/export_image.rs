@@ -5,8 +5,7 @@ use super::*;
 #[test]
 fn export_image_writes_the_viewport_picture_at_any_size() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("export");
     let mut h = harness(&dir, Vec::new(), false);
@@ -39,10 +38,10 @@ fn export_image_writes_the_viewport_picture_at_any_size() {
     )
     .to_image();
     view.save(dir.join("view.png")).unwrap();
-    let d = image_compare::difference(&exported, &view);
+    let d = image_compare::difference(&exported, &view, &image_compare::SAME_PICTURE);
     println!("export vs viewport: {d}");
     assert!(
-        d.within_tolerance(),
+        d.within(&image_compare::SAME_PICTURE),
         "export differs from the viewport: {d} ({})",
         dir.display()
     );
@@ -98,10 +97,10 @@ fn export_image_writes_the_viewport_picture_at_any_size() {
     for p in reference.pixels_mut() {
         p[3] = 255;
     }
-    let d = image_compare::difference(&composited, &reference);
+    let d = image_compare::difference(&composited, &reference, &image_compare::SAME_PICTURE);
     println!("2x transparent export vs cutaway render: {d}");
     assert!(
-        d.within_tolerance(),
+        d.within(&image_compare::SAME_PICTURE),
         "export differs from `cutaway render`: {d} ({})",
         dir.display()
     );

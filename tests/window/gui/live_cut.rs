@@ -5,8 +5,7 @@ use super::*;
 #[test]
 fn painting_in_edit_mode_shows_the_live_cut() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("live");
     let mut h = harness(&dir, Vec::new(), false);

@@ -33,8 +33,7 @@ fn click_checkbox(h: &mut Harness<'_, CutawayApp>, label: &str) {
 #[test]
 fn the_models_list_names_structures_groups_folders_and_filters() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("models-list");
     let atlas = write_atlas(&dir);
@@ -154,19 +153,17 @@ fn the_models_list_names_structures_groups_folders_and_filters() {
 #[test]
 fn the_brain_atlas_folder_lists_one_named_coloured_model_per_file() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let anatomy = std::env::var_os("CUTAWAY_ANATOMY")
         .map(PathBuf::from)
         .unwrap_or_else(|| PathBuf::from("../shared/anatomy"));
     let atlas = anatomy.join("head_brain_spl_atlas");
     if !atlas.is_dir() {
-        println!(
-            "skipped: {} not found (set CUTAWAY_ANATOMY)",
-            atlas.display()
+        return skip(
+            Resource::Data,
+            format!("{} not found (set CUTAWAY_ANATOMY)", atlas.display()),
         );
-        return;
     }
     let dir = temp_dir("brain-atlas");
     let mut h = harness(&dir, vec![atlas], false);
@@ -198,8 +195,7 @@ fn the_brain_atlas_folder_lists_one_named_coloured_model_per_file() {
 #[test]
 fn the_default_scene_is_the_head_atlas_seen_from_the_front() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("default-head");
     let mut h = harness(&dir, Vec::new(), false);

@@ -6,8 +6,7 @@ use super::*;
 #[test]
 fn window_loads_the_default_scene_switches_modes_and_saves_a_session() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("smoke");
     let mut h = harness(&dir, Vec::new(), false);
@@ -104,8 +103,7 @@ fn window_loads_the_default_scene_switches_modes_and_saves_a_session() {
 #[test]
 fn hiding_a_model_is_undone_and_redone_with_the_keyboard() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("undo");
     let mut h = harness(&dir, Vec::new(), false);
@@ -150,8 +148,7 @@ fn hiding_a_model_is_undone_and_redone_with_the_keyboard() {
 #[test]
 fn a_crash_autosave_is_offered_and_can_be_discarded() {
     if let Some(reason) = no_adapter() {
-        println!("skipped: {reason}");
-        return;
+        return skip(Resource::Gpu, reason);
     }
     let dir = temp_dir("recovery");
     std::fs::write(dir.join("recovery-session.json"), "{}").unwrap();

@@ -4,17 +4,15 @@ use super::*;
 use crate::render::ViewMode;
 use crate::test_support::{
     box_cutter, deterministic_frame, median_and_max, plain_cutter, two_renderers_or_skip,
-    ui_timings_requested, with_sphere,
+    with_sphere,
 };
 
 /// Per re-cut, the window's way (the live cut drawn from its delta) and the way before it
 /// (the whole kept part cut, materialized and uploaded, as `preview_geometry_with` gives
 /// it), each with a renderer of its own, in the same run.
 #[test]
+#[ignore = "a benchmark: prints figures and checks none; run it with `--ignored --nocapture`"]
 fn live_recut_ui_thread_cost_on_two_million_triangles() {
-    if !ui_timings_requested() {
-        return;
-    }
     let Some((mut renderer, mut whole)) = two_renderers_or_skip() else {
         return;
     };

@@ -141,7 +141,7 @@ fn gpu_available() -> bool {
     match crate::render::HeadlessRenderer::new() {
         Ok(_) => true,
         Err(e) => {
-            println!("skipped: {e:#}");
+            csg::testkit::skip(csg::testkit::Resource::Gpu, format!("{e:#}"));
             false
         }
     }

@@ -84,8 +84,13 @@ fn compare_one(
     }
     let renderer = worker.renderer.as_mut().expect("renderer");
     let render_options = RenderPngOptions::new(tile[0], tile[1]);
-    let image = crate::view::render_with_preview(renderer, &shown, &render_options, Some(geometry))
-        .map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
+    let image = crate::annotate::risk_legend::render_with_legend(
+        renderer,
+        &shown,
+        &render_options,
+        Some(geometry),
+    )
+    .map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
     Ok((
         image,
         VariantMetrics {

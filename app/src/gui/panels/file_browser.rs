@@ -45,6 +45,9 @@ impl FileBrowser {
             Purpose::ExportImage => {
                 egui_file::FileDialog::save_file().default_filename("cutaway.png")
             }
+            Purpose::ExportWebPage => {
+                egui_file::FileDialog::save_file().default_filename("scene.html")
+            }
             Purpose::SaveGesture => {
                 egui_file::FileDialog::save_file().default_filename("gesture.json")
             }

@@ -72,6 +72,9 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
             if item(ui, "Export Turntable…", "") {
                 app.export_turntable.open = true;
             }
+            if item(ui, "Export Web Page…", "") {
+                app.export_webpage.open = true;
+            }
             ui.menu_button("Open Example", |ui| {
                 let atlas = crate::anatomy::default_scene::NAME;
                 if ui.button(format!("{atlas} (real anatomy)")).clicked() {
@@ -223,6 +226,7 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
         ui.ctx(),
         app,
     ));
+    actions.extend(crate::gui::panels::webpage_export::window_ui(ui.ctx(), app));
     actions
 }
 

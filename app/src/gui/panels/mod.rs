@@ -12,6 +12,8 @@ pub mod key_reference;
 pub mod menus;
 pub mod metrics_panel;
 pub mod models_panel;
+pub mod risk_panel;
 pub mod status_bar;
 pub mod turntable_export;
 pub mod variants_panel;
+pub mod webpage_export;

@@ -142,8 +142,7 @@ mod tests {
     #[test]
     fn the_export_job_reports_frames_and_a_cancel_writes_nothing() {
         if let Err(e) = crate::render::HeadlessRenderer::new() {
-            println!("skipped: {e:#}");
-            return;
+            return csg::testkit::skip(csg::testkit::Resource::Gpu, format!("{e:#}"));
         }
         let root =
             std::env::temp_dir().join(format!("cutaway-gui-turntable-{}", std::process::id()));

@@ -1,5 +1,5 @@
-//! The export dialogs' settings (Export Image, Export Cut Meshes, Export Turntable): what the
-//! dialogs show and the exports read.
+//! The export dialogs' settings (Export Image, Export Cut Meshes, Export Turntable, Export Web
+//! Page): what the dialogs show and the exports read.
 
 use crate::export::turntable::TurntableOptions;
 
@@ -101,4 +101,13 @@ impl Default for TurntableSettings {
             options: TurntableOptions::default(),
         }
     }
+}
+
+/// The Export Web Page dialog's settings.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct WebPageSettings {
+    /// The dialog is open.
+    pub open: bool,
+    /// The page's title; empty: [`crate::export::webpage::DEFAULT_TITLE`].
+    pub title: String,
 }

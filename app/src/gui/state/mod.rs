@@ -66,6 +66,8 @@ pub struct AppState {
     pub export_meshes: export_settings::ExportMeshSettings,
     /// Export Turntable settings (frames, frame size, GIF).
     pub export_turntable: export_settings::TurntableSettings,
+    /// Export Web Page settings (title).
+    pub export_webpage: export_settings::WebPageSettings,
     /// The GPU, when the window runs on wgpu (None under a non-wgpu test harness).
     pub wgpu: Option<egui_wgpu::RenderState>,
     /// Which cutter tab is shown.
@@ -108,6 +110,7 @@ impl AppState {
             || self.metrics.busy()
             || self.compare.busy()
             || self.atlas.busy()
+            || self.viewport.risk.busy()
     }
 
     /// Every scene this window holds: the current one, the last committed, the one before a

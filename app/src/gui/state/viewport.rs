@@ -97,6 +97,8 @@ pub struct ViewportState {
     pub show_marker: bool,
     /// The models' ray-pick trees (double-click focus, the first press of a cutter).
     pub picks: crate::cutting::pick::ScenePicks,
+    /// The walls' distances to the critical structures, mapped on a worker.
+    pub risk: crate::gui::risk_map::RiskMap,
 }
 
 impl ViewportState {
@@ -118,6 +120,7 @@ impl ViewportState {
             nav: None,
             show_marker: true,
             picks: Default::default(),
+            risk: Default::default(),
         }
     }
 

@@ -11,6 +11,7 @@ pub mod cut_view;
 pub mod live_cut;
 pub mod navigation;
 pub mod orientation_marker;
+pub mod risk_legend;
 pub mod ruler;
 pub mod scalpel_mode;
 pub mod view_menu;
@@ -83,6 +84,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     }
     crate::gui::viewport::ruler::paint_rulers(&painter, rect, app);
     crate::gui::panels::metrics_panel::paint_closest_points(&painter, rect, app);
+    crate::gui::viewport::risk_legend::paint_risk_legend(&painter, rect, app);
     if app.viewport.show_marker && !app.scene.models.is_empty() {
         crate::gui::viewport::orientation_marker::orientation_marker_ui(&painter, rect, &app.scene);
     }

@@ -11,21 +11,23 @@ use csg::Mesh;
 use glam::DVec3;
 
 use super::index_patches::{IndexPatch, hidden_patches};
-use super::{CONTOUR_COLOR, CachedDelta, CachedMesh, Renderer, WALL_MIX, WALL_TINT};
+use super::{
+    BACK_FACE, CONTOUR_COLOR, CONTOUR_OFFSET, CONTOUR_WIDTH_PX, CachedDelta, CachedMesh, Renderer,
+    WALL_MIX, WALL_TINT,
+};
+use crate::cutting::wall_risk::WallRisk;
 use crate::cutting::wall_split;
-use crate::render::draw_data::{GpuMesh, GpuSegments, cutter_outline_segments, polyline_segments};
+use crate::render::draw_data::{
+    GpuMesh, GpuSegments, cutter_outline_segments, polyline_segments, risk_vertices,
+};
 use crate::render::gpu_data::DrawUniform;
 use crate::render::{CutDrawing, DrawStyle, FrameInputs, PartLook, ViewMode, srgb_to_linear};
 
-/// Contour line width in pixels at 800 px image height.
-const CONTOUR_WIDTH_PX: f32 = 3.0;
 const WIREFRAME_WIDTH_PX: f32 = 1.0;
 /// Cutter overlay colours (sRGB) and opacities.
 const CUTTER_FILL: [f32; 3] = [0.35, 0.6, 0.95];
 const CUTTER_OUTLINE: [f32; 3] = [0.08, 0.28, 0.75];
 const HIGHLIGHT: [f32; 3] = [1.0, 0.55, 0.1];
-/// Brightness of back faces relative to front faces.
-const BACK_FACE: f32 = 0.55;
 
 pub(super) struct CachedPreview {
     pub(super) preview: Weak<dyn CutDrawing>,
@@ -33,6 +35,13 @@ pub(super) struct CachedPreview {
     pub(super) parts: Vec<Option<GpuMesh>>,
     /// Per model: its contour polylines.
     pub(super) contours: HashMap<usize, GpuSegments>,
+}
+
+/// The refined walls of a risk map, uploaded.
+pub(super) struct CachedRisk {
+    pub(super) risk: Weak<WallRisk>,
+    /// One per `WallRisk::walls` entry.
+    pub(super) walls: Vec<Option<GpuMesh>>,
 }
 
 /// What one draw call draws.
@@ -46,6 +55,8 @@ pub(super) enum Source {
     Delta(usize),
     /// A per-frame overlay mesh.
     Overlay(usize),
+    /// `WallRisk::walls[i]` of the frame's risk map.
+    Risk(usize),
 }
 
 #[derive(Clone, Copy)]
@@ -53,6 +64,9 @@ pub(super) enum Draw {
     Mesh(Source, u32),
     /// A mesh showing the intensity image ([`crate::render::image_layer`]).
     ImageMesh(Source, u32),
+    /// A wall coloured by the risk map ([`crate::render::risk_layer`]); true: beyond the far
+    /// distance it shows the image.
+    RiskMesh(Source, u32, bool),
     Edges(Source, u32),
     Contour(usize, u32),
     Lines(usize, u32),
@@ -100,7 +114,7 @@ impl Renderer {
             (uniforms.len() - 1) as u32
         };
         let radius = 0.5 * self.scene_bbox.diagonal().max(1e-9);
-        let contour_bias = (radius * 0.004) as f32;
+        let contour_bias = (radius * CONTOUR_OFFSET) as f32;
 
         // Preview parts.
         // Edit mode shows the live cut under the cutters when the GUI provides one.
@@ -134,6 +148,36 @@ impl Renderer {
             if self.preview.take().is_some() {
                 self.free_pages.note_large_free();
             }
+        }
+        // The risk map's walls, drawn in place of the preview's walls they were refined from.
+        let risk = frame.risk.clone().filter(|_| preview.is_some());
+        match &risk {
+            Some(r) => {
+                let stale = self
+                    .risk
+                    .as_ref()
+                    .is_none_or(|c| !c.risk.upgrade().is_some_and(|q| Arc::ptr_eq(&q, r)));
+                if stale {
+                    let walls: Vec<Option<GpuMesh>> = (0..r.walls.len())
+                        .map(|j| {
+                            let cut = preview.as_ref()?;
+                            let source =
+                                (0..cut.part_count()).find(|&i| cut.risk_wall(r, i) == Some(j))?;
+                            let (vertices, triangles) =
+                                risk_vertices(&r.walls[j], r, cut.part(source).mesh);
+                            GpuMesh::upload_vertices(device, "risk map wall", &vertices, &triangles)
+                        })
+                        .collect();
+                    for w in &walls {
+                        self.uploads.mesh(w.as_ref());
+                    }
+                    self.risk = Some(CachedRisk {
+                        risk: Arc::downgrade(r),
+                        walls,
+                    });
+                }
+            }
+            None => self.risk = None,
         }
         let replaced = |m: usize| preview.as_ref().is_some_and(|p| p.replaced(m));
 
@@ -311,6 +355,12 @@ impl Renderer {
                     },
                     PartLook::Wall | PartLook::SliceWall => {
                         let u = push_uniform(wall, 1.0, true, 0.0, 0.0);
+                        let warned = risk.as_ref().and_then(|r| p.risk_wall(r, i));
+                        if let Some(j) = warned {
+                            list.opaque
+                                .push(Draw::RiskMesh(Source::Risk(j), u, image_walls));
+                            continue;
+                        }
                         let image =
                             image_walls || (part.look == PartLook::SliceWall && image_slices);
                         list.opaque.push(if image {
@@ -408,6 +458,7 @@ impl Renderer {
             Source::Part(i) => self.preview.as_ref()?.parts.get(i)?.as_ref(),
             Source::Overlay(i) => self.overlay_meshes.get(i)?.as_ref(),
             Source::Delta(key) => self.deltas.get(&key)?.gpu.as_ref(),
+            Source::Risk(i) => self.risk.as_ref()?.walls.get(i)?.as_ref(),
         }
     }
 
@@ -416,7 +467,7 @@ impl Renderer {
             Draw::Edges(source, _) => self.mesh(source)?.edges.as_ref(),
             Draw::Contour(model, _) => self.preview.as_ref()?.contours.get(&model),
             Draw::Lines(i, _) => self.overlay_lines.get(i)?.as_ref(),
-            Draw::Mesh(..) | Draw::ImageMesh(..) => None,
+            Draw::Mesh(..) | Draw::ImageMesh(..) | Draw::RiskMesh(..) => None,
         }
     }
 }

@@ -145,6 +145,23 @@ impl Renderer {
                     pass.set_index_buffer(mesh.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
                     pass.draw_indexed(0..mesh.index_count, 0, 0..1);
                 }
+                Draw::RiskMesh(source, u, over_image) => {
+                    let Some(mesh) = self.mesh(source) else {
+                        continue;
+                    };
+                    let image = over_image.then(|| self.image.bind_group()).flatten();
+                    if !self.risk_pipelines.bind(pass, image) {
+                        continue;
+                    }
+                    pass.set_bind_group(
+                        1,
+                        &self.draw_bind_group,
+                        &[u * DRAW_UNIFORM_STRIDE as u32],
+                    );
+                    pass.set_vertex_buffer(0, mesh.vertex_buffer.slice(..));
+                    pass.set_index_buffer(mesh.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+                }
                 Draw::Edges(_, u) | Draw::Contour(_, u) | Draw::Lines(_, u) => {
                     let Some(segments) = self.segments(draw) else {
                         continue;

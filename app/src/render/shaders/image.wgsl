@@ -59,9 +59,9 @@ fn srgb_to_linear_1(c: f32) -> f32 {
     return select(pow((c + 0.055) / 1.055, 2.4), c / 12.92, c <= 0.04045);
 }
 
-@fragment
-fn fs_image(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
-    let flat_normal = face_normal(in.position_in_world);
+// The shaded colour of a wall showing the image at this fragment (fs_image's colour, also the
+// wall beyond the risk map's far distance in risk_image.wgsl).
+fn image_wall_color(in: VertexOut, front_facing: bool, flat_normal: vec3<f32>) -> vec3<f32> {
     let s = sample_image(in.position_in_world);
     // The window maps to display grey (as a viewer shows it), so the grey is sRGB-encoded.
     let grey = srgb_to_linear_1(clamp((s.x - image.values.z) * image.values.w, 0.0, 1.0));
@@ -71,5 +71,11 @@ fn fs_image(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locati
     // much across a flat wall.
     let light = dot(shade_color(vec3<f32>(1.0), in, front_facing, flat_normal), vec3<f32>(1.0 / 3.0));
     let scan = vec3<f32>(grey) * mix(1.0, clamp(light, 0.0, 1.2), 0.3);
-    return vec4<f32>(mix(structure, scan, weight), 1.0);
+    return mix(structure, scan, weight);
+}
+
+@fragment
+fn fs_image(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let flat_normal = face_normal(in.position_in_world);
+    return vec4<f32>(image_wall_color(in, front_facing, flat_normal), 1.0);
 }

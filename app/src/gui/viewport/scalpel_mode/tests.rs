@@ -427,16 +427,15 @@ mod view {
 
 /// The UI thread's cost of a scalpel step on a 2M-triangle model: the step itself, what the
 /// scene and the view get from it, and the renderer's frame. Prints figures; no timing
-/// assertion. Heavy, so it runs only with
-/// `CUTAWAY_UI_TIMINGS=1 WGPU_BACKEND=vulkan cargo test -p cutaway --lib ui_thread_cost -- --nocapture`.
+/// assertion, so it is ignored in `cargo test`; run it with
+/// `WGPU_BACKEND=vulkan cargo test -p cutaway --lib ui_thread_cost -- --ignored --nocapture`.
 #[cfg(test)]
 mod timings {
     use super::*;
     use crate::cutting::delta::MeshDelta;
     use crate::render::ViewMode;
     use crate::test_support::{
-        deterministic_frame, median_and_max, two_renderers_or_skip, ui_timings_requested,
-        with_sphere,
+        deterministic_frame, median_and_max, two_renderers_or_skip, with_sphere,
     };
     use std::time::Instant;
 
@@ -444,10 +443,8 @@ mod timings {
     /// way before it (the whole mesh copied into the scene and uploaded), each with a renderer
     /// of its own, in the same run.
     #[test]
+    #[ignore = "a benchmark: prints figures and checks none; run it with `--ignored --nocapture`"]
     fn scalpel_step_ui_thread_cost_on_two_million_triangles() {
-        if !ui_timings_requested() {
-            return;
-        }
         let Some((mut renderer, mut whole)) = two_renderers_or_skip() else {
             return;
         };
