@@ -47,6 +47,39 @@ impl CutKind {
     }
 }
 
+/// Which way a cutter's boxes go into the target: the first box goes along the view either way
+/// (the strip is painted in the view plane).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CutDirection {
+    /// Every plane keeps the direction of the plane before it, so the whole cutter goes along
+    /// the view it was painted in: the way you look at the surface is the way you look into it,
+    /// and the opening is what was painted as seen from there.
+    #[default]
+    View,
+    /// Each rolled plane goes along the inward normal of its box's front face (thesis 3.3.2):
+    /// the cut follows the surface, a trench of even depth under it.
+    Normal,
+}
+
+impl CutDirection {
+    /// The name used by the gesture and session formats (`view`, `normal`).
+    pub fn name(self) -> &'static str {
+        match self {
+            CutDirection::View => "view",
+            CutDirection::Normal => "normal",
+        }
+    }
+
+    /// Parses a format name (`view`, `normal`).
+    pub fn from_name(name: &str) -> Option<CutDirection> {
+        match name {
+            "view" => Some(CutDirection::View),
+            "normal" => Some(CutDirection::Normal),
+            _ => None,
+        }
+    }
+}
+
 /// Why a list of planes is not a valid cutter. Each variant names the offending plane or box.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum CutterError {
@@ -113,6 +146,28 @@ impl Cutter {
     /// Number of boxes (planes − 1).
     pub fn box_count(&self) -> usize {
         self.planes.len().saturating_sub(1)
+    }
+
+    /// The depth of the cutter: its leading plane's, which the planes it rolls out take.
+    pub fn depth(&self) -> f64 {
+        self.leading().depth()
+    }
+
+    /// Which way the boxes go: [`CutDirection::View`] when every plane goes the first plane's
+    /// way (within a thousandth of a radian; a cutter cut along one view, or one box), else
+    /// [`CutDirection::Normal`]. So a cutter opened for editing goes on as it was made.
+    pub fn direction(&self) -> CutDirection {
+        let first = self.planes.first().map(|p| p.back_direction());
+        let shared = first.is_some_and(|d| {
+            self.planes
+                .iter()
+                .all(|p| p.back_direction().dot(d) > 1.0 - 5e-7)
+        });
+        if shared {
+            CutDirection::View
+        } else {
+            CutDirection::Normal
+        }
     }
 
     /// The leading plane (the last one).
