@@ -160,6 +160,7 @@ fn with_cutter(mut scene: Scene, views: CutterViews) -> Scene {
             kind: CutKind::Straight,
             smooth: false,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: cutter::CutDirection::Normal,
             planes: corner_planes(),
         },
         views,

@@ -266,9 +266,25 @@ impl Editor {
         self.settings.kind = kind;
     }
 
-    /// Sets the cut direction of the planes rolled from now on (the planes made stay as they are).
-    pub fn set_direction(&mut self, direction: CutDirection) {
+    /// Sets the cut direction, for the current cutter (the planes it rolls from now on, and its
+    /// rounding when smooth: an undoable action, checked like every edit) and the next ones.
+    /// Returns true when the cutter changed.
+    pub fn set_direction(&mut self, direction: CutDirection) -> bool {
         self.settings.direction = direction;
+        match &self.cutter {
+            Some(c) if c.direction != direction && c.kind != CutKind::Wedge => {
+                let c = Cutter {
+                    direction,
+                    ..c.clone()
+                };
+                if !self.accepts(&c, "the cut direction") {
+                    return false;
+                }
+                self.commit(Some(c));
+                true
+            }
+            _ => false,
+        }
     }
 
     /// Sets the segment spacing ω (clamped to at least 1).
@@ -552,15 +568,15 @@ impl Editor {
 
     fn extrude_to(&mut self, px: DVec2, shift: bool) -> bool {
         let ray = self.ray(px);
+        let Some(mut cutter) = self.cutter.take() else {
+            return false;
+        };
         let settings = RollSettings {
             delta: self.settings.delta,
             spacing: self.settings.spacing,
             straight: shift || self.settings.kind == CutKind::Straight,
-            keep_direction: self.settings.direction == CutDirection::View,
+            keep_direction: cutter.direction == CutDirection::View,
             keep_depth: self.settings.rules == Rules::Reach,
-        };
-        let Some(mut cutter) = self.cutter.take() else {
-            return false;
         };
         let before = cutter.clone();
         let changed = {
@@ -651,9 +667,13 @@ impl Editor {
                         self.settings.kind,
                         self.settings.smooth,
                     );
-                    let levels = self.settings.levels;
+                    let (levels, direction) = (self.settings.levels, self.settings.direction);
                     let created = created
-                        .map(|c| Cutter { levels, ..c })
+                        .map(|c| Cutter {
+                            levels,
+                            direction,
+                            ..c
+                        })
                         .map(|c| self.to_default_depth(c));
                     if let Some(c) = created.filter(|c| self.accepts(c, "the new cutter")) {
                         self.selected = Some(c.planes.len() - 1);
@@ -774,6 +794,7 @@ fn changed_span(before: &Cutter, after: &Cutter) -> Cutter {
         kind: after.kind,
         smooth: false,
         levels: 0,
+        direction: after.direction,
         planes: after.planes[lo..=hi].to_vec(),
     }
 }

@@ -229,6 +229,7 @@ pub fn initialize(
         kind,
         smooth,
         levels: crate::subdivision::DEFAULT_LEVELS,
+        direction: crate::cutter::CutDirection::Normal,
         planes: vec![p0, p1],
     };
     if kind == CutKind::Wedge {
@@ -568,6 +569,7 @@ fn roll(
             kind: CutKind::Curving,
             smooth: false,
             levels: crate::subdivision::DEFAULT_LEVELS,
+            direction: crate::cutter::CutDirection::Normal,
             planes: vec![*prev, lead],
         };
         pair.sanity_check().ok().map(|_| lead)

@@ -175,6 +175,7 @@ mod tests {
             kind: CutKind::Curving,
             smooth: false,
             levels: 0,
+            direction: crate::cutter::CutDirection::Normal,
             planes: vec![plane(-20.0), plane(0.0), plane(20.0)],
         };
         let viewport = DVec2::new(800.0, 600.0);

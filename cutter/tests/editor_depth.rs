@@ -215,7 +215,7 @@ fn the_boxes_go_along_the_view_or_the_normal() {
             .iter()
             .all(|p| p.back_direction().dot(forward) > 1.0 - 1e-9);
         assert_eq!(along_view, direction == CutDirection::View, "{direction:?}");
-        assert_eq!(c.direction(), direction);
+        assert_eq!(c.direction, direction);
         // The depth is the same all along.
         for p in &c.planes {
             assert!((p.depth() - c.depth()).abs() < 1e-6 * c.depth());

@@ -191,7 +191,7 @@ pub fn run(args: &ExtrudeArgs, levels: u32) -> anyhow::Result<()> {
             "planes": result.cutter.planes.len(),
             "boxes": result.cutter.box_count(),
             "kind": result.cutter.kind.name(),
-            "direction": result.cutter.direction().name(),
+            "direction": result.cutter.direction.name(),
             "closed": closed,
             "max_surface_gap": result.max_surface_gap,
             "delta": result.delta,

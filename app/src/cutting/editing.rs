@@ -330,11 +330,11 @@ impl EditorSlot {
         };
         active.editor.set_kind(init.kind);
         active.editor.set_spacing(init.spacing);
-        active.editor.set_direction(init.direction);
-        // Both run: each sets the next cutters' setting, and either may change the cutter.
+        // Each runs: each sets the next cutters' setting, and any may change the cutter.
+        let direction = active.editor.set_direction(init.direction);
         let smooth = active.editor.set_smooth(init.smooth);
         let levels = active.editor.set_levels(init.levels);
-        if smooth || levels {
+        if smooth || levels || direction {
             self.mirror_into(scene);
             return true;
         }

@@ -157,7 +157,7 @@ impl CutawayApp {
                     let c = &self.state.scene.cutters[i].cutter;
                     (self.state.cutter_init.smooth, self.state.cutter_init.levels) =
                         (c.smooth, c.levels);
-                    self.state.cutter_init.direction = c.direction();
+                    self.state.cutter_init.direction = c.direction;
                     self.state
                         .viewport
                         .editor

@@ -223,6 +223,7 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
             kind: cutter::CutKind::Curving,
             smooth: false,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: cutter::CutDirection::Normal,
             planes: [
                 [
                     DVec3::new(0.0, -11.0, 1.0),
