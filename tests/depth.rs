@@ -83,11 +83,8 @@ fn paint_and_roll(
     }
     events.push(EditorEvent::release(b.x, b.y));
     // The handle: the middle of the leading plane, 10δ below the stroke.
-    let delta = EditorSettings::delta_for_target(
-        &scene.models[target].mesh.bbox(),
-        &scene.bbox(),
-        &camera,
-    );
+    let delta =
+        EditorSettings::delta_for_target(&scene.models[target].mesh.bbox(), &scene.bbox(), &camera);
     let down = (project(centre - up * roll) - project(centre)).normalize();
     let handle = (a + b) * 0.5 + down * (10.0 * delta / px_size);
     events.push(EditorEvent::press(handle.x, handle.y));
@@ -121,7 +118,16 @@ fn newcomer(scene: &Scene, rules: Rules, smooth: bool) -> Gesture {
     let skin = 0;
     assert_eq!(scene.models[skin].name, "skin");
     let forehead = on_surface(scene, skin, &scene.camera, DVec3::new(0.0, 0.0, 50.0));
-    paint_and_roll(scene, skin, scene.camera, forehead, 70.0, 50.0, rules, smooth)
+    paint_and_roll(
+        scene,
+        skin,
+        scene.camera,
+        forehead,
+        70.0,
+        50.0,
+        rules,
+        smooth,
+    )
 }
 
 /// Exposure of `focus` from the scene's camera after the cuts, and with nothing else in the way.
@@ -138,9 +144,14 @@ fn exposure(scene: &Scene, focus: &str) -> (f64, f64) {
         .exposure_after;
     let model = scene.models.iter().find(|m| m.name == focus).unwrap();
     let camera = scene.camera;
-    let alone =
-        cutaway::metrics::exposure::exposure(&model.mesh, &[], camera.eye, camera.forward(), 20_000)
-            .unwrap();
+    let alone = cutaway::metrics::exposure::exposure(
+        &model.mesh,
+        &[],
+        camera.eye,
+        camera.forward(),
+        20_000,
+    )
+    .unwrap();
     (after, alone)
 }
 
@@ -170,10 +181,7 @@ fn the_newcomers_first_cut_shows_the_ventricles_through_the_forehead() {
     for v in ["left lateral ventricle", "right lateral ventricle"] {
         assert!(reaches.iter().any(|n| n == v), "{v} not in {reaches:?}");
     }
-    assert!(
-        reaches.iter().any(|n| n.contains("caudate")),
-        "{reaches:?}"
-    );
+    assert!(reaches.iter().any(|n| n.contains("caudate")), "{reaches:?}");
     // Rolling kept the depth: every plane has it.
     for p in &c.planes {
         assert!((p.depth() - depth).abs() < 1e-6 * depth);
@@ -184,7 +192,10 @@ fn the_newcomers_first_cut_shows_the_ventricles_through_the_forehead() {
     let opening = replay.opening.expect("the opening");
     println!("opening: {opening:?}, ratio {:.3}", opening.ratio());
     assert!(opening.ratio() >= 0.9, "{opening:?}");
-    assert!(opening.covered() >= 0.9 && opening.outside() <= 0.1, "{opening:?}");
+    assert!(
+        opening.covered() >= 0.9 && opening.outside() <= 0.1,
+        "{opening:?}"
+    );
 
     // The same hand under the first rules: a few millimetres deep, a slit, nothing seen.
     let first = replay_on_scene(&scene, &newcomer(&scene, Rules::Delta, false)).unwrap();
@@ -204,7 +215,10 @@ fn the_rounded_newcomer_cut_is_as_wide_as_painted() {
     let replay = replay_on_scene(&scene, &newcomer(&scene, Rules::Reach, true)).unwrap();
     assert!(replay.cutter.smooth);
     let opening = replay.opening.expect("the opening");
-    println!("rounded on the head: {opening:?}, ratio {:.3}", opening.ratio());
+    println!(
+        "rounded on the head: {opening:?}, ratio {:.3}",
+        opening.ratio()
+    );
     assert!(opening.covered() >= 0.9, "{opening:?}");
     assert!(opening.outside() <= 0.1, "{opening:?}");
 }
@@ -223,9 +237,12 @@ fn sphere_scene() -> Scene {
     for p in &mut ball.positions {
         p.y -= 12.0;
     }
-    scene
-        .models
-        .push(SceneModel::new("ball", "ball.obj", Arc::new(ball), [0.3, 0.3, 0.9]));
+    scene.models.push(SceneModel::new(
+        "ball",
+        "ball.obj",
+        Arc::new(ball),
+        [0.3, 0.3, 0.9],
+    ));
     scene.camera = Camera {
         eye: DVec3::new(0.0, -300.0, 0.0),
         target: DVec3::ZERO,
@@ -240,7 +257,16 @@ fn the_opening_on_a_sphere_is_what_was_painted() {
     let scene = sphere_scene();
     let centre = on_surface(&scene, 0, &scene.camera, DVec3::new(0.0, 0.0, 20.0));
     for smooth in [false, true] {
-        let gesture = paint_and_roll(&scene, 0, scene.camera, centre, 50.0, 40.0, Rules::Reach, smooth);
+        let gesture = paint_and_roll(
+            &scene,
+            0,
+            scene.camera,
+            centre,
+            50.0,
+            40.0,
+            Rules::Reach,
+            smooth,
+        );
         let replay = replay_on_scene(&scene, &gesture).unwrap();
         let opening = replay.opening.expect("the opening");
         println!(
@@ -266,19 +292,58 @@ fn anatomy() -> Option<PathBuf> {
     p.is_dir().then_some(p)
 }
 
-/// Paints across `target` of `scene` from the side `toward_eye` points to (a stroke half the
-/// structure's width across its middle, rolled a third of its height down) and checks that the
-/// window opens what was painted, sharp and rounded.
+/// The width of `target` as `camera` sees it along the screen-horizontal line through `p`:
+/// how far either way the view rays through that line still meet it.
+fn seen_width(scene: &Scene, target: usize, camera: &Camera, p: DVec3) -> f64 {
+    let (right, _, _) = camera.basis();
+    let mesh = &scene.models[target].mesh;
+    let index = csg::SpatialIndex::build(mesh);
+    let meets = |q: DVec3| {
+        let px = camera.project(VIEWPORT, q).expect("in view");
+        let ray = camera.ray_through_pixel(VIEWPORT, px);
+        index
+            .ray_cast(mesh, ray.origin, ray.direction, f64::INFINITY)
+            .is_some()
+    };
+    let step = 0.25;
+    let reach = |sign: f64| {
+        let mut d = 0.0;
+        while meets(p + right * (sign * (d + step))) {
+            d += step;
+        }
+        d
+    };
+    reach(-1.0) + reach(1.0)
+}
+
+/// Paints across `target` of `scene` from the side `toward_eye` points to (a stroke across 60 %
+/// of the structure's width as seen, above its middle, rolled a fifth of its height down, as a
+/// hand paints within what it sees) and checks that the window opens what was painted, sharp and
+/// rounded.
 fn check_opening(scene: &Scene, target: usize, toward_eye: DVec3, what: &str) {
     let bbox = scene.models[target].mesh.bbox();
     let camera = Camera::framing(&bbox, toward_eye, DVec3::Z, 30.0);
-    let (right, up, _) = camera.basis();
+    let (_, up, _) = camera.basis();
     let extent = bbox.max - bbox.min;
-    let width = 0.5 * extent.dot(right.abs());
-    let roll = 0.3 * extent.dot(up.abs());
-    let centre = on_surface(scene, target, &camera, bbox.center() + up * (0.15 * extent.z));
+    let roll = 0.2 * extent.dot(up.abs());
+    let centre = on_surface(
+        scene,
+        target,
+        &camera,
+        bbox.center() + up * (0.15 * extent.z),
+    );
+    let width = 0.6 * seen_width(scene, target, &camera, centre);
     for smooth in [false, true] {
-        let gesture = paint_and_roll(scene, target, camera, centre, width, roll, Rules::Reach, smooth);
+        let gesture = paint_and_roll(
+            scene,
+            target,
+            camera,
+            centre,
+            width,
+            roll,
+            Rules::Reach,
+            smooth,
+        );
         let replay = replay_on_scene(scene, &gesture).unwrap();
         assert_eq!(replay.target, target, "{what}");
         let opening = replay.opening.expect("the opening");
@@ -312,7 +377,11 @@ fn the_opening_on_the_knee_is_what_was_painted() {
         scene.models.push(SceneModel::structure(model, color));
     }
     let skin = scene.models.iter().position(|m| m.name == "skin").unwrap();
-    let patella = scene.models.iter().position(|m| m.name == "patella").unwrap();
+    let patella = scene
+        .models
+        .iter()
+        .position(|m| m.name == "patella")
+        .unwrap();
     let front = front_of(&scene, skin, patella);
     check_opening(&scene, skin, front, "knee phantom");
 
@@ -336,8 +405,12 @@ fn the_opening_on_the_knee_is_what_was_painted() {
             return;
         }
         let mesh = cutaway::io::read_mesh(&path).unwrap();
-        real.models
-            .push(SceneModel::new(file, &path, Arc::new(mesh), [0.9, 0.85, 0.7]));
+        real.models.push(SceneModel::new(
+            file,
+            &path,
+            Arc::new(mesh),
+            [0.9, 0.85, 0.7],
+        ));
     }
     let front = front_of(&real, 0, 2);
     check_opening(&real, 0, front, "real tibia");
@@ -394,16 +467,42 @@ fn probe_rounded_spill() {
     let scene = sphere_scene();
     let centre = on_surface(&scene, 0, &scene.camera, DVec3::new(0.0, 0.0, 20.0));
     for smooth in [false, true] {
-        let gesture = paint_and_roll(&scene, 0, scene.camera, centre, 50.0, 40.0, Rules::Reach, smooth);
+        let gesture = paint_and_roll(
+            &scene,
+            0,
+            scene.camera,
+            centre,
+            50.0,
+            40.0,
+            Rules::Reach,
+            smooth,
+        );
         let replay = replay_on_scene(&scene, &gesture).unwrap();
         let c = &replay.cutter;
         let project = |p: DVec3| scene.camera.project(VIEWPORT, p).unwrap();
         let (mut lo, mut hi) = (DVec2::splat(1e9), DVec2::splat(-1e9));
-        for p in &c.planes { for q in [p.front_top, p.front_bottom] { let v = project(q); lo = lo.min(v); hi = hi.max(v); } }
+        for p in &c.planes {
+            for q in [p.front_top, p.front_bottom] {
+                let v = project(q);
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+        }
         let index = csg::TargetIndex::build(scene.models[0].mesh.clone()).unwrap();
-        let parts = cutaway::cutting::cut_parts::cut_exact(&index, replay.scene.cutters.last().unwrap()).unwrap();
+        let parts =
+            cutaway::cutting::cut_parts::cut_exact(&index, replay.scene.cutters.last().unwrap())
+                .unwrap();
         let (mut clo, mut chi) = (DVec2::splat(1e9), DVec2::splat(-1e9));
-        for l in &parts.contour { for q in l { let v = project(*q); clo = clo.min(v); chi = chi.max(v); } }
-        println!("smooth {smooth}: painted {lo} {hi}  contour {clo} {chi}  depth {}", c.depth());
+        for l in &parts.contour {
+            for q in l {
+                let v = project(*q);
+                clo = clo.min(v);
+                chi = chi.max(v);
+            }
+        }
+        println!(
+            "smooth {smooth}: painted {lo} {hi}  contour {clo} {chi}  depth {}",
+            c.depth()
+        );
     }
 }

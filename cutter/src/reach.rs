@@ -24,11 +24,16 @@
 //!   thickness under the stroke);
 //! - a stroke off the target (no ray enters it) gets [`EMPTY_SHARE`] of the target's smallest
 //!   box side, the size of the target, not of the scene;
+//! - the depth is at least the deepest `entry` plus [`MIN_DEPTH`]·δ: the depth is measured from
+//!   the front edge, which rests just outside the surface, and where the surface curves away
+//!   under a straight front edge (the sides of a forehead or of a knee) the box must still go
+//!   past it there, so the opening is as wide as the stroke even when the structure behind is
+//!   close (a fat layer 3 mm under the skin of a knee);
 //! - the depth is then clamped to the limit, and is never less than [`MIN_DEPTH`]·δ.
 //!
-//! The depth is measured from the front edge, which rests just outside the surface; where the
-//! surface curves away under a straight front edge (the sides of a forehead) the box still
-//! reaches it, so the opening is as wide as the stroke.
+//! The default depth is decided once, from the first box (where the stroke was painted), and
+//! rolling keeps it: a stroke across the forehead whose rays pass above the deep structures
+//! gets half the head's thickness there, which reaches the ventricles below it too.
 //!
 //! ## What a cutter reaches ([`reached`])
 //! Each plane's front edge is sampled the same way and cast along that plane's back direction,
@@ -288,6 +293,10 @@ pub fn default_depth(
             (EMPTY_SHARE * far, ReachRule::Thickness)
         }
     };
+    // The window is the painted width: the box goes past the surface under every sample of the
+    // front edge, its ends included, where a curved surface lies furthest behind a straight edge.
+    let behind_edge = probes.iter().map(|p| p.entry).fold(0.0, f64::max);
+    let wanted = wanted.max(behind_edge + floor);
     let clamped = wanted > limit;
     Reach {
         depth: wanted.min(limit).max(floor),
@@ -391,6 +400,20 @@ mod tests {
         let r = default_depth(&surface, Some(&back), &[edge], DVec3::Y, 0.1);
         assert!(r.clamped, "{r:?}");
         assert!(r.depth < 0.92 * 100.5 && r.depth > 0.85 * 100.5, "{r:?}");
+
+        // A wide stroke over a thin layer close behind: the box goes past the surface at the
+        // stroke's ends (40 behind the edge there), not only to the layer (4 behind the middle).
+        let wide = (DVec3::new(-30.0, front, 0.0), DVec3::new(30.0, front, 0.0));
+        let layer = MeshObstacles {
+            structures: vec![obstacle(2, "layer", ball(45.0, DVec3::ZERO))],
+        };
+        let r = default_depth(&surface, Some(&layer), &[wide], DVec3::Y, 0.1);
+        assert!(matches!(r.rule, ReachRule::Structure(_)), "{r:?}");
+        let edge_entry = 50.5 - (50.0f64 * 50.0 - 30.0 * 30.0).sqrt();
+        assert!(
+            r.depth > edge_entry && r.depth < edge_entry + 1.0,
+            "{r:?} vs {edge_entry}"
+        );
 
         // Off the head: half its smallest side.
         let off = (DVec3::new(80.0, front, 0.0), DVec3::new(90.0, front, 0.0));
