@@ -674,7 +674,7 @@ impl Editor {
                             direction,
                             ..c
                         })
-                        .map(|c| self.to_default_depth(c));
+                        .map(|c| self.at_default_depth(c));
                     if let Some(c) = created.filter(|c| self.accepts(c, "the new cutter")) {
                         self.selected = Some(c.planes.len() - 1);
                         self.commit(Some(c));

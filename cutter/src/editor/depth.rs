@@ -65,7 +65,7 @@ impl Editor {
     /// deep enough to reach the first obstacle behind the target ([`reach::default_depth`],
     /// kept in [`Editor::reach`]); unchanged under [`Rules::Delta`] and for wedges (a wedge's
     /// back reaches into the target on its own rule).
-    pub(super) fn to_default_depth(&mut self, cutter: Cutter) -> Cutter {
+    pub(super) fn at_default_depth(&mut self, cutter: Cutter) -> Cutter {
         if self.settings.rules != Rules::Reach || cutter.kind == CutKind::Wedge {
             return cutter;
         }
