@@ -208,6 +208,66 @@ fn the_newcomers_first_cut_shows_the_ventricles_through_the_forehead() {
     render_golden("newcomer_forehead", &replay.scene);
 }
 
+/// `cutaway extrude SESSION.json --gesture G.json --out OUT.json --json` does the newcomer's cut
+/// as the window does: the skin is the target, the cutter reaches the ventricles, and the written
+/// session holds the new cutter along the view. A mesh-less output is refused in one line.
+#[test]
+fn extrude_on_a_session_writes_the_newcomers_cutter() {
+    let scene = head();
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("depth_extrude_session");
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = dir.join("head.json");
+    let gesture = dir.join("newcomer.json");
+    let out = dir.join("cut.json");
+    let _ = std::fs::remove_file(&out);
+    cutaway::session::save(&session, &scene).unwrap();
+    cutaway::io::gesture::write_gesture(&gesture, &newcomer(&scene, Rules::Reach, false)).unwrap();
+    let run = |out: &Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_cutaway"))
+            .args([
+                "extrude".as_ref(),
+                session.as_os_str(),
+                "--gesture".as_ref(),
+            ])
+            .arg(&gesture)
+            .arg("--out")
+            .arg(out)
+            .arg("--json")
+            .output()
+            .unwrap()
+    };
+    let output = run(&out);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    println!("{json}");
+    assert_eq!(json["target"], "skin");
+    assert_eq!(json["direction"], "view");
+    assert!(json["depth_mm"].as_f64().unwrap() > 40.0, "{json}");
+    let reaches: Vec<&str> = json["reaches"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    assert!(reaches.contains(&"left lateral ventricle"), "{reaches:?}");
+    assert!(json["opening"]["ratio"].as_f64().unwrap() >= 0.9, "{json}");
+    let written = cutaway::session::load(&out).unwrap();
+    assert_eq!(written.cutters.len(), 1);
+    assert_eq!(written.cutters[0].target, 0);
+    assert_eq!(written.cutters[0].cutter.direction, CutDirection::View);
+    let depth_mm = written.unit.to_mm(written.cutters[0].cutter.depth());
+    assert!((depth_mm - json["depth_mm"].as_f64().unwrap()).abs() < 1e-6);
+
+    let refused = run(&dir.join("cut.obj"));
+    assert!(!refused.status.success());
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(err.contains("cut.obj") && err.lines().count() == 1, "{err}");
+}
+
 /// The rounded cutter of the same stroke opens the painted region without spilling over it.
 #[test]
 fn the_rounded_newcomer_cut_is_as_wide_as_painted() {
