@@ -73,7 +73,7 @@ fn initialization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Ac
                 .on_hover_text("Which way the cutter goes into the target");
             ui.horizontal(|ui| {
                 let direction = &mut app.cutter_init.direction;
-                ui.selectable_value(direction, CutDirection::View, "View")
+                ui.selectable_value(direction, CutDirection::View, "Your view")
                     .on_hover_text(
                         "Straight in, the way you look at the surface: the opening is what you \
                          painted, seen from where you painted it",
