@@ -27,6 +27,7 @@ mod image_compare;
 
 mod annotate;
 mod compare;
+mod depth;
 mod exports;
 mod goldens;
 mod image_walls;
@@ -175,6 +176,7 @@ fn with_cutter(mut scene: Scene, views: CutterViews) -> Scene {
             kind: CutKind::Straight,
             smooth: false,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: cutter::CutDirection::Normal,
             planes: corner_planes(),
         },
         views,
