@@ -22,7 +22,6 @@ use cutaway::io::gesture::{CutSettings, Gesture};
 use cutaway::scene::{Scene, SceneModel};
 use cutter::{Camera, CutDirection, CutKind, EditorEvent, EditorSettings, Rules};
 
-
 const VIEWPORT: DVec2 = DVec2::new(1280.0, 800.0);
 
 /// The default head as the window shows it: the skin first, framed from the front on its own (the

@@ -270,7 +270,7 @@ mod tests {
             match m.part {
                 MaterialPart::Contour | MaterialPart::Image | MaterialPart::Risk => {
                     assert_eq!(m.structure, None)
-                },
+                }
                 _ => assert_eq!(m.structure, Some(0)),
             }
         }
