@@ -31,6 +31,7 @@ fn box_cutter(target: usize, min: DVec3, max: DVec3) -> SceneCutter {
             kind: CutKind::Curving,
             smooth: false,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: cutter::CutDirection::Normal,
             planes: vec![plane(min.x), plane((min.x + max.x) * 0.5), plane(max.x)],
         },
         views: CutterViews::default(),

@@ -108,6 +108,7 @@ pub fn plain_cutter(
             kind,
             smooth: false,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: cutter::CutDirection::Normal,
             planes,
         },
         views: CutterViews::default(),

@@ -212,6 +212,7 @@ mod tests {
             kind: CutKind::Curving,
             smooth: true,
             levels: 2,
+            direction: crate::cutter::CutDirection::Normal,
             planes: points
                 .iter()
                 .map(|&(c, back)| BoundedPlane::from_front_edge(c + DVec3::Z, c, back, 1.0))

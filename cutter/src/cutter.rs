@@ -47,6 +47,39 @@ impl CutKind {
     }
 }
 
+/// Which way a cutter's boxes go into the target: the first box goes along the view either way
+/// (the strip is painted in the view plane).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CutDirection {
+    /// Every plane keeps the direction of the plane before it, so the whole cutter goes along
+    /// the view it was painted in: the way you look at the surface is the way you look into it,
+    /// and the opening is what was painted as seen from there.
+    #[default]
+    View,
+    /// Each rolled plane goes along the inward normal of its box's front face (thesis 3.3.2):
+    /// the cut follows the surface, a trench of even depth under it.
+    Normal,
+}
+
+impl CutDirection {
+    /// The name used by the gesture and session formats (`view`, `normal`).
+    pub fn name(self) -> &'static str {
+        match self {
+            CutDirection::View => "view",
+            CutDirection::Normal => "normal",
+        }
+    }
+
+    /// Parses a format name (`view`, `normal`).
+    pub fn from_name(name: &str) -> Option<CutDirection> {
+        match name {
+            "view" => Some(CutDirection::View),
+            "normal" => Some(CutDirection::Normal),
+            _ => None,
+        }
+    }
+}
+
 /// Why a list of planes is not a valid cutter. Each variant names the offending plane or box.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum CutterError {
@@ -100,11 +133,24 @@ pub struct Cutter {
     /// [`crate::subdivision::MAX_LEVELS`], more is clamped; default
     /// [`crate::subdivision::DEFAULT_LEVELS`]). Ignored when not `smooth`.
     pub levels: u32,
+    /// Which way its planes go: rolled planes keep the back direction of the plane before them
+    /// ([`CutDirection::View`], a window cut straight in from where it was painted) or go along
+    /// the normal of their front face ([`CutDirection::Normal`], the thesis's roller, and every
+    /// cutter made before the direction was a choice). A smooth cutter along the view is rounded
+    /// more gently ([`VIEW_ROUNDNESS`]), so its window stays the size that was painted.
+    pub direction: CutDirection,
     /// The bounded cutting planes in extrusion order. At least 2; each planar; consecutive planes
     /// never cross; for `Wedge`, every plane's `front_top`/`back_top` equal plane 0's. The last
     /// plane is the leading plane (the paint roller's handle). Checked by [`Cutter::sanity_check`].
     pub planes: Vec<BoundedPlane>,
 }
+
+/// The share of the interpolating subdivision's rounding a smooth cutter along the view gets
+/// (1 along the normal). Its boxes go deep, straight in: the full rounding bulges a box's sides
+/// out by an eighth of its width at mid-depth, where a deep box meets a curved surface, so the
+/// window would spill past what was painted (15 % on a sphere); half of it keeps the surface
+/// smooth (the four-point rule with half the tension is still C¹) and the window within 5 %.
+pub const VIEW_ROUNDNESS: f64 = 0.5;
 
 /// Relative planarity tolerance of [`Cutter::sanity_check`].
 const PLANARITY_TOL: f64 = 1e-6;
@@ -113,6 +159,11 @@ impl Cutter {
     /// Number of boxes (planes − 1).
     pub fn box_count(&self) -> usize {
         self.planes.len().saturating_sub(1)
+    }
+
+    /// The depth of the cutter: its leading plane's, which the planes it rolls out take.
+    pub fn depth(&self) -> f64 {
+        self.leading().depth()
     }
 
     /// The leading plane (the last one).
@@ -198,6 +249,7 @@ impl Cutter {
                         kind: self.kind,
                         smooth: false,
                         levels: 0,
+                        direction: self.direction,
                         planes: refined
                             .iter()
                             .map(|c| BoundedPlane::from_corners(*c))
@@ -210,7 +262,11 @@ impl Cutter {
                     }
                 }
             }
-            let mut s = crate::subdivision::smooth(&base, levels);
+            let roundness = match self.direction {
+                CutDirection::View => VIEW_ROUNDNESS,
+                CutDirection::Normal => 1.0,
+            };
+            let mut s = crate::subdivision::smooth_with(&base, levels, roundness);
             s.inserted = inserted;
             if self.kind != CutKind::Wedge {
                 s.chain = Some(base);
@@ -312,6 +368,7 @@ impl Cutter {
             kind: self.kind,
             smooth: false,
             levels: 0,
+            direction: self.direction,
             planes: self.planes[index..index + 2].to_vec(),
         };
         let m = if c.kind == CutKind::Wedge {
@@ -330,6 +387,7 @@ impl Cutter {
             kind,
             smooth: _,
             levels: _,
+            direction: _,
             planes,
         } = self;
         if planes.len() < 2 {
@@ -485,6 +543,7 @@ mod tests {
             kind: CutKind::Curving,
             smooth: false,
             levels: crate::subdivision::DEFAULT_LEVELS,
+            direction: crate::cutter::CutDirection::Normal,
             planes,
         }
     }
@@ -539,6 +598,7 @@ mod tests {
             kind: CutKind::Wedge,
             smooth: false,
             levels: crate::subdivision::DEFAULT_LEVELS,
+            direction: crate::cutter::CutDirection::Normal,
             planes,
         };
         c.sanity_check().unwrap();

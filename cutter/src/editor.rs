@@ -15,7 +15,10 @@
 //! ```
 //!
 //! ## What the events do (CONTRACT.md, thesis 3.3.1–3.3.3)
-//! - No cutter yet: press A, drag, release B initialises one on the target ([`extrude::initialize`]).
+//! - No cutter yet: press A, drag, release B initialises one on the target ([`extrude::initialize`]);
+//!   under [`Rules::Reach`] it is as deep as [`reach::default_depth`] says: it reaches the first
+//!   of the [`Obstacles`] behind the target ([`Editor::set_obstacles`]; [`Editor::reach`] says
+//!   why), and its boxes go along the view ([`CutDirection`]). Rolling keeps the depth.
 //! - Press within [`HANDLE_PX`] of the middle third of the leading plane's projected front edge:
 //!   grabs the handle; the pointer is treated as if warped to the middle of that edge (the
 //!   offset is kept for the whole drag, and [`EditorResponse::warp_cursor`] tells the GUI where
@@ -23,8 +26,12 @@
 //! - Press within [`VERTEX_PX`] of a plane's projected front vertex: drags that edge.
 //! - Press on a plane (its quad under the pointer, or its front edge within [`HANDLE_PX`]):
 //!   selects it. Press elsewhere: clears the selection.
-//! - Wheel: over the cutter, the depth of the selected (else hovered) plane; off the cutter, the
-//!   depth of every plane. Ctrl+wheel rotates the selected (else hovered) plane.
+//! - Wheel ([`Rules::Reach`], the default): over the cutter, the depth of the whole cutter
+//!   (every plane × [`edits::DEPTH_FACTOR`] a notch); Alt+wheel over the cutter, the depth of the
+//!   plane under the pointer (the nearest one's front edge); off the cutter nothing (the window
+//!   zooms there). Under [`Rules::Delta`] (the first rules, `cutaway-gesture/1`): over the
+//!   cutter, the depth of the selected (else hovered) plane; off the cutter, the depth of every
+//!   plane, 2δ a notch. Ctrl+wheel rotates the selected (else hovered) plane under both.
 //! - Delete with the pointer over the cutter removes the last box (down to one).
 //! - Escape cancels a drag in progress.
 //!
@@ -48,17 +55,19 @@ use csg::{Mesh, SpatialIndex};
 
 use crate::camera::{Camera, Ray};
 use crate::cutter::{CutKind, Cutter};
-use crate::edits::{self, DepthTarget};
+use crate::edits;
 use crate::events::{EditorEvent, Key};
 use crate::extrude::{self, RollSettings};
 use crate::geom;
+use crate::reach::{Obstacles, Reach};
 use crate::surface::Surface;
 
+mod depth;
 mod pick;
 mod settings;
 
 use pick::Pick;
-pub use settings::{CursorHint, EditorResponse, EditorSettings};
+pub use settings::{CursorHint, CutDirection, EditorResponse, EditorSettings, Rules};
 
 /// Pick radius of the leading plane's handle (middle third of its front edge), in pixels.
 pub const HANDLE_PX: f64 = 12.0;
@@ -108,6 +117,10 @@ pub struct Editor {
     hovered: Option<usize>,
     selected: Option<usize>,
     recording: Vec<EditorEvent>,
+    /// What lies behind the target (the default depth reaches the nearest of them).
+    obstacles: Option<Arc<dyn Obstacles>>,
+    /// Why the last cutter made here is as deep as it started.
+    reach: Option<Reach>,
 }
 
 impl std::fmt::Debug for Editor {
@@ -147,7 +160,20 @@ impl Editor {
             hovered: None,
             selected: None,
             recording: Vec::new(),
+            obstacles: None,
+            reach: None,
         }
+    }
+
+    /// Sets what lies behind the target: the structures a new cutter's default depth reaches
+    /// for, and [`Editor::reached`] reports (none: a new cutter gets half the target's thickness).
+    pub fn set_obstacles(&mut self, obstacles: Option<Arc<dyn Obstacles>>) {
+        self.obstacles = obstacles;
+    }
+
+    /// Why the last cutter made by a drag started as deep as it did (under [`Rules::Reach`]).
+    pub fn reach(&self) -> Option<&Reach> {
+        self.reach.as_ref()
     }
 
     /// The current cutter, valid by [`Cutter::validate`].
@@ -238,6 +264,27 @@ impl Editor {
     /// (and leaving wedge) applies from the next initialisation.
     pub fn set_kind(&mut self, kind: CutKind) {
         self.settings.kind = kind;
+    }
+
+    /// Sets the cut direction, for the current cutter (the planes it rolls from now on, and its
+    /// rounding when smooth: an undoable action, checked like every edit) and the next ones.
+    /// Returns true when the cutter changed.
+    pub fn set_direction(&mut self, direction: CutDirection) -> bool {
+        self.settings.direction = direction;
+        match &self.cutter {
+            Some(c) if c.direction != direction && c.kind != CutKind::Wedge => {
+                let c = Cutter {
+                    direction,
+                    ..c.clone()
+                };
+                if !self.accepts(&c, "the cut direction") {
+                    return false;
+                }
+                self.commit(Some(c));
+                true
+            }
+            _ => false,
+        }
     }
 
     /// Sets the segment spacing ω (clamped to at least 1).
@@ -372,7 +419,13 @@ impl Editor {
             EditorEvent::Press { x, y, .. } => self.press(DVec2::new(x, y)),
             EditorEvent::Move { x, y, shift, .. } => self.pointer_move(DVec2::new(x, y), shift),
             EditorEvent::Release { x, y, shift, .. } => self.release(DVec2::new(x, y), shift),
-            EditorEvent::Wheel { x, y, delta, ctrl } => self.wheel(DVec2::new(x, y), delta, ctrl),
+            EditorEvent::Wheel {
+                x,
+                y,
+                delta,
+                ctrl,
+                alt,
+            } => self.wheel(DVec2::new(x, y), delta, ctrl, alt),
             EditorEvent::Key { key, x, y } => self.key(key, DVec2::new(x, y)),
         }
     }
@@ -515,13 +568,15 @@ impl Editor {
 
     fn extrude_to(&mut self, px: DVec2, shift: bool) -> bool {
         let ray = self.ray(px);
+        let Some(mut cutter) = self.cutter.take() else {
+            return false;
+        };
         let settings = RollSettings {
             delta: self.settings.delta,
             spacing: self.settings.spacing,
             straight: shift || self.settings.kind == CutKind::Straight,
-        };
-        let Some(mut cutter) = self.cutter.take() else {
-            return false;
+            keep_direction: cutter.direction == CutDirection::View,
+            keep_depth: self.settings.rules == Rules::Reach,
         };
         let before = cutter.clone();
         let changed = {
@@ -612,8 +667,14 @@ impl Editor {
                         self.settings.kind,
                         self.settings.smooth,
                     );
-                    let levels = self.settings.levels;
-                    let created = created.map(|c| Cutter { levels, ..c });
+                    let (levels, direction) = (self.settings.levels, self.settings.direction);
+                    let created = created
+                        .map(|c| Cutter {
+                            levels,
+                            direction,
+                            ..c
+                        })
+                        .map(|c| self.at_default_depth(c));
                     if let Some(c) = created.filter(|c| self.accepts(c, "the new cutter")) {
                         self.selected = Some(c.planes.len() - 1);
                         self.commit(Some(c));
@@ -683,39 +744,6 @@ impl Editor {
         self.clamp_selection();
     }
 
-    fn wheel(&mut self, px: DVec2, notches: f64, ctrl: bool) -> EditorResponse {
-        let mut response = EditorResponse {
-            cursor: self.hint(self.pick(px)),
-            ..Default::default()
-        };
-        if self.is_dragging() || notches == 0.0 || !notches.is_finite() {
-            return response;
-        }
-        let Some(cutter) = &self.cutter else {
-            return response;
-        };
-        let over = self.over_cutter(px);
-        let plane = if over {
-            self.selected.or_else(|| self.plane_under(px))
-        } else {
-            None
-        };
-        let edited = if ctrl {
-            plane.and_then(|i| edits::rotate_plane(cutter, i, notches))
-        } else {
-            let target = match plane {
-                Some(i) => DepthTarget::Plane(i),
-                None => DepthTarget::All,
-            };
-            edits::change_depth(cutter, target, notches, self.settings.delta)
-        };
-        if let Some(c) = edited.filter(|c| self.accepts(c, "the edit")) {
-            self.commit(Some(c));
-            response.changed = true;
-        }
-        response
-    }
-
     fn key(&mut self, key: Key, px: DVec2) -> EditorResponse {
         let mut response = EditorResponse {
             cursor: self.hint(self.pick(px)),
@@ -766,6 +794,7 @@ fn changed_span(before: &Cutter, after: &Cutter) -> Cutter {
         kind: after.kind,
         smooth: false,
         levels: 0,
+        direction: after.direction,
         planes: after.planes[lo..=hi].to_vec(),
     }
 }

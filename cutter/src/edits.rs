@@ -1,6 +1,11 @@
 //! Editing a cutter (thesis 3.3.3): moving a plane's edge, changing depth with self-intersection
 //! resolution, rotating a plane about its front edge, removing the last box.
 //!
+//! Depth changes come in two rules (see [`crate::editor::Rules`]): [`change_depth`] adds
+//! [`DEPTH_STEP`]·δ a wheel notch (the first rules), [`scale_depth`] multiplies by
+//! [`DEPTH_FACTOR`] a notch, so a notch is the same share of any depth and of any target's size,
+//! and [`set_depth`] gives planes one depth (the cutter panel's field).
+//!
 //! Every function here either returns the edited cutter, valid by [`Cutter::sanity_check`], or
 //! refuses (returns None) and leaves the input untouched: the editor never holds an invalid cutter.
 
@@ -16,6 +21,9 @@ pub const DEPTH_STEP: f64 = 2.0;
 pub const ROTATE_STEP_DEG: f64 = 5.0;
 /// Smallest depth a plane may get, as a multiple of δ.
 pub const MIN_DEPTH: f64 = 1.0;
+/// Depth factor of one wheel notch under [`crate::editor::Rules::Reach`] (5 % deeper a notch up,
+/// the same back a notch down).
+pub const DEPTH_FACTOR: f64 = 1.05;
 /// Most rounds of the self-intersection resolution before the edit is refused.
 const MAX_RESOLVE_ROUNDS: usize = 400;
 
@@ -37,30 +45,101 @@ pub fn change_depth(
     notches: f64,
     delta: f64,
 ) -> Option<Cutter> {
+    let per = notches_split(notches)?.1 * DEPTH_STEP * delta;
+    in_steps(cutter, target, notches, delta, |depth| depth + per)
+}
+
+/// Multiplies depth by `DEPTH_FACTOR^notches` (negative = shallower), one notch at a time with
+/// self-intersection resolution after each, as [`change_depth`] steps.
+pub fn scale_depth(
+    cutter: &Cutter,
+    target: DepthTarget,
+    notches: f64,
+    delta: f64,
+) -> Option<Cutter> {
+    let factor = DEPTH_FACTOR.powf(notches_split(notches)?.1);
+    in_steps(cutter, target, notches, delta, |depth| depth * factor)
+}
+
+/// Gives the target planes the depth `depth` (at least [`MIN_DEPTH`]·δ), reached in steps of
+/// at most a tenth of the change with self-intersection resolution after each. None when nothing
+/// changes or the result is invalid.
+pub fn set_depth(cutter: &Cutter, target: DepthTarget, depth: f64, delta: f64) -> Option<Cutter> {
+    if !(depth.is_finite() && depth > 0.0) {
+        return None;
+    }
+    let depth = depth.max(MIN_DEPTH * delta);
+    let mut c = cutter.clone();
+    let range = plane_range(&c, target)?;
+    let start: Vec<f64> = c.planes[range.clone()].iter().map(|p| p.depth()).collect();
+    const STEPS: usize = 10;
+    for k in 1..=STEPS {
+        let t = k as f64 / STEPS as f64;
+        if c.kind == CutKind::Wedge {
+            set_wedge_depth(&mut c, |_| start[0] + (depth - start[0]) * t, delta)?;
+            continue;
+        }
+        for (p, &from) in c.planes[range.clone()].iter_mut().zip(&start) {
+            *p = p.with_depth(from + (depth - from) * t);
+        }
+        if !resolve_self_intersections(&mut c.planes, delta) {
+            return None;
+        }
+    }
+    c.sanity_check().ok()?;
+    (c != *cutter).then_some(c)
+}
+
+/// The notch count and the signed share of one step, for a finite, non-zero `notches`.
+fn notches_split(notches: f64) -> Option<(usize, f64)> {
     if notches == 0.0 || !notches.is_finite() {
         return None;
     }
-    let mut c = cutter.clone();
     let count = notches.abs().ceil() as usize;
-    let per = notches / count as f64 * DEPTH_STEP * delta;
+    Some((count, notches / count as f64))
+}
+
+/// The planes a depth change applies to.
+fn plane_range(c: &Cutter, target: DepthTarget) -> Option<std::ops::Range<usize>> {
+    match target {
+        DepthTarget::All => Some(0..c.planes.len()),
+        DepthTarget::Plane(i) if i < c.planes.len() => Some(i..i + 1),
+        DepthTarget::Plane(_) => None,
+    }
+}
+
+/// Moves a wedge's shared back axis point along the axis to the depth `next(depth)` (at least
+/// [`MIN_DEPTH`]·δ).
+fn set_wedge_depth(c: &mut Cutter, next: impl Fn(f64) -> f64, delta: f64) -> Option<()> {
+    let axis = (c.planes[0].back_top - c.planes[0].front_top).try_normalize()?;
+    let depth =
+        next((c.planes[0].back_top - c.planes[0].front_top).length()).max(MIN_DEPTH * delta);
+    let bt = c.planes[0].front_top + axis * depth;
+    for p in &mut c.planes {
+        p.back_top = bt;
+        p.back_bottom = p.front_bottom + axis * depth;
+    }
+    Some(())
+}
+
+/// One notch at a time: each target plane's depth becomes `next(depth)` (at least
+/// [`MIN_DEPTH`]·δ), then crossing planes are resolved. Wedges change as a whole.
+fn in_steps(
+    cutter: &Cutter,
+    target: DepthTarget,
+    notches: f64,
+    delta: f64,
+    next: impl Fn(f64) -> f64,
+) -> Option<Cutter> {
+    let (count, _) = notches_split(notches)?;
+    let mut c = cutter.clone();
     for _ in 0..count {
         if c.kind == CutKind::Wedge {
-            let axis = (c.planes[0].back_top - c.planes[0].front_top).try_normalize()?;
-            let depth = ((c.planes[0].back_top - c.planes[0].front_top).length() + per)
-                .max(MIN_DEPTH * delta);
-            let bt = c.planes[0].front_top + axis * depth;
-            for p in &mut c.planes {
-                p.back_top = bt;
-                p.back_bottom = p.front_bottom + axis * depth;
-            }
+            set_wedge_depth(&mut c, &next, delta)?;
         } else {
-            let range = match target {
-                DepthTarget::All => 0..c.planes.len(),
-                DepthTarget::Plane(i) if i < c.planes.len() => i..i + 1,
-                DepthTarget::Plane(_) => return None,
-            };
+            let range = plane_range(&c, target)?;
             for p in &mut c.planes[range] {
-                *p = p.with_depth((p.depth() + per).max(MIN_DEPTH * delta));
+                *p = p.with_depth(next(p.depth()).max(MIN_DEPTH * delta));
             }
             if !resolve_self_intersections(&mut c.planes, delta) {
                 return None;

@@ -1,6 +1,6 @@
 //! Input events of the cutter [`crate::editor::Editor`], independent of any GUI toolkit.
 //!
-//! The GUI translates egui input into these, the CLI parses them from a `cutaway-gesture/1` file,
+//! The GUI translates egui input into these, the CLI parses them from a `cutaway-gesture` file,
 //! and the tests build them by hand, so all three drive exactly the same code. Pixel coordinates
 //! have their origin at the top-left of the viewport with y growing downward (the same convention
 //! as [`crate::camera::Camera::ray_through_pixel`]).
@@ -63,12 +63,14 @@ pub enum EditorEvent {
         ctrl: bool,
     },
     /// Scroll wheel at pixel (`x`, `y`): `delta` notches, positive = up (deeper / clockwise).
-    /// With `ctrl` it rotates the selected plane instead of changing depth.
+    /// With `ctrl` it rotates the selected plane instead of changing depth; with `alt` (under
+    /// [`crate::editor::Rules::Reach`]) it changes the depth of the plane under the pointer only.
     Wheel {
         x: f64,
         y: f64,
         delta: f64,
         ctrl: bool,
+        alt: bool,
     },
     /// A key pressed with the pointer at pixel (`x`, `y`).
     Key { key: Key, x: f64, y: f64 },
@@ -126,9 +128,26 @@ impl EditorEvent {
         }
     }
 
-    /// Shorthand for a wheel event.
+    /// Shorthand for a wheel event (without Alt).
     pub fn wheel(x: f64, y: f64, delta: f64, ctrl: bool) -> EditorEvent {
-        EditorEvent::Wheel { x, y, delta, ctrl }
+        EditorEvent::Wheel {
+            x,
+            y,
+            delta,
+            ctrl,
+            alt: false,
+        }
+    }
+
+    /// Shorthand for a wheel event with Alt held (the plane under the pointer).
+    pub fn alt_wheel(x: f64, y: f64, delta: f64) -> EditorEvent {
+        EditorEvent::Wheel {
+            x,
+            y,
+            delta,
+            ctrl: false,
+            alt: true,
+        }
     }
 
     /// Shorthand for a key event.

@@ -22,7 +22,11 @@
 //!    roller's reach (it falls away over an edge: the thesis keeps turning inward until contact,
 //!    the next boxes catch up), and keeps its unrotated position when there is none (the roller
 //!    left the object);
-//! 5. the back edge F'G' along the negative normal of the new front face, at the previous depth.
+//! 5. the back edge F'G' along the negative normal of the new front face, at the previous depth
+//!    (the thesis). With [`RollSettings::keep_direction`] it goes along the previous plane's back
+//!    direction instead (a cutter cut along the view it was painted in: every plane shares the
+//!    first plane's direction), and with [`RollSettings::keep_depth`] at the leading plane's own
+//!    depth, so a deepened roller stays deep and the planes it locks take its depth.
 //!
 //! When the leading box reaches ω·δ wide it is locked and a new, thin leading box starts (several
 //! per move when the mouse jumps far).
@@ -225,6 +229,7 @@ pub fn initialize(
         kind,
         smooth,
         levels: crate::subdivision::DEFAULT_LEVELS,
+        direction: crate::cutter::CutDirection::Normal,
         planes: vec![p0, p1],
     };
     if kind == CutKind::Wedge {
@@ -319,6 +324,8 @@ struct FrontFrame {
     /// Back direction and depth of the previous plane.
     back: DVec3,
     depth: f64,
+    /// Depth of the leading plane before the move.
+    lead_depth: f64,
 }
 
 impl FrontFrame {
@@ -348,6 +355,7 @@ impl FrontFrame {
             forward,
             back,
             depth: prev.depth(),
+            lead_depth: lead.depth(),
         })
     }
 
@@ -546,11 +554,22 @@ fn roll(
         if n.dot(frame.back) > 0.0 {
             n = -n;
         }
-        let lead = BoundedPlane::from_front_edge(e, h, -n, frame.depth);
+        let back = if settings.keep_direction {
+            frame.back
+        } else {
+            -n
+        };
+        let depth = if settings.keep_depth {
+            frame.lead_depth
+        } else {
+            frame.depth
+        };
+        let lead = BoundedPlane::from_front_edge(e, h, back, depth);
         let pair = Cutter {
             kind: CutKind::Curving,
             smooth: false,
             levels: crate::subdivision::DEFAULT_LEVELS,
+            direction: crate::cutter::CutDirection::Normal,
             planes: vec![*prev, lead],
         };
         pair.sanity_check().ok().map(|_| lead)

@@ -24,4 +24,10 @@ pub struct RollSettings {
     pub spacing: f64,
     /// Straight-path constraint (Shift, or the Straight kind).
     pub straight: bool,
+    /// A rolled plane keeps the back direction of the plane before it (the cutter goes along
+    /// one direction, the view it was painted in) instead of the inward normal of its front face.
+    pub keep_direction: bool,
+    /// A rolled leading plane keeps its own depth (new planes take it) instead of the depth of
+    /// the plane before it.
+    pub keep_depth: bool,
 }

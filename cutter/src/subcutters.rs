@@ -160,6 +160,7 @@ pub fn horizontal(cutter: &Cutter, count: usize, width: f64, relative: bool) -> 
                 kind: cutter.kind,
                 smooth: cutter.smooth,
                 levels: cutter.levels,
+                direction: cutter.direction,
                 planes,
             };
             c.sanity_check().ok().map(|_| c)
@@ -242,6 +243,7 @@ fn thin_box(plane: &BoundedPlane, dir: DVec3, width: f64) -> Option<Cutter> {
         kind: CutKind::Straight,
         smooth: false,
         levels: crate::subdivision::DEFAULT_LEVELS,
+        direction: crate::cutter::CutDirection::Normal,
         planes: vec![plane.translated(-half), plane.translated(half)],
     };
     c.sanity_check().ok().map(|_| c)
@@ -267,6 +269,7 @@ mod tests {
             kind: CutKind::Curving,
             smooth: false,
             levels: crate::subdivision::DEFAULT_LEVELS,
+            direction: crate::cutter::CutDirection::Normal,
             planes,
         }
     }

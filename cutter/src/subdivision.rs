@@ -146,13 +146,21 @@ impl Smoothing {
 /// Up to `levels` (at most [`MAX_LEVELS`]) levels of interpolatory subdivision, each repaired so
 /// that the mesh never intersects itself (see the module doc). `mesh` must be closed and outward.
 pub fn smooth(mesh: &QuadMesh, levels: u32) -> Smoothing {
+    smooth_with(mesh, levels, 1.0)
+}
+
+/// [`smooth`] with every new point's smoothing displacement scaled by `roundness` (0 to 1) before
+/// any repair: the four-point rule with `roundness` times its tension (still C¹ for any
+/// roundness in (0, 1]), the rounding of a cutter that must not bulge far past its boxes
+/// ([`crate::cutter::VIEW_ROUNDNESS`]). `smooth` is `roundness` 1.
+pub fn smooth_with(mesh: &QuadMesh, levels: u32, roundness: f64) -> Smoothing {
     let mut out = Smoothing {
         asked: levels.min(MAX_LEVELS),
         ..Smoothing::none(mesh.clone())
     };
     for _ in 0..levels.min(MAX_LEVELS) {
         let step = refine(&out.mesh);
-        match step.repaired() {
+        match step.repaired(roundness) {
             Some((mesh, damped)) => {
                 out.mesh = mesh;
                 out.levels += 1;
@@ -242,11 +250,12 @@ impl Refinement {
         }
     }
 
-    /// The refined mesh with as much smoothing as keeps it free of self-intersections, and the
-    /// number of new points damped; `None` when even the linear refinement intersects itself.
-    fn repaired(&self) -> Option<(QuadMesh, usize)> {
+    /// The refined mesh with as much smoothing (at most `roundness` of it) as keeps it free of
+    /// self-intersections, and the number of new points damped; `None` when even the linear
+    /// refinement intersects itself.
+    fn repaired(&self, roundness: f64) -> Option<(QuadMesh, usize)> {
         let n = self.linear.len();
-        let mut weights = vec![1.0; n];
+        let mut weights = vec![roundness; n];
         let mut halvings = vec![0u32; n];
         let mut vertex_faces: Vec<Vec<u32>> = vec![Vec::new(); n];
         for (fi, f) in self.faces.iter().enumerate() {
@@ -268,7 +277,7 @@ impl Refinement {
                 Err(_) => break,
             };
             if pairs.is_empty() {
-                let damped = weights.iter().filter(|&&w| w < 1.0).count();
+                let damped = weights.iter().filter(|&&w| w < roundness).count();
                 return Some((mesh, damped));
             }
             // Damp every new point of the faces around the offending triangles' corners.
@@ -423,6 +432,7 @@ mod tests {
             kind: CutKind::Curving,
             smooth: false,
             levels: crate::subdivision::DEFAULT_LEVELS,
+            direction: crate::cutter::CutDirection::Normal,
             planes,
         };
         let q = c.quad_mesh();
@@ -454,6 +464,7 @@ mod tests {
             kind: CutKind::Curving,
             smooth: true,
             levels: crate::subdivision::DEFAULT_LEVELS,
+            direction: crate::cutter::CutDirection::Normal,
             planes,
         }
     }
@@ -569,6 +580,7 @@ mod tests {
             kind: CutKind::Curving,
             smooth: true,
             levels: crate::subdivision::DEFAULT_LEVELS,
+            direction: crate::cutter::CutDirection::Normal,
             planes,
         }
     }
@@ -641,6 +653,7 @@ mod tests {
                 kind: CutKind::Curving,
                 smooth: true,
                 levels: crate::subdivision::DEFAULT_LEVELS,
+                direction: crate::cutter::CutDirection::Normal,
                 planes,
             };
             c.validate().unwrap();
@@ -658,6 +671,7 @@ mod tests {
             kind: CutKind::Curving,
             smooth: false,
             levels: crate::subdivision::DEFAULT_LEVELS,
+            direction: crate::cutter::CutDirection::Normal,
             planes: vec![
                 BoundedPlane::from_front_edge(DVec3::new(0., 0., 1.), DVec3::ZERO, DVec3::Y, 1.0),
                 BoundedPlane::from_front_edge(DVec3::new(1., 0., 1.), DVec3::X, DVec3::Y, 1.0),

@@ -247,6 +247,8 @@ mod tests {
             delta,
             spacing: 20.0,
             straight: false,
+            keep_direction: false,
+            keep_depth: false,
         };
         for k in 1..=30 {
             let ang = (k as f64 * 3.0).to_radians();

@@ -5,20 +5,20 @@ mod editor_support;
 use glam::DVec2;
 use proptest::prelude::*;
 
-use cutter::{CutKind, EditorEvent, Key};
+use cutter::{CutKind, EditorEvent, EditorSettings, Key};
 use editor_support::*;
 
 /// Pointer steps of a handle drag: (dx, dy, shift held), in pixels.
 type Walk = Vec<(f64, f64, bool)>;
 
 /// A random gesture: an initial drag, then a handle drag along a random walk, then a few random
-/// edits (codes 0..6, see `run`).
+/// edits (codes 0..7, see `run`).
 fn gesture() -> impl Strategy<Value = (DVec2, DVec2, Walk, Vec<u8>)> {
     (
         (540.0..740.0f64, 340.0..460.0f64),
         (-80.0..80.0f64, -80.0..80.0f64),
         prop::collection::vec((-12.0..16.0f64, -12.0..12.0f64, any::<bool>()), 5..60),
-        prop::collection::vec(0u8..6, 0..6),
+        prop::collection::vec(0u8..7, 0..6),
     )
         .prop_map(|((ax, ay), (bx, by), walk, edits)| {
             (
@@ -39,7 +39,19 @@ fn run(
     walk: &[(f64, f64, bool)],
     edits: &[u8],
 ) {
-    let mut editor = scene.editor(scene.settings(kind).with_spacing(12.0).with_smooth(smooth));
+    run_with(scene, scene.settings(kind), smooth, a, b, walk, edits);
+}
+
+fn run_with(
+    scene: &Scene,
+    settings: EditorSettings,
+    smooth: bool,
+    a: DVec2,
+    b: DVec2,
+    walk: &[(f64, f64, bool)],
+    edits: &[u8],
+) {
+    let mut editor = scene.editor(settings.with_spacing(12.0).with_smooth(smooth));
     feed(&mut editor, drag(a, b, 3));
     let Some(c) = editor.cutter() else {
         // A drag too short to make a cutter (fewer than 3 pixels): nothing to check.
@@ -78,6 +90,7 @@ fn run(
             2 => EditorEvent::wheel(px.x, px.y, 1.0, true),
             3 => EditorEvent::key(Key::Delete, px.x, px.y),
             4 => EditorEvent::wheel(10.0, 10.0, -2.0, false),
+            5 => EditorEvent::alt_wheel(px.x, px.y, -3.0),
             _ => EditorEvent::press(px.x, px.y),
         };
         feed(&mut editor, [event, EditorEvent::release(px.x, px.y)]);
@@ -115,6 +128,21 @@ proptest! {
         let scene = Scene::slab();
         run(&scene, CutKind::Wedge, false, a, b, &walk, &edits);
     }
+
+    #[test]
+    fn random_deep_paths_along_the_view_keep_the_cutter_valid((a, b, walk, edits) in gesture()) {
+        let scene = Scene::sphere();
+        run_with(&scene, scene.current_settings(CutKind::Curving), false, a, b, &walk, &edits);
+    }
+
+    #[test]
+    fn random_deep_paths_along_the_normal_keep_the_cutter_valid((a, b, walk, edits) in gesture()) {
+        let scene = Scene::bumpy();
+        let settings = scene
+            .current_settings(CutKind::Curving)
+            .with_direction(cutter::CutDirection::Normal);
+        run_with(&scene, settings, false, a, b, &walk, &edits);
+    }
 }
 
 proptest! {
@@ -138,5 +166,11 @@ proptest! {
     fn random_smooth_wedges_keep_the_cutter_valid((a, b, walk, edits) in gesture()) {
         let scene = Scene::slab();
         run(&scene, CutKind::Wedge, true, a, b, &walk, &edits);
+    }
+
+    #[test]
+    fn random_smooth_deep_paths_keep_the_cutter_valid((a, b, walk, edits) in gesture()) {
+        let scene = Scene::sphere();
+        run_with(&scene, scene.current_settings(CutKind::Curving), true, a, b, &walk, &edits);
     }
 }

@@ -10,7 +10,7 @@ use glam::{DVec2, DVec3};
 use csg::Mesh;
 use cutaway::cli::extrude::replay;
 use cutaway::io::gesture::{CutSettings, Gesture, parse_gesture, read_gesture};
-use cutter::{Camera, CutKind, EditorEvent, EditorSettings};
+use cutter::{Camera, CutDirection, CutKind, EditorEvent, EditorSettings, Rules};
 
 fn gestures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/gestures")
@@ -177,7 +177,7 @@ fn bad_gesture_files_fail_with_one_line_naming_the_file() {
         ("broken.json", "{\"format\": "),
         (
             "wrong_format.json",
-            "{\"format\": \"cutaway-gesture/2\", \"viewport\": [10, 10], \"camera\": {\"eye\": [0,-3,0], \"target\": [0,0,0], \"up\": [0,0,1], \"fov_y_deg\": 30}, \"events\": []}",
+            "{\"format\": \"cutaway-gesture/9\", \"viewport\": [10, 10], \"camera\": {\"eye\": [0,-3,0], \"target\": [0,0,0], \"up\": [0,0,1], \"fov_y_deg\": 30}, \"events\": []}",
         ),
         (
             "no_cutter.json",
@@ -242,8 +242,12 @@ fn the_region_under_the_press_is_painted() {
     let gesture = Gesture {
         viewport,
         camera,
-        cut: CutSettings::default(),
+        cut: CutSettings {
+            direction: CutDirection::Normal,
+            ..CutSettings::default()
+        },
         events,
+        rules: Rules::Delta,
     };
     let r = replay(&two, &gesture).unwrap();
     assert_eq!(r.region, 1);
@@ -384,8 +388,10 @@ fn gesture_for(mesh: &Mesh, kind: CutKind) -> Gesture {
             kind,
             spacing: 20.0,
             smooth: false,
+            direction: CutDirection::Normal,
         },
         events,
+        rules: Rules::Delta,
     }
 }
 

@@ -227,6 +227,7 @@ fn rounded_knee_scene() -> Scene {
             kind: CutKind::Curving,
             smooth: true,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: cutter::CutDirection::Normal,
             planes,
         },
         views: CutterViews::default(),

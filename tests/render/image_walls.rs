@@ -74,6 +74,7 @@ fn cube_scene(image: IntensityImage, window: Window) -> Scene {
             kind: CutKind::Straight,
             smooth: false,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: cutter::CutDirection::Normal,
             planes: box_planes(1.0, 9.0, -5.0, 5.0, 1.0, 9.0),
         },
         views: CutterViews::default(),

@@ -31,6 +31,7 @@ mod image_compare;
 
 mod annotate;
 mod compare;
+mod depth;
 mod exports;
 mod goldens;
 mod image_walls;
@@ -179,6 +180,7 @@ fn with_cutter(mut scene: Scene, views: CutterViews) -> Scene {
             kind: CutKind::Straight,
             smooth: false,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: cutter::CutDirection::Normal,
             planes: corner_planes(),
         },
         views,

@@ -34,6 +34,7 @@ fn vessel_behind_a_wall() -> Scene {
             smooth: false,
             levels: cutter::subdivision::DEFAULT_LEVELS,
             planes: vec![plane(-20.0), plane(20.0)],
+            direction: cutter::CutDirection::Normal,
         },
         views: CutterViews::default(),
     });

@@ -86,6 +86,7 @@ fn scene_for(dir: &Path) -> Scene {
             kind: CutKind::Wedge,
             smooth: true,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: cutter::CutDirection::Normal,
             planes: corner_planes(),
         },
         views: CutterViews {

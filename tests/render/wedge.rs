@@ -68,6 +68,8 @@ fn sweep_a_wedge(mesh: &Mesh, camera: &Camera, a: DVec2, radius_px: f64) -> Cutt
         delta,
         spacing: 20.0,
         straight: false,
+        keep_direction: false,
+        keep_depth: false,
     };
     for k in 1..=30 {
         let ang = (3.0 * k as f64).to_radians();

@@ -733,6 +733,7 @@ fn box_cutter(target: usize, min: DVec3, max: DVec3) -> cutaway::scene::SceneCut
             kind: cutter::CutKind::Curving,
             smooth: false,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: cutter::CutDirection::Normal,
             planes: vec![plane(min.x), plane((min.x + max.x) * 0.5), plane(max.x)],
         },
         views: Default::default(),

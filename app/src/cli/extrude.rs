@@ -1,12 +1,16 @@
 //! `cutaway extrude TARGET --gesture G.json --out CUTTER.obj --json`: replays a recorded gesture
-//! through the same [`cutter::Editor`] the GUI uses and writes the cutter as OBJ quads.
+//! through the same [`cutter::Editor`] the GUI uses and writes the cutter as OBJ quads; with a
+//! session as TARGET (`cutaway extrude SESSION.json --gesture G.json --out OUT.json`) the gesture
+//! is replayed on the whole scene as the window replays it ([`super::extrude_session`]).
 //!
 //! The target file is the whole scene; the region painted on is the one under the first press
 //! (else the first one seen through the initial drag, else the one nearest to the press ray), as
 //! the thesis picks "the first region under the press" when no target was selected. δ comes from
 //! that region's bounding box seen by the gesture's camera, the file's box when the region is
 //! flat ([`cutter::EditorSettings::delta_for_target`], as the window sizes a new cutter from
-//! the model it starts on).
+//! the model it starts on). The gesture's version says which rules its events are read by
+//! ([`Gesture::settings`]): a mesh has nothing behind the painted region, so a `/2` gesture's
+//! cutter takes half the region's thickness under the stroke ([`cutter::reach`]).
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -21,12 +25,14 @@ use crate::io::gesture::{Gesture, MAX_REPLAY_BOXES, MAX_REPLAY_TIME, read_gestur
 
 #[derive(Debug, clap::Args)]
 pub struct ExtrudeArgs {
-    /// The anatomy the gesture paints on.
+    /// The anatomy the gesture paints on: a mesh, or a session (`.json`) whose structure under
+    /// the first press is painted on.
     pub target: PathBuf,
-    /// A `cutaway-gesture/1` file.
+    /// A `cutaway-gesture/1` or `/2` file.
     #[arg(long)]
     pub gesture: PathBuf,
-    /// Where to write the cutter (OBJ quads).
+    /// Where to write the cutter (OBJ quads), or for a session the session with the new cutter
+    /// (`.json`).
     #[arg(long)]
     pub out: PathBuf,
     /// Subdivision levels of a smooth (rounded/freeform) cutter, 0 to 4 (default 2); each level
@@ -63,14 +69,21 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
     let mesh = Arc::new(pieces.swap_remove(region));
     let delta = EditorSettings::delta_for_target(&mesh.bbox(), &target.bbox(), &gesture.camera);
     let index = Arc::new(SpatialIndex::build(&mesh));
-    let settings = EditorSettings {
-        kind: gesture.cut.kind,
-        spacing: gesture.cut.spacing,
-        smooth: gesture.cut.smooth,
-        levels: cutter::subdivision::DEFAULT_LEVELS,
-        delta,
-    };
+    let settings = gesture.settings(delta);
     let mut editor = Editor::new(mesh, index, gesture.camera, gesture.viewport, settings);
+    let cutter = replay_events(&mut editor, gesture)?;
+    let max_surface_gap = editor.max_surface_gap().unwrap_or(f64::INFINITY);
+    Ok(Replay {
+        cutter,
+        delta,
+        max_surface_gap,
+        region,
+    })
+}
+
+/// Feeds the gesture's events to `editor` within the replay's bounds (boxes and CPU time, see
+/// [`crate::io::gesture`]) and returns the cutter they made.
+pub fn replay_events(editor: &mut Editor, gesture: &Gesture) -> anyhow::Result<Cutter> {
     let started = crate::platform::thread_time::thread_cpu_time();
     for (i, &event) in gesture.events.iter().enumerate() {
         editor.handle(event);
@@ -90,17 +103,10 @@ pub fn replay(target: &Mesh, gesture: &Gesture) -> anyhow::Result<Replay> {
             );
         }
     }
-    let Some(cutter) = editor.cutter().cloned() else {
-        bail!(
+    editor.cutter().cloned().ok_or_else(|| {
+        anyhow::anyhow!(
             "the gesture made no cutter (the first press-drag-release must be at least 3 pixels long)"
-        );
-    };
-    let max_surface_gap = editor.max_surface_gap().unwrap_or(f64::INFINITY);
-    Ok(Replay {
-        cutter,
-        delta,
-        max_surface_gap,
-        region,
+        )
     })
 }
 
@@ -149,6 +155,9 @@ pub fn run(args: &ExtrudeArgs) -> anyhow::Result<()> {
             "--levels {levels}: at most {} subdivision levels",
             cutter::subdivision::MAX_LEVELS
         );
+    }
+    if super::extrude_session::is_session(&args.target) {
+        return super::extrude_session::run(args, levels);
     }
     let target = crate::io::read_mesh(&args.target)?;
     let gesture = read_gesture(&args.gesture)?;

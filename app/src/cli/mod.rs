@@ -13,6 +13,7 @@ pub use crate::platform::errors::error_line;
 pub mod compare;
 pub mod export;
 pub mod extrude;
+pub mod extrude_session;
 pub mod image_args;
 pub mod info;
 pub mod metrics;
@@ -41,7 +42,8 @@ pub enum Command {
     Info(info::InfoArgs),
     /// Cut CUTTER out of every region of TARGET; write kept, walls, removed and contour to DIR.
     Subtract(subtract::SubtractArgs),
-    /// Replay a recorded mouse gesture through the cutter editor; write the cutter.
+    /// Replay a recorded mouse gesture through the cutter editor; write the cutter (on a
+    /// session: the session with the new cutter).
     Extrude(extrude::ExtrudeArgs),
     /// Render a session headless to a PNG image.
     Render(render::RenderArgs),

@@ -11,8 +11,10 @@ use std::sync::{Arc, Weak};
 use glam::DVec2;
 
 use csg::{Mesh, SpatialIndex};
-use cutter::{Editor, EditorEvent, EditorSettings};
+use cutter::{Camera, CutDirection, Editor, EditorEvent, EditorSettings};
 
+use crate::cutting::obstacles::{depth_line, shared_obstacles};
+use crate::cutting::pick::ScenePicks;
 use crate::platform::jobs::Progress;
 use crate::scene::{Scene, SceneCutter};
 use cutter::CutKind;
@@ -29,6 +31,9 @@ pub struct CutterInit {
     /// Subdivision levels of a rounded cutter ("Smoothness", 0 to
     /// [`cutter::subdivision::MAX_LEVELS`]).
     pub levels: u32,
+    /// Which way the boxes go: along the view they are painted in (default) or the surface
+    /// normal.
+    pub direction: CutDirection,
 }
 
 impl Default for CutterInit {
@@ -38,8 +43,54 @@ impl Default for CutterInit {
             kind: CutKind::Curving,
             smooth: false,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: CutDirection::View,
         }
     }
+}
+
+impl CutterInit {
+    /// These settings as the editor takes them (δ is set by [`new_editor`]).
+    pub fn editor_settings(&self) -> EditorSettings {
+        EditorSettings::default()
+            .with_kind(self.kind)
+            .with_spacing(self.spacing)
+            .with_smooth(self.smooth)
+            .with_levels(self.levels)
+            .with_direction(self.direction)
+    }
+}
+
+/// The editor of a new cutter on model `target` of `scene`, as the window and `cutaway extrude`
+/// both make it: `settings` with δ sized from the target seen by `camera`
+/// ([`EditorSettings::delta_for_target`]), what lies behind the target from the scene's other
+/// visible structures ([`crate::cutting::obstacles`]). `index` is the target mesh's.
+pub fn new_editor(
+    scene: &Scene,
+    target: usize,
+    index: Arc<SpatialIndex>,
+    camera: Camera,
+    viewport: DVec2,
+    settings: EditorSettings,
+    picks: &mut ScenePicks,
+) -> Option<Editor> {
+    let model = scene.models.get(target)?;
+    let delta = EditorSettings::delta_for_target(&model.mesh.bbox(), &scene.bbox(), &camera);
+    let settings = EditorSettings { delta, ..settings };
+    let mut editor = Editor::new(model.mesh.clone(), index, camera, viewport, settings);
+    editor.set_obstacles(Some(shared_obstacles(scene, target, picks)));
+    Some(editor)
+}
+
+/// The status line of an editor's cutter: its depth in the scene's unit shown as mm and what it
+/// reaches ("42 mm: reaches left lateral ventricle"). None without a cutter.
+pub fn depth_status(editor: &Editor, scene: &Scene) -> Option<String> {
+    let depth = editor.depth()?;
+    let names: Vec<String> = editor
+        .reached()
+        .iter()
+        .filter_map(|r| editor.obstacle_name(r.structure))
+        .collect();
+    Some(depth_line(scene.unit.to_mm(depth), &names))
 }
 
 /// Targets up to this many triangles get their spatial index built on the UI thread (a few
@@ -138,6 +189,7 @@ impl EditorSlot {
         target: usize,
         viewport: DVec2,
         init: &CutterInit,
+        picks: &mut ScenePicks,
     ) -> bool {
         if self.active.as_ref().is_some_and(|a| a.target == target) {
             return true;
@@ -157,12 +209,17 @@ impl EditorSlot {
         self.indexes
             .retain(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, &model.mesh)));
         // Sized from the target the stroke starts on, as `cutaway extrude` sizes its cutter.
-        let settings = EditorSettings::for_target(&model.mesh.bbox(), &scene.bbox(), &scene.camera)
-            .with_kind(init.kind)
-            .with_spacing(init.spacing)
-            .with_smooth(init.smooth)
-            .with_levels(init.levels);
-        let editor = Editor::new(model.mesh.clone(), index, scene.camera, viewport, settings);
+        let Some(editor) = new_editor(
+            scene,
+            target,
+            index,
+            scene.camera,
+            viewport,
+            init.editor_settings(),
+            picks,
+        ) else {
+            return false;
+        };
         self.active = Some(Active {
             editor,
             target,
@@ -178,12 +235,13 @@ impl EditorSlot {
         index: usize,
         viewport: DVec2,
         init: &CutterInit,
+        picks: &mut ScenePicks,
     ) -> bool {
         let Some(c) = scene.cutters.get(index) else {
             return false;
         };
         self.active = None;
-        if !self.ensure(scene, c.target, viewport, init) {
+        if !self.ensure(scene, c.target, viewport, init, picks) {
             return false;
         }
         let cutter = c.cutter.clone();
@@ -216,6 +274,55 @@ impl EditorSlot {
         true
     }
 
+    /// Renews what lies behind the active editor's target from the scene (structures that
+    /// arrived or were shown or hidden since the editor was made), before a press that may start
+    /// a cutter.
+    pub fn refresh_obstacles(&mut self, scene: &Scene, picks: &mut ScenePicks) {
+        if let Some(active) = &mut self.active
+            && active.editor.cutter().is_none()
+            && scene.models.get(active.target).is_some()
+        {
+            let obstacles = shared_obstacles(scene, active.target, picks);
+            active.editor.set_obstacles(Some(obstacles));
+        }
+    }
+
+    /// The active cutter's depth in file units (its leading plane's, which new planes take).
+    pub fn depth(&self) -> Option<f64> {
+        self.active.as_ref()?.editor.depth()
+    }
+
+    /// The depth of plane `i` of the active cutter.
+    pub fn plane_depth(&self, i: usize) -> Option<f64> {
+        let a = self.active.as_ref()?;
+        Some(a.editor.cutter()?.planes.get(i)?.depth())
+    }
+
+    /// Gives the active cutter the depth `depth` (file units) as one undoable action; true when
+    /// the scene's cutters changed.
+    pub fn set_depth(&mut self, scene: &mut Scene, depth: f64) -> bool {
+        let Some(active) = &mut self.active else {
+            return false;
+        };
+        if !active.editor.set_depth(depth) {
+            return false;
+        }
+        self.mirror_into(scene);
+        true
+    }
+
+    /// The status line of the active cutter's depth ([`depth_status`]).
+    pub fn depth_status(&self, scene: &Scene) -> Option<String> {
+        depth_status(&self.active.as_ref()?.editor, scene)
+    }
+
+    /// True when the pixel is over the active cutter (the wheel changes its depth there).
+    pub fn is_over_cutter(&self, px: DVec2) -> bool {
+        self.active
+            .as_ref()
+            .is_some_and(|a| a.editor.is_over_cutter(px))
+    }
+
     /// Applies Initialization-tab settings to the active editor; true when the cutter changed.
     pub fn apply_settings(&mut self, scene: &mut Scene, init: &CutterInit) -> bool {
         let Some(active) = &mut self.active else {
@@ -223,10 +330,11 @@ impl EditorSlot {
         };
         active.editor.set_kind(init.kind);
         active.editor.set_spacing(init.spacing);
-        // Both run: each sets the next cutters' setting, and either may change the cutter.
+        // Each runs: each sets the next cutters' setting, and any may change the cutter.
+        let direction = active.editor.set_direction(init.direction);
         let smooth = active.editor.set_smooth(init.smooth);
         let levels = active.editor.set_levels(init.levels);
-        if smooth || levels {
+        if smooth || levels || direction {
             self.mirror_into(scene);
             return true;
         }

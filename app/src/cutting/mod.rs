@@ -15,6 +15,8 @@
 //! - [`editing`]: the editor slot around `cutter::Editor` and the settings a new cutter starts
 //!   with.
 //! - [`overlay`]: the cutter as Edit mode draws it, the surface the boolean cuts with.
+//! - [`obstacles`]: what lies behind a cutter's target (the scene's other visible structures),
+//!   which a new cutter's default depth reaches for.
 //! - [`pick`]: which model a ray meets first, through each model's BVH; [`drawn_hit`]: the point
 //!   a ray meets on the scene as drawn (cut walls and kept parts where a cut is shown).
 //! - [`wall_risk`]: the risk map's distances from the cut walls to the critical structures, on
@@ -27,6 +29,7 @@ pub mod delta;
 pub mod drawn_hit;
 pub mod editing;
 pub mod live_cut;
+pub mod obstacles;
 pub mod overlay;
 pub mod pick;
 pub mod scene_cuts;

@@ -36,7 +36,7 @@ pub struct ScenePicks {
 }
 
 /// A model a pick can hit: visible, not fully transparent, not empty.
-fn is_pickable(model: &crate::scene::SceneModel) -> bool {
+pub fn is_pickable(model: &crate::scene::SceneModel) -> bool {
     model.visible && model.opacity > 0.0 && !model.mesh.triangles.is_empty()
 }
 
@@ -181,7 +181,8 @@ impl ScenePicks {
         self.in_flight.remove(k);
     }
 
-    fn tree(&mut self, mesh: &Arc<Mesh>) -> Arc<PickIndex> {
+    /// The ray-pick tree of `mesh`: kept, waited for when a worker builds it, else built here.
+    pub fn tree(&mut self, mesh: &Arc<Mesh>) -> Arc<PickIndex> {
         self.collect();
         if !self.has_tree(mesh) && self.is_building(mesh) {
             self.wait_for(mesh);

@@ -163,6 +163,7 @@ mod tests {
                 kind: CutKind::Straight,
                 smooth: false,
                 levels: cutter::subdivision::DEFAULT_LEVELS,
+                direction: cutter::CutDirection::Normal,
                 planes: box_cutter(2.0, 8.0, -5.0, 5.0, 2.0, 8.0),
             },
             views: CutterViews::default(),

@@ -149,13 +149,16 @@ impl CutawayApp {
                     i,
                     self.state.viewport.size_px,
                     &self.state.cutter_init,
+                    &mut self.state.viewport.picks,
                 ) {
                     self.state.selected_model = self.state.viewport.editor.target();
                     self.state.selected_cutter = i;
-                    // The Initialization tab shows the edited cutter's smoothing.
+                    // The Initialization tab shows the edited cutter's smoothing and direction,
+                    // so it goes on as it was made.
                     let c = &self.state.scene.cutters[i].cutter;
                     (self.state.cutter_init.smooth, self.state.cutter_init.levels) =
                         (c.smooth, c.levels);
+                    self.state.cutter_init.direction = c.direction;
                     self.state
                         .viewport
                         .editor

@@ -172,6 +172,7 @@ mod tests {
                 smooth: false,
                 levels: cutter::subdivision::DEFAULT_LEVELS,
                 planes: vec![plane(-20.0), plane(20.0)],
+                direction: cutter::CutDirection::Normal,
             },
         ));
         scene.camera = scene.framing_camera();

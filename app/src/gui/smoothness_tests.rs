@@ -39,6 +39,7 @@ fn the_smoothness_slider_changes_the_edited_cutters_surface_and_undoes() {
                 kind: cutter::CutKind::Straight,
                 smooth: true,
                 levels: cutter::subdivision::DEFAULT_LEVELS,
+                direction: cutter::CutDirection::Normal,
                 planes: crate::test_support::box_cutter(-20.0, 20.0, -10.0, 10.0, 35.0, 60.0),
             },
         ));

@@ -1,6 +1,15 @@
-//! The `cutaway-gesture/1` file (CONTRACT.md): a recorded mouse gesture with the camera, viewport
+//! The `cutaway-gesture` file (CONTRACT.md): a recorded mouse gesture with the camera, viewport
 //! and cut settings it was made with. `cutaway extrude` replays it through [`cutter::Editor`]; the
 //! GUI's "record gesture" debug action writes one, so an editing bug becomes a replayable test.
+//!
+//! Two versions, each replayed by the rules it was recorded under ([`cutter::Rules`]):
+//! `cutaway-gesture/1` by the first rules (a new cutter 5δ deep, the wheel over the cutter
+//! deepening the selected plane, its boxes after the first along the surface normal), so an old
+//! file makes exactly the cutter it always made; `cutaway-gesture/2` (what the window records
+//! now) by the current rules (the default depth reaches the first structure behind the target,
+//! the wheel over the cutter changes its whole depth and with `alt` the plane under the
+//! pointer, rolling keeps the depth) with the cut direction of its `cut.direction` (`view`,
+//! the default, or `normal`).
 //!
 //! Unknown fields are ignored; every error names the file and says what is wrong.
 //!
@@ -21,10 +30,12 @@ use anyhow::{Context, bail};
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
-use cutter::{Camera, CutKind, EditorEvent, Key};
+use cutter::{Camera, CutDirection, CutKind, EditorEvent, EditorSettings, Key, Rules};
 
-/// The format tag.
-pub const FORMAT: &str = "cutaway-gesture/1";
+/// The format tag the window writes.
+pub const FORMAT: &str = "cutaway-gesture/2";
+/// The first version, still read (and written for a gesture made under the first rules).
+pub const FORMAT_V1: &str = "cutaway-gesture/1";
 
 /// Smallest viewport side, in pixels.
 pub const MIN_VIEWPORT_PX: f64 = 16.0;
@@ -54,6 +65,9 @@ pub struct CutSettings {
     /// Segment spacing ω (multiples of δ). Positive.
     pub spacing: f64,
     pub smooth: bool,
+    /// Which way the boxes go (a `/1` gesture always goes along the normal, the first rules'
+    /// only direction).
+    pub direction: CutDirection,
 }
 
 impl Default for CutSettings {
@@ -62,6 +76,7 @@ impl Default for CutSettings {
             kind: CutKind::Curving,
             spacing: 20.0,
             smooth: false,
+            direction: CutDirection::View,
         }
     }
 }
@@ -74,6 +89,24 @@ pub struct Gesture {
     pub camera: Camera,
     pub cut: CutSettings,
     pub events: Vec<EditorEvent>,
+    /// The rules the events were recorded under: [`Rules::Delta`] for `cutaway-gesture/1`,
+    /// [`Rules::Reach`] for `/2`.
+    pub rules: Rules,
+}
+
+impl Gesture {
+    /// The editor settings that replay this gesture, with the scene increment `delta`.
+    pub fn settings(&self, delta: f64) -> EditorSettings {
+        EditorSettings {
+            kind: self.cut.kind,
+            spacing: self.cut.spacing,
+            smooth: self.cut.smooth,
+            levels: cutter::subdivision::DEFAULT_LEVELS,
+            delta,
+            rules: self.rules,
+            direction: self.cut.direction,
+        }
+    }
 }
 
 #[derive(Debug, Deserialize, Serialize)]
@@ -102,6 +135,9 @@ struct CutJson {
     spacing: f64,
     #[serde(default)]
     smooth: bool,
+    /// `/2` only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    direction: Option<String>,
 }
 
 fn default_kind() -> String {
@@ -147,6 +183,9 @@ enum EventJson {
         delta: f64,
         #[serde(default)]
         ctrl: bool,
+        /// `/2` only: the plane under the pointer.
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        alt: bool,
     },
     Key {
         key: String,
@@ -167,10 +206,12 @@ pub fn read_gesture(path: &Path) -> anyhow::Result<Gesture> {
 /// Parses and validates gesture JSON text.
 pub fn parse_gesture(text: &str) -> anyhow::Result<Gesture> {
     let file: FileJson =
-        serde_json::from_str(text).context("not a valid cutaway-gesture/1 JSON document")?;
-    if file.format != FORMAT {
-        bail!("format is {:?}, expected {FORMAT:?}", file.format);
-    }
+        serde_json::from_str(text).context("not a valid cutaway-gesture JSON document")?;
+    let rules = match file.format.as_str() {
+        FORMAT => Rules::Reach,
+        FORMAT_V1 => Rules::Delta,
+        other => bail!("format is {other:?}, expected {FORMAT:?} or {FORMAT_V1:?}"),
+    };
     let [w, h] = file.viewport;
     let sane = |side: f64| (MIN_VIEWPORT_PX..=MAX_VIEWPORT_PX).contains(&side);
     if !(sane(w) && sane(h)) {
@@ -215,7 +256,13 @@ pub fn parse_gesture(text: &str) -> anyhow::Result<Gesture> {
         bail!("camera up is parallel to the viewing direction");
     }
     let cut = match &file.cut {
-        None => CutSettings::default(),
+        None => CutSettings {
+            direction: match rules {
+                Rules::Delta => CutDirection::Normal,
+                Rules::Reach => CutDirection::View,
+            },
+            ..CutSettings::default()
+        },
         Some(cut) => {
             let Some(kind) = CutKind::from_name(&cut.kind) else {
                 bail!(
@@ -226,10 +273,19 @@ pub fn parse_gesture(text: &str) -> anyhow::Result<Gesture> {
             if !(cut.spacing.is_finite() && cut.spacing > 0.0) {
                 bail!("cut spacing {} must be positive", cut.spacing);
             }
+            let direction = match (&cut.direction, rules) {
+                (_, Rules::Delta) => CutDirection::Normal,
+                (None, Rules::Reach) => CutDirection::View,
+                (Some(name), Rules::Reach) => match CutDirection::from_name(name) {
+                    Some(d) => d,
+                    None => bail!("cut direction {name:?} is not one of view, normal"),
+                },
+            };
             CutSettings {
                 kind,
                 spacing: cut.spacing,
                 smooth: cut.smooth,
+                direction,
             }
         }
     };
@@ -239,13 +295,27 @@ pub fn parse_gesture(text: &str) -> anyhow::Result<Gesture> {
             EventJson::Press { x, y, shift, ctrl } => EditorEvent::Press { x, y, shift, ctrl },
             EventJson::Move { x, y, shift, ctrl } => EditorEvent::Move { x, y, shift, ctrl },
             EventJson::Release { x, y, shift, ctrl } => EditorEvent::Release { x, y, shift, ctrl },
-            EventJson::Wheel { x, y, delta, ctrl } => {
+            EventJson::Wheel {
+                x,
+                y,
+                delta,
+                ctrl,
+                alt,
+            } => {
                 if !(delta.is_finite() && delta.abs() <= MAX_WHEEL_DELTA) {
                     bail!(
                         "event {i}: wheel delta {delta} is not a number within ±{MAX_WHEEL_DELTA}"
                     );
                 }
-                EditorEvent::Wheel { x, y, delta, ctrl }
+                // The first rules know no Alt: a `/1` file that says so means nothing by it.
+                let alt = alt && rules == Rules::Reach;
+                EditorEvent::Wheel {
+                    x,
+                    y,
+                    delta,
+                    ctrl,
+                    alt,
+                }
             }
             EventJson::Key { ref key, x, y } => match Key::from_name(key) {
                 Some(key) => EditorEvent::Key { key, x, y },
@@ -268,10 +338,12 @@ pub fn parse_gesture(text: &str) -> anyhow::Result<Gesture> {
         camera,
         cut,
         events,
+        rules,
     })
 }
 
-/// The gesture as `cutaway-gesture/1` JSON (what the GUI's "record gesture" writes).
+/// The gesture as JSON (what the GUI's "record gesture" writes): `cutaway-gesture/2`, or `/1`
+/// for a gesture made under the first rules.
 pub fn gesture_to_json(g: &Gesture) -> String {
     let events = g
         .events
@@ -280,7 +352,19 @@ pub fn gesture_to_json(g: &Gesture) -> String {
             EditorEvent::Press { x, y, shift, ctrl } => EventJson::Press { x, y, shift, ctrl },
             EditorEvent::Move { x, y, shift, ctrl } => EventJson::Move { x, y, shift, ctrl },
             EditorEvent::Release { x, y, shift, ctrl } => EventJson::Release { x, y, shift, ctrl },
-            EditorEvent::Wheel { x, y, delta, ctrl } => EventJson::Wheel { x, y, delta, ctrl },
+            EditorEvent::Wheel {
+                x,
+                y,
+                delta,
+                ctrl,
+                alt,
+            } => EventJson::Wheel {
+                x,
+                y,
+                delta,
+                ctrl,
+                alt: alt && g.rules == Rules::Reach,
+            },
             EditorEvent::Key { key, x, y } => EventJson::Key {
                 key: key.name().to_owned(),
                 x,
@@ -288,8 +372,9 @@ pub fn gesture_to_json(g: &Gesture) -> String {
             },
         })
         .collect();
+    let first = g.rules == Rules::Delta;
     let file = FileJson {
-        format: FORMAT.to_owned(),
+        format: if first { FORMAT_V1 } else { FORMAT }.to_owned(),
         viewport: [g.viewport.x, g.viewport.y],
         camera: CameraJson {
             eye: g.camera.eye.to_array(),
@@ -301,6 +386,7 @@ pub fn gesture_to_json(g: &Gesture) -> String {
             kind: g.cut.kind.name().to_owned(),
             spacing: g.cut.spacing,
             smooth: g.cut.smooth,
+            direction: (!first).then(|| g.cut.direction.name().to_owned()),
         }),
         events,
     };
@@ -339,6 +425,50 @@ mod tests {
         assert_eq!(g.events[4], EditorEvent::key(Key::Delete, 640.0, 320.0));
         let again = parse_gesture(&gesture_to_json(&g)).unwrap();
         assert_eq!(again, g);
+    }
+
+    /// A `/1` file keeps the first rules (and the normal direction); `/2` carries the current
+    /// rules, the cut direction and Alt on the wheel, and writes itself back as `/2`.
+    #[test]
+    fn each_version_keeps_its_rules() {
+        let first = parse_gesture(EXAMPLE).unwrap();
+        assert_eq!(first.rules, Rules::Delta);
+        assert_eq!(first.cut.direction, CutDirection::Normal);
+        assert!(gesture_to_json(&first).contains("\"cutaway-gesture/1\""));
+        let settings = first.settings(0.5);
+        assert_eq!(
+            (settings.rules, settings.direction, settings.delta),
+            (Rules::Delta, CutDirection::Normal, 0.5)
+        );
+
+        let second = EXAMPLE
+            .replace("cutaway-gesture/1", "cutaway-gesture/2")
+            .replace(
+                "\"smooth\": false}",
+                "\"smooth\": false, \"direction\": \"normal\"}",
+            )
+            .replace("\"ctrl\": false}", "\"ctrl\": false, \"alt\": true}");
+        let g = parse_gesture(&second).unwrap();
+        assert_eq!(g.rules, Rules::Reach);
+        assert_eq!(g.cut.direction, CutDirection::Normal);
+        assert_eq!(g.events[3], EditorEvent::alt_wheel(100.0, 100.0, 3.0));
+        let text = gesture_to_json(&g);
+        assert!(text.contains("\"cutaway-gesture/2\"") && text.contains("\"alt\": true"));
+        assert_eq!(parse_gesture(&text).unwrap(), g);
+        let plain = second.replace(", \"direction\": \"normal\"", "");
+        assert_eq!(
+            parse_gesture(&plain).unwrap().cut.direction,
+            CutDirection::View
+        );
+        let bad = second.replace("\"normal\"", "\"sideways\"");
+        let e = format!("{:#}", parse_gesture(&bad).unwrap_err());
+        assert!(e.contains("sideways"), "{e}");
+        // Alt means nothing to the first rules.
+        let alt_in_first = EXAMPLE.replace("\"ctrl\": false}", "\"ctrl\": false, \"alt\": true}");
+        assert_eq!(
+            parse_gesture(&alt_in_first).unwrap().events[3],
+            EditorEvent::wheel(100.0, 100.0, 3.0, false)
+        );
     }
 
     #[test]

@@ -262,6 +262,7 @@ mod tests {
                 kind: cutter::CutKind::Curving,
                 smooth: false,
                 levels: cutter::subdivision::DEFAULT_LEVELS,
+                direction: cutter::CutDirection::Normal,
                 planes: vec![cutter::BoundedPlane::from_corners([
                     DVec3::ZERO,
                     DVec3::X,

@@ -188,6 +188,7 @@ mod tests {
                 kind: cutter::CutKind::Curving,
                 smooth: false,
                 levels: cutter::subdivision::DEFAULT_LEVELS,
+                direction: cutter::CutDirection::Normal,
                 planes: vec![plane],
             },
         ));

@@ -270,6 +270,7 @@ mod tests {
                 kind: CutKind::Straight,
                 smooth: false,
                 levels: cutter::subdivision::DEFAULT_LEVELS,
+                direction: cutter::CutDirection::Normal,
                 planes: vec![cutter::BoundedPlane::from_corners([
                     DVec3::X * x,
                     DVec3::Y,

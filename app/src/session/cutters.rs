@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::scene::{CutterViews, SceneCutter, SubCutterSpec};
 use cutter::subcutters::Placement;
-use cutter::{BoundedPlane, CutKind, Cutter};
+use cutter::{BoundedPlane, CutDirection, CutKind, Cutter};
 
 /// The scene cutter a session entry describes; errors name cutter `i`.
 pub fn cutter_from_entry(i: usize, c: &CutterEntry) -> anyhow::Result<SceneCutter> {
@@ -33,6 +33,12 @@ pub fn cutter_from_entry(i: usize, c: &CutterEntry) -> anyhow::Result<SceneCutte
             relative: v.relative,
         }))
     };
+    let direction = match c.direction.as_deref() {
+        None => CutDirection::Normal,
+        Some(name) => CutDirection::from_name(name).ok_or_else(|| {
+            anyhow::anyhow!("cutter {i}: direction {name:?} is not view or normal")
+        })?,
+    };
     let levels = c.levels.unwrap_or(cutter::subdivision::DEFAULT_LEVELS);
     if levels > cutter::subdivision::MAX_LEVELS {
         anyhow::bail!(
@@ -46,6 +52,7 @@ pub fn cutter_from_entry(i: usize, c: &CutterEntry) -> anyhow::Result<SceneCutte
             kind,
             smooth: c.smooth,
             levels,
+            direction,
             planes: c
                 .planes
                 .iter()
@@ -76,6 +83,8 @@ pub fn cutter_entry(c: &SceneCutter) -> CutterEntry {
         kind: c.cutter.kind.name().to_string(),
         smooth: c.cutter.smooth,
         levels: Some(c.cutter.levels),
+        direction: (c.cutter.direction == CutDirection::View)
+            .then(|| CutDirection::View.name().to_string()),
         planes: c
             .cutter
             .planes
@@ -103,6 +112,10 @@ pub struct CutterEntry {
     /// a file without it means the default, 2.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub levels: Option<u32>,
+    /// `view` or `normal`: which way the cutter's planes go (added later: a file without it
+    /// means `normal`, how every earlier cutter was made; written only for `view`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub direction: Option<String>,
     pub planes: Vec<[[f64; 3]; 4]>,
     #[serde(default)]
     pub views: ViewsEntry,

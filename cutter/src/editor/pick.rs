@@ -100,6 +100,27 @@ impl Editor {
         near.map(|(_, i)| i)
     }
 
+    /// The plane under the pointer ([`Editor::plane_under`]), else the plane whose projected
+    /// front edge is nearest to it, at any distance (planes seen edge-on, as a cutter cut along
+    /// the view is from there, show only their front edges).
+    pub(super) fn nearest_plane(&self, px: DVec2) -> Option<usize> {
+        if let Some(i) = self.plane_under(px) {
+            return Some(i);
+        }
+        let cutter = self.cutter.as_ref()?;
+        cutter
+            .planes
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| {
+                let a = self.project(p.front_top)?;
+                let d = self.project(p.front_bottom)?;
+                Some((segment_distance(px, a, d), i))
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, i)| i)
+    }
+
     /// True when the pointer is over any part of the cutter (its mesh, or near a front edge).
     pub(super) fn over_cutter(&self, px: DVec2) -> bool {
         let Some(cutter) = &self.cutter else {

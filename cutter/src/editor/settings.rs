@@ -6,7 +6,24 @@ use csg::Aabb;
 use glam::DVec2;
 
 use crate::camera::Camera;
+pub use crate::cutter::CutDirection;
 use crate::cutter::CutKind;
+
+/// The rules the editor reads its events by. Recorded gestures name theirs, so a gesture made
+/// under the first rules replays exactly as it was made.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Rules {
+    /// A new cutter reaches the first structure behind its target ([`crate::reach`]); the wheel
+    /// over the cutter scales every plane's depth by [`crate::edits::DEPTH_FACTOR`] a notch,
+    /// Alt+wheel only the plane under the pointer, a wheel off the cutter does nothing (the
+    /// window zooms); rolling keeps the leading plane's depth and new planes take it.
+    #[default]
+    Reach,
+    /// The first rules: a new cutter is 5δ deep; the wheel changes the depth of the selected
+    /// (else hovered) plane by 2δ a notch, of every plane when the pointer is off the cutter;
+    /// a rolled plane takes the depth of the plane before it.
+    Delta,
+}
 
 /// Editor options (the thesis's "Cutter Initialization" tab).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,6 +40,10 @@ pub struct EditorSettings {
     pub levels: u32,
     /// Scene increment δ (see [`EditorSettings::delta_for_target`]). Default 1.
     pub delta: f64,
+    /// The rules events are read by. Default [`Rules::Reach`].
+    pub rules: Rules,
+    /// Which way the boxes go into the target. Default [`CutDirection::View`].
+    pub direction: CutDirection,
 }
 
 impl Default for EditorSettings {
@@ -33,6 +54,8 @@ impl Default for EditorSettings {
             smooth: false,
             levels: crate::subdivision::DEFAULT_LEVELS,
             delta: 1.0,
+            rules: Rules::Reach,
+            direction: CutDirection::View,
         }
     }
 }
@@ -95,6 +118,23 @@ impl EditorSettings {
     /// Builder: smooth (rounded/freeform).
     pub fn with_smooth(self, smooth: bool) -> Self {
         EditorSettings { smooth, ..self }
+    }
+
+    /// Builder: the rules events are read by.
+    pub fn with_rules(self, rules: Rules) -> Self {
+        EditorSettings { rules, ..self }
+    }
+
+    /// Builder: the cut direction.
+    pub fn with_direction(self, direction: CutDirection) -> Self {
+        EditorSettings { direction, ..self }
+    }
+
+    /// The first rules with the direction they had (the surface normal): how a
+    /// `cutaway-gesture/1` file is replayed.
+    pub fn first_rules(self) -> Self {
+        self.with_rules(Rules::Delta)
+            .with_direction(CutDirection::Normal)
     }
 
     /// Builder: subdivision levels of a smooth cutter (clamped to

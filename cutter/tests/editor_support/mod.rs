@@ -48,7 +48,18 @@ impl Scene {
         )
     }
 
+    /// Settings under the first rules (`cutaway-gesture/1`: 5δ deep, the wheel on the
+    /// selected plane, boxes along the normal), which the thesis-mechanics tests were written
+    /// for: they check those rules still hold.
     pub fn settings(&self, kind: CutKind) -> EditorSettings {
+        EditorSettings::for_scene(&self.mesh.bbox(), self.camera.fov_y_deg)
+            .with_kind(kind)
+            .first_rules()
+    }
+
+    /// Settings under the current rules (a default depth that reaches behind the target, the
+    /// wheel on the whole cutter, boxes along the view).
+    pub fn current_settings(&self, kind: CutKind) -> EditorSettings {
         EditorSettings::for_scene(&self.mesh.bbox(), self.camera.fov_y_deg).with_kind(kind)
     }
 

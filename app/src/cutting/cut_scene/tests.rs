@@ -114,6 +114,7 @@ fn nested_shells_are_each_cut_closed_and_a_cavity_stays_hollow() {
             kind: cutter::CutKind::Straight,
             smooth: false,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: cutter::CutDirection::Normal,
             planes,
         },
         views: crate::scene::CutterViews::default(),
@@ -283,6 +284,7 @@ fn ribbons_of_a_smooth_cutter_lie_inside_its_surface() {
                 kind: cutter::CutKind::Curving,
                 smooth: true,
                 levels: cutter::subdivision::DEFAULT_LEVELS,
+                direction: cutter::CutDirection::Normal,
                 planes: box_cutter(-0.6, 0.6, -0.5, 0.5, 0.3, 1.5),
             },
             views: crate::scene::CutterViews {

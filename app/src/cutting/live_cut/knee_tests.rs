@@ -24,11 +24,10 @@ fn live_cut_follows_the_editor_on_the_knee() {
     let viewport = DVec2::new(1280.0, 800.0);
     let press = viewport * 0.5 + DVec2::new(-60.0, 0.0);
     let ray = scene.camera.ray_through_pixel(viewport, press);
-    let (target, _) = crate::cutting::pick::ScenePicks::default()
-        .pick(&scene, &ray)
-        .expect("the knee is in view");
+    let mut picks = crate::cutting::pick::ScenePicks::default();
+    let (target, _) = picks.pick(&scene, &ray).expect("the knee is in view");
     let mut slot = EditorSlot::default();
-    assert!(slot.ensure(&scene, target, viewport, &CutterInit::default()));
+    assert!(slot.ensure(&scene, target, viewport, &CutterInit::default(), &mut picks));
     for event in [
         EditorEvent::press(press.x, press.y),
         EditorEvent::move_to(press.x + 40.0, press.y + 4.0),

@@ -1,12 +1,13 @@
 //! The cutter tabs (thesis 3.5 E): Initialization (segment spacing ω, type Freeform/Wedge,
-//! smoothing and its Smoothness levels) for the next cutter and the one being edited, and Visualization per cutter (Normal Cut, Transparency with
+//! smoothing and its Smoothness levels, the cut direction, and the depth of the cutter being
+//! edited in mm) for the next cutter and the one being edited, and Visualization per cutter (Normal Cut, Transparency with
 //! its opacity, Slices, Ribbons with count and width) for Preview mode, and the "Live cut" toggle
 //! (the cut shown while painting in Edit mode, see [`crate::gui::viewport::live_cut`]).
 
 use crate::gui::action::Action;
 use crate::gui::state::AppState;
 use crate::scene::SubCutterSpec;
-use cutter::CutKind;
+use cutter::{CutDirection, CutKind};
 
 pub use crate::gui::state::CutterTab;
 
@@ -68,6 +69,23 @@ fn initialization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Ac
                 }
             });
             ui.end_row();
+            ui.label("Cut along")
+                .on_hover_text("Which way the cutter goes into the target");
+            ui.horizontal(|ui| {
+                let direction = &mut app.cutter_init.direction;
+                ui.selectable_value(direction, CutDirection::View, "Your view")
+                    .on_hover_text(
+                        "Straight in, the way you look at the surface: the opening is what you \
+                         painted, seen from where you painted it",
+                    );
+                ui.selectable_value(direction, CutDirection::Normal, "Surface normal")
+                    .on_hover_text(
+                        "Each box goes in along the surface under it: a trench of even depth",
+                    );
+            });
+            ui.end_row();
+            depth_row(ui, app);
+            ui.end_row();
             ui.label("Smoothing");
             ui.checkbox(&mut app.cutter_init.smooth, "Rounded (subdivided) cutter");
             ui.end_row();
@@ -108,6 +126,37 @@ fn initialization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Ac
         }
     };
     ui.label(egui::RichText::new(hint).weak().small());
+}
+
+/// The depth of the cutter being edited, in mm (every plane gets it; the wheel over the cutter
+/// changes it too), or what a new cutter's depth will be.
+fn depth_row(ui: &mut egui::Ui, app: &mut AppState) {
+    ui.label("Depth").on_hover_text(
+        "How deep the cutter goes from its front. A new cutter reaches the first structure \
+         behind its target; the wheel over the cutter changes the whole depth, Alt+wheel the \
+         plane under the pointer",
+    );
+    let Some(depth) = app.viewport.editor.depth() else {
+        ui.label(egui::RichText::new("auto: reaches what lies behind").weak());
+        return;
+    };
+    let unit = app.scene.unit;
+    let mut mm = unit.to_mm(depth);
+    let speed = (mm * 0.01).max(0.05);
+    let edit = egui::DragValue::new(&mut mm)
+        .range(0.1..=1e5)
+        .speed(speed)
+        .max_decimals(1)
+        .suffix(" mm");
+    if ui.add(edit).changed()
+        && app
+            .viewport
+            .editor
+            .set_depth(&mut app.scene, unit.from_mm(mm))
+    {
+        app.cutters_changed();
+        app.say_depth();
+    }
 }
 
 fn visualization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Action>) {

@@ -302,6 +302,7 @@ mod tests {
                     kind: cutter::CutKind::Straight,
                     smooth: false,
                     levels: cutter::subdivision::DEFAULT_LEVELS,
+                    direction: cutter::CutDirection::Normal,
                     planes: crate::test_support::box_cutter(0.4, 1.6, -1.0, 1.0, 0.4, 1.6),
                 },
                 views: Default::default(),

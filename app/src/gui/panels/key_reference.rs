@@ -20,6 +20,7 @@ pub fn commands(mode: Mode) -> &'static [(&'static str, &'static str)] {
             ("Drag handle", "extrude (Shift: straight)"),
             ("Drag front vertex", "move edge"),
             ("Wheel on cutter", "depth"),
+            ("Alt+Wheel", "plane depth"),
             ("Wheel elsewhere", "zoom"),
             ("Right/Alt+Drag", "orbit"),
             ("Ctrl+Wheel", "rotate plane"),

@@ -236,7 +236,7 @@ fn debug_menu_ui(ui: &mut egui::Ui, app: &AppState, actions: &mut Vec<Action>) {
         if app.viewport.recording.is_none() {
             if ui
                 .button("Record Gesture")
-                .on_hover_text("Record Edit-mode input as a cutaway-gesture/1 file")
+                .on_hover_text("Record Edit-mode input as a cutaway-gesture/2 file")
                 .clicked()
             {
                 actions.push(Action::StartGesture);

@@ -129,6 +129,14 @@ impl AppState {
         self.status.is_error = false;
     }
 
+    /// Says the edited cutter's depth and what it reaches ("42 mm: reaches left lateral
+    /// ventricle"), when a cutter is edited.
+    pub fn say_depth(&mut self) {
+        if let Some(line) = self.viewport.editor.depth_status(&self.scene) {
+            self.say(line);
+        }
+    }
+
     /// Sets an error message (one line, kept until the next message).
     pub fn complain(&mut self, error: &anyhow::Error) {
         self.status.message = crate::platform::errors::error_line(error);

@@ -152,7 +152,7 @@ impl ViewportState {
         });
     }
 
-    /// Writes the recording as a `cutaway-gesture/1` file and stops recording; returns the number
+    /// Writes the recording as a `cutaway-gesture/2` file and stops recording; returns the number
     /// of events written.
     pub fn save_recording(&mut self, path: &Path) -> anyhow::Result<usize> {
         let Some(recording) = self.recording.take() else {
@@ -186,8 +186,10 @@ impl Recording {
                 kind: self.init.kind,
                 spacing: self.init.spacing,
                 smooth: self.init.smooth,
+                direction: self.init.direction,
             },
             events: self.events.clone(),
+            rules: cutter::Rules::Reach,
         }
     }
 }
@@ -282,7 +284,8 @@ mod tests {
         let back = crate::io::gesture::read_gesture(&path).unwrap();
         assert_eq!(back, recording.gesture());
         let text = std::fs::read_to_string(&path).unwrap();
-        assert!(text.contains("cutaway-gesture/1"));
+        // The window records under the current rules.
+        assert!(text.contains("cutaway-gesture/2"));
         let _ = std::fs::remove_file(&path);
     }
 

@@ -1,5 +1,5 @@
 //! The 3D viewport: input (camera navigation or editor events), the right-click context menu, the
-//! gesture recorder, and the paint callback that lets the renderer draw offscreen in `prepare` and
+//! gesture recorder, the edited cutter's depth label, and the paint callback that lets the renderer draw offscreen in `prepare` and
 //! composite in `paint`.
 //!
 //! Read in the order size → allocate → interact → paint. Pixel coordinates handed to the camera
@@ -8,6 +8,7 @@
 //! extrude`.
 
 pub mod cut_view;
+pub mod depth_label;
 pub mod live_cut;
 pub mod navigation;
 pub mod orientation_marker;
@@ -83,6 +84,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
         crate::gui::bridge::paint_fallback(&painter, rect, app);
     }
     crate::gui::viewport::ruler::paint_rulers(&painter, rect, app);
+    crate::gui::viewport::depth_label::paint_depth_label(&painter, rect, app, ppp as f32);
     crate::gui::panels::metrics_panel::paint_closest_points(&painter, rect, app);
     crate::gui::viewport::risk_legend::paint_risk_legend(&painter, rect, app);
     if app.viewport.show_marker && !app.scene.models.is_empty() {
@@ -214,11 +216,13 @@ fn edit_input(
             return;
         };
         app.selected_model = Some(target);
-        if !app
-            .viewport
-            .editor
-            .ensure(&app.scene, target, app.viewport.size_px, &app.cutter_init)
-        {
+        if !app.viewport.editor.ensure(
+            &app.scene,
+            target,
+            app.viewport.size_px,
+            &app.cutter_init,
+            &mut app.viewport.picks,
+        ) {
             actions.push(Action::IndexModel(target));
             return;
         }
@@ -227,6 +231,9 @@ fn edit_input(
         return;
     }
     if pressed {
+        app.viewport
+            .editor
+            .refresh_obstacles(&app.scene, &mut app.viewport.picks);
         app.viewport.drag = Some(Drag::Editor);
         app.viewport.last_pointer = Some(px);
         changed |= app.viewport.editor_event(
@@ -263,7 +270,7 @@ fn edit_input(
     if released && app.viewport.drag == Some(Drag::Editor) {
         app.viewport.drag = None;
         app.viewport.warp = CursorWarp::default();
-        changed |= app.viewport.editor_event(
+        let made = app.viewport.editor_event(
             &mut app.scene,
             EditorEvent::Release {
                 x: px.x,
@@ -272,21 +279,13 @@ fn edit_input(
                 ctrl,
             },
         );
+        changed |= made;
+        if made {
+            // The depth a new or rolled cutter has, and what it reaches.
+            app.say_depth();
+        }
     }
     if response.hovered() {
-        let (notches, wheel_ctrl) = crate::gui::viewport::navigation::wheel_notches(ui);
-        if notches != 0.0 && crate::gui::viewport::navigation::wheel_goes_to_editor(app, wheel_ctrl)
-        {
-            changed |= app.viewport.editor_event(
-                &mut app.scene,
-                EditorEvent::Wheel {
-                    x: px.x,
-                    y: px.y,
-                    delta: notches,
-                    ctrl: wheel_ctrl,
-                },
-            );
-        }
         let keys: Vec<Key> = ui.input(|i| {
             let mut keys = Vec::new();
             if i.key_pressed(egui::Key::Delete) || i.key_pressed(egui::Key::Backspace) {

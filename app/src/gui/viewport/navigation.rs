@@ -3,13 +3,16 @@
 //!
 //! - right-drag orbits, middle-drag pans (Scalpel mode has the same drags of its own);
 //! - in Edit mode Alt+drag orbits too, and the wheel zooms unless the pointer is over the cutter
-//!   (there it sets the depth, as in the thesis) or Ctrl is held (rotates a plane);
+//!   (there it sets the whole cutter's depth, with Alt only the plane under the pointer's) or Ctrl
+//!   is held (rotates a plane);
 //! - a double-click selects the model under the pointer (Camera and Preview also centre on it);
 //!   on nothing it clears the selection.
 //!
 //! Camera and Preview keep their own left-drag orbit and Shift+drag pan in `viewport.rs`.
 
 use glam::DVec2;
+
+use cutter::EditorEvent;
 
 use crate::gui::action::{Action, Mode};
 use crate::gui::state::AppState;
@@ -19,9 +22,16 @@ use crate::view::camera_controls;
 /// Wheel notches of this frame (positive = wheel up, away from the user), and whether Ctrl/Cmd
 /// was held.
 pub fn wheel_notches(ui: &egui::Ui) -> (f64, bool) {
+    let (notches, ctrl, _) = wheel_input(ui);
+    (notches, ctrl)
+}
+
+/// Wheel notches of this frame and whether Ctrl/Cmd and Alt were held.
+pub fn wheel_input(ui: &egui::Ui) -> (f64, bool, bool) {
     ui.input(|i| {
         let mut notches = 0.0;
         let mut ctrl = false;
+        let mut alt = false;
         for event in &i.events {
             if let egui::Event::MouseWheel {
                 unit,
@@ -37,9 +47,10 @@ pub fn wheel_notches(ui: &egui::Ui) -> (f64, bool) {
                     egui::MouseWheelUnit::Page => d * 10.0,
                 };
                 ctrl |= modifiers.command || modifiers.ctrl;
+                alt |= modifiers.alt;
             }
         }
-        (notches, ctrl)
+        (notches, ctrl, alt)
     })
 }
 
@@ -81,8 +92,11 @@ pub fn navigation_input(
         app.viewport.nav = Some(NavDrag::Pan);
     }
     let Some(nav) = app.viewport.nav else {
-        if edit && response.hovered() {
-            edit_wheel_zoom(ui, app);
+        if edit
+            && response.hovered()
+            && let Some(pos) = ui.input(|i| i.pointer.latest_pos())
+        {
+            edit_wheel(ui, app, to_px(pos));
         }
         return edit && alt && !app.viewport.editor_dragging();
     };
@@ -102,18 +116,36 @@ pub fn navigation_input(
     true
 }
 
-/// True when the wheel in Edit mode goes to the cutter editor: over the active cutter, or with
-/// Ctrl (rotate the selected plane) while a cutter is edited.
-pub fn wheel_goes_to_editor(app: &AppState, ctrl: bool) -> bool {
-    app.viewport.editor.hovered_plane().is_some()
+/// True when the wheel in Edit mode at pixel `px` goes to the cutter editor: over the active
+/// cutter (its depth), or with Ctrl (rotate the selected plane) while a cutter is edited.
+pub fn wheel_goes_to_editor(app: &AppState, px: DVec2, ctrl: bool) -> bool {
+    app.viewport.editor.is_over_cutter(px)
         || (ctrl && app.viewport.editor.active_cutter().is_some())
 }
 
-fn edit_wheel_zoom(ui: &egui::Ui, app: &mut AppState) {
-    let (notches, ctrl) = wheel_notches(ui);
-    if notches != 0.0 && !wheel_goes_to_editor(app, ctrl) {
+/// The wheel in Edit mode: to the editor over the cutter (depth of the whole cutter, with Alt of
+/// the plane under the pointer; Ctrl rotates a plane), else a zoom of the camera. A depth change
+/// says the new depth and what it reaches in the status line.
+fn edit_wheel(ui: &egui::Ui, app: &mut AppState, px: DVec2) {
+    let (notches, ctrl, alt) = wheel_input(ui);
+    if notches == 0.0 {
+        return;
+    }
+    if !wheel_goes_to_editor(app, px, ctrl) {
         let min = crate::scalpel_session::target::defaults_for(&app.scene, app.selected_model)
             .min_camera_distance;
         camera_controls::zoom(&mut app.scene.camera, notches, min);
+        return;
+    }
+    let event = EditorEvent::Wheel {
+        x: px.x,
+        y: px.y,
+        delta: notches,
+        ctrl,
+        alt,
+    };
+    if app.viewport.editor_event(&mut app.scene, event) {
+        app.cutters_changed();
+        app.say_depth();
     }
 }

@@ -86,7 +86,9 @@ fn the_window_cuts_the_layer_below_and_undoes_both_in_one_step() {
         state_dir: dir.join("state"),
         offer_recovery: false,
     };
-    let mut h = crate::gui::test_window::open(start, 1280.0, 800.0);
+    // Tall enough that the Scalpel panel's "Cut layers below" is in view below the Cutter panel
+    // (at 800 it is below the left column's fold; where the tools sit is the panels' layout).
+    let mut h = crate::gui::test_window::open(start, 1280.0, 1000.0);
     h.run_steps(1);
     let models = &h.state().scene.models;
     assert_eq!(models.len(), 2, "{}", h.state().status.message);
@@ -223,6 +225,7 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
             kind: cutter::CutKind::Curving,
             smooth: false,
             levels: cutter::subdivision::DEFAULT_LEVELS,
+            direction: cutter::CutDirection::Normal,
             planes: [
                 [
                     DVec3::new(0.0, -11.0, 1.0),
