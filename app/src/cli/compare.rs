@@ -8,7 +8,7 @@
 //! - `compare.png`: the pictures side by side under their names, the metrics table under them;
 //! - `metrics.json`: `{"variants":[{"name","image","metrics"}…],"combined":"compare.png"}`
 //!   (`metrics` as `cutaway metrics --json` prints it), also printed with `--json`;
-//! - `metrics.csv`: one row per variant and structure ([`crate::compare::table::CSV_HEADER`]).
+//! - `metrics.csv`: one row per variant and structure ([`crate::metrics::table::CSV_HEADER`]).
 //!
 //! A session without variants is one variant, `current`.
 
@@ -16,8 +16,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 
-use crate::compare::{measure_variants, render_variants, sheet, table};
+use crate::compare::{render_variants, sheet};
 use crate::io::OutputSet;
+use crate::metrics::table;
+use crate::metrics::variants::measure_variants;
 use crate::metrics::{MetricsOptions, exposure::DEFAULT_SAMPLES};
 
 #[derive(Debug, clap::Args)]

@@ -1,48 +1,17 @@
-//! Cut variants compared: each variant measured ([`crate::metrics`]) and drawn from the same
+//! Cut variants compared: each variant measured ([`crate::metrics::variants`]) and drawn from the same
 //! camera, one sheet with the pictures side by side and the metrics table under them
-//! ([`sheet`]), and the measures as JSON and CSV ([`table`]). `cutaway compare` writes all of it
+//! ([`sheet`]), and the measures as JSON and CSV ([`crate::metrics::table`]). `cutaway compare` writes all of it
 //! as one output set; the window's compare view shows the same measures under its viewports.
 //! Egui-free.
 
 pub mod sheet;
-pub mod table;
 
 use std::sync::Arc;
 
 use crate::cutting::cut_scene::preview_geometry;
-use crate::metrics::{Metrics, MetricsOptions, measure};
 use crate::render::HeadlessRenderer;
 use crate::scene::Scene;
 use crate::view::RenderPngOptions;
-
-/// One variant's measures.
-#[derive(Clone, Debug, PartialEq)]
-pub struct VariantMetrics {
-    pub name: String,
-    pub metrics: Metrics,
-}
-
-/// Measures every variant of `scene` ([`crate::scene::variants::all`]) with the same options; errors
-/// name the variant.
-pub fn measure_variants(
-    scene: &Scene,
-    options: &MetricsOptions,
-) -> anyhow::Result<Vec<VariantMetrics>> {
-    let names = crate::scene::variants::names(scene);
-    names
-        .iter()
-        .enumerate()
-        .map(|(k, name)| {
-            let shown = crate::scene::variants::variant_scene(scene, k).expect("k < variant count");
-            let metrics =
-                measure(&shown, options).map_err(|e| anyhow::anyhow!("variant '{name}': {e}"))?;
-            Ok(VariantMetrics {
-                name: name.clone(),
-                metrics,
-            })
-        })
-        .collect()
-}
 
 /// Renders every variant of `scene` from the scene camera at `width` × `height` (cuts executed,
 /// as `cutaway render` draws them). A cut the boolean refuses is an error naming the variant.

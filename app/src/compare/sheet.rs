@@ -4,8 +4,8 @@
 
 use image::{Rgba, RgbaImage};
 
-use super::table::Row;
 use crate::annotate::text::{Face, TextPainter};
+use crate::metrics::table::Row;
 
 /// Largest sheet side in pixels; `cutaway compare` refuses sizes that would exceed it before
 /// rendering anything.

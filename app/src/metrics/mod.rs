@@ -15,6 +15,8 @@
 pub mod distance;
 pub mod exposure;
 pub mod removal;
+pub mod table;
+pub mod variants;
 
 use csg::Mesh;
 

@@ -6,10 +6,10 @@
 //! session stores them.
 
 use super::VariantPage;
-use crate::compare::VariantMetrics;
-use crate::compare::table::rows;
 use crate::export::gltf::{MaterialPart, MaterialRole};
 use crate::metrics::MetricsOptions;
+use crate::metrics::table::rows;
+use crate::metrics::variants::VariantMetrics;
 use crate::render::{
     BACK_FACE, CONTOUR_COLOR, CONTOUR_OFFSET, CONTOUR_WIDTH_PX, WALL_MIX, WALL_TINT,
 };

@@ -26,8 +26,8 @@ use std::path::Path;
 
 use anyhow::Context as _;
 
-use crate::compare::VariantMetrics;
 use crate::cutting::cut_scene::preview_geometry;
+use crate::metrics::variants::VariantMetrics;
 use crate::metrics::{MetricsOptions, measure};
 use crate::scene::Scene;
 

@@ -14,9 +14,9 @@ use std::time::Instant;
 
 use glam::DVec2;
 
-use crate::compare::VariantMetrics;
 use crate::cutting::cut_scene::preview_geometry;
 use crate::metrics::MetricsOptions;
+use crate::metrics::variants::VariantMetrics;
 use crate::render::HeadlessRenderer;
 use crate::scene::Scene;
 use crate::view::RenderPngOptions;
@@ -226,7 +226,7 @@ fn compare_contents(ui: &mut egui::Ui, app: &mut AppState) {
     let ppp = ui.ctx().pixels_per_point();
     let gap = 8.0;
     let rows = match &app.compare.shown {
-        Some(Ok(c)) => crate::compare::table::rows(&c.variants),
+        Some(Ok(c)) => crate::metrics::table::rows(&c.variants),
         _ => Vec::new(),
     };
     let table_height = 22.0 * rows.len().max(5) as f32 + 16.0;

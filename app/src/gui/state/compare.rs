@@ -3,9 +3,9 @@
 
 use std::sync::{Arc, Mutex};
 
-use crate::compare::VariantMetrics;
 use crate::cutting::cut_scene::PreviewGeometry;
 use crate::metrics::MetricsOptions;
+use crate::metrics::variants::VariantMetrics;
 use crate::render::HeadlessRenderer;
 use crate::scene::{Scene, SceneCutter};
 

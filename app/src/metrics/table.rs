@@ -8,7 +8,7 @@
 
 use std::fmt::Write as _;
 
-use super::VariantMetrics;
+use super::variants::VariantMetrics;
 use crate::metrics::Metrics;
 
 /// The CSV header (units in the column names).
