@@ -382,10 +382,7 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
     settle(&mut h);
     // As on a machine without a desktop portal or zenity.
     h.state_mut().native_dialogs = false;
-    apply(
-        &mut h,
-        Action::Dialog(cutaway::gui::app::Purpose::OpenSession),
-    );
+    apply(&mut h, Action::Dialog(cutaway::gui::app::Purpose::Open));
     assert!(h.state().browser.is_some(), "no in-window browser");
     assert!(!h.state().busy(), "a native dialog job was started");
     // In a folder with a subfolder and a session: both listed with their glyph markers.
@@ -393,7 +390,7 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
     std::fs::create_dir_all(listed.join("models")).unwrap();
     std::fs::write(listed.join("one.json"), "{}").unwrap();
     h.state_mut().browser = Some(cutaway::gui::panels::file_browser::FileBrowser::new(
-        cutaway::gui::app::Purpose::OpenSession,
+        cutaway::gui::app::Purpose::Open,
         Some(listed),
     ));
     h.run_steps(3);
@@ -413,10 +410,7 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
         println!("a native dialog may open here: the closes-at-once fallback is not tried");
     } else {
         h.state_mut().native_dialogs = true;
-        apply(
-            &mut h,
-            Action::Dialog(cutaway::gui::app::Purpose::OpenSession),
-        );
+        apply(&mut h, Action::Dialog(cutaway::gui::app::Purpose::Open));
         settle(&mut h);
         assert!(
             h.state().browser.is_some(),

@@ -19,6 +19,11 @@ use crate::view::camera_controls;
 /// Wheel notches of this frame (positive = wheel up, away from the user), and whether Ctrl/Cmd
 /// was held.
 pub fn wheel_notches(ui: &egui::Ui) -> (f64, bool) {
+    // A frame laid out again (a discarded first pass) sees the same wheel events: they count
+    // once, in the first pass.
+    if ui.ctx().current_pass_index() > 0 {
+        return (0.0, false);
+    }
     ui.input(|i| {
         let mut notches = 0.0;
         let mut ctrl = false;
@@ -114,6 +119,41 @@ fn edit_wheel_zoom(ui: &egui::Ui, app: &mut AppState) {
     if notches != 0.0 && !wheel_goes_to_editor(app, ctrl) {
         let min =
             crate::view::target::defaults_for(&app.scene, app.selected_model).min_camera_distance;
-        camera_controls::zoom(&mut app.scene.camera, notches, min);
+        wheel_zoom(ui, app, notches, min);
+    }
+}
+
+/// Zooms by `notches` toward what is under the pointer (the nearest visible surface there, else
+/// the point on the plane through the camera target), keeping it under the pointer.
+pub fn wheel_zoom(ui: &egui::Ui, app: &mut AppState, notches: f64, min_distance: f64) {
+    let rect = app.viewport.rect;
+    let ppp = ui.ctx().pixels_per_point() as f64;
+    let anchor = ui
+        .input(|i| i.pointer.latest_pos())
+        .filter(|p| rect.contains(*p))
+        .map(|p| {
+            let px = DVec2::new(
+                (p.x - rect.left()) as f64 * ppp,
+                (p.y - rect.top()) as f64 * ppp,
+            );
+            let camera = &app.scene.camera;
+            let ray = camera.ray_through_pixel(app.viewport.size_px, px);
+            // Never wait for a pick tree still being built: the plane point does then.
+            let hit = app
+                .viewport
+                .picks
+                .ready_for(&app.scene)
+                .then(|| app.viewport.picks.pick(&app.scene, &ray))
+                .flatten();
+            match hit {
+                Some((_, t)) => ray.at(t),
+                None => camera_controls::point_on_target_plane(camera, app.viewport.size_px, px),
+            }
+        });
+    match anchor {
+        Some(anchor) => {
+            camera_controls::zoom_at(&mut app.scene.camera, notches, min_distance, anchor)
+        }
+        None => camera_controls::zoom(&mut app.scene.camera, notches, min_distance),
     }
 }
