@@ -227,6 +227,8 @@ fn file_open_opens_everything_asks_to_save_first_and_starts_where_the_last_file_
     assert!(h.query_by_label_contains("Load Model").is_none());
     assert!(h.query_by_label_contains("Load Directory").is_none());
     click_menu_item(&mut h, "Open…", "Folder");
+    // A new window is laid out unseen in its first frame.
+    h.run_steps(2);
     let browser = h.state().browser.as_ref().expect("the in-window browser");
     assert_eq!(browser.purpose, Purpose::Open);
     // It starts in the last file's folder with that file selected, and lists what opens.
@@ -238,7 +240,11 @@ fn file_open_opens_everything_asks_to_save_first_and_starts_where_the_last_file_
     // A folder opens whole.
     h.get_by_label("\u{1F5C0} atlas").click();
     h.run_steps(2);
-    h.get_by_label("Open").click();
+    // The Open button (the window's title reads "Open" too).
+    h.query_all_by_label("Open")
+        .find(|n| n.accesskit_node().role() == egui::accesskit::Role::Button)
+        .expect("the Open button")
+        .click();
     h.run_steps(2);
     settle(&mut h);
     assert!(h.state().browser.is_none());
@@ -288,9 +294,12 @@ fn file_open_opens_everything_asks_to_save_first_and_starts_where_the_last_file_
     settle(&mut h);
     assert!(session.is_file());
     assert_eq!(h.state().scene.models.len(), 1, "the open did not go on");
-    // The browser starts at the session just saved, the last file.
+    // The browser starts at the last file opened (the ball, opened once the session was
+    // saved), the session saved beside it listed.
     apply(&mut h, Action::Dialog(Purpose::Open));
-    h.get_by_label("work.json");
+    h.run_steps(2);
+    h.get_by_label("\u{1F5CB} work.json");
+    h.get_by_label("ball.ply");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
