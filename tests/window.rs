@@ -553,6 +553,15 @@ fn dropped_folders_and_sessions_open_and_messages_stay_in_the_status_bar() {
         &mut h,
         vec![folder.join("right_block.stl"), session.clone()],
     );
+    // The folder added is unsaved work: opening the session over it asks first.
+    assert!(
+        h.state().unsaved_prompt.is_some(),
+        "the session replaced unsaved work without asking"
+    );
+    apply(
+        &mut h,
+        Action::Unsaved(cutaway::gui::app::UnsavedAnswer::Discard),
+    );
     settle(&mut h);
     let app = h.state();
     assert!(!app.status.is_error, "{}", app.status.message);
