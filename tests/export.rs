@@ -108,7 +108,7 @@ fn export_reads_back_with_the_cut_s_nodes_materials_and_triangles() {
     assert_eq!(summary["materials"], 7);
     let removed = gltf
         .materials()
-        .find(|m| m.name() == Some("skin 1 removed"))
+        .find(|m| m.name() == Some("skin removed"))
         .unwrap();
     assert_eq!(removed.alpha_mode(), gltf::material::AlphaMode::Blend);
     assert!((removed.pbr_metallic_roughness().base_color_factor()[3] - 0.3).abs() < 1e-6);
