@@ -36,10 +36,11 @@ impl Mode {
 /// What a file dialog was opened for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Purpose {
-    LoadModel,
-    LoadDirectory,
+    /// Files, a folder, a volume or a session: what replaces the scene (File → Open…).
+    Open,
+    /// A folder of meshes (the native dialogs pick files or folders, never both).
+    OpenFolder,
     AddModel,
-    OpenSession,
     SaveSessionAs,
     ExportImage,
     ExportMeshes,
@@ -52,10 +53,9 @@ pub enum Purpose {
 impl Purpose {
     pub fn title(self) -> &'static str {
         match self {
-            Purpose::LoadModel => "Load Model",
-            Purpose::LoadDirectory => "Load Directory",
+            Purpose::Open => "Open",
+            Purpose::OpenFolder => "Open Folder",
             Purpose::AddModel => "Add Model",
-            Purpose::OpenSession => "Open Session",
             Purpose::SaveSessionAs => "Save Session As",
             Purpose::ExportImage => "Export Image",
             Purpose::ExportMeshes => "Export Cut Meshes to Folder",
@@ -114,8 +114,21 @@ pub enum Action {
     IndexModel(usize),
     RestoreRecovery,
     DiscardRecovery,
+    /// The answer to "save the changes first?", asked before the scene is replaced.
+    Unsaved(UnsavedAnswer),
     /// Turn, zoom or re-orient the view (View menu, view keys).
     View(ViewCommand),
+}
+
+/// What the user answered when opening over unsaved changes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnsavedAnswer {
+    /// Save the scene (asking where when it has no file yet), then go on.
+    Save,
+    /// Go on without saving.
+    Discard,
+    /// Keep the scene; do not open.
+    Cancel,
 }
 
 /// A change of what the camera looks at (never an undoable scene edit).

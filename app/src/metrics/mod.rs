@@ -86,19 +86,7 @@ pub struct Metrics {
 /// Measures the cuts of `scene`. Fails when a named structure does not exist or a cut is not
 /// exact.
 pub fn measure(scene: &Scene, options: &MetricsOptions) -> anyhow::Result<Metrics> {
-    let find = |name: &str| {
-        scene
-            .models
-            .iter()
-            .position(|m| m.name == name)
-            .ok_or_else(|| {
-                let names: Vec<&str> = scene.models.iter().map(|m| m.name.as_str()).collect();
-                anyhow::anyhow!(
-                    "no structure named '{name}' (structures: {})",
-                    names.join(", ")
-                )
-            })
-    };
+    let find = |name: &str| crate::scene::names::model_named(scene, name, "");
     let focus = options.focus.as_deref().map(find).transpose()?;
     let critical = options
         .critical

@@ -47,18 +47,15 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     ui.separator();
     if app.scene.models.is_empty() {
         ui.label(
-            egui::RichText::new("No models. File > Load Model, or drop files on the window.")
-                .weak(),
+            egui::RichText::new("No models. File > Open…, or drop files on the window.").weak(),
         );
         return actions;
     }
-    ui.horizontal(|ui| {
-        ui.add(
-            egui::TextEdit::singleline(&mut state.filter)
-                .hint_text("Filter by name or group")
-                .desired_width(ui.available_width() - 52.0),
-        )
-        .on_hover_text("Shows only the models whose name or group contains every word typed");
+    // Right to left, so the box takes exactly what the button leaves: a row wider than the
+    // panel would widen it frame after frame.
+    let row = egui::vec2(ui.available_width(), ui.spacing().interact_size.y);
+    let right_to_left = egui::Layout::right_to_left(egui::Align::Center);
+    ui.allocate_ui_with_layout(row, right_to_left, |ui| {
         if ui
             .add_enabled(!state.filter.is_empty(), egui::Button::new("Clear"))
             .on_hover_text("Clear the filter")
@@ -66,6 +63,12 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
         {
             state.filter.clear();
         }
+        ui.add(
+            egui::TextEdit::singleline(&mut state.filter)
+                .hint_text("Filter by name or group")
+                .desired_width(ui.available_width()),
+        )
+        .on_hover_text("Shows only the models whose name or group contains every word typed");
     });
     let tree = GroupNode::build(&app.scene.models, &state.filter);
     let listed = tree.all_models();
@@ -105,7 +108,10 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
         state.reveal_frames -= 1;
         ui.ctx().request_repaint();
     }
-    let list_height = (ui.ctx().content_rect().height() * 0.45).max(220.0);
+    // The list takes the panel's height but what the selected model's properties need below
+    // it (the tools have a panel of their own).
+    let below = if selected.is_some() { 215.0 } else { 45.0 };
+    let list_height = (ui.available_height() - below).max(160.0);
     egui::ScrollArea::vertical()
         .id_salt("models-list")
         .max_height(list_height)

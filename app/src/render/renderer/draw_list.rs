@@ -359,7 +359,15 @@ impl Renderer {
                         }
                     },
                     PartKind::Wall | PartKind::SliceWall => {
-                        let u = push_uniform(wall, 1.0, true, 0.0, 0.0);
+                        // What a cut left of the model's scalpel incisions is uploaded as
+                        // incision walls (see `upload_preview`): the model's colour, shaded as
+                        // the uncut model's incisions are.
+                        let colour = if is_incisions(part) {
+                            model.color
+                        } else {
+                            wall
+                        };
+                        let u = push_uniform(colour, 1.0, true, 0.0, 0.0);
                         let warned = risk
                             .as_ref()
                             .and_then(|r| r.walls.iter().position(|w| w.matches(part)));
@@ -484,11 +492,16 @@ fn upload_preview(device: &wgpu::Device, preview: &Arc<PreviewGeometry>) -> Cach
         .parts
         .iter()
         .map(|p| {
-            GpuMesh::upload(
-                device,
-                &format!("preview part {:?} of model {}", p.kind, p.model),
-                &p.mesh,
-            )
+            let label = format!("preview part {:?} of model {}", p.kind, p.model);
+            if is_incisions(p) {
+                // Every face an incision wall: drawn as on the uncut model (the wall flag, the
+                // walls' own normals with the crease at the groove's floor).
+                let all: Vec<u32> = (0..p.mesh.triangles.len() as u32).collect();
+                let drawn = wall_split::drawn(&p.mesh, &all);
+                GpuMesh::upload_vertices(device, &label, &drawn.vertices, &drawn.triangles)
+            } else {
+                GpuMesh::upload(device, &label, &p.mesh)
+            }
         })
         .collect();
     let mut by_model: HashMap<usize, Vec<&[DVec3]>> = HashMap::new();
@@ -508,6 +521,11 @@ fn upload_preview(device: &wgpu::Device, preview: &Arc<PreviewGeometry>) -> Cach
         parts,
         contours,
     }
+}
+
+/// True for the part holding what a cut left of a model's scalpel incisions.
+fn is_incisions(part: &crate::cutting::cut_results::PreviewPart) -> bool {
+    part.kind == PartKind::Wall && part.cutter == usize::MAX
 }
 
 fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
