@@ -98,6 +98,8 @@ fn click_menu_item(h: &mut Harness<'_, CutawayApp>, text: &str, not: &str) {
 mod big_load;
 #[path = "gui/export_image.rs"]
 mod export_image;
+#[path = "gui/expose.rs"]
+mod expose;
 #[path = "gui/live_cut.rs"]
 mod live_cut;
 #[path = "gui/models_list.rs"]

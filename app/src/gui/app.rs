@@ -113,6 +113,7 @@ impl CutawayApp {
             export_turntable: Default::default(),
             wgpu: cc.wgpu_render_state.clone(),
             cutter_tab: Default::default(),
+            expose: Default::default(),
             metrics: Default::default(),
             ruler: Default::default(),
             compare: Default::default(),

@@ -1,6 +1,7 @@
 //! An occluder's cutters: paint-roller cutters whose planes stand on rays from the eye.
 //!
-//! The cells where the occluder hides the focus, grown by the margin, are what must be opened
+//! The cells where the occluder hides the focus, grown by the margin (a round margin: the cells
+//! within that distance, `distance.rs`), are what must be opened
 //! (the occluder's **window**). The grid's columns are grouped into boxes of a few columns; a run
 //! of consecutive boxes that hold window cells becomes one cutter, with a bounded plane on every
 //! box boundary. Plane `k` is the part of the plane through the eye at that boundary (a line in
@@ -22,6 +23,7 @@
 
 use crate::cutter::{CutKind, Cutter};
 use crate::expose::abuffer::ABuffer;
+use crate::expose::distance::squared_distances;
 use crate::expose::frame::ViewFrame;
 use crate::expose::occlusion::Occluder;
 use crate::plane::BoundedPlane;
@@ -29,8 +31,9 @@ use crate::plane::BoundedPlane;
 /// How an occluder's cutters are shaped.
 #[derive(Clone, Copy, Debug)]
 pub struct Shape {
-    /// The margin around the hidden cells, in cells.
-    pub margin_cells: usize,
+    /// The margin around the hidden cells, in cells (a cell is within it when its centre is
+    /// this near a hidden cell's centre).
+    pub margin_cells: f64,
     /// Grid columns per box.
     pub box_columns: usize,
     /// Gap between a cutter's faces and what they must clear, in model units (a cell's width at
@@ -89,7 +92,7 @@ pub fn occluder_cutters(
     (cutters, notes)
 }
 
-/// Every box's window: the hidden cells grown by the margin (a square around each).
+/// Every box's window: the hidden cells grown by the margin.
 fn box_windows(frame: &ViewFrame, occluder: &Occluder, shape: &Shape) -> Vec<BoxWindow> {
     let (columns, rows) = (frame.columns, frame.rows);
     let mut hidden = vec![false; frame.cells()];
@@ -98,22 +101,12 @@ fn box_windows(frame: &ViewFrame, occluder: &Occluder, shape: &Shape) -> Vec<Box
         hidden[cell] = true;
         reach[cell] = r;
     }
-    // Grown along each column, then along each row.
-    let r = shape.margin_cells;
-    let mut grown = vec![false; frame.cells()];
-    for i in 0..columns {
-        let line: Vec<bool> = (0..rows).map(|j| hidden[frame.index(i, j)]).collect();
-        for (j, g) in grow(&line, r).into_iter().enumerate() {
-            grown[frame.index(i, j)] = g;
-        }
-    }
-    let mut window = vec![false; frame.cells()];
-    for j in 0..rows {
-        let line: Vec<bool> = (0..columns).map(|i| grown[frame.index(i, j)]).collect();
-        for (i, g) in grow(&line, r).into_iter().enumerate() {
-            window[frame.index(i, j)] = g;
-        }
-    }
+    // Grown by the margin: every cell within that distance of a hidden one.
+    let radius2 = shape.margin_cells * shape.margin_cells;
+    let window: Vec<bool> = squared_distances(&hidden, columns, rows)
+        .into_iter()
+        .map(|d| d <= radius2)
+        .collect();
     let k = shape.box_columns.max(1);
     (0..columns.div_ceil(k))
         .map(|b| {
@@ -135,21 +128,6 @@ fn box_windows(frame: &ViewFrame, occluder: &Occluder, shape: &Shape) -> Vec<Box
                 }
             }
             w
-        })
-        .collect()
-}
-
-/// `line` with every true entry spread `r` entries to both sides.
-fn grow(line: &[bool], r: usize) -> Vec<bool> {
-    let mut prefix = vec![0usize; line.len() + 1];
-    for (k, &x) in line.iter().enumerate() {
-        prefix[k + 1] = prefix[k] + usize::from(x);
-    }
-    (0..line.len())
-        .map(|k| {
-            let lo = k.saturating_sub(r);
-            let hi = (k + r + 1).min(line.len());
-            prefix[hi] > prefix[lo]
         })
         .collect()
 }
@@ -297,16 +275,6 @@ fn run_cutter(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn growing_spreads_each_entry_by_the_radius() {
-        let line = [false, false, true, false, false, false, false, true];
-        assert_eq!(
-            grow(&line, 1),
-            vec![false, true, true, true, false, false, true, true]
-        );
-        assert_eq!(grow(&line, 0), line.to_vec());
-    }
 
     #[test]
     fn gaps_fill_from_the_nearest_set_value() {

@@ -33,6 +33,7 @@
 
 pub mod abuffer;
 pub mod cutters;
+pub mod distance;
 pub mod frame;
 pub mod occlusion;
 
@@ -44,7 +45,7 @@ use crate::cutter::Cutter;
 use crate::expose::abuffer::ABuffer;
 use crate::expose::cutters::{Shape, occluder_cutters};
 use crate::expose::frame::ViewFrame;
-use crate::expose::occlusion::Occlusion;
+use crate::expose::occlusion::{Occluder, Occlusion};
 
 /// How the cutters are sized. Lengths are in model units.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -59,6 +60,11 @@ pub struct ExposeOptions {
     pub resolution: usize,
     /// Most boxes of one cutter. Default 40.
     pub max_boxes: usize,
+    /// The occluders that hide the least of the focus are left uncut while together they hide
+    /// at most this share of its image. Default 0.01: neighbours that touch the focus hide
+    /// slivers of its rim from most views, and a cutter for each would add dozens of cutters
+    /// for a few per cent of the view.
+    pub leave_share: f64,
 }
 
 impl Default for ExposeOptions {
@@ -68,6 +74,7 @@ impl Default for ExposeOptions {
             clearance: 0.5,
             resolution: 256,
             max_boxes: 40,
+            leave_share: 0.01,
         }
     }
 }
@@ -104,6 +111,8 @@ pub struct Exposure {
     pub cutters: Vec<ExposedCutter>,
     /// Share (0..=1) of the focus's image that something hid.
     pub hidden: f64,
+    /// The occluders left uncut (see [`ExposeOptions::leave_share`]).
+    pub left: Vec<usize>,
     /// Runs of an occluder no valid cutter could open, one line each.
     pub notes: Vec<String>,
 }
@@ -211,14 +220,23 @@ pub fn expose(
 
     // 4. Each occluder's cutters.
     let shape = Shape {
-        margin_cells: (margin / frame.cell).ceil() as usize + 1,
+        margin_cells: margin / frame.cell + 1.0,
         box_columns: frame.columns.div_ceil(options.max_boxes.max(1)),
         clearance: options.clearance.max(0.0),
         near: nearest * 1e-3,
     };
+    let mut by_share: Vec<&Occluder> = occlusion.occluders.iter().collect();
+    by_share.sort_by_key(|o| o.hidden.len());
+    let mut hidden_by_left = 0.0;
+    let (left, opened): (Vec<&Occluder>, Vec<&Occluder>) = by_share.into_iter().partition(|o| {
+        hidden_by_left += o.hidden.len() as f64 / focus_cells;
+        hidden_by_left <= options.leave_share
+    });
+    let mut left: Vec<usize> = left.iter().map(|o| o.mesh as usize - 1).collect();
+    left.sort_unstable();
     let mut built: Vec<(f64, ExposedCutter)> = Vec::new();
     let mut notes = Vec::new();
-    for occluder in &occlusion.occluders {
+    for occluder in opened {
         if !keep_going() {
             return Err(ExposeError::Cancelled);
         }
@@ -241,6 +259,7 @@ pub fn expose(
     Ok(Exposure {
         cutters: built.into_iter().map(|(_, c)| c).collect(),
         hidden: hidden_cells as f64 / focus_cells,
+        left,
         notes,
     })
 }

@@ -164,3 +164,20 @@ fn nothing_in_the_way_builds_nothing() {
     assert!(exposure.cutters.is_empty());
     assert_eq!(exposure.hidden, 0.0);
 }
+
+#[test]
+fn occluders_hiding_little_are_left_within_the_share_allowed() {
+    let (focus, occluders) = scene();
+    let refs: Vec<&Mesh> = occluders.iter().collect();
+    // The plate hides about half of the focus: left when 60 % may stay hidden, not at 1 %.
+    let generous = ExposeOptions {
+        leave_share: 0.6,
+        ..ExposeOptions::default()
+    };
+    let exposure = expose(&focus, &refs, &view(), &generous, &|| true).unwrap();
+    assert_eq!(exposure.left, vec![1]);
+    let aimed: Vec<usize> = exposure.cutters.iter().map(|c| c.occluder).collect();
+    assert_eq!(aimed, vec![0]);
+    let strict = expose(&focus, &refs, &view(), &ExposeOptions::default(), &|| true).unwrap();
+    assert!(strict.left.is_empty());
+}

@@ -12,6 +12,7 @@ pub fn commands(mode: Mode) -> &'static [(&'static str, &'static str)] {
             ("Shift+Drag / Middle-drag", "pan"),
             ("Wheel", "zoom"),
             ("Double-click", "select & centre model"),
+            ("X", "expose selection"),
             ("1 3 7 (Ctrl)", "views"),
             ("Right-click", "menu"),
         ],

@@ -70,6 +70,8 @@ pub struct AppState {
     pub wgpu: Option<egui_wgpu::RenderState>,
     /// Which cutter tab is shown.
     pub cutter_tab: CutterTab,
+    /// The margin Expose leaves around a structure's silhouette.
+    pub expose: crate::expose::ExposeSettings,
     /// The Metrics panel, the Ruler tool and the Compare view.
     pub metrics: metrics::MetricsPanel,
     pub ruler: RulerTool,
