@@ -13,6 +13,7 @@
 //! no ray of the grid can reach them from the front.
 
 use csg::Mesh;
+use rayon::prelude::*;
 
 use crate::expose::frame::ViewFrame;
 
@@ -38,11 +39,22 @@ impl ABuffer {
     /// Rasterizes `meshes` into `frame`'s grid. Triangles with a corner at a depth `<= near`
     /// are skipped.
     pub fn build(frame: &ViewFrame, meshes: &[&Mesh], near: f64) -> ABuffer {
-        let mut found: Vec<(u32, Crossing)> = Vec::new();
-        for (m, mesh) in meshes.iter().enumerate() {
-            rasterize(frame, mesh, m as u32, near, &mut found);
-        }
-        found.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.z.total_cmp(&b.1.z)));
+        let mut found: Vec<(u32, Crossing)> = meshes
+            .par_iter()
+            .enumerate()
+            .flat_map_iter(|(m, mesh)| {
+                let mut found = Vec::new();
+                rasterize(frame, mesh, m as u32, near, &mut found);
+                found
+            })
+            .collect();
+        // By cell, then depth; ties (a ray through an edge two meshes share) by mesh, so the
+        // order never depends on the threads.
+        found.par_sort_unstable_by(|a, b| {
+            (a.0.cmp(&b.0))
+                .then(a.1.z.total_cmp(&b.1.z))
+                .then(a.1.mesh.cmp(&b.1.mesh))
+        });
         let mut starts = vec![0; frame.cells() + 1];
         for (cell, _) in &found {
             starts[*cell as usize + 1] += 1;

@@ -39,6 +39,7 @@ pub mod occlusion;
 
 use csg::Mesh;
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::camera::Camera;
 use crate::cutter::Cutter;
@@ -156,7 +157,7 @@ impl ExposeView {
 }
 
 /// The cutters that open `view` onto `focus` through `occluders` (see the module docs).
-/// `keep_going` is asked between stages and occluders; when it says no, [`ExposeError::Cancelled`].
+/// `keep_going` is asked between stages; when it says no, [`ExposeError::Cancelled`].
 pub fn expose(
     focus: &Mesh,
     occluders: &[&Mesh],
@@ -234,14 +235,18 @@ pub fn expose(
     });
     let mut left: Vec<usize> = left.iter().map(|o| o.mesh as usize - 1).collect();
     left.sort_unstable();
+    if !keep_going() {
+        return Err(ExposeError::Cancelled);
+    }
+    // Each occluder's cutters are shaped and checked independently (the exact check is most of
+    // the work), in parallel.
+    let per_occluder: Vec<_> = opened
+        .par_iter()
+        .map(|o| (o.mesh as usize - 1, occluder_cutters(&frame, &buffer, o, &shape)))
+        .collect();
     let mut built: Vec<(f64, ExposedCutter)> = Vec::new();
     let mut notes = Vec::new();
-    for occluder in opened {
-        if !keep_going() {
-            return Err(ExposeError::Cancelled);
-        }
-        let index = occluder.mesh as usize - 1;
-        let (cutters, why) = occluder_cutters(&frame, &buffer, occluder, &shape);
+    for (index, (cutters, why)) in per_occluder {
         for c in cutters {
             built.push((
                 c.front_depth,
