@@ -2,6 +2,7 @@
 //! `metrics`, exposing again adds nothing), its refusals; and, ignored by default, the whole
 //! table of the default head's deep structures from the six standard views.
 
+#[allow(dead_code)] // helpers shared with other test binaries
 mod scene_files;
 
 use std::path::{Path, PathBuf};

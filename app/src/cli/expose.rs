@@ -19,7 +19,7 @@ pub struct ExposeArgs {
     #[arg(long)]
     pub focus: String,
     /// Margin around the structure's silhouette, in mm.
-    #[arg(long, default_value_t = DEFAULT_MARGIN_MM)]
+    #[arg(long, default_value_t = DEFAULT_MARGIN_MM, allow_negative_numbers = true)]
     pub margin: f64,
     /// The session written with the new cutters (a `.json` file; may be SESSION itself).
     #[arg(long)]

@@ -169,7 +169,7 @@ fn nothing_in_the_way_builds_nothing() {
 fn occluders_hiding_little_are_left_within_the_share_allowed() {
     let (focus, occluders) = scene();
     let refs: Vec<&Mesh> = occluders.iter().collect();
-    // The plate hides about half of the focus: left when 60 % may stay hidden, not at 1 %.
+    // The plate hides about half of the focus: left when 60 % may stay hidden, not by default.
     let generous = ExposeOptions {
         leave_share: 0.6,
         ..ExposeOptions::default()
