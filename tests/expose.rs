@@ -38,7 +38,10 @@ fn head_scene(dir: &Path) -> PathBuf {
     let files = [
         ("focus.obj", sphere_obj([0.0; 3], 8.0, 48, 24)),
         ("head.obj", sphere_obj([0.0; 3], 40.0, 96, 48)),
-        ("plate.obj", box_obj([-30.0, -25.0, -15.0], [-2.0, -20.0, 15.0])),
+        (
+            "plate.obj",
+            box_obj([-30.0, -25.0, -15.0], [-2.0, -20.0, 15.0]),
+        ),
         ("beside.obj", sphere_obj([25.0, 0.0, 0.0], 4.0, 24, 12)),
     ];
     for (name, text) in &files {
@@ -66,8 +69,15 @@ fn expose_prints_the_exposures_and_writes_the_session_with_one_cutter_per_occlud
     let session = head_scene(&dir);
     let out = dir.join("exposed.json");
     let (s, o) = (session.to_str().unwrap(), out.to_str().unwrap());
-    let json = json_of(&cutaway(&["expose", s, "--focus", "focus", "--out", o, "--json"]));
-    let mut keys: Vec<&str> = json.as_object().unwrap().keys().map(String::as_str).collect();
+    let json = json_of(&cutaway(&[
+        "expose", s, "--focus", "focus", "--out", o, "--json",
+    ]));
+    let mut keys: Vec<&str> = json
+        .as_object()
+        .unwrap()
+        .keys()
+        .map(String::as_str)
+        .collect();
     keys.sort_unstable();
     assert_eq!(
         keys,
@@ -91,7 +101,10 @@ fn expose_prints_the_exposures_and_writes_the_session_with_one_cutter_per_occlud
         f(&json["exposure_unoccluded"]),
     );
     assert_eq!(before, 0.0, "inside the head nothing is seen");
-    assert!((0.45..0.5).contains(&free), "a ball shows a little under half: {free}");
+    assert!(
+        (0.45..0.5).contains(&free),
+        "a ball shows a little under half: {free}"
+    );
     assert!(after >= 0.9 * free, "{after} of {free}");
     // The head loses at most the cone of the focus's silhouette and margin from its surface to
     // the focus's far side (radius 11 at 200 mm, 40 deep): π·11²·40 ≈ 15 200 mm³, and the
@@ -113,8 +126,41 @@ fn expose_prints_the_exposures_and_writes_the_session_with_one_cutter_per_occlud
     assert_eq!(targets, [1, 2]);
     let metrics = json_of(&cutaway(&["metrics", o, "--focus", "focus", "--json"]));
     assert_eq!(f(&metrics["focus"]["exposure_after"]), after);
-    assert_eq!(f(&metrics["structures"][3]["removed_volume"]), 0.0, "beside");
-    assert_eq!(f(&metrics["structures"][0]["removed_volume"]), 0.0, "the focus is not cut");
+    assert_eq!(
+        f(&metrics["structures"][3]["removed_volume"]),
+        0.0,
+        "beside"
+    );
+    assert_eq!(
+        f(&metrics["structures"][0]["removed_volume"]),
+        0.0,
+        "the focus is not cut"
+    );
+
+    // `compare` draws and measures the exposed cutters as the session's one variant.
+    let compared = cutaway(&[
+        "compare",
+        o,
+        "--out",
+        dir.join("compare").to_str().unwrap(),
+        "--width",
+        "96",
+        "--height",
+        "72",
+        "--focus",
+        "focus",
+        "--json",
+    ]);
+    let stderr = String::from_utf8_lossy(&compared.stderr);
+    if !compared.status.success() && stderr.contains("no GPU adapter") {
+        println!("compare skipped: {stderr}");
+    } else {
+        let json = json_of(&compared);
+        let variants = json["variants"].as_array().unwrap();
+        assert_eq!(variants.len(), 1, "{json}");
+        assert_eq!(f(&variants[0]["metrics"]["focus"]["exposure_after"]), after);
+        assert!(dir.join("compare/compare.png").exists());
+    }
 
     // Exposing again from the same view finds nothing left to open, and the sentence says so.
     let again = dir.join("again.json");
@@ -129,7 +175,14 @@ fn expose_prints_the_exposures_and_writes_the_session_with_one_cutter_per_occlud
     ]));
     assert_eq!(json["cutters"], 0, "{json}");
     assert_eq!(f(&json["exposure_before"]), after);
-    let sentence = cutaway(&["expose", o, "--focus", "focus", "--out", again.to_str().unwrap()]);
+    let sentence = cutaway(&[
+        "expose",
+        o,
+        "--focus",
+        "focus",
+        "--out",
+        again.to_str().unwrap(),
+    ]);
     let text = String::from_utf8_lossy(&sentence.stdout);
     assert!(text.starts_with("focus is in full view"), "{text}");
 }
@@ -153,18 +206,38 @@ fn expose_refuses_an_unknown_focus_a_bad_margin_and_an_output_that_is_no_session
     };
     refused(
         &["expose", s, "--focus", "liver", "--out", o, "--json"],
-        &["session.json", "no structure named 'liver'", "focus, head, plate, beside"],
+        &[
+            "session.json",
+            "no structure named 'liver'",
+            "focus, head, plate, beside",
+        ],
     );
     refused(
-        &["expose", s, "--focus", "focus", "--margin", "-2", "--out", o],
+        &[
+            "expose", s, "--focus", "focus", "--margin", "-2", "--out", o,
+        ],
         &["--margin", "outside"],
     );
     refused(
-        &["expose", s, "--focus", "focus", "--out", dir.join("out.obj").to_str().unwrap()],
+        &[
+            "expose",
+            s,
+            "--focus",
+            "focus",
+            "--out",
+            dir.join("out.obj").to_str().unwrap(),
+        ],
         &["out.obj", ".json"],
     );
     refused(
-        &["expose", dir.join("none.json").to_str().unwrap(), "--focus", "focus", "--out", o],
+        &[
+            "expose",
+            dir.join("none.json").to_str().unwrap(),
+            "--focus",
+            "focus",
+            "--out",
+            o,
+        ],
         &["none.json"],
     );
     assert!(!out.exists(), "nothing is written on an error");
@@ -201,8 +274,13 @@ fn every_deep_structure_of_the_default_head_from_the_six_views() {
         for preset in ViewPreset::ALL {
             let mut before = head.clone();
             before.camera = before.preset_camera(preset);
-            let exposed = plan(&before, focus, &ExposeSettings::default(), &Progress::default())
-                .unwrap();
+            let exposed = plan(
+                &before,
+                focus,
+                &ExposeSettings::default(),
+                &Progress::default(),
+            )
+            .unwrap();
             let mut after = before.clone();
             apply(&mut after, &exposed);
             let r = report(&before, &after, &exposed, samples).unwrap();

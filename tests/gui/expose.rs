@@ -68,7 +68,12 @@ fn expose_adds_a_cutter_per_occluder_as_one_undo_step_and_the_view_shows_the_str
     let session = head_session(&dir);
     let mut h = harness(&dir, vec![session], false);
     settle(&mut h);
-    assert_eq!(h.state().scene.models.len(), 4, "{}", h.state().status.message);
+    assert_eq!(
+        h.state().scene.models.len(),
+        4,
+        "{}",
+        h.state().status.message
+    );
     let before = colour_at_focus(&mut h);
     assert!(!greenish(before), "the head hides the focus: {before:?}");
 
@@ -94,10 +99,16 @@ fn expose_adds_a_cutter_per_occluder_as_one_undo_step_and_the_view_shows_the_str
         c.cutter.validate().unwrap();
     }
     let after = colour_at_focus(&mut h);
-    assert!(greenish(after), "the focus shows through the opening: {after:?}");
+    assert!(
+        greenish(after),
+        "the focus shows through the opening: {after:?}"
+    );
     let shot = dir.join("expose.png");
     h.render().expect("render").save(&shot).expect("save");
-    let _ = std::fs::copy(&shot, Path::new(env!("CARGO_TARGET_TMPDIR")).join("gui-expose.png"));
+    let _ = std::fs::copy(
+        &shot,
+        Path::new(env!("CARGO_TARGET_TMPDIR")).join("gui-expose.png"),
+    );
 
     // One undo removes both cutters; X exposes the selection again.
     let ctx = h.ctx.clone();
@@ -107,6 +118,11 @@ fn expose_adds_a_cutter_per_occluder_as_one_undo_step_and_the_view_shows_the_str
     h.key_press(egui::Key::X);
     h.run_steps(2);
     settle(&mut h);
-    assert_eq!(h.state().scene.cutters.len(), 2, "{}", h.state().status.message);
+    assert_eq!(
+        h.state().scene.cutters.len(),
+        2,
+        "{}",
+        h.state().status.message
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

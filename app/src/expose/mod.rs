@@ -99,7 +99,10 @@ pub fn plan(
 ) -> anyhow::Result<Exposed> {
     settings.check()?;
     let Some(model) = scene.models.get(focus) else {
-        anyhow::bail!("no structure {focus} (the scene has {})", scene.models.len());
+        anyhow::bail!(
+            "no structure {focus} (the scene has {})",
+            scene.models.len()
+        );
     };
     let started = Instant::now();
     let surfaces = drawn_surfaces(scene, progress)?;
@@ -212,9 +215,10 @@ pub fn summary(scene: &Scene, exposed: &Exposed, removed_mm3: Option<f64>) -> St
     line
 }
 
-/// Names joined with commas, at most five, then "and N more".
+/// Names joined with commas, at most three (the nearest), then "and N more": the line fits the
+/// status bar.
 fn list_names(names: &[&str]) -> String {
-    const SHOWN: usize = 5;
+    const SHOWN: usize = 3;
     if names.len() <= SHOWN {
         return names.join(", ");
     }

@@ -59,7 +59,10 @@ fn exposed(focus: &str, preset: ViewPreset) -> (Scene, Scene, Exposed) {
         seen >= 0.9 * free,
         "{focus} from {preset:?}: {was:.3} → {seen:.3}, unoccluded {free:.3}"
     );
-    assert!(was < 0.5 * free, "{focus} from {preset:?} was hidden: {was:.3}");
+    assert!(
+        was < 0.5 * free,
+        "{focus} from {preset:?} was hidden: {was:.3}"
+    );
     (before, after, exposed)
 }
 
@@ -94,7 +97,13 @@ fn a_wider_margin_removes_more() {
     let before = seen_from(ViewPreset::Anterior);
     let f = model(&before, "left hippocampus");
     let volume = |margin_mm: f64| {
-        let e = plan(&before, f, &ExposeSettings { margin_mm }, &Progress::default()).unwrap();
+        let e = plan(
+            &before,
+            f,
+            &ExposeSettings { margin_mm },
+            &Progress::default(),
+        )
+        .unwrap();
         let mut after = before.clone();
         apply(&mut after, &e);
         report::removed_volume_mm3(&after, 0).unwrap().unwrap()
@@ -107,17 +116,40 @@ fn a_wider_margin_removes_more() {
 fn bad_margins_and_foci_are_refused_and_a_structure_in_view_needs_nothing() {
     let scene = seen_from(ViewPreset::Anterior);
     for margin_mm in [-1.0, f64::NAN, 1000.0] {
-        let err = plan(&scene, 1, &ExposeSettings { margin_mm }, &Progress::default()).unwrap_err();
+        let err = plan(
+            &scene,
+            1,
+            &ExposeSettings { margin_mm },
+            &Progress::default(),
+        )
+        .unwrap_err();
         assert!(err.to_string().contains("margin"), "{err}");
     }
-    assert!(plan(&scene, 10_000, &ExposeSettings::default(), &Progress::default()).is_err());
+    assert!(
+        plan(
+            &scene,
+            10_000,
+            &ExposeSettings::default(),
+            &Progress::default()
+        )
+        .is_err()
+    );
     let stop = Progress::default();
     stop.cancel();
     let cancelled = plan(&scene, 1, &ExposeSettings::default(), &stop).unwrap_err();
     assert!(crate::platform::jobs::is_cancelled(&cancelled));
     // The skin from the front hides behind nothing.
     let skin = model(&scene, "skin");
-    let e = plan(&scene, skin, &ExposeSettings::default(), &Progress::default()).unwrap();
+    let e = plan(
+        &scene,
+        skin,
+        &ExposeSettings::default(),
+        &Progress::default(),
+    )
+    .unwrap();
     assert!(e.cutters.is_empty());
-    assert_eq!(summary(&scene, &e, None), "skin is in full view: nothing to open");
+    assert_eq!(
+        summary(&scene, &e, None),
+        "skin is in full view: nothing to open"
+    );
 }

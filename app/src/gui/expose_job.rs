@@ -67,7 +67,12 @@ impl CutawayApp {
     }
 
     /// Adds a finished exposure's cutters to the scene (one undo step) and says what they open.
-    pub(super) fn finish_expose(&mut self, key: ExposeKey, exposed: &Exposed, removed: Option<f64>) {
+    pub(super) fn finish_expose(
+        &mut self,
+        key: ExposeKey,
+        exposed: &Exposed,
+        removed: Option<f64>,
+    ) {
         if key != ExposeKey::of(&self.state.scene) {
             self.state
                 .say("The scene changed while Expose ran; nothing was added (press X again)");

@@ -159,7 +159,9 @@ fn rasterize(frame: &ViewFrame, mesh: &Mesh, tag: u32, near: f64, out: &mut Vec<
 /// Columns (or rows) whose centres lie in `[low, high]`, clamped to the grid; `None` when none.
 fn cell_range(low: f64, high: f64, origin: f64, cell: f64, count: usize) -> Option<(usize, usize)> {
     let first = ((low - origin) / cell - 0.5).ceil().max(0.0);
-    let last = ((high - origin) / cell - 0.5).floor().min(count as f64 - 1.0);
+    let last = ((high - origin) / cell - 0.5)
+        .floor()
+        .min(count as f64 - 1.0);
     (first <= last).then_some((first as usize, last as usize))
 }
 
@@ -167,7 +169,8 @@ fn cell_range(low: f64, high: f64, origin: f64, cell: f64, count: usize) -> Opti
 /// edge `p → q`. Evaluated from the lower-numbered vertex, so the edge `q → p` gives exactly the
 /// negated value.
 fn edge(p_id: u32, p: [f64; 3], q_id: u32, q: [f64; 3], x: [f64; 2]) -> f64 {
-    let raw = |p: [f64; 3], q: [f64; 3]| (q[0] - p[0]) * (x[1] - p[1]) - (q[1] - p[1]) * (x[0] - p[0]);
+    let raw =
+        |p: [f64; 3], q: [f64; 3]| (q[0] - p[0]) * (x[1] - p[1]) - (q[1] - p[1]) * (x[0] - p[0]);
     if p_id <= q_id { raw(p, q) } else { -raw(q, p) }
 }
 
@@ -221,6 +224,9 @@ mod tests {
         let centre = frame.index(15, 15);
         let hits = buffer.at(centre);
         assert_eq!(hits.len(), 2);
-        assert!((hits[0].z - 49.0).abs() < 1e-9 && (hits[1].z - 51.0).abs() < 1e-9, "{hits:?}");
+        assert!(
+            (hits[0].z - 49.0).abs() < 1e-9 && (hits[1].z - 51.0).abs() < 1e-9,
+            "{hits:?}"
+        );
     }
 }

@@ -14,7 +14,11 @@ pub fn squared_distances(marked: &[bool], columns: usize, rows: usize) -> Vec<f6
     let mut out = vec![0.0; rows.max(columns)];
     for i in 0..columns {
         for j in 0..rows {
-            line[j] = if marked[i * rows + j] { 0.0 } else { f64::INFINITY };
+            line[j] = if marked[i * rows + j] {
+                0.0
+            } else {
+                f64::INFINITY
+            };
         }
         transform_1d(&line[..rows], &mut out[..rows]);
         along_rows[i * rows..(i + 1) * rows].copy_from_slice(&out[..rows]);

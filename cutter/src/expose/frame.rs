@@ -168,8 +168,11 @@ mod tests {
 
     #[test]
     fn the_grid_covers_the_box_with_square_cells() {
-        let frame = ViewFrame::oriented(DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::Z, &[])
-            .with_grid([-2.0, 2.0], [-0.5, 0.5], 100);
+        let frame = ViewFrame::oriented(DVec3::ZERO, DVec3::Y, DVec3::X, DVec3::Z, &[]).with_grid(
+            [-2.0, 2.0],
+            [-0.5, 0.5],
+            100,
+        );
         assert_eq!((frame.columns, frame.rows), (100, 25));
         assert!((frame.cell - 0.04).abs() < 1e-15);
         assert!(frame.column_edge(0) <= -2.0 && frame.column_edge(100) >= 2.0);

@@ -182,7 +182,11 @@ pub fn expose(
         image.push([q.dot(view.right) / z, q.dot(view.up) / z]);
     }
     let frame = ViewFrame::oriented(view.eye, view.forward, view.right, view.up, &image);
-    let (mut u, mut v, mut nearest) = ([f64::INFINITY, f64::NEG_INFINITY], [f64::INFINITY, f64::NEG_INFINITY], f64::INFINITY);
+    let (mut u, mut v, mut nearest) = (
+        [f64::INFINITY, f64::NEG_INFINITY],
+        [f64::INFINITY, f64::NEG_INFINITY],
+        f64::INFINITY,
+    );
     for &p in &focus.positions {
         let [pu, pv, pz] = frame.project(p);
         u = [u[0].min(pu), u[1].max(pu)];
@@ -194,7 +198,11 @@ pub fn expose(
     let longer = (u[1] - u[0]).max(v[1] - v[0]) + 2.0 * margin;
     // Two cells beyond the margin on every side, so the window's edge is inside the grid.
     let pad = margin + 2.0 * longer / resolution as f64;
-    let frame = frame.with_grid([u[0] - pad, u[1] + pad], [v[0] - pad, v[1] + pad], resolution);
+    let frame = frame.with_grid(
+        [u[0] - pad, u[1] + pad],
+        [v[0] - pad, v[1] + pad],
+        resolution,
+    );
     let near = nearest * 1e-6;
 
     // 2. Every crossing of every ray.
@@ -245,7 +253,12 @@ pub fn expose(
     // the work), in parallel.
     let per_occluder: Vec<_> = opened
         .par_iter()
-        .map(|o| (o.mesh as usize - 1, occluder_cutters(&frame, &buffer, o, &shape)))
+        .map(|o| {
+            (
+                o.mesh as usize - 1,
+                occluder_cutters(&frame, &buffer, o, &shape),
+            )
+        })
         .collect();
     let mut built: Vec<(f64, ExposedCutter)> = Vec::new();
     let mut notes = Vec::new();

@@ -119,8 +119,15 @@ mod tests {
         assert!((d - 95.0).abs() < 0.1, "{d}");
         assert_eq!(occlusion.occluders.len(), 2);
         let reach = |o: &Occluder| o.hidden.iter().find(|h| h.0 == centre).unwrap().1;
-        assert_eq!(reach(&occlusion.occluders[0]), d, "inside the shell: past the focus");
-        assert!((reach(&occlusion.occluders[1]) - 88.0).abs() < 1e-9, "the plate's far side");
+        assert_eq!(
+            reach(&occlusion.occluders[0]),
+            d,
+            "inside the shell: past the focus"
+        );
+        assert!(
+            (reach(&occlusion.occluders[1]) - 88.0).abs() < 1e-9,
+            "the plate's far side"
+        );
         assert_eq!(
             occlusion.occluders[0].hidden.len(),
             occlusion.focus_cells(),

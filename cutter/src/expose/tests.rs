@@ -32,7 +32,10 @@ fn scene() -> (Mesh, Vec<Mesh>) {
         p.x *= 8.0 / 3.0;
     }
     let head = testkit::geodesic_sphere(16, 30.0);
-    let plate = testkit::cube(DVec3::new(-20.0, -16.0, -10.0), DVec3::new(-2.0, -13.0, 10.0));
+    let plate = testkit::cube(
+        DVec3::new(-20.0, -16.0, -10.0),
+        DVec3::new(-2.0, -13.0, 10.0),
+    );
     let beside = translated(testkit::geodesic_sphere(6, 3.0), DVec3::new(18.0, 0.0, 0.0));
     (focus, vec![head, plate, beside])
 }
@@ -55,7 +58,10 @@ fn seen_share(focus: &Mesh, drawn: &[Mesh]) -> f64 {
             continue;
         }
         free += 1;
-        if scene_index.ray_cast(&scene, EYE, towards, 1.0 - 1e-6).is_none() {
+        if scene_index
+            .ray_cast(&scene, EYE, towards, 1.0 - 1e-6)
+            .is_none()
+        {
             seen += 1;
         }
     }
@@ -90,7 +96,10 @@ fn the_cutters_open_the_head_and_the_plate_and_leave_the_rest() {
     let aimed: Vec<usize> = exposure.cutters.iter().map(|c| c.occluder).collect();
     assert_eq!(aimed, vec![0, 1], "{:?}", exposure.notes);
     assert!(exposure.notes.is_empty(), "{:?}", exposure.notes);
-    assert!((exposure.hidden - 1.0).abs() < 1e-12, "the head hides all of it");
+    assert!(
+        (exposure.hidden - 1.0).abs() < 1e-12,
+        "the head hides all of it"
+    );
     assert!((exposure.cutters[0].opens - 1.0).abs() < 1e-12);
     assert!(
         (0.3..0.7).contains(&exposure.cutters[1].opens),
@@ -130,10 +139,17 @@ fn the_head_is_opened_no_wider_than_the_silhouette_and_margin_nor_deeper_than_ne
     }
     // Front in front of the head's surface (y = −30), back behind the focus's near side
     // (y = −3) but not past its far side (y = 3) by more than the clearance and a few cells.
-    let front = head.planes.iter().flat_map(|p| [p.front_top, p.front_bottom]);
+    let front = head
+        .planes
+        .iter()
+        .flat_map(|p| [p.front_top, p.front_bottom]);
     assert!(front.clone().all(|p| p.y < -29.5), "front behind the skin");
     let back = head.planes.iter().flat_map(|p| [p.back_top, p.back_bottom]);
-    assert!(back.clone().all(|p| p.y > -3.0 && p.y < 3.0), "{:?}", back.collect::<Vec<_>>());
+    assert!(
+        back.clone().all(|p| p.y > -3.0 && p.y < 3.0),
+        "{:?}",
+        back.collect::<Vec<_>>()
+    );
 }
 
 #[test]
@@ -147,7 +163,14 @@ fn a_focus_behind_the_eye_and_an_empty_focus_are_refused_and_cancel_stops() {
         Err(ExposeError::BehindEye { .. })
     ));
     assert_eq!(
-        expose(&Mesh::default(), &refs, &view(), &ExposeOptions::default(), &|| true).unwrap_err(),
+        expose(
+            &Mesh::default(),
+            &refs,
+            &view(),
+            &ExposeOptions::default(),
+            &|| true
+        )
+        .unwrap_err(),
         ExposeError::EmptyFocus
     );
     assert_eq!(
@@ -160,7 +183,10 @@ fn a_focus_behind_the_eye_and_an_empty_focus_are_refused_and_cancel_stops() {
 fn nothing_in_the_way_builds_nothing() {
     let (focus, occluders) = scene();
     let beside = [&occluders[2]];
-    let exposure = expose(&focus, &beside, &view(), &ExposeOptions::default(), &|| true).unwrap();
+    let exposure = expose(&focus, &beside, &view(), &ExposeOptions::default(), &|| {
+        true
+    })
+    .unwrap();
     assert!(exposure.cutters.is_empty());
     assert_eq!(exposure.hidden, 0.0);
 }

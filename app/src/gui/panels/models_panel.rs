@@ -33,7 +33,6 @@ struct ListState {
 /// How many frames the list keeps scrolling to a newly selected model.
 const REVEAL_FRAMES: u8 = 12;
 
-
 /// What Expose does, on its button and menu entry.
 pub const EXPOSE_HINT: &str = "Cut open everything in front of this structure from the current \
      view: one cutter per structure in the way, sized to its outline plus a margin (X)";
@@ -325,11 +324,7 @@ fn model_row_ui(
             actions.push(Action::FocusModel(index));
         }
         row.context_menu(|ui| {
-            if ui
-                .button("Expose (X)")
-                .on_hover_text(EXPOSE_HINT)
-                .clicked()
-            {
+            if ui.button("Expose (X)").on_hover_text(EXPOSE_HINT).clicked() {
                 actions.push(Action::Expose(index));
             }
             if ui.button("Centre camera on it").clicked() {
