@@ -204,7 +204,7 @@ mod tests {
         let mut through = 0;
         for c in 0..frame.cells() {
             let n = buffer.at(c).len();
-            assert!(n % 2 == 0, "cell {c} crosses {n} times");
+            assert!(n.is_multiple_of(2), "cell {c} crosses {n} times");
             through += usize::from(n > 0);
         }
         // The sphere of radius 10 seen from 100 covers a disc of radius tan(asin 0.1) in the

@@ -98,7 +98,7 @@ mod tests {
                 assert_eq!(d[i * rows + j], brute, "cell ({i}, {j})");
             }
         }
-        let none = squared_distances(&vec![false; 12], 3, 4);
+        let none = squared_distances(&[false; 12], 3, 4);
         assert!(none.iter().all(|x| x.is_infinite()));
     }
 }

@@ -176,7 +176,7 @@ pub fn expose(
     for (k, &p) in focus.positions.iter().enumerate() {
         let q = p - view.eye;
         let z = q.dot(view.forward);
-        if !(z > 0.0) {
+        if z.is_nan() || z <= 0.0 {
             return Err(ExposeError::BehindEye { vertex: k });
         }
         image.push([q.dot(view.right) / z, q.dot(view.up) / z]);
