@@ -9,6 +9,7 @@ pub mod cli;
 pub mod compare;
 pub mod cutting;
 pub mod export;
+pub mod expose;
 pub mod gui;
 pub mod intensity;
 pub mod io;

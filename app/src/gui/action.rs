@@ -109,6 +109,11 @@ pub enum Action {
     EditCutter(usize),
     /// Delete scene cutter `i`.
     RemoveCutter(usize),
+    /// Build the cutters that open the view onto model `i` through everything in front of it
+    /// ([`crate::expose`], a background job) and select it.
+    Expose(usize),
+    /// [`Action::Expose`] of the selected model (the X key); says how to select one when none is.
+    ExposeSelected,
     /// Build model `i`'s spatial index, which the cutter editor needs before a press can start a
     /// cutter on it (a background job).
     IndexModel(usize),

@@ -113,6 +113,7 @@ impl CutawayApp {
             export_turntable: Default::default(),
             export_webpage: Default::default(),
             wgpu: cc.wgpu_render_state.clone(),
+            expose: Default::default(),
             metrics: Default::default(),
             ruler: Default::default(),
             compare: Default::default(),

@@ -230,6 +230,11 @@ impl CutawayApp {
                     "Applied the cuts to {count} models; new cuts reach the structures behind"
                 ));
             }
+            JobOutput::Exposed {
+                key,
+                exposed,
+                removed_mm3,
+            } => self.finish_expose(key, &exposed, removed_mm3),
             JobOutput::Done(message) => self.state.say(message),
         }
     }

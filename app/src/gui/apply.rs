@@ -189,6 +189,19 @@ impl CutawayApp {
                 }
             }
             Action::IndexModel(target) => self.start_index_job(ctx, target),
+            Action::Expose(index) => {
+                if index < self.state.scene.models.len() {
+                    self.apply(ctx, Action::SelectModel(Some(index)));
+                    self.start_expose_job(ctx, index);
+                }
+            }
+            Action::ExposeSelected => match self.state.selected_model {
+                Some(index) => self.start_expose_job(ctx, index),
+                None => self.state.say(
+                    "Select a structure first (click it in the list or double-click it in the \
+                     view), then press X to expose it",
+                ),
+            },
             Action::RemoveCutter(i) => {
                 if i < self.state.scene.cutters.len() {
                     let before = self.state.scene.clone();
@@ -348,6 +361,9 @@ impl CutawayApp {
             // E for Edit, as the view's first-use hint says (F2 too).
             if i.consume_key(Modifiers::NONE, Key::E) {
                 actions.push(Action::SetMode(Mode::Edit));
+            }
+            if i.consume_key(Modifiers::NONE, Key::X) {
+                actions.push(Action::ExposeSelected);
             }
             for (key, mode) in [
                 (Key::F1, Mode::Camera),

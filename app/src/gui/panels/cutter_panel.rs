@@ -110,6 +110,8 @@ fn initialization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Ac
         app.cutter_settings_changed();
     }
     ui.add_space(4.0);
+    expose_ui(ui, app, actions);
+    ui.add_space(4.0);
     if ui
         .button("New Cutter")
         .on_hover_text("Keep the current cutter; the next drag in Edit mode starts another")
@@ -159,6 +161,29 @@ fn depth_row(ui: &mut egui::Ui, app: &mut AppState) {
         app.cutters_changed();
         app.say_depth();
     }
+}
+
+/// Expose for the selected structure, with its margin.
+fn expose_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Action>) {
+    ui.horizontal(|ui| {
+        let selected = app.selected_model.is_some();
+        let button = ui
+            .add_enabled(selected, egui::Button::new("Expose Selected"))
+            .on_hover_text(crate::gui::panels::models_panel::EXPOSE_HINT)
+            .on_disabled_hover_text("Select a structure first (click it in the list)");
+        if button.clicked() {
+            actions.push(Action::ExposeSelected);
+        }
+        ui.add(
+            egui::DragValue::new(&mut app.expose.margin_mm)
+                .range(0.0..=crate::expose::MAX_MARGIN_MM)
+                .speed(0.1)
+                .fixed_decimals(1)
+                .prefix("margin ")
+                .suffix(" mm"),
+        )
+        .on_hover_text("Room left around the structure's outline by Expose");
+    });
 }
 
 fn visualization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Action>) {

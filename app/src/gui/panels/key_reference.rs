@@ -13,6 +13,7 @@ pub fn commands(mode: Mode) -> &'static [(&'static str, &'static str)] {
             ("Wheel", "zoom"),
             ("Double-click", "select & centre"),
             ("E", "Edit mode: cut"),
+            ("X", "expose selection"),
             ("1 3 7 (Ctrl)", "views"),
             ("Right-click", "menu"),
         ],

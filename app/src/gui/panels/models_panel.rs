@@ -33,6 +33,10 @@ struct ListState {
 /// How many frames the list keeps scrolling to a newly selected model.
 const REVEAL_FRAMES: u8 = 12;
 
+/// What Expose does, on its button and menu entry.
+pub const EXPOSE_HINT: &str = "Cut open everything in front of this structure from the current \
+     view: one cutter per structure in the way, sized to its outline plus a margin (X)";
+
 pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     let state_id = egui::Id::unique("models-list-state");
@@ -194,6 +198,9 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
             ui.end_row();
         });
     ui.horizontal(|ui| {
+        if ui.button("Expose").on_hover_text(EXPOSE_HINT).clicked() {
+            actions.push(Action::Expose(index));
+        }
         if ui
             .button("Centre")
             .on_hover_text("Centre the camera on this model")
@@ -323,6 +330,9 @@ fn model_row_ui(
             actions.push(Action::FocusModel(index));
         }
         row.context_menu(|ui| {
+            if ui.button("Expose (X)").on_hover_text(EXPOSE_HINT).clicked() {
+                actions.push(Action::Expose(index));
+            }
             if ui.button("Centre camera on it").clicked() {
                 actions.push(Action::FocusModel(index));
             }

@@ -70,6 +70,8 @@ pub struct AppState {
     pub export_webpage: export_settings::WebPageSettings,
     /// The GPU, when the window runs on wgpu (None under a non-wgpu test harness).
     pub wgpu: Option<egui_wgpu::RenderState>,
+    /// The margin Expose leaves around a structure's silhouette.
+    pub expose: crate::expose::ExposeSettings,
     /// The Metrics panel, the Ruler tool and the Compare view.
     pub metrics: metrics::MetricsPanel,
     pub ruler: RulerTool,

@@ -583,6 +583,19 @@ pub fn context_menu_ui(ui: &mut egui::Ui, app: &AppState) -> Vec<Action> {
         actions.push(Action::SetMode(Mode::Preview));
     }
     ui.separator();
+    let selected = app.selected_model.and_then(|i| app.scene.models.get(i));
+    let label = match selected {
+        Some(m) => format!("Expose {} (X)", m.name),
+        None => "Expose Selected (X)".to_string(),
+    };
+    if ui
+        .add_enabled(selected.is_some(), egui::Button::new(label))
+        .on_hover_text(crate::gui::panels::models_panel::EXPOSE_HINT)
+        .on_disabled_hover_text("Double-click a structure to select it first")
+        .clicked()
+    {
+        actions.push(Action::ExposeSelected);
+    }
     if ui.button("Remove All Cut Geometry").clicked() {
         actions.push(Action::RemoveAllCutGeometry);
     }
