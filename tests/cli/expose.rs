@@ -243,7 +243,7 @@ fn expose_refuses_an_unknown_focus_a_bad_margin_and_an_output_that_is_no_session
 /// The default head's deep structures from the six standard views: exposure before, after and
 /// unoccluded, removed volume and time of each exposure; fails where the goal (after ≥ 0.9 ×
 /// unoccluded) is missed. Run it in release:
-/// `cargo test --release -p cutaway --test expose -- --ignored --nocapture`.
+/// `cargo test --release -p cutaway --test cli expose -- --ignored --nocapture`.
 #[test]
 #[ignore = "the whole table takes minutes; run it in release"]
 fn every_deep_structure_of_the_default_head_from_the_six_views() {

@@ -229,8 +229,10 @@ fn run_cutter(
     let u: Vec<f64> = (0..planes)
         .map(|p| frame.column_edge(((first + p) * k).min(frame.columns)))
         .collect();
+    // Built from the view: rolled further, its planes keep going the way the eye looks.
     let build = |front: &[f64], back: &[f64]| Cutter {
         kind: CutKind::Curving,
+        direction: crate::CutDirection::View,
         smooth: false,
         levels: crate::subdivision::DEFAULT_LEVELS,
         planes: (0..planes)
