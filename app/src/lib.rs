@@ -9,6 +9,7 @@ pub mod cli;
 pub mod compare;
 pub mod cutting;
 pub mod export;
+pub mod expose;
 pub mod gui;
 pub mod io;
 pub mod metrics;

@@ -11,6 +11,7 @@ pub mod cutter;
 pub mod editor;
 pub mod edits;
 pub mod events;
+pub mod expose;
 pub mod extrude;
 mod geom;
 pub mod opening;

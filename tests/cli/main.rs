@@ -5,6 +5,7 @@
 
 mod contract;
 mod export;
+mod expose;
 mod extrude;
 mod metrics;
 mod scalpel;

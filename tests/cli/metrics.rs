@@ -91,7 +91,7 @@ fn removed_volume_and_area_of_box_cuts_match_the_analytic_answer() {
     assert_close(f(&cutters[0]["depth"]), 5.0, 1e-9, "A depth");
     assert_close(f(&cutters[1]["depth"]), 3.0, 1e-9, "B depth");
     let cube = &json["structures"][0];
-    assert_eq!(cube["name"], "cube 1");
+    assert_eq!(cube["name"], "cube");
     assert_eq!(cube["closed"], true);
     assert_close(f(&cube["removed_volume"]), 170.0, 1e-9, "total volume");
     assert!(cube["min_distance"].is_null());
@@ -214,9 +214,9 @@ fn sphere_behind_plate(dir: &Path, hole: bool) -> std::path::PathBuf {
 fn exposure_of_a_sphere_through_a_hole_is_the_visible_cap() {
     let dir = scratch("metrics-exposure");
     let session = sphere_behind_plate(&dir, true);
-    let json = metrics(&session, &["--focus", "ball 1", "--samples", "40000"]);
+    let json = metrics(&session, &["--focus", "ball", "--samples", "40000"]);
     let focus = &json["focus"];
-    assert_eq!(focus["name"], "ball 1");
+    assert_eq!(focus["name"], "ball");
     assert_eq!(focus["samples"], 40000);
     // Behind the whole plate the sphere is hidden.
     assert_eq!(f(&focus["exposure_before"]), 0.0);
@@ -227,7 +227,7 @@ fn exposure_of_a_sphere_through_a_hole_is_the_visible_cap() {
     // Without the hole nothing changes.
     let dir = scratch("metrics-exposure-closed");
     let session = sphere_behind_plate(&dir, false);
-    let json = metrics(&session, &["--focus", "ball 1"]);
+    let json = metrics(&session, &["--focus", "ball"]);
     assert_eq!(f(&json["focus"]["exposure_after"]), 0.0);
 }
 
@@ -235,7 +235,7 @@ fn exposure_of_a_sphere_through_a_hole_is_the_visible_cap() {
 fn min_distance_from_the_walls_to_critical_structures() {
     let dir = scratch("metrics-distance");
     let session = sphere_behind_plate(&dir, true);
-    let json = metrics(&session, &["--critical", "ball 1"]);
+    let json = metrics(&session, &["--critical", "ball"]);
     let ball = &json["structures"][1];
     // The nearest wall points are the hole's inner edges at y = -10, 8 from the axis:
     // √(8² + 10²) from the centre, less the radius (the polyhedron lies inside the sphere, its
@@ -297,7 +297,7 @@ fn min_distance_from_the_walls_to_critical_structures() {
         )],
         [0.0, -100.0, 5.0],
     );
-    let json = metrics(&session, &["--critical", "rod 1"]);
+    let json = metrics(&session, &["--critical", "rod"]);
     assert_eq!(f(&json["structures"][1]["min_distance"]), 0.0);
 }
 
@@ -319,8 +319,77 @@ fn unknown_structure_names_are_one_error_line_listing_the_structures() {
         "{stderr}"
     );
     assert!(
-        stderr.contains("'liver'") && stderr.contains("cube 1"),
+        stderr.contains("'liver'") && stderr.contains("cube"),
         "{stderr}"
     );
     assert!(output.stdout.is_empty());
+}
+
+/// A session that names a single-region model: `metrics` and `compare` know it by that name,
+/// unnumbered; a file holding several regions numbers them; a script still naming the model as
+/// older versions did (`organ 1`) still finds it.
+#[test]
+fn a_single_region_model_is_found_by_the_name_the_session_gives_it() {
+    let dir = scratch("metrics-names");
+    std::fs::write(dir.join("organ.obj"), box_obj([0.0; 3], [10.0; 3])).unwrap();
+    let pair = format!(
+        "{}{}",
+        box_obj([20.0, 0.0, 0.0], [24.0, 4.0, 4.0]),
+        box_obj([30.0, 0.0, 0.0], [34.0, 4.0, 4.0])
+            .lines()
+            .map(|l| match l.strip_prefix("f ") {
+                Some(f) => {
+                    let shifted: Vec<String> = f
+                        .split_whitespace()
+                        .map(|i| (i.parse::<usize>().unwrap() + 8).to_string())
+                        .collect();
+                    format!("f {}\n", shifted.join(" "))
+                }
+                None => format!("{l}\n"),
+            })
+            .collect::<String>()
+    );
+    std::fs::write(dir.join("pair.obj"), pair).unwrap();
+    let session = dir.join("named.json");
+    std::fs::write(
+        &session,
+        r#"{"format": "cutaway-session/2", "models": [
+            {"path": "organ.obj", "region": 0, "name": "organ"},
+            {"path": "pair.obj", "region": 1}],
+           "camera": {"eye": [5, -100, 5], "target": [5, 5, 5], "up": [0, 0, 1], "fov_y_deg": 30}}"#,
+    )
+    .unwrap();
+    let json = metrics(&session, &["--focus", "organ", "--samples", "500"]);
+    assert_eq!(json["focus"]["name"], "organ");
+    let names: Vec<&str> = json["structures"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    // The second of the pair's two regions, numbered as the file's.
+    assert_eq!(names, ["organ", "pair 2"]);
+    let old = metrics(&session, &["--focus", "organ 1", "--samples", "500"]);
+    assert_eq!(old["focus"]["name"], "organ");
+    // `compare` measures by the same names.
+    let out = dir.join("compare");
+    let output = Command::new(env!("CARGO_BIN_EXE_cutaway"))
+        .arg("compare")
+        .arg(&session)
+        .args(["--focus", "organ", "--samples", "500", "--out"])
+        .arg(&out)
+        .arg("--json")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    if stderr.contains("no GPU adapter") {
+        println!("compare skipped: {stderr}");
+        return;
+    }
+    assert!(output.status.success(), "{stderr}");
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(
+        json["variants"][0]["metrics"]["focus"]["name"], "organ",
+        "{json}"
+    );
 }

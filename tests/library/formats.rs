@@ -235,12 +235,12 @@ fn load_models_names_regions_by_stem_and_number_in_sorted_file_order() {
     assert_eq!(
         names,
         [
-            "a_cube 1",
+            "a_cube",
             "b_cubes#left 1",
             "b_cubes#right 2",
             "d_pair 1",
             "d_pair 2",
-            "c_tetra 1"
+            "c_tetra"
         ],
     );
     assert_eq!(models[5].source, dir.join("sub/c_tetra.STL"));

@@ -114,7 +114,7 @@ fn render_labels_on_the_command_line() {
         return skip(Resource::Gpu, stderr);
     }
     assert!(plain.status.success(), "{stderr}");
-    let one = run(&["--labels", "cube 1"], "one.png");
+    let one = run(&["--labels", "cube"], "one.png");
     assert!(
         one.status.success(),
         "{}",

@@ -96,6 +96,7 @@ fn click_menu_item(h: &mut Harness<'_, CutawayApp>, text: &str, not: &str) {
 
 mod big_load;
 mod export_image;
+mod expose;
 mod live_cut;
 mod models_list;
 /// Steps until `done()` or the deadline; returns the frames stepped.

@@ -367,10 +367,7 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
     settle(&mut h);
     // As on a machine without a desktop portal or zenity.
     h.state_mut().native_dialogs = false;
-    apply(
-        &mut h,
-        Action::Dialog(cutaway::gui::app::Purpose::OpenSession),
-    );
+    apply(&mut h, Action::Dialog(cutaway::gui::app::Purpose::Open));
     assert!(h.state().browser.is_some(), "no in-window browser");
     assert!(!h.state().busy(), "a native dialog job was started");
     // In a folder with a subfolder and a session: both listed with their glyph markers.
@@ -378,7 +375,7 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
     std::fs::create_dir_all(listed.join("models")).unwrap();
     std::fs::write(listed.join("one.json"), "{}").unwrap();
     h.state_mut().browser = Some(cutaway::gui::panels::file_browser::FileBrowser::new(
-        cutaway::gui::app::Purpose::OpenSession,
+        cutaway::gui::app::Purpose::Open,
         Some(listed),
     ));
     h.run_steps(3);
@@ -398,10 +395,7 @@ fn without_a_native_dialog_the_in_window_browser_opens_and_cancels() {
         println!("a native dialog may open here: the closes-at-once fallback is not tried");
     } else {
         h.state_mut().native_dialogs = true;
-        apply(
-            &mut h,
-            Action::Dialog(cutaway::gui::app::Purpose::OpenSession),
-        );
+        apply(&mut h, Action::Dialog(cutaway::gui::app::Purpose::Open));
         settle(&mut h);
         assert!(
             h.state().browser.is_some(),
@@ -541,6 +535,15 @@ fn dropped_folders_and_sessions_open_and_messages_stay_in_the_status_bar() {
     drop_files(
         &mut h,
         vec![folder.join("right_block.stl"), session.clone()],
+    );
+    // The folder added is unsaved work: opening the session over it asks first.
+    assert!(
+        h.state().unsaved_prompt.is_some(),
+        "the session replaced unsaved work without asking"
+    );
+    apply(
+        &mut h,
+        Action::Unsaved(cutaway::gui::app::UnsavedAnswer::Discard),
     );
     settle(&mut h);
     let app = h.state();

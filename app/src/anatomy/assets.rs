@@ -217,7 +217,7 @@ mod tests {
         let direct: Vec<Model> = load_scene(scene("knee").unwrap())
             .unwrap()
             .into_iter()
-            .filter(|m| m.name.starts_with("patella "))
+            .filter(|m| m.name == "patella")
             .collect();
         assert_eq!(models.len(), direct.len());
         assert_eq!(models[0].name, direct[0].name);
@@ -332,18 +332,18 @@ mod tests {
                 model.mesh.triangle_count() >= 5_000,
                 "{what}: smooth enough"
             );
-            assert!(model.name.ends_with(" 1"), "{what}");
+            // One region a part: named by the part alone, no region number.
             let stem = model
                 .source
                 .file_stem()
                 .and_then(|s| s.to_str())
                 .unwrap_or_default();
-            assert_eq!(format!("{stem} 1"), model.name);
+            assert_eq!(stem, model.name, "{what}");
         }
         // Realistic size of the default scene: ~400 mm long, ~130 mm wide.
         let skin = &models
             .iter()
-            .find(|(s, m)| *s == "knee" && m.name == "skin 1")
+            .find(|(s, m)| *s == "knee" && m.name == "skin")
             .expect("knee skin")
             .1;
         let size = skin.mesh.bbox().max - skin.mesh.bbox().min;
@@ -483,8 +483,8 @@ mod tests {
             let parent_of = |name: &str| {
                 crate::anatomy::phantom::NESTING
                     .iter()
-                    .find(|(s, p, _)| *s == scene.name && format!("{p} 1") == name)
-                    .map(|(_, _, parent)| parent.map(|q| format!("{q} 1")))
+                    .find(|(s, p, _)| *s == scene.name && *p == name)
+                    .map(|(_, _, parent)| parent.map(str::to_string))
                     .unwrap_or_else(|| panic!("{name} is not in NESTING"))
             };
             // Ancestors of a part, nearest first.

@@ -41,19 +41,7 @@ pub fn chosen(scene: &Scene, names: &[String]) -> anyhow::Result<Vec<usize>> {
     }
     names
         .iter()
-        .map(|name| {
-            scene
-                .models
-                .iter()
-                .position(|m| &m.name == name)
-                .ok_or_else(|| {
-                    let all: Vec<&str> = scene.models.iter().map(|m| m.name.as_str()).collect();
-                    anyhow::anyhow!(
-                        "--labels: no structure named '{name}' (structures: {})",
-                        all.join(", ")
-                    )
-                })
-        })
+        .map(|name| crate::scene::names::model_named(scene, name, "--labels: "))
         .collect()
 }
 

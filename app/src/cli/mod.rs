@@ -12,6 +12,7 @@ pub use crate::platform::errors::error_line;
 
 pub mod compare;
 pub mod export;
+pub mod expose;
 pub mod extrude;
 pub mod extrude_session;
 pub mod image_args;
@@ -55,6 +56,9 @@ pub enum Command {
     Export(export::ExportArgs),
     /// Measure the cuts of a session: removed volume and area, exposure, distances.
     Metrics(metrics::MetricsArgs),
+    /// Build the cutters that open the session's view onto a structure; write the session with
+    /// them.
+    Expose(expose::ExposeArgs),
     /// Render and measure every cut variant of a session: pictures, a side-by-side sheet with
     /// the metrics table, metrics as JSON and CSV.
     Compare(compare::CompareArgs),
@@ -98,6 +102,7 @@ where
         Some(Command::Surfaces(a)) => surfaces::run(&a),
         Some(Command::Export(a)) => export::run(&a),
         Some(Command::Metrics(a)) => metrics::run(&a),
+        Some(Command::Expose(a)) => expose::run(&a),
         Some(Command::Compare(a)) => compare::run(&a),
         Some(Command::Turntable(a)) => turntable::run(&a),
         Some(Command::Phantom(a)) => phantom::run(&a),

@@ -40,7 +40,8 @@ pub enum PartKind {
 pub struct PreviewPart {
     /// Index of the model (in `Scene::models`) the part belongs to.
     pub model: usize,
-    /// Index of the cutter (in `Scene::cutters`) that made it (`usize::MAX` for `Kept`).
+    /// Index of the cutter (in `Scene::cutters`) that made it (`usize::MAX` for `Kept`, and for
+    /// the `Wall` part that holds what is left of the model's scalpel incisions).
     pub cutter: usize,
     pub kind: PartKind,
     /// Opacity for `Removed` parts; 1 for the others.

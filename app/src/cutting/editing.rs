@@ -142,6 +142,14 @@ impl EditorSlot {
         self.indexes.len()
     }
 
+    /// True when model `target` needs its index built in the background before a press can
+    /// start a cutter on it (too big to build on the UI thread, not built yet).
+    pub fn needs_background_index(&self, scene: &Scene, target: usize) -> bool {
+        scene.models.get(target).is_some_and(|m| {
+            m.mesh.triangle_count() > SYNC_INDEX_TRIANGLES && self.index_for(&m.mesh).is_none()
+        })
+    }
+
     /// Stores an index built by a background job.
     pub fn store_index(&mut self, mesh: Weak<Mesh>, index: Arc<SpatialIndex>) {
         self.indexes.retain(|(w, _)| w.strong_count() > 0);

@@ -36,10 +36,11 @@ impl Mode {
 /// What a file dialog was opened for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Purpose {
-    LoadModel,
-    LoadDirectory,
+    /// Files, a folder, a volume or a session: what replaces the scene (File → Open…).
+    Open,
+    /// A folder of meshes (the native dialogs pick files or folders, never both).
+    OpenFolder,
     AddModel,
-    OpenSession,
     SaveSessionAs,
     ExportImage,
     ExportMeshes,
@@ -52,10 +53,9 @@ pub enum Purpose {
 impl Purpose {
     pub fn title(self) -> &'static str {
         match self {
-            Purpose::LoadModel => "Load Model",
-            Purpose::LoadDirectory => "Load Directory",
+            Purpose::Open => "Open",
+            Purpose::OpenFolder => "Open Folder",
             Purpose::AddModel => "Add Model",
-            Purpose::OpenSession => "Open Session",
             Purpose::SaveSessionAs => "Save Session As",
             Purpose::ExportImage => "Export Image",
             Purpose::ExportMeshes => "Export Cut Meshes to Folder",
@@ -109,13 +109,31 @@ pub enum Action {
     EditCutter(usize),
     /// Delete scene cutter `i`.
     RemoveCutter(usize),
+    /// Build the cutters that open the view onto model `i` through everything in front of it
+    /// ([`crate::expose`], a background job) and select it.
+    Expose(usize),
+    /// [`Action::Expose`] of the selected model (the X key); says how to select one when none is.
+    ExposeSelected,
     /// Build model `i`'s spatial index, which the cutter editor needs before a press can start a
     /// cutter on it (a background job).
     IndexModel(usize),
     RestoreRecovery,
     DiscardRecovery,
+    /// The answer to "save the changes first?", asked before the scene is replaced.
+    Unsaved(UnsavedAnswer),
     /// Turn, zoom or re-orient the view (View menu, view keys).
     View(ViewCommand),
+}
+
+/// What the user answered when opening over unsaved changes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnsavedAnswer {
+    /// Save the scene (asking where when it has no file yet), then go on.
+    Save,
+    /// Go on without saving.
+    Discard,
+    /// Keep the scene; do not open.
+    Cancel,
 }
 
 /// A change of what the camera looks at (never an undoable scene edit).

@@ -23,7 +23,7 @@ use crate::gui::state::viewport::ViewportState;
 use crate::session::recovery::{self, RecentFiles, Recovery};
 use crate::session::undo::History;
 
-pub use crate::gui::action::{Action, Mode, Purpose};
+pub use crate::gui::action::{Action, Mode, Purpose, UnsavedAnswer};
 pub use crate::gui::job_output::JobOutput;
 
 /// Triangles of all models of `scene`.
@@ -113,11 +113,15 @@ impl CutawayApp {
             export_turntable: Default::default(),
             export_webpage: Default::default(),
             wgpu: cc.wgpu_render_state.clone(),
-            cutter_tab: Default::default(),
+            expose: Default::default(),
             metrics: Default::default(),
             ruler: Default::default(),
             compare: Default::default(),
             pending_edit: None,
+            view_message_camera: None,
+            layout: Default::default(),
+            unsaved_prompt: None,
+            after_save: None,
             last_committed: new_scene(),
             exiting: false,
             frame_started: Instant::now(),
@@ -142,9 +146,14 @@ impl eframe::App for CutawayApp {
         crate::gui::atlas_arrival::poll(&mut self.state);
         // Pick trees of new or replaced meshes are built on a worker, not at the first press.
         self.state.viewport.picks.prepare(&self.state.scene);
+        self.index_target_ahead(&ctx);
 
-        let mut actions = self.shortcuts(&ctx);
-        actions.extend(crate::gui::viewport::view_menu::view_shortcuts(&ctx));
+        // Keys take effect before this frame's pointer input: on a slow frame (a software
+        // renderer) "E, then drag" arrives in one frame, and the drag must meet Edit mode.
+        for action in self.shortcuts(&ctx) {
+            self.apply(&ctx, action);
+        }
+        let mut actions = crate::gui::viewport::view_menu::view_shortcuts(&ctx);
         actions.extend(self.dropped_files(&ctx));
 
         egui::Panel::top("cutaway-menu").show(ui, |ui| {
@@ -160,28 +169,25 @@ impl eframe::App for CutawayApp {
         });
         egui::Panel::left("cutaway-side")
             .resizable(true)
-            .default_size(290.0)
-            .min_size(230.0)
+            .default_size(260.0)
+            .min_size(210.0)
             .show(ui, |ui| {
-                // Both ways: a wide row (a long name, a note) scrolls instead of widening the
-                // panel, so the view keeps the width the user gave it.
-                egui::ScrollArea::both().show(ui, |ui| {
-                    actions.extend(crate::gui::panels::models_panel::models_panel_ui(
-                        ui,
-                        &mut self.state,
-                    ));
-                    ui.add_space(10.0);
-                    actions.extend(crate::gui::panels::cutter_panel::cutter_panel_ui(
-                        ui,
-                        &mut self.state,
-                    ));
-                    crate::gui::panels::risk_panel::risk_panel_ui(ui, &mut self.state);
-                    crate::gui::panels::image_panel::image_panel_ui(ui, &mut self.state);
-                    if self.state.mode == Mode::Scalpel {
-                        ui.add_space(10.0);
-                        crate::gui::viewport::scalpel_mode::scalpel_panel_ui(ui, &mut self.state);
-                    }
-                });
+                self.state.layout.models = ui.max_rect();
+                actions.extend(crate::gui::panels::models_panel::models_panel_ui(
+                    ui,
+                    &mut self.state,
+                ));
+            });
+        egui::Panel::right("cutaway-tools")
+            .resizable(true)
+            .default_size(crate::gui::panels::tools_panel::DEFAULT_WIDTH)
+            .min_size(crate::gui::panels::tools_panel::MIN_WIDTH)
+            .show(ui, |ui| {
+                self.state.layout.tools = ui.max_rect();
+                actions.extend(crate::gui::panels::tools_panel::tools_panel_ui(
+                    ui,
+                    &mut self.state,
+                ));
             });
         if crate::gui::panels::metrics_panel::side_panel_open(&self.state) {
             egui::Panel::right("cutaway-metrics")
@@ -254,7 +260,42 @@ impl eframe::App for CutawayApp {
 }
 
 impl CutawayApp {
+    /// In Edit mode, a big selected structure's index is built on a worker before the first
+    /// press on it (a press that comes first is held until it is there).
+    fn index_target_ahead(&mut self, ctx: &egui::Context) {
+        let Some(target) = self.state.selected_model else {
+            return;
+        };
+        let viewport = &self.state.viewport;
+        if self.state.mode != Mode::Edit
+            || !viewport
+                .editor
+                .needs_background_index(&self.state.scene, target)
+        {
+            return;
+        }
+        if self
+            .state
+            .jobs
+            .iter()
+            .any(|j| j.is_running() && j.label.starts_with("Indexing"))
+        {
+            return;
+        }
+        let mesh = &self.state.scene.models[target].mesh;
+        let started = viewport
+            .index_ahead
+            .as_ref()
+            .and_then(std::sync::Weak::upgrade)
+            .is_some_and(|m| std::sync::Arc::ptr_eq(&m, mesh));
+        if !started {
+            self.state.viewport.index_ahead = Some(std::sync::Arc::downgrade(mesh));
+            self.start_index_job(ctx, target);
+        }
+    }
+
     fn refresh_status(&mut self) {
+        self.state.forget_stale_view_message();
         self.state.status.models = self.state.scene.models.len();
         self.state.status.triangles = triangle_count(&self.state.scene);
         self.state.status.visible_triangles = self

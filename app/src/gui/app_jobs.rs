@@ -82,7 +82,10 @@ impl CutawayApp {
         }
         let mesh = model.mesh.clone();
         let name = model.name.clone();
-        self.state.say(format!("Indexing {name} for editing…"));
+        // A held drag's own message says more (that the drag is kept).
+        if self.state.viewport.held.is_none() {
+            self.state.say(format!("Indexing {name} for editing…"));
+        }
         self.spawn(ctx, format!("Indexing {name}"), move |progress| {
             progress.set_message(format!(
                 "{} triangles",
@@ -136,7 +139,8 @@ impl CutawayApp {
                 // A dialog that "closes" within a blink never opened: no portal and no zenity.
                 if paths.is_empty() && took < std::time::Duration::from_millis(150) {
                     self.state.browser = Some(crate::gui::panels::file_browser::FileBrowser::new(
-                        purpose, None,
+                        purpose,
+                        self.last_file(),
                     ));
                     self.state
                         .say("No native file dialog opened; choose in the window's browser");
@@ -169,7 +173,9 @@ impl CutawayApp {
                 self.state.viewport.reset_editor();
                 self.state.last_committed = self.state.scene.clone();
                 self.state.recovery.mark_dirty();
+                // A restored autosave holds work nobody saved: replacing it asks first.
                 if !restored {
+                    self.state.recovery.mark_saved();
                     self.state.recent.add(&path);
                 }
                 self.state.say(format!(
@@ -184,8 +190,9 @@ impl CutawayApp {
             }
             JobOutput::Index { model, mesh, index } => {
                 self.state.viewport.editor.store_index(mesh, index);
+                // A drag held while it was built is replayed at the next frame.
                 self.state.say(format!(
-                    "{} is ready: drag on it to start a cutter",
+                    "{} is ready for cutting",
                     self.state
                         .scene
                         .models
@@ -223,6 +230,11 @@ impl CutawayApp {
                     "Applied the cuts to {count} models; new cuts reach the structures behind"
                 ));
             }
+            JobOutput::Exposed {
+                key,
+                exposed,
+                removed_mm3,
+            } => self.finish_expose(key, &exposed, removed_mm3),
             JobOutput::Done(message) => self.state.say(message),
         }
     }
@@ -258,6 +270,7 @@ impl CutawayApp {
             );
             self.state.last_committed = self.state.scene.clone();
             self.state.recovery.mark_dirty();
+            self.state.recovery.mark_saved();
         } else {
             self.state.record(&format!("add {count} models"), before);
         }

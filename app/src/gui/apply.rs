@@ -9,7 +9,7 @@ use std::sync::Arc;
 use crate::io::dropped::DropIntent;
 use crate::scene::Scene;
 
-use crate::gui::action::{Action, Mode, Purpose};
+use crate::gui::action::{Action, Mode, Purpose, UnsavedAnswer};
 use crate::gui::app::CutawayApp;
 use crate::gui::job_output::JobOutput;
 use crate::scene::open::file_label;
@@ -21,7 +21,12 @@ impl CutawayApp {
     pub fn apply(&mut self, ctx: &egui::Context, action: Action) {
         match action {
             Action::Dialog(purpose) => self.open_dialog(ctx, purpose),
-            Action::Open(paths) => self.open_paths(ctx, paths, true),
+            Action::Open(paths) => {
+                if !self.asks_to_save(Action::Open(paths.clone())) {
+                    self.open_paths(ctx, paths, true);
+                }
+            }
+            Action::Unsaved(answer) => self.unsaved_answered(ctx, answer),
             Action::Add(paths) => self.open_paths(ctx, paths, false),
             Action::OpenImage(path) => {
                 let label = format!("Loading image {}", file_label(&path));
@@ -40,15 +45,25 @@ impl CutawayApp {
                 Ok(()) => {
                     self.state.recent.add(&path);
                     self.state.session_path = Some(path.clone());
+                    self.state.recovery.mark_saved();
                     self.state.say(format!("Saved {}", path.display()));
+                    if let Some(next) = self.state.after_save.take() {
+                        self.apply(ctx, next);
+                    }
                 }
-                Err(e) => self.state.complain(&e),
+                Err(e) => {
+                    self.state.after_save = None;
+                    self.state.complain(&e);
+                }
             },
             Action::ExportImageTo(path) => self.export_image_to(ctx, path),
             Action::ExportMeshesTo(dir) => self.export_meshes_to(ctx, dir),
             Action::ExportTurntableTo(dir) => self.export_turntable_to(ctx, dir),
             Action::ExportWebPageTo(path) => self.export_webpage_to(ctx, path),
             Action::Exit => {
+                if self.asks_to_save(Action::Exit) {
+                    return;
+                }
                 self.state.exiting = true;
                 self.state.recovery.discard();
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
@@ -137,7 +152,11 @@ impl CutawayApp {
                     self.open_dialog(ctx, Purpose::SaveGesture);
                 }
             }
-            Action::OpenExample(name) => self.load_example(ctx, name),
+            Action::OpenExample(name) => {
+                if !self.asks_to_save(Action::OpenExample(name.clone())) {
+                    self.load_example(ctx, name);
+                }
+            }
             Action::NewCutter => {
                 self.state.viewport.editor.finish();
                 self.state
@@ -170,6 +189,19 @@ impl CutawayApp {
                 }
             }
             Action::IndexModel(target) => self.start_index_job(ctx, target),
+            Action::Expose(index) => {
+                if index < self.state.scene.models.len() {
+                    self.apply(ctx, Action::SelectModel(Some(index)));
+                    self.start_expose_job(ctx, index);
+                }
+            }
+            Action::ExposeSelected => match self.state.selected_model {
+                Some(index) => self.start_expose_job(ctx, index),
+                None => self.state.say(
+                    "Select a structure first (click it in the list or double-click it in the \
+                     view), then press X to expose it",
+                ),
+            },
             Action::RemoveCutter(i) => {
                 if i < self.state.scene.cutters.len() {
                     let before = self.state.scene.clone();
@@ -195,6 +227,37 @@ impl CutawayApp {
         }
     }
 
+    /// True when `action` would replace a scene with unsaved changes: it then waits for the
+    /// answer to "save the changes first?" (`dialogs.rs` asks).
+    fn asks_to_save(&mut self, action: Action) -> bool {
+        if !self.state.recovery.has_unsaved() || self.state.scene.models.is_empty() {
+            return false;
+        }
+        self.state.unsaved_prompt = Some(action);
+        true
+    }
+
+    fn unsaved_answered(&mut self, ctx: &egui::Context, answer: UnsavedAnswer) {
+        let Some(next) = self.state.unsaved_prompt.take() else {
+            return;
+        };
+        match answer {
+            UnsavedAnswer::Cancel => self.state.say("Kept the scene; nothing was opened"),
+            UnsavedAnswer::Discard => {
+                // The scene is given up: what comes next replaces it without asking again.
+                self.state.recovery.mark_saved();
+                self.apply(ctx, next);
+            }
+            UnsavedAnswer::Save => {
+                self.state.after_save = Some(next);
+                match self.state.session_path.clone() {
+                    Some(path) => self.apply(ctx, Action::SaveSessionTo(path)),
+                    None => self.open_dialog(ctx, Purpose::SaveSessionAs),
+                }
+            }
+        }
+    }
+
     pub(super) fn set_mode(&mut self, mode: Mode) {
         if mode == self.state.mode {
             return;
@@ -204,6 +267,7 @@ impl CutawayApp {
             return;
         }
         self.state.viewport.cancel_drag();
+        self.state.viewport.held = None;
         if self.state.mode == Mode::Scalpel {
             crate::gui::viewport::scalpel_mode::finish_stroke(&mut self.state);
         }
@@ -292,7 +356,14 @@ impl CutawayApp {
                 actions.push(Action::SaveSession);
             }
             if i.consume_shortcut(&open) {
-                actions.push(Action::Dialog(Purpose::LoadModel));
+                actions.push(Action::Dialog(Purpose::Open));
+            }
+            // E for Edit, as the view's first-use hint says (F2 too).
+            if i.consume_key(Modifiers::NONE, Key::E) {
+                actions.push(Action::SetMode(Mode::Edit));
+            }
+            if i.consume_key(Modifiers::NONE, Key::X) {
+                actions.push(Action::ExposeSelected);
             }
             for (key, mode) in [
                 (Key::F1, Mode::Camera),

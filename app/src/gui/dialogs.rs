@@ -4,27 +4,19 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use crate::gui::action::{Action, Purpose};
+use crate::gui::action::{Action, Purpose, UnsavedAnswer};
 use crate::gui::app::CutawayApp;
 use crate::gui::job_output::JobOutput;
 
 impl CutawayApp {
     pub(super) fn open_dialog(&mut self, ctx: &egui::Context, purpose: Purpose) {
-        let start_dir = self
-            .state
-            .session_path
+        let last_file = self.last_file();
+        let start_dir = last_file
             .as_ref()
-            .and_then(|p| p.parent().map(Path::to_path_buf))
-            .or_else(|| {
-                self.state
-                    .recent
-                    .paths
-                    .first()
-                    .and_then(|p| p.parent().map(Path::to_path_buf))
-            });
+            .and_then(|p| p.parent().map(Path::to_path_buf));
         if !self.state.native_dialogs {
             self.state.browser = Some(crate::gui::panels::file_browser::FileBrowser::new(
-                purpose, start_dir,
+                purpose, last_file,
             ));
             return;
         }
@@ -37,9 +29,11 @@ impl CutawayApp {
             let meshes = ["obj", "stl", "ply", "vtk"];
             // `.seg.nrrd` ends in `nrrd`; `.nii.gz` in `gz` (a filter names one extension).
             let volumes = ["nrrd", "nhdr", "nii", "gz"];
+            let everything = [meshes.as_slice(), &volumes, &["json"]].concat();
             let paths: Vec<PathBuf> = pollster::block_on(async move {
                 match purpose {
-                    Purpose::LoadModel | Purpose::AddModel => dialog
+                    Purpose::Open | Purpose::AddModel => dialog
+                        .add_filter("Meshes, volumes and sessions", &everything)
                         .add_filter("Meshes", &meshes)
                         .add_filter("Label volumes", &volumes)
                         .add_filter("Session", &["json"])
@@ -47,7 +41,7 @@ impl CutawayApp {
                         .await
                         .map(|files| files.iter().map(|f| f.path().to_path_buf()).collect())
                         .unwrap_or_default(),
-                    Purpose::LoadDirectory | Purpose::ExportMeshes | Purpose::ExportTurntable => {
+                    Purpose::OpenFolder | Purpose::ExportMeshes | Purpose::ExportTurntable => {
                         dialog
                             .pick_folder()
                             .await
@@ -56,12 +50,6 @@ impl CutawayApp {
                     }
                     Purpose::OpenImage => dialog
                         .add_filter("Image volume", &["nrrd", "nhdr", "nii", "gz"])
-                        .pick_file()
-                        .await
-                        .map(|f| vec![f.path().to_path_buf()])
-                        .unwrap_or_default(),
-                    Purpose::OpenSession => dialog
-                        .add_filter("Cutaway session", &["json"])
                         .pick_file()
                         .await
                         .map(|f| vec![f.path().to_path_buf()])
@@ -104,15 +92,28 @@ impl CutawayApp {
         });
     }
 
+    /// Where a file dialog starts: the file most recently opened or saved (both go to the recent
+    /// list), else the session's.
+    pub(super) fn last_file(&self) -> Option<PathBuf> {
+        self.state
+            .recent
+            .paths
+            .first()
+            .or(self.state.session_path.as_ref())
+            .cloned()
+    }
+
     /// What happens once a dialog (native or manual) gave paths.
     pub(super) fn picked(&mut self, ctx: &egui::Context, purpose: Purpose, paths: Vec<PathBuf>) {
         let Some(first) = paths.first().cloned() else {
+            if purpose == Purpose::SaveSessionAs && self.state.after_save.take().is_some() {
+                self.state.say("Not saved; nothing was opened");
+            }
             return;
         };
         match purpose {
-            Purpose::LoadModel | Purpose::LoadDirectory => self.apply(ctx, Action::Open(paths)),
+            Purpose::Open | Purpose::OpenFolder => self.apply(ctx, Action::Open(paths)),
             Purpose::AddModel => self.apply(ctx, Action::Add(paths)),
-            Purpose::OpenSession => self.apply(ctx, Action::Open(vec![first])),
             Purpose::SaveSessionAs => {
                 self.apply(ctx, Action::SaveSessionTo(with_extension(first, "json")))
             }
@@ -155,6 +156,40 @@ impl CutawayApp {
                     }
                     if ui.button("Discard").clicked() {
                         actions.push(Action::DiscardRecovery);
+                    }
+                });
+            });
+        }
+        if let Some(waiting) = &self.state.unsaved_prompt {
+            let what = match waiting {
+                Action::Open(paths) => match paths.as_slice() {
+                    [one] => format!(
+                        "opening {}",
+                        one.file_name()
+                            .map(|n| n.to_string_lossy().into_owned())
+                            .unwrap_or_else(|| one.display().to_string())
+                    ),
+                    many => format!("opening {} items", many.len()),
+                },
+                Action::OpenExample(name) => format!("opening the {name} example"),
+                Action::Exit => "exiting".to_string(),
+                _ => "going on".to_string(),
+            };
+            egui::Modal::new(egui::Id::unique("cutaway-unsaved")).show(ctx, |ui| {
+                ui.heading("Save the changes first?");
+                ui.label(format!(
+                    "The scene has changes that are not saved. Save them before {what}?"
+                ));
+                ui.add_space(8.0);
+                ui.horizontal(|ui| {
+                    for (label, answer) in [
+                        ("Save", UnsavedAnswer::Save),
+                        ("Don't Save", UnsavedAnswer::Discard),
+                        ("Cancel", UnsavedAnswer::Cancel),
+                    ] {
+                        if ui.button(label).clicked() {
+                            actions.push(Action::Unsaved(answer));
+                        }
                     }
                 });
             });

@@ -45,6 +45,12 @@ pub enum JobOutput {
         meshes: Vec<(usize, Arc<csg::Mesh>)>,
         key: crate::cutting::scene_cuts::PreviewKey,
     },
+    /// Expose planned its cutters on the scene state `key` and measured what they remove (mm³).
+    Exposed {
+        key: crate::gui::expose_job::ExposeKey,
+        exposed: Box<crate::expose::Exposed>,
+        removed_mm3: Option<f64>,
+    },
     /// Something finished that only needs a message.
     Done(String),
 }

@@ -22,6 +22,7 @@ pub mod apply;
 pub mod atlas_arrival;
 pub mod bridge;
 pub mod dialogs;
+pub mod expose_job;
 #[cfg(test)]
 mod first_press_tests;
 pub mod job_output;

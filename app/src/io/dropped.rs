@@ -1,5 +1,5 @@
 //! What dropping files and folders onto the window does, decided outside the GUI so the rule is
-//! one function the window calls and tests check: a session opens as File → Open Session does;
+//! one function the window calls and tests check: a session opens as File → Open… opens it;
 //! meshes, label volumes and folders open as File → Open does (replacing an empty scene) or are
 //! added to the models already there (as File → Add does).
 

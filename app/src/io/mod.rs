@@ -35,10 +35,12 @@
 //! # Models
 //! [`load_models`] splits every part into regions (edge-connected components,
 //! [`csg::regions::split_regions`]) and names each region as the thesis's Models list does: the
-//! file stem and the region number, counted from 1 through the whole file, also when the file
-//! has a single region (`VHF_Left_Bone_Tibia_smooth 1`). When a file has several named parts
-//! (OBJ objects/groups), the part name follows the stem after `#`, as in
-//! `../shared/anatomy/SOURCES.md`: `lumbar_spine#vertebra_L1 1`, `lumbar_spine#vertebra_L2 2`.
+//! file stem and the region number, counted from 1 through the whole file. A file that holds a
+//! single region keeps the plain stem (`VHF_Left_Bone_Tibia_smooth`): a number there would name
+//! a region the file does not divide into, and the name a user types (`--focus`) would not be
+//! the file's. When a file has several named parts (OBJ objects/groups), the part name follows
+//! the stem after `#`, as in `../shared/anatomy/SOURCES.md`: `lumbar_spine#vertebra_L1 1`,
+//! `lumbar_spine#vertebra_L2 2`.
 //!
 //! # Writing
 //! All writers are atomic ([`atomic`]: a temporary file in the same directory, then a rename), so
@@ -449,6 +451,7 @@ pub fn models_of_parts(source: &Path, parts: &[Part]) -> Vec<Model> {
     let stem = file_stem(source);
     let several_parts = parts.len() > 1;
     let mut models = Vec::new();
+    let mut prefixes = Vec::new();
     for part in parts {
         let prefix = if several_parts {
             format!("{stem}#{}", part.name)
@@ -456,8 +459,9 @@ pub fn models_of_parts(source: &Path, parts: &[Part]) -> Vec<Model> {
             stem.clone()
         };
         for region in csg::regions::split_regions(&part.mesh) {
+            prefixes.push(prefix.clone());
             models.push(Model {
-                name: format!("{prefix} {}", models.len() + 1),
+                name: String::new(),
                 source: source.to_path_buf(),
                 index: models.len(),
                 color: None,
@@ -465,6 +469,15 @@ pub fn models_of_parts(source: &Path, parts: &[Part]) -> Vec<Model> {
                 mesh: region,
             });
         }
+    }
+    // Numbered only when the file really holds several regions.
+    let numbered = models.len() > 1;
+    for (model, prefix) in models.iter_mut().zip(prefixes) {
+        model.name = if numbered {
+            format!("{prefix} {}", model.index + 1)
+        } else {
+            prefix
+        };
     }
     models
 }

@@ -88,19 +88,7 @@ pub struct Metrics {
 /// Measures the cuts of `scene`. Fails when a named structure does not exist or a cut is not
 /// exact.
 pub fn measure(scene: &Scene, options: &MetricsOptions) -> anyhow::Result<Metrics> {
-    let find = |name: &str| {
-        scene
-            .models
-            .iter()
-            .position(|m| m.name == name)
-            .ok_or_else(|| {
-                let names: Vec<&str> = scene.models.iter().map(|m| m.name.as_str()).collect();
-                anyhow::anyhow!(
-                    "no structure named '{name}' (structures: {})",
-                    names.join(", ")
-                )
-            })
-    };
+    let find = |name: &str| crate::scene::names::model_named(scene, name, "");
     let focus = options.focus.as_deref().map(find).transpose()?;
     let critical = options
         .critical
@@ -157,6 +145,12 @@ pub fn measure(scene: &Scene, options: &MetricsOptions) -> anyhow::Result<Metric
     Ok(metrics)
 }
 
+/// The index of the structure (model) named `name`; the error lists every structure, so a
+/// mistyped `--focus` or `--critical` says what the names are.
+pub fn structure_index(scene: &Scene, name: &str) -> anyhow::Result<usize> {
+    crate::scene::names::model_named(scene, name, "")
+}
+
 impl Metrics {
     /// Converts lengths, areas and volumes from file units to mm, mm² and mm³ (`mm` millimetres
     /// per file unit: 1000 for a body in metres). Points stay in file coordinates, where the
@@ -183,32 +177,65 @@ impl Metrics {
 
 /// Exposure of model `focus` without and with the cuts.
 fn focus_measures(scene: &Scene, focus: usize, samples: usize) -> anyhow::Result<FocusMeasures> {
-    let eye = scene.camera.eye;
-    let forward = scene.camera.forward();
-    // Opaque, drawn models hide what is behind them; translucent ones do not.
-    let hides = |m: usize| {
-        let model = &scene.models[m];
-        m != focus && model.visible && model.opacity >= 1.0 && model.style == ModelStyle::Solid
-    };
-    let before_occluders: Vec<&Mesh> = (0..scene.models.len())
-        .filter(|&m| hides(m))
+    Ok(FocusMeasures {
+        name: scene.models[focus].name.clone(),
+        exposure_before: exposure_uncut(scene, focus, samples)?,
+        exposure_after: exposure_as_drawn(scene, focus, samples)?,
+        samples,
+    })
+}
+
+/// True when model `m` hides what lies behind it from the camera: drawn, opaque and solid (a
+/// translucent or wireframe structure does not), and not the focus itself.
+fn hides(scene: &Scene, m: usize, focus: usize) -> bool {
+    let model = &scene.models[m];
+    m != focus && model.visible && model.opacity >= 1.0 && model.style == ModelStyle::Solid
+}
+
+/// The error of a focus with no surface area.
+fn no_area(scene: &Scene, focus: usize) -> anyhow::Error {
+    anyhow::anyhow!(
+        "{}: the structure has no surface area",
+        scene.models[focus].name
+    )
+}
+
+/// Share (0..=1) of model `focus`'s surface the camera sees with no cut made, every other
+/// opaque visible structure in the way (`samples` rays, see [`exposure::exposure`]).
+pub fn exposure_uncut(scene: &Scene, focus: usize, samples: usize) -> anyhow::Result<f64> {
+    let occluders: Vec<&Mesh> = (0..scene.models.len())
+        .filter(|&m| hides(scene, m, focus))
         .map(|m| &*scene.models[m].mesh)
         .collect();
-    let none = || {
-        anyhow::anyhow!(
-            "{}: the structure has no surface area",
-            scene.models[focus].name
-        )
-    };
-    let exposure_before = exposure::exposure(
+    let camera = &scene.camera;
+    exposure::exposure(
         &scene.models[focus].mesh,
-        &before_occluders,
-        eye,
-        forward,
+        &occluders,
+        camera.eye,
+        camera.forward(),
         samples,
     )
-    .ok_or_else(none)?;
+    .ok_or_else(|| no_area(scene, focus))
+}
 
+/// Share (0..=1) of model `focus`'s surface the camera sees with nothing else in the way (every
+/// other structure hidden): the most any cut can show of it from this view.
+pub fn exposure_unoccluded(scene: &Scene, focus: usize, samples: usize) -> anyhow::Result<f64> {
+    let camera = &scene.camera;
+    exposure::exposure(
+        &scene.models[focus].mesh,
+        &[],
+        camera.eye,
+        camera.forward(),
+        samples,
+    )
+    .ok_or_else(|| no_area(scene, focus))
+}
+
+/// Share (0..=1) of model `focus`'s surface the camera sees in the cut scene as drawn: every
+/// structure's kept part and walls (its own too, when it is cut) in the way. Fails when a cut is
+/// not exact.
+pub fn exposure_as_drawn(scene: &Scene, focus: usize, samples: usize) -> anyhow::Result<f64> {
     let geometry = preview_geometry(scene);
     if let Some(note) = geometry.notes.first() {
         anyhow::bail!("{note}; metrics need exact cuts");
@@ -225,20 +252,21 @@ fn focus_measures(scene: &Scene, focus: usize, samples: usize) -> anyhow::Result
             vec![&*scene.models[m].mesh]
         }
     };
-    let after_occluders: Vec<&Mesh> = (0..scene.models.len())
-        .filter(|&m| hides(m))
+    let occluders: Vec<&Mesh> = (0..scene.models.len())
+        .filter(|&m| hides(scene, m, focus))
         .flat_map(drawn)
         .collect();
     let mut focus_surface = Mesh::default();
     for part in drawn(focus) {
         focus_surface.append(part);
     }
-    let exposure_after =
-        exposure::exposure(&focus_surface, &after_occluders, eye, forward, samples).unwrap_or(0.0);
-    Ok(FocusMeasures {
-        name: scene.models[focus].name.clone(),
-        exposure_before,
-        exposure_after,
+    let camera = &scene.camera;
+    Ok(exposure::exposure(
+        &focus_surface,
+        &occluders,
+        camera.eye,
+        camera.forward(),
         samples,
-    })
+    )
+    .unwrap_or(0.0))
 }

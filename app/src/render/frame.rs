@@ -115,6 +115,9 @@ pub enum PartLook {
     Ribbon,
     /// Walls of a solid slice: the wall colour, opaque; shows the image on walls or slices.
     SliceWall,
+    /// What a cut left of a model's scalpel incisions, every face an incision wall: the model's
+    /// colour, shaded as the uncut model's incisions are; shows the image on walls.
+    Incisions,
 }
 
 /// One mesh of a cut.

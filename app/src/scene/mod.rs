@@ -19,6 +19,7 @@ mod cutters;
 pub mod image_layer;
 mod model;
 pub mod model_groups;
+pub mod names;
 pub mod open;
 pub mod orientation;
 pub mod regions;

@@ -197,8 +197,10 @@ pub fn scene_from_file(
                     crate::anatomy::colors::structure_color(&model.name, model.color, index)
                 }
             });
-            let name = match (&entry.name, entry.exact, unit) {
-                (Some(name), false, ModelUnit::Structure) => name.clone(),
+            // The entry's name wins (a region the session names keeps that name, unnumbered);
+            // an entry standing for several regions numbers them after it.
+            let name = match (&entry.name, entry.exact) {
+                (Some(name), false) => entry_name(name, unit, picked_index, region, regions.len()),
                 _ => model.name.clone(),
             };
             let group = match (&entry.group, structures_format) {
@@ -278,6 +280,24 @@ pub fn scene_from_file(
     Ok(scene)
 }
 
+/// The name of the model an entry named `name` gives for its region `region` of a file with
+/// `regions` regions: the name itself, numbered from 1 only when a region entry stands for
+/// several regions (no `region` picked, several in the file). A structure entry's name is the
+/// structure's, as it always was.
+fn entry_name(
+    name: &str,
+    unit: ModelUnit,
+    picked: Option<usize>,
+    region: usize,
+    regions: usize,
+) -> String {
+    if unit == ModelUnit::Region && picked.is_none() && regions > 1 {
+        format!("{name} {}", region + 1)
+    } else {
+        name.to_string()
+    }
+}
+
 /// The session file describing `scene`, model paths relative to `folder` (the session file's
 /// folder) where possible: `cutaway-session/2` when any model is a structure, else
 /// `cutaway-session/1` (a scene made only of regions, as loaded from a `/1` file, keeps its
@@ -301,7 +321,7 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
             .to_string(),
             visible: m.visible,
             exact: false,
-            name: (m.unit == ModelUnit::Structure).then(|| m.name.clone()),
+            name: Some(m.name.clone()),
         })
         .collect();
     let cutters = scene.cutters.iter().map(cutter_entry).collect();
@@ -548,7 +568,8 @@ mod tests {
             entries,
             [
                 (Some(0), None, Some("pair"), Some("g")),
-                (None, Some(1), None, None)
+                // A region is saved with its name, so a name a session gave it survives.
+                (None, Some(1), Some("pair 2"), None)
             ]
         );
         let back = scene_from_file(&file, folder, &mut pair_loader).unwrap();
@@ -563,11 +584,43 @@ mod tests {
             file.format, FORMAT_V1,
             "a scene of regions keeps its format"
         );
-        assert!(
-            file.models
-                .iter()
-                .all(|m| m.structure.is_none() && m.name.is_none())
+        assert!(file.models.iter().all(|m| m.structure.is_none()));
+        let names: Vec<_> = file.models.iter().map(|m| m.name.as_deref()).collect();
+        assert_eq!(names, [Some("pair 1"), Some("pair 2")]);
+    }
+
+    #[test]
+    fn a_session_names_its_region_models_and_numbers_only_several() {
+        let folder = Path::new("/s");
+        // `pair.obj` holds two regions, `one.obj` (the first of them alone) one.
+        let mut loader = |path: &Path, unit: ModelUnit| {
+            if !path.ends_with("one.obj") {
+                return pair_loader(path, unit);
+            }
+            let mut models = pair_loader(&path.with_file_name("pair.obj"), unit)?;
+            models.truncate(1);
+            models[0].name = "one".into();
+            Ok(models)
+        };
+        let v1 = session(
+            FORMAT_V1,
+            r#"[{"path": "one.obj", "name": "organ"}, {"path": "pair.obj", "name": "kidney"}, {"path": "pair.obj"}]"#,
+            0,
         );
+        let scene = scene_from_file(&v1, folder, &mut loader).unwrap();
+        let names: Vec<&str> = scene.models.iter().map(|m| m.name.as_str()).collect();
+        assert_eq!(names, ["organ", "kidney 1", "kidney 2", "pair 1", "pair 2"]);
+        // Picked by `region`, the name is the region's as given.
+        let v2 = session(
+            FORMAT,
+            r#"[{"path": "pair.obj", "region": 1, "name": "left kidney"}]"#,
+            0,
+        );
+        let scene = scene_from_file(&v2, folder, &mut loader).unwrap();
+        assert_eq!(scene.models[0].name, "left kidney");
+        // Saved and read back, the names stay.
+        let back = scene_from_file(&file_from_scene(&scene, folder), folder, &mut loader).unwrap();
+        assert_eq!(back.models[0].name, "left kidney");
     }
 
     #[test]

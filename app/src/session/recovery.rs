@@ -43,6 +43,9 @@ pub struct Recovery {
     last_save: Instant,
     /// True when the scene changed since the last autosave.
     dirty: bool,
+    /// True when the scene changed since it was opened or saved by the user (opening over it
+    /// asks to save first).
+    unsaved: bool,
 }
 
 impl Recovery {
@@ -51,6 +54,7 @@ impl Recovery {
             dir,
             last_save: Instant::now(),
             dirty: false,
+            unsaved: false,
         }
     }
 
@@ -83,6 +87,17 @@ impl Recovery {
     /// Notes that the scene changed; the next [`Recovery::tick`] after the interval saves it.
     pub fn mark_dirty(&mut self) {
         self.dirty = true;
+        self.unsaved = true;
+    }
+
+    /// The scene is as the user opened or saved it: nothing to lose by replacing it.
+    pub fn mark_saved(&mut self) {
+        self.unsaved = false;
+    }
+
+    /// True when the scene has changes the user has not saved.
+    pub fn has_unsaved(&self) -> bool {
+        self.unsaved
     }
 
     /// True when the scene changed and the autosave interval has passed.
@@ -182,6 +197,20 @@ mod tests {
         assert_eq!(r.pending(), Some(dir.join("recovery-session.json")));
         r.discard();
         assert!(r.pending().is_none());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn a_change_is_unsaved_until_the_user_saves_and_an_autosave_does_not_count() {
+        let dir = temp_dir("unsaved");
+        let mut r = Recovery::new(dir.clone());
+        assert!(!r.has_unsaved());
+        r.mark_dirty();
+        assert!(r.has_unsaved());
+        r.begin_save().unwrap();
+        assert!(r.has_unsaved(), "an autosave is no save of the user's");
+        r.mark_saved();
+        assert!(!r.has_unsaved());
         let _ = std::fs::remove_dir_all(&dir);
     }
 

@@ -74,9 +74,15 @@ impl CutDrawing for PreviewGeometry {
 
     fn part(&self, index: usize) -> PartDraw<'_> {
         let part = &self.parts[index];
+        // The wall part of no cutter holds what a cut left of the model's scalpel incisions.
+        let incisions = part.kind == PartKind::Wall && part.cutter == usize::MAX;
         PartDraw {
             model: part.model,
-            look: part_look(part.kind),
+            look: if incisions {
+                PartLook::Incisions
+            } else {
+                part_look(part.kind)
+            },
             opacity: part.opacity,
             mesh: &part.mesh,
         }

@@ -1,42 +1,43 @@
-//! The cutter tabs (thesis 3.5 E): Initialization (segment spacing ω, type Freeform/Wedge,
-//! smoothing and its Smoothness levels, the cut direction, and the depth of the cutter being
-//! edited in mm) for the next cutter and the one being edited, and Visualization per cutter (Normal Cut, Transparency with
-//! its opacity, Slices, Ribbons with count and width) for Preview mode, and the "Live cut" toggle
-//! (the cut shown while painting in Edit mode, see [`crate::gui::viewport::live_cut`]).
+//! The cutter sections of the Tools panel (thesis 3.5 E): **Cutter** — the "Live cut" toggle
+//! (the cut shown while painting in Edit mode, see [`crate::gui::viewport::live_cut`]) and the
+//! settings of the next cutter and the one being edited (segment spacing ω, type Freeform/Wedge,
+//! rounding and its Smoothness levels, the cut direction, and the depth of the cutter being
+//! edited in mm) — and **Cut views**, per cutter, what Preview shows of
+//! it (Normal Cut, the removed piece transparent with its opacity, Slices, Ribbons with count and
+//! width). The thesis put the two in tabs; here both stay in view, one section each.
 
 use crate::gui::action::Action;
 use crate::gui::state::AppState;
 use crate::scene::SubCutterSpec;
 use cutter::{CutDirection, CutKind};
 
-pub use crate::gui::state::CutterTab;
+/// The opacity the removed piece gets when its transparent view is turned on: on the default
+/// head, a removed slab of skin at 0.25 was all but invisible against the skin and the walls
+/// behind it; at 0.5 it reads at a glance as a ghost of what was cut while the cut stays clear.
+pub const DEFAULT_TRANSPARENCY: f32 = 0.5;
 
+/// The Cutter section: live cut, the cutter's settings, New Cutter.
 pub fn cutter_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
-    ui.heading("Cutter");
     ui.checkbox(&mut app.viewport.live.enabled, "Live cut")
         .on_hover_text("In Edit mode, show the cut (kept part, walls, contour) under the cutter while you paint it; the cut runs in the background");
-    ui.separator();
-    ui.horizontal(|ui| {
-        for (tab, label) in [
-            (CutterTab::Initialization, "Initialization"),
-            (CutterTab::Visualization, "Visualization"),
-        ] {
-            if ui.selectable_label(app.cutter_tab == tab, label).clicked() {
-                app.cutter_tab = tab;
-            }
-        }
-    });
-    ui.add_space(4.0);
-    match app.cutter_tab {
-        CutterTab::Initialization => initialization_ui(ui, app, &mut actions),
-        CutterTab::Visualization => visualization_ui(ui, app, &mut actions),
-    }
+    ui.add_space(2.0);
+    initialization_ui(ui, app, &mut actions);
+    actions
+}
+
+/// The Cut views section: what Preview shows of each cutter.
+pub fn views_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
+    let mut actions = Vec::new();
+    visualization_ui(ui, app, &mut actions);
     actions
 }
 
 fn initialization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Action>) {
     let before = app.cutter_init.clone();
+    // The slider takes what the label column and its value box leave, so nothing is clipped in
+    // a narrow panel.
+    ui.spacing_mut().slider_width = (ui.available_width() - 190.0).clamp(50.0, 200.0);
     egui::Grid::new("cutter-init")
         .num_columns(2)
         .spacing([10.0, 6.0])
@@ -78,16 +79,17 @@ fn initialization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Ac
                         "Straight in, the way you look at the surface: the opening is what you \
                          painted, seen from where you painted it",
                     );
-                ui.selectable_value(direction, CutDirection::Normal, "Surface normal")
+                ui.selectable_value(direction, CutDirection::Normal, "Normal")
                     .on_hover_text(
-                        "Each box goes in along the surface under it: a trench of even depth",
+                        "Along the surface normal: each box goes in along the surface under it, a trench of even depth",
                     );
             });
             ui.end_row();
             depth_row(ui, app);
             ui.end_row();
-            ui.label("Smoothing");
-            ui.checkbox(&mut app.cutter_init.smooth, "Rounded (subdivided) cutter");
+            ui.label("Shape");
+            ui.checkbox(&mut app.cutter_init.smooth, "Rounded")
+                .on_hover_text("A rounded (subdivided) cutter instead of its boxes");
             ui.end_row();
             if app.cutter_init.smooth {
                 let label = ui.label("Smoothness");
@@ -107,6 +109,8 @@ fn initialization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Ac
     if app.cutter_init != before {
         app.cutter_settings_changed();
     }
+    ui.add_space(4.0);
+    expose_ui(ui, app, actions);
     ui.add_space(4.0);
     if ui
         .button("New Cutter")
@@ -159,6 +163,29 @@ fn depth_row(ui: &mut egui::Ui, app: &mut AppState) {
     }
 }
 
+/// Expose for the selected structure, with its margin.
+fn expose_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Action>) {
+    ui.horizontal(|ui| {
+        let selected = app.selected_model.is_some();
+        let button = ui
+            .add_enabled(selected, egui::Button::new("Expose Selected"))
+            .on_hover_text(crate::gui::panels::models_panel::EXPOSE_HINT)
+            .on_disabled_hover_text("Select a structure first (click it in the list)");
+        if button.clicked() {
+            actions.push(Action::ExposeSelected);
+        }
+        ui.add(
+            egui::DragValue::new(&mut app.expose.margin_mm)
+                .range(0.0..=crate::expose::MAX_MARGIN_MM)
+                .speed(0.1)
+                .fixed_decimals(1)
+                .prefix("margin ")
+                .suffix(" mm"),
+        )
+        .on_hover_text("Room left around the structure's outline by Expose");
+    });
+}
+
 fn visualization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Action>) {
     if app.scene.cutters.is_empty() {
         ui.label(
@@ -189,33 +216,34 @@ fn visualization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Act
         .get(app.scene.cutters[i].target)
         .map(|m| m.name.clone())
         .unwrap_or_default();
+    ui.label(
+        egui::RichText::new(format!("cuts {target_name}"))
+            .weak()
+            .small(),
+    );
     ui.horizontal(|ui| {
-        ui.label(
-            egui::RichText::new(format!("cuts {target_name}"))
-                .weak()
-                .small(),
-        );
-        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-            if ui.small_button("Delete").clicked() {
-                actions.push(Action::RemoveCutter(i));
-            }
-            if ui
-                .small_button("Edit Cutter")
-                .on_hover_text("Open this cutter in the editor")
-                .clicked()
-            {
-                actions.push(Action::EditCutter(i));
-            }
-        });
+        if ui
+            .small_button("Edit Cutter")
+            .on_hover_text("Open this cutter in the editor")
+            .clicked()
+        {
+            actions.push(Action::EditCutter(i));
+        }
+        if ui.small_button("Delete Cutter").clicked() {
+            actions.push(Action::RemoveCutter(i));
+        }
     });
     let before = app.scene.cutters[i].views;
     let mut views = before;
     ui.checkbox(&mut views.cut, "Normal Cut");
 
     let mut transparency = views.transparency.is_some();
+    ui.checkbox(&mut transparency, "Removed piece, transparent")
+        .on_hover_text("Draw what the cut removes as a see-through ghost");
     ui.horizontal(|ui| {
-        ui.checkbox(&mut transparency, "Transparency");
-        let mut opacity = views.transparency.unwrap_or(0.25);
+        ui.add_space(18.0);
+        let mut opacity = views.transparency.unwrap_or(DEFAULT_TRANSPARENCY);
+        ui.spacing_mut().slider_width = (ui.available_width() - 120.0).clamp(50.0, 200.0);
         ui.add_enabled(
             transparency,
             egui::Slider::new(&mut opacity, 0.0..=1.0)

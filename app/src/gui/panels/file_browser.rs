@@ -1,7 +1,8 @@
 //! The in-window file browser: used when no native file dialog can open (no desktop portal on
 //! D-Bus and no zenity, as on a bare X server or in a container), so File → Open never silently
-//! does nothing. Built on the `egui_file` crate; the purposes and extensions are the native
-//! dialog's.
+//! does nothing. Opening (File → Open…, Add Model…) uses Cutaway's own browser
+//! (`open_browser.rs`: files, folders, volumes and sessions in one list); saving and exporting
+//! use the `egui_file` crate with the native dialog's purposes and extensions.
 
 use std::path::{Path, PathBuf};
 
@@ -26,17 +27,39 @@ fn on_path(program: &str) -> bool {
 /// An open in-window browser for one purpose.
 pub struct FileBrowser {
     pub purpose: Purpose,
-    dialog: egui_file::FileDialog,
+    kind: Kind,
+}
+
+/// Opening goes through Cutaway's own browser (files, folders, volumes, sessions in one list);
+/// saving, exporting and the image through `egui_file`.
+enum Kind {
+    Open(crate::gui::panels::open_browser::OpenBrowser),
+    Dialog(Box<egui_file::FileDialog>),
 }
 
 impl FileBrowser {
-    /// A browser for `purpose` starting in `start` (the home folder when `None`).
+    /// A browser for `purpose` starting at `start`: a folder, or the last file opened or saved
+    /// (its folder, the file selected); the home folder when `None`.
     pub fn new(purpose: Purpose, start: Option<PathBuf>) -> FileBrowser {
         let start = start
             .or_else(|| std::env::var_os("HOME").map(PathBuf::from))
             .unwrap_or_else(|| PathBuf::from("."));
+        if matches!(purpose, Purpose::Open | Purpose::AddModel) {
+            return FileBrowser {
+                purpose,
+                kind: Kind::Open(crate::gui::panels::open_browser::OpenBrowser::new(
+                    purpose.title(),
+                    &start,
+                )),
+            };
+        }
+        let start = if start.is_dir() {
+            start
+        } else {
+            start.parent().map(Path::to_path_buf).unwrap_or(start)
+        };
         let dialog = match purpose {
-            Purpose::LoadDirectory | Purpose::ExportMeshes | Purpose::ExportTurntable => {
+            Purpose::OpenFolder | Purpose::ExportMeshes | Purpose::ExportTurntable => {
                 egui_file::FileDialog::select_folder()
             }
             Purpose::SaveSessionAs => {
@@ -51,7 +74,7 @@ impl FileBrowser {
             Purpose::SaveGesture => {
                 egui_file::FileDialog::save_file().default_filename("gesture.json")
             }
-            Purpose::LoadModel | Purpose::AddModel | Purpose::OpenSession | Purpose::OpenImage => {
+            Purpose::Open | Purpose::AddModel | Purpose::OpenImage => {
                 egui_file::FileDialog::open_file()
             }
         };
@@ -70,21 +93,24 @@ impl FileBrowser {
             }));
         }
         dialog.open();
-        FileBrowser { purpose, dialog }
+        FileBrowser {
+            purpose,
+            kind: Kind::Dialog(Box::new(dialog)),
+        }
     }
 
     /// Shows the browser. `Some(paths)` once it closed (empty when cancelled), `None` while open.
     pub fn ui(&mut self, ctx: &egui::Context) -> Option<Vec<PathBuf>> {
-        self.dialog.show(ctx);
-        match self.dialog.state() {
+        let dialog = match &mut self.kind {
+            Kind::Open(browser) => return browser.ui(ctx),
+            Kind::Dialog(dialog) => dialog,
+        };
+        dialog.show(ctx);
+        match dialog.state() {
             egui_file::State::Open => None,
-            egui_file::State::Selected => Some(
-                self.dialog
-                    .path()
-                    .map(Path::to_path_buf)
-                    .into_iter()
-                    .collect(),
-            ),
+            egui_file::State::Selected => {
+                Some(dialog.path().map(Path::to_path_buf).into_iter().collect())
+            }
             egui_file::State::Closed | egui_file::State::Cancelled => Some(Vec::new()),
         }
     }
@@ -93,7 +119,7 @@ impl FileBrowser {
 /// The files a purpose opens (`None`: anything; the readers say what they cannot read).
 fn extensions(purpose: Purpose) -> Option<&'static [&'static str]> {
     match purpose {
-        Purpose::OpenSession => Some(&["json"]),
+        Purpose::OpenImage => Some(&["nrrd", "nhdr", "nii", "gz"]),
         _ => None,
     }
 }

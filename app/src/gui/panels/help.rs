@@ -20,6 +20,10 @@ pub const EVERY_MODE: &[(&str, &str)] = &[
     ("1 / Ctrl+1", "anterior / posterior view"),
     ("3 / Ctrl+3", "right / left view"),
     ("7 / Ctrl+7", "superior / inferior view"),
+    (
+        "X",
+        "expose the selected structure (cut open what hides it)",
+    ),
     ("Home", "zoom to fit"),
     (".", "zoom to the selection"),
     ("F1–F4", "Camera, Edit, Preview, Scalpel mode"),

@@ -62,9 +62,9 @@ pub fn image_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
     let Some(layer) = app.scene.image.as_mut() else {
         return;
     };
-    ui.add_space(10.0);
     let mut remove = false;
-    egui::CollapsingHeader::new("Image")
+    egui::CollapsingHeader::new(crate::gui::panels::tools_panel::title("Image"))
+        .id_salt("tools-image")
         .default_open(true)
         .show(ui, |ui| {
             let name = layer
@@ -109,7 +109,9 @@ pub fn image_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
             });
             ui.weak("Shift + right drag on a wall: sideways width, up and down level");
             remove = ui.button("Remove Image").clicked();
+            ui.add_space(6.0);
         });
+    ui.separator();
     if remove {
         app.scene.image = None;
     }

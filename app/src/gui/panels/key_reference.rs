@@ -9,9 +9,11 @@ pub fn commands(mode: Mode) -> &'static [(&'static str, &'static str)] {
     match mode {
         Mode::Camera | Mode::Preview => &[
             ("Drag", "orbit"),
-            ("Shift+Drag / Middle-drag", "pan"),
+            ("Shift/Middle-drag", "pan"),
             ("Wheel", "zoom"),
-            ("Double-click", "select & centre model"),
+            ("Double-click", "select & centre"),
+            ("E", "Edit mode: cut"),
+            ("X", "expose selection"),
             ("1 3 7 (Ctrl)", "views"),
             ("Right-click", "menu"),
         ],

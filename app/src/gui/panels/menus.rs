@@ -1,4 +1,4 @@
-//! The menu bar (File, Edit, Rendering, View, Help; Debug only when asked for), the mode toolbar, the export dialogs and the
+//! The menu bar (File, Edit, Cut, Rendering, View, Help; Debug only when asked for), the mode toolbar, the export dialogs and the
 //! window's visual style.
 //!
 //! Menus describe what the user asked for as [`Action`]s; only the Rendering menu's toggles change
@@ -40,11 +40,16 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
-            if item(ui, "Load Model…", "Ctrl+O") {
-                actions.push(Action::Dialog(Purpose::LoadModel));
+            let open = egui::Button::new("Open…").shortcut_text("Ctrl+O");
+            if ui
+                .add(open)
+                .on_hover_text("Mesh files, a label volume, a session, or a folder of meshes")
+                .clicked()
+            {
+                actions.push(Action::Dialog(Purpose::Open));
             }
-            if item(ui, "Load Directory…", "") {
-                actions.push(Action::Dialog(Purpose::LoadDirectory));
+            if item(ui, "Open Folder…", "") {
+                actions.push(Action::Dialog(Purpose::OpenFolder));
             }
             if item(ui, "Add Model…", "") {
                 actions.push(Action::Dialog(Purpose::AddModel));
@@ -53,9 +58,6 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
                 actions.push(Action::Dialog(Purpose::OpenImage));
             }
             ui.separator();
-            if item(ui, "Open Session…", "") {
-                actions.push(Action::Dialog(Purpose::OpenSession));
-            }
             if item(ui, "Save Session", "Ctrl+S") {
                 actions.push(Action::SaveSession);
             }
@@ -144,6 +146,7 @@ pub fn menu_bar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
                 actions.push(Action::Redo);
             }
         });
+        actions.extend(crate::gui::panels::cut_menu::cut_menu_ui(ui, app));
         ui.menu_button("Rendering", |ui| {
             if ui
                 .checkbox(&mut app.scene.render.antialias, "Anti-aliasing")
@@ -258,7 +261,7 @@ pub fn toolbar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
         ui.add_space(2.0);
         for (mode, tip) in [
             (Mode::Camera, "Orbit, pan and zoom the camera (F1)"),
-            (Mode::Edit, "Paint and edit cutters on the target (F2)"),
+            (Mode::Edit, "Paint and edit cutters on the target (E or F2)"),
             (Mode::Preview, "Execute the cuts and show the cutaway (F3)"),
         ] {
             let button = egui::Button::selectable(

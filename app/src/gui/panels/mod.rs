@@ -3,6 +3,7 @@
 
 pub mod about;
 pub mod compare_view;
+pub mod cut_menu;
 pub mod cutter_panel;
 pub mod export_labels;
 pub mod file_browser;
@@ -12,8 +13,10 @@ pub mod key_reference;
 pub mod menus;
 pub mod metrics_panel;
 pub mod models_panel;
+pub mod open_browser;
 pub mod risk_panel;
 pub mod status_bar;
+pub mod tools_panel;
 pub mod turntable_export;
 pub mod variants_panel;
 pub mod webpage_export;

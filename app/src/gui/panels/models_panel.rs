@@ -33,6 +33,10 @@ struct ListState {
 /// How many frames the list keeps scrolling to a newly selected model.
 const REVEAL_FRAMES: u8 = 12;
 
+/// What Expose does, on its button and menu entry.
+pub const EXPOSE_HINT: &str = "Cut open everything in front of this structure from the current \
+     view: one cutter per structure in the way, sized to its outline plus a margin (X)";
+
 pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     let mut actions = Vec::new();
     let state_id = egui::Id::unique("models-list-state");
@@ -47,18 +51,15 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
     ui.separator();
     if app.scene.models.is_empty() {
         ui.label(
-            egui::RichText::new("No models. File > Load Model, or drop files on the window.")
-                .weak(),
+            egui::RichText::new("No models. File > Open…, or drop files on the window.").weak(),
         );
         return actions;
     }
-    ui.horizontal(|ui| {
-        ui.add(
-            egui::TextEdit::singleline(&mut state.filter)
-                .hint_text("Filter by name or group")
-                .desired_width(ui.available_width() - 52.0),
-        )
-        .on_hover_text("Shows only the models whose name or group contains every word typed");
+    // Right to left, so the box takes exactly what the button leaves: a row wider than the
+    // panel would widen it frame after frame.
+    let row = egui::vec2(ui.available_width(), ui.spacing().interact_size.y);
+    let right_to_left = egui::Layout::right_to_left(egui::Align::Center);
+    ui.allocate_ui_with_layout(row, right_to_left, |ui| {
         if ui
             .add_enabled(!state.filter.is_empty(), egui::Button::new("Clear"))
             .on_hover_text("Clear the filter")
@@ -66,6 +67,12 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
         {
             state.filter.clear();
         }
+        ui.add(
+            egui::TextEdit::singleline(&mut state.filter)
+                .hint_text("Filter by name or group")
+                .desired_width(ui.available_width()),
+        )
+        .on_hover_text("Shows only the models whose name or group contains every word typed");
     });
     let tree = GroupNode::build(&app.scene.models, &state.filter);
     let listed = tree.all_models();
@@ -105,7 +112,10 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
         state.reveal_frames -= 1;
         ui.ctx().request_repaint();
     }
-    let list_height = (ui.ctx().content_rect().height() * 0.45).max(220.0);
+    // The list takes the panel's height but what the selected model's properties need below
+    // it (the tools have a panel of their own).
+    let below = if selected.is_some() { 215.0 } else { 45.0 };
+    let list_height = (ui.available_height() - below).max(160.0);
     egui::ScrollArea::vertical()
         .id_salt("models-list")
         .max_height(list_height)
@@ -188,6 +198,9 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
             ui.end_row();
         });
     ui.horizontal(|ui| {
+        if ui.button("Expose").on_hover_text(EXPOSE_HINT).clicked() {
+            actions.push(Action::Expose(index));
+        }
         if ui
             .button("Centre")
             .on_hover_text("Centre the camera on this model")
@@ -317,6 +330,9 @@ fn model_row_ui(
             actions.push(Action::FocusModel(index));
         }
         row.context_menu(|ui| {
+            if ui.button("Expose (X)").on_hover_text(EXPOSE_HINT).clicked() {
+                actions.push(Action::Expose(index));
+            }
             if ui.button("Centre camera on it").clicked() {
                 actions.push(Action::FocusModel(index));
             }

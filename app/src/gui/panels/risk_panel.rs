@@ -1,4 +1,4 @@
-//! The Risk map section of the side panel: colour the cut walls by their distance to the
+//! The Risk map section of the tools panel: colour the cut walls by their distance to the
 //! structures marked critical (red within the near distance, graded to the far one), pick those
 //! structures from the model list, and set both distances. What it edits is the scene's
 //! [`crate::scene::risk::RiskSettings`], saved with the session and undoable; the map itself is
@@ -8,7 +8,6 @@ use crate::gui::state::AppState;
 
 /// The Risk map section.
 pub fn risk_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
-    ui.add_space(10.0);
     let before = app.scene.risk.clone();
     let mut risk = before.clone();
     let names: Vec<String> = app.scene.models.iter().map(|m| m.name.clone()).collect();
@@ -16,7 +15,7 @@ pub fn risk_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
         .selected_model
         .and_then(|i| app.scene.models.get(i))
         .map(|m| m.name.clone());
-    egui::CollapsingHeader::new("Risk map")
+    egui::CollapsingHeader::new(crate::gui::panels::tools_panel::title("Risk map"))
         .id_salt("risk-map")
         .default_open(!risk.critical.is_empty())
         .show(ui, |ui| {

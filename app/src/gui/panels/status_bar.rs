@@ -80,12 +80,13 @@ pub fn status_bar_ui(ui: &mut egui::Ui, info: &StatusInfo) {
                     .small(),
             );
             ui.separator();
-            let text = egui::RichText::new(&info.message);
+            // A long message is cut to the room left (full text on hover) rather than drawn
+            // over the counts on the left.
+            let mut text = egui::RichText::new(&info.message);
             if info.is_error {
-                ui.label(text.color(ui.visuals().error_fg_color));
-            } else {
-                ui.label(text);
+                text = text.color(ui.visuals().error_fg_color);
             }
+            ui.add(egui::Label::new(text).truncate());
         });
     });
 }

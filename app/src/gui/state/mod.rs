@@ -48,7 +48,7 @@ pub struct AppState {
     pub atlas: atlas::AtlasArrival,
     pub recovery: Recovery,
     pub recent: RecentFiles,
-    /// Where "Save Session" writes; set by Open Session and Save Session As.
+    /// Where "Save Session" writes; set by opening a session and by Save Session As.
     pub session_path: Option<PathBuf>,
     pub status: StatusInfo,
     pub viewport: ViewportState,
@@ -70,8 +70,8 @@ pub struct AppState {
     pub export_webpage: export_settings::WebPageSettings,
     /// The GPU, when the window runs on wgpu (None under a non-wgpu test harness).
     pub wgpu: Option<egui_wgpu::RenderState>,
-    /// Which cutter tab is shown.
-    pub cutter_tab: CutterTab,
+    /// The margin Expose leaves around a structure's silhouette.
+    pub expose: crate::expose::ExposeSettings,
     /// The Metrics panel, the Ruler tool and the Compare view.
     pub metrics: metrics::MetricsPanel,
     pub ruler: RulerTool,
@@ -81,17 +81,37 @@ pub struct AppState {
     /// A scene edit in progress (slider or colour drag): its label and the scene before it.
     /// Committed to the history when the pointer is released.
     pub(super) pending_edit: Option<(String, Scene)>,
+    /// What waits on the answer to "save the changes first?" (opening over unsaved work).
+    pub unsaved_prompt: Option<crate::gui::action::Action>,
+    /// What goes on once the scene is saved (Save As… was asked for first).
+    pub(super) after_save: Option<crate::gui::action::Action>,
+    /// Where the side panels were laid out at the last frame.
+    pub layout: LayoutRects,
+    /// The camera a message about the view ("Anterior view") described: the message goes once
+    /// the camera moves on (an orbit), so the status never names a view that is no longer shown.
+    pub(super) view_message_camera: Option<cutter::Camera>,
     /// True once a close was requested (Exit); the recovery file is removed then.
     pub(super) exiting: bool,
     pub(super) frame_started: Instant,
 }
 
-/// Which cutter tab is shown.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum CutterTab {
-    #[default]
-    Initialization,
-    Visualization,
+/// The inner rectangles (points) of the side panels at the last frame: what a panel draws must
+/// lie inside its own (tests check that nothing is clipped).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LayoutRects {
+    /// The Models panel, left of the view.
+    pub models: egui::Rect,
+    /// The Tools panel, right of the view.
+    pub tools: egui::Rect,
+}
+
+impl Default for LayoutRects {
+    fn default() -> Self {
+        LayoutRects {
+            models: egui::Rect::NOTHING,
+            tools: egui::Rect::NOTHING,
+        }
+    }
 }
 
 /// The Ruler tool's state.
@@ -127,6 +147,25 @@ impl AppState {
     pub fn say(&mut self, message: impl Into<String>) {
         self.status.message = message.into();
         self.status.is_error = false;
+        self.view_message_camera = None;
+    }
+
+    /// Sets a status message about the current view, cleared once the camera moves.
+    pub fn say_about_view(&mut self, message: impl Into<String>) {
+        self.say(message);
+        self.view_message_camera = Some(self.scene.camera);
+    }
+
+    /// Clears a message about the view once the camera no longer shows that view.
+    pub(super) fn forget_stale_view_message(&mut self) {
+        if self
+            .view_message_camera
+            .is_some_and(|camera| camera != self.scene.camera)
+        {
+            self.view_message_camera = None;
+            self.status.message.clear();
+            self.status.is_error = false;
+        }
     }
 
     /// Says the edited cutter's depth and what it reaches ("42 mm: reaches left lateral
@@ -141,6 +180,7 @@ impl AppState {
     pub fn complain(&mut self, error: &anyhow::Error) {
         self.status.message = crate::platform::errors::error_line(error);
         self.status.is_error = true;
+        self.view_message_camera = None;
     }
 
     /// Records a scene change for undo (call with the state from before the change).

@@ -24,36 +24,61 @@ pub(in crate::gui) enum Drag {
 }
 
 /// The cursor warp of a handle press (thesis 3.3: the cursor snaps to the middle of the handle's
-/// front edge). The editor already treats the pointer as moved there for the whole drag (it adds
-/// the press-to-handle offset to every position), so once the real cursor has arrived at the
-/// handle the positions sent to it are shifted back by that offset; a platform that ignores the
-/// warp request (Wayland, test harnesses) never arrives and gets the plain positions.
+/// front edge). The editor treats the pointer as moved there for the whole drag (it adds the
+/// press-to-handle offset to every position it is given), so the window takes that offset off
+/// every position it sends: the roller is then where the real pointer is, whether the platform
+/// moved the cursor to the handle (the roller starts on it and follows) or ignored the request
+/// (Wayland, a remote desktop, test harnesses: the roller comes to the pointer on the first
+/// move), and however late the warp arrives. Sending plain positions until the warp arrived left
+/// the roller the whole offset away from the pointer when it never did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CursorWarp {
-    /// (handle, press) in viewport pixels while waiting for the cursor to arrive.
-    pending: Option<(DVec2, DVec2)>,
-    /// Subtracted from the pointer position for the rest of the drag.
+    /// Handle minus press, taken off every pointer position of the drag.
     offset: DVec2,
 }
 
 impl CursorWarp {
     /// The cursor was asked to move from `press` to `handle`.
     pub fn requested(&mut self, handle: DVec2, press: DVec2) {
-        *self = CursorWarp {
-            pending: Some((handle, press)),
-            offset: DVec2::ZERO,
-        };
+        self.offset = handle - press;
     }
 
     /// The position to send to the editor for the real pointer position `raw` during the drag.
     pub fn observe(&mut self, raw: DVec2) -> DVec2 {
-        if let Some((handle, press)) = self.pending
-            && raw.distance(handle) <= 1.5
-        {
-            self.offset = handle - press;
-            self.pending = None;
-        }
         raw - self.offset
+    }
+}
+
+/// A drag that started on a target whose spatial index was still being built (a big structure
+/// just loaded or selected): its editor events, in viewport pixels, kept until the index is
+/// there and then replayed, so the first drag on a fresh scene is never lost.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HeldGesture {
+    /// The model the press chose.
+    pub target: usize,
+    /// The camera the pixels were taken with (a replay under another view would cut elsewhere).
+    pub camera: Camera,
+    /// Press first, then moves, then the release once it came.
+    pub events: Vec<EditorEvent>,
+}
+
+impl HeldGesture {
+    /// True once the drag's release is among the events.
+    pub fn released(&self) -> bool {
+        matches!(self.events.last(), Some(EditorEvent::Release { .. }))
+    }
+
+    /// The pixels the drag went through (to draw it while it waits).
+    pub fn path(&self) -> Vec<DVec2> {
+        self.events
+            .iter()
+            .filter_map(|e| match *e {
+                EditorEvent::Press { x, y, .. }
+                | EditorEvent::Move { x, y, .. }
+                | EditorEvent::Release { x, y, .. } => Some(DVec2::new(x, y)),
+                _ => None,
+            })
+            .collect()
     }
 }
 
@@ -99,6 +124,15 @@ pub struct ViewportState {
     pub picks: crate::cutting::pick::ScenePicks,
     /// The walls' distances to the critical structures, mapped on a worker.
     pub risk: crate::gui::risk_map::RiskMap,
+    /// A drag waiting for its target's index (see [`HeldGesture`]).
+    pub held: Option<HeldGesture>,
+    /// The mesh whose index Edit mode last started building ahead of a press (once per mesh,
+    /// so a cancelled build is not started again at once).
+    pub(in crate::gui) index_ahead: Option<std::sync::Weak<csg::Mesh>>,
+    /// The frame whose pointer events the Edit mode input already handled: egui may lay out a
+    /// frame twice (a discarded sizing pass) with the same events, which must reach the editor
+    /// once.
+    pub(in crate::gui) input_frame: Option<u64>,
 }
 
 impl ViewportState {
@@ -121,6 +155,9 @@ impl ViewportState {
             show_marker: true,
             picks: Default::default(),
             risk: Default::default(),
+            held: None,
+            index_ahead: None,
+            input_frame: None,
         }
     }
 
@@ -136,6 +173,7 @@ impl ViewportState {
 
     pub fn reset_editor(&mut self) {
         self.editor = crate::cutting::editing::EditorSlot::default();
+        self.held = None;
         self.scalpel.reset();
         self.drag = None;
         self.preview = None;
@@ -290,20 +328,19 @@ mod tests {
     }
 
     #[test]
-    fn a_warped_cursor_is_not_offset_twice() {
+    fn the_roller_is_where_the_pointer_is_whether_the_cursor_warp_arrives_or_not() {
         let (press, handle) = (DVec2::new(100.0, 200.0), DVec2::new(110.0, 195.0));
-        let editor_sees = |sent: DVec2| sent + (handle - press);
+        // The editor puts the roller at the position it is sent plus the press-to-handle offset.
+        let roller = |sent: DVec2| sent + (handle - press);
         let mut warp = CursorWarp::default();
         warp.requested(handle, press);
-        // Before the cursor arrives (or when the platform ignores the warp): plain positions.
-        assert_eq!(
-            warp.observe(DVec2::new(101.0, 200.0)),
-            DVec2::new(101.0, 200.0)
-        );
-        // The cursor arrived at the handle: the editor sees the real position from now on.
-        let sent = warp.observe(handle);
-        assert_eq!(editor_sees(sent), handle);
-        let later = DVec2::new(150.0, 180.0);
-        assert_eq!(editor_sees(warp.observe(later)), later);
+        // The platform ignores the warp: the pointer moves on from the press.
+        for pointer in [DVec2::new(101.0, 200.0), DVec2::new(100.0, 260.0)] {
+            assert_eq!(roller(warp.observe(pointer)), pointer);
+        }
+        // The warp arrives late: the pointer jumps to the handle and moves on from there.
+        for pointer in [handle, handle + DVec2::new(3.0, 40.0)] {
+            assert_eq!(roller(warp.observe(pointer)), pointer);
+        }
     }
 }

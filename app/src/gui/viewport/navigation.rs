@@ -28,6 +28,11 @@ pub fn wheel_notches(ui: &egui::Ui) -> (f64, bool) {
 
 /// Wheel notches of this frame and whether Ctrl/Cmd and Alt were held.
 pub fn wheel_input(ui: &egui::Ui) -> (f64, bool, bool) {
+    // A frame laid out again (a discarded first pass) sees the same wheel events: they count
+    // once, in the first pass.
+    if ui.ctx().current_pass_index() > 0 {
+        return (0.0, false, false);
+    }
     ui.input(|i| {
         let mut notches = 0.0;
         let mut ctrl = false;
@@ -134,7 +139,7 @@ fn edit_wheel(ui: &egui::Ui, app: &mut AppState, px: DVec2) {
     if !wheel_goes_to_editor(app, px, ctrl) {
         let min = crate::scalpel_session::target::defaults_for(&app.scene, app.selected_model)
             .min_camera_distance;
-        camera_controls::zoom(&mut app.scene.camera, notches, min);
+        wheel_zoom(ui, app, notches, min);
         return;
     }
     let event = EditorEvent::Wheel {
@@ -147,5 +152,40 @@ fn edit_wheel(ui: &egui::Ui, app: &mut AppState, px: DVec2) {
     if app.viewport.editor_event(&mut app.scene, event) {
         app.cutters_changed();
         app.say_depth();
+    }
+}
+
+/// Zooms by `notches` toward what is under the pointer (the nearest visible surface there, else
+/// the point on the plane through the camera target), keeping it under the pointer.
+pub fn wheel_zoom(ui: &egui::Ui, app: &mut AppState, notches: f64, min_distance: f64) {
+    let rect = app.viewport.rect;
+    let ppp = ui.ctx().pixels_per_point() as f64;
+    let anchor = ui
+        .input(|i| i.pointer.latest_pos())
+        .filter(|p| rect.contains(*p))
+        .map(|p| {
+            let px = DVec2::new(
+                (p.x - rect.left()) as f64 * ppp,
+                (p.y - rect.top()) as f64 * ppp,
+            );
+            let camera = &app.scene.camera;
+            let ray = camera.ray_through_pixel(app.viewport.size_px, px);
+            // Never wait for a pick tree still being built: the plane point does then.
+            let hit = app
+                .viewport
+                .picks
+                .ready_for(&app.scene)
+                .then(|| app.viewport.picks.pick(&app.scene, &ray))
+                .flatten();
+            match hit {
+                Some((_, t)) => ray.at(t),
+                None => camera_controls::point_on_target_plane(camera, app.viewport.size_px, px),
+            }
+        });
+    match anchor {
+        Some(anchor) => {
+            camera_controls::zoom_at(&mut app.scene.camera, notches, min_distance, anchor)
+        }
+        None => camera_controls::zoom(&mut app.scene.camera, notches, min_distance),
     }
 }

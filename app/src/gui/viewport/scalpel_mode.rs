@@ -64,11 +64,11 @@ pub fn scalpel_input(
         app.viewport.scalpel.camera_drag = None;
     }
     if response.hovered() {
-        let notches = ui.input(|i| i.smooth_scroll_delta.y as f64 / 50.0);
+        let (notches, _) = crate::gui::viewport::navigation::wheel_notches(ui);
         if notches != 0.0 {
             let min = crate::scalpel_session::target::defaults_for(&app.scene, selected)
                 .min_camera_distance;
-            camera_controls::zoom(&mut app.scene.camera, notches, min);
+            crate::gui::viewport::navigation::wheel_zoom(ui, app, notches, min);
         }
     }
 
@@ -143,7 +143,6 @@ pub fn finish_stroke(app: &mut AppState) {
 
 /// The Scalpel panel: tool, depth and opening width of the next strokes.
 pub fn scalpel_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
-    ui.heading("Scalpel");
     // Lengths are edited in millimetres whatever the file's unit (metre-scale bodies too).
     let unit = app.scene.unit;
     let s = &mut app.viewport.scalpel.settings;

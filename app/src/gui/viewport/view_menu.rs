@@ -45,7 +45,7 @@ pub fn apply(app: &mut AppState, command: ViewCommand) {
                 fov_y_deg: app.scene.camera.fov_y_deg,
             };
             app.scene.camera = fit::fit_to_box(&turned, &bbox, aspect);
-            app.say(format!("{} view", preset.label()));
+            app.say_about_view(format!("{} view", preset.label()));
         }
         ViewCommand::ZoomToFit => {
             app.scene.camera = fit::fit_to_box(&app.scene.camera, &app.scene.bbox(), aspect);
@@ -57,7 +57,7 @@ pub fn apply(app: &mut AppState, command: ViewCommand) {
             };
             let (bbox, name) = (model.mesh.bbox(), model.name.clone());
             app.scene.camera = fit::fit_to_box(&app.scene.camera, &bbox, aspect);
-            app.say(format!("Zoomed to {name}"));
+            app.say_about_view(format!("Zoomed to {name}"));
         }
         ViewCommand::Orient(orientation) => {
             app.scene.orientation = orientation;

@@ -353,8 +353,16 @@ impl Renderer {
                             list.opaque.push(Draw::Edges(Source::Part(i), u));
                         }
                     },
-                    PartLook::Wall | PartLook::SliceWall => {
-                        let u = push_uniform(wall, 1.0, true, 0.0, 0.0);
+                    PartLook::Wall | PartLook::SliceWall | PartLook::Incisions => {
+                        // What a cut left of the model's scalpel incisions is uploaded as
+                        // incision walls (see `upload_preview`): the model's colour, shaded as
+                        // the uncut model's incisions are.
+                        let colour = if part.look == PartLook::Incisions {
+                            model.color
+                        } else {
+                            wall
+                        };
+                        let u = push_uniform(colour, 1.0, true, 0.0, 0.0);
                         let warned = risk.as_ref().and_then(|r| p.risk_wall(r, i));
                         if let Some(j) = warned {
                             list.opaque
@@ -476,11 +484,16 @@ fn upload_preview(device: &wgpu::Device, preview: &Arc<dyn CutDrawing>) -> Cache
     let parts = (0..preview.part_count())
         .map(|i| {
             let p = preview.part(i);
-            GpuMesh::upload(
-                device,
-                &format!("preview part {:?} of model {}", p.look, p.model),
-                p.mesh,
-            )
+            let label = format!("preview part {:?} of model {}", p.look, p.model);
+            if p.look == PartLook::Incisions {
+                // Every face an incision wall: drawn as on the uncut model (the wall flag, the
+                // walls' own normals with the crease at the groove's floor).
+                let all: Vec<u32> = (0..p.mesh.triangles.len() as u32).collect();
+                let drawn = wall_split::drawn(p.mesh, &all);
+                GpuMesh::upload_vertices(device, &label, &drawn.vertices, &drawn.triangles)
+            } else {
+                GpuMesh::upload(device, &label, p.mesh)
+            }
         })
         .collect();
     let mut by_model: HashMap<usize, Vec<&[DVec3]>> = HashMap::new();

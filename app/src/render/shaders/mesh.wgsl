@@ -62,8 +62,23 @@ fn face_normal(p: vec3<f32>) -> vec3<f32> {
 // a software rasterizer (lavapipe) compiles a shader variant per value of a uniform that decides
 // a branch, and with one draw uniform per model those variants pile up frame after frame.
 fn shade(in: VertexOut, front_facing: bool, flat_normal: vec3<f32>) -> vec3<f32> {
-    let base = mix(draw.color.rgb, draw.wall_color.rgb, clamp(in.wall, 0.0, 1.0));
-    return shade_color(base, in, front_facing, flat_normal);
+    let wall = clamp(in.wall, 0.0, 1.0);
+    let base = mix(draw.color.rgb, draw.wall_color.rgb, wall);
+    let lit = shade_color(base, in, front_facing, flat_normal);
+    return mix(lit, lit * incision_shadow(in, flat_normal), wall);
+}
+
+// How much light reaches an incision wall: it lies inside the tissue, so it is in shadow, most
+// where it is seen edge-on. A groove's walls are steep, so from the front they meet the view at
+// a grazing angle along both lips: the incision shows as a dark line with dark rims at its lips,
+// a cut into the surface, never a light ridge standing on it; from an angle the wall facing the
+// eye stays darker than the surface around it.
+fn incision_shadow(in: VertexOut, flat_normal: vec3<f32>) -> f32 {
+    let to_eye = normalize(frame.eye_in_world.xyz - in.position_in_world);
+    var n = in.normal_in_world;
+    n = select(flat_normal, n / max(length(n), 1e-30), dot(n, n) >= 1e-12);
+    let facing = abs(dot(n, to_eye));
+    return mix(0.22, 0.6, facing * facing);
 }
 
 // `shade` with a base colour of the fragment's own (the image on a wall, image.wgsl).
