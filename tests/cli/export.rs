@@ -364,7 +364,7 @@ fn export_bakes_the_risk_map_into_the_walls_vertex_colours() {
         .arg(&session)
         .args(["--out"])
         .arg(&out)
-        .args(["--critical", "vessel 1", "--json"])
+        .args(["--critical", "vessel", "--json"])
         .output()
         .unwrap();
     assert!(
