@@ -373,9 +373,11 @@ fn on_the_default_head_atlas_a_small_structure_gets_its_own_lengths() {
         10,
     );
     assert_eq!(h.state().selected_model, Some(small));
+    // Sized from the structure as it now is: the incision moved its box by a hair, the head's
+    // lengths would be 20 times these.
     let depth = h.state().viewport.scalpel.settings.depth;
     assert!(
-        (depth - 0.03 * size.diagonal()).abs() < 1e-9,
+        (depth / (0.03 * size.diagonal()) - 1.0).abs() < 0.02,
         "scalpel depth {depth} mm after a stroke on {name}"
     );
     let _ = std::fs::remove_dir_all(&dir);

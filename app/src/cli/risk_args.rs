@@ -29,10 +29,13 @@ pub fn apply(scene: &mut Scene, args: &RiskArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     if !args.critical.is_empty() {
+        // Named as the model list names them (`organ 1` also finds a single-region `organ`).
+        let mut critical = Vec::new();
         for name in &args.critical {
-            crate::session::risk::check_name(scene, name)?;
+            let i = crate::scene::names::model_named(scene, name, "")?;
+            critical.push(scene.models[i].name.clone());
         }
-        scene.risk.critical = args.critical.clone();
+        scene.risk.critical = critical;
         scene.risk.shown = true;
     }
     if let Some(text) = &args.risk_mm {

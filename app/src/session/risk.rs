@@ -40,30 +40,22 @@ fn yes() -> bool {
 
 /// The settings an entry describes, checked against the scene's structures.
 pub fn load(entry: &RiskEntry, scene: &Scene) -> anyhow::Result<RiskSettings> {
+    // Named as the model list names them (`organ 1` also finds a single-region `organ`).
+    let critical = entry
+        .critical
+        .iter()
+        .map(|name| {
+            crate::scene::names::model_named(scene, name, "").map(|i| scene.models[i].name.clone())
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
     let settings = RiskSettings {
-        critical: entry.critical.clone(),
+        critical,
         near_mm: entry.near_mm,
         far_mm: entry.far_mm,
         shown: entry.shown,
     };
     settings.check().map_err(anyhow::Error::msg)?;
-    for name in &settings.critical {
-        check_name(scene, name)?;
-    }
     Ok(settings)
-}
-
-/// Fails, listing the structures, when no model of `scene` is called `name` (the words of
-/// `metrics --critical`).
-pub fn check_name(scene: &Scene, name: &str) -> anyhow::Result<()> {
-    if scene.models.iter().any(|m| m.name == name) {
-        return Ok(());
-    }
-    let names: Vec<&str> = scene.models.iter().map(|m| m.name.as_str()).collect();
-    anyhow::bail!(
-        "no structure named '{name}' (structures: {})",
-        names.join(", ")
-    )
 }
 
 /// The entry describing `settings`; `None` when they are the defaults with nothing critical.
