@@ -3,8 +3,9 @@
 
 use csg::testkit::{Resource, skip};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
+use crate::gltf_validator::{validate, validator_package};
 use crate::scene_files::{
     box_obj, box_planes, cut_view, cutter, model, scratch, sphere_obj, write_session,
 };
@@ -180,42 +181,6 @@ fn export_reads_back_with_the_cut_s_nodes_materials_and_triangles() {
             "the scene exercises {kind:?}"
         );
     }
-}
-
-/// The validator's npm package folder, named by `CUTAWAY_GLTF_VALIDATOR` (`.ci/run` installs the
-/// package and sets it). Set but not a package folder is a failure, not a skip.
-fn validator_package() -> Option<PathBuf> {
-    let folder = PathBuf::from(std::env::var_os("CUTAWAY_GLTF_VALIDATOR")?);
-    assert!(
-        folder.join("package.json").is_file(),
-        "CUTAWAY_GLTF_VALIDATOR={} is not the gltf-validator package folder",
-        folder.display()
-    );
-    Some(folder)
-}
-
-/// Runs the Khronos validator on `file`; returns its report.
-fn validate(package: &Path, file: &Path) -> serde_json::Value {
-    let script = r#"
-        const validator = require(process.argv[1]);
-        const bytes = new Uint8Array(require('fs').readFileSync(process.argv[2]));
-        validator.validateBytes(bytes, {maxIssues: 200})
-            .then(report => console.log(JSON.stringify(report)))
-            .catch(error => { console.error(String(error)); process.exit(1); });
-    "#;
-    let output: Output = Command::new("node")
-        .arg("-e")
-        .arg(script)
-        .arg(package)
-        .arg(file)
-        .output()
-        .expect("node runs");
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    serde_json::from_slice(&output.stdout).unwrap()
 }
 
 #[test]

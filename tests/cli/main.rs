@@ -7,6 +7,8 @@ mod contract;
 mod export;
 mod expose;
 mod extrude;
+#[path = "../support/gltf_validator.rs"]
+mod gltf_validator;
 mod metrics;
 mod scalpel;
 mod scalpel_lips;

@@ -33,6 +33,8 @@ mod annotate;
 mod compare;
 mod depth;
 mod exports;
+#[path = "../support/gltf_validator.rs"]
+mod gltf_validator;
 mod goldens;
 mod image_walls;
 mod risk;

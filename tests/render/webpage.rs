@@ -15,6 +15,7 @@
 //! variables these tests print why they skip; in CI they run. Screenshots and renders are kept in
 //! `target/test-output/webpage/` to be looked at.
 
+use crate::gltf_validator::{validate, validator_package};
 use crate::scene_files;
 
 use std::path::{Path, PathBuf};
@@ -250,40 +251,6 @@ fn the_page_carries_the_glb_export_of_every_variant() {
     for outside in ["src=", "<link", "@import", "url(", "<iframe", "<img"] {
         assert!(!html.contains(outside), "the page references {outside}…");
     }
-}
-
-/// The validator's npm package folder (`CUTAWAY_GLTF_VALIDATOR`, set by `.ci/run`).
-fn validator_package() -> Option<PathBuf> {
-    let folder = PathBuf::from(std::env::var_os("CUTAWAY_GLTF_VALIDATOR")?);
-    assert!(
-        folder.join("package.json").is_file(),
-        "CUTAWAY_GLTF_VALIDATOR={} is not the gltf-validator package folder",
-        folder.display()
-    );
-    Some(folder)
-}
-
-fn validate(package: &Path, file: &Path) -> serde_json::Value {
-    let script = r#"
-        const validator = require(process.argv[1]);
-        const bytes = new Uint8Array(require('fs').readFileSync(process.argv[2]));
-        validator.validateBytes(bytes, {maxIssues: 200})
-            .then(report => console.log(JSON.stringify(report)))
-            .catch(error => { console.error(String(error)); process.exit(1); });
-    "#;
-    let output = Command::new("node")
-        .arg("-e")
-        .arg(script)
-        .arg(package)
-        .arg(file)
-        .output()
-        .expect("node runs");
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    serde_json::from_slice(&output.stdout).unwrap()
 }
 
 #[test]
