@@ -45,6 +45,7 @@ use std::collections::{HashMap, HashSet, VecDeque};
 
 use glam::DVec3;
 
+use super::cut_grid::{Cell, CutGrid, cell_of};
 use super::dyn_mesh::{DynMesh, prev};
 pub use super::frames::{Frame, frames};
 use super::step::Scalpel;
@@ -103,36 +104,116 @@ fn displacements(
     now: f64,
     onto_path: bool,
 ) -> Vec<(u32, DVec3)> {
+    let Some(inputs) = Inputs::new(scalpel, options, now, onto_path) else {
+        return Vec::new();
+    };
     let mesh = scalpel.dyn_mesh();
-    let mut out = Vec::new();
-    let w = options.width;
-    let segments = scalpel.segments();
-    if w.is_nan() || w <= 0.0 || segments.is_empty() {
-        return out;
-    }
-    let r = SUPPORT * w;
-    let nv = mesh.vertex_count() as u32;
-    let frames = frames(segments, w);
-    let mut grid = super::cut_grid::CutGrid::new(segments, nv, r);
-    // Crack tips: segment ends whose vertex was never copied.
-    let mut tips: Vec<DVec3> = Vec::new();
-    for s in segments {
-        for (v, p) in [(s.a, s.pa), (s.b, s.pb)] {
-            if v < nv && mesh.copies(v).is_empty() && !tips.contains(&p) {
-                tips.push(p);
+    let mut grid = CutGrid::new(scalpel.segments(), mesh.vertex_count() as u32, inputs.r);
+    compute(scalpel, &inputs, &mut grid, None)
+}
+
+/// What the opening of every vertex is computed from, besides the mesh: per cut segment its
+/// frame and its ends' path corrections, the crack tips, the vertices never moved, the clock.
+/// The live opening ([`super::live_opening`]) compares two of these to find what a step changed.
+#[derive(Clone, Debug)]
+pub(crate) struct Inputs {
+    pub width: f64,
+    /// The support radius.
+    pub r: f64,
+    pub window: f64,
+    pub now: f64,
+    pub onto_path: bool,
+    pub taper_len: f64,
+    pub frames: Vec<Frame>,
+    pub corrections: Vec<[DVec3; 2]>,
+    /// Crack tips: segment ends whose vertex was never copied.
+    pub tips: Vec<DVec3>,
+    pub fixed: HashSet<u32>,
+}
+
+impl Inputs {
+    /// `None` when nothing opens (no width, no cut).
+    pub fn new(
+        scalpel: &Scalpel,
+        options: &OpenOptions,
+        now: f64,
+        onto_path: bool,
+    ) -> Option<Inputs> {
+        let mesh = scalpel.dyn_mesh();
+        let w = options.width;
+        let segments = scalpel.segments();
+        if w.is_nan() || w <= 0.0 || segments.is_empty() {
+            return None;
+        }
+        let nv = mesh.vertex_count() as u32;
+        let frames = frames(segments, w);
+        let mut tips: Vec<DVec3> = Vec::new();
+        for s in segments {
+            for (v, p) in [(s.a, s.pa), (s.b, s.pb)] {
+                if v < nv && mesh.copies(v).is_empty() && !tips.contains(&p) {
+                    tips.push(p);
+                }
             }
         }
+        // A groove's depth tapers toward its tips over `TAPER_DEPTHS` blade depths: opening it
+        // wider than it is deep there would tilt its walls over the lips (folded triangles).
+        let taper_len = taper_length(w, scalpel.options().depth);
+        // Per segment end, the lateral move onto the drawn path (see the module doc).
+        let corrections = if onto_path {
+            super::drawn::corrections(mesh, &scalpel.drawn, segments, &frames, w)
+        } else {
+            vec![[DVec3::ZERO; 2]; segments.len()]
+        };
+        Some(Inputs {
+            width: w,
+            r: SUPPORT * w,
+            window: options.window,
+            now,
+            onto_path,
+            taper_len,
+            frames,
+            corrections,
+            tips,
+            fixed: scalpel.fixed.iter().copied().collect(),
+        })
     }
-    let fixed: HashSet<u32> = scalpel.fixed.iter().copied().collect();
-    // A groove's depth tapers toward its tips over `TAPER_DEPTHS` blade depths: opening it wider
-    // than it is deep there would tilt its walls over the lips (folded triangles).
-    let taper_len = taper_length(w, scalpel.options().depth);
-    // Per segment end, the lateral move onto the drawn path (see the module doc).
-    let corrections = if onto_path {
-        super::drawn::corrections(mesh, &scalpel.drawn, segments, &frames, w)
-    } else {
-        vec![[DVec3::ZERO; 2]; segments.len()]
-    };
+
+    /// How far a segment cut at `time` has opened at this clock (0 to 1).
+    pub fn ramp(&self, time: f64) -> f64 {
+        if self.window > 0.0 {
+            ((self.now - time) / self.window).clamp(0.0, 1.0)
+        } else {
+            1.0
+        }
+    }
+}
+
+/// Where a partial computation works: the grid cells (of the cut grid's size) whose vertices
+/// it gives (`inner`) and those it walks over to give them as the whole computation would
+/// (`outer`, a margin of cells around `inner`).
+pub(crate) struct Region {
+    pub inner: HashSet<Cell>,
+    pub outer: HashSet<Cell>,
+}
+
+/// The opening of the vertices of `region` (every vertex when `None`): the field of the module
+/// doc, the unfolding and the groove floors. With a region, the walk over the surface stays in
+/// its outer cells and seeds only at lips there, and only vertices of its inner cells are given.
+pub(crate) fn compute(
+    scalpel: &Scalpel,
+    inputs: &Inputs,
+    grid: &mut CutGrid,
+    region: Option<&Region>,
+) -> Vec<(u32, DVec3)> {
+    let mesh = scalpel.dyn_mesh();
+    let segments = scalpel.segments();
+    let mut out = Vec::new();
+    let (w, r) = (inputs.width, inputs.r);
+    let nv = mesh.vertex_count() as u32;
+    let (frames, corrections, tips) = (&inputs.frames, &inputs.corrections, &inputs.tips);
+    let onto_path = inputs.onto_path;
+    let size = grid.size();
+    let in_outer = |p: DVec3| region.is_none_or(|g| g.outer.contains(&cell_of(p, size)));
     // Nearest point on the cut among the segments `near`: (distance, point, segment index).
     let nearest = |p: DVec3, near: &[usize]| -> Option<(f64, DVec3, usize)> {
         let mut best: Option<(f64, DVec3, usize)> = None;
@@ -180,16 +261,23 @@ fn displacements(
         }
     };
     // Breadth-first over surface vertices from the lip copies (seeds with their side), within
-    // the support; every other vertex takes the side of the vertex it was reached from.
+    // the support; every other vertex takes the side of the vertex it was reached from. (So a
+    // vertex takes the side of the first seed, in seed order, among those fewest surface edges
+    // away: a region's vertices take the sides the whole walk gives them when its margin holds
+    // those seeds and paths.)
     let mut side: HashMap<u32, f64> = HashMap::new();
     let mut corrected: Vec<DVec3> = Vec::new();
     let mut queue: VecDeque<u32> = VecDeque::new();
     let mut fan = Vec::new();
     // Floor vertices next to the lip copies (groove bottoms): moved by the lips' correction.
     let mut floors: Vec<u32> = Vec::new();
-    for s in segments {
+    let seed_segments: Vec<usize> = match region {
+        None => (0..segments.len()).collect(),
+        Some(g) => grid.segments_in(&g.outer),
+    };
+    for s in seed_segments.iter().map(|&i| &segments[i]) {
         for v in [s.a, s.b] {
-            if v >= nv || mesh.copies(v).is_empty() {
+            if v >= nv || mesh.copies(v).is_empty() || !in_outer(mesh.pos(v)) {
                 continue;
             }
             for c in std::iter::once(v).chain(mesh.copies(v)) {
@@ -229,27 +317,23 @@ fn displacements(
         mesh.surface_fan_into(v, &mut fan);
         for &h in &fan {
             for n in [mesh.dest(h), mesh.origin(prev(h))] {
-                if !mesh.is_floor(n) && !side.contains_key(&n) {
+                if !mesh.is_floor(n) && !side.contains_key(&n) && in_outer(mesh.pos(n)) {
                     side.insert(n, sigma);
                     queue.push_back(n);
                 }
             }
         }
-        if fixed.contains(&v) {
+        if inputs.fixed.contains(&v) {
             continue;
         }
         let s = &segments[i];
         let lateral = frames[i].lateral;
-        let ramp = if options.window > 0.0 {
-            ((now - s.time) / options.window).clamp(0.0, 1.0)
-        } else {
-            1.0
-        };
+        let ramp = inputs.ramp(s.time);
         let tip_dist = tips
             .iter()
             .map(|t| t.distance(c))
             .fold(f64::INFINITY, f64::min);
-        let x = (tip_dist / taper_len).min(1.0);
+        let x = (tip_dist / inputs.taper_len).min(1.0);
         let taper = x * x * (3.0 - 2.0 * x);
         let falloff = {
             let s2 = (dist / r) * (dist / r);
@@ -291,6 +375,9 @@ fn displacements(
     }
     super::unfold::unfold(mesh, &mut out);
     out.extend(floor_moves);
+    if let Some(g) = region {
+        out.retain(|&(v, _)| g.inner.contains(&cell_of(mesh.pos(v), size)));
+    }
     out
 }
 

@@ -86,7 +86,17 @@ pub struct DynMesh {
     pub(crate) wall_tri: Vec<bool>,
     /// Undo log: the old value of every write since the oldest live [`Mark`].
     journal: Vec<Change>,
+    /// The vertices every write (and every rollback) changed something of: its position, its
+    /// copies, its fan, its existence. Read by the live opening ([`super::live_opening`]), which
+    /// recomputes only around them; see [`DynMesh::edits_since`].
+    edits: Vec<u32>,
+    /// How many entries were dropped from the front of `edits` (it is emptied when it grows
+    /// past [`EDITS_KEPT`]; a reader behind that recomputes everything).
+    edits_dropped: usize,
 }
+
+/// Entries of the edit log kept before it is emptied (a reader then starts over).
+const EDITS_KEPT: usize = 1 << 22;
 
 impl DynMesh {
     /// Builds the half-edge structure of `mesh` (O(N), once per model).
@@ -150,6 +160,8 @@ impl DynMesh {
             floor: vec![false; nv],
             wall_tri: vec![false; nt],
             journal: Vec::new(),
+            edits: Vec::new(),
+            edits_dropped: 0,
         };
         // A vertex whose fan does not reach all its corners is a bow-tie.
         let mut fan = Vec::new();
@@ -353,14 +365,37 @@ impl DynMesh {
     pub fn rollback(&mut self, mark: Mark) {
         while self.journal.len() > mark.journal {
             match self.journal.pop() {
-                Some(Change::Tri(t, v)) => self.triangles[t as usize] = v,
-                Some(Change::Twin(h, v)) => self.twin[h as usize] = v,
-                Some(Change::VertHe(x, v)) => self.vert_he[x as usize] = v,
-                Some(Change::NextCopy(x, v)) => self.next_copy[x as usize] = v,
-                Some(Change::Pos(x, p)) => self.positions[x as usize] = p,
+                Some(Change::Tri(t, v)) => {
+                    let now = self.triangles[t as usize];
+                    self.log_edits(&now);
+                    self.log_edits(&v);
+                    self.triangles[t as usize] = v;
+                }
+                Some(Change::Twin(h, v)) => {
+                    self.log_triangle(h / 3);
+                    self.twin[h as usize] = v;
+                }
+                Some(Change::VertHe(x, v)) => {
+                    self.log_edits(&[x]);
+                    self.vert_he[x as usize] = v;
+                }
+                Some(Change::NextCopy(x, v)) => {
+                    let now = self.next_copy[x as usize];
+                    self.log_edits(&[x, now, v]);
+                    self.next_copy[x as usize] = v;
+                }
+                Some(Change::Pos(x, p)) => {
+                    self.log_edits(&[x]);
+                    self.positions[x as usize] = p;
+                }
                 None => break,
             }
         }
+        for t in mark.triangles..self.triangles.len() {
+            self.log_triangle(t as u32);
+        }
+        let removed: Vec<u32> = (mark.positions as u32..self.positions.len() as u32).collect();
+        self.log_edits(&removed);
         self.positions.truncate(mark.positions);
         self.vert_he.truncate(mark.positions);
         self.next_copy.truncate(mark.positions);
@@ -387,6 +422,33 @@ impl DynMesh {
         out
     }
 
+    /// Where the edit log ends now: pass it to [`DynMesh::edits_since`] later.
+    pub fn edit_cursor(&self) -> usize {
+        self.edits_dropped + self.edits.len()
+    }
+
+    /// The vertices changed since `cursor` (an [`DynMesh::edit_cursor`]): moved, re-linked,
+    /// copied, created or removed (ids at or past [`DynMesh::vertex_count`] were removed), with
+    /// repeats. `None` when the log no longer reaches back that far.
+    pub fn edits_since(&self, cursor: usize) -> Option<&[u32]> {
+        let from = cursor.checked_sub(self.edits_dropped)?;
+        self.edits.get(from..)
+    }
+
+    fn log_edits(&mut self, vertices: &[u32]) {
+        if self.edits.len() + vertices.len() > EDITS_KEPT {
+            self.edits_dropped += self.edits.len();
+            self.edits.clear();
+        }
+        self.edits.extend_from_slice(vertices);
+    }
+
+    fn log_triangle(&mut self, t: u32) {
+        if let Some(&tri) = self.triangles.get(t as usize) {
+            self.log_edits(&tri);
+        }
+    }
+
     /// Forgets the undo history (nothing before now can be rolled back any more).
     pub fn forget_history(&mut self) {
         self.journal.clear();
@@ -395,6 +457,8 @@ impl DynMesh {
     fn set_tri(&mut self, t: u32, tri: [u32; 3]) {
         let old = self.triangles[t as usize];
         self.journal.push(Change::Tri(t, old));
+        self.log_edits(&old);
+        self.log_edits(&tri);
         self.triangles[t as usize] = tri;
     }
 
@@ -402,6 +466,7 @@ impl DynMesh {
         let old = self.twin[h as usize];
         if old != g {
             self.journal.push(Change::Twin(h, old));
+            self.log_triangle(h / 3);
             self.twin[h as usize] = g;
         }
     }
@@ -410,6 +475,7 @@ impl DynMesh {
         let old = self.vert_he[v as usize];
         if old != h {
             self.journal.push(Change::VertHe(v, old));
+            self.log_edits(&[v]);
             self.vert_he[v as usize] = h;
         }
     }
@@ -417,6 +483,7 @@ impl DynMesh {
     fn set_next_copy(&mut self, v: u32, n: u32) {
         let old = self.next_copy[v as usize];
         self.journal.push(Change::NextCopy(v, old));
+        self.log_edits(&[v, old, n]);
         self.next_copy[v as usize] = n;
     }
 
@@ -425,6 +492,7 @@ impl DynMesh {
     pub(crate) fn set_pos(&mut self, v: u32, p: DVec3) {
         let old = self.positions[v as usize];
         self.journal.push(Change::Pos(v, old));
+        self.log_edits(&[v]);
         self.positions[v as usize] = p;
     }
 
@@ -436,6 +504,7 @@ impl DynMesh {
         self.next_copy.push(v);
         self.singular.push(false);
         self.floor.push(false);
+        self.log_edits(&[v]);
         v
     }
 
@@ -505,6 +574,7 @@ impl DynMesh {
     /// Appends a triangle with boundary twins; callers link them.
     pub(crate) fn push_tri(&mut self, tri: [u32; 3]) -> u32 {
         let t = self.triangles.len() as u32;
+        self.log_edits(&tri);
         self.triangles.push(tri);
         self.wall_tri.push(false);
         self.twin.extend_from_slice(&[NO_TWIN; 3]);

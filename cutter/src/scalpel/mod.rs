@@ -93,6 +93,7 @@ pub mod groove;
 pub mod invariants;
 pub mod layers;
 pub mod lip_measure;
+pub mod live_opening;
 mod local_check;
 pub mod locate;
 pub mod loop_tool;

@@ -18,6 +18,7 @@ mod fidelity;
 mod fuzz;
 mod grooves;
 mod lips;
+mod live_opening;
 mod opened_lips;
 mod opening;
 mod slits;

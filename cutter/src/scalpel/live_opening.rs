@@ -1,0 +1,244 @@
+//! The opening kept between steps: each step recomputes only the vertices whose support
+//! changed.
+//!
+//! [`super::dffd::open_displacements`] computes the opening of the whole incision from scratch:
+//! on a long stroke that is tens of milliseconds, more than a frame. A step changes little of
+//! it: the segments it cut (and the temporary tip it undid), the frames and path corrections
+//! of the segments within about a width of those, the crack tips, the segments still opening
+//! within the time window, the vertices it split, moved or copied. [`LiveOpening::update`]
+//! compares what the opening is computed from ([`super::dffd::Inputs`], per segment) with what
+//! it was computed from last time, reads the mesh's edit log ([`DynMesh::edits_since`]), and
+//! recomputes the cells of the cut grid around what changed:
+//! - a vertex's opening depends on the cut segments within the support `r` of it (nearest
+//!   segment, frame, ramp, corrections) and on the crack tips within the taper length of its
+//!   nearest cut point, so the *inner* region is the cells within one cell (`r`) of a changed
+//!   segment's ends or a changed vertex, and within `taper + r` of a tip that appeared or went;
+//! - which side of the cut a vertex opens to is decided by a walk from the lips (the first
+//!   lip, in seed order, fewest surface edges away), and the unfolding pulls back folded
+//!   triangles together with their neighbours; the walk, the seeds and the unfolding are run
+//!   over the inner cells and [`MARGIN`] cells around them (the *outer* region), and only the
+//!   inner cells' vertices are taken.
+//!
+//! The cut grid (the segments by cell) is kept and only the changed segments are moved in it.
+//! The result equals the opening computed from scratch when every seed and walk deciding an
+//! inner vertex's side, and every folded patch it belongs to, lies within the margin of it
+//! (the tests compare both, bit for bit, on long strokes); everything else is exact by
+//! construction. Cost: the changed region, never the incision or the mesh, plus one pass over
+//! the segments to compare them.
+
+use std::collections::{HashMap, HashSet};
+
+use glam::DVec3;
+
+use super::cut_grid::{Cell, CutGrid, cell_of};
+use super::dffd::{Inputs, OpenOptions, Region, compute};
+use super::step::{CutSegment, Scalpel};
+
+/// Cells of margin walked around the recomputed cells (see the module doc).
+pub const MARGIN: i64 = 2;
+
+/// What one [`LiveOpening::update`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OpeningUpdate {
+    /// Everything was recomputed (the first update, the options or the stroke's undo history
+    /// changed).
+    pub full: bool,
+    /// Grid cells recomputed (0 when full or nothing changed).
+    pub cells: usize,
+    /// Vertices given by the recomputation.
+    pub vertices: usize,
+}
+
+/// The opening of one scalpel's mesh, kept between steps (see the module doc).
+#[derive(Default)]
+pub struct LiveOpening {
+    state: Option<State>,
+    /// Every vertex the opening moves, with its display position.
+    moved: HashMap<u32, DVec3>,
+    /// The vertices of `moved` by the cell of their rest position (may hold stale ids).
+    by_cell: HashMap<Cell, Vec<u32>>,
+}
+
+/// What the kept opening was computed from.
+struct State {
+    options: OpenOptions,
+    inputs: Inputs,
+    segments: Vec<CutSegment>,
+    fixed: Vec<u32>,
+    grid: CutGrid,
+    cursor: usize,
+}
+
+impl LiveOpening {
+    pub fn new() -> LiveOpening {
+        LiveOpening::default()
+    }
+
+    /// The vertices the opening moves, with their display positions (in no order).
+    pub fn moved(&self) -> &HashMap<u32, DVec3> {
+        &self.moved
+    }
+
+    /// Brings the opening to `scalpel`'s mesh at tool time `now`, the lips onto the drawn path
+    /// (as [`super::dffd::open_displacements`]).
+    pub fn update(&mut self, scalpel: &Scalpel, options: &OpenOptions, now: f64) -> OpeningUpdate {
+        let mesh = scalpel.dyn_mesh();
+        let cursor = mesh.edit_cursor();
+        let Some(inputs) = Inputs::new(scalpel, options, now, true) else {
+            self.state = None;
+            self.moved.clear();
+            self.by_cell.clear();
+            return OpeningUpdate {
+                full: true,
+                ..OpeningUpdate::default()
+            };
+        };
+        let segments = scalpel.segments();
+        let nv = mesh.vertex_count() as u32;
+        let edits = self.state.as_ref().and_then(|st| {
+            let same = st.options == *options
+                && st.inputs.taper_len == inputs.taper_len
+                && st.inputs.onto_path == inputs.onto_path;
+            same.then(|| mesh.edits_since(st.cursor)).flatten()
+        });
+        let (Some(edits), Some(mut state)) = (edits, self.state.take()) else {
+            let mut grid = CutGrid::new(segments, nv, inputs.r);
+            let out = compute(scalpel, &inputs, &mut grid, None);
+            self.moved.clear();
+            self.by_cell.clear();
+            let size = grid.size();
+            self.insert(scalpel, out, size);
+            let vertices = self.moved.len();
+            self.state = Some(State {
+                options: *options,
+                inputs,
+                segments: segments.to_vec(),
+                fixed: scalpel.fixed.clone(),
+                grid,
+                cursor,
+            });
+            return OpeningUpdate {
+                full: true,
+                cells: 0,
+                vertices,
+            };
+        };
+        let size = state.grid.size();
+        let (old, new) = (&state.inputs, &inputs);
+        // Points whose cells (and the cells `reach` around them) change.
+        let mut dirty: Vec<(DVec3, i64)> = Vec::new();
+        for i in 0..state.segments.len().max(segments.len()) {
+            let (before, after) = (state.segments.get(i), segments.get(i));
+            let same = match (before, after) {
+                (Some(a), Some(b)) => {
+                    a == b
+                        && old.frames[i].tangent == new.frames[i].tangent
+                        && old.frames[i].lateral == new.frames[i].lateral
+                        && old.corrections[i] == new.corrections[i]
+                        && old.ramp(a.time) == new.ramp(b.time)
+                }
+                _ => false,
+            };
+            if same {
+                continue;
+            }
+            if let Some(a) = before {
+                dirty.extend([(a.pa, 1), (a.pb, 1)]);
+                state.grid.remove(i, a);
+            }
+            if let Some(b) = after {
+                dirty.extend([(b.pa, 1), (b.pb, 1)]);
+                state.grid.insert(i, b, nv);
+            }
+        }
+        let tip_reach = ((new.taper_len + new.r) / size).ceil() as i64;
+        for t in old.tips.iter().filter(|t| !new.tips.contains(t)) {
+            dirty.push((*t, tip_reach));
+        }
+        for t in new.tips.iter().filter(|t| !old.tips.contains(t)) {
+            dirty.push((*t, tip_reach));
+        }
+        let common = state
+            .fixed
+            .iter()
+            .zip(&scalpel.fixed)
+            .take_while(|(a, b)| a == b)
+            .count();
+        for &v in state.fixed[common..].iter().chain(&scalpel.fixed[common..]) {
+            if v < nv {
+                dirty.push((mesh.pos(v), 1));
+            }
+        }
+        for &v in edits {
+            if let Some(p) = self.moved.remove(&v) {
+                dirty.push((p, 1));
+            }
+            if v < nv {
+                dirty.push((mesh.pos(v), 1));
+            }
+        }
+        let mut inner: HashSet<Cell> = HashSet::new();
+        for &(p, reach) in &dirty {
+            grow(&mut inner, cell_of(p, size), reach);
+        }
+        let mut outer = HashSet::with_capacity(inner.len() * 4);
+        for &c in &inner {
+            grow(&mut outer, c, MARGIN);
+        }
+        let cells = inner.len();
+        if cells > 0 {
+            for c in &inner {
+                if let Some(list) = self.by_cell.remove(c) {
+                    for v in list {
+                        if self.moved.get(&v).is_some_and(|_| {
+                            (v as usize) >= mesh.vertex_count() || cell_of(mesh.pos(v), size) == *c
+                        }) {
+                            self.moved.remove(&v);
+                        }
+                    }
+                }
+            }
+        }
+        state.inputs = inputs;
+        state.segments.clear();
+        state.segments.extend_from_slice(segments);
+        state.fixed.clear();
+        state.fixed.extend_from_slice(&scalpel.fixed);
+        state.cursor = cursor;
+        let mut vertices = 0;
+        if cells > 0 {
+            let region = Region { inner, outer };
+            let out = compute(scalpel, &state.inputs, &mut state.grid, Some(&region));
+            vertices = out.len();
+            self.insert(scalpel, out, size);
+        }
+        self.state = Some(state);
+        OpeningUpdate {
+            full: false,
+            cells,
+            vertices,
+        }
+    }
+
+    fn insert(&mut self, scalpel: &Scalpel, out: Vec<(u32, DVec3)>, size: f64) {
+        let mesh = scalpel.dyn_mesh();
+        for (v, p) in out {
+            self.moved.insert(v, p);
+            self.by_cell
+                .entry(cell_of(mesh.pos(v), size))
+                .or_default()
+                .push(v);
+        }
+    }
+}
+
+/// Adds to `cells` the cells within `reach` cells of `c` (a cube).
+fn grow(cells: &mut HashSet<Cell>, c: Cell, reach: i64) {
+    for x in c.0 - reach..=c.0 + reach {
+        for y in c.1 - reach..=c.1 + reach {
+            for z in c.2 - reach..=c.2 + reach {
+                cells.insert((x, y, z));
+            }
+        }
+    }
+}
