@@ -124,12 +124,14 @@ fn slit_on_a_sheet_reports_the_contract_json() {
         "step_us_p50",
         "step_us_max",
         "step_us_first",
+        "open_us_p50",
+        "open_us_max",
         "closed",
         "manifold",
     ] {
         assert!(v.get(key).is_some(), "missing {key}");
     }
-    assert_eq!(v.as_object().unwrap().len(), 8);
+    assert_eq!(v.as_object().unwrap().len(), 10);
 }
 
 /// The distances from the drawn line (each point moved onto `before`, the surface it was drawn
@@ -645,4 +647,32 @@ fn opened_groove_on_the_patella_folds_no_surface_triangle() {
         worst <= 60.0,
         "a surface triangle turned {worst:.1}° as the groove opened"
     );
+}
+
+/// `--json` reports the opening's share of the steps: positive on a groove opened 2 mm wide
+/// on the patella, each at most its step's time; 0 with the same strokes and no `"open"`.
+#[test]
+fn json_reports_the_openings_share_of_the_steps() {
+    let dir = scratch("open-us");
+    let target = patella();
+    let mesh = cutaway::io::read_mesh(&target).unwrap();
+    let points = patella_arc(&mesh);
+    let out = dir.join("out.ply");
+    let mut figures = Vec::new();
+    for open in [true, false] {
+        let mut json = serde_json::json!({"format": "cutaway-path/1", "depth": 3.0,
+            "tool": "scalpel", "points": points});
+        if open {
+            json["open"] = serde_json::json!({"width": 2.0, "window": 0.5});
+        }
+        let path = dir.join(format!("p{open}.json"));
+        std::fs::write(&path, json.to_string()).unwrap();
+        let v = run_json(&target, &path, &out);
+        let f = |k: &str| v[k].as_f64().unwrap_or_else(|| panic!("no {k} in {v}"));
+        assert!(f("open_us_p50") <= f("open_us_max"), "{v}");
+        assert!(f("open_us_max") <= f("step_us_max"), "{v}");
+        figures.push((f("open_us_p50"), f("open_us_max")));
+    }
+    assert!(figures[0].0 > 0.0 && figures[0].1 > 0.0, "{figures:?}");
+    assert_eq!(figures[1], (0.0, 0.0));
 }

@@ -10,7 +10,8 @@
 //! `cutaway_wall` face property, so `cutaway render` of a session naming it `"exact"` draws
 //! them as the window does; other formats carry the mesh alone.
 //! `steps` and the step times count the path file's samples; the first step of each stroke
-//! includes its press. Any refusal is an error naming the path file, the stroke and the point;
+//! includes its press. Each step brings the opening up to date, as the window's steps do, and
+//! its share of the step is reported apart (`open_us_p50`, `open_us_max`; 0 without `"open"`). Any refusal is an error naming the path file, the stroke and the point;
 //! nothing is written then.
 
 use std::path::PathBuf;
@@ -92,14 +93,8 @@ pub fn run(args: &ScalpelArgs) -> anyhow::Result<()> {
     }
     crate::io::write_mesh_walls(&args.out, &out, &walls)?;
     if args.json {
-        let mut sorted = done.step_us.clone();
-        sorted.sort_by(f64::total_cmp);
-        let p50 = if sorted.is_empty() {
-            0.0
-        } else {
-            sorted[(sorted.len() - 1) / 2]
-        };
-        let max = sorted.last().copied().unwrap_or(0.0);
+        let (p50, max) = median_and_max(&done.step_us);
+        let (open_p50, open_max) = median_and_max(&done.open_us);
         let json = serde_json::json!({
             "steps": done.step_us.len(),
             "triangles_cut": done.triangles_cut,
@@ -107,10 +102,24 @@ pub fn run(args: &ScalpelArgs) -> anyhow::Result<()> {
             "step_us_p50": p50,
             "step_us_max": max,
             "step_us_first": done.step_us.first().copied().unwrap_or(0.0),
+            "open_us_p50": open_p50,
+            "open_us_max": open_max,
             "closed": closed,
             "manifold": manifold,
         });
         println!("{json}");
     }
     Ok(())
+}
+
+/// The median (the lower one of an even count) and the largest of `times`; zeros when empty.
+fn median_and_max(times: &[f64]) -> (f64, f64) {
+    let mut sorted = times.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let p50 = if sorted.is_empty() {
+        0.0
+    } else {
+        sorted[(sorted.len() - 1) / 2]
+    };
+    (p50, sorted.last().copied().unwrap_or(0.0))
 }

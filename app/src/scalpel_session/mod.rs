@@ -80,7 +80,7 @@ use glam::{DVec2, DVec3};
 
 use csg::{Mesh, SpatialIndex};
 use cutter::Camera;
-use cutter::scalpel::{OpenOptions, ScalpelOptions, Tool, dffd};
+use cutter::scalpel::{OpenOptions, ScalpelOptions, Tool};
 
 use crate::cutting::delta::MeshDelta;
 use crate::scene::{MeshOrigin, ModelStyle, Scene, SceneModel};
@@ -176,6 +176,9 @@ pub struct ScalpelSession {
     layer_indexes: Vec<(std::sync::Weak<Mesh>, Arc<SpatialIndex>)>,
     /// The models' ray-pick trees: which model a press starts on.
     picks: crate::cutting::pick::ScenePicks,
+    /// Microseconds the last press or step spent bringing the opening up to date (0 without
+    /// an opening).
+    pub last_open_us: f64,
 }
 
 impl Default for ScalpelSession {
@@ -192,6 +195,7 @@ impl Default for ScalpelSession {
             off_surface: false,
             picks: Default::default(),
             layer_indexes: Vec::new(),
+            last_open_us: 0.0,
         }
     }
 }
@@ -337,14 +341,13 @@ impl ScalpelSession {
         let segments_before = session.scalpel.segments().len();
         let open_before = session.shown_open;
         // The vertices the opening displaces in the scene's mesh: a step may move them back.
+        let open_us = session.update_opening(&open);
         let base_displaced = if open.width > 0.0 && !whole_mesh {
-            dffd::open_displacements(&session.scalpel, &open, session.scalpel.clock())
-                .into_iter()
-                .map(|(v, _)| v)
-                .collect()
+            session.opening.moved().keys().copied().collect()
         } else {
             Vec::new()
         };
+        self.last_open_us = open_us;
         self.stroke = Some(Stroke {
             before: scene.clone(),
             press_px: px,
@@ -450,6 +453,7 @@ impl ScalpelSession {
     /// surface). `Ok(true)` when what the scene shows changed; `Err` (scene untouched) when the
     /// scalpel refused the step.
     pub fn step_to(&mut self, scene: &mut Scene, q: DVec3) -> Result<bool, String> {
+        self.last_open_us = 0.0;
         let (Some(stroke), Some(session)) = (self.stroke.as_mut(), self.session.as_mut()) else {
             return Ok(false);
         };
@@ -462,6 +466,8 @@ impl ScalpelSession {
         stroke.samples.push(report.on_mesh.then_some(q));
         stroke.last_point = q;
         let open = self.settings.open();
+        // The opening follows every step, shown or not (the command line times it).
+        self.last_open_us = session.update_opening(&open);
         let signature = session.signature();
         if signature == stroke.signature && open.width <= 0.0 {
             return Ok(false);
@@ -474,6 +480,7 @@ impl ScalpelSession {
             stroke.delta = Some(session.stroke_delta(&open, stroke));
             return Ok(true);
         }
+        session.update_opening(&open);
         let shown = session.display(&open);
         session.shown = shown.clone();
         session.shown_open = open;
@@ -542,6 +549,7 @@ impl ScalpelSession {
             // Let the trailing window run out so the whole cut shows open.
             session.scalpel.advance_clock(open.window);
         }
+        session.update_opening(&open);
         let shown = session.display(&open);
         let unchanged = before_mesh
             .as_ref()

@@ -14,6 +14,7 @@ use std::sync::Arc;
 use glam::{DVec2, DVec3};
 
 use csg::{Mesh, PickIndex, SpatialIndex};
+use cutter::scalpel::live_opening::LiveOpening;
 use cutter::scalpel::{OpenOptions, Scalpel, ScalpelOptions, dffd};
 
 use crate::cutting::delta::{self, MeshDelta, VertexFaces};
@@ -40,6 +41,9 @@ pub(crate) struct ModelCut {
     /// The faces of each vertex of `shown`, for the deltas of a stroke; built on a thread of its
     /// own as soon as `shown` changes, so a stroke rarely waits for it.
     pub(crate) faces: Option<(Arc<Mesh>, FacesJob)>,
+    /// The opening of the scalpel's mesh, kept between steps: a step recomputes only around
+    /// what it changed.
+    pub(crate) opening: LiveOpening,
 }
 
 /// The rest mesh and what finds points on it: the spatial index (closest points, the rays to the
@@ -89,6 +93,7 @@ impl ModelCut {
                 window: 0.0,
             },
             faces: None,
+            opening: LiveOpening::new(),
         };
         Ok(session)
     }
@@ -234,12 +239,13 @@ impl ModelCut {
         for f in floors {
             visit(f, &mut stroke.touched, &mut more);
         }
-        let displaced: std::collections::HashMap<u32, DVec3> = if open.width > 0.0 {
-            dffd::open_displacements(&self.scalpel, open, self.scalpel.clock())
-                .into_iter()
-                .collect()
+        let no_opening = std::collections::HashMap::new();
+        let displaced = if open.width > 0.0 {
+            self.opening
+                .update(&self.scalpel, open, self.scalpel.clock());
+            self.opening.moved()
         } else {
-            Default::default()
+            &no_opening
         };
         let position = |v: u32| {
             displaced
@@ -278,15 +284,35 @@ impl ModelCut {
         }))
     }
 
-    /// The mesh to show: the rest pose, opened by the DFFD at the tool's clock.
+    /// The mesh to show: the rest pose, opened by the DFFD at the tool's clock (the kept
+    /// opening when it is up to date, see [`ModelCut::update_opening`]; else computed here).
     pub(crate) fn display(&self, open: &OpenOptions) -> Arc<Mesh> {
         let mut mesh = self.scalpel.mesh();
+        let clock = self.scalpel.clock();
         if open.width > 0.0 {
-            for (v, p) in dffd::open_displacements(&self.scalpel, open, self.scalpel.clock()) {
-                mesh.positions[v as usize] = p;
+            if self.opening.is_current(&self.scalpel, open, clock) {
+                for (&v, &p) in self.opening.moved() {
+                    mesh.positions[v as usize] = p;
+                }
+            } else {
+                for (v, p) in dffd::open_displacements(&self.scalpel, open, clock) {
+                    mesh.positions[v as usize] = p;
+                }
             }
         }
         Arc::new(mesh)
+    }
+
+    /// Brings the opening up to the scalpel's mesh and clock; microseconds it took (0 without
+    /// an opening).
+    pub(crate) fn update_opening(&mut self, open: &OpenOptions) -> f64 {
+        if open.width <= 0.0 {
+            return 0.0;
+        }
+        let start = std::time::Instant::now();
+        self.opening
+            .update(&self.scalpel, open, self.scalpel.clock());
+        start.elapsed().as_secs_f64() * 1e6
     }
 
     /// What identifies the scalpel's mesh between two steps (a step that leaves it changes

@@ -22,6 +22,9 @@ pub struct Replay {
     /// Microseconds per point: the press and first step for a stroke's first point, one step for
     /// each other point (the release is not a step).
     pub step_us: Vec<f64>,
+    /// Of each of those, the microseconds spent bringing the opening up to date (0 without an
+    /// opening).
+    pub open_us: Vec<f64>,
     pub triangles_cut: usize,
     pub triangles_created: usize,
 }
@@ -64,11 +67,13 @@ pub fn replay(
             .press_at(scene, model, first, DVec2::ZERO)
             .and_then(|_| session.begin());
         out.step_us.push(start.elapsed().as_secs_f64() * 1e6);
+        out.open_us.push(session.last_open_us);
         begun.map_err(|e| fail(0, e))?;
         for (k, &q) in stroke.iter().enumerate().skip(1) {
             let start = Instant::now();
             let r = session.step_to(scene, q);
             out.step_us.push(start.elapsed().as_secs_f64() * 1e6);
+            out.open_us.push(session.last_open_us);
             r.map_err(|e| fail(k, e))?;
         }
         match session.release(scene) {

@@ -31,11 +31,11 @@ use std::collections::{HashMap, HashSet};
 use glam::DVec3;
 
 use super::cut_grid::{Cell, CutGrid, cell_of};
-use super::dffd::{Inputs, OpenOptions, Region, compute};
+use super::dffd::{Inputs, OpenOptions, Region, compute, taper_length};
 use super::step::{CutSegment, Scalpel};
 
 /// Cells of margin walked around the recomputed cells (see the module doc).
-pub const MARGIN: i64 = 2;
+pub const MARGIN: i64 = 1;
 
 /// What one [`LiveOpening::update`] did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -65,6 +65,8 @@ struct State {
     inputs: Inputs,
     segments: Vec<CutSegment>,
     fixed: Vec<u32>,
+    /// How many drawn samples there were.
+    samples: usize,
     grid: CutGrid,
     cursor: usize,
 }
@@ -79,9 +81,27 @@ impl LiveOpening {
         &self.moved
     }
 
+    /// Whether [`LiveOpening::moved`] is the opening of `scalpel`'s mesh at `now` already.
+    pub fn is_current(&self, scalpel: &Scalpel, options: &OpenOptions, now: f64) -> bool {
+        // The mesh logs every edit; segments, fixed vertices and samples only grow or shrink
+        // with one.
+        self.state.as_ref().is_some_and(|st| {
+            st.cursor == scalpel.dyn_mesh().edit_cursor()
+                && st.options == *options
+                && st.inputs.now == now
+                && st.inputs.taper_len == taper_length(options.width, scalpel.options().depth)
+                && st.segments.len() == scalpel.segments().len()
+                && st.fixed.len() == scalpel.fixed.len()
+                && st.samples == scalpel.drawn.len()
+        })
+    }
+
     /// Brings the opening to `scalpel`'s mesh at tool time `now`, the lips onto the drawn path
     /// (as [`super::dffd::open_displacements`]).
     pub fn update(&mut self, scalpel: &Scalpel, options: &OpenOptions, now: f64) -> OpeningUpdate {
+        if self.is_current(scalpel, options, now) {
+            return OpeningUpdate::default();
+        }
         let mesh = scalpel.dyn_mesh();
         let cursor = mesh.edit_cursor();
         let Some(inputs) = Inputs::new(scalpel, options, now, true) else {
@@ -114,6 +134,7 @@ impl LiveOpening {
                 inputs,
                 segments: segments.to_vec(),
                 fixed: scalpel.fixed.clone(),
+                samples: scalpel.drawn.len(),
                 grid,
                 cursor,
             });
@@ -205,6 +226,7 @@ impl LiveOpening {
         state.fixed.clear();
         state.fixed.extend_from_slice(&scalpel.fixed);
         state.cursor = cursor;
+        state.samples = scalpel.drawn.len();
         let mut vertices = 0;
         if cells > 0 {
             let region = Region { inner, outer };
