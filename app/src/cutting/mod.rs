@@ -32,6 +32,7 @@ pub mod live_cut;
 pub mod obstacles;
 pub mod overlay;
 pub mod pick;
+pub mod risk_worker;
 pub mod scene_cuts;
 pub mod vertices;
 pub mod wall_pick;

@@ -29,7 +29,6 @@ pub mod job_output;
 pub mod jobs;
 pub mod panels;
 pub mod risk_map;
-pub mod risk_worker;
 #[cfg(test)]
 mod smoothness_tests;
 pub mod state;

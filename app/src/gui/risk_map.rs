@@ -1,4 +1,4 @@
-//! The window's side of the risk map (the worker is [`crate::gui::risk_worker`]): which cut is
+//! The window's side of the risk map (the worker is [`crate::cutting::risk_worker`]): which cut is
 //! on screen, and when a map is drawn. A map is drawn only on the cut it was computed for: while
 //! a new one is being computed, or while the cutter is dragged in Edit mode (the live cut changes
 //! every frame), the walls show their own colour rather than a map of another cut.
