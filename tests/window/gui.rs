@@ -13,8 +13,8 @@ use cutaway::gui::{CutawayApp, Mode, StartOptions};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 
-use crate::image_compare;
 use crate::harness::no_adapter;
+use crate::image_compare;
 use crate::input::{settle, temp_dir};
 
 fn harness(
