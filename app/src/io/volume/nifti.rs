@@ -132,19 +132,15 @@ fn parse_header(bytes: &[u8], version: u8, endian: Endian) -> Header {
 }
 
 pub(crate) fn read(path: &Path) -> anyhow::Result<RawVolume> {
-    labels_of(read_samples(path)?)
+    labels_of(&read_samples(path)?)
 }
 
 /// The file as labels or as an intensity image (`super::content_rule`), read once.
 pub(crate) fn read_content(path: &Path) -> anyhow::Result<super::content_rule::RawContent> {
-    let raw = read_samples(path)?;
-    Ok(match super::content_rule::intensity_reason(&raw) {
-        Some(reason) => super::content_rule::RawContent::Image(raw, reason),
-        None => super::content_rule::RawContent::Labels(labels_of(raw)?),
-    })
+    super::content_rule::classify(read_samples(path)?, labels_of)
 }
 
-fn labels_of(raw: RawSamples) -> anyhow::Result<RawVolume> {
+fn labels_of(raw: &RawSamples) -> anyhow::Result<RawVolume> {
     let layer = super::samples::decode(&raw.bytes, raw.sample, raw.endian, raw.dims)?;
     Ok(RawVolume {
         dims: raw.dims,
