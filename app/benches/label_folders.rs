@@ -9,7 +9,8 @@
 //! labels written as separate uint8 NIfTI-1 masks of the full grid (`masks/<value>_<name>.nii.gz`)
 //! and as one uint16 map (`map.nii.gz`). For each scale it prints, from one run:
 //! - the baseline: inflating every mask file on all cores (the least any reader pays), with
-//!   `flate2`'s built-in backend and with `miniz_oxide` called directly, side by side;
+//!   `flate2` as built (its reader, as the volume readers use it) and with `miniz_oxide` called
+//!   directly, side by side (build with `flate2`'s `zlib-rs` feature to compare that backend);
 //! - `cutaway surfaces` on the folder and on the map: `surfaces_ms`, the process's wall time,
 //!   CPU time and peak resident memory (from `/usr/bin/time` where present), ms per million
 //!   voxels (all masks' voxels for the folder) and per million triangles written.
