@@ -7,7 +7,7 @@
 //! to an undo stack every frame without copying triangles.
 //!
 //! Change tracking needs no bookkeeping: the renderer remembers a [`std::sync::Weak`] to every
-//! mesh it uploaded. Replacing `SceneModel::mesh` with a new `Arc` (or mutating it through
+//! mesh it uploaded. Replacing a model's mesh (`model.mesh`) with a new `Arc` (or mutating it through
 //! `Arc::make_mut`, which moves the data out while the renderer's weak pointer exists) makes the
 //! old weak pointer stale, and the renderer re-uploads. A weak pointer also keeps its allocation
 //! reserved, so a new mesh can never reuse the old address by accident.
@@ -89,13 +89,18 @@ impl Default for Scene {
 }
 
 impl Scene {
+    /// The models' names, in scene order (what the panels offer to pick from).
+    pub fn model_names(&self) -> Vec<String> {
+        self.models.iter().map(|m| m.model.name.clone()).collect()
+    }
+
     /// Bounding box of the visible models (of all models if none is visible; empty if there are
     /// no models).
     pub fn bbox(&self) -> Aabb {
         let mut visible = Aabb::EMPTY;
         let mut all = Aabb::EMPTY;
         for model in &self.models {
-            let b = model.mesh.bbox();
+            let b = model.model.mesh.bbox();
             all = all.union(&b);
             if model.visible {
                 visible = visible.union(&b);
@@ -166,11 +171,14 @@ impl Scene {
             if !(0.0..=1.0).contains(&m.opacity) {
                 return Err(format!(
                     "model {i} ({}): opacity {} is outside 0..1",
-                    m.name, m.opacity
+                    m.model.name, m.opacity
                 ));
             }
             if m.color.iter().any(|c| !c.is_finite()) {
-                return Err(format!("model {i} ({}): colour is not finite", m.name));
+                return Err(format!(
+                    "model {i} ({}): colour is not finite",
+                    m.model.name
+                ));
             }
         }
         for (i, c) in cutters.iter().enumerate() {
