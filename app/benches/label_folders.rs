@@ -113,7 +113,11 @@ fn generate(atlas: &Path, scale: usize, count: usize, dir: &Path) -> Generated {
     let s = scale as f64;
     let half = (s - 1.0) / (2.0 * s);
     let world = glam::DAffine3::from_mat3_translation(
-        glam::DMat3::from_cols(m.matrix3.x_axis / s, m.matrix3.y_axis / s, m.matrix3.z_axis / s),
+        glam::DMat3::from_cols(
+            m.matrix3.x_axis / s,
+            m.matrix3.y_axis / s,
+            m.matrix3.z_axis / s,
+        ),
         m.transform_point3(glam::DVec3::splat(-half)),
     );
     let masks_dir = dir.join("masks");
@@ -141,10 +145,15 @@ fn sanitize(name: &str) -> String {
 /// A gzip-compressed NIfTI-1 file: `datatype` 2 (uint8) or 512 (uint16), sform = `world`.
 fn write_nifti(path: &Path, dims: [usize; 3], world: &glam::DAffine3, datatype: i16, data: &[u8]) {
     let mut h = vec![0u8; 352];
-    let put_i16 = |h: &mut Vec<u8>, at: usize, v: i16| h[at..at + 2].copy_from_slice(&v.to_le_bytes());
-    let put_f32 = |h: &mut Vec<u8>, at: usize, v: f32| h[at..at + 4].copy_from_slice(&v.to_le_bytes());
+    let put_i16 =
+        |h: &mut Vec<u8>, at: usize, v: i16| h[at..at + 2].copy_from_slice(&v.to_le_bytes());
+    let put_f32 =
+        |h: &mut Vec<u8>, at: usize, v: f32| h[at..at + 4].copy_from_slice(&v.to_le_bytes());
     h[0..4].copy_from_slice(&348i32.to_le_bytes());
-    for (k, d) in [3, dims[0], dims[1], dims[2], 1, 1, 1, 1].iter().enumerate() {
+    for (k, d) in [3, dims[0], dims[1], dims[2], 1, 1, 1, 1]
+        .iter()
+        .enumerate()
+    {
         put_i16(&mut h, 40 + 2 * k, *d as i16);
     }
     put_i16(&mut h, 70, datatype);
@@ -170,10 +179,8 @@ fn write_nifti(path: &Path, dims: [usize; 3], world: &glam::DAffine3, datatype: 
     }
     h[344..348].copy_from_slice(b"n+1\0");
     let file = std::fs::File::create(path).unwrap();
-    let mut gz = flate2::write::GzEncoder::new(
-        std::io::BufWriter::new(file),
-        flate2::Compression::new(6),
-    );
+    let mut gz =
+        flate2::write::GzEncoder::new(std::io::BufWriter::new(file), flate2::Compression::new(6));
     gz.write_all(&h).unwrap();
     gz.write_all(data).unwrap();
     gz.finish().unwrap().flush().unwrap();
@@ -255,8 +262,16 @@ fn surfaces(what: &str, input: &Path, out: &Path, voxels: u64) {
     let (cpu, peak) = std::fs::read_to_string(&timing)
         .ok()
         .and_then(|t| {
-            let f: Vec<f64> = t.split_whitespace().filter_map(|x| x.parse().ok()).collect();
-            (f.len() == 4).then(|| (format!("{:.1} s", f[1] + f[2]), format!("{:.0} MB", f[3] / 1024.0)))
+            let f: Vec<f64> = t
+                .split_whitespace()
+                .filter_map(|x| x.parse().ok())
+                .collect();
+            (f.len() == 4).then(|| {
+                (
+                    format!("{:.1} s", f[1] + f[2]),
+                    format!("{:.0} MB", f[3] / 1024.0),
+                )
+            })
         })
         .unwrap_or_else(|| ("?".into(), "?".into()));
     std::fs::remove_file(&timing).ok();

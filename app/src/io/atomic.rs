@@ -532,7 +532,7 @@ mod tests {
         // Dropped without commit: the old set stays, no staging folder.
         drop(stage(&dir, &set_of("dropped", 1)));
         assert_eq!(listing(&dir), set_of("new", 2));
-        let mut set = OutputSet::begin(&dir).unwrap();
+        let set = OutputSet::begin(&dir).unwrap();
         assert!(set.write_bytes(Path::new("../escape"), b"x").is_err());
         assert!(set.write_bytes(Path::new(".hidden"), b"x").is_err());
         std::fs::remove_dir_all(&dir).ok();
@@ -542,7 +542,7 @@ mod tests {
     fn replaced_files_of_an_earlier_set_go_and_other_files_stay() {
         let dir = temp_dir("replace-files");
         std::fs::write(dir.join("notes.txt"), "mine").unwrap();
-        let mut set = OutputSet::begin(&dir).unwrap();
+        let set = OutputSet::begin(&dir).unwrap();
         set.write_bytes(Path::new("1_a.ply"), b"old a").unwrap();
         set.write_bytes(Path::new("2_b.ply"), b"old b").unwrap();
         set.commit().unwrap();

@@ -122,12 +122,10 @@ fn read_mask(file: &Path) -> anyhow::Result<Mask> {
                 layers: vec![runs_of(raw.bytes.len(), |i| raw.bytes[i] != 0)],
             })
         } else {
-            super::samples::decode(&raw.bytes, raw.sample, raw.endian, raw.dims).map(|layer| {
-                Mask {
-                    dims: raw.dims,
-                    world_from_voxel: raw.world_from_voxel,
-                    layers: vec![runs_of(layer.len(), |i| layer.get(i) != 0)],
-                }
+            super::samples::decode(&raw.bytes, raw.sample, raw.endian, raw.dims).map(|layer| Mask {
+                dims: raw.dims,
+                world_from_voxel: raw.world_from_voxel,
+                layers: vec![runs_of(layer.len(), |i| layer.get(i) != 0)],
             })
         };
         BUFFER.with(|b| *b.borrow_mut() = raw.bytes);
