@@ -6,4 +6,5 @@
 mod anatomy;
 mod architecture;
 mod formats;
+mod volume_surfaces_exact;
 mod volumes;

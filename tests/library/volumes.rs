@@ -25,7 +25,7 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 /// The `volumes` folder of the anatomy data, or why it is missing.
-fn volumes() -> Option<PathBuf> {
+pub(crate) fn volumes() -> Option<PathBuf> {
     let root = std::env::var_os("CUTAWAY_ANATOMY")
         .map(PathBuf::from)
         .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/anatomy"));

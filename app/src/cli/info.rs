@@ -28,7 +28,7 @@ pub struct InfoArgs {
 }
 
 /// The `info --json` object. Field order is the contract's order.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Info {
     pub vertices: usize,
     pub triangles: usize,
@@ -94,13 +94,7 @@ fn volume_info(path: &Path, labels: Option<&Path>) -> anyhow::Result<Info> {
         VolumeContent::Labels(volume) => volume,
         VolumeContent::Image { image, reason } => return Ok(image_info(&image, reason)),
     };
-    let surfaces = crate::io::volume::surfaces(&volume, None, &|_| true)
-        .with_context(|| path.display().to_string())?;
-    let mut mesh = csg::Mesh::default();
-    for surface in &surfaces {
-        mesh.append(&surface.mesh);
-    }
-    let mut info = mesh_info(&mesh);
+    let mut info = surfaces_info(&volume).with_context(|| path.display().to_string())?;
     info.dims = Some(volume.dims);
     info.spacing = Some(volume.spacing());
     info.labels = Some(
@@ -115,6 +109,39 @@ fn volume_info(path: &Path, labels: Option<&Path>) -> anyhow::Result<Info> {
             })
             .collect(),
     );
+    Ok(info)
+}
+
+/// The mesh fields of a volume's label surfaces together, each surface measured by the worker
+/// that made it and dropped: no surface is kept and none is copied into one large mesh. The
+/// surfaces are separate meshes, so vertices, triangles, volume and the box add up, and
+/// `closed`/`manifold` hold for all when they hold for each; a label's cavities are its own,
+/// so `regions` is the sum of each label's regions.
+fn surfaces_info(volume: &crate::io::volume::LabelVolume) -> anyhow::Result<Info> {
+    let total = std::sync::Mutex::new((Info::default(), csg::Aabb::EMPTY, 0usize));
+    crate::io::volume::surfaces_each(
+        volume,
+        csg::labels::SurfaceOptions::default(),
+        &|_| true,
+        &|surface| {
+            let one = mesh_info(&surface.mesh);
+            let bbox = surface.mesh.bbox();
+            let mut total = total.lock().unwrap_or_else(|e| e.into_inner());
+            let (info, total_box, count) = &mut *total;
+            info.vertices += one.vertices;
+            info.triangles += one.triangles;
+            info.regions += one.regions;
+            info.closed = (*count == 0 || info.closed) && one.closed;
+            info.manifold = (*count == 0 || info.manifold) && one.manifold;
+            info.volume += one.volume;
+            *total_box = total_box.union(&bbox);
+            *count += 1;
+            true
+        },
+    )?;
+    let (mut info, bbox, _) = total.into_inner().unwrap_or_else(|e| e.into_inner());
+    info.bbox_min = bbox.min.to_array();
+    info.bbox_max = bbox.max.to_array();
     Ok(info)
 }
 

@@ -7,17 +7,20 @@
 //! replaces the surfaces of an earlier run in DIR: files named like ours (`<digits>_<name>.` and a
 //! mesh extension we write) that the new run does not write are removed at commit; other files in
 //! DIR stay.
-//! `surfaces_ms` is the wall time from opening the volume to the last file renamed.
+//! `surfaces_ms` is the wall time from opening the volume to the last file renamed, the report
+//! included.
 
 use std::collections::HashSet;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use anyhow::Context as _;
 use serde::Serialize;
 
-use crate::io::volume::{self, StructureSurface};
+use crate::io::volume::{self, Structure};
 
 #[derive(Debug, clap::Args)]
 pub struct SurfacesArgs {
@@ -108,6 +111,11 @@ pub fn run(args: &SurfacesArgs) -> anyhow::Result<()> {
 }
 
 /// All the work of `cutaway surfaces` except printing.
+///
+/// Each surface is handed over as soon as a worker has made it: the worker measures what the
+/// report needs (triangles, `closed`, volume) and a writer thread stages the file while the
+/// other surfaces are still being made, so no mesh is kept after its file is written and
+/// nothing is computed after the clock stops.
 pub fn surfaces(args: &SurfacesArgs) -> anyhow::Result<SurfacesReport> {
     let clock = Instant::now();
     if let Some(s) = args.smoothing
@@ -126,48 +134,111 @@ pub fn surfaces(args: &SurfacesArgs) -> anyhow::Result<SurfacesReport> {
         options.smoothing = smoothing;
     }
     options.decimate = args.decimate;
-    let surfaces = volume::surfaces_with(&volume, options, &|_| true)
-        .with_context(|| args.volume.display().to_string())?;
-    let names = file_names(&surfaces, args.format.extension());
-    let files: Vec<PathBuf> = names.iter().map(|n| args.out.join(n)).collect();
-    write_set(&args.out, &names, &surfaces)?;
-    let surfaces_ms = clock.elapsed().as_secs_f64() * 1e3;
-    let entries = surfaces
-        .iter()
-        .zip(&files)
-        .map(|(s, file)| {
-            let report = s.mesh.report();
-            SurfaceEntry {
-                value: s.structure.value,
-                name: s.structure.name.clone(),
-                color: s.structure.color,
-                voxels: s.structure.voxels,
-                triangles: s.mesh.triangles.len(),
-                closed: report.closed,
-                volume: s.mesh.volume(),
-                file: file.display().to_string(),
+    let structures = &volume.structures;
+    let names = file_names(structures, args.format.extension());
+    let mut set = crate::io::OutputSet::begin(&args.out)?;
+    let facts: Mutex<Vec<Option<MeshFacts>>> = Mutex::new(vec![None; structures.len()]);
+    let write_error: Mutex<Option<anyhow::Error>> = Mutex::new(None);
+    let stop = AtomicBool::new(false);
+    let made = std::thread::scope(|scope| {
+        let (to_writer, from_workers) = std::sync::mpsc::channel::<(usize, csg::Mesh)>();
+        let writer = scope.spawn(|| {
+            for (index, mesh) in from_workers {
+                if stop.load(Ordering::Relaxed) {
+                    continue;
+                }
+                if let Err(e) = set.write_mesh(Path::new(&names[index]), &mesh) {
+                    *write_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
+                    stop.store(true, Ordering::Relaxed);
+                }
             }
+        });
+        let to_writer = Mutex::new(to_writer);
+        let made = volume::surfaces_each(&volume, options, &|_| true, &|surface| {
+            let key = (surface.structure.value, surface.structure.layer);
+            let Ok(index) = structures.binary_search_by_key(&key, |s| (s.value, s.layer)) else {
+                return true;
+            };
+            let measured = MeshFacts::of(&surface.mesh);
+            lock(&facts)[index] = Some(measured);
+            let sent = lock(&to_writer).send((index, surface.mesh)).is_ok();
+            sent && !stop.load(Ordering::Relaxed)
+        });
+        drop(to_writer);
+        writer.join().expect("the surface writer thread panicked");
+        made
+    });
+    if let Some(e) = write_error.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        return Err(e);
+    }
+    made.with_context(|| args.volume.display().to_string())?;
+    for earlier in earlier_surface_files(&args.out)? {
+        set.replace_file(&earlier)?;
+    }
+    set.commit()?;
+    let facts = facts.into_inner().unwrap_or_else(|e| e.into_inner());
+    let entries = structures
+        .iter()
+        .zip(&names)
+        .zip(facts)
+        .filter_map(|((s, name), facts)| {
+            let facts = facts?;
+            Some(SurfaceEntry {
+                value: s.value,
+                name: s.name.clone(),
+                color: s.color,
+                voxels: s.voxels,
+                triangles: facts.triangles,
+                closed: facts.closed,
+                volume: facts.volume,
+                file: args.out.join(name).display().to_string(),
+            })
         })
-        .collect();
+        .collect::<Vec<_>>();
+    let surfaces_ms = clock.elapsed().as_secs_f64() * 1e3;
     Ok(SurfacesReport {
-        labels: surfaces.len(),
+        labels: entries.len(),
         surfaces_ms,
         surfaces: entries,
     })
 }
 
-/// `<value>_<name>.<ext>` per surface, the name made safe for every file system (letters,
+fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// What the report says of one surface, measured by the worker that made it.
+#[derive(Clone, Copy, Debug)]
+struct MeshFacts {
+    triangles: usize,
+    closed: bool,
+    volume: f64,
+}
+
+impl MeshFacts {
+    /// `closed` by the linear check first: label surfaces are closed and oriented by
+    /// construction, so the full report runs only where that check fails.
+    fn of(mesh: &csg::Mesh) -> MeshFacts {
+        MeshFacts {
+            triangles: mesh.triangles.len(),
+            closed: mesh.is_closed_oriented() || mesh.report().closed,
+            volume: mesh.volume(),
+        }
+    }
+}
+
+/// `<value>_<name>.<ext>` per structure, the name made safe for every file system (letters,
 /// digits, `-`, `_` and `.` kept, anything else `_`; at most 80 characters); a name that would
 /// repeat (two layers with the same value and name) gets `_layer<n>`.
-pub fn file_names(surfaces: &[StructureSurface], ext: &str) -> Vec<String> {
+pub fn file_names(structures: &[Structure], ext: &str) -> Vec<String> {
     let mut used = HashSet::new();
-    surfaces
+    structures
         .iter()
         .map(|s| {
-            let base = format!("{}_{}", s.structure.value, sanitize(&s.structure.name));
+            let base = format!("{}_{}", s.value, sanitize(&s.name));
             let mut name = format!("{base}.{ext}");
             if !used.insert(name.to_ascii_lowercase()) {
-                name = format!("{base}_layer{}.{ext}", s.structure.layer);
+                name = format!("{base}_layer{}.{ext}", s.layer);
                 used.insert(name.to_ascii_lowercase());
             }
             name
@@ -193,19 +264,6 @@ fn sanitize(name: &str) -> String {
     } else {
         cleaned.to_owned()
     }
-}
-
-/// Writes every surface into `dir` as one [`crate::io::OutputSet`]: on any error none of the new
-/// files is in place, and a kill leaves the old set or the new one (see `io::atomic`).
-fn write_set(dir: &Path, names: &[String], surfaces: &[StructureSurface]) -> anyhow::Result<()> {
-    let mut set = crate::io::OutputSet::begin(dir)?;
-    for (name, s) in names.iter().zip(surfaces) {
-        set.write_mesh(Path::new(name), &s.mesh)?;
-    }
-    for earlier in earlier_surface_files(dir)? {
-        set.replace_file(&earlier)?;
-    }
-    set.commit()
 }
 
 /// The regular files directly in `dir` named like a surface of an earlier run: `<digits>_`, then
@@ -241,18 +299,14 @@ fn is_surface_file_name(name: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::io::volume::Structure;
 
-    fn surface(value: u32, layer: usize, name: &str) -> StructureSurface {
-        StructureSurface {
-            structure: Structure {
-                layer,
-                value,
-                name: name.into(),
-                color: [0, 0, 0],
-                voxels: 1,
-            },
-            mesh: csg::Mesh::default(),
+    fn surface(value: u32, layer: usize, name: &str) -> Structure {
+        Structure {
+            layer,
+            value,
+            name: name.into(),
+            color: [0, 0, 0],
+            voxels: 1,
         }
     }
 

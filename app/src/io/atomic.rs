@@ -184,7 +184,8 @@ fn check_relative(relative: &Path) -> anyhow::Result<()> {
 pub struct OutputSet {
     dir: PathBuf,
     staging: PathBuf,
-    files: Vec<PathBuf>,
+    /// The files staged so far; behind a lock so that files are staged from several threads.
+    files: std::sync::Mutex<Vec<PathBuf>>,
     replaced_folders: Vec<PathBuf>,
     /// Files of an earlier set that this set replaces: removed at commit unless the set holds them.
     replaced_files: Vec<PathBuf>,
@@ -205,7 +206,7 @@ impl OutputSet {
         Ok(OutputSet {
             dir: dir.to_path_buf(),
             staging,
-            files: Vec::new(),
+            files: std::sync::Mutex::new(Vec::new()),
             replaced_folders: Vec::new(),
             replaced_files: Vec::new(),
             decided: false,
@@ -218,29 +219,42 @@ impl OutputSet {
     }
 
     /// Stages the file `relative` (to the set's folder) with the content `fill` writes. Errors
-    /// name the final path.
+    /// name the final path. Files may be staged from several threads at once.
     pub fn write(
-        &mut self,
+        &self,
         relative: &Path,
         fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
     ) -> anyhow::Result<()> {
         let final_path = self.final_path(relative);
         let context = || final_path.display().to_string();
         check_relative(relative).with_context(context)?;
-        if self.files.iter().any(|f| f == relative) {
-            anyhow::bail!("{}: named twice in one output set", final_path.display());
+        // The name is taken before the file is written, so two threads cannot both stage it.
+        {
+            let mut files = self.staged_files();
+            if files.iter().any(|f| f == relative) {
+                anyhow::bail!("{}: named twice in one output set", final_path.display());
+            }
+            files.push(relative.to_path_buf());
         }
+        let forget = || self.staged_files().retain(|f| f != relative);
         let staged = self.staging.join(relative);
-        if let Some(parent) = staged.parent() {
-            std::fs::create_dir_all(parent).with_context(context)?;
+        let written = match staged.parent() {
+            Some(parent) => std::fs::create_dir_all(parent),
+            None => Ok(()),
         }
-        write_temp(&staged, fill).with_context(context)?;
-        self.files.push(relative.to_path_buf());
-        Ok(())
+        .and_then(|()| write_temp(&staged, fill));
+        if written.is_err() {
+            forget();
+        }
+        written.with_context(context)
+    }
+
+    fn staged_files(&self) -> std::sync::MutexGuard<'_, Vec<PathBuf>> {
+        self.files.lock().unwrap_or_else(|e| e.into_inner())
     }
 
     /// Stages `bytes` as the file `relative`.
-    pub fn write_bytes(&mut self, relative: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    pub fn write_bytes(&self, relative: &Path, bytes: &[u8]) -> anyhow::Result<()> {
         self.write(relative, |w| w.write_all(bytes))
     }
 
@@ -284,7 +298,7 @@ impl OutputSet {
         after_rename: &mut dyn FnMut(usize) -> anyhow::Result<()>,
     ) -> anyhow::Result<()> {
         let mut marker = String::new();
-        for f in &self.files {
+        for f in self.staged_files().iter() {
             marker.push_str(&format!("file {}\n", f.display()));
         }
         for f in &self.replaced_folders {
@@ -518,7 +532,7 @@ mod tests {
         // Dropped without commit: the old set stays, no staging folder.
         drop(stage(&dir, &set_of("dropped", 1)));
         assert_eq!(listing(&dir), set_of("new", 2));
-        let mut set = OutputSet::begin(&dir).unwrap();
+        let set = OutputSet::begin(&dir).unwrap();
         assert!(set.write_bytes(Path::new("../escape"), b"x").is_err());
         assert!(set.write_bytes(Path::new(".hidden"), b"x").is_err());
         std::fs::remove_dir_all(&dir).ok();
@@ -528,7 +542,7 @@ mod tests {
     fn replaced_files_of_an_earlier_set_go_and_other_files_stay() {
         let dir = temp_dir("replace-files");
         std::fs::write(dir.join("notes.txt"), "mine").unwrap();
-        let mut set = OutputSet::begin(&dir).unwrap();
+        let set = OutputSet::begin(&dir).unwrap();
         set.write_bytes(Path::new("1_a.ply"), b"old a").unwrap();
         set.write_bytes(Path::new("2_b.ply"), b"old b").unwrap();
         set.commit().unwrap();

@@ -500,7 +500,7 @@ pub fn write_obj_polylines(path: &Path, polylines: &[Vec<glam::DVec3>]) -> anyho
 
 impl OutputSet {
     /// Stages `mesh` as the file `relative` of the set, as [`write_mesh`] writes it.
-    pub fn write_mesh(&mut self, relative: &Path, mesh: &Mesh) -> anyhow::Result<()> {
+    pub fn write_mesh(&self, relative: &Path, mesh: &Mesh) -> anyhow::Result<()> {
         let fill = mesh_writer(relative, mesh, &[])
             .with_context(|| self.final_path(relative).display().to_string())?;
         self.write(relative, fill)

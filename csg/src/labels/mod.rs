@@ -306,6 +306,27 @@ pub fn label_surfaces_timed<T: LabelValue>(
     options: &SurfaceOptions,
     progress: &(dyn Fn(f32) -> bool + Sync),
 ) -> Result<(Vec<LabelSurface>, PhaseTimes), LabelSurfaceError> {
+    let made = std::sync::Mutex::new(Vec::new());
+    let times = label_surfaces_each(grid, options, progress, &|surface| {
+        made.lock().unwrap_or_else(|e| e.into_inner()).push(surface);
+        true
+    })?;
+    let mut surfaces = made.into_inner().unwrap_or_else(|e| e.into_inner());
+    surfaces.sort_by_key(|s| s.value);
+    Ok((surfaces, times))
+}
+
+/// [`label_surfaces_timed`] handing each surface to `each` as soon as it is made, on the worker
+/// that made it and in whatever order the workers finish, instead of collecting them: a caller
+/// writes or shows the first surfaces while the others are made, and keeps only what it needs
+/// of each. `each` returns false to stop (the call then ends in
+/// [`LabelSurfaceError::Cancelled`]). Largest boxes are made first.
+pub fn label_surfaces_each<T: LabelValue>(
+    grid: &LabelGrid<T>,
+    options: &SurfaceOptions,
+    progress: &(dyn Fn(f32) -> bool + Sync),
+    each: &(dyn Fn(LabelSurface) -> bool + Sync),
+) -> Result<PhaseTimes, LabelSurfaceError> {
     grid.sanity_check()?;
     if !(0.0..=1.0).contains(&options.smoothing) {
         return Err(LabelSurfaceError::BadSmoothing {
@@ -366,33 +387,28 @@ pub fn label_surfaces_timed<T: LabelValue>(
                 })?;
                 lap(&mut t.decimate_s);
             }
+            let kept = each(LabelSurface {
+                value: stats.value,
+                voxels: stats.voxels,
+                mesh,
+            });
             let finished =
                 done.fetch_add(stats.box_voxels(), Ordering::Relaxed) + stats.box_voxels();
-            if !progress(finished as f32 / total as f32) {
+            if !kept || !progress(finished as f32 / total as f32) {
                 cancelled.store(true, Ordering::Relaxed);
             }
-            Ok((
-                LabelSurface {
-                    value: stats.value,
-                    voxels: stats.voxels,
-                    mesh,
-                },
-                t,
-            ))
+            Ok(t)
         })
         .collect::<Result<Vec<_>, _>>()?;
     if cancelled.load(Ordering::Relaxed) {
         return Err(LabelSurfaceError::Cancelled);
     }
-    let mut surfaces = Vec::with_capacity(results.len());
-    for (surface, t) in results {
-        times.add(&t);
-        surfaces.push(surface);
+    for t in &results {
+        times.add(t);
     }
-    surfaces.sort_by_key(|s| s.value);
     // The workers report in whatever order they finish; the last word is "done".
     progress(1.0);
-    Ok((surfaces, times))
+    Ok(times)
 }
 
 /// Voxel count per label value in one pass (for `info`): ascending `(value, count)`, 0 excluded.

@@ -49,6 +49,7 @@ fn assert_valid(surface: &LabelSurface) -> usize {
         surface.value
     );
     assert_eq!(report.degenerate_triangles, 0, "label {}", surface.value);
+    assert!(mesh.is_closed_oriented(), "label {}", surface.value);
     assert!(mesh.volume() > 0.0, "label {} not outward", surface.value);
     let target = TargetIndex::build(mesh.clone()).unwrap();
     if let Err(e) = crate::boolean::prepare_cutter(&target, &[mesh]) {
@@ -401,6 +402,37 @@ fn progress_runs_to_one_and_cancels() {
         label_surfaces(&grid, &SurfaceOptions::default(), &|p| p < 0.3),
         Err(LabelSurfaceError::Cancelled)
     );
+}
+
+#[test]
+fn each_surface_is_handed_over_once_and_a_refusal_stops() {
+    let dims = [9, 8, 7];
+    let data = grid_data(dims, |i, j, k| {
+        ((i / 2 + 2 * (j / 3) + 3 * (k / 2)) % 6) as u16
+    });
+    let grid = LabelGrid::new(dims, &data, DAffine3::IDENTITY).unwrap();
+    let options = SurfaceOptions::default();
+    let collected = label_surfaces(&grid, &options, &|_| true).unwrap();
+    assert!(collected.len() >= 5, "{} labels", collected.len());
+    let handed = std::sync::Mutex::new(Vec::new());
+    label_surfaces_each(&grid, &options, &|_| true, &|s| {
+        handed.lock().unwrap().push(s);
+        true
+    })
+    .unwrap();
+    let mut handed = handed.into_inner().unwrap();
+    handed.sort_by_key(|s| s.value);
+    assert_eq!(handed, collected);
+    for s in &handed {
+        assert!(s.mesh.is_closed_oriented(), "label {}", s.value);
+    }
+    let calls = std::sync::atomic::AtomicUsize::new(0);
+    let stopped = label_surfaces_each(&grid, &options, &|_| true, &|_| {
+        calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        false
+    });
+    assert_eq!(stopped, Err(LabelSurfaceError::Cancelled));
+    assert!(calls.into_inner() < collected.len());
 }
 
 proptest! {

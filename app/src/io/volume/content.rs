@@ -38,7 +38,28 @@ pub fn read_content(path: &Path, labels: Option<&Path>) -> anyhow::Result<Volume
     .with_context(|| path.display().to_string())?;
     match raw {
         RawContent::Labels(raw) => {
-            super::read_volume_labels(path, labels, Some(raw)).map(VolumeContent::Labels)
+            let volume = super::read_volume_labels(path, labels, Some(raw))?;
+            if !has_too_many_values(&volume) {
+                return Ok(VolumeContent::Labels(volume));
+            }
+            // Whole non-negative values, few of them in the rule's sample but more than the
+            // limit in the file: an image after all (rare), read again at its own type.
+            drop(volume);
+            let raw = match super::file_format(path)? {
+                VolumeFormat::Nrrd => super::nrrd::read_samples(path),
+                VolumeFormat::Nifti => super::nifti::read_samples(path),
+            }
+            .with_context(|| path.display().to_string())?;
+            let reason = format!(
+                "more than {MAX_LABEL_VALUES} distinct {} values",
+                raw.sample.name()
+            );
+            let image = super::intensity::from_samples(path, raw)
+                .with_context(|| path.display().to_string())?;
+            Ok(VolumeContent::Image {
+                image: Box::new(image),
+                reason,
+            })
         }
         RawContent::Image(raw, reason) => {
             let image = super::intensity::from_samples(path, raw)
@@ -49,6 +70,17 @@ pub fn read_content(path: &Path, labels: Option<&Path>) -> anyhow::Result<Volume
             })
         }
     }
+}
+
+/// Whether a one-layer label map holds more distinct values (background included) than
+/// [`MAX_LABEL_VALUES`]: by the rule, an intensity image.
+fn has_too_many_values(volume: &LabelVolume) -> bool {
+    if volume.layers.len() != 1 {
+        return false;
+    }
+    let voxels: u64 = volume.dims.iter().map(|&d| d as u64).product();
+    let labelled: u64 = volume.structures.iter().map(|s| s.voxels).sum();
+    volume.structures.len() + usize::from(labelled < voxels) > MAX_LABEL_VALUES
 }
 
 /// Whether a file opened as structures is an intensity image instead: `Some(reason)`. Reads the

@@ -12,6 +12,16 @@
 //!
 //! Otherwise it is a label map. An 8-bit scan without negative values (at most 256 values) is
 //! therefore read as labels; open it with `--image` / File → Open Image… instead.
+//!
+//! # Deciding without a pass of its own
+//! [`classify`] applies the rule exactly, but reads every sample only where it must. A scan
+//! shows its nature in any sample (CT air is negative everywhere, MR floats have fractions, a
+//! scan's grey values are thousands), so the rule first runs on an evenly spread sample
+//! ([`SAMPLE`] values): whatever it finds there is a fact about the file, and the file is an
+//! image. Otherwise the samples are decoded as labels, a pass needed anyway, which refuses a
+//! negative or fractional value on its own; only then does the full rule run, to tell an image
+//! from a broken label map. The distinct-value limit is checked on the labels' counts, which
+//! reading a label map makes anyway ([`super::content`]).
 
 use std::collections::HashSet;
 
@@ -27,7 +37,54 @@ pub(crate) enum RawContent {
     Image(RawSamples, String),
 }
 
-/// Why `raw` is an intensity image, or `None` for a label map (see [the rule](self)).
+/// Values of a one-layer file the rule looks at before decoding (see the module doc).
+pub const SAMPLE: usize = 1 << 16;
+
+/// The rule applied to `raw` (see the module doc): an image with its reason, or the label map
+/// `labels_of` decodes. `labels_of`'s error is returned when the whole file passes the rule.
+pub(crate) fn classify(
+    raw: RawSamples,
+    labels_of: impl FnOnce(&RawSamples) -> anyhow::Result<super::RawVolume>,
+) -> anyhow::Result<RawContent> {
+    if let Some(reason) = sampled_intensity_reason(&raw) {
+        return Ok(RawContent::Image(raw, reason));
+    }
+    match labels_of(&raw) {
+        Ok(volume) => Ok(RawContent::Labels(volume)),
+        Err(error) => match intensity_reason(&raw) {
+            Some(reason) => Ok(RawContent::Image(raw, reason)),
+            None => Err(error),
+        },
+    }
+}
+
+/// [`intensity_reason`] on at most [`SAMPLE`] values spread evenly over the file: `Some` is
+/// exact (the value it names is in the file), `None` says nothing about the values not read.
+fn sampled_intensity_reason(raw: &RawSamples) -> Option<String> {
+    let size = raw.sample.size();
+    let count = raw.bytes.len() / size;
+    if count <= SAMPLE {
+        return intensity_reason(raw);
+    }
+    let stride = count.div_ceil(SAMPLE);
+    let mut bytes = Vec::with_capacity(SAMPLE * size);
+    for index in (0..count).step_by(stride) {
+        bytes.extend_from_slice(&raw.bytes[index * size..(index + 1) * size]);
+    }
+    let sampled = RawSamples {
+        dims: [bytes.len() / size, 1, 1],
+        world_from_voxel: raw.world_from_voxel,
+        layers: raw.layers,
+        sample: raw.sample,
+        endian: raw.endian,
+        bytes,
+        scale: raw.scale,
+    };
+    intensity_reason(&sampled)
+}
+
+/// Why `raw` is an intensity image, or `None` for a label map (see [the rule](self)); reads
+/// every sample.
 pub(crate) fn intensity_reason(raw: &RawSamples) -> Option<String> {
     if raw.layers != 1 {
         return None;
@@ -120,6 +177,45 @@ mod tests {
         // A layered file is a segmentation whatever its values.
         let layered = le(&[-1i16, 2], i16::to_le_bytes);
         assert_eq!(intensity_reason(&raw(SampleType::I16, layered, 2)), None);
+    }
+
+    fn decode(raw: &RawSamples) -> anyhow::Result<super::super::RawVolume> {
+        let layer = super::super::samples::decode(&raw.bytes, raw.sample, raw.endian, raw.dims)?;
+        Ok(super::super::RawVolume {
+            dims: raw.dims,
+            world_from_voxel: raw.world_from_voxel,
+            layers: vec![layer],
+            names: Vec::new(),
+        })
+    }
+
+    #[test]
+    fn classify_decides_from_a_sample_and_stays_exact() {
+        let n = 4 * SAMPLE + 3;
+        // A CT: negative everywhere, decided by the sample alone (no decoding).
+        let ct: Vec<i16> = (0..n).map(|i| (i % 3000) as i16 - 1000).collect();
+        let ct = raw(SampleType::I16, le(&ct, i16::to_le_bytes), 1);
+        match classify(ct, |_| panic!("a scan is not decoded")).unwrap() {
+            RawContent::Image(_, why) => assert!(why.starts_with("negative int16"), "{why}"),
+            RawContent::Labels(_) => panic!("a CT read as labels"),
+        }
+        // Labels: decoded.
+        let labels: Vec<i16> = (0..n).map(|i| (i / 1000 % 7) as i16).collect();
+        let labels = raw(SampleType::I16, le(&labels, i16::to_le_bytes), 1);
+        assert!(matches!(
+            classify(labels, decode).unwrap(),
+            RawContent::Labels(_)
+        ));
+        // One negative value between the sampled ones: the decode refuses it and the full rule
+        // names it, as the full scan did.
+        let mut hidden: Vec<i16> = vec![2; n];
+        hidden[1] = -5;
+        let hidden = raw(SampleType::I16, le(&hidden, i16::to_le_bytes), 1);
+        assert!(sampled_intensity_reason(&hidden).is_none());
+        match classify(hidden, decode).unwrap() {
+            RawContent::Image(_, why) => assert_eq!(why, "negative int16 values, such as -5"),
+            RawContent::Labels(_) => panic!("a negative value read as a label"),
+        }
     }
 
     #[test]

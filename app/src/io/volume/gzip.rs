@@ -35,25 +35,29 @@ pub fn inflate_exact(compressed: &[u8], expected: usize, what: &str) -> anyhow::
 
 /// Reads from `reader` exactly `expected` bytes; fewer is an error. Growth as for
 /// [`inflate_exact`], bounded by `compressed_len` × the deflate ratio.
-pub fn read_exact_limited(
+/// Appends to `out`, whose capacity is used first (a caller reading many files of one size, a
+/// mask folder, inflates each into the same buffer instead of touching a fresh one per file).
+pub fn read_exact_limited_onto(
     reader: &mut dyn Read,
     expected: usize,
     compressed_len: usize,
     what: &str,
-) -> anyhow::Result<Vec<u8>> {
+    out: &mut Vec<u8>,
+) -> anyhow::Result<()> {
+    let before = out.len();
     let start = expected.min(compressed_len.saturating_mul(MAX_RATIO));
-    let mut out = Vec::with_capacity(start);
+    out.reserve(start);
     reader
         .take(expected as u64)
-        .read_to_end(&mut out)
+        .read_to_end(out)
         .map_err(|e| anyhow::anyhow!("corrupt or truncated gzip {what} ({e})"))?;
-    if out.len() < expected {
+    if out.len() - before < expected {
         anyhow::bail!(
             "{what} is {} bytes, but the header's sizes and type need {expected}",
-            out.len()
+            out.len() - before
         );
     }
-    Ok(out)
+    Ok(())
 }
 
 #[cfg(test)]

@@ -1,17 +1,22 @@
 //! A directory of binary masks (as TotalSegmentator writes them): one structure per volume file,
 //! named after the file (`left_lung.nii.gz` → `left_lung`), every file on the same grid.
 //!
-//! Masks are read one after another (a whole-body folder holds over a hundred full-size masks,
-//! so they are never all in memory at once) and packed into label layers: mask number n (files
-//! sorted by name, counted from 1) becomes value n in the first layer where it overlaps no mask
-//! packed before, so masks that do not overlap cost one label map together. Any non-zero voxel
-//! is inside the mask. A different grid (dims, or a matrix differing by more than 0.001 mm) is
-//! an error naming both files.
+//! Masks are read in parallel, each thread inflating its files into one buffer it reuses (a
+//! whole-body folder holds over a hundred full-size masks, mostly zeros: a fresh full-size
+//! buffer per file would be touched, page by page, a hundred times), and each mask is kept only
+//! as the runs of its non-zero voxels along x. The runs are then packed into label layers in
+//! file order: mask number n (files sorted by name, counted from 1) becomes value n in the first
+//! layer where it overlaps no mask packed before, so masks that do not overlap cost one label
+//! map together. Any non-zero voxel is inside the mask. A different grid (dims, or a matrix
+//! differing by more than 0.001 mm) is an error naming both files.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 
+use rayon::prelude::*;
+
+use super::samples::SampleType;
 use super::{LabelData, LabelInfo, RawVolume, VolumeFormat};
 
 /// The volume files directly inside `dir`, sorted (sub-folders are not searched: a mask folder
@@ -47,18 +52,21 @@ pub(crate) fn read(dir: &Path) -> anyhow::Result<RawVolume> {
             u16::MAX
         );
     }
+    let masks = files
+        .par_iter()
+        .map(|file| read_mask(file).with_context(|| file.display().to_string()))
+        .collect::<anyhow::Result<Vec<Mask>>>()?;
     let mut packed: Option<Packed> = None;
     let mut names = Vec::with_capacity(files.len());
-    for (index, file) in files.iter().enumerate() {
-        let mask = super::read_file(file).with_context(|| file.display().to_string())?;
+    for (index, (file, mask)) in files.iter().zip(&masks).enumerate() {
         let value = index as u16 + 1;
         match &mut packed {
-            None => packed = Some(Packed::new(file, &mask)),
-            Some(p) => p.check_grid(file, &mask)?,
+            None => packed = Some(Packed::new(file, mask)),
+            Some(p) => p.check_grid(file, mask)?,
         }
         let p = packed.as_mut().expect("set above");
-        for layer in &mask.layers {
-            p.add(layer, value)
+        for runs in &mask.layers {
+            p.add(runs, value)
                 .with_context(|| format!("{}: more than 256 overlapping masks", file.display()))?;
         }
         names.push(LabelInfo {
@@ -68,6 +76,7 @@ pub(crate) fn read(dir: &Path) -> anyhow::Result<RawVolume> {
             color: None,
         });
     }
+    drop(masks);
     let p = packed.expect("at least one file");
     let narrow = files.len() <= u8::MAX as usize;
     Ok(RawVolume {
@@ -88,6 +97,70 @@ pub(crate) fn read(dir: &Path) -> anyhow::Result<RawVolume> {
     })
 }
 
+/// One mask file: its grid and, per layer, the runs `[start, end)` of flat voxel indices that
+/// are not zero.
+struct Mask {
+    dims: [usize; 3],
+    world_from_voxel: glam::DAffine3,
+    layers: Vec<Vec<[usize; 2]>>,
+}
+
+thread_local! {
+    /// The inflate buffer of this thread's mask files (see the module doc).
+    static BUFFER: std::cell::RefCell<Vec<u8>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+fn read_mask(file: &Path) -> anyhow::Result<Mask> {
+    if super::file_format(file)? == VolumeFormat::Nifti {
+        let buffer = BUFFER.with(|b| std::mem::take(&mut *b.borrow_mut()));
+        let raw = super::nifti::read_samples_reusing(file, buffer)?;
+        let mask = if raw.sample == SampleType::U8 {
+            // The common case (TotalSegmentator writes uint8): runs straight from the bytes.
+            Ok(Mask {
+                dims: raw.dims,
+                world_from_voxel: raw.world_from_voxel,
+                layers: vec![runs_of(raw.bytes.len(), |i| raw.bytes[i] != 0)],
+            })
+        } else {
+            super::samples::decode(&raw.bytes, raw.sample, raw.endian, raw.dims).map(|layer| Mask {
+                dims: raw.dims,
+                world_from_voxel: raw.world_from_voxel,
+                layers: vec![runs_of(layer.len(), |i| layer.get(i) != 0)],
+            })
+        };
+        BUFFER.with(|b| *b.borrow_mut() = raw.bytes);
+        return mask;
+    }
+    let volume = super::read_file(file)?;
+    Ok(Mask {
+        dims: volume.dims,
+        world_from_voxel: volume.world_from_voxel,
+        layers: volume
+            .layers
+            .iter()
+            .map(|layer| runs_of(layer.len(), |i| layer.get(i) != 0))
+            .collect(),
+    })
+}
+
+/// The runs `[start, end)` of `0..n` where `inside` holds.
+fn runs_of(n: usize, inside: impl Fn(usize) -> bool) -> Vec<[usize; 2]> {
+    let mut runs = Vec::new();
+    let mut i = 0;
+    while i < n {
+        if inside(i) {
+            let start = i;
+            while i < n && inside(i) {
+                i += 1;
+            }
+            runs.push([start, i]);
+        } else {
+            i += 1;
+        }
+    }
+    runs
+}
+
 /// Masks packed so far.
 struct Packed {
     first: PathBuf,
@@ -97,7 +170,7 @@ struct Packed {
 }
 
 impl Packed {
-    fn new(file: &Path, mask: &RawVolume) -> Packed {
+    fn new(file: &Path, mask: &Mask) -> Packed {
         Packed {
             first: file.to_path_buf(),
             dims: mask.dims,
@@ -106,7 +179,7 @@ impl Packed {
         }
     }
 
-    fn check_grid(&self, file: &Path, mask: &RawVolume) -> anyhow::Result<()> {
+    fn check_grid(&self, file: &Path, mask: &Mask) -> anyhow::Result<()> {
         let a = self.world_from_voxel.to_cols_array();
         let b = mask.world_from_voxel.to_cols_array();
         let same_matrix = a.iter().zip(&b).all(|(x, y)| (x - y).abs() <= 1e-3);
@@ -122,17 +195,16 @@ impl Packed {
         Ok(())
     }
 
-    /// Puts the non-zero voxels of `mask` into the first layer they do not overlap.
-    fn add(&mut self, mask: &LabelData, value: u16) -> anyhow::Result<()> {
-        let inside = |i: usize| mask.get(i) != 0;
-        let n = mask.len();
-        if !(0..n).any(inside) {
+    /// Puts the voxels of `runs` into the first layer they do not overlap.
+    fn add(&mut self, runs: &[[usize; 2]], value: u16) -> anyhow::Result<()> {
+        if runs.is_empty() {
             return Ok(());
         }
-        let free = self
-            .layers
-            .iter()
-            .position(|layer| (0..n).all(|i| !inside(i) || layer[i] == 0));
+        let n = self.dims.iter().product();
+        let free = self.layers.iter().position(|layer| {
+            runs.iter()
+                .all(|&[start, end]| layer[start..end].iter().all(|&v| v == 0))
+        });
         let layer = match free {
             Some(l) => l,
             None if self.layers.len() < 256 => {
@@ -142,10 +214,8 @@ impl Packed {
             None => anyhow::bail!("no free layer"),
         };
         let target = &mut self.layers[layer];
-        for (i, v) in target.iter_mut().enumerate() {
-            if inside(i) {
-                *v = value;
-            }
+        for &[start, end] in runs {
+            target[start..end].fill(value);
         }
         Ok(())
     }

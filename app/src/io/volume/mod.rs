@@ -468,11 +468,30 @@ pub fn surfaces(
 /// replaced by each layer's structures.
 pub fn surfaces_with(
     volume: &LabelVolume,
-    mut options: csg::labels::SurfaceOptions,
+    options: csg::labels::SurfaceOptions,
     progress: &(dyn Fn(f32) -> bool + Sync),
 ) -> anyhow::Result<Vec<StructureSurface>> {
+    let made = std::sync::Mutex::new(Vec::with_capacity(volume.structures.len()));
+    surfaces_each(volume, options, progress, &|surface| {
+        made.lock().unwrap_or_else(|e| e.into_inner()).push(surface);
+        true
+    })?;
+    let mut out = made.into_inner().unwrap_or_else(|e| e.into_inner());
+    out.sort_by_key(|s| (s.structure.value, s.structure.layer));
+    Ok(out)
+}
+
+/// [`surfaces_with`] handing each structure's surface to `each` as soon as it is made (on the
+/// worker that made it, in no particular order), so a caller writes or shows the first
+/// structures while the others are made and keeps only what it needs. `each` returns false to
+/// stop; the call then ends in the cancelled error.
+pub fn surfaces_each(
+    volume: &LabelVolume,
+    mut options: csg::labels::SurfaceOptions,
+    progress: &(dyn Fn(f32) -> bool + Sync),
+    each: &(dyn Fn(StructureSurface) -> bool + Sync),
+) -> anyhow::Result<()> {
     let layers = volume.layers.len();
-    let mut out = Vec::with_capacity(volume.structures.len());
     for (layer, data) in volume.layers.iter().enumerate() {
         let wanted: Vec<&Structure> = volume
             .structures
@@ -484,22 +503,23 @@ pub fn surfaces_with(
         }
         options.only = Some(wanted.iter().map(|s| s.value).collect());
         let layer_progress = |f: f32| progress((layer as f32 + f) / layers as f32);
-        let meshes = match data {
-            LabelData::U8(v) => layer_surfaces(volume, v, &options, &layer_progress)?,
-            LabelData::U16(v) => layer_surfaces(volume, v, &options, &layer_progress)?,
-            LabelData::U32(v) => layer_surfaces(volume, v, &options, &layer_progress)?,
+        let layer_each = |surface: csg::labels::LabelSurface| match wanted
+            .iter()
+            .find(|s| s.value == surface.value)
+        {
+            Some(structure) => each(StructureSurface {
+                structure: (*structure).clone(),
+                mesh: surface.mesh,
+            }),
+            None => true,
         };
-        for surface in meshes {
-            if let Some(structure) = wanted.iter().find(|s| s.value == surface.value) {
-                out.push(StructureSurface {
-                    structure: (*structure).clone(),
-                    mesh: surface.mesh,
-                });
-            }
+        match data {
+            LabelData::U8(v) => layer_surfaces(volume, v, &options, &layer_progress, &layer_each)?,
+            LabelData::U16(v) => layer_surfaces(volume, v, &options, &layer_progress, &layer_each)?,
+            LabelData::U32(v) => layer_surfaces(volume, v, &options, &layer_progress, &layer_each)?,
         }
     }
-    out.sort_by_key(|s| (s.structure.value, s.structure.layer));
-    Ok(out)
+    Ok(())
 }
 
 fn layer_surfaces<T: csg::labels::LabelValue>(
@@ -507,9 +527,11 @@ fn layer_surfaces<T: csg::labels::LabelValue>(
     data: &[T],
     options: &csg::labels::SurfaceOptions,
     progress: &(dyn Fn(f32) -> bool + Sync),
-) -> anyhow::Result<Vec<csg::labels::LabelSurface>> {
+    each: &(dyn Fn(csg::labels::LabelSurface) -> bool + Sync),
+) -> anyhow::Result<()> {
     let grid = csg::labels::LabelGrid::new(volume.dims, data, volume.world_from_voxel)?;
-    Ok(csg::labels::label_surfaces(&grid, options, progress)?)
+    csg::labels::label_surfaces_each(&grid, options, progress, each)?;
+    Ok(())
 }
 
 /// A volume as mesh parts: one per structure, named and coloured (what

@@ -132,19 +132,15 @@ fn parse_header(bytes: &[u8], version: u8, endian: Endian) -> Header {
 }
 
 pub(crate) fn read(path: &Path) -> anyhow::Result<RawVolume> {
-    labels_of(read_samples(path)?)
+    labels_of(&read_samples(path)?)
 }
 
 /// The file as labels or as an intensity image (`super::content_rule`), read once.
 pub(crate) fn read_content(path: &Path) -> anyhow::Result<super::content_rule::RawContent> {
-    let raw = read_samples(path)?;
-    Ok(match super::content_rule::intensity_reason(&raw) {
-        Some(reason) => super::content_rule::RawContent::Image(raw, reason),
-        None => super::content_rule::RawContent::Labels(labels_of(raw)?),
-    })
+    super::content_rule::classify(read_samples(path)?, labels_of)
 }
 
-fn labels_of(raw: RawSamples) -> anyhow::Result<RawVolume> {
+fn labels_of(raw: &RawSamples) -> anyhow::Result<RawVolume> {
     let layer = super::samples::decode(&raw.bytes, raw.sample, raw.endian, raw.dims)?;
     Ok(RawVolume {
         dims: raw.dims,
@@ -158,6 +154,12 @@ fn labels_of(raw: RawSamples) -> anyhow::Result<RawVolume> {
 /// (intensity images; label maps ignore the scaling): the same header, geometry and size checks
 /// as label maps, no decoding.
 pub(crate) fn read_samples(path: &Path) -> anyhow::Result<RawSamples> {
+    read_samples_reusing(path, Vec::new())
+}
+
+/// [`read_samples`] inflating into `buffer` (cleared; its capacity reused), so a folder of
+/// masks of one grid is inflated into one buffer per thread instead of a fresh one per file.
+pub(crate) fn read_samples_reusing(path: &Path, buffer: Vec<u8>) -> anyhow::Result<RawSamples> {
     let file = crate::io::bounded::read_bytes(path, crate::io::bounded::VOLUME_MAX_BYTES)?;
     let gz = file.starts_with(&[0x1f, 0x8b]);
     let mut reader: Box<dyn Read> = if gz {
@@ -222,21 +224,14 @@ pub(crate) fn read_samples(path: &Path) -> anyhow::Result<RawSamples> {
             .map_err(|e| anyhow::anyhow!("the file ends before vox_offset {offset} ({e})"))?;
         skipped += n;
     }
-    let data = if skipped > offset {
+    let mut data = buffer;
+    data.clear();
+    if skipped > offset {
         // Voxel data starting inside the 540 bytes read (a NIfTI-1 file's 352-byte offset).
-        let mut data = head[offset..].to_vec();
-        data.truncate(expected);
-        let more = expected - data.len();
-        data.extend(super::gzip::read_exact_limited(
-            &mut reader,
-            more,
-            file.len(),
-            "voxel data",
-        )?);
-        data
-    } else {
-        super::gzip::read_exact_limited(&mut reader, expected, file.len(), "voxel data")?
-    };
+        data.extend_from_slice(&head[offset..(offset + expected).min(head.len())]);
+    }
+    let more = expected - data.len();
+    super::gzip::read_exact_limited_onto(&mut reader, more, file.len(), "voxel data", &mut data)?;
     drop(reader);
     drop(file);
     Ok(samples_of(&h, dims, world_from_voxel, sample, data))

@@ -357,19 +357,16 @@ fn data_file_path(header_path: &Path, name: &str) -> anyhow::Result<PathBuf> {
 pub(crate) fn read_content(path: &Path) -> anyhow::Result<super::content_rule::RawContent> {
     let (header, data) = read_header_and_data(path)?;
     let raw = samples(&header, data)?;
-    Ok(match super::content_rule::intensity_reason(&raw) {
-        Some(reason) => super::content_rule::RawContent::Image(raw, reason),
-        None => super::content_rule::RawContent::Labels(labels_of(&header, raw)?),
-    })
+    super::content_rule::classify(raw, |raw| labels_of(&header, raw))
 }
 
 /// Builds the volume from a parsed header and its data bytes (still encoded).
 fn volume(h: &Header, data: Vec<u8>) -> anyhow::Result<RawVolume> {
-    labels_of(h, samples(h, data)?)
+    labels_of(h, &samples(h, data)?)
 }
 
 /// Decodes the samples of a label map and its segment names.
-fn labels_of(h: &Header, raw: RawSamples) -> anyhow::Result<RawVolume> {
+fn labels_of(h: &Header, raw: &RawSamples) -> anyhow::Result<RawVolume> {
     let dims = raw.dims;
     let layers_data = if raw.layers == 1 {
         vec![super::samples::decode(
