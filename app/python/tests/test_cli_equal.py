@@ -39,7 +39,7 @@ def write_box_obj(path, lo, hi):
     x1, y1, z1 = hi
     v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0), (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
     quads = [(1, 4, 3, 2), (5, 6, 7, 8), (1, 2, 6, 5), (3, 4, 8, 7), (2, 3, 7, 6), (1, 5, 8, 4)]
-    text = "".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v) + "".join("f %d %d %d %d\n" % q for q in quads)
+    text = "".join(f"v {float(x)!r} {float(y)!r} {float(z)!r}\n" for x, y, z in v) + "".join("f %d %d %d %d\n" % q for q in quads)
     Path(path).write_text(text)
 
 
@@ -67,7 +67,7 @@ def test_subtract_equals_cutaway_subtract(anatomy, cli, tmp_path):
 
 def test_render_equals_cutaway_render(cli, tmp_path):
     png = tmp_path / "head.png"
-    result = run_cli(cli, "render", SESSION, "--out", png, "--width", "240", "--height", "160", check=False)
+    result = run_cli(cli, "render", SESSION, "--out", png, "--width", "240", "--height", "160", "--json", check=False)
     if result.returncode != 0 and "adapter" in result.stderr and os.environ.get("CUTAWAY_REQUIRE_GPU") != "1":
         pytest.skip(f"no GPU adapter: {result.stderr.strip()}")
     assert result.returncode == 0, result.stderr
@@ -76,8 +76,11 @@ def test_render_equals_cutaway_render(cli, tmp_path):
     assert image.dtype == np.uint8 and image.shape == (160, 240, 4)
     assert image.flags["C_CONTIGUOUS"]
     np.testing.assert_array_equal(image, read_png(png))
-    assert len(session.last_render["cutters"]) == session.cutter_count > 0
-    assert all(c["exact"] for c in session.last_render["cutters"])
+    import json
+
+    reported = json.loads(result.stdout)["cutters"]
+    assert len(session.last_render["cutters"]) == session.cutter_count == len(reported) > 0
+    assert [c["exact"] for c in session.last_render["cutters"]] == [c["exact"] for c in reported]
 
 
 def cli_error(exe, *args):
