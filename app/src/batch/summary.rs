@@ -87,7 +87,7 @@ body{{font:14px system-ui,sans-serif;margin:24px;background:#f6f6f6;color:#222}}
 .case img{{width:100%;border-radius:4px;display:block}}\
 .case h2{{font-size:15px;margin:6px 0}}.failed{{border-left:4px solid #c62828}}\
 .error{{color:#c62828;font-family:monospace;font-size:12px;word-break:break-word}}\
-.links a{{margin-right:8px}}</style></head><body>\n<h1>{t}</h1>\n\
+.links{{display:flex;flex-wrap:wrap;gap:4px 10px}}</style></head><body>\n<h1>{t}</h1>\n\
 <p>{ok} of {n} cases done; measures in <a href=\"metrics.csv\">metrics.csv</a>.</p>\n<div class=\"grid\">\n",
         t = escape(title),
         n = results.len()
