@@ -78,7 +78,7 @@ fn first_frame_ms(example: Option<&str>) -> Opened {
         .scene
         .models
         .iter()
-        .map(|m| m.mesh.triangle_count())
+        .map(|m| m.model.mesh.triangle_count())
         .sum();
     std::fs::remove_dir_all(&state_dir).ok();
     Opened {

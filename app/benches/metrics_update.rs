@@ -49,9 +49,9 @@ fn cut_scene(models: Vec<cutaway::io::Model>) -> Scene {
     let skin = scene
         .models
         .iter()
-        .position(|m| m.name.contains("skin"))
+        .position(|m| m.model.name.contains("skin"))
         .expect("a skin");
-    let b = scene.models[skin].mesh.bbox();
+    let b = scene.models[skin].model.mesh.bbox();
     let (c, e) = (b.center(), b.max - b.min);
     // The window's guess of the patient's axes: the box reaches from outside the front (anterior,
     // along ±y) to the middle, and the camera looks at the front.
@@ -87,8 +87,8 @@ fn bench(name: &str, scene: &Scene, focus: &str, critical: &str) {
         scene
             .models
             .iter()
-            .find(|m| m.name.contains(part))
-            .map(|m| m.name.clone())
+            .find(|m| m.model.name.contains(part))
+            .map(|m| m.model.name.clone())
             .unwrap_or_else(|| panic!("{name}: no structure named like '{part}'"))
     };
     let options = MetricsOptions {
@@ -97,7 +97,11 @@ fn bench(name: &str, scene: &Scene, focus: &str, critical: &str) {
         ..MetricsOptions::default()
     };
     let metrics = measure(scene, &options).expect("measure");
-    let triangles: usize = scene.models.iter().map(|m| m.mesh.triangle_count()).sum();
+    let triangles: usize = scene
+        .models
+        .iter()
+        .map(|m| m.model.mesh.triangle_count())
+        .sum();
     let measure_ms = median_ms(|| {
         std::hint::black_box(measure(scene, &options).expect("measure"));
     });

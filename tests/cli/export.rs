@@ -137,7 +137,7 @@ fn export_reads_back_with_the_cut_s_nodes_materials_and_triangles() {
                 other => panic!("unexpected mode {other:?}"),
             }
             // Positions stay in scene millimetres.
-            let bbox = scene.models[m].mesh.bbox();
+            let bbox = scene.models[m].model.mesh.bbox();
             for p in &positions {
                 let p = glam::DVec3::from_array(p.map(f64::from));
                 assert!(
@@ -154,7 +154,7 @@ fn export_reads_back_with_the_cut_s_nodes_materials_and_triangles() {
             .filter(|p| p.model == m)
             .map(|p| p.mesh.triangle_count())
             .sum();
-        assert_eq!(triangles, expected, "{}", scene.models[m].name);
+        assert_eq!(triangles, expected, "{}", scene.models[m].model.name);
         let expected_segments: usize = geometry
             .contours
             .iter()
@@ -162,7 +162,11 @@ fn export_reads_back_with_the_cut_s_nodes_materials_and_triangles() {
             .map(|(_, line)| line.len() - 1)
             .sum();
         assert!(expected_segments > 0);
-        assert_eq!(segments, expected_segments, "{}", scene.models[m].name);
+        assert_eq!(
+            segments, expected_segments,
+            "{}",
+            scene.models[m].model.name
+        );
         total_triangles += triangles;
     }
     assert_eq!(summary["triangles"], total_triangles);

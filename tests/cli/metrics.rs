@@ -154,7 +154,7 @@ fn removed_volume_equals_the_boolean_s_removed_piece_closed_by_its_walls() {
     );
     let json = metrics(&session, &[]);
     let scene = cutaway::session::load(&session).unwrap();
-    let target = scene.models[0].mesh.clone();
+    let target = scene.models[0].model.mesh.clone();
     let index = csg::TargetIndex::build(target.clone()).unwrap();
     let surface = cutaway::cutting::cut_scene::cutter_mesh(&scene.cutters[0]);
     let result = csg::subtract(&index, &surface).unwrap();

@@ -47,7 +47,7 @@ fn head() -> Scene {
 fn on_surface(scene: &Scene, target: usize, camera: &Camera, p: DVec3) -> DVec3 {
     let px = camera.project(VIEWPORT, p).expect("in front of the camera");
     let ray = camera.ray_through_pixel(VIEWPORT, px);
-    let mesh = &scene.models[target].mesh;
+    let mesh = &scene.models[target].model.mesh;
     let index = csg::SpatialIndex::build(mesh);
     index
         .ray_cast(mesh, ray.origin, ray.direction, f64::INFINITY)
@@ -80,8 +80,11 @@ fn paint_and_roll(
     }
     events.push(EditorEvent::release(b.x, b.y));
     // The handle: the middle of the leading plane, 10δ below the stroke.
-    let delta =
-        EditorSettings::delta_for_target(&scene.models[target].mesh.bbox(), &scene.bbox(), &camera);
+    let delta = EditorSettings::delta_for_target(
+        &scene.models[target].model.mesh.bbox(),
+        &scene.bbox(),
+        &camera,
+    );
     let down = (project(centre - up * roll) - project(centre)).normalize();
     let handle = (a + b) * 0.5 + down * (10.0 * delta / px_size);
     events.push(EditorEvent::press(handle.x, handle.y));
@@ -113,7 +116,7 @@ fn paint_and_roll(
 /// (z = 50 in the atlas, below the hairline), rolled 50 mm down to the brows.
 fn newcomer(scene: &Scene, rules: Rules, smooth: bool) -> Gesture {
     let skin = 0;
-    assert_eq!(scene.models[skin].name, "skin");
+    assert_eq!(scene.models[skin].model.name, "skin");
     let forehead = on_surface(scene, skin, &scene.camera, DVec3::new(0.0, 0.0, 50.0));
     paint_and_roll(
         scene,
@@ -139,10 +142,10 @@ fn exposure(scene: &Scene, focus: &str) -> (f64, f64) {
         .focus
         .expect("the focus")
         .exposure_after;
-    let model = scene.models.iter().find(|m| m.name == focus).unwrap();
+    let model = scene.models.iter().find(|m| m.model.name == focus).unwrap();
     let camera = scene.camera;
     let alone = cutaway::metrics::exposure::exposure(
-        &model.mesh,
+        &model.model.mesh,
         &[],
         camera.eye,
         camera.forward(),
@@ -156,7 +159,7 @@ fn names(replay: &SceneReplay) -> Vec<String> {
     replay
         .reached
         .iter()
-        .map(|r| replay.scene.models[r.structure].name.clone())
+        .map(|r| replay.scene.models[r.structure].model.name.clone())
         .collect()
 }
 
@@ -353,7 +356,7 @@ fn anatomy() -> Option<PathBuf> {
 /// how far either way the view rays through that line still meet it.
 fn seen_width(scene: &Scene, target: usize, camera: &Camera, p: DVec3) -> f64 {
     let (right, _, _) = camera.basis();
-    let mesh = &scene.models[target].mesh;
+    let mesh = &scene.models[target].model.mesh;
     let index = csg::SpatialIndex::build(mesh);
     let meets = |q: DVec3| {
         let px = camera.project(VIEWPORT, q).expect("in view");
@@ -378,7 +381,7 @@ fn seen_width(scene: &Scene, target: usize, camera: &Camera, p: DVec3) -> f64 {
 /// hand paints within what it sees) and checks that the window opens what was painted, sharp and
 /// rounded.
 fn check_opening(scene: &Scene, target: usize, toward_eye: DVec3, what: &str) {
-    let bbox = scene.models[target].mesh.bbox();
+    let bbox = scene.models[target].model.mesh.bbox();
     let camera = Camera::framing(&bbox, toward_eye, DVec3::Z, 30.0);
     let (_, up, _) = camera.basis();
     let extent = bbox.max - bbox.min;
@@ -433,11 +436,15 @@ fn the_opening_on_the_knee_is_what_was_painted() {
         let color = cutaway::anatomy::colors::structure_color(&model.name, model.color, i);
         scene.models.push(SceneModel::structure(model, color));
     }
-    let skin = scene.models.iter().position(|m| m.name == "skin").unwrap();
+    let skin = scene
+        .models
+        .iter()
+        .position(|m| m.model.name == "skin")
+        .unwrap();
     let patella = scene
         .models
         .iter()
-        .position(|m| m.name == "patella")
+        .position(|m| m.model.name == "patella")
         .unwrap();
     let front = front_of(&scene, skin, patella);
     check_opening(&scene, skin, front, "knee phantom");
@@ -478,7 +485,8 @@ fn the_opening_on_the_knee_is_what_was_painted() {
 /// The horizontal direction from model `target`'s centre toward model `toward`'s (the front of
 /// a knee: the kneecap's side).
 fn front_of(scene: &Scene, target: usize, toward: usize) -> DVec3 {
-    let d = scene.models[toward].mesh.bbox().center() - scene.models[target].mesh.bbox().center();
+    let d = scene.models[toward].model.mesh.bbox().center()
+        - scene.models[target].model.mesh.bbox().center();
     DVec3::new(d.x, d.y, 0.0).normalize()
 }
 

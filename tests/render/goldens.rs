@@ -208,7 +208,7 @@ fn rounded_knee_scene() -> Scene {
             let color = cutaway::anatomy::colors::class_color(&part);
             scene
                 .models
-                .push(SceneModel::new(m.name, m.source, Arc::new(m.mesh), color));
+                .push(SceneModel::new(m.name, m.source, m.mesh, color));
         }
     }
     let planes = (0..7)

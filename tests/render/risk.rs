@@ -139,8 +139,8 @@ fn the_cli_draws_the_legend_and_refuses_an_unknown_critical_name() {
     let mut scene = vessel_behind_a_wall();
     for (m, name) in scene.models.iter_mut().zip(["tissue", "vessel"]) {
         let path = dir.join(format!("{name}.obj"));
-        cutaway::io::write_mesh(&path, &m.mesh).unwrap();
-        m.source = path;
+        cutaway::io::write_mesh(&path, &m.model.mesh).unwrap();
+        m.model.source = path;
         // A structure keeps its name in the session (a region would be `vessel 1`).
         m.unit = cutaway::scene::ModelUnit::Structure;
     }

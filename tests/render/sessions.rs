@@ -68,13 +68,8 @@ fn scene_for(dir: &Path) -> Scene {
         .into_iter()
         .enumerate()
     {
-        let mut sm = SceneModel::new(
-            m.name,
-            m.source,
-            Arc::new(m.mesh),
-            [0.1 * region as f32, 0.5, 0.9],
-        );
-        sm.region = region;
+        let mut sm = SceneModel::new(m.name, m.source, m.mesh, [0.1 * region as f32, 0.5, 0.9]);
+        sm.model.index = region;
         scene.models.push(sm);
     }
     scene.models[1].opacity = 0.5;
@@ -119,10 +114,10 @@ fn session_round_trip_is_exact_and_relative() {
     assert_eq!(back.models.len(), 2);
     for (a, b) in scene.models.iter().zip(&back.models) {
         assert_eq!(
-            (a.color, a.opacity, a.style, a.visible, a.region),
-            (b.color, b.opacity, b.style, b.visible, b.region)
+            (a.color, a.opacity, a.style, a.visible, a.model.index),
+            (b.color, b.opacity, b.style, b.visible, b.model.index)
         );
-        assert_eq!(a.mesh.triangles, b.mesh.triangles);
+        assert_eq!(a.model.mesh.triangles, b.model.mesh.triangles);
     }
     assert_eq!(scene.cutters, back.cutters);
     assert_eq!(scene.camera, back.camera);
@@ -154,7 +149,7 @@ fn hand_written_session_expands_regions_and_ignores_unknown_fields() {
     .unwrap();
     let scene = session::load(&file).unwrap();
     assert_eq!(scene.models.len(), 2, "both regions of pair.obj are models");
-    assert_eq!(scene.models[1].region, 1);
+    assert_eq!(scene.models[1].model.index, 1);
     assert_eq!(scene.models[1].color, [0.9, 0.7, 0.6]);
     assert_eq!(scene.cutters[0].target, 1);
 }
@@ -248,12 +243,7 @@ fn cli_render_shows_an_edited_mesh_saved_with_the_session() {
     let source = dir.join("small.ply");
     cutaway::io::write_mesh(&source, &icosphere(DVec3::new(0.0, 0.0, 3.0), 0.1, 1)).unwrap();
     let loaded = cutaway::io::load_models(&source).unwrap().remove(0);
-    let mut model = SceneModel::new(
-        loaded.name,
-        loaded.source,
-        Arc::new(loaded.mesh),
-        [0.8, 0.2, 0.2],
-    );
+    let mut model = SceneModel::new(loaded.name, loaded.source, loaded.mesh, [0.8, 0.2, 0.2]);
     model.replace_mesh(Arc::new(icosphere(DVec3::ZERO, 1.0, 2)));
     let mut scene = Scene::default();
     scene.models.push(model);

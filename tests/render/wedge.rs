@@ -37,7 +37,7 @@ fn knee() -> Scene {
             let color = cutaway::anatomy::colors::class_color(&part);
             scene
                 .models
-                .push(SceneModel::new(m.name, m.source, Arc::new(m.mesh), color));
+                .push(SceneModel::new(m.name, m.source, m.mesh, color));
         }
     }
     scene
@@ -193,8 +193,8 @@ fn oblique(camera: &Camera, right: f64, up: f64) -> Camera {
 fn a_wedge_on_the_knee_rests_on_the_skin_and_cuts_a_sector_out_of_it() {
     let mut scene = knee();
     assert_eq!(scene.models.len(), 3, "skin, patella and femur");
-    assert!(scene.models[0].name.starts_with("skin"));
-    let skin = scene.models[0].mesh.clone();
+    assert!(scene.models[0].model.name.starts_with("skin"));
+    let skin = scene.models[0].model.mesh.clone();
     let camera = Camera::framing(&skin.bbox(), DVec3::NEG_Y, DVec3::Z, 30.0);
     // On the front of the knee.
     let wedge = sweep_a_wedge(&skin, &camera, DVec2::new(630.0, 400.0), 90.0);
@@ -244,8 +244,8 @@ fn a_wedge_on_the_real_patella_cuts_a_sector_out_of_it() {
             color,
         ));
     }
-    assert!(scene.models[0].name.contains("Patella"));
-    let patella = scene.models[0].mesh.clone();
+    assert!(scene.models[0].model.name.contains("Patella"));
+    let patella = scene.models[0].model.mesh.clone();
     // RAS: the front of the knee faces +Y.
     let camera = Camera::framing(&patella.bbox(), DVec3::Y, DVec3::Z, 30.0);
     let wedge = sweep_a_wedge(&patella, &camera, DVec2::new(640.0, 420.0), 140.0);

@@ -335,7 +335,7 @@ fn paint_cutter(
     h.state_mut().apply(&ctx, Action::NewCutter);
     h.state_mut().selected_model = Some(target);
     let before = h.state().scene.cutters.len();
-    let centre = h.state().scene.models[target].mesh.bbox().center();
+    let centre = h.state().scene.models[target].model.mesh.bbox().center();
     let Some(centre) = to_screen(h, centre) else {
         return false;
     };
@@ -417,7 +417,7 @@ pub fn run(options: Options) -> Report {
         .scene
         .models
         .iter()
-        .map(|m| (m.mesh.positions.len() * 24 + m.mesh.triangles.len() * 12) as u64)
+        .map(|m| (m.model.mesh.positions.len() * 24 + m.model.mesh.triangles.len() * 12) as u64)
         .sum();
     let triangles = cutaway::gui::app::triangle_count(&app.scene);
     let loaded = trace.sample(&mut h, "loaded");
@@ -436,7 +436,8 @@ pub fn run(options: Options) -> Report {
     // Cutters on the models in turn, the biggest first.
     let models = h.state().scene.models.len();
     let mut order: Vec<usize> = (0..models).collect();
-    order.sort_by_key(|&m| std::cmp::Reverse(h.state().scene.models[m].mesh.triangle_count()));
+    order
+        .sort_by_key(|&m| std::cmp::Reverse(h.state().scene.models[m].model.mesh.triangle_count()));
     let mut first_cut = None;
     let mut cutters_made = 0;
     for k in 0..options.cutters {

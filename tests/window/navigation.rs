@@ -51,11 +51,11 @@ fn a_double_click_on_a_deep_structure_scrolls_the_list_to_it_and_zoom_to_selecti
         .models
         .iter()
         .enumerate()
-        .filter(|(_, m)| m.name.contains("eyeball"))
-        .map(|(i, m)| (i, m.name.clone()))
+        .filter(|(_, m)| m.model.name.contains("eyeball"))
+        .map(|(i, m)| (i, m.model.name.clone()))
         .next_back()
         .expect("an eyeball in the default scene");
-    let centre = app.scene.models[eye].mesh.bbox().center();
+    let centre = app.scene.models[eye].model.mesh.bbox().center();
     let px = app
         .scene
         .camera
@@ -104,7 +104,7 @@ fn a_double_click_on_a_deep_structure_scrolls_the_list_to_it_and_zoom_to_selecti
     );
     assert!(camera.distance() < before.distance() * 0.5, "not zoomed in");
     assert!((camera.forward() - before.forward()).length() < 1e-9);
-    let bbox = app.scene.models[eye].mesh.bbox();
+    let bbox = app.scene.models[eye].model.mesh.bbox();
     let vp = app.viewport.size_px;
     for k in 0..8 {
         let corner = DVec3::new(

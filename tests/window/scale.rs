@@ -31,9 +31,9 @@ fn model(h: &Harness<'_, CutawayApp>, name: &str) -> usize {
     let models = &h.state().scene.models;
     models
         .iter()
-        .position(|m| m.source.to_string_lossy().contains(name))
+        .position(|m| m.model.source.to_string_lossy().contains(name))
         .unwrap_or_else(|| {
-            let names: Vec<_> = models.iter().map(|m| m.source.display()).collect();
+            let names: Vec<_> = models.iter().map(|m| m.model.source.display()).collect();
             panic!("no model from a file named like {name}: {names:?}")
         })
 }
@@ -72,7 +72,7 @@ fn paint_cutter(h: &mut Harness<'_, CutawayApp>, target: usize, length: f32) -> 
     h.state_mut().apply(&ctx, Action::NewCutter);
     h.state_mut().selected_model = Some(target);
     let before = h.state().scene.cutters.len();
-    let centre = to_screen(h, h.state().scene.models[target].mesh.bbox().center());
+    let centre = to_screen(h, h.state().scene.models[target].model.mesh.bbox().center());
     let (a, b) = (
         centre + egui::vec2(-35.0, 0.0),
         centre + egui::vec2(35.0, 0.0),
@@ -147,7 +147,7 @@ fn a_small_hubmap_structure_is_cut_with_its_own_sizes_and_its_session_renders() 
     let skin = model(&h, "VH_F_skin");
     let coccyx = model(&h, "VH_F_coccyx");
     h.state_mut().scene.models[skin].visible = false;
-    let size = h.state().scene.models[coccyx].mesh.bbox();
+    let size = h.state().scene.models[coccyx].model.mesh.bbox();
 
     // Zoomed to the coccyx, a new cutter and the scalpel are sized from it.
     h.state_mut().selected_model = Some(coccyx);
@@ -243,7 +243,7 @@ fn on_the_knee_in_millimetres_the_same_steps_give_proportionate_lengths() {
     let scene_box = h.state().scene.bbox();
     let fov = h.state().scene.camera.fov_y_deg;
     let patella = model(&h, "patella");
-    let size = h.state().scene.models[patella].mesh.bbox();
+    let size = h.state().scene.models[patella].model.mesh.bbox();
     // Only the patella shows (the others cover it from the camera).
     for (m, model) in h.state_mut().scene.models.iter_mut().enumerate() {
         model.visible = m == patella;
@@ -312,14 +312,14 @@ fn on_the_default_head_atlas_a_small_structure_gets_its_own_lengths() {
     // The smallest structure of some size (a deep nucleus, a nerve), alone in view.
     let models = &h.state().scene.models;
     let small = (0..models.len())
-        .filter(|&m| models[m].mesh.triangle_count() >= 500)
+        .filter(|&m| models[m].model.mesh.triangle_count() >= 500)
         .min_by(|&a, &b| {
-            let d = |m: usize| models[m].mesh.bbox().diagonal();
+            let d = |m: usize| models[m].model.mesh.bbox().diagonal();
             d(a).total_cmp(&d(b))
         })
         .expect("a structure");
-    let size = models[small].mesh.bbox();
-    let name = models[small].name.clone();
+    let size = models[small].model.mesh.bbox();
+    let name = models[small].model.name.clone();
     assert!(size.diagonal() < 0.3 * head, "{name} is not small");
     for (m, model) in h.state_mut().scene.models.iter_mut().enumerate() {
         model.visible = m == small;

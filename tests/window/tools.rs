@@ -173,7 +173,7 @@ fn the_metrics_panel_shows_what_cutaway_metrics_prints_and_draws_the_closest_poi
         .scene
         .models
         .iter()
-        .map(|m| m.name.clone())
+        .map(|m| m.model.name.clone())
         .collect();
     let (cube, ball) = (names[0].clone(), names[1].clone());
 
@@ -574,7 +574,7 @@ fn export_image_with_labels_writes_the_labelled_picture() {
     let mut h = harness(&dir, vec![session]);
     h.run_steps(2);
     settle(&mut h);
-    let ball = h.state().scene.models[1].name.clone();
+    let ball = h.state().scene.models[1].model.name.clone();
     {
         let app = h.state_mut();
         app.export_image.width = 640;

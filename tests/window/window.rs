@@ -507,7 +507,12 @@ fn dropped_folders_and_sessions_open_and_messages_stay_in_the_status_bar() {
         "the folder's two files were not added ({})",
         app.status.message
     );
-    let names: Vec<&str> = app.scene.models.iter().map(|m| m.name.as_str()).collect();
+    let names: Vec<&str> = app
+        .scene
+        .models
+        .iter()
+        .map(|m| m.model.name.as_str())
+        .collect();
     assert!(names.iter().any(|n| n.contains("left block")), "{names:?}");
     // The message that says so sits in the status bar under the view, not on the model.
     let message = app.status.message.clone();
@@ -527,7 +532,7 @@ fn dropped_folders_and_sessions_open_and_messages_stay_in_the_status_bar() {
     one.models.push(cutaway::scene::SceneModel::new(
         model.name,
         model.source,
-        std::sync::Arc::new(model.mesh),
+        model.mesh,
         [0.8, 0.3, 0.3],
     ));
     let session = dir.join("one.json");

@@ -12,8 +12,8 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 
 use crate::anatomy::colors::class_color;
+use crate::io::Model;
 use crate::io::ModelUnit;
-use crate::io::{Model, Part};
 
 /// One embedded scene.
 #[derive(Debug)]
@@ -118,7 +118,7 @@ pub fn load_scene_structures(scene: &Scene) -> anyhow::Result<Vec<Model>> {
 }
 
 /// Every part of `scene`, decoded and welded; errors name the part's virtual path.
-fn decode_parts(scene: &Scene) -> anyhow::Result<Vec<Part>> {
+fn decode_parts(scene: &Scene) -> anyhow::Result<Vec<Model>> {
     scene
         .parts
         .iter()
@@ -126,11 +126,7 @@ fn decode_parts(scene: &Scene) -> anyhow::Result<Vec<Part>> {
             let path = scene.part_path(name);
             let mesh = crate::anatomy::phantom::ply::decode(bytes)
                 .with_context(|| path.display().to_string())?;
-            Ok(Part {
-                name: name.to_string(),
-                color: None,
-                mesh: csg::weld::weld_exact(&mesh),
-            })
+            Ok(Model::part(name, None, csg::weld::weld_exact(&mesh)))
         })
         .collect()
 }
@@ -145,7 +141,7 @@ pub fn load_embedded_part(path: &Path) -> Option<anyhow::Result<Vec<Model>>> {
 
 /// The welded mesh of the embedded part `path` names (see [`load_embedded_part`]) and the
 /// part's virtual path.
-fn embedded_part(path: &Path) -> Option<(PathBuf, anyhow::Result<Part>)> {
+fn embedded_part(path: &Path) -> Option<(PathBuf, anyhow::Result<Model>)> {
     if path.exists() {
         return None;
     }
@@ -162,11 +158,7 @@ fn embedded_part(path: &Path) -> Option<(PathBuf, anyhow::Result<Part>)> {
     let virtual_path = scene.part_path(name);
     let part = crate::anatomy::phantom::ply::decode(bytes)
         .with_context(|| virtual_path.display().to_string())
-        .map(|mesh| Part {
-            name: name.to_string(),
-            color: None,
-            mesh: csg::weld::weld_exact(&mesh),
-        });
+        .map(|mesh| Model::part(name, None, csg::weld::weld_exact(&mesh)));
     Some((virtual_path, part))
 }
 

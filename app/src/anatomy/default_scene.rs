@@ -141,16 +141,15 @@ fn atlas_models(
         .into_iter()
         .map(|s| {
             let label = &s.structure;
+            let color = label.color.map(|c| c as f32 / 255.0);
             Model {
-                name: crate::io::structure_name(&label.name),
                 source: volume.source.clone(),
                 index: all
                     .iter()
                     .position(|v| (v.value, v.layer) == (label.value, label.layer))
                     .unwrap_or(0),
-                color: Some(label.color.map(|c| c as f32 / 255.0)),
                 group: groups::group_of(label.value, &label.name).to_owned(),
-                mesh: s.mesh,
+                ..Model::part(crate::io::structure_name(&label.name), Some(color), s.mesh)
             }
         })
         .collect())

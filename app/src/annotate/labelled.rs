@@ -98,7 +98,7 @@ pub fn annotate_with(
     let mut owners = Vec::new();
     let mut unlabelled = Vec::new();
     for &m in models {
-        let name = &scene.models[m].name;
+        let name = &scene.models[m].model.name;
         match anchor(&grid, m as u32) {
             Some(point) => {
                 requests.push(LabelRequest {

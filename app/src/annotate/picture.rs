@@ -87,7 +87,9 @@ impl AnnotationChoice {
             return Vec::new();
         }
         (0..scene.models.len())
-            .filter(|&m| is_opaque(scene, m) && !self.unlabelled.contains(&scene.models[m].name))
+            .filter(|&m| {
+                is_opaque(scene, m) && !self.unlabelled.contains(&scene.models[m].model.name)
+            })
             .collect()
     }
 }

@@ -77,7 +77,7 @@ pub fn visible_grid(
                     }
                 }
             }
-            _ => add(&scene.models[m].mesh, m, false),
+            _ => add(&scene.models[m].model.mesh, m, false),
         }
     }
     let columns = size[0].div_ceil(step);

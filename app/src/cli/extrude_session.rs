@@ -57,7 +57,7 @@ pub struct SceneReplay {
 pub fn replay_on_scene(scene: &Scene, gesture: &Gesture) -> anyhow::Result<SceneReplay> {
     let mut picks = ScenePicks::default();
     let target = target_under_press(scene, gesture, &mut picks)?;
-    let mesh = scene.models[target].mesh.clone();
+    let mesh = scene.models[target].model.mesh.clone();
     let index = Arc::new(SpatialIndex::build(&mesh));
     let mut editor = crate::cutting::editing::new_editor(
         scene,
@@ -93,7 +93,7 @@ pub fn replay_on_scene(scene: &Scene, gesture: &Gesture) -> anyhow::Result<Scene
 /// How much of the painted region the scene's last cutter opens in `target`.
 fn opening(scene: &Scene, target: usize, gesture: &Gesture) -> Option<cutter::opening::Opening> {
     let cutter = scene.cutters.last()?;
-    let index = TargetIndex::build(scene.models[target].mesh.clone()).ok()?;
+    let index = TargetIndex::build(scene.models[target].model.mesh.clone()).ok()?;
     let parts = crate::cutting::cut_parts::cut_exact(&index, cutter).ok()?;
     cutter::opening::measure(
         &gesture.camera,
@@ -171,7 +171,7 @@ pub fn run(args: &ExtrudeArgs, levels: u32) -> anyhow::Result<()> {
     crate::session::save(&args.out, &result.scene)?;
     let unit = result.scene.unit;
     let depth_mm = unit.to_mm(result.cutter.depth());
-    let name = |m: usize| result.scene.models[m].name.clone();
+    let name = |m: usize| result.scene.models[m].model.name.clone();
     let reaches: Vec<String> = result.reached.iter().map(|r| name(r.structure)).collect();
     if args.json {
         let mesh = &smoothing.mesh;

@@ -33,7 +33,7 @@ pub fn apply(scene: &mut Scene, args: &RiskArgs) -> anyhow::Result<()> {
         let mut critical = Vec::new();
         for name in &args.critical {
             let i = crate::scene::names::model_named(scene, name, "")?;
-            critical.push(scene.models[i].name.clone());
+            critical.push(scene.models[i].model.name.clone());
         }
         scene.risk.critical = critical;
         scene.risk.shown = true;

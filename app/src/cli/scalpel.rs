@@ -48,7 +48,7 @@ pub fn region_scene(mesh: &csg::Mesh, source: &std::path::Path) -> Scene {
             Arc::new(region),
             [0.8, 0.8, 0.8],
         );
-        model.region = k;
+        model.model.index = k;
         scene.models.push(model);
     }
     scene
@@ -82,13 +82,13 @@ pub fn run(args: &ScalpelArgs) -> anyhow::Result<()> {
     let mut walls: Vec<u32> = Vec::new();
     let (mut closed, mut manifold) = (true, true);
     for m in &scene.models {
-        let topology = validate(&DynMesh::from_mesh(&m.mesh))
+        let topology = validate(&DynMesh::from_mesh(&m.model.mesh))
             .map_err(|e| anyhow!("{target}: internal error after cutting: {e}"))?;
         closed &= topology.closed;
         manifold &= topology.manifold;
         let first = out.triangles.len() as u32;
         walls.extend(m.wall_faces().iter().map(|&f| first + f));
-        out.append(&m.mesh);
+        out.append(&m.model.mesh);
     }
     crate::io::write_mesh_walls(&args.out, &out, &walls)?;
     if args.json {

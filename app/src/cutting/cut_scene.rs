@@ -509,14 +509,14 @@ pub fn preview_geometry_with(scene: &Scene, cache: &mut CutCache) -> PreviewGeom
         }
         out.replaced[model_index] = true;
         let key: ModelKey = (
-            Arc::as_ptr(&model.mesh) as usize,
+            Arc::as_ptr(&model.model.mesh) as usize,
             cutters.iter().map(|(i, c)| (*i, (*c).clone())).collect(),
         );
-        let preview = match cache.model(&model.mesh, &key) {
+        let preview = match cache.model(&model.model.mesh, &key) {
             Some(p) => p,
             None => {
                 let p = model_preview(scene, model_index, &cutters, cache);
-                cache.store_model(&model.mesh, key, p.clone());
+                cache.store_model(&model.model.mesh, key, p.clone());
                 p
             }
         };
@@ -545,7 +545,7 @@ fn model_preview(
     };
     let sequence = cut_in_turn_marked(
         cache,
-        &model.mesh,
+        &model.model.mesh,
         model.wall_faces(),
         cutters,
         |c| !needs_step(c),

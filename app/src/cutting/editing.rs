@@ -74,9 +74,9 @@ pub fn new_editor(
     picks: &mut ScenePicks,
 ) -> Option<Editor> {
     let model = scene.models.get(target)?;
-    let delta = EditorSettings::delta_for_target(&model.mesh.bbox(), &scene.bbox(), &camera);
+    let delta = EditorSettings::delta_for_target(&model.model.mesh.bbox(), &scene.bbox(), &camera);
     let settings = EditorSettings { delta, ..settings };
-    let mut editor = Editor::new(model.mesh.clone(), index, camera, viewport, settings);
+    let mut editor = Editor::new(model.model.mesh.clone(), index, camera, viewport, settings);
     editor.set_obstacles(Some(shared_obstacles(scene, target, picks)));
     Some(editor)
 }
@@ -146,7 +146,8 @@ impl EditorSlot {
     /// start a cutter on it (too big to build on the UI thread, not built yet).
     pub fn needs_background_index(&self, scene: &Scene, target: usize) -> bool {
         scene.models.get(target).is_some_and(|m| {
-            m.mesh.triangle_count() > SYNC_INDEX_TRIANGLES && self.index_for(&m.mesh).is_none()
+            m.model.mesh.triangle_count() > SYNC_INDEX_TRIANGLES
+                && self.index_for(&m.model.mesh).is_none()
         })
     }
 
@@ -205,17 +206,19 @@ impl EditorSlot {
         let Some(model) = scene.models.get(target) else {
             return false;
         };
-        let index = match self.index_for(&model.mesh) {
+        let index = match self.index_for(&model.model.mesh) {
             Some(index) => index,
-            None if model.mesh.triangle_count() <= SYNC_INDEX_TRIANGLES => {
-                let index = Arc::new(SpatialIndex::build(&model.mesh));
-                self.store_index(Arc::downgrade(&model.mesh), index.clone());
+            None if model.model.mesh.triangle_count() <= SYNC_INDEX_TRIANGLES => {
+                let index = Arc::new(SpatialIndex::build(&model.model.mesh));
+                self.store_index(Arc::downgrade(&model.model.mesh), index.clone());
                 index
             }
             None => return false,
         };
-        self.indexes
-            .retain(|(w, _)| w.upgrade().is_some_and(|m| Arc::ptr_eq(&m, &model.mesh)));
+        self.indexes.retain(|(w, _)| {
+            w.upgrade()
+                .is_some_and(|m| Arc::ptr_eq(&m, &model.model.mesh))
+        });
         // Sized from the target the stroke starts on, as `cutaway extrude` sizes its cutter.
         let Some(editor) = new_editor(
             scene,
@@ -380,7 +383,7 @@ impl EditorSlot {
         if scene
             .models
             .get(active.target)
-            .is_none_or(|m| !std::ptr::eq(Arc::as_ptr(&m.mesh), active.editor.target()))
+            .is_none_or(|m| !std::ptr::eq(Arc::as_ptr(&m.model.mesh), active.editor.target()))
         {
             self.active = None;
             return;

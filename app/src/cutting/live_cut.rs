@@ -481,7 +481,8 @@ fn live_geometry(scene: &Scene, cache: &mut LiveCache) -> (PreviewGeometry, Vec<
         if model.style != crate::scene::ModelStyle::Solid {
             continue;
         }
-        let Some(live) = cache.model(&model.mesh, model.wall_faces(), &scene.cutters[c]) else {
+        let Some(live) = cache.model(&model.model.mesh, model.wall_faces(), &scene.cutters[c])
+        else {
             continue;
         };
         // Drawn here: the remaining scene leaves this cutter out.

@@ -20,9 +20,9 @@ pub fn scene_obstacles(scene: &Scene, target: usize, picks: &mut ScenePicks) -> 
         .filter(|&(i, m)| i != target && is_pickable(m))
         .map(|(i, m)| Obstacle {
             structure: i,
-            name: m.name.clone(),
-            mesh: m.mesh.clone(),
-            tree: picks.tree(&m.mesh),
+            name: m.model.name.clone(),
+            mesh: m.model.mesh.clone(),
+            tree: picks.tree(&m.model.mesh),
         })
         .collect();
     MeshObstacles { structures }

@@ -37,7 +37,7 @@ pub struct ScenePicks {
 
 /// A model a pick can hit: visible, not fully transparent, not empty.
 pub fn is_pickable(model: &crate::scene::SceneModel) -> bool {
-    model.visible && model.opacity > 0.0 && !model.mesh.triangles.is_empty()
+    model.visible && model.opacity > 0.0 && !model.model.mesh.triangles.is_empty()
 }
 
 fn pickable(scene: &Scene) -> impl Iterator<Item = &crate::scene::SceneModel> {
@@ -60,7 +60,7 @@ impl ScenePicks {
     pub fn prepare(&mut self, scene: &Scene) {
         self.collect();
         let missing: Vec<Arc<Mesh>> = pickable(scene)
-            .map(|m| m.mesh.clone())
+            .map(|m| m.model.mesh.clone())
             .filter(|mesh| !self.has_tree(mesh) && !self.is_building(mesh))
             .collect();
         if missing.is_empty() {
@@ -93,7 +93,7 @@ impl ScenePicks {
 
     /// True when every pickable model of `scene` has its tree (none left to build or wait for).
     pub fn ready_for(&self, scene: &Scene) -> bool {
-        pickable(scene).all(|m| self.has_tree(&m.mesh))
+        pickable(scene).all(|m| self.has_tree(&m.model.mesh))
     }
 
     /// Trees built on the calling thread so far (none when the scene was prepared in time).
@@ -110,8 +110,8 @@ impl ScenePicks {
                 continue;
             }
             let t_max = best.map_or(f64::INFINITY, |(_, t)| t);
-            let tree = self.tree(&model.mesh);
-            if let Some(hit) = tree.ray_cast(&model.mesh, ray.origin, ray.direction, t_max)
+            let tree = self.tree(&model.model.mesh);
+            if let Some(hit) = tree.ray_cast(&model.model.mesh, ray.origin, ray.direction, t_max)
                 && best.is_none_or(|(_, b)| hit.t < b)
             {
                 best = Some((i, hit.t));
@@ -247,7 +247,7 @@ mod tests {
         assert_eq!(picks.pick(&scene, &miss), None);
         assert_eq!(picks.len(), 2);
         // A model replaced by another mesh: the old tree goes with the old mesh.
-        scene.models[0].mesh = cube(DVec3::new(-1.0, 2.0, -1.0), DVec3::new(1.0, 3.0, 1.0));
+        scene.models[0].model.mesh = cube(DVec3::new(-1.0, 2.0, -1.0), DVec3::new(1.0, 3.0, 1.0));
         let (_, t) = picks.pick(&scene, &ray).expect("a hit");
         assert!((t - 12.0).abs() < 1e-12, "{t}");
         assert_eq!(picks.len(), 2, "one tree per live mesh");
@@ -299,7 +299,7 @@ mod tests {
         assert_eq!(picks.built_by_caller(), 0);
 
         // A replaced mesh is prepared again, by the worker.
-        scene.models[0].mesh = cube(DVec3::new(-1.0, -1.0, -1.0), DVec3::new(1.0, 1.0, 1.0));
+        scene.models[0].model.mesh = cube(DVec3::new(-1.0, -1.0, -1.0), DVec3::new(1.0, 1.0, 1.0));
         assert!(!picks.ready_for(&scene));
         picks.prepare(&scene);
         assert_eq!(picks.pick(&scene, &ray).map(|(m, _)| m), Some(0));

@@ -38,7 +38,7 @@ pub fn cut_each_in_turn(
         let mut failure = None;
         let sequence = cut_scene::cut_in_turn(
             &mut cache,
-            &model.mesh,
+            &model.model.mesh,
             &cutters,
             |_| false,
             |step| {
@@ -101,7 +101,7 @@ impl PreviewKey {
                 .cutters
                 .iter()
                 .filter_map(|c| scene.models.get(c.target))
-                .map(|m| Arc::as_ptr(&m.mesh) as usize)
+                .map(|m| Arc::as_ptr(&m.model.mesh) as usize)
                 .collect(),
         }
     }

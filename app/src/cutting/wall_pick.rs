@@ -43,7 +43,7 @@ pub fn image_wall_under(
     for (i, model) in scene.models.iter().enumerate() {
         let replaced = geometry.replaced.get(i).copied().unwrap_or(false);
         if !replaced && visible(i) && model.opacity >= 1.0 {
-            consider(&model.mesh, false);
+            consider(&model.model.mesh, false);
         }
     }
     for part in &geometry.parts {

@@ -179,8 +179,8 @@ impl RiskKey {
             critical: scene
                 .models
                 .iter()
-                .filter(|m| scene.risk.critical.contains(&m.name))
-                .map(|m| Arc::downgrade(&m.mesh))
+                .filter(|m| scene.risk.critical.contains(&m.model.name))
+                .map(|m| Arc::downgrade(&m.model.mesh))
                 .collect(),
             mm_per_unit: scene.unit.mm_per_unit(),
         }
@@ -286,13 +286,17 @@ pub fn wall_risk(
     let mut solids = Vec::new();
     let mut missing = Vec::new();
     for name in &settings.critical {
-        let models: Vec<_> = scene.models.iter().filter(|m| &m.name == name).collect();
+        let models: Vec<_> = scene
+            .models
+            .iter()
+            .filter(|m| &m.model.name == name)
+            .collect();
         if models.is_empty() {
             missing.push(name.clone());
         }
         for model in models {
-            if !model.mesh.triangles.is_empty() {
-                solids.push(indexes.solid(name, &model.mesh));
+            if !model.model.mesh.triangles.is_empty() {
+                solids.push(indexes.solid(name, &model.model.mesh));
             }
         }
     }

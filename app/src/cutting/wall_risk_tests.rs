@@ -95,7 +95,7 @@ fn longest_edge(mesh: &Mesh, t: usize) -> f64 {
 #[test]
 fn corner_distances_match_brute_force_and_bound_every_point_from_below() {
     let scene = scene_with_vessel();
-    let vessel = scene.models[0].mesh.clone();
+    let vessel = scene.models[0].model.mesh.clone();
     // 1.5 mm from the vessel at its closest, reaching 20 mm away: red, band and beyond.
     let preview = preview_with_wall(square_wall(6.5, 20.0));
     let risk = wall_risk(&scene, &preview, &mut CriticalIndexes::default()).expect("a map");
@@ -176,7 +176,7 @@ fn a_structure_near_the_middle_of_a_large_triangle_shows_red() {
         }
         m
     };
-    scene.models[0].mesh = Arc::new(ball);
+    scene.models[0].model.mesh = Arc::new(ball);
     // The triangle lies in x = 0; the ball's surface is 1 mm from it at the origin.
     let wall = Mesh {
         positions: vec![
@@ -187,7 +187,7 @@ fn a_structure_near_the_middle_of_a_large_triangle_shows_red() {
         triangles: vec![[0, 1, 2]],
     };
     for &p in &wall.positions {
-        assert!(brute(&scene.models[0].mesh, p) > 10.0);
+        assert!(brute(&scene.models[0].model.mesh, p) > 10.0);
     }
     let preview = preview_with_wall(wall);
     let risk = wall_risk(&scene, &preview, &mut CriticalIndexes::default()).expect("a map");
@@ -259,7 +259,7 @@ fn a_wall_in_metres_is_measured_in_millimetres() {
         m
     };
     for model in &mut scene.models {
-        model.mesh = Arc::new(scale(&model.mesh));
+        model.model.mesh = Arc::new(scale(&model.model.mesh));
     }
     scene.unit = crate::scene::LengthUnit::Metre;
     let preview = preview_with_wall(scale(&square_wall(6.5, 20.0)));

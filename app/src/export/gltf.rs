@@ -143,13 +143,18 @@ pub fn scene_document(
         let replaced = geometry.replaced.get(m).copied().unwrap_or(false);
         let walls = model.wall_faces();
         if !replaced && walls.is_empty() {
-            primitives.extend(builder.surface(scene, m, &model.mesh, MaterialKey::Surface(m)));
+            primitives.extend(builder.surface(
+                scene,
+                m,
+                &model.model.mesh,
+                MaterialKey::Surface(m),
+            ));
         } else if !replaced {
             // A scalpel-cut model: its incision walls in the walls' material, on vertices of
             // their own (a hard edge at the lips), as the view draws them.
             let is_wall = |t: usize| walls.binary_search(&(t as u32)).is_ok();
-            let surface = select(&model.mesh, |t| !is_wall(t)).compacted();
-            let incision = select(&model.mesh, is_wall).compacted();
+            let surface = select(&model.model.mesh, |t| !is_wall(t)).compacted();
+            let incision = select(&model.model.mesh, is_wall).compacted();
             primitives.extend(builder.surface(scene, m, &surface, MaterialKey::Surface(m)));
             primitives.extend(builder.surface(scene, m, &incision, MaterialKey::Wall(m)));
         }
@@ -206,14 +211,14 @@ pub fn scene_document(
             builder.root.push(json::Mesh {
                 extensions: None,
                 extras: Default::default(),
-                name: Some(model.name.clone()),
+                name: Some(model.model.name.clone()),
                 primitives,
                 weights: None,
             })
         });
         children.push(builder.root.push(json::Node {
             mesh,
-            name: Some(model.name.clone()),
+            name: Some(model.model.name.clone()),
             ..Default::default()
         }));
         builder.stats.nodes += 1;
@@ -527,7 +532,7 @@ impl Builder {
         if let Some(&index) = self.materials.get(&key) {
             return index;
         }
-        let name_of = |m: usize| scene.models[m].name.clone();
+        let name_of = |m: usize| scene.models[m].model.name.clone();
         let (name, srgb, opacity, double_sided) = match key {
             MaterialKey::Surface(m) => (
                 name_of(m),

@@ -39,7 +39,7 @@ pub fn write_cut_meshes(
     let mut written = Vec::new();
     cut_each_in_turn(scene, progress, |step, model| {
         use cut_scene::{SURFACE, select};
-        let stem = sanitize(&format!("cutter{}_{}", step.cutter + 1, model.name));
+        let stem = sanitize(&format!("cutter{}_{}", step.cutter + 1, model.model.name));
         let tags = step.after_tags;
         for (wanted, part) in [
             (parts.kept, "kept"),

@@ -84,7 +84,7 @@ pub fn occluders_of(scene: &Scene, focus: usize) -> Vec<usize> {
                 && model.visible
                 && model.opacity >= 1.0
                 && model.style == ModelStyle::Solid
-                && !model.mesh.triangles.is_empty()
+                && !model.model.mesh.triangles.is_empty()
         })
         .collect()
 }
@@ -119,7 +119,7 @@ pub fn plan(
     let exposure = cutter::expose::expose(&surfaces[focus], &meshes, &view, &options, &keep_going)
         .map_err(|e| match e {
             cutter::expose::ExposeError::Cancelled => anyhow::Error::new(Cancelled),
-            e => anyhow::anyhow!("{}: {e}", model.name),
+            e => anyhow::anyhow!("{}: {e}", model.model.name),
         })?;
     let mut opened = Vec::new();
     let cutters: Vec<SceneCutter> = exposure
@@ -161,7 +161,7 @@ fn drawn_surfaces(scene: &Scene, progress: &Progress) -> anyhow::Result<Vec<Arc<
     Ok(cut
         .into_iter()
         .zip(&scene.models)
-        .map(|(cut, model)| cut.unwrap_or_else(|| model.mesh.clone()))
+        .map(|(cut, model)| cut.unwrap_or_else(|| model.model.mesh.clone()))
         .collect())
 }
 
@@ -170,7 +170,7 @@ fn name_occluder(note: &str, scene: &Scene, occluders: &[usize]) -> String {
     let named = note.strip_prefix("occluder ").and_then(|rest| {
         let (k, why) = rest.split_once(": ")?;
         let model = occluders.get(k.parse::<usize>().ok()?)?;
-        Some(format!("{}: {why}", scene.models[*model].name))
+        Some(format!("{}: {why}", scene.models[*model].model.name))
     });
     named.unwrap_or_else(|| note.to_string())
 }
@@ -189,7 +189,7 @@ pub fn summary(scene: &Scene, exposed: &Exposed, removed_mm3: Option<f64>) -> St
     let focus = scene
         .models
         .get(exposed.focus)
-        .map_or("the structure", |m| m.name.as_str());
+        .map_or("the structure", |m| m.model.name.as_str());
     if exposed.cutters.is_empty() {
         return if exposed.notes.is_empty() {
             format!("{focus} is in full view: nothing to open")
@@ -200,7 +200,7 @@ pub fn summary(scene: &Scene, exposed: &Exposed, removed_mm3: Option<f64>) -> St
     let names: Vec<&str> = exposed
         .opened
         .iter()
-        .map(|&m| scene.models[m].name.as_str())
+        .map(|&m| scene.models[m].model.name.as_str())
         .collect();
     let count = exposed.cutters.len();
     let mut line = format!(

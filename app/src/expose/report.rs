@@ -59,7 +59,7 @@ pub fn report(
 ) -> anyhow::Result<ExposeReport> {
     let focus = exposed.focus;
     Ok(ExposeReport {
-        focus: after.models[focus].name.clone(),
+        focus: after.models[focus].model.name.clone(),
         cutters: exposed.cutters.len(),
         exposure_before: exposure_as_drawn(before, focus, samples)?,
         exposure_after: exposure_as_drawn(after, focus, samples)?,
@@ -69,7 +69,7 @@ pub fn report(
         opened: exposed
             .opened
             .iter()
-            .map(|&m| after.models[m].name.clone())
+            .map(|&m| after.models[m].model.name.clone())
             .collect(),
     })
 }

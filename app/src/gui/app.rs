@@ -28,7 +28,11 @@ pub use crate::gui::job_output::JobOutput;
 
 /// Triangles of all models of `scene`.
 pub fn triangle_count(scene: &Scene) -> usize {
-    scene.models.iter().map(|m| m.mesh.triangle_count()).sum()
+    scene
+        .models
+        .iter()
+        .map(|m| m.model.mesh.triangle_count())
+        .sum()
 }
 
 /// How the app starts.
@@ -282,7 +286,7 @@ impl CutawayApp {
         {
             return;
         }
-        let mesh = &self.state.scene.models[target].mesh;
+        let mesh = &self.state.scene.models[target].model.mesh;
         let started = viewport
             .index_ahead
             .as_ref()
@@ -304,7 +308,7 @@ impl CutawayApp {
             .models
             .iter()
             .filter(|m| m.visible)
-            .map(|m| m.mesh.triangle_count())
+            .map(|m| m.model.mesh.triangle_count())
             .sum();
         self.state.status.cutters = self.state.scene.cutters.len();
         if self.state.mode != Mode::Preview {
@@ -337,7 +341,7 @@ impl CutawayApp {
             .state
             .selected_model
             .and_then(|i| self.state.scene.models.get(i))
-            .map(|m| m.name.clone());
+            .map(|m| m.model.name.clone());
     }
 }
 

@@ -80,8 +80,8 @@ impl CutawayApp {
         {
             return;
         }
-        let mesh = model.mesh.clone();
-        let name = model.name.clone();
+        let mesh = model.model.mesh.clone();
+        let name = model.model.name.clone();
         // A held drag's own message says more (that the drag is kept).
         if self.state.viewport.held.is_none() {
             self.state.say(format!("Indexing {name} for editing…"));
@@ -197,7 +197,7 @@ impl CutawayApp {
                         .scene
                         .models
                         .get(model)
-                        .map(|m| m.name.as_str())
+                        .map(|m| m.model.name.as_str())
                         .unwrap_or("the target")
                 ));
             }

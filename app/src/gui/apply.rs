@@ -103,8 +103,8 @@ impl CutawayApp {
             }
             Action::FocusModel(index) => {
                 if let Some(model) = self.state.scene.models.get(index) {
-                    let name = model.name.clone();
-                    let centre = model.mesh.bbox().center();
+                    let name = model.model.name.clone();
+                    let centre = model.model.mesh.bbox().center();
                     camera_controls::centre_on(&mut self.state.scene.camera, centre);
                     self.state.selected_model = Some(index);
                     if self.state.viewport.editor.target() != Some(index) {
@@ -126,11 +126,17 @@ impl CutawayApp {
                         }
                     }
                     self.state
-                        .record(&format!("remove {}", removed.name), before);
+                        .record(&format!("remove {}", removed.model.name), before);
                 }
             }
             Action::SplitRegions(index) => {
-                let Some(name) = self.state.scene.models.get(index).map(|m| m.name.clone()) else {
+                let Some(name) = self
+                    .state
+                    .scene
+                    .models
+                    .get(index)
+                    .map(|m| m.model.name.clone())
+                else {
                     return;
                 };
                 let before = self.state.scene.clone();

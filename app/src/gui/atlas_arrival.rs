@@ -48,7 +48,7 @@ fn add_structures(app: &mut AppState, models: Vec<Model>, took: Duration) {
             app.scene
                 .models
                 .iter()
-                .map(|m| m.mesh.triangle_count())
+                .map(|m| m.model.mesh.triangle_count())
                 .sum()
         )
     ));

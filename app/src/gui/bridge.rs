@@ -211,7 +211,7 @@ pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &AppState)
         .iter()
         .filter(|m| m.visible && m.opacity > 0.0)
         .collect();
-    let total: usize = visible.iter().map(|m| m.mesh.triangle_count()).sum();
+    let total: usize = visible.iter().map(|m| m.model.mesh.triangle_count()).sum();
     if total == 0 {
         return;
     }
@@ -220,8 +220,8 @@ pub fn paint_fallback(painter: &egui::Painter, rect: egui::Rect, app: &AppState)
     let mut tris: Vec<(f64, [egui::Pos2; 3], egui::Color32)> = Vec::new();
     for model in visible {
         let alpha = to_u8(model.opacity);
-        for t in (0..model.mesh.triangle_count()).step_by(stride) {
-            let corners = model.mesh.corners(t);
+        for t in (0..model.model.mesh.triangle_count()).step_by(stride) {
+            let corners = model.model.mesh.corners(t);
             let Some(n) = (corners[1] - corners[0])
                 .cross(corners[2] - corners[0])
                 .try_normalize()

@@ -25,7 +25,7 @@ impl ExposeKey {
             meshes: scene
                 .models
                 .iter()
-                .map(|m| Arc::as_ptr(&m.mesh) as usize)
+                .map(|m| Arc::as_ptr(&m.model.mesh) as usize)
                 .collect(),
         }
     }
@@ -37,7 +37,13 @@ const LABEL: &str = "Exposing";
 impl CutawayApp {
     /// Plans the exposure of model `focus` from the current view on a worker.
     pub(super) fn start_expose_job(&mut self, ctx: &egui::Context, focus: usize) {
-        let Some(name) = self.state.scene.models.get(focus).map(|m| m.name.clone()) else {
+        let Some(name) = self
+            .state
+            .scene
+            .models
+            .get(focus)
+            .map(|m| m.model.name.clone())
+        else {
             return;
         };
         if self.state.jobs.iter().any(|j| j.label.starts_with(LABEL)) {
@@ -89,7 +95,7 @@ impl CutawayApp {
         self.state.viewport.editor.finish();
         self.state.selected_model = Some(exposed.focus);
         self.state.selected_cutter = first;
-        let name = self.state.scene.models[exposed.focus].name.clone();
+        let name = self.state.scene.models[exposed.focus].model.name.clone();
         self.state.record(&format!("expose {name}"), before);
         self.state.say(line);
     }

@@ -98,7 +98,7 @@ fn skin_file() -> PathBuf {
 fn the_default_scene_shows_its_skin_first_and_the_labels_arrive_with_progress() {
     // The window's own start: the skin at once, the labels from the background.
     let mut h = window("default-start", Vec::new());
-    assert_eq!(h.state().scene.models[0].name, "skin");
+    assert_eq!(h.state().scene.models[0].model.name, "skin");
     step_until(&mut h, "the default's labels", |app| !app.busy());
     h.run_steps(2);
     assert_eq!(
@@ -133,7 +133,10 @@ fn the_default_scene_shows_its_skin_first_and_the_labels_arrive_with_progress() 
     );
     let app = h.state();
     assert!(!app.status.is_error, "{}", app.status.message);
-    assert_eq!(app.scene.models[0].name, "skin", "the skin stays first");
+    assert_eq!(
+        app.scene.models[0].model.name, "skin",
+        "the skin stays first"
+    );
     assert_eq!(
         app.scene.models.len(),
         1 + crate::anatomy::default_scene::selection::default_labels().count(),
@@ -143,9 +146,9 @@ fn the_default_scene_shows_its_skin_first_and_the_labels_arrive_with_progress() 
         .scene
         .models
         .iter()
-        .find(|m| m.name == "left hippocampus")
+        .find(|m| m.model.name == "left hippocampus")
         .expect("the left hippocampus arrived");
-    assert_eq!(hippocampus.group, "limbic system");
+    assert_eq!(hippocampus.model.group, "limbic system");
     assert!(
         app.status.message.contains("head atlas"),
         "{}",
@@ -173,7 +176,7 @@ fn an_edit_made_while_the_labels_surface_undoes_without_losing_them() {
     h.run_steps(2);
     let app = h.state();
     assert_eq!(
-        app.scene.models[0].name, "skin",
+        app.scene.models[0].model.name, "skin",
         "the undo brought the skin back"
     );
     assert_eq!(
@@ -232,14 +235,14 @@ fn the_atlas_with_all_structures_opens_from_the_examples_in_the_background() {
     // The skin and every label the table names (311: all but the one unnamed voxel of label 1).
     assert_eq!(app.scene.models.len(), 1 + 311);
     assert!(named.len() >= 311);
-    assert_eq!(app.scene.models[0].name, "skin");
+    assert_eq!(app.scene.models[0].model.name, "skin");
     let gyrus = app
         .scene
         .models
         .iter()
-        .find(|m| m.name == "left superior frontal gyrus")
+        .find(|m| m.model.name == "left superior frontal gyrus")
         .expect("the cortex is in");
-    assert_eq!(gyrus.group, "cerebral cortex");
+    assert_eq!(gyrus.model.group, "cerebral cortex");
     // Face forward, as the default.
     let camera = app.scene.camera;
     let toward_eye = (camera.eye - camera.target).normalize();
@@ -276,7 +279,12 @@ fn a_volume_opened_in_the_window_surfaces_off_the_ui_thread_with_its_fraction() 
     );
     let app = h.state();
     assert!(!app.status.is_error, "{}", app.status.message);
-    let names: Vec<&str> = app.scene.models.iter().map(|m| m.name.as_str()).collect();
+    let names: Vec<&str> = app
+        .scene
+        .models
+        .iter()
+        .map(|m| m.model.name.as_str())
+        .collect();
     assert_eq!(names.len(), 1 + 312, "the skin and every label");
     // Added to the skin, with the table's names (as the file names them).
     assert_eq!(names[0], "skin");
@@ -294,7 +302,7 @@ fn cancel_leaves_the_scene_as_it_was() {
         .scene
         .models
         .iter()
-        .map(|m| m.mesh.clone())
+        .map(|m| m.model.mesh.clone())
         .collect();
     let ctx = h.ctx.clone();
     // Cancelled at once (whatever the machine's speed): the late result is dropped.
@@ -343,7 +351,7 @@ fn cancel_leaves_the_scene_as_it_was() {
             .models
             .iter()
             .zip(&before)
-            .all(|(m, b)| Arc::ptr_eq(&m.mesh, b)),
+            .all(|(m, b)| Arc::ptr_eq(&m.model.mesh, b)),
         "a model was replaced"
     );
     assert!(

@@ -13,7 +13,7 @@
 //!
 //! | format | reader | notes |
 //! |---|---|---|
-//! | `.obj` | `tobj` (`single_index`, `triangulate`) | every `o`/`g` name is its own [`Part`]; polygons fan-triangulated; points and lines ignored; a vertex weight `w` is ignored, not divided by |
+//! | `.obj` | `tobj` (`single_index`, `triangulate`) | every `o`/`g` name is its own part ([`Model`]); polygons fan-triangulated; points and lines ignored; a vertex weight `w` is ignored, not divided by |
 //! | `.stl` | our own ([`stl`]) | binary when the size is exactly `84 + 50·count` (even if the header starts with `solid`), else ASCII; `stl_io` decides by the `solid ` prefix alone and so rejects such binary files |
 //! | `.ply` | `ply-rs-bw` | ASCII and binary (both byte orders); faces from `vertex_indices` or `vertex_index` lists of any integer type, fan-triangulated |
 //! | `.vtk` | own reader (`vtk.rs`, legacy) | `POLYDATA` with `POLYGONS` (fan-triangulated) and `TRIANGLE_STRIPS` (triangulated here with alternating winding) |
@@ -62,6 +62,7 @@ mod dir;
 pub mod dropped;
 pub mod gesture;
 pub mod intensity;
+mod model;
 mod obj;
 pub mod path_file;
 mod ply;
@@ -72,55 +73,11 @@ mod vtk;
 
 pub use atomic::{OutputSet, recover as recover_output_set, write_file};
 pub use dir::mesh_files;
+pub use model::{Model, ModelUnit};
 pub use structures::{
     FileContent, content_of_file, content_of_file_with, group_of, load_structures, structure_name,
     structures_of_file, structures_of_parts,
 };
-
-/// A named part of a file (an OBJ object/group, or the whole file for formats without parts).
-#[derive(Clone, Debug)]
-pub struct Part {
-    pub name: String,
-    /// The colour the file gives the part (sRGB, 0..=1), if any: label volumes name a colour
-    /// per label.
-    pub color: Option<[f32; 3]>,
-    /// Welded (bit-identical positions merged), validated mesh.
-    pub mesh: Mesh,
-}
-
-/// A model of the scene: one structure of a file ([`load_structures`]) or one connected region of
-/// it ([`load_models`]).
-#[derive(Clone, Debug)]
-pub struct Model {
-    /// A structure's name (`left hippocampus`), or a region's file stem + region number as in the
-    /// thesis's Models list (`knee_skin 1`).
-    pub name: String,
-    /// The file it came from.
-    pub source: std::path::PathBuf,
-    /// Index of this piece among the pieces of `source` of the same kind (structures or regions),
-    /// in file order, 0-based.
-    pub index: usize,
-    /// The colour the file gives it (sRGB, 0..=1), if any.
-    pub color: Option<[f32; 3]>,
-    /// The group it belongs to in the model list: the folder path from the opened folder down
-    /// (`head_brain_spl_atlas/sub`), `""` for a file opened on its own.
-    pub group: String,
-    /// Welded, validated, compacted mesh: the whole structure (all its regions) or one region.
-    pub mesh: Mesh,
-}
-
-/// What one model of a file is: the piece of `source` that `crate::scene::SceneModel::region` indexes.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum ModelUnit {
-    /// One connected region of the file, counted through the whole file in file order: the
-    /// meaning `cutaway-session/1` gives its models, kept for scenes loaded from such files.
-    #[default]
-    Region,
-    /// One structure: the whole mesh file, or one label of a segmentation volume (ascending
-    /// label value). What the model list shows and what `cutaway-session/2` indexes; a cutter on
-    /// it cuts every region of it.
-    Structure,
-}
 
 /// The mesh file formats Cutaway reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -204,14 +161,20 @@ pub(crate) struct RawPart {
 /// Reads every part of a mesh file (format chosen by extension, checked against the content).
 /// A label volume (file or mask directory, [`volume::is_volume`]) gives one part per structure,
 /// named and coloured, in ascending label order.
-pub fn read_parts(path: &Path) -> anyhow::Result<Vec<Part>> {
-    if volume::is_volume(path) {
-        return volume::read_parts(path);
+pub fn read_parts(path: &Path) -> anyhow::Result<Vec<Model>> {
+    let mut parts = if volume::is_volume(path) {
+        volume::read_parts(path)?
+    } else {
+        read_parts_inner(path).with_context(|| path.display().to_string())?
+    };
+    for (index, part) in parts.iter_mut().enumerate() {
+        part.source = path.to_path_buf();
+        part.index = index;
     }
-    read_parts_inner(path).with_context(|| path.display().to_string())
+    Ok(parts)
 }
 
-fn read_parts_inner(path: &Path) -> anyhow::Result<Vec<Part>> {
+fn read_parts_inner(path: &Path) -> anyhow::Result<Vec<Model>> {
     let format = Format::from_path(path).ok_or_else(|| {
         let ext = path
             .extension()
@@ -226,7 +189,7 @@ fn read_parts_inner(path: &Path) -> anyhow::Result<Vec<Part>> {
 
 /// Parses a whole file's bytes as `format`. `default_name` names parts that have no name of their
 /// own (usually the file stem). Errors do not name the file (the caller adds it).
-pub fn parse_bytes(format: Format, bytes: &[u8], default_name: &str) -> anyhow::Result<Vec<Part>> {
+pub fn parse_bytes(format: Format, bytes: &[u8], default_name: &str) -> anyhow::Result<Vec<Model>> {
     if bytes.is_empty() {
         anyhow::bail!("the file is empty");
     }
@@ -282,7 +245,7 @@ fn explain_mismatch(format: Format, bytes: &[u8], error: anyhow::Error) -> anyho
 
 /// Validates, welds and compacts raw parts; drops parts without triangles; merges parts that
 /// share a name (tobj splits an object at each `usemtl`).
-pub(crate) fn finish_parts(raw: Vec<RawPart>, default_name: &str) -> anyhow::Result<Vec<Part>> {
+pub(crate) fn finish_parts(raw: Vec<RawPart>, default_name: &str) -> anyhow::Result<Vec<Model>> {
     let named = raw.iter().filter(|r| !r.triangles.is_empty()).count() > 1;
     let mut merged: Vec<(String, Mesh)> = Vec::new();
     for (index, part) in raw.into_iter().enumerate() {
@@ -312,11 +275,7 @@ pub(crate) fn finish_parts(raw: Vec<RawPart>, default_name: &str) -> anyhow::Res
     }
     Ok(merged
         .into_iter()
-        .map(|(name, mesh)| Part {
-            name,
-            color: None,
-            mesh: csg::weld::weld_exact(&mesh).compacted(),
-        })
+        .map(|(name, mesh)| Model::part(name, None, csg::weld::weld_exact(&mesh).compacted()))
         .collect())
 }
 
@@ -467,7 +426,7 @@ pub fn load_models(path: &Path) -> anyhow::Result<Vec<Model>> {
 }
 
 /// Splits one file's parts into models named as the module doc says.
-pub fn models_of_parts(source: &Path, parts: &[Part]) -> Vec<Model> {
+pub fn models_of_parts(source: &Path, parts: &[Model]) -> Vec<Model> {
     let stem = file_stem(source);
     let several_parts = parts.len() > 1;
     let mut models = Vec::new();
@@ -481,12 +440,9 @@ pub fn models_of_parts(source: &Path, parts: &[Part]) -> Vec<Model> {
         for region in csg::regions::split_regions(&part.mesh) {
             prefixes.push(prefix.clone());
             models.push(Model {
-                name: String::new(),
                 source: source.to_path_buf(),
                 index: models.len(),
-                color: None,
-                group: String::new(),
-                mesh: region,
+                ..Model::part("", None, region)
             });
         }
     }

@@ -17,7 +17,7 @@ use anyhow::Context as _;
 use csg::Mesh;
 use rayon::prelude::*;
 
-use super::{Model, Part};
+use super::Model;
 
 /// Loads a file, or every mesh file under a directory (recursively, sorted by path), as
 /// structures: one [`Model`] per mesh file, with its name from the file name and its group from
@@ -98,7 +98,7 @@ pub fn content_of_file_with(
 /// in file order) as one model named by [`structure_name`]; for a label volume (or a folder of
 /// masks) one model per label, in ascending label order, with the label's name and colour, in a
 /// group named after the volume.
-pub fn structures_of_parts(source: &Path, parts: Vec<Part>, group: &str) -> Vec<Model> {
+pub fn structures_of_parts(source: &Path, parts: Vec<Model>, group: &str) -> Vec<Model> {
     if super::volume::is_volume(source) {
         let volume_group = source
             .file_name()
@@ -113,12 +113,10 @@ pub fn structures_of_parts(source: &Path, parts: Vec<Part>, group: &str) -> Vec<
             .into_iter()
             .enumerate()
             .map(|(index, part)| Model {
-                name: part.name,
                 source: source.to_path_buf(),
                 index,
-                color: part.color,
                 group: group.clone(),
-                mesh: part.mesh,
+                ..part
             })
             .collect();
     }
@@ -131,12 +129,13 @@ pub fn structures_of_parts(source: &Path, parts: Vec<Part>, group: &str) -> Vec<
         mesh.append(&part.mesh);
     }
     vec![Model {
-        name: structure_name(&stem),
         source: source.to_path_buf(),
-        index: 0,
-        color: parts.iter().find_map(|p| p.color),
         group: group.to_owned(),
-        mesh,
+        ..Model::part(
+            structure_name(&stem),
+            parts.iter().find_map(|p| p.color),
+            mesh,
+        )
     }]
 }
 

@@ -107,7 +107,7 @@ pub fn measure(scene: &Scene, options: &MetricsOptions) -> anyhow::Result<Metric
     let mut structures = Vec::new();
     for (m, model) in scene.models.iter().enumerate() {
         let cut = cuts.iter().find(|c| c.model == m);
-        let closed = cut.map_or_else(|| model.mesh.report().closed, |c| c.model_closed);
+        let closed = cut.map_or_else(|| model.model.mesh.report().closed, |c| c.model_closed);
         let cutters = cut.map_or(&[][..], |c| &c.cutters[..]);
         // Folded from +0 (an empty `sum` of floats is −0).
         let total = |value: fn(&removal::CutterMeasures) -> f64| {
@@ -116,10 +116,10 @@ pub fn measure(scene: &Scene, options: &MetricsOptions) -> anyhow::Result<Metric
         let removed_volume = closed.then(|| total(|c| c.removed_volume.unwrap_or(0.0)));
         let pair = critical
             .contains(&m)
-            .then(|| distance::min_distance(&walls, &model.mesh))
+            .then(|| distance::min_distance(&walls, &model.model.mesh))
             .flatten();
         structures.push(StructureMeasures {
-            name: model.name.clone(),
+            name: model.model.name.clone(),
             closed,
             removed_volume,
             removed_area: total(|c| c.removed_area),
@@ -178,7 +178,7 @@ impl Metrics {
 /// Exposure of model `focus` without and with the cuts.
 fn focus_measures(scene: &Scene, focus: usize, samples: usize) -> anyhow::Result<FocusMeasures> {
     Ok(FocusMeasures {
-        name: scene.models[focus].name.clone(),
+        name: scene.models[focus].model.name.clone(),
         exposure_before: exposure_uncut(scene, focus, samples)?,
         exposure_after: exposure_as_drawn(scene, focus, samples)?,
         samples,
@@ -196,7 +196,7 @@ fn hides(scene: &Scene, m: usize, focus: usize) -> bool {
 fn no_area(scene: &Scene, focus: usize) -> anyhow::Error {
     anyhow::anyhow!(
         "{}: the structure has no surface area",
-        scene.models[focus].name
+        scene.models[focus].model.name
     )
 }
 
@@ -205,11 +205,11 @@ fn no_area(scene: &Scene, focus: usize) -> anyhow::Error {
 pub fn exposure_uncut(scene: &Scene, focus: usize, samples: usize) -> anyhow::Result<f64> {
     let occluders: Vec<&Mesh> = (0..scene.models.len())
         .filter(|&m| hides(scene, m, focus))
-        .map(|m| &*scene.models[m].mesh)
+        .map(|m| &*scene.models[m].model.mesh)
         .collect();
     let camera = &scene.camera;
     exposure::exposure(
-        &scene.models[focus].mesh,
+        &scene.models[focus].model.mesh,
         &occluders,
         camera.eye,
         camera.forward(),
@@ -223,7 +223,7 @@ pub fn exposure_uncut(scene: &Scene, focus: usize, samples: usize) -> anyhow::Re
 pub fn exposure_unoccluded(scene: &Scene, focus: usize, samples: usize) -> anyhow::Result<f64> {
     let camera = &scene.camera;
     exposure::exposure(
-        &scene.models[focus].mesh,
+        &scene.models[focus].model.mesh,
         &[],
         camera.eye,
         camera.forward(),
@@ -249,7 +249,7 @@ pub fn exposure_as_drawn(scene: &Scene, focus: usize, samples: usize) -> anyhow:
                 .map(|p| &p.mesh)
                 .collect()
         } else {
-            vec![&*scene.models[m].mesh]
+            vec![&*scene.models[m].model.mesh]
         }
     };
     let occluders: Vec<&Mesh> = (0..scene.models.len())

@@ -83,12 +83,12 @@ pub fn cut_models(scene: &Scene) -> anyhow::Result<Vec<ModelCut>> {
         if cutters.is_empty() {
             continue;
         }
-        let model_closed = model.mesh.report().closed;
-        let origin = model.mesh.bbox().center();
+        let model_closed = model.model.mesh.report().closed;
+        let origin = model.model.mesh.bbox().center();
         let mut measures = Vec::new();
         let sequence = cut_in_turn(
             &mut cache,
-            &model.mesh,
+            &model.model.mesh,
             &cutters,
             |_| false,
             |step| {
@@ -102,7 +102,7 @@ pub fn cut_models(scene: &Scene) -> anyhow::Result<Vec<ModelCut>> {
                     - surface_area(step.after, step.after_tags);
                 measures.push(CutterMeasures {
                     index: step.cutter,
-                    target: model.name.clone(),
+                    target: model.model.name.clone(),
                     removed_volume: model_closed.then_some(volume),
                     removed_area,
                     wall_area: 0.0,
@@ -111,7 +111,7 @@ pub fn cut_models(scene: &Scene) -> anyhow::Result<Vec<ModelCut>> {
             },
         );
         if let Some(note) = sequence.notes.first() {
-            anyhow::bail!("{}: {note}; metrics need exact cuts", model.name);
+            anyhow::bail!("{}: {note}; metrics need exact cuts", model.model.name);
         }
         for measure in &mut measures {
             let tag = measure.index as u32;

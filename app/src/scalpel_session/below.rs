@@ -55,10 +55,10 @@ pub(crate) fn cut_layers(
             *i != model
                 && m.visible
                 && m.opacity > 0.0
-                && !m.mesh.triangles.is_empty()
-                && m.mesh.bbox().overlaps(&reach)
+                && !m.model.mesh.triangles.is_empty()
+                && m.model.mesh.bbox().overlaps(&reach)
         })
-        .map(|(i, m)| (i, m.mesh.clone(), index_of(&m.mesh)))
+        .map(|(i, m)| (i, m.model.mesh.clone(), index_of(&m.model.mesh)))
         .collect();
     let surfaces: Vec<Surface> = others
         .iter()

@@ -212,7 +212,8 @@ impl ScalpelSession {
     /// selected model in Scalpel mode), so that pressing on it does not wait. Nothing to do
     /// while a stroke is in progress or when the scalpel for what the scene shows exists.
     pub fn prepare(&mut self, scene: &Scene, model: Option<usize>) {
-        let Some((model, mesh)) = model.and_then(|m| scene.models.get(m).map(|s| (m, &s.mesh)))
+        let Some((model, mesh)) =
+            model.and_then(|m| scene.models.get(m).map(|s| (m, &s.model.mesh)))
         else {
             return;
         };
@@ -239,7 +240,7 @@ impl ScalpelSession {
         scene
             .models
             .get(model)
-            .is_some_and(|m| self.prepared.pending(model, &m.mesh))
+            .is_some_and(|m| self.prepared.pending(model, &m.model.mesh))
     }
 
     /// True while a stroke is in progress.
@@ -264,7 +265,7 @@ impl ScalpelSession {
         let mesh = scene
             .models
             .get(model)
-            .map(|m| m.mesh.clone())
+            .map(|m| m.model.mesh.clone())
             .ok_or_else(|| format!("model {} does not exist", model + 1))?;
         let keep = match &mut self.session {
             Some(s) if s.model == model => loop {
@@ -404,13 +405,13 @@ impl ScalpelSession {
         if scene
             .models
             .get(session.model)
-            .is_none_or(|m| !Arc::ptr_eq(&m.mesh, &session.shown))
+            .is_none_or(|m| !Arc::ptr_eq(&m.model.mesh, &session.shown))
         {
             // The scene changed under the stroke (an undo while dragging): drop the stroke.
             if stroke.begun {
                 session.scalpel.undo_stroke();
                 if let Some(m) = stroke.before.models.get(session.model) {
-                    session.shown = m.mesh.clone();
+                    session.shown = m.model.mesh.clone();
                     session.shown_open = stroke.open_before;
                 }
             }
@@ -514,7 +515,11 @@ impl ScalpelSession {
         let model = session.model;
         // The touched surface before the stroke, for the rays to the layers below it.
         let (top_mesh, top_index) = session.rest();
-        let before_mesh = stroke.before.models.get(model).map(|m| m.mesh.clone());
+        let before_mesh = stroke
+            .before
+            .models
+            .get(model)
+            .map(|m| m.model.mesh.clone());
         // What the model was before the stroke, for putting it back when nothing is kept.
         let before_origin = stroke.before.models.get(model).map(|m| m.origin);
         let before_walls = stroke
@@ -528,7 +533,7 @@ impl ScalpelSession {
                 // Discard the whole stroke: the scalpel and the scene go back to before it.
                 session.scalpel.undo_stroke();
                 if let (Some(m), Some(mesh)) = (scene.models.get_mut(model), before_mesh) {
-                    m.mesh = mesh.clone();
+                    m.model.mesh = mesh.clone();
                     m.origin = before_origin.unwrap_or(m.origin);
                     m.walls = before_walls;
                     session.shown = mesh;
@@ -549,7 +554,7 @@ impl ScalpelSession {
         if unchanged {
             session.scalpel.undo_stroke();
             if let (Some(m), Some(b)) = (scene.models.get_mut(model), before_mesh) {
-                m.mesh = b.clone();
+                m.model.mesh = b.clone();
                 m.origin = before_origin.unwrap_or(m.origin);
                 m.walls = before_walls;
                 session.shown = b;
@@ -593,8 +598,9 @@ impl ScalpelSession {
                 // Only indexes of meshes the scene shows now are worth keeping (the history
                 // holds old meshes alive; their indexes would pile up).
                 self.layer_indexes.retain(|(w, _)| {
-                    w.upgrade()
-                        .is_some_and(|m| scene.models.iter().any(|s| Arc::ptr_eq(&s.mesh, &m)))
+                    w.upgrade().is_some_and(|m| {
+                        scene.models.iter().any(|s| Arc::ptr_eq(&s.model.mesh, &m))
+                    })
                 });
                 let indexes = &mut self.layer_indexes;
                 let mut index_of = |mesh: &Arc<Mesh>| -> Arc<SpatialIndex> {
@@ -631,7 +637,7 @@ impl ScalpelSession {
                     let names: Vec<&str> = outcome
                         .cut
                         .iter()
-                        .filter_map(|(m, _)| scene.models.get(*m).map(|m| m.name.as_str()))
+                        .filter_map(|(m, _)| scene.models.get(*m).map(|m| m.model.name.as_str()))
                         .collect();
                     message.push_str(&format!(
                         "; below it {} ({created} triangles created)",
@@ -639,7 +645,7 @@ impl ScalpelSession {
                     ));
                 }
                 for (m, e) in &outcome.refused {
-                    let name = scene.models.get(*m).map_or("?", |m| m.name.as_str());
+                    let name = scene.models.get(*m).map_or("?", |m| m.model.name.as_str());
                     message.push_str(&format!("; {name} below was not cut ({e})"));
                     refused.push(format!("{name}: {e}"));
                 }
@@ -653,12 +659,12 @@ impl ScalpelSession {
             scene.models[model].replace_mesh_with_walls(Arc::new(kept), walls);
             for (k, piece) in report.detached.into_iter().enumerate() {
                 let mut entry = SceneModel::new(
-                    format!("{} piece {}", original.name, k + 1),
-                    original.source.clone(),
+                    format!("{} piece {}", original.model.name, k + 1),
+                    original.model.source.clone(),
                     Arc::new(piece),
                     piece_colour(original.color),
                 );
-                entry.region = original.region;
+                entry.model.index = original.model.index;
                 // Not a region of the source file: a session saves the piece as a file of its own.
                 entry.origin = MeshOrigin::Edited;
                 scene.models.push(entry);

@@ -55,7 +55,11 @@ fn draw_in_window(
         );
         fed.push(session.last_points.clone());
     }
-    let meshes = scene.models.iter().map(|m| (*m.mesh).clone()).collect();
+    let meshes = scene
+        .models
+        .iter()
+        .map(|m| (*m.model.mesh).clone())
+        .collect();
     (meshes, fed)
 }
 

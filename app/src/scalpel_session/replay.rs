@@ -96,21 +96,21 @@ fn nearest_model(
     indexes.retain(|(w, _)| w.strong_count() > 0);
     let mut best: Option<(usize, f64)> = None;
     for (i, m) in scene.models.iter().enumerate() {
-        if !m.visible || m.mesh.triangles.is_empty() {
+        if !m.visible || m.model.mesh.triangles.is_empty() {
             continue;
         }
         let index = match indexes
             .iter()
-            .find(|(w, _)| w.upgrade().is_some_and(|x| Arc::ptr_eq(&x, &m.mesh)))
+            .find(|(w, _)| w.upgrade().is_some_and(|x| Arc::ptr_eq(&x, &m.model.mesh)))
         {
             Some((_, index)) => index.clone(),
             None => {
-                let index = Arc::new(SpatialIndex::build(&m.mesh));
-                indexes.push((Arc::downgrade(&m.mesh), index.clone()));
+                let index = Arc::new(SpatialIndex::build(&m.model.mesh));
+                indexes.push((Arc::downgrade(&m.model.mesh), index.clone()));
                 index
             }
         };
-        if let Some(cp) = index.closest_point(&m.mesh, p) {
+        if let Some(cp) = index.closest_point(&m.model.mesh, p) {
             let d = cp.point.distance(p);
             if best.is_none_or(|(_, bd)| d < bd) {
                 best = Some((i, d));

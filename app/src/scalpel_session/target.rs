@@ -24,7 +24,7 @@ use crate::scene::units::SizeDefaults;
 pub fn target_box(scene: &Scene, model: Option<usize>) -> Aabb {
     model
         .and_then(|m| scene.models.get(m))
-        .map(|m| m.mesh.bbox())
+        .map(|m| m.model.mesh.bbox())
         .filter(|b| !b.is_empty() && b.diagonal() > 0.0)
         .unwrap_or_else(|| scene.bbox())
 }
@@ -54,7 +54,7 @@ impl ScalpelSizing {
         model: Option<usize>,
         settings: &mut ScalpelSettings,
     ) -> bool {
-        let target = model.and_then(|m| scene.models.get(m).map(|s| (m, s.mesh.clone())));
+        let target = model.and_then(|m| scene.models.get(m).map(|s| (m, s.model.mesh.clone())));
         let same = match (&self.target, &target) {
             (Some((a, m)), Some((b, n))) => a == b && Arc::ptr_eq(m, n),
             (None, None) => self.given.is_some(),
@@ -79,7 +79,7 @@ impl ScalpelSizing {
         let d = defaults_for(scene, model);
         settings.depth = d.scalpel_depth;
         settings.opening = d.scalpel_opening;
-        self.target = model.and_then(|m| scene.models.get(m).map(|s| (m, s.mesh.clone())));
+        self.target = model.and_then(|m| scene.models.get(m).map(|s| (m, s.model.mesh.clone())));
         self.given = Some((settings.depth, settings.opening));
     }
 }

@@ -30,7 +30,7 @@ fn assert_view_is_the_cut_mesh(slot: &ScalpelSession) -> f64 {
     let full = session.display(&slot.settings.open());
     // The base is the scene's model at the press, drawn with its walls.
     let before = &slot.stroke.as_ref().expect("a stroke").before.models[session.model];
-    assert!(Arc::ptr_eq(&before.mesh, &delta.base));
+    assert!(Arc::ptr_eq(&before.model.mesh, &delta.base));
     assert_same_corners(
         delta_corners(&delta, before.wall_faces()),
         mesh_corners(&full, &session.scalpel.wall_faces()),
@@ -58,13 +58,13 @@ fn the_view_of_a_stroke_in_progress_is_the_cut_mesh_step_by_step() {
             }
         }
         assert!(checked > 3, "{checked} steps drawn");
-        let before = scene.models[0].mesh.clone();
+        let before = scene.models[0].model.mesh.clone();
         let released = slot.release(scene);
         assert!(
             matches!(released, Released::Committed { .. }),
             "{released:?}"
         );
-        assert!(!Arc::ptr_eq(&before, &scene.models[0].mesh));
+        assert!(!Arc::ptr_eq(&before, &scene.models[0].model.mesh));
         assert!(slot.delta().is_none(), "no delta after the release");
     };
     slot.settings.depth = 0.4;
@@ -134,7 +134,7 @@ fn stroke(slot: &mut ScalpelSession, scene: &mut Scene, viewport: DVec2, px: &[D
 fn a_drag_across_a_sphere_cuts_a_closed_groove_step_by_step() {
     let mut scene = sphere_scene();
     let viewport = DVec2::new(800.0, 600.0);
-    let original = scene.models[0].mesh.clone();
+    let original = scene.models[0].model.mesh.clone();
     let mut slot = ScalpelSession::default();
     slot.settings.depth = 0.5;
     let px = across(viewport, 0.42, 0.58, 24);
@@ -148,7 +148,7 @@ fn a_drag_across_a_sphere_cuts_a_closed_groove_step_by_step() {
         }
         counts.push(slot.delta().map_or(0, |d| d.compose().triangle_count()));
         // The scene keeps the mesh from before the stroke until the release.
-        assert!(Arc::ptr_eq(&scene.models[0].mesh, &original));
+        assert!(Arc::ptr_eq(&scene.models[0].model.mesh, &original));
     }
     // Progressive: the view's mesh grew while the pointer moved, not only at the release.
     assert!(updates > 5, "{updates} updates");
@@ -159,8 +159,8 @@ fn a_drag_across_a_sphere_cuts_a_closed_groove_step_by_step() {
     let Released::Committed { before, .. } = slot.release(&mut scene) else {
         panic!("the stroke did not commit");
     };
-    assert!(Arc::ptr_eq(&before.models[0].mesh, &original));
-    let mesh = &scene.models[0].mesh;
+    assert!(Arc::ptr_eq(&before.models[0].model.mesh, &original));
+    let mesh = &scene.models[0].model.mesh;
     assert!(mesh.triangle_count() > original.triangle_count() + 20);
     let report = mesh.report();
     assert!(report.closed && report.manifold, "{report:?}");
@@ -184,7 +184,7 @@ fn a_drag_across_the_knee_skin_cuts_a_closed_groove() {
         .find(|m| m.name.to_ascii_lowercase().contains("skin"))
         .expect("knee skin");
     let mut scene = Scene::default();
-    let original = Arc::new(skin.mesh);
+    let original = skin.mesh;
     scene.models.push(SceneModel::new(
         skin.name,
         skin.source,
@@ -205,7 +205,7 @@ fn a_drag_across_the_knee_skin_cuts_a_closed_groove() {
         matches!(released, Released::Committed { .. }),
         "{released:?}"
     );
-    let mesh = &scene.models[0].mesh;
+    let mesh = &scene.models[0].model.mesh;
     assert!(mesh.triangle_count() > original.triangle_count());
     let report = mesh.report();
     assert!(report.closed && report.manifold, "{report:?}");
@@ -228,7 +228,7 @@ fn undo_through_the_scene_is_followed_by_the_scalpel() {
     let Released::Committed { before, .. } = first else {
         panic!("first stroke did not commit");
     };
-    let after_first = scene.models[0].mesh.clone();
+    let after_first = scene.models[0].model.mesh.clone();
     let second = stroke(
         &mut slot,
         &mut scene,
@@ -237,7 +237,7 @@ fn undo_through_the_scene_is_followed_by_the_scalpel() {
     );
     assert!(matches!(second, Released::Committed { .. }));
     // Undo the second stroke the way the window does: the scene snapshot comes back.
-    scene.models[0].mesh = after_first.clone();
+    scene.models[0].model.mesh = after_first.clone();
     // The next press follows: the scalpel undid its last stroke, so its mesh is the first
     // stroke's, bit for bit, and cutting goes on from there.
     slot.press(&scene, viewport, DVec2::new(400.0, 350.0))
@@ -247,11 +247,11 @@ fn undo_through_the_scene_is_followed_by_the_scalpel() {
     assert_eq!(rest.positions, after_first.positions);
     slot.release(&mut scene);
     // A scene the scalpel never made (e.g. an undo past the session): it starts over.
-    scene.models[0].mesh = before.models[0].mesh.clone();
+    scene.models[0].model.mesh = before.models[0].model.mesh.clone();
     slot.press(&scene, viewport, DVec2::new(400.0, 300.0))
         .unwrap();
     let rest = slot.session.as_ref().unwrap().scalpel.mesh();
-    assert_eq!(rest.triangles, before.models[0].mesh.triangles);
+    assert_eq!(rest.triangles, before.models[0].model.mesh.triangles);
 }
 
 #[test]
@@ -280,11 +280,11 @@ fn a_refused_step_is_an_error_and_leaves_the_scene_alone() {
     slot.settings.depth = 0.0;
     assert_eq!(slot.press(&scene, viewport, a), Ok(Some(0)));
     assert!(slot.drag(&mut scene, viewport, b).unwrap());
-    let before = scene.models[0].mesh.clone();
+    let before = scene.models[0].model.mesh.clone();
     let shown = slot.delta().expect("the step is drawn");
     let err = slot.drag(&mut scene, viewport, c).unwrap_err();
     assert!(err.contains("non-manifold"), "{err}");
-    assert!(Arc::ptr_eq(&scene.models[0].mesh, &before));
+    assert!(Arc::ptr_eq(&scene.models[0].model.mesh, &before));
     // The view is as before the refused step, and still the scalpel's own mesh.
     assert!(Arc::ptr_eq(&slot.delta().unwrap(), &shown));
     assert_view_is_the_cut_mesh(&slot);
@@ -294,14 +294,14 @@ fn a_refused_step_is_an_error_and_leaves_the_scene_alone() {
 fn a_click_without_a_drag_changes_nothing() {
     let mut scene = sphere_scene();
     let viewport = DVec2::new(800.0, 600.0);
-    let original = scene.models[0].mesh.clone();
+    let original = scene.models[0].model.mesh.clone();
     let mut slot = ScalpelSession::default();
     slot.press(&scene, viewport, DVec2::new(400.0, 300.0))
         .unwrap();
     slot.drag(&mut scene, viewport, DVec2::new(401.0, 300.0))
         .unwrap();
     assert!(matches!(slot.release(&mut scene), Released::Nothing));
-    assert!(Arc::ptr_eq(&scene.models[0].mesh, &original));
+    assert!(Arc::ptr_eq(&scene.models[0].model.mesh, &original));
     // A press beside the model starts nothing.
     assert_eq!(slot.press(&scene, viewport, DVec2::new(3.0, 3.0)), Ok(None));
 }
@@ -310,7 +310,7 @@ fn a_click_without_a_drag_changes_nothing() {
 fn a_loop_around_a_cap_detaches_it_as_a_model() {
     let mut scene = sphere_scene();
     let viewport = DVec2::new(800.0, 600.0);
-    let original = scene.models[0].mesh.clone();
+    let original = scene.models[0].model.mesh.clone();
     let mut slot = ScalpelSession::default();
     slot.settings.tool = Tool::Loop;
     slot.settings.depth = 0.0;
@@ -327,7 +327,7 @@ fn a_loop_around_a_cap_detaches_it_as_a_model() {
         "{released:?}"
     );
     assert_eq!(scene.models.len(), 2, "the piece was not added");
-    let (kept, piece) = (&scene.models[0].mesh, &scene.models[1].mesh);
+    let (kept, piece) = (&scene.models[0].model.mesh, &scene.models[1].model.mesh);
     assert!(piece.triangle_count() > 0);
     assert!(kept.triangle_count() > 0);
     // Nothing lost: kept + piece cover the sphere's area (to within what moving the vertices the
@@ -339,7 +339,7 @@ fn a_loop_around_a_cap_detaches_it_as_a_model() {
         "{total} vs {}",
         original.area()
     );
-    assert!(scene.models[1].name.contains("piece"));
+    assert!(scene.models[1].model.name.contains("piece"));
 }
 
 /// A private folder for session files.
@@ -376,24 +376,24 @@ fn a_saved_scalpel_stroke_reopens_bit_for_bit() {
     assert!(matches!(released, Released::Committed { .. }));
     assert_eq!(scene.models[0].origin, MeshOrigin::Edited);
     // The source file does not even exist: the session must not need it.
-    assert!(!scene.models[0].source.exists());
+    assert!(!scene.models[0].model.source.exists());
     let dir = session_dir("stroke");
     let path = dir.join("cut.json");
     crate::session::save(&path, &scene).unwrap();
     let back = crate::session::load(&path).unwrap();
     assert_eq!(back.models.len(), 1);
-    let (cut, reopened) = (&scene.models[0].mesh, &back.models[0].mesh);
+    let (cut, reopened) = (&scene.models[0].model.mesh, &back.models[0].model.mesh);
     assert!(reopened.triangles == cut.triangles, "triangles differ");
     assert!(
         position_bits(reopened) == position_bits(cut),
         "positions differ"
     );
-    assert_eq!(back.models[0].name, scene.models[0].name);
+    assert_eq!(back.models[0].model.name, scene.models[0].model.name);
     // The incision walls come back with the mesh (the PLY's wall marks).
     let walls = scene.models[0].wall_faces().to_vec();
     assert!(walls.len() > 10, "{} walls", walls.len());
     assert_eq!(back.models[0].wall_faces(), walls);
-    let first = back.models[0].mesh.clone();
+    let first = back.models[0].model.mesh.clone();
     // A second stroke on the reopened model and a save over the same session: the new cut
     // comes back and only its mesh file is left.
     let mut scene = back;
@@ -410,8 +410,8 @@ fn a_saved_scalpel_stroke_reopens_bit_for_bit() {
     assert!(matches!(released, Released::Committed { .. }));
     crate::session::save(&path, &scene).unwrap();
     let again = crate::session::load(&path).unwrap();
-    let recut = &scene.models[0].mesh;
-    assert!(again.models[0].mesh.triangles == recut.triangles);
+    let recut = &scene.models[0].model.mesh;
+    assert!(again.models[0].model.mesh.triangles == recut.triangles);
     // The scalpel made from the reopened mesh kept its walls walls: every first wall the cross
     // cut left as it was is still one, and the saved marks come back again.
     let recut_walls = scene.models[0].wall_faces();
@@ -426,7 +426,7 @@ fn a_saved_scalpel_stroke_reopens_bit_for_bit() {
     }
     assert!(recut_walls.len() > walls.len());
     assert_eq!(again.models[0].wall_faces(), recut_walls);
-    assert!(position_bits(&again.models[0].mesh) == position_bits(recut));
+    assert!(position_bits(&again.models[0].model.mesh) == position_bits(recut));
     assert!(recut.triangle_count() > cut.triangle_count());
     let files = std::fs::read_dir(crate::session::meshes::mesh_dir(&path))
         .unwrap()
@@ -462,16 +462,16 @@ fn a_detached_piece_is_saved_to_its_own_file_and_reopens_as_its_own_model() {
     let back = crate::session::load(&path).unwrap();
     assert_eq!(back.models.len(), 2);
     for (a, b) in scene.models.iter().zip(&back.models) {
-        assert_eq!(a.name, b.name);
+        assert_eq!(a.model.name, b.model.name);
         assert!(
-            a.mesh.triangles == b.mesh.triangles,
+            a.model.mesh.triangles == b.model.mesh.triangles,
             "{}: triangles differ",
-            a.name
+            a.model.name
         );
         assert!(
-            position_bits(&a.mesh) == position_bits(&b.mesh),
+            position_bits(&a.model.mesh) == position_bits(&b.model.mesh),
             "{}",
-            a.name
+            a.model.name
         );
     }
     let _ = std::fs::remove_dir_all(&dir);
@@ -515,7 +515,10 @@ pub(crate) fn assert_closed_and_manifold(mesh: &Mesh, what: &str) {
 fn a_groove_cuts_the_model_below_within_its_depth() {
     let mut scene = nested_scene();
     let viewport = DVec2::new(800.0, 600.0);
-    let (outer, inner) = (scene.models[0].mesh.clone(), scene.models[1].mesh.clone());
+    let (outer, inner) = (
+        scene.models[0].model.mesh.clone(),
+        scene.models[1].model.mesh.clone(),
+    );
     let mut slot = ScalpelSession::default();
     assert!(slot.settings.layers, "on by default");
     slot.settings.depth = 0.6;
@@ -532,8 +535,8 @@ fn a_groove_cuts_the_model_below_within_its_depth() {
         panic!("the stroke did not commit: {released:?}");
     };
     assert!(message.contains("below it inner"), "{message}");
-    assert!(Arc::ptr_eq(&before.models[1].mesh, &inner));
-    let (outer_cut, inner_cut) = (&scene.models[0].mesh, &scene.models[1].mesh);
+    assert!(Arc::ptr_eq(&before.models[1].model.mesh, &inner));
+    let (outer_cut, inner_cut) = (&scene.models[0].model.mesh, &scene.models[1].model.mesh);
     assert!(outer_cut.triangle_count() > outer.triangle_count());
     assert!(
         inner_cut.triangle_count() > inner.triangle_count() + 10,
@@ -570,8 +573,8 @@ fn a_groove_cuts_the_model_below_within_its_depth() {
     );
     // One undo step: the snapshot from before the stroke holds both models as they were.
     scene = *before;
-    assert!(Arc::ptr_eq(&scene.models[0].mesh, &outer));
-    assert!(Arc::ptr_eq(&scene.models[1].mesh, &inner));
+    assert!(Arc::ptr_eq(&scene.models[0].model.mesh, &outer));
+    assert!(Arc::ptr_eq(&scene.models[1].model.mesh, &inner));
 }
 
 #[test]
@@ -579,7 +582,10 @@ fn a_shallow_groove_or_layers_off_leaves_the_model_below_alone() {
     let viewport = DVec2::new(800.0, 600.0);
     for (depth, layers) in [(0.2, true), (0.6, false)] {
         let mut scene = nested_scene();
-        let (outer, inner) = (scene.models[0].mesh.clone(), scene.models[1].mesh.clone());
+        let (outer, inner) = (
+            scene.models[0].model.mesh.clone(),
+            scene.models[1].model.mesh.clone(),
+        );
         let inner_bits = position_bits(&inner);
         let mut slot = ScalpelSession::default();
         slot.settings.depth = depth;
@@ -594,14 +600,14 @@ fn a_shallow_groove_or_layers_off_leaves_the_model_below_alone() {
             matches!(released, Released::Committed { .. }),
             "{released:?}"
         );
-        assert!(scene.models[0].mesh.triangle_count() > outer.triangle_count());
+        assert!(scene.models[0].model.mesh.triangle_count() > outer.triangle_count());
         let kept = &scene.models[1];
         assert!(
-            Arc::ptr_eq(&kept.mesh, &inner),
+            Arc::ptr_eq(&kept.model.mesh, &inner),
             "depth {depth}, layers {layers}: the inner sphere changed"
         );
-        assert_eq!(kept.mesh.triangles, inner.triangles);
-        assert_eq!(position_bits(&kept.mesh), inner_bits);
+        assert_eq!(kept.model.mesh.triangles, inner.triangles);
+        assert_eq!(position_bits(&kept.model.mesh), inner_bits);
         assert_eq!(kept.origin, MeshOrigin::Region);
     }
 }
@@ -675,23 +681,23 @@ fn a_refused_layer_is_left_alone_and_reported() {
     );
     assert_eq!(outcome.refused.len(), 1, "{outcome:?}");
     assert_eq!(outcome.refused[0].0, 1);
-    assert!(Arc::ptr_eq(&scene.models[1].mesh, &bow_tie));
+    assert!(Arc::ptr_eq(&scene.models[1].model.mesh, &bow_tie));
     assert_eq!(scene.models[1].origin, MeshOrigin::Region);
     assert_eq!(
         outcome.cut.iter().map(|(m, _)| *m).collect::<Vec<_>>(),
         vec![2]
     );
-    assert!(scene.models[2].mesh.triangle_count() > lower.triangle_count());
-    assert_closed_and_manifold(&scene.models[2].mesh, "lower sphere");
+    assert!(scene.models[2].model.mesh.triangle_count() > lower.triangle_count());
+    assert_closed_and_manifold(&scene.models[2].model.mesh, "lower sphere");
     // The touched model itself is never a layer of its own stroke.
-    assert!(Arc::ptr_eq(&scene.models[0].mesh, &plate));
+    assert!(Arc::ptr_eq(&scene.models[0].model.mesh, &plate));
 }
 
 #[test]
 fn a_session_saves_and_reopens_both_cut_layers_bit_for_bit() {
     let mut scene = nested_scene();
     let viewport = DVec2::new(800.0, 600.0);
-    let inner = scene.models[1].mesh.clone();
+    let inner = scene.models[1].model.mesh.clone();
     let mut slot = ScalpelSession::default();
     slot.settings.depth = 0.6;
     let released = stroke(
@@ -701,19 +707,26 @@ fn a_session_saves_and_reopens_both_cut_layers_bit_for_bit() {
         &across(viewport, 0.42, 0.58, 16),
     );
     assert!(matches!(released, Released::Committed { .. }));
-    assert!(!Arc::ptr_eq(&scene.models[1].mesh, &inner), "no layer cut");
+    assert!(
+        !Arc::ptr_eq(&scene.models[1].model.mesh, &inner),
+        "no layer cut"
+    );
     let dir = session_dir("layers");
     let path = dir.join("layers.json");
     crate::session::save(&path, &scene).unwrap();
     let back = crate::session::load(&path).unwrap();
     assert_eq!(back.models.len(), 2);
     for (a, b) in scene.models.iter().zip(&back.models) {
-        assert_eq!(a.name, b.name);
-        assert!(a.mesh.triangles == b.mesh.triangles, "{}", a.name);
+        assert_eq!(a.model.name, b.model.name);
         assert!(
-            position_bits(&a.mesh) == position_bits(&b.mesh),
+            a.model.mesh.triangles == b.model.mesh.triangles,
             "{}",
-            a.name
+            a.model.name
+        );
+        assert!(
+            position_bits(&a.model.mesh) == position_bits(&b.model.mesh),
+            "{}",
+            a.model.name
         );
     }
     let _ = std::fs::remove_dir_all(&dir);

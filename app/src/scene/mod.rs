@@ -7,7 +7,7 @@
 //! to an undo stack every frame without copying triangles.
 //!
 //! Change tracking needs no bookkeeping: the renderer remembers a [`std::sync::Weak`] to every
-//! mesh it uploaded. Replacing `SceneModel::mesh` with a new `Arc` (or mutating it through
+//! mesh it uploaded. Replacing a model's mesh (`model.mesh`) with a new `Arc` (or mutating it through
 //! `Arc::make_mut`, which moves the data out while the renderer's weak pointer exists) makes the
 //! old weak pointer stale, and the renderer re-uploads. A weak pointer also keeps its allocation
 //! reserved, so a new mesh can never reuse the old address by accident.
@@ -95,7 +95,7 @@ impl Scene {
         let mut visible = Aabb::EMPTY;
         let mut all = Aabb::EMPTY;
         for model in &self.models {
-            let b = model.mesh.bbox();
+            let b = model.model.mesh.bbox();
             all = all.union(&b);
             if model.visible {
                 visible = visible.union(&b);
@@ -166,11 +166,14 @@ impl Scene {
             if !(0.0..=1.0).contains(&m.opacity) {
                 return Err(format!(
                     "model {i} ({}): opacity {} is outside 0..1",
-                    m.name, m.opacity
+                    m.model.name, m.opacity
                 ));
             }
             if m.color.iter().any(|c| !c.is_finite()) {
-                return Err(format!("model {i} ({}): colour is not finite", m.name));
+                return Err(format!(
+                    "model {i} ({}): colour is not finite",
+                    m.model.name
+                ));
             }
         }
         for (i, c) in cutters.iter().enumerate() {

@@ -27,7 +27,7 @@ impl GroupNode {
                 continue;
             }
             let mut node = &mut root;
-            for name in model.group.split('/').filter(|n| !n.is_empty()) {
+            for name in model.model.group.split('/').filter(|n| !n.is_empty()) {
                 let path = if node.path.is_empty() {
                     name.to_string()
                 } else {
@@ -69,8 +69,8 @@ impl GroupNode {
 /// True when every word of `filter` occurs (ignoring case) in the model's name or group; an
 /// empty filter passes everything.
 pub fn matches(model: &SceneModel, filter: &str) -> bool {
-    let name = model.name.to_lowercase();
-    let group = model.group.to_lowercase();
+    let name = model.model.name.to_lowercase();
+    let group = model.model.group.to_lowercase();
     filter
         .split_whitespace()
         .map(str::to_lowercase)
@@ -85,7 +85,7 @@ mod tests {
 
     fn model(name: &str, group: &str) -> SceneModel {
         let mut m = SceneModel::new(name, "x.obj", Arc::new(csg::Mesh::default()), [1.0; 3]);
-        m.group = group.to_string();
+        m.model.group = group.to_string();
         m
     }
 

@@ -11,7 +11,7 @@ use crate::scene::{ModelUnit, Scene};
 /// message: the option that named it).
 pub fn model_named(scene: &Scene, name: &str, what: &str) -> anyhow::Result<usize> {
     find(scene, name).ok_or_else(|| {
-        let names: Vec<&str> = scene.models.iter().map(|m| m.name.as_str()).collect();
+        let names: Vec<&str> = scene.models.iter().map(|m| m.model.name.as_str()).collect();
         anyhow::anyhow!(
             "{what}no structure named '{name}' (structures: {})",
             names.join(", ")
@@ -21,14 +21,14 @@ pub fn model_named(scene: &Scene, name: &str, what: &str) -> anyhow::Result<usiz
 
 fn find(scene: &Scene, name: &str) -> Option<usize> {
     let models = &scene.models;
-    if let Some(i) = models.iter().position(|m| m.name == name) {
+    if let Some(i) = models.iter().position(|m| m.model.name == name) {
         return Some(i);
     }
     // `organ 1`: the region-numbered name of a single-region file's model `organ`.
     let plain = name.strip_suffix(" 1")?;
     models
         .iter()
-        .position(|m| m.name == plain && m.unit == ModelUnit::Region)
+        .position(|m| m.model.name == plain && m.unit == ModelUnit::Region)
 }
 
 #[cfg(test)]

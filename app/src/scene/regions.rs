@@ -48,24 +48,24 @@ pub fn split_into_regions(scene: &mut Scene, index: usize) -> Result<usize, Spli
     if cut {
         return Err(SplitRefused::Cut);
     }
-    let mut pieces = csg::regions::split_regions(&model.mesh);
+    let mut pieces = csg::regions::split_regions(&model.model.mesh);
     if pieces.len() < 2 {
         return Err(SplitRefused::OneRegion);
     }
     // Largest first, so "1" is the structure's main body.
     pieces.sort_by_key(|p| std::cmp::Reverse(p.triangle_count()));
-    let folder = model.name.replace('/', "-");
-    let group = if model.group.is_empty() {
+    let folder = model.model.name.replace('/', "-");
+    let group = if model.model.group.is_empty() {
         folder
     } else {
-        format!("{}/{folder}", model.group)
+        format!("{}/{folder}", model.model.group)
     };
     let template = model.clone();
     let count = pieces.len();
     for (k, piece) in pieces.into_iter().enumerate() {
         let mut part = template.clone();
-        part.name = format!("{} {}", template.name, k + 1);
-        part.group = group.clone();
+        part.model.name = format!("{} {}", template.model.name, k + 1);
+        part.model.group = group.clone();
         // A structure of its own, so a session keeps its name and group whatever the model was.
         part.unit = crate::scene::ModelUnit::Structure;
         part.replace_mesh(Arc::new(piece));
@@ -97,7 +97,7 @@ mod tests {
         let mut scene = Scene::default();
         let mut hippo =
             SceneModel::new("left hippocampus", "a.vtk", Arc::new(two), [0.9, 0.8, 0.1]);
-        hippo.group = "atlas".into();
+        hippo.model.group = "atlas".into();
         hippo.opacity = 0.5;
         scene.models.push(hippo);
         scene.models.push(SceneModel::new(
@@ -112,12 +112,12 @@ mod tests {
     #[test]
     fn each_region_becomes_a_model_in_a_sub_group_named_after_the_structure() {
         let mut scene = scene();
-        let before = scene.models[0].mesh.triangle_count();
+        let before = scene.models[0].model.mesh.triangle_count();
         assert_eq!(split_into_regions(&mut scene, 0), Ok(2));
         let names: Vec<(&str, &str)> = scene
             .models
             .iter()
-            .map(|m| (m.name.as_str(), m.group.as_str()))
+            .map(|m| (m.model.name.as_str(), m.model.group.as_str()))
             .collect();
         assert_eq!(
             names,
@@ -129,10 +129,13 @@ mod tests {
         );
         // The larger sphere (more subdivisions) is piece 1; together they are the whole.
         let (a, b) = (&scene.models[0], &scene.models[2]);
-        assert!(a.mesh.triangle_count() > b.mesh.triangle_count());
-        assert_eq!(a.mesh.triangle_count() + b.mesh.triangle_count(), before);
+        assert!(a.model.mesh.triangle_count() > b.model.mesh.triangle_count());
+        assert_eq!(
+            a.model.mesh.triangle_count() + b.model.mesh.triangle_count(),
+            before
+        );
         assert!(
-            a.mesh.bbox().min.x > 20.0,
+            a.model.mesh.bbox().min.x > 20.0,
             "piece 1 is the sphere at x = 30"
         );
         for m in [a, b] {
@@ -158,7 +161,13 @@ mod tests {
         let summary = |s: &Scene| -> Vec<(String, String, usize)> {
             s.models
                 .iter()
-                .map(|m| (m.name.clone(), m.group.clone(), m.mesh.triangle_count()))
+                .map(|m| {
+                    (
+                        m.model.name.clone(),
+                        m.model.group.clone(),
+                        m.model.mesh.triangle_count(),
+                    )
+                })
                 .collect()
         };
         assert_eq!(summary(&reopened), summary(&scene));

@@ -57,7 +57,7 @@ pub fn write_meshes(session: &Path, scene: &Scene) -> anyhow::Result<Vec<Option<
             continue;
         }
         let walls = model.wall_faces();
-        let path = dir.join(mesh_file_name(&model.name, &model.mesh, walls));
+        let path = dir.join(mesh_file_name(&model.model.name, &model.model.mesh, walls));
         if !path.is_file() {
             std::fs::create_dir_all(&dir).with_context(|| {
                 format!(
@@ -65,8 +65,8 @@ pub fn write_meshes(session: &Path, scene: &Scene) -> anyhow::Result<Vec<Option<
                     dir.display()
                 )
             })?;
-            crate::io::write_mesh_walls(&path, &model.mesh, walls)
-                .with_context(|| format!("model {i} ({})", model.name))?;
+            crate::io::write_mesh_walls(&path, &model.model.mesh, walls)
+                .with_context(|| format!("model {i} ({})", model.model.name))?;
         }
         written.push(Some(path));
     }
@@ -215,7 +215,7 @@ mod tests {
         scene.models.push(SceneModel::new(
             plain.name,
             &source,
-            Arc::new(plain.mesh),
+            plain.mesh,
             [0.5, 0.5, 0.5],
         ));
         let mut edited =
@@ -237,9 +237,9 @@ mod tests {
         assert_eq!(back.models.len(), 2);
         assert_eq!(back.models[0].origin, MeshOrigin::Region);
         assert_eq!(back.models[1].origin, MeshOrigin::Exact);
-        assert_eq!(back.models[1].name, "bone 1/cut");
+        assert_eq!(back.models[1].model.name, "bone 1/cut");
         assert_eq!(back.models[1].opacity, 0.5);
-        let (a, b) = (&*scene.models[1].mesh, &*back.models[1].mesh);
+        let (a, b) = (&*scene.models[1].model.mesh, &*back.models[1].model.mesh);
         assert_eq!(a.triangles, b.triangles);
         let bits = |m: &Mesh| -> Vec<[u64; 3]> {
             m.positions
@@ -270,7 +270,8 @@ mod tests {
         scene.models.push(model);
         crate::session::save(&session, &scene).unwrap();
         let first_json = std::fs::read(&session).unwrap();
-        let first_mesh = mesh_dir(&session).join(mesh_file_name("m", &scene.models[0].mesh, &[]));
+        let first_mesh =
+            mesh_dir(&session).join(mesh_file_name("m", &scene.models[0].model.mesh, &[]));
         let first_bytes = std::fs::read(&first_mesh).unwrap();
 
         // A second version whose JSON cannot be written (an injected failure at its rename), so
@@ -286,15 +287,15 @@ mod tests {
         assert_eq!(std::fs::read(&first_mesh).unwrap(), first_bytes);
         let back = crate::session::load(&session).unwrap();
         assert_eq!(
-            back.models[0].mesh.positions,
-            scene.models[0].mesh.positions
+            back.models[0].model.mesh.positions,
+            scene.models[0].model.mesh.positions
         );
 
         // Once the save goes through, the old mesh file is gone and the new one is named.
         crate::session::save(&session, &second).unwrap();
         assert!(!first_mesh.exists());
         let back = crate::session::load(&session).unwrap();
-        assert_eq!(back.models[0].mesh.positions[4].x, 8.0);
+        assert_eq!(back.models[0].model.mesh.positions[4].x, 8.0);
         assert_eq!(std::fs::read_dir(mesh_dir(&session)).unwrap().count(), 1);
         // Nothing else: no temporary file of the failed save is left.
         let mut names: Vec<String> = std::fs::read_dir(&dir)
@@ -317,7 +318,7 @@ mod tests {
         crate::session::save(&session, &scene).unwrap();
         let back = crate::session::load(&session).unwrap();
         assert_eq!(back.models.len(), 1);
-        assert_eq!(back.models[0].mesh.triangle_count(), 0);
+        assert_eq!(back.models[0].model.mesh.triangle_count(), 0);
         let _ = std::fs::remove_dir_all(&dir);
     }
 

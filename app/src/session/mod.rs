@@ -145,12 +145,13 @@ pub fn scene_from_file(
             let (mesh, walls) = crate::io::read_mesh_verbatim_walls(&source)?;
             exact_walls = walls;
             exact_model = vec![crate::io::Model {
-                name: entry.name.clone().unwrap_or_else(|| stem.into_owned()),
                 source: source.clone(),
-                index: 0,
-                color: None,
                 group: entry.group.clone().unwrap_or_default(),
-                mesh,
+                ..crate::io::Model::part(
+                    entry.name.clone().unwrap_or_else(|| stem.into_owned()),
+                    None,
+                    mesh,
+                )
             }];
             &exact_model
         } else {
@@ -207,19 +208,22 @@ pub fn scene_from_file(
                 (Some(group), true) => group.clone(),
                 _ => model.group.clone(),
             };
-            let mesh = Arc::new(model.mesh.clone());
+            let mesh = Arc::clone(&model.mesh);
             let walls = crate::scene::wall_faces::WallFaces::new(&mesh, exact_walls.clone());
             scene.models.push(SceneModel {
-                name,
-                source: model.source.clone(),
-                region,
+                model: crate::io::Model {
+                    name,
+                    color: model.color,
+                    mesh,
+                    source: model.source.clone(),
+                    index: region,
+                    group,
+                },
                 unit: if entry.exact && structures_format {
                     ModelUnit::Structure
                 } else {
                     unit
                 },
-                group,
-                mesh,
                 origin: if entry.exact {
                     MeshOrigin::Exact
                 } else {
@@ -308,10 +312,10 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
         .models
         .iter()
         .map(|m| ModelEntry {
-            path: relative_path(&m.source, folder),
-            region: (m.unit == ModelUnit::Region).then_some(m.region),
-            structure: (m.unit == ModelUnit::Structure).then_some(m.region),
-            group: (structures_format && !m.group.is_empty()).then(|| m.group.clone()),
+            path: relative_path(&m.model.source, folder),
+            region: (m.unit == ModelUnit::Region).then_some(m.model.index),
+            structure: (m.unit == ModelUnit::Structure).then_some(m.model.index),
+            group: (structures_format && !m.model.group.is_empty()).then(|| m.model.group.clone()),
             color: Some(m.color),
             opacity: m.opacity,
             style: match m.style {
@@ -321,7 +325,7 @@ pub fn file_from_scene(scene: &Scene, folder: &Path) -> SessionFile {
             .to_string(),
             visible: m.visible,
             exact: false,
-            name: Some(m.name.clone()),
+            name: Some(m.model.name.clone()),
         })
         .collect();
     let cutters = scene.cutters.iter().map(cutter_entry).collect();
@@ -389,7 +393,7 @@ fn point_entries(
             entry.region = Some(0);
             entry.structure = None;
             entry.exact = true;
-            entry.name = Some(model.name.clone());
+            entry.name = Some(model.model.name.clone());
         }
     }
 }
@@ -465,7 +469,7 @@ mod tests {
             index,
             color: None,
             group: String::new(),
-            mesh,
+            mesh: mesh.into(),
         };
         Ok(match unit {
             ModelUnit::Region => vec![
@@ -495,13 +499,16 @@ mod tests {
         let scene = scene_from_file(&v1, folder, &mut pair_loader).unwrap();
         assert_eq!(scene.models.len(), 2, "v1: one model per region");
         assert!(scene.models.iter().all(|m| m.unit == ModelUnit::Region));
-        assert_eq!((scene.models[1].region, scene.cutters[0].target), (1, 1));
+        assert_eq!(
+            (scene.models[1].model.index, scene.cutters[0].target),
+            (1, 1)
+        );
 
         let v2 = session(FORMAT, r#"[{"path": "pair.obj"}]"#, 0);
         let scene = scene_from_file(&v2, folder, &mut pair_loader).unwrap();
         assert_eq!(scene.models.len(), 1, "v2: one model per structure");
         assert_eq!(scene.models[0].unit, ModelUnit::Structure);
-        assert_eq!(scene.models[0].mesh.triangle_count(), 2 * 80);
+        assert_eq!(scene.models[0].model.mesh.triangle_count(), 2 * 80);
         // The structure's colour comes from the palette (no anatomical name, no file colour).
         assert_eq!(
             scene.models[0].color,
@@ -526,7 +533,7 @@ mod tests {
             scene
                 .models
                 .iter()
-                .map(|m| (m.name.as_str(), m.group.as_str(), m.unit))
+                .map(|m| (m.model.name.as_str(), m.model.group.as_str(), m.unit))
                 .collect::<Vec<_>>(),
             [
                 ("both", "g/h", ModelUnit::Structure),
@@ -574,7 +581,7 @@ mod tests {
         );
         let back = scene_from_file(&file, folder, &mut pair_loader).unwrap();
         assert_eq!(back.models.len(), 2);
-        assert_eq!(back.models[0].group, "g");
+        assert_eq!(back.models[0].model.group, "g");
         assert_eq!(back.cutters, scene.cutters);
 
         let v1 = session(FORMAT_V1, r#"[{"path": "pair.obj"}]"#, 1);
@@ -608,7 +615,7 @@ mod tests {
             0,
         );
         let scene = scene_from_file(&v1, folder, &mut loader).unwrap();
-        let names: Vec<&str> = scene.models.iter().map(|m| m.name.as_str()).collect();
+        let names: Vec<&str> = scene.models.iter().map(|m| m.model.name.as_str()).collect();
         assert_eq!(names, ["organ", "kidney 1", "kidney 2", "pair 1", "pair 2"]);
         // Picked by `region`, the name is the region's as given.
         let v2 = session(
@@ -617,10 +624,10 @@ mod tests {
             0,
         );
         let scene = scene_from_file(&v2, folder, &mut loader).unwrap();
-        assert_eq!(scene.models[0].name, "left kidney");
+        assert_eq!(scene.models[0].model.name, "left kidney");
         // Saved and read back, the names stay.
         let back = scene_from_file(&file_from_scene(&scene, folder), folder, &mut loader).unwrap();
-        assert_eq!(back.models[0].name, "left kidney");
+        assert_eq!(back.models[0].model.name, "left kidney");
     }
 
     #[test]

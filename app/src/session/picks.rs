@@ -79,7 +79,7 @@ mod tests {
             index,
             color: None,
             group: String::new(),
-            mesh: csg::Mesh::default(),
+            mesh: csg::Mesh::default().into(),
         }
     }
 

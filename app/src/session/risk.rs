@@ -45,7 +45,8 @@ pub fn load(entry: &RiskEntry, scene: &Scene) -> anyhow::Result<RiskSettings> {
         .critical
         .iter()
         .map(|name| {
-            crate::scene::names::model_named(scene, name, "").map(|i| scene.models[i].name.clone())
+            crate::scene::names::model_named(scene, name, "")
+                .map(|i| scene.models[i].model.name.clone())
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
     let settings = RiskSettings {

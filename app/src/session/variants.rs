@@ -105,7 +105,7 @@ mod tests {
             index: 0,
             color: None,
             group: String::new(),
-            mesh: csg::testkit::icosphere(1, 1.0),
+            mesh: csg::testkit::icosphere(1, 1.0).into(),
         }])
     }
 

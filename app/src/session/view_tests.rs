@@ -23,7 +23,7 @@ fn body_loader(path: &Path, _unit: ModelUnit) -> anyhow::Result<Vec<crate::io::M
         index: 0,
         color: None,
         group: String::new(),
-        mesh: crate::gui::app::box_mesh(DVec3::ZERO, DVec3::new(0.5, 1.6, 0.3)),
+        mesh: crate::gui::app::box_mesh(DVec3::ZERO, DVec3::new(0.5, 1.6, 0.3)).into(),
     }])
 }
 

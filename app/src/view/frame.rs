@@ -38,9 +38,9 @@ pub fn model_draws(scene: &Scene) -> Vec<ModelDraw> {
         .models
         .iter()
         .map(|model| ModelDraw {
-            name: model.name.clone(),
-            mesh: model.mesh.clone(),
-            walls: WallFaces::shared_for_mesh(&model.walls, &model.mesh),
+            name: model.model.name.clone(),
+            mesh: model.model.mesh.clone(),
+            walls: WallFaces::shared_for_mesh(&model.walls, &model.model.mesh),
             color: model.color,
             opacity: model.opacity,
             style: match model.style {

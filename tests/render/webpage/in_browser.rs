@@ -178,7 +178,7 @@ fn agreement(
         .filter(|(_, v)| v.0 >= MIN_SAMPLES)
         .map(|(&m, v)| {
             let (n, d, a) = summary(v);
-            (scene.models[m as usize].name.clone(), n, d, a)
+            (scene.models[m as usize].model.name.clone(), n, d, a)
         })
         .collect();
     Agreement {
@@ -239,7 +239,7 @@ fn the_head_page_in_a_browser_shows_what_render_shows() {
     let hidden = (1..scene.models.len()).max_by_key(|&m| seen[m]).unwrap();
     println!(
         "hiding {} ({} cells)",
-        scene.models[hidden].name, seen[hidden]
+        scene.models[hidden].model.name, seen[hidden]
     );
     let report = drive(
         &browser,
@@ -279,7 +279,7 @@ fn the_head_page_in_a_browser_shows_what_render_shows() {
     assert!(
         changed as f64 >= 0.8 * cells as f64,
         "hiding {} changed {changed} of its {cells} cells",
-        scene.models[hidden].name
+        scene.models[hidden].model.name
     );
     let step = |k: usize| &report.json["steps"][k]["state"];
     assert_eq!(step(1)["visible"][hidden], false);

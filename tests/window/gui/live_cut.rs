@@ -90,7 +90,7 @@ fn painting_in_edit_mode_shows_the_live_cut() {
     );
     println!(
         "live cut of {} in {:.1} ms",
-        app.scene.models[target].name, shown.ms
+        app.scene.models[target].model.name, shown.ms
     );
     let image = h.render().expect("render the window");
     image.save(dir.join("live-cut.png")).unwrap();

@@ -44,7 +44,7 @@ fn the_models_list_names_structures_groups_folders_and_filters() {
         .scene
         .models
         .iter()
-        .map(|m| (m.name.clone(), m.group.clone()))
+        .map(|m| (m.model.name.clone(), m.model.group.clone()))
         .collect();
     let expect = |n: &str, g: &str| (n.to_string(), g.to_string());
     assert_eq!(
@@ -59,7 +59,7 @@ fn the_models_list_names_structures_groups_folders_and_filters() {
     );
     // The two-sphere file is one structure with both regions.
     assert_eq!(
-        csg::regions::split_regions(&h.state().scene.models[0].mesh).len(),
+        csg::regions::split_regions(&h.state().scene.models[0].model.mesh).len(),
         2
     );
     // Colours come from the anatomy table: both hippocampi alike, the pons different.
@@ -122,7 +122,7 @@ fn the_models_list_names_structures_groups_folders_and_filters() {
         .scene
         .models
         .iter()
-        .map(|m| (m.name.clone(), m.group.clone()))
+        .map(|m| (m.model.name.clone(), m.model.group.clone()))
         .collect();
     assert_eq!(
         names,
@@ -143,7 +143,7 @@ fn the_models_list_names_structures_groups_folders_and_filters() {
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
     h.run_steps(3);
     assert_eq!(h.state().scene.models.len(), 3, "undo joined the regions");
-    assert_eq!(h.state().scene.models[0].name, "left hippocampus");
+    assert_eq!(h.state().scene.models[0].model.name, "left hippocampus");
     let shot = dir.join("models-list.png");
     h.render().expect("render").save(&shot).expect("save");
     println!("screenshot: {}", shot.display());
@@ -179,13 +179,13 @@ fn the_brain_atlas_folder_lists_one_named_coloured_model_per_file() {
         app.scene
             .models
             .iter()
-            .find(|m| m.name == name)
+            .find(|m| m.model.name == name)
             .unwrap_or_else(|| panic!("no model named {name}"))
     };
     let srgb = |c: [f32; 3]| c.map(|v| (v * 255.0).round() as u8);
     assert_eq!(srgb(model("left hippocampus").color), [220, 216, 20]);
     assert_eq!(srgb(model("right lateral ventricle").color), [88, 106, 215]);
-    assert_eq!(model("corpus callosum").group, "head_brain_spl_atlas");
+    assert_eq!(model("corpus callosum").model.group, "head_brain_spl_atlas");
     h.get_by_label("left hippocampus");
     let shot = dir.join("brain-atlas-list.png");
     h.render().expect("render").save(&shot).expect("save");
@@ -201,7 +201,12 @@ fn the_default_scene_is_the_head_atlas_seen_from_the_front() {
     let mut h = harness(&dir, Vec::new(), false);
     settle(&mut h);
     let app = h.state();
-    let names: Vec<&str> = app.scene.models.iter().map(|m| m.name.as_str()).collect();
+    let names: Vec<&str> = app
+        .scene
+        .models
+        .iter()
+        .map(|m| m.model.name.as_str())
+        .collect();
     assert_eq!(names.first(), Some(&"skin"), "{names:?}");
     for deep in [
         "left lateral ventricle",

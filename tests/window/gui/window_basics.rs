@@ -24,7 +24,7 @@ fn window_loads_the_default_scene_switches_modes_and_saves_a_session() {
         .scene
         .models
         .iter()
-        .map(|m| m.mesh.triangle_count())
+        .map(|m| m.model.mesh.triangle_count())
         .sum();
     assert!(
         triangles > 1000,
@@ -113,7 +113,7 @@ fn hiding_a_model_is_undone_and_redone_with_the_keyboard() {
         "default scene not loaded: {}",
         h.state().status.message
     );
-    let name = h.state().scene.models[0].name.clone();
+    let name = h.state().scene.models[0].model.name.clone();
 
     // Select the first model in the Models list, then untick Visible in its properties.
     h.get_by_label(&name).click();

@@ -107,14 +107,14 @@ fn measure_real_scene(h: &mut Harness<'_, CutawayApp>, name: &str, focus: &str, 
             .scene
             .models
             .iter()
-            .position(|m| m.name.contains(part))
+            .position(|m| m.model.name.contains(part))
             .unwrap_or_else(|| panic!("{name}: no structure like '{part}'"))
     };
     let skin = find(h, "skin");
     let (focus, critical) = (find(h, focus), find(h, critical));
     {
         let app = h.state_mut();
-        let b = app.scene.models[skin].mesh.bbox();
+        let b = app.scene.models[skin].model.mesh.bbox();
         let (c, e) = (b.center(), b.max - b.min);
         // From outside the face (the patient's anterior, along ±y) to the middle.
         let (y0, y1) = if app.scene.orientation.anterior.y >= 0.0 {
@@ -126,8 +126,8 @@ fn measure_real_scene(h: &mut Harness<'_, CutawayApp>, name: &str, focus: &str, 
         let max = DVec3::new(c.x + e.x / 6.0, y1, c.z + e.z / 6.0);
         app.scene.cutters = vec![box_cutter(skin, min, max)];
         app.metrics.open = true;
-        app.metrics.focus = Some(app.scene.models[focus].name.clone());
-        let critical = app.scene.models[critical].name.clone();
+        app.metrics.focus = Some(app.scene.models[focus].model.name.clone());
+        let critical = app.scene.models[critical].model.name.clone();
         app.metrics.set_critical(&critical, true);
     }
     h.run_steps(2);
@@ -155,7 +155,7 @@ fn measure_real_scene(h: &mut Harness<'_, CutawayApp>, name: &str, focus: &str, 
         (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN)),
         |(lo, hi), p| (lo.min(p), hi.max(p)),
     );
-    let estimate = volume_in_box(&app.scene.models[skin].mesh, lo, hi, 160);
+    let estimate = volume_in_box(&app.scene.models[skin].model.mesh, lo, hi, 160);
     println!("{name}: skin removed {removed:.1} mm³, by ray parity {estimate:.1} mm³");
     assert!(removed > 0.0, "{name}: the box removed nothing");
     assert!(

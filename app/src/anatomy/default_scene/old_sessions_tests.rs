@@ -37,10 +37,10 @@ fn check(scene: &Scene, how: &str) {
         "the earlier default had the skin and 22 structures"
     );
     assert_eq!(scene.models.len(), entries.len(), "{how}");
-    let head = scene.models[0].mesh.bbox();
+    let head = scene.models[0].model.mesh.bbox();
     for (model, (path, name, group)) in scene.models.iter().zip(&entries) {
-        assert_eq!(&model.name, name, "{how}");
-        assert_eq!(&model.group, group, "{how}: {name}");
+        assert_eq!(&model.model.name, name, "{how}");
+        assert_eq!(&model.model.group, group, "{how}: {name}");
         assert_eq!(model.unit, ModelUnit::Structure, "{how}: {name}");
         let file = Path::new(path).file_name().unwrap().to_str().unwrap();
         if let Some(value) = super::old_model_label(file) {
@@ -50,13 +50,16 @@ fn check(scene: &Scene, how: &str) {
             );
             assert!(super::selection::in_default(value), "{name}");
         }
-        let report = model.mesh.report();
+        let report = model.model.mesh.report();
         assert!(
             report.closed && report.manifold,
             "{how}: {name}: {report:?}"
         );
-        assert!(model.mesh.volume() > 0.0, "{how}: {name} is inside out");
-        let b = model.mesh.bbox();
+        assert!(
+            model.model.mesh.volume() > 0.0,
+            "{how}: {name} is inside out"
+        );
+        let b = model.model.mesh.bbox();
         assert!(
             head.contains(b.min) && head.contains(b.max),
             "{how}: {name} sticks out of the head"

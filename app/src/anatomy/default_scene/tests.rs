@@ -300,13 +300,13 @@ fn a_session_of_the_default_scene_surfaces_only_the_structures_it_picks() {
     assert_eq!(count, 2);
     assert_eq!(scene.models.len(), 2);
     for (model, k) in scene.models.iter().zip([40, 3]) {
-        assert_eq!(model.region, k);
-        assert_eq!(model.name, atlas[k].name);
-        assert_eq!(*model.mesh, atlas[k].mesh);
+        assert_eq!(model.model.index, k);
+        assert_eq!(model.model.name, atlas[k].name);
+        assert_eq!(model.model.mesh, atlas[k].mesh);
     }
     // The session's own reader gives the same scene.
     let read = crate::session::load(&session(&[40, 3])).unwrap();
-    assert_eq!(*read.models[0].mesh, atlas[40].mesh);
+    assert_eq!(read.models[0].model.mesh, atlas[40].mesh);
     // A pick the atlas does not have: every label is read, and the error says how many there are.
     let (scene, count) = surfaced(&session(&[3, atlas.len()]));
     assert_eq!(count, atlas.len());

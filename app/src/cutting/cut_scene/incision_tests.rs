@@ -57,7 +57,7 @@ fn the_preview_draws_what_is_left_of_the_incision_walls_as_walls() {
     let mesh = &incision[0].mesh;
     assert!(mesh.triangle_count() > 2, "{}", mesh.triangle_count());
     // Pieces of the marked walls (each lies on one of them), of the half the cutter left.
-    let model = &scene.models[0].mesh;
+    let model = &scene.models[0].model.mesh;
     let marked = select(model, |t| walls.binary_search(&(t as u32)).is_ok());
     let on_walls = csg::SpatialIndex::build(&marked);
     for t in 0..mesh.triangle_count() {
@@ -85,7 +85,7 @@ fn the_preview_draws_what_is_left_of_the_incision_walls_as_walls() {
 #[test]
 fn the_live_cut_delta_draws_the_kept_incision_walls_bit_for_bit() {
     let (scene, walls) = grooved_sphere_cut(true);
-    let target = scene.models[0].mesh.clone();
+    let target = scene.models[0].model.mesh.clone();
     let index = csg::TargetIndex::build(target.clone()).unwrap();
     let result = csg::subtract(&index, &cutter_mesh(&scene.cutters[0])).unwrap();
     let faces = VertexFaces::build(&target);

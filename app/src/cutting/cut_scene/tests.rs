@@ -141,7 +141,7 @@ fn nested_shells_are_each_cut_closed_and_a_cavity_stays_hollow() {
 /// Volume of the sphere minus one box, by a single exact cut (kept + walls).
 fn volume_minus(b: [f64; 6]) -> f64 {
     let scene = sphere_scene(&[b]);
-    let index = TargetIndex::build(scene.models[0].mesh.clone()).unwrap();
+    let index = TargetIndex::build(scene.models[0].model.mesh.clone()).unwrap();
     let parts = cut_exact(&index, &scene.cutters[0]).unwrap();
     let mut closed = parts.kept;
     closed.append(&parts.walls);
@@ -154,13 +154,13 @@ fn overlapping_cutters_remove_the_union_and_no_wall_survives_inside_the_other() 
     let k2 = [-2.0, 0.4, -2.0, 2.0, 0.3, 2.0];
     let k12 = [0.0, 0.4, -2.0, 0.2, 0.3, 2.0];
     let scene = sphere_scene(&[k1, k2]);
-    let t = scene.models[0].mesh.volume();
+    let t = scene.models[0].model.mesh.volume();
     // Inclusion–exclusion from single cuts: vol(T ∖ (K1 ∪ K2)).
     let (v1, v2, v12) = (volume_minus(k1), volume_minus(k2), volume_minus(k12));
     let expected = t - (t - v1) - (t - v2) + (t - v12);
     let cutters: Vec<(usize, &SceneCutter)> = scene.cutters.iter().enumerate().collect();
     let mut cache = CutCache::default();
-    let sequence = cut_closed(&mut cache, &scene.models[0].mesh, &cutters);
+    let sequence = cut_closed(&mut cache, &scene.models[0].model.mesh, &cutters);
     // New contour vertices are rounded once from the lattice (steps of ~1e-8 here).
     assert!(
         (sequence.closed.volume() - expected).abs() < 1e-6,

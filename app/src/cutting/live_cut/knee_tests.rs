@@ -16,7 +16,7 @@ fn live_cut_follows_the_editor_on_the_knee() {
         scene.models.push(crate::scene::SceneModel::new(
             model.name,
             model.source,
-            Arc::new(model.mesh),
+            model.mesh,
             color,
         ));
     }
@@ -93,8 +93,8 @@ fn live_cut_follows_the_editor_on_the_knee() {
         "live re-cut of {} ({} triangles): first cut (index build included) {first:.1} ms; \
          {} re-cuts while painting: median {:.1} ms, max {:.1} ms; back in Edit mode after \
          leaving it (index built again) {rebuilt:.1} ms",
-        scene.models[target].name,
-        scene.models[target].mesh.triangle_count(),
+        scene.models[target].model.name,
+        scene.models[target].model.mesh.triangle_count(),
         times.len(),
         sorted[sorted.len() / 2],
         sorted[sorted.len() - 1],

@@ -181,8 +181,8 @@ impl Manifest {
             if model.visible {
                 structure_of[m] = Some(structures.len());
                 structures.push(StructureData {
-                    name: model.name.clone(),
-                    group: model.group.clone(),
+                    name: model.model.name.clone(),
+                    group: model.model.group.clone(),
                     color: model.color,
                     opacity: model.opacity,
                 });
@@ -286,7 +286,7 @@ pub fn atlas_attribution(scene: &Scene) -> Option<Attribution> {
     scene
         .models
         .iter()
-        .any(|m| m.visible && from_atlas(&m.source))
+        .any(|m| m.visible && from_atlas(&m.model.source))
         .then(|| Attribution {
             text: "Anatomy: SPL-PNL Brain Atlas (Surgical Planning Laboratory and Psychiatry \
                    Neuroimaging Laboratory, Brigham and Women's Hospital; NIH P41 EB015902, \

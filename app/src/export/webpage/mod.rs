@@ -228,7 +228,7 @@ mod tests {
             ..CutterViews::default()
         });
         let mut hidden = scene.models[0].clone();
-        hidden.name = "hidden".into();
+        hidden.model.name = "hidden".into();
         hidden.visible = false;
         scene.models.push(hidden);
         scene.camera = scene.framing_camera();

@@ -42,7 +42,7 @@ fn compare_one(
         shown
             .models
             .iter()
-            .map(|m| Arc::as_ptr(&m.mesh) as usize)
+            .map(|m| Arc::as_ptr(&m.model.mesh) as usize)
             .collect::<Vec<_>>(),
     );
     let at = match worker.cache.iter().position(|c| c.key == key) {

@@ -35,7 +35,7 @@ pub fn cut_menu_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
                     .scene
                     .models
                     .get(app.scene.cutters[i].target)
-                    .map(|m| m.name.as_str())
+                    .map(|m| m.model.name.as_str())
                     .unwrap_or("");
                 if ui
                     .radio(
@@ -54,7 +54,7 @@ pub fn cut_menu_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
             .scene
             .models
             .get(app.scene.cutters[i].target)
-            .map(|m| m.name.as_str())
+            .map(|m| m.model.name.as_str())
             .unwrap_or("");
         ui.label(egui::RichText::new(format!("Cutter {} ({target}) shows:", i + 1)).weak());
         let before = app.scene.cutters[i].views;

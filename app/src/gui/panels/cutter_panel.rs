@@ -122,7 +122,7 @@ fn initialization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Ac
     let target = app
         .selected_model
         .and_then(|i| app.scene.models.get(i))
-        .map(|m| m.name.clone());
+        .map(|m| m.model.name.clone());
     let hint = match target {
         Some(name) => format!("Target: {name}. In Edit mode, drag on it to start a cutter."),
         None => {
@@ -214,7 +214,7 @@ fn visualization_ui(ui: &mut egui::Ui, app: &mut AppState, actions: &mut Vec<Act
         .scene
         .models
         .get(app.scene.cutters[i].target)
-        .map(|m| m.name.clone())
+        .map(|m| m.model.name.clone())
         .unwrap_or_default();
     ui.label(
         egui::RichText::new(format!("cuts {target_name}"))

@@ -18,7 +18,7 @@ pub fn annotation_ui(ui: &mut egui::Ui, choice: &mut AnnotationChoice, scene: &S
                     .id_salt("export-labelled-list")
                     .show(ui, |ui| {
                         for m in (0..scene.models.len()).filter(|&m| is_opaque(scene, m)) {
-                            let name = &scene.models[m].name;
+                            let name = &scene.models[m].model.name;
                             let mut on = !choice.unlabelled.contains(name);
                             if ui.checkbox(&mut on, name).changed() {
                                 choice.unlabelled.retain(|n| n != name);

@@ -34,7 +34,12 @@ pub fn update(app: &mut AppState, ctx: &egui::Context) {
         return;
     }
     // Names that are no longer in the scene (a model removed, another scene opened) go.
-    let names: Vec<&str> = app.scene.models.iter().map(|m| m.name.as_str()).collect();
+    let names: Vec<&str> = app
+        .scene
+        .models
+        .iter()
+        .map(|m| m.model.name.as_str())
+        .collect();
     if panel.focus.as_deref().is_some_and(|f| !names.contains(&f)) {
         panel.focus = None;
     }
@@ -76,7 +81,12 @@ fn number(value: Option<f64>) -> String {
 /// The panel's contents (the side panel itself is laid out by the app).
 pub fn metrics_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
     ui.heading("Metrics");
-    let names: Vec<String> = app.scene.models.iter().map(|m| m.name.clone()).collect();
+    let names: Vec<String> = app
+        .scene
+        .models
+        .iter()
+        .map(|m| m.model.name.clone())
+        .collect();
     let panel = &mut app.metrics;
     let status = if panel.job.is_some() {
         "measuring…".to_string()

@@ -136,9 +136,9 @@ pub fn models_panel_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
         );
         return actions;
     };
-    let name = app.scene.models[index].name.clone();
+    let name = app.scene.models[index].model.name.clone();
     ui.label(egui::RichText::new(&name).strong());
-    let triangles = app.scene.models[index].mesh.triangle_count();
+    let triangles = app.scene.models[index].model.mesh.triangle_count();
     ui.label(
         egui::RichText::new(format!(
             "{} triangles",
@@ -293,7 +293,7 @@ fn model_row_ui(
 ) {
     let model = &app.scene.models[index];
     let selected = app.selected_model == Some(index);
-    let (name, visible, colour) = (model.name.clone(), model.visible, model.color);
+    let (name, visible, colour) = (model.model.name.clone(), model.visible, model.color);
     ui.horizontal(|ui| {
         let mut v = visible;
         if ui

@@ -10,11 +10,16 @@ use crate::gui::state::AppState;
 pub fn risk_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
     let before = app.scene.risk.clone();
     let mut risk = before.clone();
-    let names: Vec<String> = app.scene.models.iter().map(|m| m.name.clone()).collect();
+    let names: Vec<String> = app
+        .scene
+        .models
+        .iter()
+        .map(|m| m.model.name.clone())
+        .collect();
     let selected = app
         .selected_model
         .and_then(|i| app.scene.models.get(i))
-        .map(|m| m.name.clone());
+        .map(|m| m.model.name.clone());
     egui::CollapsingHeader::new(crate::gui::panels::tools_panel::title("Risk map"))
         .id_salt("risk-map")
         .default_open(!risk.critical.is_empty())

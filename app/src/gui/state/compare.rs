@@ -44,7 +44,7 @@ impl Request {
                 .iter()
                 .map(|m| {
                     (
-                        Arc::as_ptr(&m.mesh) as usize,
+                        Arc::as_ptr(&m.model.mesh) as usize,
                         m.visible,
                         m.opacity.to_bits(),
                         m.color.map(f32::to_bits),

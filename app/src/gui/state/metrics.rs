@@ -34,7 +34,7 @@ impl Request {
                 .iter()
                 .map(|m| {
                     (
-                        std::sync::Arc::as_ptr(&m.mesh) as usize,
+                        std::sync::Arc::as_ptr(&m.model.mesh) as usize,
                         m.visible,
                         m.opacity.to_bits(),
                     )

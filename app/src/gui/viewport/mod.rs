@@ -169,7 +169,7 @@ pub fn first_use_hint(app: &AppState) -> Option<String> {
     let selected = app
         .selected_model
         .and_then(|i| app.scene.models.get(i))
-        .map(|m| m.name.as_str());
+        .map(|m| m.model.name.as_str());
     Some(match (app.mode, selected) {
         (Mode::Camera | Mode::Preview, None) => {
             "Select a structure (double-click it), press E, drag across it".to_string()
@@ -418,7 +418,7 @@ fn press_on_view(
             let selected = app
                 .selected_model
                 .and_then(|i| app.scene.models.get(i))
-                .map(|m| m.mesh.clone());
+                .map(|m| m.model.mesh.clone());
             let on_target = selected.is_some_and(|m| app.viewport.picks.hits(&m, &ray));
             let hit = app.viewport.picks.pick(&app.scene, &ray).map(|(i, _)| i);
             if on_target || hit.is_some() {
@@ -448,7 +448,7 @@ fn press_on_view(
             &mut app.viewport.picks,
         ) {
             actions.push(Action::IndexModel(target));
-            let name = app.scene.models[target].name.clone();
+            let name = app.scene.models[target].model.name.clone();
             app.viewport.held = Some(crate::gui::state::viewport::HeldGesture {
                 target,
                 camera: app.scene.camera,
@@ -536,7 +536,7 @@ fn replay_held(app: &mut AppState) -> bool {
         if held.released() {
             app.say_depth();
         } else {
-            let name = app.scene.models[held.target].name.clone();
+            let name = app.scene.models[held.target].model.name.clone();
             app.say(format!("Cutter started on {name}"));
         }
     }
@@ -585,7 +585,7 @@ pub fn context_menu_ui(ui: &mut egui::Ui, app: &AppState) -> Vec<Action> {
     ui.separator();
     let selected = app.selected_model.and_then(|i| app.scene.models.get(i));
     let label = match selected {
-        Some(m) => format!("Expose {} (X)", m.name),
+        Some(m) => format!("Expose {} (X)", m.model.name),
         None => "Expose Selected (X)".to_string(),
     };
     if ui

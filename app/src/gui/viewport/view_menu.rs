@@ -55,7 +55,7 @@ pub fn apply(app: &mut AppState, command: ViewCommand) {
                 app.say("Select a model first (double-click it)");
                 return;
             };
-            let (bbox, name) = (model.mesh.bbox(), model.name.clone());
+            let (bbox, name) = (model.model.mesh.bbox(), model.model.name.clone());
             app.scene.camera = fit::fit_to_box(&app.scene.camera, &bbox, aspect);
             app.say_about_view(format!("Zoomed to {name}"));
         }

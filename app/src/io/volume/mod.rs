@@ -515,12 +515,12 @@ fn layer_surfaces<T: csg::labels::LabelValue>(
 
 /// A volume as mesh parts: one per structure, named and coloured (what
 /// [`super::read_parts`] returns for a volume).
-pub fn read_parts(path: &Path) -> anyhow::Result<Vec<super::Part>> {
+pub fn read_parts(path: &Path) -> anyhow::Result<Vec<super::Model>> {
     parts_of(&read_volume(path, None)?)
 }
 
 /// A label volume's structures as mesh parts (see [`read_parts`]).
-pub fn parts_of(volume: &LabelVolume) -> anyhow::Result<Vec<super::Part>> {
+pub fn parts_of(volume: &LabelVolume) -> anyhow::Result<Vec<super::Model>> {
     parts_of_with(volume, &|_| true)
 }
 
@@ -528,15 +528,14 @@ pub fn parts_of(volume: &LabelVolume) -> anyhow::Result<Vec<super::Part>> {
 pub fn parts_of_with(
     volume: &LabelVolume,
     progress: &(dyn Fn(f32) -> bool + Sync),
-) -> anyhow::Result<Vec<super::Part>> {
+) -> anyhow::Result<Vec<super::Model>> {
     let path = &volume.source;
     let surfaces = surfaces(volume, None, progress).with_context(|| path.display().to_string())?;
     Ok(surfaces
         .into_iter()
-        .map(|s| super::Part {
-            name: s.structure.name,
-            color: Some(s.structure.color.map(|c| c as f32 / 255.0)),
-            mesh: s.mesh,
+        .map(|s| {
+            let color = s.structure.color.map(|c| c as f32 / 255.0);
+            super::Model::part(s.structure.name, Some(color), s.mesh)
         })
         .collect())
 }

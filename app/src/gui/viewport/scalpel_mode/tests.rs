@@ -46,7 +46,7 @@ fn the_window_saves_the_mesh_left_by_remove_all_cut_geometry() {
     let state = h.state();
     assert!(state.scene.cutters.is_empty(), "{}", state.status.message);
     assert_eq!(state.scene.models[0].origin, MeshOrigin::Edited);
-    let cut = state.scene.models[0].mesh.clone();
+    let cut = state.scene.models[0].model.mesh.clone();
     assert!((cut.volume() - 7.0).abs() < 1e-9, "{}", cut.volume());
 
     let path = dir.join("applied.json");
@@ -54,8 +54,8 @@ fn the_window_saves_the_mesh_left_by_remove_all_cut_geometry() {
         .apply(&ctx, crate::gui::app::Action::SaveSessionTo(path.clone()));
     let back = crate::session::load(&path).unwrap();
     assert_eq!(back.models.len(), 1);
-    assert!(back.models[0].mesh.triangles == cut.triangles);
-    assert!(position_bits(&back.models[0].mesh) == position_bits(&cut));
+    assert!(back.models[0].model.mesh.triangles == cut.triangles);
+    assert!(position_bits(&back.models[0].model.mesh) == position_bits(&cut));
     // The window reopens it the same way.
     h.state_mut().scene = crate::gui::app::new_scene();
     h.state_mut()
@@ -64,8 +64,8 @@ fn the_window_saves_the_mesh_left_by_remove_all_cut_geometry() {
     let reopened = &h.state().scene.models;
     assert_eq!(reopened.len(), 1, "{}", h.state().status.message);
     assert_eq!(reopened[0].origin, MeshOrigin::Exact);
-    assert!(reopened[0].mesh.triangles == cut.triangles);
-    assert!(position_bits(&reopened[0].mesh) == position_bits(&cut));
+    assert!(reopened[0].model.mesh.triangles == cut.triangles);
+    assert!(position_bits(&reopened[0].model.mesh) == position_bits(&cut));
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -92,13 +92,17 @@ fn the_window_cuts_the_layer_below_and_undoes_both_in_one_step() {
     h.run_steps(1);
     let models = &h.state().scene.models;
     assert_eq!(models.len(), 2, "{}", h.state().status.message);
-    let outer_i = if models[0].mesh.bbox().diagonal() > models[1].mesh.bbox().diagonal() {
+    let outer_i = if models[0].model.mesh.bbox().diagonal() > models[1].model.mesh.bbox().diagonal()
+    {
         0
     } else {
         1
     };
     let inner_i = 1 - outer_i;
-    let (outer, inner) = (models[outer_i].mesh.clone(), models[inner_i].mesh.clone());
+    let (outer, inner) = (
+        models[outer_i].model.mesh.clone(),
+        models[inner_i].model.mesh.clone(),
+    );
     h.query_all_by_label("Scalpel")
         .find(|n| {
             use egui_kittest::kittest::NodeT;
@@ -143,8 +147,8 @@ fn the_window_cuts_the_layer_below_and_undoes_both_in_one_step() {
     let state = h.state();
     assert!(!state.status.is_error, "{}", state.status.message);
     let (outer_cut, inner_cut) = (
-        state.scene.models[outer_i].mesh.clone(),
-        state.scene.models[inner_i].mesh.clone(),
+        state.scene.models[outer_i].model.mesh.clone(),
+        state.scene.models[inner_i].model.mesh.clone(),
     );
     assert!(outer_cut.triangle_count() > outer.triangle_count());
     assert!(
@@ -159,7 +163,7 @@ fn the_window_cuts_the_layer_below_and_undoes_both_in_one_step() {
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
     h.run_steps(2);
     for (i, original) in [(outer_i, &outer), (inner_i, &inner)] {
-        let m = &h.state().scene.models[i].mesh;
+        let m = &h.state().scene.models[i].model.mesh;
         assert_eq!(m.triangles, original.triangles, "model {i}");
         assert_eq!(position_bits(m), position_bits(original), "model {i}");
     }
@@ -170,11 +174,11 @@ fn the_window_cuts_the_layer_below_and_undoes_both_in_one_step() {
     );
     h.run_steps(2);
     assert!(Arc::ptr_eq(
-        &h.state().scene.models[outer_i].mesh,
+        &h.state().scene.models[outer_i].model.mesh,
         &outer_cut
     ));
     assert!(Arc::ptr_eq(
-        &h.state().scene.models[inner_i].mesh,
+        &h.state().scene.models[inner_i].model.mesh,
         &inner_cut
     ));
 
@@ -185,11 +189,14 @@ fn the_window_cuts_the_layer_below_and_undoes_both_in_one_step() {
     drag(&mut h, 0.3);
     let state = h.state();
     assert!(
-        state.scene.models[outer_i].mesh.triangle_count() > outer_cut.triangle_count(),
+        state.scene.models[outer_i].model.mesh.triangle_count() > outer_cut.triangle_count(),
         "the second groove did not cut (status: {})",
         state.status.message
     );
-    assert!(Arc::ptr_eq(&state.scene.models[inner_i].mesh, &inner_cut));
+    assert!(Arc::ptr_eq(
+        &state.scene.models[inner_i].model.mesh,
+        &inner_cut
+    ));
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -252,7 +259,7 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
         .click();
     h.run_steps(3);
     assert_eq!(h.state().mode, crate::gui::Mode::Scalpel);
-    let original = h.state().scene.models[0].mesh.clone();
+    let original = h.state().scene.models[0].model.mesh.clone();
 
     // Aim: a horizontal drag across the middle of the sphere as the window shows it.
     let app = h.state();
@@ -287,7 +294,7 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
         h.run_steps(2);
     };
     drag(&mut h, -0.5, 0.5);
-    let cut = h.state().scene.models[0].mesh.clone();
+    let cut = h.state().scene.models[0].model.mesh.clone();
     assert!(
         cut.triangle_count() > original.triangle_count(),
         "no cut: {} (status: {})",
@@ -309,7 +316,7 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
     // Ctrl+Z: the exact mesh comes back, the cutter is still there.
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
     h.run_steps(2);
-    let undone = h.state().scene.models[0].mesh.clone();
+    let undone = h.state().scene.models[0].model.mesh.clone();
     assert_eq!(undone.positions, original.positions);
     assert_eq!(undone.triangles, original.triangles);
     assert_eq!(h.state().scene.cutters, vec![cutter.clone()]);
@@ -319,12 +326,12 @@ fn the_window_cuts_with_the_scalpel_and_undoes_the_stroke() {
         egui::Key::Z,
     );
     h.run_steps(2);
-    assert!(Arc::ptr_eq(&h.state().scene.models[0].mesh, &cut));
+    assert!(Arc::ptr_eq(&h.state().scene.models[0].model.mesh, &cut));
     // Undo again and cut elsewhere: the scalpel follows the undone scene.
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
     h.run_steps(2);
     drag(&mut h, -0.3, 0.4);
-    let again = h.state().scene.models[0].mesh.clone();
+    let again = h.state().scene.models[0].model.mesh.clone();
     assert!(again.triangle_count() > original.triangle_count());
     assert!(again.report().closed);
     assert_eq!(h.state().scene.cutters, vec![cutter]);
@@ -412,7 +419,7 @@ mod view {
             session.display(&slot.settings.open())
         };
         assert_eq!(
-            *scene.models[0].mesh, *cut,
+            *scene.models[0].model.mesh, *cut,
             "the release puts the cut mesh in the scene"
         );
         // Ending the stroke only moves its end tip onto the drawn end (with the groove floor
