@@ -124,7 +124,7 @@ impl Session {
                     index: 0,
                     color: None,
                     group,
-                    mesh,
+                    mesh: std::sync::Arc::new(mesh),
                 }));
             }
             let mut load =
@@ -162,7 +162,7 @@ impl Session {
             .unwrap_or_else(|p| p.into_inner())
             .models
             .iter()
-            .map(|m| m.name.clone())
+            .map(|m| m.model.name.clone())
             .collect()
     }
 

@@ -12,6 +12,12 @@ use pyo3::prelude::*;
 
 use crate::{arrays, detached};
 
+/// One structure: `(layer, value, name, (r, g, b), voxels)`.
+type StructureTuple = (usize, u32, String, (u8, u8, u8), u64);
+
+/// A label's name handed over from Python: `(value, name, (r, g, b) or None)`.
+type NameTuple = (u32, String, Option<(u8, u8, u8)>);
+
 /// A label volume as Cutaway reads it: label maps, voxel-to-world matrix (RAS mm), and one
 /// structure per label value present (layer, value, name, colour, voxels).
 #[pyclass(module = "cutaway._cutaway", frozen)]
@@ -58,7 +64,7 @@ impl Volume {
 
     /// The structures: `(layer, value, name, (r, g, b), voxels)` in ascending value, then layer.
     #[getter]
-    fn structures(&self) -> Vec<(usize, u32, String, (u8, u8, u8), u64)> {
+    fn structures(&self) -> Vec<StructureTuple> {
         self.inner
             .structures
             .iter()
@@ -116,7 +122,7 @@ fn volume_from_array(
     dims: (usize, usize, usize),
     affine: PyReadonlyArray2<'_, f64>,
     data: &Bound<'_, PyAny>,
-    names: Vec<(u32, String, Option<(u8, u8, u8)>)>,
+    names: Vec<NameTuple>,
     table: Option<PathBuf>,
 ) -> PyResult<Volume> {
     if affine.shape() != [4, 4] {

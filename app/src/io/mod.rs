@@ -226,7 +226,7 @@ pub fn mesh_from_arrays(
     }];
     let parts = finish_parts(raw, what).with_context(|| what.to_owned())?;
     match parts.into_iter().next() {
-        Some(part) => Ok(part.mesh),
+        Some(part) => Ok(std::sync::Arc::unwrap_or_clone(part.mesh)),
         None => anyhow::bail!("{what}: no triangles"),
     }
 }

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use glam::{DAffine3, DVec3};
+use glam::DAffine3;
 
 use super::{LabelData, LabelInfo, LabelVolume, RawVolume};
 
@@ -58,11 +58,9 @@ pub fn volume_from_labels(
         );
     }
     let m = world_from_voxel.matrix3;
-    let world_from_voxel = super::affine(
-        [m.x_axis, m.y_axis, m.z_axis],
-        DVec3::from(world_from_voxel.translation),
-    )
-    .with_context(with_source)?;
+    let world_from_voxel =
+        super::affine([m.x_axis, m.y_axis, m.z_axis], world_from_voxel.translation)
+            .with_context(with_source)?;
     let raw = RawVolume {
         dims,
         world_from_voxel,
