@@ -36,7 +36,7 @@ def make_cases(root: Path, n: int, anatomy: Path):
     dirs = []
     for i in range(n):
         d = root / f"case_{i:03d}"
-        d.mkdir()
+        d.mkdir(parents=True)
         for name in ("chest_labels.nii.gz", "chest_labels.txt"):
             shutil.copy(src / name, d / name)
         dirs.append(d)
