@@ -34,6 +34,15 @@ pub struct BatchArgs {
     pub one_case: bool,
 }
 
+/// What `--json` prints (field order is the contract's).
+#[derive(serde::Serialize)]
+struct BatchReport<'a> {
+    ok: usize,
+    skipped: usize,
+    failed: usize,
+    cases: &'a [CaseResult],
+}
+
 pub fn run(args: &BatchArgs) -> anyhow::Result<()> {
     if !(1..=256).contains(&args.jobs) {
         anyhow::bail!("--jobs {} is outside 1..256", args.jobs);
@@ -71,10 +80,13 @@ pub fn run(args: &BatchArgs) -> anyhow::Result<()> {
     let count = |s: &str| results.iter().filter(|r| r.status == s).count();
     let (ok, skipped, failed) = (count("ok"), count("skipped"), count("failed"));
     if args.json {
-        println!(
-            "{}",
-            serde_json::json!({"ok": ok, "skipped": skipped, "failed": failed, "cases": results})
-        );
+        let report = BatchReport {
+            ok,
+            skipped,
+            failed,
+            cases: &results,
+        };
+        println!("{}", serde_json::to_string(&report)?);
     } else {
         println!(
             "{} cases: {ok} done, {skipped} already done, {failed} failed; {}",
