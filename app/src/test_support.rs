@@ -45,6 +45,21 @@ pub fn with_sphere(mut scene: Scene, sphere: Arc<Mesh>, file: &str) -> Scene {
     scene
 }
 
+/// A scene of unit icospheres named `names` (file `x.obj`, grey), in that order: for tests of
+/// what names a user may give.
+pub fn named_spheres(names: &[&str]) -> Scene {
+    let mut scene = Scene::default();
+    for name in names {
+        scene.models.push(SceneModel::new(
+            *name,
+            "x.obj",
+            Arc::new(csg::testkit::icosphere(1, 1.0)),
+            [0.5; 3],
+        ));
+    }
+    scene
+}
+
 /// The frame of `scene` at `size` pixels in `mode`, drawn without supersampling so that two
 /// renders compare pixel for pixel.
 pub fn deterministic_frame(scene: &Scene, size: [u32; 2], mode: ViewMode) -> FrameInputs {

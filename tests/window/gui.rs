@@ -13,27 +13,9 @@ use cutaway::gui::{CutawayApp, Mode, StartOptions};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 
+use crate::harness::no_adapter;
 use crate::image_compare;
-
-/// `Some(reason)` when there is no adapter to run the window on.
-fn no_adapter() -> Option<String> {
-    let instance =
-        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-    match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default())) {
-        Ok(_) => None,
-        Err(e) => Some(format!(
-            "no wgpu adapter ({e}); install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan"
-        )),
-    }
-}
-
-/// A fresh private folder for one test.
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("cutaway-gui-test-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+use crate::input::{settle, temp_dir};
 
 fn harness(
     state_dir: &Path,
@@ -52,20 +34,6 @@ fn harness(
         // The slider value boxes of egui 0.37 carry no accessible name of their own.
         .with_accessibility_check(false)
         .build_eframe(move |cc| CutawayApp::new(cc, start))
-}
-
-/// Steps the app until its background jobs are done (loads, cuts), then a few frames more.
-fn settle(h: &mut Harness<'_, CutawayApp>) {
-    let deadline = Instant::now() + Duration::from_secs(120);
-    while h.state().busy() {
-        assert!(
-            Instant::now() < deadline,
-            "background jobs did not finish within 120 s"
-        );
-        h.step();
-        std::thread::sleep(Duration::from_millis(5));
-    }
-    h.run_steps(3);
 }
 
 /// Clicks the mode button `label` (the toggle button, not a menu of the same name).

@@ -64,12 +64,17 @@ pub fn view_px(h: &Harness<'_, CutawayApp>) -> egui::Rect {
 
 /// Press, drag through five steps and release from `a` to `b` (points).
 pub fn drag(h: &mut Harness<'_, CutawayApp>, a: egui::Pos2, b: egui::Pos2) {
+    drag_steps(h, a, b, 5);
+}
+
+/// Press at `a`, move to `b` in `steps` frames, release (points).
+pub fn drag_steps(h: &mut Harness<'_, CutawayApp>, a: egui::Pos2, b: egui::Pos2, steps: usize) {
     h.hover_at(a);
     h.step();
     h.drag_at(a);
     h.step();
-    for k in 1..=5 {
-        h.hover_at(a + (b - a) * (k as f32 / 5.0));
+    for k in 1..=steps {
+        h.hover_at(a + (b - a) * (k as f32 / steps as f32));
         h.step();
     }
     h.drop_at(b);

@@ -17,7 +17,7 @@ use csg::testkit::{Resource, skip};
 use std::path::Path;
 
 use crate::harness::{apply, harness, no_adapter, shot};
-use crate::input::{anatomy, settle, temp_dir};
+use crate::input::{anatomy, drag_steps as drag, settle, temp_dir};
 use cutaway::cutting::cut_scene::PartKind;
 use cutaway::gui::app::Action;
 use cutaway::gui::bridge::shown_cut;
@@ -48,20 +48,6 @@ fn to_screen(h: &Harness<'_, CutawayApp>, p: glam::DVec3) -> egui::Pos2 {
         .expect("in front of the camera");
     let ppp = h.ctx.pixels_per_point();
     app.viewport.rect.min + egui::vec2(px.x as f32 / ppp, px.y as f32 / ppp)
-}
-
-/// Press, drag in `steps` steps and release from `a` to `b` (points), a frame each.
-fn drag(h: &mut Harness<'_, CutawayApp>, a: egui::Pos2, b: egui::Pos2, steps: usize) {
-    h.hover_at(a);
-    h.step();
-    h.drag_at(a);
-    h.step();
-    for k in 1..=steps {
-        h.hover_at(a + (b - a) * (k as f32 / steps as f32));
-        h.step();
-    }
-    h.drop_at(b);
-    h.run_steps(2);
 }
 
 /// Paints a new cutter on the selected model `target` in Edit mode as a user does: a 70-point

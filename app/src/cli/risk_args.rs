@@ -75,20 +75,9 @@ fn parse_mm(text: &str) -> anyhow::Result<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::SceneModel;
-    use std::sync::Arc;
 
     fn scene() -> Scene {
-        let mut scene = Scene::default();
-        for name in ["skin", "vessel"] {
-            scene.models.push(SceneModel::new(
-                name,
-                "x.obj",
-                Arc::new(csg::testkit::icosphere(1, 1.0)),
-                [0.5; 3],
-            ));
-        }
-        scene
+        crate::test_support::named_spheres(&["skin", "vessel"])
     }
 
     #[test]

@@ -82,6 +82,23 @@ impl PreviewGeometry {
     pub fn triangle_count(&self) -> usize {
         self.parts.iter().map(|p| p.mesh.triangle_count()).sum()
     }
+
+    /// Without the removed-piece views (transparency, ribbons, slices): the kept parts and walls
+    /// a normal cut shows.
+    pub fn without_views(&self) -> PreviewGeometry {
+        PreviewGeometry {
+            replaced: self.replaced.clone(),
+            parts: self
+                .parts
+                .iter()
+                .filter(|p| matches!(p.kind, PartKind::Kept | PartKind::Wall))
+                .cloned()
+                .collect(),
+            contours: self.contours.clone(),
+            notes: self.notes.clone(),
+            reports: self.reports.clone(),
+        }
+    }
 }
 
 /// Tag of a triangle of a cut model that belongs to the model's own surface; any other tag is the
@@ -111,4 +128,38 @@ pub struct Step<'a> {
     pub after: &'a Mesh,
     /// Tag of every triangle of `after`.
     pub after_tags: &'a [u32],
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_kept_parts_and_walls_stay() {
+        let part = |kind| PreviewPart {
+            model: 0,
+            cutter: 0,
+            kind,
+            opacity: 1.0,
+            mesh: csg::Mesh::default(),
+        };
+        let full = PreviewGeometry {
+            replaced: vec![true],
+            parts: [
+                PartKind::Kept,
+                PartKind::Wall,
+                PartKind::Removed,
+                PartKind::Ribbon,
+                PartKind::SliceWall,
+            ]
+            .into_iter()
+            .map(part)
+            .collect(),
+            ..Default::default()
+        };
+        let cut = full.without_views();
+        let kinds: Vec<PartKind> = cut.parts.iter().map(|p| p.kind).collect();
+        assert_eq!(kinds, vec![PartKind::Kept, PartKind::Wall]);
+        assert_eq!(cut.replaced, vec![true]);
+    }
 }

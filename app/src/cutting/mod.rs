@@ -22,6 +22,8 @@
 //!   a ray meets on the scene as drawn (cut walls and kept parts where a cut is shown).
 //! - [`wall_risk`]: the risk map's distances from the cut walls to the critical structures, on
 //!   walls refined so the colours never make a wall look safer than it is.
+//! - [`risk_worker`]: that map for the cut on screen, on a worker, one job at a time, given
+//!   only for the cut and the settings it was computed for.
 
 pub mod cut_parts;
 pub mod cut_results;
@@ -34,6 +36,7 @@ pub mod mesh_cut;
 pub mod obstacles;
 pub mod overlay;
 pub mod pick;
+pub mod risk_worker;
 pub mod scene_cuts;
 pub mod vertices;
 pub mod wall_pick;

@@ -37,14 +37,6 @@ pub fn vertices_with_normals(positions: &[DVec3], normal_sums: &[DVec3]) -> Vec<
     positions
         .iter()
         .zip(normal_sums)
-        .map(|(p, n)| Vertex {
-            position_in_world: p.as_vec3().to_array(),
-            normal_in_world: n
-                .try_normalize()
-                .unwrap_or(DVec3::ZERO)
-                .as_vec3()
-                .to_array(),
-            wall: 0.0,
-        })
+        .map(|(&p, &n)| super::wall_split::vertex(p, n, false))
         .collect()
 }

@@ -30,7 +30,7 @@ pub struct Segment {
     pub b_in_world: [f32; 3],
 }
 
-/// Per-view values. Keep in sync with `Frame` in `mesh.wgsl` and `lines.wgsl`.
+/// Per-view values. Keep in sync with `Frame` in `uniforms.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct FrameUniform {

@@ -18,7 +18,7 @@ use wgpu::util::DeviceExt as _;
 
 use super::frame::ImageDraw;
 use super::gpu_data::Vertex;
-use super::pipelines::{COLOR_FORMAT, Pipelines, depth_state};
+use super::pipelines::{LayerShader, Pipelines, layer_pipeline};
 use crate::io::intensity::{IntensityImage, SampleKind};
 
 /// Largest piece of the image staged for upload at once.
@@ -205,48 +205,18 @@ fn pipeline(
     pipelines: &Pipelines,
     layout: &wgpu::BindGroupLayout,
 ) -> wgpu::RenderPipeline {
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("cutaway mesh.wgsl + image.wgsl"),
-        source: wgpu::ShaderSource::Wgsl(super::shaders::MESH_IMAGE.into()),
-    });
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("cutaway image pipeline layout"),
-        bind_group_layouts: &[
-            Some(&pipelines.frame_layout),
-            Some(&pipelines.draw_layout),
-            Some(layout),
-        ],
-        immediate_size: 0,
-    });
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("cutaway mesh with image"),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_main"),
-            buffers: &[Some(wgpu::VertexBufferLayout {
-                array_stride: size_of::<Vertex>() as u64,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32],
-            })],
-            compilation_options: Default::default(),
+    layer_pipeline(
+        device,
+        pipelines,
+        LayerShader {
+            label: "cutaway mesh with image",
+            source: super::shaders::MESH_IMAGE.to_string(),
+            extra_layout: Some(layout),
+            vertex_stride: size_of::<Vertex>() as u64,
+            vertex_entry: "vs_main",
+            fragment_entry: "fs_image",
         },
-        primitive: wgpu::PrimitiveState {
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: depth_state(true, wgpu::CompareFunction::Less),
-        multisample: wgpu::MultisampleState::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_image"),
-            targets: &[Some(COLOR_FORMAT.into())],
-            compilation_options: Default::default(),
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
+    )
 }
 
 fn upload(

@@ -135,14 +135,23 @@ pub fn linear_to_srgb(c: f32) -> f32 {
 
 /// The WGSL sources, for the pipelines and for the naga validation test.
 pub mod shaders {
-    pub const MESH: &str = include_str!("shaders/mesh.wgsl");
-    pub const LINES: &str = include_str!("shaders/lines.wgsl");
+    /// `uniforms.wgsl` (the frame and draw uniforms both read) with `mesh.wgsl`, and with
+    /// `lines.wgsl` (WGSL has no includes).
+    pub const MESH: &str = concat!(
+        include_str!("shaders/uniforms.wgsl"),
+        include_str!("shaders/mesh.wgsl")
+    );
+    pub const LINES: &str = concat!(
+        include_str!("shaders/uniforms.wgsl"),
+        include_str!("shaders/lines.wgsl")
+    );
     pub const COMPOSITE: &str = include_str!("shaders/composite.wgsl");
     pub const BLIT: &str = include_str!("shaders/blit.wgsl");
     pub const SCATTER: &str = include_str!("shaders/scatter.wgsl");
-    /// `mesh.wgsl` with the image fragment stage of `image.wgsl` appended (walls showing the
-    /// intensity image; WGSL has no includes).
+    /// [`MESH`] with the image fragment stage of `image.wgsl` appended (walls showing the
+    /// intensity image).
     pub const MESH_IMAGE: &str = concat!(
+        include_str!("shaders/uniforms.wgsl"),
         include_str!("shaders/mesh.wgsl"),
         include_str!("shaders/image.wgsl")
     );

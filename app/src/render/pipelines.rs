@@ -74,6 +74,67 @@ fn texture_entry(binding: u32, filterable: bool) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+/// What a layer's own pipeline draws with (the image layer, the risk map): its WGSL source, the
+/// bind group layout after the frame's and the draw's (if any), the vertex stride (a position,
+/// a normal and one scalar per vertex) and the entry points.
+pub(super) struct LayerShader<'a> {
+    pub label: &'a str,
+    pub source: String,
+    pub extra_layout: Option<&'a wgpu::BindGroupLayout>,
+    pub vertex_stride: u64,
+    pub vertex_entry: &'a str,
+    pub fragment_entry: &'a str,
+}
+
+/// An opaque, depth-tested pipeline of two-sided triangles for a layer drawn over the scene's
+/// meshes, as the mesh pipeline draws them but in the layer's own shader.
+pub(super) fn layer_pipeline(
+    device: &wgpu::Device,
+    pipelines: &Pipelines,
+    shader: LayerShader,
+) -> wgpu::RenderPipeline {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(shader.label),
+        source: wgpu::ShaderSource::Wgsl(shader.source.into()),
+    });
+    let mut layouts = vec![Some(&pipelines.frame_layout), Some(&pipelines.draw_layout)];
+    layouts.extend(shader.extra_layout.map(Some));
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(shader.label),
+        bind_group_layouts: &layouts,
+        immediate_size: 0,
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(shader.label),
+        layout: Some(&pipeline_layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some(shader.vertex_entry),
+            buffers: &[Some(wgpu::VertexBufferLayout {
+                array_stride: shader.vertex_stride,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32],
+            })],
+            compilation_options: Default::default(),
+        },
+        primitive: wgpu::PrimitiveState {
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            cull_mode: None,
+            ..Default::default()
+        },
+        depth_stencil: depth_state(true, wgpu::CompareFunction::Less),
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some(shader.fragment_entry),
+            targets: &[Some(COLOR_FORMAT.into())],
+            compilation_options: Default::default(),
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
 pub(super) fn depth_state(
     write: bool,
     compare: wgpu::CompareFunction,

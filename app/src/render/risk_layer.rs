@@ -5,7 +5,7 @@
 //! (`renderer/draw_list.rs`); the distances come computed ([`crate::cutting::wall_risk`]).
 
 use super::gpu_data::RiskVertex;
-use super::pipelines::{COLOR_FORMAT, Pipelines, depth_state};
+use super::pipelines::{LayerShader, Pipelines, layer_pipeline};
 
 /// The risk pipelines of one renderer.
 #[derive(Default)]
@@ -62,48 +62,20 @@ fn pipeline(
     } else {
         "cutaway risk map"
     };
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(super::shaders::risk(with_image).into()),
-    });
-    let mut layouts = vec![Some(&pipelines.frame_layout), Some(&pipelines.draw_layout)];
-    layouts.extend(image_layout.map(Some));
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &layouts,
-        immediate_size: 0,
-    });
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(label),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_risk"),
-            buffers: &[Some(wgpu::VertexBufferLayout {
-                array_stride: size_of::<RiskVertex>() as u64,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32],
-            })],
-            compilation_options: Default::default(),
-        },
-        primitive: wgpu::PrimitiveState {
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: depth_state(true, wgpu::CompareFunction::Less),
-        multisample: wgpu::MultisampleState::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some(if with_image {
+    layer_pipeline(
+        device,
+        pipelines,
+        LayerShader {
+            label,
+            source: super::shaders::risk(with_image),
+            extra_layout: image_layout,
+            vertex_stride: size_of::<RiskVertex>() as u64,
+            vertex_entry: "vs_risk",
+            fragment_entry: if with_image {
                 "fs_risk_image"
             } else {
                 "fs_risk"
-            }),
-            targets: &[Some(COLOR_FORMAT.into())],
-            compilation_options: Default::default(),
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
+            },
+        },
+    )
 }

@@ -89,6 +89,11 @@ impl Default for Scene {
 }
 
 impl Scene {
+    /// The models' names, in scene order (what the panels offer to pick from).
+    pub fn model_names(&self) -> Vec<String> {
+        self.models.iter().map(|m| m.model.name.clone()).collect()
+    }
+
     /// Bounding box of the visible models (of all models if none is visible; empty if there are
     /// no models).
     pub fn bbox(&self) -> Aabb {

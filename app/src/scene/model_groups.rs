@@ -1,6 +1,6 @@
-//! The model list's tree: models grouped by [`SceneModel::group`] (folder names, `/` between
-//! them), filtered by the text in the list's filter box. Pure data, so the grouping and the
-//! filter are tested without a window.
+//! The model list's tree: models grouped by `model.group` (folder names, `/` between them),
+//! filtered by the text in the list's filter box. Pure data, so the grouping and the filter are
+//! tested without a window.
 
 use crate::scene::SceneModel;
 

@@ -112,10 +112,7 @@ mod tests {
     use glam::DVec3;
 
     fn bbox(size: DVec3) -> Aabb {
-        let mut b = Aabb::EMPTY;
-        b.grow(DVec3::ZERO);
-        b.grow(size);
-        b
+        Aabb::from_points(&[DVec3::ZERO, size])
     }
 
     #[test]

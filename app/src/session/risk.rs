@@ -79,20 +79,9 @@ pub fn entry(settings: &RiskSettings) -> Option<RiskEntry> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::SceneModel;
-    use std::sync::Arc;
 
     fn scene() -> Scene {
-        let mut scene = Scene::default();
-        for name in ["skin", "optic chiasm"] {
-            scene.models.push(SceneModel::new(
-                name,
-                "x.obj",
-                Arc::new(csg::testkit::icosphere(1, 1.0)),
-                [0.5; 3],
-            ));
-        }
-        scene
+        crate::test_support::named_spheres(&["skin", "optic chiasm"])
     }
 
     #[test]

@@ -5,31 +5,13 @@
 //! orbit, the first-use hint, and a single-region model keeping its name.
 
 use super::*;
+use crate::harness::apply;
+use crate::input::drag_steps as drag;
 
 use cutaway::gui::app::{Action, Purpose, UnsavedAnswer};
 use cutaway::gui::viewport::view_menu::ViewCommand;
 use cutaway::scene::ViewPreset;
 use glam::{DVec2, DVec3};
-
-fn apply(h: &mut Harness<'_, CutawayApp>, action: Action) {
-    let ctx = h.ctx.clone();
-    h.state_mut().apply(&ctx, action);
-    h.run_steps(2);
-}
-
-/// Press at `a`, move to `b` in `steps` frames, release (points).
-fn drag(h: &mut Harness<'_, CutawayApp>, a: egui::Pos2, b: egui::Pos2, steps: usize) {
-    h.hover_at(a);
-    h.step();
-    h.drag_at(a);
-    h.step();
-    for k in 1..=steps {
-        h.hover_at(a + (b - a) * (k as f32 / steps as f32));
-        h.step();
-    }
-    h.drop_at(b);
-    h.run_steps(2);
-}
 
 /// Viewport pixels (physical) of a point in points.
 fn to_px(h: &Harness<'_, CutawayApp>, p: egui::Pos2) -> DVec2 {

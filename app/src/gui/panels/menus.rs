@@ -5,6 +5,7 @@
 //! settings in place (they are view settings, not undoable scene edits).
 
 use crate::gui::action::{Action, Mode, Purpose};
+use crate::gui::panels::export_dialog::{ExportDialog, size_rows};
 use crate::gui::state::AppState;
 use crate::scene::Stereo;
 
@@ -333,104 +334,59 @@ pub fn toolbar_ui(ui: &mut egui::Ui, app: &mut AppState) -> Vec<Action> {
 }
 
 fn export_image_window_ui(ctx: &egui::Context, app: &mut AppState) -> Vec<Action> {
-    let mut actions = Vec::new();
-    if !app.export_image.open {
-        return actions;
-    }
-    let mut open = true;
     let view = app.viewport.size_px;
-    egui::Window::new("Export Image")
-        .open(&mut open)
-        .collapsible(false)
-        .resizable(false)
-        .show(ctx, |ui| {
-            let s = &mut app.export_image;
-            egui::Grid::new("export-image-grid")
-                .num_columns(2)
-                .show(ui, |ui| {
-                    ui.label("Width");
-                    ui.add(
-                        egui::DragValue::new(&mut s.width)
-                            .range(1..=MAX_EXPORT_SIDE)
-                            .suffix(" px"),
-                    );
-                    ui.end_row();
-                    ui.label("Height");
-                    ui.add(
-                        egui::DragValue::new(&mut s.height)
-                            .range(1..=MAX_EXPORT_SIDE)
-                            .suffix(" px"),
-                    );
-                    ui.end_row();
-                });
-            ui.horizontal_wrapped(|ui| {
-                let (vw, vh) = (view.x.max(1.0) as u32, view.y.max(1.0) as u32);
-                for (name, w, h) in [
-                    ("Window".to_string(), vw, vh),
-                    ("2× window".to_string(), vw * 2, vh * 2),
-                    ("4× window".to_string(), vw * 4, vh * 4),
-                    ("1080p".to_string(), 1920, 1080),
-                    ("4k".to_string(), 3840, 2160),
-                    ("8k".to_string(), 7680, 4320),
-                ] {
-                    if ui.small_button(name).clicked() {
-                        let scale = (MAX_EXPORT_SIDE as f64 / w.max(h) as f64).min(1.0);
-                        s.width = ((w as f64 * scale) as u32).max(1);
-                        s.height = ((h as f64 * scale) as u32).max(1);
-                    }
-                }
+    let dialog = ExportDialog {
+        title: "Export Image",
+        button: "Export…",
+        purpose: Purpose::ExportImage,
+    };
+    dialog.show(ctx, &mut app.export_image, |ui, s| {
+        egui::Grid::new("export-image-grid")
+            .num_columns(2)
+            .show(ui, |ui| {
+                size_rows(ui, &mut s.width, &mut s.height, MAX_EXPORT_SIDE);
             });
-            ui.checkbox(&mut s.transparent, "Transparent background");
-            ui.separator();
-            crate::gui::panels::export_labels::annotation_ui(ui, &mut s.annotations, &app.scene);
-            ui.add_space(6.0);
-            if ui.button("Export…").clicked() {
-                actions.push(Action::Dialog(Purpose::ExportImage));
-                s.open = false;
+        ui.horizontal_wrapped(|ui| {
+            let (vw, vh) = (view.x.max(1.0) as u32, view.y.max(1.0) as u32);
+            for (name, w, h) in [
+                ("Window".to_string(), vw, vh),
+                ("2× window".to_string(), vw * 2, vh * 2),
+                ("4× window".to_string(), vw * 4, vh * 4),
+                ("1080p".to_string(), 1920, 1080),
+                ("4k".to_string(), 3840, 2160),
+                ("8k".to_string(), 7680, 4320),
+            ] {
+                if ui.small_button(name).clicked() {
+                    let scale = (MAX_EXPORT_SIDE as f64 / w.max(h) as f64).min(1.0);
+                    s.width = ((w as f64 * scale) as u32).max(1);
+                    s.height = ((h as f64 * scale) as u32).max(1);
+                }
             }
         });
-    if !open {
-        app.export_image.open = false;
-    }
-    actions
+        ui.checkbox(&mut s.transparent, "Transparent background");
+        ui.separator();
+        crate::gui::panels::export_labels::annotation_ui(ui, &mut s.annotations, &app.scene);
+        true
+    })
 }
 
 fn export_meshes_window_ui(ctx: &egui::Context, app: &mut AppState) -> Vec<Action> {
-    let mut actions = Vec::new();
-    if !app.export_meshes.open {
-        return actions;
-    }
-    let mut open = true;
-    egui::Window::new("Export Cut Meshes")
-        .open(&mut open)
-        .collapsible(false)
-        .resizable(false)
-        .show(ctx, |ui| {
-            let s = &mut app.export_meshes;
-            ui.label("Parts of every cut, one file per cutter and part:");
-            ui.checkbox(&mut s.kept, "Kept (target outside the cutter)");
-            ui.checkbox(&mut s.walls, "Walls (cutter surface inside the target)");
-            ui.checkbox(&mut s.removed, "Removed (target inside the cutter)");
-            ui.horizontal(|ui| {
-                ui.label("Format");
-                for f in [MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Ply] {
-                    ui.radio_value(&mut s.format, f, f.extension().to_uppercase());
-                }
-            });
-            ui.add_space(6.0);
-            if ui
-                .add_enabled(
-                    s.kept || s.walls || s.removed,
-                    egui::Button::new("Choose Folder…"),
-                )
-                .clicked()
-            {
-                actions.push(Action::Dialog(Purpose::ExportMeshes));
-                s.open = false;
+    let dialog = ExportDialog {
+        title: "Export Cut Meshes",
+        button: "Choose Folder…",
+        purpose: Purpose::ExportMeshes,
+    };
+    dialog.show(ctx, &mut app.export_meshes, |ui, s| {
+        ui.label("Parts of every cut, one file per cutter and part:");
+        ui.checkbox(&mut s.kept, "Kept (target outside the cutter)");
+        ui.checkbox(&mut s.walls, "Walls (cutter surface inside the target)");
+        ui.checkbox(&mut s.removed, "Removed (target inside the cutter)");
+        ui.horizontal(|ui| {
+            ui.label("Format");
+            for f in [MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Ply] {
+                ui.radio_value(&mut s.format, f, f.extension().to_uppercase());
             }
         });
-    if !open {
-        app.export_meshes.open = false;
-    }
-    actions
+        s.kept || s.walls || s.removed
+    })
 }

@@ -81,12 +81,7 @@ fn number(value: Option<f64>) -> String {
 /// The panel's contents (the side panel itself is laid out by the app).
 pub fn metrics_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
     ui.heading("Metrics");
-    let names: Vec<String> = app
-        .scene
-        .models
-        .iter()
-        .map(|m| m.model.name.clone())
-        .collect();
+    let names = app.scene.model_names();
     let panel = &mut app.metrics;
     let status = if panel.job.is_some() {
         "measuring…".to_string()

@@ -5,6 +5,7 @@ pub mod about;
 pub mod compare_view;
 pub mod cut_menu;
 pub mod cutter_panel;
+pub mod export_dialog;
 pub mod export_labels;
 pub mod file_browser;
 pub mod help;

@@ -10,12 +10,7 @@ use crate::gui::state::AppState;
 pub fn risk_panel_ui(ui: &mut egui::Ui, app: &mut AppState) {
     let before = app.scene.risk.clone();
     let mut risk = before.clone();
-    let names: Vec<String> = app
-        .scene
-        .models
-        .iter()
-        .map(|m| m.model.name.clone())
-        .collect();
+    let names = app.scene.model_names();
     let selected = app
         .selected_model
         .and_then(|i| app.scene.models.get(i))

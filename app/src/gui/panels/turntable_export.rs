@@ -8,6 +8,7 @@ use std::path::Path;
 use crate::export::turntable::{MAX_FRAMES, TurntableProgress, export_turntable};
 use crate::gui::action::{Action, Purpose};
 use crate::gui::jobs::Progress;
+use crate::gui::panels::export_dialog::{ExportDialog, size_rows};
 use crate::gui::state::AppState;
 use crate::render::ViewMode;
 use crate::scene::Scene;
@@ -53,64 +54,37 @@ pub fn export(
 
 /// The Export Turntable dialog; "Choose Folder…" asks for the output folder.
 pub fn window_ui(ctx: &egui::Context, app: &mut AppState) -> Vec<Action> {
-    let mut actions = Vec::new();
-    if !app.export_turntable.open {
-        return actions;
-    }
-    let mut open = true;
-    egui::Window::new("Export Turntable")
-        .open(&mut open)
-        .collapsible(false)
-        .resizable(false)
-        .show(ctx, |ui| {
-            let s = &mut app.export_turntable;
-            ui.label("An orbit around the cut about the camera's up axis, starting at this view:");
-            egui::Grid::new("export-turntable-grid")
-                .num_columns(2)
-                .show(ui, |ui| {
-                    ui.label("Frames");
-                    ui.add(egui::DragValue::new(&mut s.options.frames).range(1..=MAX_FRAMES));
-                    ui.end_row();
-                    ui.label("Width");
-                    ui.add(
-                        egui::DragValue::new(&mut s.width)
-                            .range(1..=MAX_TURNTABLE_SIDE)
-                            .suffix(" px"),
-                    );
-                    ui.end_row();
-                    ui.label("Height");
-                    ui.add(
-                        egui::DragValue::new(&mut s.height)
-                            .range(1..=MAX_TURNTABLE_SIDE)
-                            .suffix(" px"),
-                    );
-                    ui.end_row();
-                });
-            ui.checkbox(&mut s.options.gif, "Animated GIF (turntable.gif)");
-            ui.add_enabled_ui(s.options.gif, |ui| {
-                ui.horizontal(|ui| {
-                    ui.label("Frame time");
-                    ui.add(
-                        egui::DragValue::new(&mut s.options.delay_ms)
-                            .range(10..=10_000)
-                            .suffix(" ms"),
-                    );
-                });
+    let dialog = ExportDialog {
+        title: "Export Turntable",
+        button: "Choose Folder…",
+        purpose: Purpose::ExportTurntable,
+    };
+    dialog.show(ctx, &mut app.export_turntable, |ui, s| {
+        ui.label("An orbit around the cut about the camera's up axis, starting at this view:");
+        egui::Grid::new("export-turntable-grid")
+            .num_columns(2)
+            .show(ui, |ui| {
+                ui.label("Frames");
+                ui.add(egui::DragValue::new(&mut s.options.frames).range(1..=MAX_FRAMES));
+                ui.end_row();
+                size_rows(ui, &mut s.width, &mut s.height, MAX_TURNTABLE_SIDE);
             });
-            ui.label(
-                egui::RichText::new("Writes frames/frame-0001.png … into the chosen folder.")
-                    .weak(),
-            );
-            ui.add_space(6.0);
-            if ui.button("Choose Folder…").clicked() {
-                actions.push(Action::Dialog(Purpose::ExportTurntable));
-                s.open = false;
-            }
+        ui.checkbox(&mut s.options.gif, "Animated GIF (turntable.gif)");
+        ui.add_enabled_ui(s.options.gif, |ui| {
+            ui.horizontal(|ui| {
+                ui.label("Frame time");
+                ui.add(
+                    egui::DragValue::new(&mut s.options.delay_ms)
+                        .range(10..=10_000)
+                        .suffix(" ms"),
+                );
+            });
         });
-    if !open {
-        app.export_turntable.open = false;
-    }
-    actions
+        ui.label(
+            egui::RichText::new("Writes frames/frame-0001.png … into the chosen folder.").weak(),
+        );
+        true
+    })
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@ use std::path::Path;
 use crate::export::webpage::{WebPageOptions, export_webpage};
 use crate::gui::action::{Action, Purpose};
 use crate::gui::jobs::Progress;
+use crate::gui::panels::export_dialog::ExportDialog;
 use crate::gui::state::AppState;
 use crate::metrics::MetricsOptions;
 use crate::scene::Scene;
@@ -44,71 +45,58 @@ pub fn export(
 
 /// The Export Web Page dialog; "Choose File…" asks where to write the page.
 pub fn window_ui(ctx: &egui::Context, app: &mut AppState) -> Vec<Action> {
-    let mut actions = Vec::new();
-    if !app.export_webpage.open {
-        return actions;
-    }
-    let mut open = true;
-    let variants = crate::scene::variants::names(&app.scene).len();
-    let focus = app.metrics.focus.clone();
-    let critical = app.metrics.critical.clone();
-    egui::Window::new("Export Web Page")
-        .open(&mut open)
-        .collapsible(false)
-        .resizable(false)
-        .show(ctx, |ui| {
-            let s = &mut app.export_webpage;
-            ui.label(
-                "One HTML file that opens in any current browser, from disk, with no install: \
-                 the cut scene to turn and zoom, the structure list, the standard views and \
-                 the measures.",
+    let dialog = ExportDialog {
+        title: "Export Web Page",
+        button: "Choose File…",
+        purpose: Purpose::ExportWebPage,
+    };
+    dialog.show(ctx, &mut app.export_webpage, |ui, s| {
+        let variants = crate::scene::variants::names(&app.scene).len();
+        let focus = app.metrics.focus.clone();
+        let critical = app.metrics.critical.clone();
+        ui.label(
+            "One HTML file that opens in any current browser, from disk, with no install: \
+             the cut scene to turn and zoom, the structure list, the standard views and \
+             the measures.",
+        );
+        ui.horizontal(|ui| {
+            ui.label("Title");
+            ui.add(
+                egui::TextEdit::singleline(&mut s.title)
+                    .hint_text(crate::export::webpage::DEFAULT_TITLE)
+                    .char_limit(crate::export::webpage::MAX_TITLE_CHARS)
+                    .desired_width(260.0),
             );
-            ui.horizontal(|ui| {
-                ui.label("Title");
-                ui.add(
-                    egui::TextEdit::singleline(&mut s.title)
-                        .hint_text(crate::export::webpage::DEFAULT_TITLE)
-                        .char_limit(crate::export::webpage::MAX_TITLE_CHARS)
-                        .desired_width(260.0),
-                );
-            });
-            let mut notes = vec![if variants > 1 {
-                format!("All {variants} cut variants, switchable in the page.")
-            } else {
-                "The cut as Preview shows it.".to_string()
-            }];
-            match (&focus, critical.is_empty()) {
-                (None, true) => notes.push(
-                    "Measures: removal per structure (mark a focus or critical structures in \
-                     the Metrics panel to add exposure and distances)."
-                        .to_string(),
-                ),
-                _ => notes.push(format!(
-                    "Measures: removal{}{}.",
-                    focus
-                        .as_ref()
-                        .map(|f| format!(", exposure of {f}"))
-                        .unwrap_or_default(),
-                    if critical.is_empty() {
-                        String::new()
-                    } else {
-                        format!(", distance to {}", critical.join(", "))
-                    }
-                )),
-            }
-            for note in notes {
-                ui.label(egui::RichText::new(note).weak());
-            }
-            ui.add_space(6.0);
-            if ui.button("Choose File…").clicked() {
-                actions.push(Action::Dialog(Purpose::ExportWebPage));
-                s.open = false;
-            }
         });
-    if !open {
-        app.export_webpage.open = false;
-    }
-    actions
+        let mut notes = vec![if variants > 1 {
+            format!("All {variants} cut variants, switchable in the page.")
+        } else {
+            "The cut as Preview shows it.".to_string()
+        }];
+        match (&focus, critical.is_empty()) {
+            (None, true) => notes.push(
+                "Measures: removal per structure (mark a focus or critical structures in \
+                 the Metrics panel to add exposure and distances)."
+                    .to_string(),
+            ),
+            _ => notes.push(format!(
+                "Measures: removal{}{}.",
+                focus
+                    .as_ref()
+                    .map(|f| format!(", exposure of {f}"))
+                    .unwrap_or_default(),
+                if critical.is_empty() {
+                    String::new()
+                } else {
+                    format!(", distance to {}", critical.join(", "))
+                }
+            )),
+        }
+        for note in notes {
+            ui.label(egui::RichText::new(note).weak());
+        }
+        true
+    })
 }
 
 #[cfg(test)]

@@ -123,7 +123,7 @@ pub struct ViewportState {
     /// The models' ray-pick trees (double-click focus, the first press of a cutter).
     pub picks: crate::cutting::pick::ScenePicks,
     /// The walls' distances to the critical structures, mapped on a worker.
-    pub risk: crate::gui::risk_map::RiskMap,
+    pub risk: crate::cutting::risk_worker::RiskMap,
     /// A drag waiting for its target's index (see [`HeldGesture`]).
     pub held: Option<HeldGesture>,
     /// The mesh whose index Edit mode last started building ahead of a press (once per mesh,

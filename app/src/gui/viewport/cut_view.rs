@@ -8,7 +8,7 @@
 
 use std::sync::{Arc, Weak};
 
-use crate::cutting::cut_scene::{PartKind, PreviewGeometry};
+use crate::cutting::cut_scene::PreviewGeometry;
 
 use crate::gui::action::Mode;
 use crate::gui::state::AppState;
@@ -52,7 +52,7 @@ pub fn cut_without_views(app: &AppState) -> Option<Arc<PreviewGeometry>> {
         {
             return Some(derived.clone());
         }
-        let derived = Arc::new(without_views(full));
+        let derived = Arc::new(full.without_views());
         *last = Some((Arc::downgrade(full), derived.clone()));
         Some(derived)
     })
@@ -78,55 +78,4 @@ pub fn highlight_selection(app: &AppState, drawn: &mut [crate::render::ModelDraw
 /// `color` moved toward the highlight colour.
 pub fn highlighted(color: [f32; 3]) -> [f32; 3] {
     std::array::from_fn(|k| color[k] + (HIGHLIGHT[k] - color[k]) * HIGHLIGHT_MIX)
-}
-
-/// `full` without the removed-piece views: the parts a normal cut shows.
-pub fn without_views(full: &PreviewGeometry) -> PreviewGeometry {
-    PreviewGeometry {
-        replaced: full.replaced.clone(),
-        parts: full
-            .parts
-            .iter()
-            .filter(|p| matches!(p.kind, PartKind::Kept | PartKind::Wall))
-            .cloned()
-            .collect(),
-        contours: full.contours.clone(),
-        notes: full.notes.clone(),
-        reports: full.reports.clone(),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::cutting::cut_scene::PreviewPart;
-
-    #[test]
-    fn only_kept_parts_and_walls_stay() {
-        let part = |kind| PreviewPart {
-            model: 0,
-            cutter: 0,
-            kind,
-            opacity: 1.0,
-            mesh: csg::Mesh::default(),
-        };
-        let full = PreviewGeometry {
-            replaced: vec![true],
-            parts: [
-                PartKind::Kept,
-                PartKind::Wall,
-                PartKind::Removed,
-                PartKind::Ribbon,
-                PartKind::SliceWall,
-            ]
-            .into_iter()
-            .map(part)
-            .collect(),
-            ..Default::default()
-        };
-        let cut = without_views(&full);
-        let kinds: Vec<PartKind> = cut.parts.iter().map(|p| p.kind).collect();
-        assert_eq!(kinds, vec![PartKind::Kept, PartKind::Wall]);
-        assert_eq!(cut.replaced, vec![true]);
-    }
 }

@@ -1,23 +1,6 @@
 // Thick screen-space lines: each segment instance is a quad of `draw.params.z` pixels width,
-// extended by half the width at both ends so consecutive segments join without gaps.
-
-// Keep in sync with FrameUniform in gpu_data.rs.
-struct Frame {
-    clip_from_world: mat4x4<f32>,
-    eye_in_world: vec4<f32>,
-    light_in_world: vec4<f32>,
-    viewport: vec4<f32>,
-};
-
-// Keep in sync with DrawUniform in gpu_data.rs.
-struct Draw {
-    color: vec4<f32>,
-    params: vec4<f32>,
-    wall_color: vec4<f32>,
-};
-
-@group(0) @binding(0) var<uniform> frame: Frame;
-@group(1) @binding(0) var<uniform> draw: Draw;
+// extended by half the width at both ends so consecutive segments join without gaps. Follows
+// uniforms.wgsl (Frame, Draw and their bindings).
 
 // Keep in sync with Segment in gpu_data.rs.
 struct SegmentIn {
@@ -29,12 +12,6 @@ struct VertexOut {
     @builtin(position) position_in_clip: vec4<f32>,
 };
 
-fn to_clip(p: vec3<f32>) -> vec4<f32> {
-    // Pull the point toward the eye so a line lying on a surface wins the depth test.
-    let offset = normalize(frame.eye_in_world.xyz - p) * draw.params.w;
-    return frame.clip_from_world * vec4<f32>(p + offset, 1.0);
-}
-
 @vertex
 fn vs_main(@builtin(vertex_index) vertex_index: u32, s: SegmentIn) -> VertexOut {
     // Two triangles: (0,-1) (1,-1) (1,1) / (0,-1) (1,1) (0,1) as (along, across).
@@ -42,8 +19,8 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32, s: SegmentIn) -> VertexOut 
     let along = select(0.0, 1.0, i == 1u || i == 2u || i == 4u);
     let across = select(-1.0, 1.0, i == 2u || i == 4u || i == 5u);
 
-    var ca = to_clip(s.a_in_world);
-    var cb = to_clip(s.b_in_world);
+    var ca = clip_position(s.a_in_world);
+    var cb = clip_position(s.b_in_world);
     // Clip the segment to the space in front of the eye.
     let min_w = 1e-4;
     var out: VertexOut;

@@ -1,28 +1,6 @@
 // Shaded triangle meshes: opaque (fs_opaque) and weighted-blended order-independent
 // transparency (fs_oit, McGuire and Bavoil 2013). Two-sided headlight shading in linear light.
-
-// Keep in sync with FrameUniform in gpu_data.rs.
-struct Frame {
-    clip_from_world: mat4x4<f32>,
-    eye_in_world: vec4<f32>,
-    light_in_world: vec4<f32>,
-    // x, y: target size in pixels; z: near, w: far.
-    viewport: vec4<f32>,
-};
-
-// Keep in sync with DrawUniform in gpu_data.rs.
-struct Draw {
-    // Linear RGB, straight opacity.
-    color: vec4<f32>,
-    // x: back-face brightness; y: 1 lit / 0 flat; z: line width px; w: offset toward the eye in
-    // world units (negative: away; the cutter overlay yields to the walls it coincides with).
-    params: vec4<f32>,
-    // Linear RGB of the incision walls (vertices with `wall` 1).
-    wall_color: vec4<f32>,
-};
-
-@group(0) @binding(0) var<uniform> frame: Frame;
-@group(1) @binding(0) var<uniform> draw: Draw;
+// Follows uniforms.wgsl (Frame, Draw and their bindings).
 
 // Keep in sync with Vertex in gpu_data.rs.
 struct VertexIn {
@@ -42,9 +20,7 @@ struct VertexOut {
 @vertex
 fn vs_main(v: VertexIn) -> VertexOut {
     var out: VertexOut;
-    let toward_eye = normalize(frame.eye_in_world.xyz - v.position_in_world);
-    let moved = v.position_in_world + toward_eye * draw.params.w;
-    out.position_in_clip = frame.clip_from_world * vec4<f32>(moved, 1.0);
+    out.position_in_clip = clip_position(v.position_in_world);
     out.position_in_world = v.position_in_world;
     out.normal_in_world = v.normal_in_world;
     out.wall = v.wall;

@@ -22,9 +22,7 @@ struct RiskOut {
 @vertex
 fn vs_risk(v: RiskIn) -> RiskOut {
     var out: RiskOut;
-    let toward_eye = normalize(frame.eye_in_world.xyz - v.position_in_world);
-    let moved = v.position_in_world + toward_eye * draw.params.w;
-    out.position_in_clip = frame.clip_from_world * vec4<f32>(moved, 1.0);
+    out.position_in_clip = clip_position(v.position_in_world);
     out.position_in_world = v.position_in_world;
     out.normal_in_world = v.normal_in_world;
     out.ramp = v.ramp;
