@@ -5,6 +5,7 @@
 
 pub mod anatomy;
 pub mod annotate;
+pub mod batch;
 pub mod cli;
 pub mod compare;
 pub mod cutting;

@@ -9,10 +9,61 @@ use image::RgbaImage;
 
 use super::labelled::{Annotations, Extras, annotate_with};
 use super::visible::is_opaque;
-use crate::cutting::cut_scene::preview_geometry;
+use crate::cutting::cut_scene::{CutReport, preview_geometry};
 use crate::render::{HeadlessRenderer, ViewMode};
 use crate::scene::Scene;
 use crate::view::{RenderPngOptions, render_mode};
+
+/// The picture `cutaway render` writes (and the Python `Session.render` returns): the scene in
+/// Preview when it has cutters, the risk legend, the rulers and the labels of `labelled` drawn
+/// over it, with one report per cutter of the scene.
+#[derive(Debug)]
+pub struct SessionPicture {
+    pub image: RgbaImage,
+    /// One per cutter of the scene, in order; a cutter with no view shown is not cut (exact, 0 ms).
+    pub reports: Vec<CutReport>,
+    /// Wall time from the loaded scene to the finished image (cuts and drawing).
+    pub render_ms: f64,
+    /// Why a cut was refused (the first refusal): the picture must not be written then.
+    pub refused: Option<String>,
+}
+
+/// Renders `scene` as `cutaway render` does, with `renderer` (one renderer for many pictures).
+pub fn render_session_picture(
+    renderer: &mut HeadlessRenderer,
+    scene: &Scene,
+    options: &RenderPngOptions,
+    labelled: Option<&[usize]>,
+) -> anyhow::Result<SessionPicture> {
+    let started = std::time::Instant::now();
+    let preview = (render_mode(scene, options) == ViewMode::Preview)
+        .then(|| Arc::new(preview_geometry(scene)));
+    let mut image =
+        super::risk_legend::render_with_legend(renderer, scene, options, preview.clone())?;
+    super::rulers::draw_rulers(&mut image, scene);
+    if let Some(models) = labelled {
+        super::labelled::annotate(&mut image, scene, preview.as_deref(), models);
+    }
+    let render_ms = started.elapsed().as_secs_f64() * 1000.0;
+    let not_cut = CutReport {
+        exact: true,
+        cut_ms: 0.0,
+    };
+    let reports = (0..scene.cutters.len())
+        .map(|c| {
+            preview
+                .as_ref()
+                .and_then(|p| p.reports.iter().find(|(i, _)| *i == c))
+                .map_or(not_cut, |(_, r)| *r)
+        })
+        .collect();
+    Ok(SessionPicture {
+        image,
+        reports,
+        render_ms,
+        refused: preview.as_ref().and_then(|p| p.notes.first().cloned()),
+    })
+}
 
 /// What to draw over an exported picture.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -9,7 +9,7 @@
 
 use anyhow::Context as _;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use crate::metrics::{MetricsOptions, exposure::DEFAULT_SAMPLES};
 
@@ -38,33 +38,7 @@ pub struct ExportArgs {
     pub risk: crate::cli::risk_args::RiskArgs,
 }
 
-/// What `--out` asks for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ExportFormat {
-    Glb,
-    WebPage,
-}
-
-impl ExportFormat {
-    /// The format of `out` by its extension (case-insensitive), or a one-line error naming it.
-    pub fn of(out: &Path) -> anyhow::Result<ExportFormat> {
-        let extension = out
-            .extension()
-            .map(|e| e.to_string_lossy().to_ascii_lowercase());
-        match extension.as_deref() {
-            Some("glb") => Ok(ExportFormat::Glb),
-            Some("html" | "htm") => Ok(ExportFormat::WebPage),
-            Some(other) => anyhow::bail!(
-                "{}: cannot write '.{other}' files (export writes .glb or .html)",
-                out.display()
-            ),
-            None => anyhow::bail!(
-                "{}: no extension (export writes .glb or .html)",
-                out.display()
-            ),
-        }
-    }
-}
+pub use crate::export::scene_file::ExportFormat;
 
 pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let format = ExportFormat::of(&args.out)?;
@@ -84,32 +58,17 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let mut scene = crate::session::load(&args.session)?;
     crate::cli::risk_args::apply(&mut scene, &args.risk)
         .with_context(|| format!("{}", args.session.display()))?;
-    match format {
-        ExportFormat::Glb => {
-            let summary = crate::export::export_glb(&scene, &args.out)?;
-            if args.json {
-                println!("{}", serde_json::to_string(&summary)?);
-            }
-        }
-        ExportFormat::WebPage => {
-            let options = crate::export::webpage::WebPageOptions {
-                title: args.title.clone(),
-                metrics: MetricsOptions {
-                    focus: args.focus.clone(),
-                    critical: args.risk.critical.clone(),
-                    samples: args.samples,
-                },
-            };
-            let summary = crate::export::webpage::export_webpage(
-                &scene,
-                &args.out,
-                &options,
-                &crate::export::webpage::Quiet,
-            )?;
-            if args.json {
-                println!("{}", serde_json::to_string(&summary)?);
-            }
-        }
+    let page = crate::export::webpage::WebPageOptions {
+        title: args.title.clone(),
+        metrics: MetricsOptions {
+            focus: args.focus.clone(),
+            critical: args.risk.critical.clone(),
+            samples: args.samples,
+        },
+    };
+    let summary = crate::export::scene_file::export_scene_file(&scene, &args.out, &page)?;
+    if args.json {
+        println!("{}", serde_json::to_string(&summary)?);
     }
     Ok(())
 }

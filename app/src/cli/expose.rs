@@ -7,9 +7,9 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 
-use crate::expose::{DEFAULT_MARGIN_MM, ExposeSettings, apply, plan, report, summary};
-use crate::metrics::{exposure::DEFAULT_SAMPLES, structure_index};
-use crate::platform::jobs::Progress;
+use crate::expose::scene_expose::{check, expose_named};
+use crate::expose::{DEFAULT_MARGIN_MM, ExposeSettings, summary};
+use crate::metrics::exposure::DEFAULT_SAMPLES;
 
 #[derive(Debug, clap::Args)]
 pub struct ExposeArgs {
@@ -46,26 +46,18 @@ pub fn run(args: &ExposeArgs) -> anyhow::Result<()> {
     let settings = ExposeSettings {
         margin_mm: args.margin,
     };
-    settings.check().context("--margin")?;
-    if !(1..=10_000_000).contains(&args.samples) {
-        anyhow::bail!("--samples {} is outside 1..10000000", args.samples);
-    }
+    check(&settings, args.samples)?;
     let before = crate::session::load(&args.session)?;
-    let focus = structure_index(&before, &args.focus)
+    let exposure = expose_named(&before, &args.focus, &settings, args.samples)
         .with_context(|| format!("{}", args.session.display()))?;
-    let exposed = plan(&before, focus, &settings, &Progress::default())
-        .with_context(|| format!("{}", args.session.display()))?;
-    let mut after = before.clone();
-    apply(&mut after, &exposed);
-    let measured = report::report(&before, &after, &exposed, args.samples)
-        .with_context(|| format!("{}", args.session.display()))?;
-    crate::session::save(&args.out, &after)?;
+    let (after, exposed, measured) = (&exposure.scene, &exposure.exposed, &exposure.report);
+    crate::session::save(&args.out, after)?;
     if args.json {
         println!("{}", serde_json::to_string(&measured)?);
     } else {
         println!(
             "{}; exposure {:.0}% → {:.0}% (at most {:.0}% from this view); wrote {}",
-            summary(&after, &exposed, measured.removed_volume),
+            summary(after, exposed, measured.removed_volume),
             measured.exposure_before * 100.0,
             measured.exposure_after * 100.0,
             measured.exposure_unoccluded * 100.0,

@@ -10,6 +10,7 @@ use clap::{Parser, Subcommand};
 
 pub use crate::platform::errors::error_line;
 
+pub mod batch;
 pub mod compare;
 pub mod export;
 pub mod expose;
@@ -64,6 +65,9 @@ pub enum Command {
     Compare(compare::CompareArgs),
     /// Render an orbit around the cut scene: a PNG sequence and optionally an animated GIF.
     Turntable(turntable::TurntableArgs),
+    /// The same cutaway for every case folder of a cohort: pictures, exports, metrics.csv and
+    /// a gallery (index.html).
+    Batch(batch::BatchArgs),
     /// Regenerate the embedded synthetic anatomy phantoms into a folder (maintainers only).
     #[command(hide = true)]
     Phantom(phantom::PhantomArgs),
@@ -105,6 +109,7 @@ where
         Some(Command::Expose(a)) => expose::run(&a),
         Some(Command::Compare(a)) => compare::run(&a),
         Some(Command::Turntable(a)) => turntable::run(&a),
+        Some(Command::Batch(a)) => batch::run(&a),
         Some(Command::Phantom(a)) => phantom::run(&a),
     }
 }

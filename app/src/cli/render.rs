@@ -25,13 +25,11 @@
 //! the finished image (cuts and drawing; reading the files and writing the PNG excluded).
 
 use std::path::PathBuf;
-use std::sync::Arc;
 
 use anyhow::Context as _;
 
-use crate::cutting::cut_scene::{CutReport, preview_geometry};
-use crate::render::{HeadlessRenderer, ViewMode};
-use crate::view::{RenderPngOptions, render_mode};
+use crate::render::HeadlessRenderer;
+use crate::view::RenderPngOptions;
 
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
@@ -113,35 +111,15 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             eprintln!("{}: {notice}", layer.image.source.display());
         }
     }
-    let started = std::time::Instant::now();
-    let preview = (render_mode(&scene, &options) == ViewMode::Preview)
-        .then(|| Arc::new(preview_geometry(&scene)));
-    let mut image = crate::annotate::risk_legend::render_with_legend(
+    let picture = crate::annotate::picture::render_session_picture(
         &mut renderer,
         &scene,
         &options,
-        preview.clone(),
+        labelled.as_deref(),
     )
     .with_context(|| format!("{}", args.session.display()))?;
-    crate::annotate::rulers::draw_rulers(&mut image, &scene);
-    if let Some(models) = &labelled {
-        crate::annotate::labelled::annotate(&mut image, &scene, preview.as_deref(), models);
-    }
-    let render_ms = started.elapsed().as_secs_f64() * 1000.0;
-    let reports: Vec<CutReport> = (0..scene.cutters.len())
-        .map(|c| {
-            preview
-                .as_ref()
-                .and_then(|p| p.reports.iter().find(|(i, _)| *i == c))
-                .map_or(
-                    CutReport {
-                        exact: true,
-                        cut_ms: 0.0,
-                    },
-                    |(_, r)| *r,
-                )
-        })
-        .collect();
+    let reports = &picture.reports;
+    let render_ms = picture.render_ms;
     if args.json {
         let cutters: Vec<serde_json::Value> = reports
             .iter()
@@ -167,11 +145,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             serde_json::json!({"cutters": cutters, "render_ms": render_ms})
         );
     }
-    if let Some(note) = preview.as_ref().and_then(|p| p.notes.first()) {
+    if let Some(note) = &picture.refused {
         anyhow::bail!("{}: {note}", args.session.display());
     }
     let mut bytes = Vec::new();
-    image
+    picture
+        .image
         .write_to(
             &mut std::io::Cursor::new(&mut bytes),
             image::ImageFormat::Png,

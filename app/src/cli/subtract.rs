@@ -1,6 +1,6 @@
 //! `cutaway subtract TARGET CUTTER --out DIR --json`.
 //!
-//! Reads both meshes and builds the target index (not timed), cuts with [`csg::subtract`]
+//! Reads both meshes, then [`cut_mesh`] builds the target index (not timed), cuts with [`csg::subtract`]
 //! (timed: `cut_ms`, what one drag frame of the editor pays against the cached index), builds the
 //! full kept and removed meshes from the cut's deltas (timed: `materialize_ms`), then writes
 //! `kept.obj`, `walls.obj`, `removed.obj` and `contour.obj` into DIR, and for a target with more
@@ -13,10 +13,8 @@
 //! outputs as a whole.
 
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
-use anyhow::Context;
-use csg::Mesh;
+use crate::cutting::mesh_cut::{MeshCut, MeshCutError, cut_mesh};
 
 #[derive(Debug, clap::Args)]
 pub struct SubtractArgs {
@@ -52,78 +50,30 @@ pub struct SubtractReport {
     pub regions: Vec<RegionReport>,
 }
 
-/// One region's share of the cut (`regions` of the JSON).
-#[derive(Debug, serde::Serialize)]
-pub struct RegionReport {
-    pub index: usize,
-    pub kept_triangles: usize,
-    pub walls_triangles: usize,
-    pub removed_triangles: usize,
-    /// Volume of the removed solid (removed + reversed walls).
-    pub removed_volume: f64,
-    /// kept + walls and removed + reversed walls are both closed (welded by exact position).
-    pub closed: bool,
-}
-
-/// Everything `subtract` writes into DIR.
-struct Outputs {
-    kept: Mesh,
-    walls: Mesh,
-    removed: Mesh,
-    contour: Vec<Vec<glam::DVec3>>,
-    /// Per region: kept, walls, removed (empty for a target with one region).
-    regions: Vec<csg::RegionParts>,
-}
+pub use crate::cutting::mesh_cut::RegionReport;
 
 pub fn run(args: &SubtractArgs) -> anyhow::Result<()> {
     let target = crate::io::read_mesh(&args.target)?;
     let cutter = crate::io::read_mesh(&args.cutter)?;
-    let target_triangles = target.triangles.len();
-    let index =
-        csg::TargetIndex::build(target).with_context(|| args.target.display().to_string())?;
-
-    // Two clocks: the cut itself (kept and removed come back as deltas against the cached
-    // target, as in the editor), then building the full meshes a file needs. It is one first
-    // cut in a fresh process, slower than the warm figure of `cargo bench -p csg --bench boolean`.
-    let clock = Instant::now();
-    let result =
-        csg::subtract(&index, &cutter).with_context(|| args.cutter.display().to_string())?;
-    let cut_ms = clock.elapsed().as_secs_f64() * 1e3;
-    let clock = Instant::now();
-    let removed = result.removed.part().mesh.clone();
-    let kept = result.kept_mesh(index.mesh());
-    let materialize_ms = clock.elapsed().as_secs_f64() * 1e3;
-
-    let regions = if index.regions.count > 1 {
-        result.region_parts(&index)
-    } else {
-        Vec::new()
-    };
-    let region_reports: Vec<RegionReport> = regions
-        .iter()
-        .enumerate()
-        .map(|(index, parts)| region_report(index, parts))
-        .collect();
-    let outputs = Outputs {
-        kept,
-        walls: result.walls.mesh.clone(),
-        removed,
-        contour: contour_polylines(&result.contours),
-        regions,
-    };
-    write_outputs(&args.out, &outputs)?;
+    // It is one first cut in a fresh process, slower than the warm figure of
+    // `cargo bench -p csg --bench boolean`.
+    let cut = cut_mesh(target, &cutter).map_err(|e| match e {
+        MeshCutError::Target(e) => e.context(args.target.display().to_string()),
+        MeshCutError::Cutter(e) => e.context(args.cutter.display().to_string()),
+    })?;
+    write_outputs(&args.out, &cut)?;
 
     let report = SubtractReport {
-        target_triangles,
-        cutter_triangles: cutter.triangles.len(),
-        kept_triangles: outputs.kept.triangles.len(),
-        walls_triangles: outputs.walls.triangles.len(),
-        removed_triangles: outputs.removed.triangles.len(),
-        contour_loops: result.contours.len(),
-        boolean_ms: cut_ms + materialize_ms,
-        cut_ms,
-        materialize_ms,
-        regions: region_reports,
+        target_triangles: cut.target_triangles,
+        cutter_triangles: cut.cutter_triangles,
+        kept_triangles: cut.kept.triangles.len(),
+        walls_triangles: cut.walls.triangles.len(),
+        removed_triangles: cut.removed.triangles.len(),
+        contour_loops: cut.contour.len(),
+        boolean_ms: cut.cut_ms + cut.materialize_ms,
+        cut_ms: cut.cut_ms,
+        materialize_ms: cut.materialize_ms,
+        regions: cut.region_reports.clone(),
     };
     if args.json {
         println!("{}", serde_json::to_string(&report)?);
@@ -153,53 +103,12 @@ pub fn run(args: &SubtractArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The contours as polylines, a closed loop with its first point repeated at the end (written
-/// as a closed `l` record).
-fn contour_polylines(contours: &[csg::Contour]) -> Vec<Vec<glam::DVec3>> {
-    contours
-        .iter()
-        .map(|c| {
-            let mut p = c.points.clone();
-            if c.closed
-                && let Some(&first) = p.first()
-            {
-                p.push(first);
-            }
-            p
-        })
-        .collect()
-}
-
-/// The JSON entry of region `index`: its triangle counts, the volume of its removed solid and
-/// whether both of its solids close up (measured on the welded meshes, not assumed).
-fn region_report(index: usize, parts: &csg::RegionParts) -> RegionReport {
-    let joined = |a: &Mesh, b: &Mesh| {
-        let mut m = a.clone();
-        m.append(b);
-        csg::weld::weld_exact(&m)
-    };
-    let kept_walls = joined(&parts.kept, &parts.walls);
-    let removed_walls = joined(&parts.removed, &parts.walls.reversed());
-    let closed_manifold = |m: &Mesh| {
-        let r = m.report();
-        r.closed && r.misoriented_edges == 0
-    };
-    RegionReport {
-        index,
-        kept_triangles: parts.kept.triangles.len(),
-        walls_triangles: parts.walls.triangles.len(),
-        removed_triangles: parts.removed.triangles.len(),
-        removed_volume: csg::cutcheck::volume(&removed_walls),
-        closed: closed_manifold(&kept_walls) && closed_manifold(&removed_walls),
-    }
-}
-
 /// Writes every output file into `dir` as one [`crate::io::OutputSet`]: the four union files,
 /// then each region's three. The set replaces the previous run's outputs as a whole (a kill at
 /// any moment leaves the old set or the new one once the next run, or
 /// [`crate::io::recover_output_set`], has looked at `dir`), and `regions/` is replaced wholly so
 /// no region folder of an earlier, larger target stays behind.
-fn write_outputs(dir: &Path, outputs: &Outputs) -> anyhow::Result<()> {
+pub fn write_outputs(dir: &Path, outputs: &MeshCut) -> anyhow::Result<()> {
     let mut set = crate::io::OutputSet::begin(dir)?;
     set.write_mesh(Path::new("kept.obj"), &outputs.kept)?;
     set.write_mesh(Path::new("walls.obj"), &outputs.walls)?;

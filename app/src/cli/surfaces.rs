@@ -118,22 +118,8 @@ pub fn run(args: &SurfacesArgs) -> anyhow::Result<()> {
 /// nothing is computed after the clock stops.
 pub fn surfaces(args: &SurfacesArgs) -> anyhow::Result<SurfacesReport> {
     let clock = Instant::now();
-    if let Some(s) = args.smoothing
-        && !(0.0..=1.0).contains(&s)
-    {
-        anyhow::bail!("--smoothing {s} is outside 0..=1");
-    }
-    if let Some(f) = args.decimate
-        && !(f > 0.0 && f <= 1.0)
-    {
-        anyhow::bail!("--decimate {f} is outside 0 < F <= 1");
-    }
+    let options = volume::array::surface_options(args.smoothing, args.decimate)?;
     let volume = volume::read_volume(&args.volume, args.labels.as_deref())?;
-    let mut options = csg::labels::SurfaceOptions::default();
-    if let Some(smoothing) = args.smoothing {
-        options.smoothing = smoothing;
-    }
-    options.decimate = args.decimate;
     let structures = &volume.structures;
     let names = file_names(structures, args.format.extension());
     let mut set = crate::io::OutputSet::begin(&args.out)?;

@@ -10,6 +10,7 @@
 //!   [`cut_parts`] is one cutter against one target (surface, exact cut, ribbons, slices);
 //!   [`cut_results`] the types both speak (a cut's parts, Preview's parts, each cutter's report).
 //! - [`live_cut`]: the live re-cut of Edit mode on its own worker, newest request wins.
+//! - [`mesh_cut`]: one cutter cut out of a whole target mesh (`cutaway subtract`, Python).
 //! - [`scene_cuts`]: the whole scene cut off the UI thread (Preview, Remove All Cut Geometry,
 //!   exports) and the key that says when a result is stale.
 //! - [`editing`]: the editor slot around `cutter::Editor` and the settings a new cutter starts
@@ -31,6 +32,7 @@ pub mod delta;
 pub mod drawn_hit;
 pub mod editing;
 pub mod live_cut;
+pub mod mesh_cut;
 pub mod obstacles;
 pub mod overlay;
 pub mod pick;

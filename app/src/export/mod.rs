@@ -6,6 +6,7 @@
 //! - [`glb`]: the binary container it is written in;
 //! - [`image_colors`]: the intensity image baked into wall vertex colours;
 //! - [`risk_colors`]: the risk map baked into wall vertex colours.
+//! - [`scene_file`]: the export a path's extension asks for (`.glb` or `.html`).
 //! - [`turntable`]: an orbit around the cut as a PNG sequence and a looping GIF, with progress
 //!   and cancel.
 //! - [`webpage`]: the cut scene as one self-contained web page (the `.glb` of every variant, a
@@ -16,6 +17,7 @@ pub mod gltf;
 pub mod image_colors;
 pub mod meshes;
 pub mod risk_colors;
+pub mod scene_file;
 pub mod turntable;
 pub mod webpage;
 

@@ -7,9 +7,11 @@
 //! that hide (drawn, opaque and solid ones, as the exposure measure counts them), turns the
 //! user's millimetres into model units, aims each cutter at its structure and says what was
 //! opened. The window (a background job) and `cutaway expose` call the same [`plan`] and
-//! [`apply`]; [`report`] measures the result for the CLI and the status line.
+//! [`apply`]; [`report`] measures the result for the CLI and the status line;
+//! [`scene_expose`] does all three for a named focus (the CLI, batches, Python).
 
 pub mod report;
+pub mod scene_expose;
 
 use std::sync::Arc;
 use std::time::Instant;

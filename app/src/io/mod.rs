@@ -211,6 +211,26 @@ pub fn parse_bytes(format: Format, bytes: &[u8], default_name: &str) -> anyhow::
     Ok(parts)
 }
 
+/// A mesh handed over in memory (positions and triangles, as the Python package takes them),
+/// checked, welded and compacted exactly as a file's part is ([`read_mesh`]). `what` names it in
+/// errors.
+pub fn mesh_from_arrays(
+    what: &str,
+    positions: Vec<csg::DVec3>,
+    triangles: Vec<[u32; 3]>,
+) -> anyhow::Result<Mesh> {
+    let raw = vec![RawPart {
+        name: None,
+        positions,
+        triangles,
+    }];
+    let parts = finish_parts(raw, what).with_context(|| what.to_owned())?;
+    match parts.into_iter().next() {
+        Some(part) => Ok(std::sync::Arc::unwrap_or_clone(part.mesh)),
+        None => anyhow::bail!("{what}: no triangles"),
+    }
+}
+
 /// When a file fails to parse and its content looks like another format, say so.
 fn explain_mismatch(format: Format, bytes: &[u8], error: anyhow::Error) -> anyhow::Error {
     match Format::sniff(bytes) {

@@ -35,6 +35,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context as _;
 use glam::{DAffine3, DMat3, DVec3};
 
+pub mod array;
 pub mod color_table;
 pub mod content;
 mod content_rule;
