@@ -46,10 +46,26 @@ use rayon::prelude::*;
 
 use super::cut_results::{PartKind, PreviewGeometry, PreviewPart};
 use crate::scene::Scene;
-use crate::scene::risk::RiskSettings;
+use crate::scene::risk::{RISK_BAND_END, RISK_BAND_START, RISK_NEAR_COLOR, RiskSettings};
 
-/// The map's colours (sRGB), for the renderer's shader, which sees the map but not the scene.
-pub use crate::scene::risk::{RISK_BAND_END, RISK_BAND_START, RISK_NEAR_COLOR};
+/// The colours (sRGB) a map is drawn with: red within the near distance, a ramp from orange to
+/// yellow across the graded band. A map carries them, so the renderer draws the map it is given
+/// with the colours the scene's legend and the glTF export use, without reading the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RiskRamp {
+    pub near: [f32; 3],
+    pub band_start: [f32; 3],
+    pub band_end: [f32; 3],
+}
+
+impl RiskRamp {
+    /// The scene's ramp ([`crate::scene::risk`]).
+    pub const SCENE: RiskRamp = RiskRamp {
+        near: RISK_NEAR_COLOR,
+        band_start: RISK_BAND_START,
+        band_end: RISK_BAND_END,
+    };
+}
 
 /// Longest edge (mm) of a wall triangle that may straddle the near or far line: the most the
 /// map errs toward danger.
@@ -123,6 +139,8 @@ pub struct Nearest {
 pub struct WallRisk {
     /// What the map was computed for (the ramp's distances).
     pub settings: RiskSettings,
+    /// The colours it is drawn with.
+    pub ramp: RiskRamp,
     pub walls: Vec<RiskWall>,
     /// The wall vertex nearest a critical structure (`None` without walls).
     pub nearest: Option<Nearest>,
@@ -339,6 +357,7 @@ pub fn wall_risk(
     }
     Some(WallRisk {
         settings: settings.clone(),
+        ramp: RiskRamp::SCENE,
         walls,
         nearest: nearest.map(|(d, k)| Nearest {
             distance_mm: d,

@@ -16,8 +16,8 @@ pub struct RiskVertex {
     /// The smooth normal of the wall it was refined from, interpolated at this point (not unit
     /// length; the shader normalizes per fragment).
     pub normal_in_world: [f32; 3],
-    /// Where the corner's distance lies on the ramp
-    /// ([`crate::scene::risk::RiskSettings::ramp_position`]): ≤ 0 red, 0..1 graded, ≥ 1 beyond.
+    /// Where the corner's distance lies on the ramp (the map's settings' `ramp_position`): ≤ 0
+    /// red, 0..1 graded, ≥ 1 beyond.
     pub ramp: f32,
 }
 

@@ -158,19 +158,17 @@ pub mod shaders {
     pub const RISK: &str = include_str!("shaders/risk.wgsl");
     pub const RISK_IMAGE: &str = include_str!("shaders/risk_image.wgsl");
 
-    /// The risk map's shader: the ramp's colours of [`crate::cutting::wall_risk`] (linear light)
-    /// as WGSL constants, `mesh.wgsl`, with `image.wgsl` when the walls show the image, and
-    /// `risk.wgsl` (+ `risk_image.wgsl`). One definition of the colours serves the shader, the
-    /// glTF export and the legends.
-    pub fn risk(with_image: bool) -> String {
-        use crate::cutting::wall_risk::{RISK_BAND_END, RISK_BAND_START, RISK_NEAR_COLOR};
+    /// The risk map's shader: the colours of `ramp` (the map's, in linear light) as WGSL
+    /// constants, `mesh.wgsl`, with `image.wgsl` when the walls show the image, and `risk.wgsl`
+    /// (+ `risk_image.wgsl`).
+    pub fn risk(with_image: bool, ramp: &crate::cutting::wall_risk::RiskRamp) -> String {
         let constant = |name: &str, srgb: [f32; 3]| {
             let [r, g, b] = srgb.map(super::srgb_to_linear);
             format!("const {name}: vec3<f32> = vec3<f32>({r:.8}, {g:.8}, {b:.8});\n")
         };
-        let mut source = constant("RISK_NEAR_COLOR", RISK_NEAR_COLOR)
-            + &constant("RISK_BAND_START", RISK_BAND_START)
-            + &constant("RISK_BAND_END", RISK_BAND_END)
+        let mut source = constant("RISK_NEAR_COLOR", ramp.near)
+            + &constant("RISK_BAND_START", ramp.band_start)
+            + &constant("RISK_BAND_END", ramp.band_end)
             + MESH;
         if with_image {
             source += include_str!("shaders/image.wgsl");
@@ -196,14 +194,15 @@ pub mod shaders {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cutting::wall_risk::RiskRamp;
 
     /// Every WGSL shader parses and validates with naga, so a broken shader cannot hide behind a
     /// GPU-less CI machine.
     #[test]
     fn shaders_validate_with_naga() {
         let risk = [
-            ("risk.wgsl", shaders::risk(false)),
-            ("risk.wgsl + image", shaders::risk(true)),
+            ("risk.wgsl", shaders::risk(false, &RiskRamp::SCENE)),
+            ("risk.wgsl + image", shaders::risk(true, &RiskRamp::SCENE)),
         ];
         let assembled = risk.iter().map(|(n, s)| (*n, s.as_str()));
         for (name, source) in shaders::ALL.into_iter().chain(assembled) {

@@ -263,10 +263,10 @@ impl Renderer {
         let on = |walls: bool| {
             image_ready && image.is_some_and(|l| if walls { l.on_walls } else { l.on_slices })
         };
-        if frame.risk.is_some() {
+        if let Some(risk) = &frame.risk {
             let image_layout = on(true).then(|| self.image.layout()).flatten();
             self.risk_pipelines
-                .prepare(device, &self.pipelines, image_layout);
+                .prepare(device, &self.pipelines, image_layout, &risk.ramp);
         }
         let draws = self.upload_and_list(device, frame, [on(true), on(false)]);
         let (draws, uniforms) = draws;

@@ -1,5 +1,5 @@
 // Walls coloured by the risk map (appended to mesh.wgsl, whose shading it uses; the ramp's
-// colours come first, written from `crate::scene::risk` by `shaders::risk`). Each vertex carries
+// colours come first, the map's (`RiskRamp`), written by `shaders::risk`). Each vertex carries
 // its ramp position: ≤ 0 within the near distance (red), 0..1 the graded band (orange to
 // yellow), ≥ 1 beyond it (the wall's own look). The position is interpolated linearly and mapped
 // per fragment, so the near and far lines stay sharp across a triangle. The distances behind it
