@@ -17,11 +17,14 @@
 
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::Instant;
 
 use cutaway::io::volume::{LabelData, read_volume};
 use rayon::prelude::*;
+
+#[path = "support/surfaces_run.rs"]
+mod surfaces_run;
+use surfaces_run::{load_average, or_unknown, run_surfaces};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -222,74 +225,21 @@ fn inflate_baseline(dir: &Path) {
     });
 }
 
-/// Runs `cutaway surfaces INPUT --out OUT --json` and prints its figures.
+/// Runs `cutaway surfaces INPUT --out OUT` and prints its figures.
 fn surfaces(what: &str, input: &Path, out: &Path, voxels: u64) {
-    std::fs::remove_dir_all(out).ok();
-    let bin = env!("CARGO_BIN_EXE_cutaway");
-    let time = Path::new("/usr/bin/time");
-    let timing = std::env::temp_dir().join(format!("label_folders_time_{}", std::process::id()));
-    let mut command = if time.exists() {
-        let mut c = Command::new(time);
-        c.args(["-f", "%e %U %S %M", "-o"]).arg(&timing).arg(bin);
-        c
-    } else {
-        Command::new(bin)
-    };
     let load = load_average();
-    let start = Instant::now();
-    let output = command
-        .arg("surfaces")
-        .arg(input)
-        .arg("--out")
-        .arg(out)
-        .arg("--json")
-        .output()
-        .unwrap();
-    let wall = start.elapsed().as_secs_f64();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
-    let ms = report["surfaces_ms"].as_f64().unwrap();
-    let surfaces = report["surfaces"].as_array().unwrap();
-    let triangles: u64 = surfaces
-        .iter()
-        .map(|s| s["triangles"].as_u64().unwrap())
-        .sum();
-    let closed = surfaces.iter().all(|s| s["closed"].as_bool() == Some(true));
-    let (cpu, peak) = std::fs::read_to_string(&timing)
-        .ok()
-        .and_then(|t| {
-            let f: Vec<f64> = t
-                .split_whitespace()
-                .filter_map(|x| x.parse().ok())
-                .collect();
-            (f.len() == 4).then(|| {
-                (
-                    format!("{:.1} s", f[1] + f[2]),
-                    format!("{:.0} MB", f[3] / 1024.0),
-                )
-            })
-        })
-        .unwrap_or_else(|| ("?".into(), "?".into()));
-    std::fs::remove_file(&timing).ok();
+    let run = run_surfaces(input, out);
     println!(
-        "surfaces, {what}: {} labels (all closed: {closed}), {:.2} M triangles; surfaces_ms {ms:.0}, process {:.0} ms ({:.2}× surfaces_ms), CPU {cpu}, peak {peak}; {:.2} ms per M voxels, {:.0} ms per M triangles (load {load})",
-        surfaces.len(),
-        triangles as f64 / 1e6,
-        wall * 1e3,
-        wall * 1e3 / ms,
-        ms / (voxels as f64 / 1e6),
-        ms / (triangles as f64 / 1e6),
+        "surfaces, {what}: {} labels (all closed: {}), {:.2} M triangles; surfaces_ms {:.0}, process {:.0} ms ({:.2}× surfaces_ms), CPU {}, peak {}; {:.2} ms per M voxels, {:.0} ms per M triangles (load {load})",
+        run.labels,
+        run.all_closed,
+        run.triangles as f64 / 1e6,
+        run.surfaces_ms,
+        run.wall_ms,
+        run.wall_ms / run.surfaces_ms,
+        or_unknown(run.cpu_s, "s"),
+        or_unknown(run.peak_mb, "MB"),
+        run.surfaces_ms / (voxels as f64 / 1e6),
+        run.surfaces_ms / (run.triangles as f64 / 1e6),
     );
-    std::fs::remove_dir_all(out).ok();
-}
-
-fn load_average() -> String {
-    std::fs::read_to_string("/proc/loadavg")
-        .ok()
-        .and_then(|l| l.split_whitespace().next().map(str::to_owned))
-        .unwrap_or_else(|| "?".into())
 }

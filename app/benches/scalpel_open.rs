@@ -9,8 +9,8 @@
 //!
 //! Each case runs `RUNS` times; the figures printed are the medians over the runs of the
 //! per-run `step_us_p50`, `step_us_max`, `open_us_p50`, `open_us_max`, and the largest of the
-//! per-run maxima. Targets (issue "the scalpel's opening inside a frame"): every step, opening
-//! included, at most 4 ms; the opening at most 1 ms for at most 10k moved vertices (notes P4).
+//! per-run maxima. Targets: every step, opening included, at most 4 ms; the opening at most 1 ms
+//! for at most 10k moved vertices (notes P4).
 //! `CUTAWAY_BIN=/path/to/cutaway` measures another build of the binary with the same inputs.
 //! Run: `cargo bench -p cutaway --bench scalpel_open`.
 
