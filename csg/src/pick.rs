@@ -12,6 +12,12 @@
 //! the nearest hit wins, ties to the lowest face index. The answer is therefore the same as
 //! [`crate::SpatialIndex::ray_cast`]'s: a ray through a shared edge or vertex hits one of the faces
 //! there.
+//!
+//! Size: the window keeps a tree per model for as long as the model lives, so the tree is built
+//! with leaves of up to [`LEAF_FACES`] faces and keeps only what a traversal reads (the nodes and
+//! the leaves' face order). One face per leaf made two 48-byte nodes per face, four times the
+//! mesh's own `f64` data (the window's largest holding after loading); a ray now tests a few more
+//! faces in each leaf it reaches.
 
 use std::time::Duration;
 
@@ -26,6 +32,9 @@ use crate::{Aabb, DVec3, Mesh};
 /// Direction components smaller than this (relative to the unit direction) are treated as zero
 /// by the `f32` traversal; the padding covers the drift this allows inside the mesh's box.
 const TINY_DIRECTION: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// The most faces a leaf of the tree holds (see the module documentation).
+pub const LEAF_FACES: u32 = 4;
 
 /// An `obvhs` BVH over a mesh's faces, for ray picks. Build it once per mesh (it does not follow
 /// edits) and pass the same mesh to [`PickIndex::ray_cast`].
@@ -90,11 +99,23 @@ impl PickIndex {
                 )
             })
             .collect();
-        let bvh = obvhs::bvh2::builder::build_bvh2(
-            &boxes,
-            BvhBuildParams::fastest_build(),
-            &mut Duration::default(),
-        );
+        let params = BvhBuildParams {
+            max_prims_per_leaf: LEAF_FACES,
+            // Every subtree of up to LEAF_FACES faces becomes one leaf (a node costing as much
+            // as LEAF_FACES face tests makes every such collapse pay): a node costs 48 bytes for
+            // as long as the model lives, an extra face test a few nanoseconds per pick.
+            collapse_traversal_cost: LEAF_FACES as f32,
+            ..BvhBuildParams::fastest_build()
+        };
+        let mut bvh = obvhs::bvh2::builder::build_bvh2(&boxes, params, &mut Duration::default());
+        drop(boxes);
+        // A traversal reads the nodes and the leaves' face order only; the builder's maps back
+        // (face to node, node to parent) and spare capacity would live as long as the tree.
+        bvh.parents = Vec::new();
+        bvh.primitives_to_nodes = Vec::new();
+        bvh.primitive_indices_freelist = Vec::new();
+        bvh.nodes.shrink_to_fit();
+        bvh.primitive_indices.shrink_to_fit();
         PickIndex {
             bvh,
             bounds,
@@ -106,6 +127,12 @@ impl PickIndex {
     /// Number of triangles indexed.
     pub fn triangle_count(&self) -> usize {
         self.triangle_count
+    }
+
+    /// Bytes the tree holds on the heap (its nodes and the leaves' face order).
+    pub fn heap_bytes(&self) -> usize {
+        self.bvh.nodes.capacity() * size_of::<obvhs::bvh2::node::Bvh2Node>()
+            + self.bvh.primitive_indices.capacity() * size_of::<u32>()
     }
 
     /// First hit of the ray `origin + t * direction`, `0 <= t <= t_max` (both faces of a

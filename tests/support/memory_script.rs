@@ -52,7 +52,7 @@ pub struct Report {
     pub all_shown: u64,
     /// The highest level after that (toggles, modes, undo and redo of everything).
     pub worst_after_all_shown: (String, u64),
-    /// Peak resident size of the process (`VmHWM`).
+    /// Peak resident size of the process (the highest `VmHWM` of all the readings).
     pub peak: u64,
     pub cutters_made: usize,
     pub seconds: f64,
@@ -93,6 +93,13 @@ pub fn no_adapter() -> Option<String> {
             "no wgpu adapter ({e}); install mesa-vulkan-drivers and set WGPU_BACKEND=vulkan"
         )),
     }
+}
+
+/// Starts a new peak: the kernel sets `VmHWM` back to the current resident size, so the next
+/// [`peak_rss`] is the highest level since this call (the trace reads it per step, to show which
+/// step's transients made the process's peak).
+pub fn reset_peak() {
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
 }
 
 /// Resident size of this process in bytes (`VmRSS`).
@@ -237,23 +244,34 @@ pub fn mb(bytes: u64) -> f64 {
 #[derive(Default)]
 struct Trace {
     steps: Vec<(String, u64)>,
+    /// The highest resident size so far (the peaks between readings included).
+    peak: u64,
 }
 
 impl Trace {
     fn sample(&mut self, h: &mut Harness<'_, CutawayApp>, step: &str) -> u64 {
         h.render().expect("render the window");
+        // The highest level since the last reading: what this step's transients reached.
+        let since = peak_rss();
+        self.peak = self.peak.max(since);
+        reset_peak();
         trim_if_asked();
         let rss = rss();
         match heap() {
             Some((used, mapped, free)) => eprintln!(
                 "  {step:<40} {:>8.1} MB   malloc: in arenas {:>6.1} MB, mapped {:>6.1} MB, \
-                 free in arenas {:>6.1} MB",
+                 free in arenas {:>6.1} MB; peak since the last reading {:>6.1} MB",
                 mb(rss),
                 mb(used),
                 mb(mapped),
-                mb(free)
+                mb(free),
+                mb(since)
             ),
-            None => eprintln!("  {step:<40} {:>8.1} MB", mb(rss)),
+            None => eprintln!(
+                "  {step:<40} {:>8.1} MB   peak since the last reading {:>6.1} MB",
+                mb(rss),
+                mb(since)
+            ),
         }
         let [anon, exec, shared, files] = resident_by_kind();
         eprintln!(
@@ -549,7 +567,7 @@ pub fn run(options: Options) -> Report {
         loaded,
         first_cut,
         worst,
-        peak: peak_rss(),
+        peak: trace.peak.max(peak_rss()),
         cutters_made,
         seconds: started.elapsed().as_secs_f64(),
     }

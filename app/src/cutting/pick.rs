@@ -54,6 +54,11 @@ impl ScenePicks {
         self.trees.len()
     }
 
+    /// Bytes the trees held hold (the memory test prints it per step).
+    pub fn tree_bytes(&self) -> u64 {
+        self.trees.iter().map(|(_, t)| t.heap_bytes() as u64).sum()
+    }
+
     /// Starts building, on a worker thread, the trees of the scene's pickable models that have
     /// none and are not being built; collects the trees workers finished. Cheap when every model
     /// has its tree: the window calls it once per frame.

@@ -281,6 +281,7 @@ pub fn memory_census(app: &AppState) -> crate::platform::memory_census::MemoryCe
         derived_cut: crate::gui::viewport::cut_view::holds_derived(),
         editor_indexes: app.viewport.editor.index_count(),
         pick_trees: app.viewport.picks.tree_count(),
+        pick_bytes: app.viewport.picks.tree_bytes(),
         gpu: app.wgpu.as_ref().and_then(|rs| {
             rs.renderer
                 .read()

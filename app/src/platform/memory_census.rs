@@ -19,8 +19,9 @@ pub struct MemoryCensus {
     pub derived_cut: bool,
     /// The editor's spatial indexes.
     pub editor_indexes: usize,
-    /// Ray-pick trees.
+    /// Ray-pick trees, and the bytes they hold.
     pub pick_trees: usize,
+    pub pick_bytes: u64,
     /// The renderer's uploads (None without a GPU renderer).
     pub gpu: Option<GpuCensus>,
 }
@@ -31,7 +32,7 @@ impl fmt::Display for MemoryCensus {
         write!(
             f,
             "live cut: {} indexes, {} prefixes, {} previews, {} face tables, {} model cuts; \
-             preview: {}; camera copy: {}; editor indexes {}; pick trees {}",
+             preview: {}; camera copy: {}; editor indexes {}; pick trees {} ({:.1} MB)",
             l.cuts.indexes,
             l.cuts.prefixes,
             l.cuts.previews,
@@ -42,6 +43,7 @@ impl fmt::Display for MemoryCensus {
             if self.derived_cut { "yes" } else { "no" },
             self.editor_indexes,
             self.pick_trees,
+            self.pick_bytes as f64 / (1u64 << 20) as f64,
         )?;
         if let Some(g) = &self.gpu {
             let mb = |b: u64| b as f64 / (1u64 << 20) as f64;
