@@ -482,9 +482,14 @@ pub fn tag_contours(mesh: &Mesh, tags: &[u32], wall: impl Fn(u32) -> bool) -> Ve
     chain_edges(mesh, edges)
 }
 
-/// Executes every cutter of `scene` whose views show anything (see [`preview_geometry_with`]).
+/// Executes every cutter of `scene` whose views show anything (see [`preview_geometry_with`]),
+/// once: each model is cut with a cache of its own, dropped as soon as its parts are made. A
+/// one-off cut (`cutaway render`, exports, Preview's job) asks nothing again, so an index (several
+/// times its mesh) or a cut prefix kept past its model would only add to the peak: every cut
+/// model's index would live until the last model is cut, and each model's parts would be copied
+/// into a cache nobody reads.
 pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
-    preview_geometry_with(scene, &mut CutCache::default())
+    scene_preview(scene, None)
 }
 
 /// Executes every cutter of `scene` whose views show anything. The cutters of one model cut it
@@ -493,6 +498,12 @@ pub fn preview_geometry(scene: &Scene) -> PreviewGeometry {
 /// and slices come from the surface it cut. `cache` makes repeated calls cheap while one cutter
 /// is edited.
 pub fn preview_geometry_with(scene: &Scene, cache: &mut CutCache) -> PreviewGeometry {
+    scene_preview(scene, Some(cache))
+}
+
+/// [`preview_geometry_with`] with `cache`, or, with none, a cache per model that goes with it
+/// (see [`preview_geometry`]).
+fn scene_preview(scene: &Scene, mut cache: Option<&mut CutCache>) -> PreviewGeometry {
     let mut out = PreviewGeometry {
         replaced: vec![false; scene.models.len()],
         ..PreviewGeometry::default()
@@ -508,17 +519,22 @@ pub fn preview_geometry_with(scene: &Scene, cache: &mut CutCache) -> PreviewGeom
             continue;
         }
         out.replaced[model_index] = true;
-        let key: ModelKey = (
-            Arc::as_ptr(&model.model.mesh) as usize,
-            cutters.iter().map(|(i, c)| (*i, (*c).clone())).collect(),
-        );
-        let preview = match cache.model(&model.model.mesh, &key) {
-            Some(p) => p,
-            None => {
-                let p = model_preview(scene, model_index, &cutters, cache);
-                cache.store_model(&model.model.mesh, key, p.clone());
-                p
+        let preview = match cache.as_deref_mut() {
+            Some(cache) => {
+                let key: ModelKey = (
+                    Arc::as_ptr(&model.model.mesh) as usize,
+                    cutters.iter().map(|(i, c)| (*i, (*c).clone())).collect(),
+                );
+                match cache.model(&model.model.mesh, &key) {
+                    Some(p) => p,
+                    None => {
+                        let p = model_preview(scene, model_index, &cutters, cache);
+                        cache.store_model(&model.model.mesh, key, p.clone());
+                        p
+                    }
+                }
             }
+            None => model_preview(scene, model_index, &cutters, &mut CutCache::default()),
         };
         out.parts.extend(preview.parts);
         out.contours.extend(preview.contours);
