@@ -11,6 +11,7 @@
 mod draw_list;
 mod index_patches;
 mod passes;
+mod staging;
 mod targets;
 mod uniforms;
 
@@ -131,6 +132,8 @@ pub struct Renderer {
     risk_pipelines: super::risk_layer::RiskRenderer,
     /// Hands the allocator's free pages back after a preview or model uploads were dropped.
     free_pages: crate::platform::free_pages::FreePages,
+    /// Bytes uploaded since the uploads were last submitted ([`staging`]).
+    staging: staging::Staging,
 }
 
 impl Renderer {
@@ -182,6 +185,7 @@ impl Renderer {
             image: Default::default(),
             risk_pipelines: Default::default(),
             free_pages: Default::default(),
+            staging: Default::default(),
         }
     }
 
@@ -268,7 +272,7 @@ impl Renderer {
             self.risk_pipelines
                 .prepare(device, &self.pipelines, image_layout, &risk.ramp);
         }
-        let draws = self.upload_and_list(device, frame, [on(true), on(false)]);
+        let draws = self.upload_and_list(device, queue, frame, [on(true), on(false)]);
         let (draws, uniforms) = draws;
         self.apply_patches(device, encoder);
 

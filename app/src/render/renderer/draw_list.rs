@@ -11,6 +11,7 @@ use csg::Mesh;
 use glam::DVec3;
 
 use super::index_patches::{IndexPatch, hidden_patches};
+use super::staging::Staging;
 use super::{
     BACK_FACE, CONTOUR_COLOR, CONTOUR_OFFSET, CONTOUR_WIDTH_PX, CachedDelta, CachedMesh, Renderer,
     WALL_MIX, WALL_TINT,
@@ -86,6 +87,7 @@ impl Renderer {
     pub(super) fn upload_and_list(
         &mut self,
         device: &wgpu::Device,
+        queue: &wgpu::Queue,
         frame: &FrameInputs,
         image_on: [bool; 2],
     ) -> (DrawList, Vec<DrawUniform>) {
@@ -129,7 +131,7 @@ impl Renderer {
                 .as_ref()
                 .is_none_or(|c| !c.preview.upgrade().is_some_and(|q| same_cut(&q, p)));
             if stale {
-                let cache = upload_preview(device, p);
+                let cache = upload_preview(device, queue, &mut self.staging, p);
                 for part in &cache.parts {
                     self.uploads.mesh(part.as_ref());
                 }
@@ -165,7 +167,15 @@ impl Renderer {
                                 (0..cut.part_count()).find(|&i| cut.risk_wall(r, i) == Some(j))?;
                             let (vertices, triangles) =
                                 risk_vertices(&r.walls[j], r, cut.part(source).mesh);
-                            GpuMesh::upload_vertices(device, "risk map wall", &vertices, &triangles)
+                            let gpu = GpuMesh::upload_vertices(
+                                device,
+                                "risk map wall",
+                                &vertices,
+                                &triangles,
+                            );
+                            let bytes = gpu.as_ref().map_or(0, GpuMesh::byte_size);
+                            self.staging.uploaded(device, queue, bytes);
+                            gpu
                         })
                         .collect();
                     for w in &walls {
@@ -208,6 +218,8 @@ impl Renderer {
                     GpuMesh::upload_vertices(device, &model.name, &drawn.vertices, &drawn.triangles)
                 };
                 self.uploads.mesh(gpu.as_ref());
+                let bytes = gpu.as_ref().map_or(0, GpuMesh::byte_size);
+                self.staging.uploaded(device, queue, bytes);
                 self.models.insert(
                     key,
                     CachedMesh {
@@ -260,6 +272,8 @@ impl Renderer {
                         &d.triangles,
                     );
                     self.uploads.mesh(gpu.as_ref());
+                    let bytes = gpu.as_ref().map_or(0, GpuMesh::byte_size);
+                    self.staging.uploaded(device, queue, bytes);
                     self.deltas.insert(
                         dkey,
                         CachedDelta {
@@ -299,6 +313,8 @@ impl Renderer {
                         gpu.ensure_edges(device, &model.name, &model.mesh);
                         if !had {
                             self.uploads.segments(gpu.edges.as_ref());
+                            let bytes = gpu.edges.as_ref().map_or(0, GpuSegments::byte_size);
+                            self.staging.uploaded(device, queue, bytes);
                             // Finding the edges went through a model-sized hash set.
                             self.free_pages.note_large_free();
                         }
@@ -310,6 +326,8 @@ impl Renderer {
                         gpu.ensure_edges(device, &model.name, &d.patch);
                         if !had {
                             self.uploads.segments(gpu.edges.as_ref());
+                            let bytes = gpu.edges.as_ref().map_or(0, GpuSegments::byte_size);
+                            self.staging.uploaded(device, queue, bytes);
                         }
                     }
                     let u = push_uniform(model.color, 1.0, false, WIREFRAME_WIDTH_PX, 0.0);
@@ -347,6 +365,8 @@ impl Renderer {
                         DrawStyle::Wireframe => {
                             if gpu.edges.is_none() {
                                 gpu.ensure_edges(device, &model.name, part.mesh);
+                                let bytes = gpu.edges.as_ref().map_or(0, GpuSegments::byte_size);
+                                self.staging.uploaded(device, queue, bytes);
                                 self.free_pages.note_large_free();
                             }
                             let u = push_uniform(model.color, 1.0, false, WIREFRAME_WIDTH_PX, 0.0);
@@ -480,12 +500,17 @@ impl Renderer {
     }
 }
 
-fn upload_preview(device: &wgpu::Device, preview: &Arc<dyn CutDrawing>) -> CachedPreview {
+fn upload_preview(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    staging: &mut Staging,
+    preview: &Arc<dyn CutDrawing>,
+) -> CachedPreview {
     let parts = (0..preview.part_count())
         .map(|i| {
             let p = preview.part(i);
             let label = format!("preview part {:?} of model {}", p.look, p.model);
-            if p.look == PartLook::Incisions {
+            let gpu = if p.look == PartLook::Incisions {
                 // Every face an incision wall: drawn as on the uncut model (the wall flag, the
                 // walls' own normals with the crease at the groove's floor).
                 let all: Vec<u32> = (0..p.mesh.triangles.len() as u32).collect();
@@ -493,7 +518,9 @@ fn upload_preview(device: &wgpu::Device, preview: &Arc<dyn CutDrawing>) -> Cache
                 GpuMesh::upload_vertices(device, &label, &drawn.vertices, &drawn.triangles)
             } else {
                 GpuMesh::upload(device, &label, p.mesh)
-            }
+            };
+            staging.uploaded(device, queue, gpu.as_ref().map_or(0, GpuMesh::byte_size));
+            gpu
         })
         .collect();
     let mut by_model: HashMap<usize, Vec<&[DVec3]>> = HashMap::new();
