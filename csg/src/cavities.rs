@@ -82,6 +82,63 @@ impl Regions {
     }
 }
 
+impl Regions {
+    /// The number of regions ([`Regions::build`]'s count) of a mesh that is closed, oriented,
+    /// vertex-manifold and free of self-intersection, as a label surface is by construction:
+    /// there its components by shared vertices are its edge-connected ones, and every inward
+    /// component is a cavity of an outward one around it, so the regions are the components
+    /// enclosing a positive exact volume. One union-find over the vertices and one exact volume
+    /// pass: no edge adjacency, no spatial index and no ray. On any other mesh the count means
+    /// nothing (the caller states the guarantee).
+    pub fn count_of_valid_closed(mesh: &Mesh) -> usize {
+        let mut parent: Vec<u32> = (0..mesh.positions.len() as u32).collect();
+        for t in &mesh.triangles {
+            union(&mut parent, t[0], t[1]);
+            union(&mut parent, t[0], t[2]);
+        }
+        // Components numbered in order of their first triangle (vertices no triangle uses, if
+        // any, form none).
+        let root_of = |mut v: u32| {
+            while parent[v as usize] != v {
+                v = parent[v as usize];
+            }
+            v
+        };
+        let mut id_of_root = vec![u32::MAX; mesh.positions.len()];
+        let mut count = 0u32;
+        let region_of_triangle: Vec<u32> = mesh
+            .triangles
+            .iter()
+            .map(|t| {
+                let id = &mut id_of_root[root_of(t[0]) as usize];
+                if *id == u32::MAX {
+                    *id = count;
+                    count += 1;
+                }
+                *id
+            })
+            .collect();
+        if count <= 1 {
+            return count as usize;
+        }
+        let components = Regions {
+            region_of_triangle,
+            count: count as usize,
+        };
+        let lattice = Lattice::for_box(&Aabb::from_points(&mesh.positions));
+        let lpoints: Vec<LPoint> = mesh
+            .positions
+            .iter()
+            .map(|&p| lattice.quantize(p).unwrap_or([0, 0, 0]))
+            .collect();
+        let closed = vec![true; components.count];
+        component_volumes(mesh, &lpoints, &components, &closed)
+            .iter()
+            .filter(|&&v| v > 0)
+            .count()
+    }
+}
+
 /// How many vertices of an inward component are tried before it is left as its own region
 /// (every one lying exactly on another shell: a degenerate, touching configuration).
 const VERTEX_TRIES: usize = 64;
@@ -276,4 +333,55 @@ fn component_volumes(
         );
     volumes.truncate(n);
     volumes
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+    use crate::testkit;
+
+    fn sphere(centre: DVec3, radius: f64) -> Mesh {
+        let mut m = testkit::icosphere(2, radius);
+        for p in &mut m.positions {
+            *p += centre;
+        }
+        m
+    }
+
+    fn joined(parts: &[Mesh]) -> Mesh {
+        let mut out = Mesh::default();
+        for p in parts {
+            out.append(p);
+        }
+        out
+    }
+
+    /// The count without adjacency or rays agrees with the full rule on every nesting a label
+    /// surface can have: apart, a cavity, a structure inside another's cavity, an island.
+    #[test]
+    fn count_of_valid_closed_agrees_with_the_region_rule() {
+        let big = sphere(DVec3::ZERO, 10.0);
+        let cavity = sphere(DVec3::ZERO, 6.0).reversed();
+        let inner = sphere(DVec3::ZERO, 3.0);
+        let apart = sphere(DVec3::new(30.0, 0.0, 0.0), 2.0);
+        let other = sphere(DVec3::new(-30.0, 0.0, 0.0), 2.0);
+        let cases = [
+            (Mesh::default(), 0),
+            (big.clone(), 1),
+            (joined(&[big.clone(), apart.clone()]), 2),
+            (joined(&[big.clone(), cavity.clone()]), 1),
+            (joined(&[big.clone(), cavity.clone(), inner.clone()]), 2),
+            (
+                joined(&[apart.clone(), big.clone(), cavity, inner, other]),
+                4,
+            ),
+        ];
+        for (i, (mesh, expected)) in cases.iter().enumerate() {
+            let full = Regions::build(mesh, &EdgeAdjacency::build(mesh)).count;
+            assert_eq!(full, *expected, "case {i}: the full rule");
+            assert_eq!(Regions::count_of_valid_closed(mesh), *expected, "case {i}");
+        }
+    }
 }

@@ -1,9 +1,11 @@
 //! The guarantee the label surfaces' users rely on without checking at run time: every label of
 //! every real volume of the anatomy folder becomes a surface that is closed, consistently
 //! oriented, manifold, free of degenerate triangles and free of self-intersection, each checked
-//! exactly (the boolean's cutter check: no two triangles touching or crossing). `cutaway
-//! surfaces`, `info` and the window therefore skip those checks per label and keep only the
-//! linear closed-and-oriented count ([`csg::Mesh::is_closed_oriented`]); decimation, which has no
+//! exactly (the boolean's cutter check: no two triangles touching or crossing), and whose
+//! regions counted from that guarantee ([`csg::regions::Regions::count_of_valid_closed`], what
+//! `info` reports) are those of the full rule. `cutaway surfaces`, `info` and the window
+//! therefore run none of those checks per label (a debug build asserts
+//! [`csg::Mesh::is_closed_oriented`] on every label surface it makes); decimation, which has no
 //! such guarantee, keeps its exact check in `csg::labels`.
 //!
 //! Labels of the atlas of at least [`LARGE`] voxels also keep their voxel volume within
@@ -77,6 +79,13 @@ fn every_label_of_every_shared_volume_is_closed_and_free_of_self_intersection() 
                 }
                 if let Err(e) = csg::check_cutter(mesh) {
                     return Some(format!("{label}: {e}"));
+                }
+                let regions = csg::regions::Regions::count_of_valid_closed(mesh);
+                if regions != report.regions {
+                    return Some(format!(
+                        "{label}: {regions} regions counted from the guarantee, {} by the rule",
+                        report.regions
+                    ));
                 }
                 let expected = s.structure.voxels as f64 * voxel_volume;
                 let error = (mesh.volume() - expected).abs() / expected;

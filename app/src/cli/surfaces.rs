@@ -202,12 +202,15 @@ struct MeshFacts {
 }
 
 impl MeshFacts {
-    /// `closed` by the linear check first: label surfaces are closed and oriented by
-    /// construction, so the full report runs only where that check fails.
+    /// `closed` is the guarantee of [`csg::labels::LabelSurface`]: closed and oriented by
+    /// construction (decimated ones by the exact check that decimation runs), proved on every
+    /// label of every shared volume by the exact test `volume_surfaces_exact`, on random grids
+    /// by the labels' property tests, and asserted on every surface a debug build makes. No
+    /// check runs here: the linear one was a sixth of the command's time.
     fn of(mesh: &csg::Mesh) -> MeshFacts {
         MeshFacts {
             triangles: mesh.triangles.len(),
-            closed: mesh.is_closed_oriented() || mesh.report().closed,
+            closed: !mesh.triangles.is_empty(),
             volume: mesh.volume(),
         }
     }

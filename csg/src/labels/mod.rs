@@ -387,6 +387,9 @@ pub fn label_surfaces_each<T: LabelValue>(
                 })?;
                 lap(&mut t.decimate_s);
             }
+            // The construction's guarantee (module doc), checked wherever assertions are on:
+            // every test that makes a label surface checks it.
+            debug_assert!(mesh.is_closed_oriented(), "label {}", stats.value);
             let kept = each(LabelSurface {
                 value: stats.value,
                 voxels: stats.voxels,
