@@ -119,7 +119,7 @@ fn read_mask(file: &Path) -> anyhow::Result<Mask> {
             Ok(Mask {
                 dims: raw.dims,
                 world_from_voxel: raw.world_from_voxel,
-                layers: vec![runs_of(raw.bytes.len(), |i| raw.bytes[i] != 0)],
+                layers: vec![byte_runs(&raw.bytes)],
             })
         } else {
             super::samples::decode(&raw.bytes, raw.sample, raw.endian, raw.dims).map(|layer| Mask {
@@ -141,6 +141,34 @@ fn read_mask(file: &Path) -> anyhow::Result<Mask> {
             .map(|layer| runs_of(layer.len(), |i| layer.get(i) != 0))
             .collect(),
     })
+}
+
+/// The runs `[start, end)` of the non-zero bytes of `bytes`. A mask is mostly zeros, so the
+/// zeros are skipped eight bytes at a time: this scan reads every voxel of every mask of a folder
+/// (a whole-body folder: over fifteen billion), and byte by byte it cost more than inflating them.
+fn byte_runs(bytes: &[u8]) -> Vec<[usize; 2]> {
+    const WORD: usize = 8;
+    let zero_word = |i: usize| {
+        bytes
+            .get(i..i + WORD)
+            .is_some_and(|w| u64::from_ne_bytes(w.try_into().expect("eight bytes")) == 0)
+    };
+    let mut runs = Vec::new();
+    let mut i = 0;
+    while i < bytes.len() {
+        if i % WORD == 0 && zero_word(i) {
+            i += WORD;
+        } else if bytes[i] == 0 {
+            i += 1;
+        } else {
+            let start = i;
+            while i < bytes.len() && bytes[i] != 0 {
+                i += 1;
+            }
+            runs.push([start, i]);
+        }
+    }
+    runs
 }
 
 /// The runs `[start, end)` of `0..n` where `inside` holds.
@@ -218,5 +246,30 @@ impl Packed {
             target[start..end].fill(value);
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The word-skipping scan finds the runs of the plain one, at every alignment and length.
+    #[test]
+    fn byte_runs_are_the_plain_runs() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        for len in [0usize, 1, 7, 8, 9, 15, 16, 17, 63, 64, 65, 1000] {
+            for density in [0u64, 1, 8, 64, 200, 256] {
+                let bytes: Vec<u8> = (0..len)
+                    .map(|_| {
+                        state ^= state << 13;
+                        state ^= state >> 7;
+                        state ^= state << 17;
+                        u8::from(state % 256 < density) * (1 + (state >> 8) as u8 % 3)
+                    })
+                    .collect();
+                let plain = runs_of(bytes.len(), |i| bytes[i] != 0);
+                assert_eq!(byte_runs(&bytes), plain, "length {len}, density {density}");
+            }
+        }
     }
 }
