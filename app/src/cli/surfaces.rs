@@ -115,41 +115,75 @@ pub fn run(args: &SurfacesArgs) -> anyhow::Result<()> {
 /// Each surface is handed over as soon as a worker has made it: the worker measures what the
 /// report needs (triangles, `closed`, volume) and a writer thread stages the file while the
 /// other surfaces are still being made, so no mesh is kept after its file is written and
-/// nothing is computed after the clock stops.
+/// nothing is computed after the clock stops. A folder of masks is surfaced mask by mask as its
+/// files are read ([`volume::mask_surfaces`]).
 pub fn surfaces(args: &SurfacesArgs) -> anyhow::Result<SurfacesReport> {
     let clock = Instant::now();
     let options = volume::array::surface_options(args.smoothing, args.decimate)?;
-    let volume = volume::read_volume(&args.volume, args.labels.as_deref())?;
-    let structures = &volume.structures;
-    let names = file_names(structures, args.format.extension());
+    let ext = args.format.extension();
+    // A volume's structures are known before any surface (their names made distinct up front);
+    // a mask folder's as each mask is read and surfaced (its values are distinct).
+    let folder = args.volume.is_dir();
+    let volume = if folder {
+        None
+    } else {
+        Some(volume::read_volume(&args.volume, args.labels.as_deref())?)
+    };
+    let table = match (&args.labels, folder) {
+        (Some(table), true) => volume::color_table::read(table)?,
+        _ => Vec::new(),
+    };
+    let known: Vec<(Structure, String)> = match &volume {
+        Some(v) => v
+            .structures
+            .iter()
+            .cloned()
+            .zip(file_names(&v.structures, ext))
+            .collect(),
+        None => Vec::new(),
+    };
+    let name_of = |s: &Structure| match known
+        .binary_search_by_key(&(s.value, s.layer), |(k, _)| (k.value, k.layer))
+    {
+        Ok(i) => known[i].1.clone(),
+        Err(_) => file_names(std::slice::from_ref(s), ext).remove(0),
+    };
     let mut set = crate::io::OutputSet::begin(&args.out)?;
-    let facts: Mutex<Vec<Option<MeshFacts>>> = Mutex::new(vec![None; structures.len()]);
+    let arrived: Mutex<Vec<(Structure, String, MeshFacts)>> = Mutex::new(Vec::new());
     let write_error: Mutex<Option<anyhow::Error>> = Mutex::new(None);
     let stop = AtomicBool::new(false);
     let made = std::thread::scope(|scope| {
-        let (to_writer, from_workers) = std::sync::mpsc::channel::<(usize, csg::Mesh)>();
+        let (to_writer, from_workers) = std::sync::mpsc::channel::<(String, csg::Mesh)>();
         let writer = scope.spawn(|| {
-            for (index, mesh) in from_workers {
+            for (name, mesh) in from_workers {
                 if stop.load(Ordering::Relaxed) {
                     continue;
                 }
-                if let Err(e) = set.write_mesh(Path::new(&names[index]), &mesh) {
+                if let Err(e) = set.write_mesh(Path::new(&name), &mesh) {
                     *write_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
                     stop.store(true, Ordering::Relaxed);
                 }
             }
         });
         let to_writer = Mutex::new(to_writer);
-        let made = volume::surfaces_each(&volume, options, &|_| true, &|surface| {
-            let key = (surface.structure.value, surface.structure.layer);
-            let Ok(index) = structures.binary_search_by_key(&key, |s| (s.value, s.layer)) else {
-                return true;
-            };
+        let each = |surface: volume::StructureSurface| {
+            let name = name_of(&surface.structure);
             let measured = MeshFacts::of(&surface.mesh);
-            lock(&facts)[index] = Some(measured);
-            let sent = lock(&to_writer).send((index, surface.mesh)).is_ok();
+            lock(&arrived).push((surface.structure, name.clone(), measured));
+            let sent = lock(&to_writer).send((name, surface.mesh)).is_ok();
             sent && !stop.load(Ordering::Relaxed)
-        });
+        };
+        let made = match &volume {
+            Some(v) => volume::surfaces_each(v, options.clone(), &|_| true, &each),
+            None => volume::mask_surfaces::surfaces_each(
+                &args.volume,
+                &table,
+                &options,
+                &|_| true,
+                &each,
+            )
+            .map(|_| ()),
+        };
         drop(to_writer);
         writer.join().expect("the surface writer thread panicked");
         made
@@ -162,23 +196,19 @@ pub fn surfaces(args: &SurfacesArgs) -> anyhow::Result<SurfacesReport> {
         set.replace_file(&earlier)?;
     }
     set.commit()?;
-    let facts = facts.into_inner().unwrap_or_else(|e| e.into_inner());
-    let entries = structures
-        .iter()
-        .zip(&names)
-        .zip(facts)
-        .filter_map(|((s, name), facts)| {
-            let facts = facts?;
-            Some(SurfaceEntry {
-                value: s.value,
-                name: s.name.clone(),
-                color: s.color,
-                voxels: s.voxels,
-                triangles: facts.triangles,
-                closed: facts.closed,
-                volume: facts.volume,
-                file: args.out.join(name).display().to_string(),
-            })
+    let mut arrived = arrived.into_inner().unwrap_or_else(|e| e.into_inner());
+    arrived.sort_by_key(|(s, _, _)| (s.value, s.layer));
+    let entries = arrived
+        .into_iter()
+        .map(|(s, name, facts)| SurfaceEntry {
+            value: s.value,
+            name: s.name,
+            color: s.color,
+            voxels: s.voxels,
+            triangles: facts.triangles,
+            closed: facts.closed,
+            volume: facts.volume,
+            file: args.out.join(name).display().to_string(),
         })
         .collect::<Vec<_>>();
     let surfaces_ms = clock.elapsed().as_secs_f64() * 1e3;

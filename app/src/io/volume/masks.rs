@@ -1,10 +1,10 @@
 //! A directory of binary masks (as TotalSegmentator writes them): one structure per volume file,
 //! named after the file (`left_lung.nii.gz` → `left_lung`), every file on the same grid.
 //!
-//! Masks are read in parallel, each thread inflating its files into one buffer it reuses (a
-//! whole-body folder holds over a hundred full-size masks, mostly zeros: a fresh full-size
-//! buffer per file would be touched, page by page, a hundred times), and each mask is kept only
-//! as the runs of its non-zero voxels along x. The runs are then packed into label layers in
+//! Masks are read in parallel, a uint8 NIfTI mask (what TotalSegmentator writes) inflated a
+//! chunk at a time straight into the runs of its non-zero voxels along x: a whole-body folder
+//! holds over a hundred full-size masks, mostly zeros, and no full-size buffer is touched per
+//! file. Other masks are decoded whole, then kept as their runs. The runs are then packed into label layers in
 //! file order: mask number n (files sorted by name, counted from 1) becomes value n in the first
 //! layer where it overlaps no mask packed before, so masks that do not overlap cost one label
 //! map together. Any non-zero voxel is inside the mask. A different grid (dims, or a matrix
@@ -99,37 +99,99 @@ pub(crate) fn read(dir: &Path) -> anyhow::Result<RawVolume> {
 
 /// One mask file: its grid and, per layer, the runs `[start, end)` of flat voxel indices that
 /// are not zero.
-struct Mask {
-    dims: [usize; 3],
-    world_from_voxel: glam::DAffine3,
-    layers: Vec<Vec<[usize; 2]>>,
+pub(super) struct Mask {
+    pub dims: [usize; 3],
+    pub world_from_voxel: glam::DAffine3,
+    pub layers: Vec<Vec<[usize; 2]>>,
 }
 
-thread_local! {
-    /// The inflate buffer of this thread's mask files (see the module doc).
-    static BUFFER: std::cell::RefCell<Vec<u8>> = const { std::cell::RefCell::new(Vec::new()) };
+/// A mask painted into a grid of its bounding box (x fastest): 1 inside, 0 outside.
+pub(super) struct BoxedMask {
+    /// The box's first voxel in the mask's grid.
+    pub lo: [usize; 3],
+    pub dims: [usize; 3],
+    pub inside: Vec<u8>,
+    /// Voxels inside (every layer's together).
+    pub voxels: u64,
 }
 
-fn read_mask(file: &Path) -> anyhow::Result<Mask> {
+impl Mask {
+    /// Calls `visit(x0, x1, y, z)` for each piece of a run within one row (`x0..x1`).
+    fn row_pieces(&self, mut visit: impl FnMut(usize, usize, usize, usize)) {
+        let [nx, ny, _] = self.dims;
+        for &[start, end] in self.layers.iter().flatten() {
+            let mut i = start;
+            while i < end {
+                let row = i / nx;
+                let piece_end = end.min((row + 1) * nx);
+                visit(i % nx, i % nx + (piece_end - i), row % ny, row / ny);
+                i = piece_end;
+            }
+        }
+    }
+
+    /// The mask in a grid of its bounding box; None when it has no voxel.
+    pub fn boxed(&self) -> Option<BoxedMask> {
+        let (mut lo, mut hi) = ([usize::MAX; 3], [0usize; 3]);
+        self.row_pieces(|x0, x1, y, z| {
+            for (axis, (a, b)) in [(x0, x1 - 1), (y, y), (z, z)].into_iter().enumerate() {
+                lo[axis] = lo[axis].min(a);
+                hi[axis] = hi[axis].max(b);
+            }
+        });
+        if lo[0] == usize::MAX {
+            return None;
+        }
+        let dims = [0, 1, 2].map(|a| hi[a] - lo[a] + 1);
+        let mut inside = vec![0u8; dims.iter().product()];
+        self.row_pieces(|x0, x1, y, z| {
+            let row = (y - lo[1] + dims[1] * (z - lo[2])) * dims[0];
+            inside[row + x0 - lo[0]..row + x1 - lo[0]].fill(1);
+        });
+        let voxels = inside.iter().map(|&v| u64::from(v)).sum();
+        Some(BoxedMask {
+            lo,
+            dims,
+            inside,
+            voxels,
+        })
+    }
+}
+
+/// Bytes of inflated voxel data a mask's reader holds at a time.
+const CHUNK: usize = 1 << 20;
+
+pub(super) fn read_mask(file: &Path) -> anyhow::Result<Mask> {
     if super::file_format(file)? == VolumeFormat::Nifti {
-        let buffer = BUFFER.with(|b| std::mem::take(&mut *b.borrow_mut()));
-        let raw = super::nifti::read_samples_reusing(file, buffer)?;
-        let mask = if raw.sample == SampleType::U8 {
-            // The common case (TotalSegmentator writes uint8): runs straight from the bytes.
-            Ok(Mask {
-                dims: raw.dims,
-                world_from_voxel: raw.world_from_voxel,
-                layers: vec![byte_runs(&raw.bytes)],
-            })
-        } else {
-            super::samples::decode(&raw.bytes, raw.sample, raw.endian, raw.dims).map(|layer| Mask {
-                dims: raw.dims,
-                world_from_voxel: raw.world_from_voxel,
-                layers: vec![runs_of(layer.len(), |i| layer.get(i) != 0)],
-            })
-        };
-        BUFFER.with(|b| *b.borrow_mut() = raw.bytes);
-        return mask;
+        let stream = super::nifti::SampleStream::open(file)?;
+        let (dims, world_from_voxel) = (stream.dims.map(|d| d as usize), stream.world_from_voxel);
+        if stream.sample == SampleType::U8 {
+            // The common case (TotalSegmentator writes uint8): the runs straight from the
+            // inflated bytes, a chunk at a time, so no mask is ever held whole.
+            let mut runs: Vec<[usize; 2]> = Vec::new();
+            stream.chunks(CHUNK, &mut |offset, bytes| {
+                for [start, end] in byte_runs(bytes) {
+                    let (start, end) = (offset + start, offset + end);
+                    match runs.last_mut() {
+                        // A run cut by the chunk's edge continues.
+                        Some(last) if last[1] == start => last[1] = end,
+                        _ => runs.push([start, end]),
+                    }
+                }
+            })?;
+            return Ok(Mask {
+                dims,
+                world_from_voxel,
+                layers: vec![runs],
+            });
+        }
+        let raw = super::nifti::read_samples(file)?;
+        let layer = super::samples::decode(&raw.bytes, raw.sample, raw.endian, raw.dims)?;
+        return Ok(Mask {
+            dims,
+            world_from_voxel,
+            layers: vec![runs_of(layer.len(), |i| layer.get(i) != 0)],
+        });
     }
     let volume = super::read_file(file)?;
     Ok(Mask {
@@ -252,6 +314,43 @@ impl Packed {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A run that wraps from one row to the next lands in both rows of the box, and the box is
+    /// the runs' bounds.
+    #[test]
+    fn boxed_mask_splits_runs_at_rows() {
+        let dims = [4, 3, 2];
+        // Row (y 1, z 0) from x 2 to the end, the next row up to x 1; one voxel at (3, 2, 1).
+        let at = |x: usize, y: usize, z: usize| x + 4 * (y + 3 * z);
+        let mask = Mask {
+            dims,
+            world_from_voxel: glam::DAffine3::IDENTITY,
+            layers: vec![
+                vec![[at(2, 1, 0), at(2, 2, 0)]],
+                vec![[at(3, 2, 1), at(3, 2, 1) + 1]],
+            ],
+        };
+        let b = mask.boxed().unwrap();
+        assert_eq!((b.lo, b.dims, b.voxels), ([0, 1, 0], [4, 2, 2], 5));
+        let inside = |x: usize, y: usize, z: usize| b.inside[x + 4 * (y - 1 + 2 * z)] == 1;
+        let expected = [(2, 1, 0), (3, 1, 0), (0, 2, 0), (1, 2, 0), (3, 2, 1)];
+        for z in 0..2 {
+            for y in 1..3 {
+                for x in 0..4 {
+                    assert_eq!(
+                        inside(x, y, z),
+                        expected.contains(&(x, y, z)),
+                        "{x} {y} {z}"
+                    );
+                }
+            }
+        }
+        let empty = Mask {
+            layers: vec![Vec::new()],
+            ..mask
+        };
+        assert!(empty.boxed().is_none());
+    }
 
     /// The word-skipping scan finds the runs of the plain one, at every alignment and length.
     #[test]

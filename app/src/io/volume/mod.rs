@@ -42,6 +42,7 @@ mod content_rule;
 pub mod embedded;
 mod gzip;
 pub mod intensity;
+pub mod mask_surfaces;
 mod masks;
 mod nifti;
 mod nrrd;

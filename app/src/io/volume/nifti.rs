@@ -154,87 +154,197 @@ fn labels_of(raw: &RawSamples) -> anyhow::Result<RawVolume> {
 /// (intensity images; label maps ignore the scaling): the same header, geometry and size checks
 /// as label maps, no decoding.
 pub(crate) fn read_samples(path: &Path) -> anyhow::Result<RawSamples> {
-    read_samples_reusing(path, Vec::new())
+    let opened = SampleStream::open(path)?;
+    let (h, dims, world_from_voxel, sample, expected) = (
+        opened.header,
+        opened.dims,
+        opened.world_from_voxel,
+        opened.sample,
+        opened.expected,
+    );
+    let data = match opened.source {
+        Source::Plain { mut file, offset } => {
+            // Uncompressed: the voxels are the file's own buffer, the header drained off in
+            // place, so a large image is held once.
+            file.drain(..offset);
+            file.truncate(expected);
+            file
+        }
+        Source::Gzip {
+            first,
+            mut reader,
+            compressed,
+        } => {
+            let mut data = first;
+            let more = expected - data.len();
+            super::gzip::read_exact_limited_onto(
+                &mut reader,
+                more,
+                compressed,
+                "voxel data",
+                &mut data,
+            )?;
+            data
+        }
+    };
+    Ok(samples_of(&h, dims, world_from_voxel, sample, data))
 }
 
-/// [`read_samples`] inflating into `buffer` (cleared; its capacity reused), so a folder of
-/// masks of one grid is inflated into one buffer per thread instead of a fresh one per file.
-pub(crate) fn read_samples_reusing(path: &Path, buffer: Vec<u8>) -> anyhow::Result<RawSamples> {
-    let file = crate::io::bounded::read_bytes(path, crate::io::bounded::VOLUME_MAX_BYTES)?;
-    let gz = file.starts_with(&[0x1f, 0x8b]);
-    let mut reader: Box<dyn Read> = if gz {
-        Box::new(flate2::read::MultiGzDecoder::new(file.as_slice()))
-    } else {
-        Box::new(file.as_slice())
-    };
-    let mut head = Vec::new();
-    (&mut reader)
-        .take(540)
-        .read_to_end(&mut head)
-        .map_err(|e| anyhow::anyhow!("corrupt or truncated gzip header ({e})"))?;
-    let (version, endian) = header_kind(&head).ok_or_else(|| {
-        anyhow::anyhow!("not a NIfTI-1/2 file (no header size 348/540 with magic n+1/n+2)")
-    })?;
-    let header_size = if version == 1 { 348 } else { 540 };
-    if head.len() < header_size {
-        anyhow::bail!(
-            "the NIfTI header is cut short ({} of {header_size} bytes)",
-            head.len()
-        );
+/// A NIfTI file opened at its voxels: the header read and checked (sizes against the bytes
+/// present, geometry), the data not yet inflated. [`SampleStream::chunks`] hands the voxel bytes
+/// over a bounded piece at a time, so a reader that keeps little of them (a mask's non-zero runs)
+/// never holds the whole inflated image.
+pub(crate) struct SampleStream {
+    header: Header,
+    pub dims: [u64; 3],
+    pub world_from_voxel: glam::DAffine3,
+    pub sample: SampleType,
+    /// Voxel bytes in all.
+    pub expected: usize,
+    source: Source,
+}
+
+enum Source {
+    /// Uncompressed: the file's bytes, the voxels from `offset`.
+    Plain { file: Vec<u8>, offset: usize },
+    /// Gzip: the voxel bytes inflated with the header, then the decoder at the next one.
+    Gzip {
+        first: Vec<u8>,
+        reader: flate2::read::MultiGzDecoder<std::io::Cursor<Vec<u8>>>,
+        compressed: usize,
+    },
+}
+
+impl SampleStream {
+    pub(crate) fn open(path: &Path) -> anyhow::Result<SampleStream> {
+        let file = crate::io::bounded::read_bytes(path, crate::io::bounded::VOLUME_MAX_BYTES)?;
+        let gz = file.starts_with(&[0x1f, 0x8b]);
+        let compressed = file.len();
+        let (mut head, mut reader) = if gz {
+            let mut reader = flate2::read::MultiGzDecoder::new(std::io::Cursor::new(file));
+            let mut head = Vec::new();
+            (&mut reader)
+                .take(540)
+                .read_to_end(&mut head)
+                .map_err(|e| anyhow::anyhow!("corrupt or truncated gzip header ({e})"))?;
+            (head, Some(reader))
+        } else {
+            (file, None)
+        };
+        let (version, endian) = header_kind(&head).ok_or_else(|| {
+            anyhow::anyhow!("not a NIfTI-1/2 file (no header size 348/540 with magic n+1/n+2)")
+        })?;
+        let header_size = if version == 1 { 348 } else { 540 };
+        if head.len() < header_size {
+            anyhow::bail!(
+                "the NIfTI header is cut short ({} of {header_size} bytes)",
+                head.len()
+            );
+        }
+        let h = parse_header(&head, version, endian);
+        let sample = sample_type(h.datatype)?;
+        let dims = spatial_dims(&h.dim)?;
+        let voxels = super::check_dims(dims, 1)?;
+        let world_from_voxel = geometry(&h)?;
+        if !(h.vox_offset >= header_size as f64 && h.vox_offset <= (64 << 20) as f64) {
+            anyhow::bail!(
+                "vox_offset {} is not past the header (or absurd)",
+                h.vox_offset
+            );
+        }
+        let offset = h.vox_offset as usize;
+        let expected = voxels * sample.size();
+        let source = match reader.take() {
+            None => {
+                if head.len() < offset + expected {
+                    anyhow::bail!(
+                        "voxel data is {} bytes, but dims {} {} {} × {} need {expected}",
+                        head.len().saturating_sub(offset),
+                        dims[0],
+                        dims[1],
+                        dims[2],
+                        sample.name()
+                    );
+                }
+                Source::Plain { file: head, offset }
+            }
+            Some(mut reader) => {
+                // Skip the extensions between the header and the voxels.
+                let mut skipped = head.len();
+                let mut sink = [0u8; 4096];
+                while skipped < offset {
+                    let n = (offset - skipped).min(sink.len());
+                    reader.read_exact(&mut sink[..n]).map_err(|e| {
+                        anyhow::anyhow!("the file ends before vox_offset {offset} ({e})")
+                    })?;
+                    skipped += n;
+                }
+                // Voxel data may start inside the 540 bytes read (a NIfTI-1 file's 352-byte
+                // offset).
+                let first = if skipped > offset {
+                    head.drain(..offset);
+                    head.truncate(expected);
+                    head
+                } else {
+                    Vec::new()
+                };
+                Source::Gzip {
+                    first,
+                    reader,
+                    compressed,
+                }
+            }
+        };
+        Ok(SampleStream {
+            header: h,
+            dims,
+            world_from_voxel,
+            sample,
+            expected,
+            source,
+        })
     }
-    let h = parse_header(&head, version, endian);
-    let sample = sample_type(h.datatype)?;
-    let dims = spatial_dims(&h.dim)?;
-    let voxels = super::check_dims(dims, 1)?;
-    let world_from_voxel = geometry(&h)?;
-    if !(h.vox_offset >= header_size as f64 && h.vox_offset <= (64 << 20) as f64) {
-        anyhow::bail!(
-            "vox_offset {} is not past the header (or absurd)",
-            h.vox_offset
-        );
+
+    /// Hands the voxel bytes to `visit` in order, with each piece's offset in the voxel data,
+    /// `chunk` bytes at a time at most (an uncompressed file's all at once: it is in memory
+    /// already). Fewer bytes than the header needs is an error.
+    pub(crate) fn chunks(
+        self,
+        chunk: usize,
+        visit: &mut dyn FnMut(usize, &[u8]),
+    ) -> anyhow::Result<()> {
+        match self.source {
+            Source::Plain { file, offset } => visit(0, &file[offset..offset + self.expected]),
+            Source::Gzip {
+                first, mut reader, ..
+            } => {
+                visit(0, &first);
+                let mut done = first.len();
+                let mut buffer = vec![0u8; chunk.max(1)];
+                while done < self.expected {
+                    let want = (self.expected - done).min(buffer.len());
+                    let mut filled = 0;
+                    while filled < want {
+                        match reader.read(&mut buffer[filled..want]) {
+                            Ok(0) => anyhow::bail!(
+                                "voxel data is {} bytes after gzip, but the header's sizes and type need {}",
+                                done + filled,
+                                self.expected
+                            ),
+                            Ok(n) => filled += n,
+                            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                            Err(e) => {
+                                anyhow::bail!("corrupt or truncated gzip voxel data ({e})")
+                            }
+                        }
+                    }
+                    visit(done, &buffer[..filled]);
+                    done += filled;
+                }
+            }
+        }
+        Ok(())
     }
-    let offset = h.vox_offset as usize;
-    let expected = voxels * sample.size();
-    if !gz && file.len() < offset + expected {
-        anyhow::bail!(
-            "voxel data is {} bytes, but dims {} {} {} × {} need {expected}",
-            file.len().saturating_sub(offset),
-            dims[0],
-            dims[1],
-            dims[2],
-            sample.name()
-        );
-    }
-    if !gz {
-        // Uncompressed: the voxels are the file's own buffer, the header drained off in place,
-        // so a large image is held once.
-        drop(reader);
-        let mut data = file;
-        data.drain(..offset);
-        data.truncate(expected);
-        return Ok(samples_of(&h, dims, world_from_voxel, sample, data));
-    }
-    // Skip the extensions between the header and the voxels.
-    let mut skipped = head.len();
-    let mut sink = [0u8; 4096];
-    while skipped < offset {
-        let n = (offset - skipped).min(sink.len());
-        reader
-            .read_exact(&mut sink[..n])
-            .map_err(|e| anyhow::anyhow!("the file ends before vox_offset {offset} ({e})"))?;
-        skipped += n;
-    }
-    let mut data = buffer;
-    data.clear();
-    if skipped > offset {
-        // Voxel data starting inside the 540 bytes read (a NIfTI-1 file's 352-byte offset).
-        data.extend_from_slice(&head[offset..(offset + expected).min(head.len())]);
-    }
-    let more = expected - data.len();
-    super::gzip::read_exact_limited_onto(&mut reader, more, file.len(), "voxel data", &mut data)?;
-    drop(reader);
-    drop(file);
-    Ok(samples_of(&h, dims, world_from_voxel, sample, data))
 }
 
 fn samples_of(
