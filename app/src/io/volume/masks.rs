@@ -162,6 +162,11 @@ impl Mask {
 const CHUNK: usize = 1 << 20;
 
 pub(super) fn read_mask(file: &Path) -> anyhow::Result<Mask> {
+    read_mask_chunked(file, CHUNK)
+}
+
+/// [`read_mask`] holding `chunk` bytes of inflated voxel data at a time.
+pub(super) fn read_mask_chunked(file: &Path, chunk: usize) -> anyhow::Result<Mask> {
     if super::file_format(file)? == VolumeFormat::Nifti {
         let stream = super::nifti::SampleStream::open(file)?;
         let (dims, world_from_voxel) = (stream.dims.map(|d| d as usize), stream.world_from_voxel);
@@ -169,7 +174,7 @@ pub(super) fn read_mask(file: &Path) -> anyhow::Result<Mask> {
             // The common case (TotalSegmentator writes uint8): the runs straight from the
             // inflated bytes, a chunk at a time, so no mask is ever held whole.
             let mut runs: Vec<[usize; 2]> = Vec::new();
-            stream.chunks(CHUNK, &mut |offset, bytes| {
+            stream.chunks(chunk, &mut |offset, bytes| {
                 for [start, end] in byte_runs(bytes) {
                     let (start, end) = (offset + start, offset + end);
                     match runs.last_mut() {
@@ -234,7 +239,7 @@ fn byte_runs(bytes: &[u8]) -> Vec<[usize; 2]> {
 }
 
 /// The runs `[start, end)` of `0..n` where `inside` holds.
-fn runs_of(n: usize, inside: impl Fn(usize) -> bool) -> Vec<[usize; 2]> {
+pub(super) fn runs_of(n: usize, inside: impl Fn(usize) -> bool) -> Vec<[usize; 2]> {
     let mut runs = Vec::new();
     let mut i = 0;
     while i < n {

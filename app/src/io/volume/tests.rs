@@ -306,6 +306,52 @@ fn a_mask_directory_is_one_structure_per_file() {
     let parts = crate::io::read_parts(&dir).unwrap();
     assert_eq!(parts.len(), 4);
     assert_eq!(parts[3].name, "zall");
+    // Surfaced mask by mask (overlaps and all), each structure is the packed path's.
+    let packed = surfaces(&volume, None, &|_| true).unwrap();
+    let streamed = std::sync::Mutex::new(Vec::new());
+    let folder = super::mask_surfaces::surfaces_each(
+        &dir,
+        &[],
+        &csg::labels::SurfaceOptions::default(),
+        &|_| true,
+        &|s| {
+            streamed.lock().unwrap().push(s);
+            true
+        },
+    )
+    .unwrap();
+    assert_eq!(
+        folder.structures,
+        volume
+            .structures
+            .iter()
+            .map(|s| Structure {
+                layer: 0,
+                ..s.clone()
+            })
+            .collect::<Vec<_>>()
+    );
+    let mut streamed = streamed.into_inner().unwrap();
+    streamed.sort_by_key(|s| s.structure.value);
+    assert_eq!(streamed.len(), packed.len());
+    for (a, b) in packed.iter().zip(&streamed) {
+        assert_eq!(
+            (a.structure.value, &a.structure.name),
+            (b.structure.value, &b.structure.name)
+        );
+        assert_eq!(
+            a.mesh.triangles.len(),
+            b.mesh.triangles.len(),
+            "{}",
+            a.structure.name
+        );
+        let (va, vb) = (a.mesh.volume(), b.mesh.volume());
+        assert!(
+            (va - vb).abs() <= 1e-9 * va.abs(),
+            "{}: {va} vs {vb}",
+            a.structure.name
+        );
+    }
     // A mask on another grid is refused, naming it.
     let shifted = [[1.0, 0.0, 0.0, 99.0], srow[1], srow[2]];
     std::fs::write(
@@ -314,6 +360,10 @@ fn a_mask_directory_is_one_structure_per_file() {
     )
     .unwrap();
     let err = format!("{:#}", read_volume(&dir, None).unwrap_err());
+    assert!(err.contains("moved.nii: not on the same grid as"), "{err}");
+    let options = csg::labels::SurfaceOptions::default();
+    let err = super::mask_surfaces::surfaces_each(&dir, &[], &options, &|_| true, &|_| true);
+    let err = format!("{:#}", err.unwrap_err());
     assert!(err.contains("moved.nii: not on the same grid as"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -414,5 +464,34 @@ fn detached_header_reads_its_data_file() {
         .collect();
     assert_eq!(counts, vec![(2000, 18), (5000, 19), (9000, 1)]);
     assert_eq!(volume.world_from_voxel, canonical_affine());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A gzip mask read a few bytes at a time: runs cut by a chunk's edge join up again.
+#[test]
+fn a_gzip_mask_read_in_small_chunks_has_the_runs_of_the_whole() {
+    use std::io::Write as _;
+    let dir = scratch("mask_chunks");
+    let dims = [5usize, 4, 3];
+    let mask: Vec<u8> = (0..60u32)
+        .map(|i| u8::from(i % 7 < 3 || (20..31).contains(&i)))
+        .collect();
+    let srow = [
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+    ];
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+    gz.write_all(&nifti::write_for_test(dims, 2, srow, &mask))
+        .unwrap();
+    let path = dir.join("m.nii.gz");
+    std::fs::write(&path, gz.finish().unwrap()).unwrap();
+    let whole = masks::read_mask(&path).unwrap();
+    let expected = masks::runs_of(mask.len(), |i| mask[i] != 0);
+    assert_eq!(whole.layers, vec![expected.clone()]);
+    for chunk in [1, 2, 3, 7, 64] {
+        let read = masks::read_mask_chunked(&path, chunk).unwrap();
+        assert_eq!(read.layers, vec![expected.clone()], "chunk {chunk}");
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
