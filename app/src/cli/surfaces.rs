@@ -180,7 +180,7 @@ pub fn surfaces(args: &SurfacesArgs) -> anyhow::Result<SurfacesReport> {
                 &table,
                 &options,
                 &|_| true,
-                &each,
+                &|_, surface| surface.is_none_or(&each),
             )
             .map(|_| ()),
         };

@@ -100,6 +100,7 @@ impl CutawayApp {
             history: History::default(),
             jobs: Vec::new(),
             atlas: Default::default(),
+            folder: Default::default(),
             recent: RecentFiles::load(&start.state_dir),
             recovery,
             session_path: None,
@@ -148,6 +149,7 @@ impl eframe::App for CutawayApp {
         self.state.status.frame_ms = 0.9 * self.state.status.frame_ms + 0.1 * frame_ms;
         self.poll_jobs(&ctx);
         crate::gui::atlas_arrival::poll(&mut self.state);
+        crate::gui::folder_arrival::poll(&mut self.state);
         // Pick trees of new or replaced meshes are built on a worker, not at the first press.
         self.state.viewport.picks.prepare(&self.state.scene);
         self.index_target_ahead(&ctx);
@@ -169,6 +171,7 @@ impl eframe::App for CutawayApp {
         egui::Panel::bottom("cutaway-status").show(ui, |ui| {
             self.refresh_status();
             crate::gui::atlas_arrival::status_ui(ui, &mut self.state);
+            crate::gui::folder_arrival::status_ui(ui, &mut self.state);
             crate::gui::panels::status_bar::status_bar_ui(ui, &self.state.status);
         });
         egui::Panel::left("cutaway-side")

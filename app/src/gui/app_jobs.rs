@@ -113,6 +113,10 @@ impl CutawayApp {
         for p in &paths {
             self.state.recent.add(p);
         }
+        if replace && crate::scene::open::is_one_mask_folder(&paths) {
+            crate::gui::folder_arrival::start(&mut self.state, ctx, paths[0].clone());
+            return;
+        }
         let label = match paths.as_slice() {
             [one] => format!("Loading {}", file_label(one)),
             many => format!("Loading {} items", many.len()),
@@ -163,6 +167,7 @@ impl CutawayApp {
             }
             JobOutput::Session { path, scene } => {
                 self.state.atlas.cancel();
+                self.state.folder.cancel();
                 self.state.scene = *scene;
                 // A restored autosave has no file of its own: Save asks where to put it.
                 let restored = path == self.state.recovery.session_path();
@@ -248,6 +253,7 @@ impl CutawayApp {
         let before = self.state.scene.clone();
         if replace {
             self.state.atlas.cancel();
+            self.state.folder.cancel();
             let render = self.state.scene.render;
             self.state.scene = new_scene();
             self.state.scene.render = render;

@@ -25,6 +25,9 @@ pub mod dialogs;
 pub mod expose_job;
 #[cfg(test)]
 mod first_press_tests;
+pub mod folder_arrival;
+#[cfg(test)]
+mod folder_arrival_tests;
 pub mod job_output;
 pub mod jobs;
 pub mod panels;

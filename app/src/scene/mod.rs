@@ -15,6 +15,7 @@
 //! Colours are sRGB-encoded components in 0..=1, as the colour picker shows them and as the
 //! session file stores them; the renderer converts them to linear light.
 
+pub mod arrivals;
 mod cutters;
 pub mod image_layer;
 mod model;

@@ -58,7 +58,8 @@ pub fn load_paths(
 ) -> anyhow::Result<(Vec<Model>, Option<ImageLayer>)> {
     let mut files: Vec<(PathBuf, String)> = Vec::new();
     for path in paths {
-        if path.is_dir() {
+        // A folder of masks is one volume; any other folder is searched for meshes.
+        if path.is_dir() && !crate::io::volume::is_volume(path) {
             let found = crate::io::mesh_files(path)?;
             if found.is_empty() {
                 anyhow::bail!(
@@ -92,6 +93,50 @@ pub fn load_paths(
     }
     progress.set(total, total);
     Ok((models, image))
+}
+
+/// Whether `paths` is one folder of masks, which the window opens structure by structure as its
+/// files are read ([`stream_mask_folder`]).
+pub fn is_one_mask_folder(paths: &[PathBuf]) -> bool {
+    matches!(paths, [one] if one.is_dir() && crate::io::volume::is_volume(one))
+}
+
+/// Surfaces the masks of `dir` as [`crate::io::volume::mask_surfaces`] does, handing each file's
+/// outcome to `arrive` as soon as it is known: its number in file order and its structure as a
+/// model of `dir` (grouped under the folder's name, as [`load_paths`] groups it; its `index` is
+/// set when it is released in order, [`super::arrivals::InOrder`]). `progress` hears the
+/// fraction of files done and cancels.
+pub fn stream_mask_folder(
+    dir: &Path,
+    progress: &Progress,
+    arrive: &(dyn Fn(usize, Option<Model>) + Sync),
+) -> anyhow::Result<usize> {
+    let group = file_label(dir);
+    let fraction = |f: f32| {
+        progress.set((f.clamp(0.0, 1.0) * 1000.0) as u64, 1000);
+        !progress.is_cancelled()
+    };
+    let folder = crate::io::volume::mask_surfaces::surfaces_each(
+        dir,
+        &[],
+        &csg::labels::SurfaceOptions::default(),
+        &fraction,
+        &|file, surface| {
+            arrive(
+                file,
+                surface.map(|s| {
+                    let color = s.structure.color.map(|c| c as f32 / 255.0);
+                    Model {
+                        source: dir.to_path_buf(),
+                        group: group.clone(),
+                        ..Model::part(s.structure.name, Some(color), s.mesh)
+                    }
+                }),
+            );
+            !progress.is_cancelled()
+        },
+    )?;
+    Ok(folder.structures.len())
 }
 
 /// `models` as scene models, each coloured as a structure is (its file's colour, else by its

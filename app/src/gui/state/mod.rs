@@ -22,6 +22,7 @@ use crate::session::undo::History;
 pub mod atlas;
 pub mod compare;
 pub mod export_settings;
+pub mod folder;
 pub mod metrics;
 pub mod viewport;
 
@@ -46,6 +47,8 @@ pub struct AppState {
     pub jobs: Vec<Job<JobOutput>>,
     /// The default scene's label surfaces while they arrive after its first frame.
     pub atlas: atlas::AtlasArrival,
+    /// A folder of masks while its structures arrive, shown as they come.
+    pub folder: folder::FolderArrival,
     pub recovery: Recovery,
     pub recent: RecentFiles,
     /// Where "Save Session" writes; set by opening a session and by Save Session As.
@@ -130,6 +133,7 @@ impl AppState {
             || self.metrics.busy()
             || self.compare.busy()
             || self.atlas.busy()
+            || self.folder.busy()
             || self.viewport.risk.busy()
     }
 

@@ -36,16 +36,18 @@ pub struct MaskFolder {
     pub structures: Vec<Structure>,
 }
 
-/// Surfaces every mask of `dir`, handing each structure's surface to `each` as soon as it is
-/// made (on the worker that made it, in no particular order; `each` returns false to stop).
-/// `names` (a colour table) names and colours values as in [`super::read_volume`]. `progress`
-/// gets the fraction of files done and returns false to cancel. Errors name the file.
+/// Surfaces every mask of `dir`, handing each file's outcome to `each` as soon as it is known:
+/// its number (files sorted by name, from 0) and its structure's surface, None for a mask with
+/// no voxel. Files are taken in order by every worker, so outcomes come nearly in file order
+/// (a window shows them in order as they come); `each` runs on the worker and returns false to
+/// stop. `names` (a colour table) names and colours values as in [`super::read_volume`].
+/// `progress` gets the fraction of files done and returns false to cancel. Errors name the file.
 pub fn surfaces_each(
     dir: &Path,
     names: &[LabelInfo],
     options: &csg::labels::SurfaceOptions,
     progress: &(dyn Fn(f32) -> bool + Sync),
-    each: &(dyn Fn(StructureSurface) -> bool + Sync),
+    each: &(dyn Fn(usize, Option<StructureSurface>) -> bool + Sync),
 ) -> anyhow::Result<MaskFolder> {
     let files = mask_files(dir)?;
     let Some(first_file) = files.first() else {
@@ -58,12 +60,11 @@ pub fn surfaces_each(
     let (dims, world_from_voxel) = (first.dims, first.world_from_voxel);
     let first = Mutex::new(Some(first));
     let found = Mutex::new(Vec::new());
+    let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
     let stop = AtomicBool::new(false);
-    files.par_iter().enumerate().try_for_each(|(index, file)| {
-        if stop.load(Ordering::Relaxed) {
-            return Ok(());
-        }
+    let one = |index: usize| -> anyhow::Result<()> {
+        let file = &files[index];
         let taken = if index == 0 {
             lock(&first).take()
         } else {
@@ -75,21 +76,36 @@ pub fn surfaces_each(
         };
         same_grid(&mask, dims, world_from_voxel, file, first_file)?;
         let value = index as u32 + 1;
-        if let Some(boxed) = mask.boxed() {
-            let structure = structure_of(boxed.voxels, value, file, names);
-            let mesh = surface(&boxed, mask.world_from_voxel, options)
-                .with_context(|| file.display().to_string())?;
-            lock(&found).push(structure.clone());
-            if !each(StructureSurface { structure, mesh }) {
-                stop.store(true, Ordering::Relaxed);
+        let surface = match mask.boxed() {
+            Some(boxed) => {
+                let structure = structure_of(boxed.voxels, value, file, names);
+                let mesh = surface(&boxed, mask.world_from_voxel, options)
+                    .with_context(|| file.display().to_string())?;
+                lock(&found).push(structure.clone());
+                Some(StructureSurface { structure, mesh })
             }
-        }
+            None => None,
+        };
         let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
-        if !progress(finished as f32 / files.len() as f32) {
+        if !each(index, surface) || !progress(finished as f32 / files.len() as f32) {
             stop.store(true, Ordering::Relaxed);
         }
-        anyhow::Ok(())
-    })?;
+        Ok(())
+    };
+    (0..rayon::current_num_threads())
+        .into_par_iter()
+        .try_for_each(|_| {
+            loop {
+                let index = next.fetch_add(1, Ordering::Relaxed);
+                if index >= files.len() || stop.load(Ordering::Relaxed) {
+                    return Ok(());
+                }
+                if let Err(e) = one(index) {
+                    stop.store(true, Ordering::Relaxed);
+                    return Err(e);
+                }
+            }
+        })?;
     if stop.load(Ordering::Relaxed) {
         return Err(csg::labels::LabelSurfaceError::Cancelled)
             .with_context(|| dir.display().to_string());

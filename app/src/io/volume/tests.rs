@@ -314,8 +314,8 @@ fn a_mask_directory_is_one_structure_per_file() {
         &[],
         &csg::labels::SurfaceOptions::default(),
         &|_| true,
-        &|s| {
-            streamed.lock().unwrap().push(s);
+        &|_, s| {
+            streamed.lock().unwrap().extend(s);
             true
         },
     )
@@ -362,7 +362,7 @@ fn a_mask_directory_is_one_structure_per_file() {
     let err = format!("{:#}", read_volume(&dir, None).unwrap_err());
     assert!(err.contains("moved.nii: not on the same grid as"), "{err}");
     let options = csg::labels::SurfaceOptions::default();
-    let err = super::mask_surfaces::surfaces_each(&dir, &[], &options, &|_| true, &|_| true);
+    let err = super::mask_surfaces::surfaces_each(&dir, &[], &options, &|_| true, &|_, _| true);
     let err = format!("{:#}", err.unwrap_err());
     assert!(err.contains("moved.nii: not on the same grid as"), "{err}");
     std::fs::remove_dir_all(&dir).ok();

@@ -1,0 +1,175 @@
+//! A folder of masks (a TotalSegmentator output) opened structure by structure: the first
+//! structures are drawn while the other files are still read, with the progress and a Cancel in
+//! the status bar, and the window works as usual meanwhile (orbit, select, cut what is there).
+//!
+//! The worker surfaces the masks about in file order ([`crate::scene::open::stream_mask_folder`])
+//! and each frame takes what has come, released in file order
+//! ([`crate::scene::arrivals::InOrder`]): a structure joins the scene at its final place, so it
+//! never moves and a cutter made meanwhile keeps its target. The first structures replace the
+//! scene (as opening any file does); later ones are appended to it and to every undo snapshot
+//! of it, their arrival no undo step of its own. While the user has not moved the camera, it
+//! frames the structures shown so far. Cancel, or an error, stops the worker and restores the
+//! scene the user had before; opening anything else drops the arrival.
+
+use std::path::PathBuf;
+use std::time::Duration;
+
+use crate::gui::jobs::is_cancelled;
+use crate::gui::state::AppState;
+use crate::io::Model;
+use crate::scene::ViewPreset;
+use crate::scene::open::file_label;
+
+/// Starts opening the mask folder `folder` (a folder already arriving is dropped).
+pub fn start(app: &mut AppState, ctx: &egui::Context, folder: PathBuf) {
+    let label = format!("Opening {}", file_label(&folder));
+    let dir = folder.clone();
+    app.folder
+        .start_with(ctx, folder, label, move |progress, send| {
+            crate::scene::open::stream_mask_folder(&dir, progress, &|file, model| {
+                send((file, model))
+            })
+        });
+}
+
+/// Shows what has come, once per frame, and ends the arrival when the worker is done.
+pub fn poll(app: &mut AppState) {
+    let Some(outcomes) = app.folder.outcomes.as_ref() else {
+        return;
+    };
+    let came: Vec<_> = outcomes.try_iter().collect();
+    for (file, model) in came {
+        app.folder.order.put(file, model);
+    }
+    let ready = app.folder.order.ready();
+    if !ready.is_empty() {
+        show(app, ready);
+    }
+    let Some(job) = app.folder.job.as_mut() else {
+        return;
+    };
+    let Some(result) = job.poll() else {
+        return;
+    };
+    let took = job.started.elapsed();
+    match result {
+        Ok(count) => {
+            // Every outcome was sent before the result.
+            let outcomes = app.folder.outcomes.take();
+            for (file, model) in outcomes.iter().flat_map(|o| o.try_iter()) {
+                app.folder.order.put(file, model);
+            }
+            let ready = app.folder.order.ready();
+            if !ready.is_empty() {
+                show(app, ready);
+            }
+            finish(app, count, took);
+        }
+        Err(e) => {
+            let folder = file_label(&app.folder.folder);
+            restore(app);
+            if is_cancelled(&e) {
+                app.say(format!(
+                    "Opening {folder} cancelled: the scene is as it was"
+                ));
+            } else {
+                app.complain(&e);
+            }
+        }
+    }
+}
+
+/// Puts `models` (in file order, indices set) into the scene: the first ones replace it.
+fn show(app: &mut AppState, models: Vec<Model>) {
+    if !app.folder.replaced {
+        app.atlas.cancel();
+        let mut fresh = crate::gui::app::new_scene();
+        fresh.render = app.scene.render;
+        let old = std::mem::replace(&mut app.scene, fresh);
+        app.folder.before.get_or_insert_with(|| Box::new(old));
+        app.folder.replaced = true;
+        app.session_path = None;
+        app.selected_model = None;
+        app.history.clear();
+        app.viewport.reset_editor();
+        app.last_committed = app.scene.clone();
+        app.folder.first_shown = app.folder.job.as_ref().map(|j| j.started.elapsed());
+    }
+    let first = app.scene.models.len();
+    let added = crate::scene::open::structures(models, first);
+    for scene in app.scenes_mut() {
+        scene.models.extend(added.iter().cloned());
+    }
+    match app.folder.framed {
+        None => {
+            crate::gui::viewport::view_menu::orient_new_scene(app, false, true);
+            app.folder.framed = Some(app.scene.camera);
+        }
+        Some(camera) if camera == app.scene.camera => {
+            app.scene.camera = app.scene.preset_camera(ViewPreset::Anterior);
+            app.folder.framed = Some(app.scene.camera);
+        }
+        Some(_) => {}
+    }
+}
+
+fn finish(app: &mut AppState, count: usize, took: Duration) {
+    let first = app.folder.first_shown.unwrap_or(took);
+    let folder = file_label(&app.folder.folder);
+    app.folder = Default::default();
+    app.recovery.mark_dirty();
+    app.recovery.mark_saved();
+    app.say(format!(
+        "Loaded {folder}: {count} structures in {:.1} s (the first shown after {:.1} s), {} triangles",
+        took.as_secs_f64(),
+        first.as_secs_f64(),
+        crate::gui::panels::status_bar::grouped(
+            app.scene
+                .models
+                .iter()
+                .map(|m| m.model.mesh.triangle_count())
+                .sum()
+        )
+    ));
+}
+
+/// Stops the arrival and brings back the scene the user had before it.
+fn restore(app: &mut AppState) {
+    if let Some(before) = app.folder.cancel() {
+        app.scene = *before;
+        app.last_committed = app.scene.clone();
+        app.selected_model = None;
+        app.history.clear();
+        app.viewport.reset_editor();
+    }
+}
+
+/// The status bar's line while the folder arrives: what is shown, the fraction of files read,
+/// and Cancel.
+pub fn status_ui(ui: &mut egui::Ui, app: &mut AppState) {
+    let Some(fraction) = app.folder.fraction() else {
+        return;
+    };
+    let mut cancel = false;
+    ui.horizontal(|ui| {
+        ui.label(format!(
+            "Opening {}: {} structures shown…",
+            file_label(&app.folder.folder),
+            app.folder.order.released()
+        ));
+        ui.add(
+            egui::ProgressBar::new(fraction)
+                .show_percentage()
+                .desired_width(180.0),
+        );
+        cancel = ui.button("Cancel").clicked();
+    });
+    if cancel {
+        let folder = file_label(&app.folder.folder);
+        restore(app);
+        app.say(format!(
+            "Opening {folder} cancelled: the scene is as it was"
+        ));
+    }
+    ui.ctx().request_repaint_after(Duration::from_millis(100));
+}

@@ -1,0 +1,223 @@
+//! A folder of masks opened in the window arrives structure by structure: the first structures
+//! are drawn while the other files are read, in file order at their final places, with the
+//! progress and Cancel in the status bar; Cancel brings back the scene the user had.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+
+use super::{CutawayApp, StartOptions};
+use crate::io::Model;
+
+fn window(name: &str) -> Harness<'static, CutawayApp> {
+    let state_dir = std::env::temp_dir().join(format!(
+        "cutaway-folder-arrival-{name}-{}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&state_dir);
+    std::fs::create_dir_all(&state_dir).expect("state dir");
+    let skin = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../assets/spl_head")
+        .join(crate::anatomy::default_scene::SKIN_FILE);
+    let start = StartOptions {
+        paths: vec![skin],
+        state_dir,
+        offer_recovery: false,
+    };
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .with_max_steps(4)
+        .with_accessibility_check(false)
+        .build_eframe(move |cc| CutawayApp::new(cc, start));
+    step_until(&mut h, "the skin", |app| !app.busy());
+    h
+}
+
+fn step_until(h: &mut Harness<'_, CutawayApp>, what: &str, done: impl Fn(&CutawayApp) -> bool) {
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while !done(h.state()) {
+        assert!(Instant::now() < deadline, "timed out waiting for {what}");
+        h.step();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
+fn structure(name: &str, x: f64) -> Option<Model> {
+    let mesh = csg::testkit::cube(
+        glam::DVec3::new(x, 0.0, 0.0),
+        glam::DVec3::new(x + 1.0, 1.0, 1.0),
+    );
+    Some(Model {
+        source: PathBuf::from("/masks"),
+        group: "masks".into(),
+        ..Model::part(name, Some([0.5, 0.5, 0.5]), mesh)
+    })
+}
+
+fn names(app: &CutawayApp) -> Vec<(String, usize)> {
+    app.scene
+        .models
+        .iter()
+        .map(|m| (m.model.name.clone(), m.model.index))
+        .collect()
+}
+
+/// Outcomes that come out of order are shown in file order at their final index; the scene
+/// shows the first structures while the worker still reads, with the status bar's progress.
+#[test]
+fn structures_are_shown_in_file_order_while_the_rest_arrive() {
+    let mut h = window("order");
+    let gate = Arc::new(AtomicBool::new(false));
+    let open = gate.clone();
+    let ctx = h.ctx.clone();
+    h.state_mut().folder.start_with(
+        &ctx,
+        "/masks".into(),
+        "Opening masks".into(),
+        move |progress, send| {
+            send((1, structure("b", 2.0)));
+            send((0, structure("a", 0.0)));
+            send((3, structure("d", 6.0)));
+            while !open.load(Ordering::Relaxed) {
+                progress.check()?;
+                std::thread::sleep(Duration::from_millis(5));
+            }
+            send((2, None));
+            send((4, structure("e", 8.0)));
+            Ok(4)
+        },
+    );
+    step_until(&mut h, "the first structures", |app| {
+        app.scene.models.len() == 2
+    });
+    h.run_steps(2);
+    assert_eq!(
+        names(h.state()),
+        [("a".to_owned(), 0), ("b".to_owned(), 1)],
+        "d waits on file 2"
+    );
+    assert!(h.state().folder.busy());
+    assert!(
+        h.query_by_label_contains("2 structures shown").is_some(),
+        "the status bar's progress"
+    );
+    gate.store(true, Ordering::Relaxed);
+    step_until(&mut h, "the folder", |app| !app.busy());
+    h.run_steps(2);
+    let app = h.state();
+    assert_eq!(
+        names(app),
+        [
+            ("a".to_owned(), 0),
+            ("b".to_owned(), 1),
+            ("d".to_owned(), 2),
+            ("e".to_owned(), 3)
+        ]
+    );
+    assert!(!app.status.is_error, "{}", app.status.message);
+    assert!(
+        app.status.message.contains("4 structures"),
+        "{}",
+        app.status.message
+    );
+    assert!(
+        h.query_by_label_contains("structures shown").is_none(),
+        "no progress after the end"
+    );
+}
+
+/// Cancel while structures are shown: the worker stops and the scene is the one before.
+#[test]
+fn cancel_restores_the_scene_the_user_had() {
+    let mut h = window("cancel");
+    let before: Vec<String> = h
+        .state()
+        .scene
+        .models
+        .iter()
+        .map(|m| m.model.name.clone())
+        .collect();
+    let stopped = Arc::new(AtomicBool::new(false));
+    let seen = stopped.clone();
+    let ctx = h.ctx.clone();
+    h.state_mut().folder.start_with(
+        &ctx,
+        "/masks".into(),
+        "Opening masks".into(),
+        move |progress, send| {
+            send((0, structure("a", 0.0)));
+            let waited = progress.check().and_then(|()| {
+                loop {
+                    progress.check()?;
+                    std::thread::sleep(Duration::from_millis(5));
+                }
+            });
+            seen.store(true, Ordering::Relaxed);
+            waited
+        },
+    );
+    step_until(&mut h, "the first structure", |app| {
+        app.scene.models.len() == 1 && app.scene.models[0].model.name == "a"
+    });
+    h.get_by_label("Cancel").click();
+    h.run_steps(2);
+    step_until(&mut h, "the worker to stop", |_| {
+        stopped.load(Ordering::Relaxed)
+    });
+    h.run_steps(2);
+    let app = h.state();
+    let after: Vec<String> = app
+        .scene
+        .models
+        .iter()
+        .map(|m| m.model.name.clone())
+        .collect();
+    assert_eq!(after, before, "the scene before the folder");
+    assert!(
+        app.status.message.contains("cancelled"),
+        "{}",
+        app.status.message
+    );
+    assert!(!app.folder.busy());
+}
+
+/// The chest's mask folder opened as a user opens it: its seven structures, named after their
+/// files, in file order, the same meshes as the folder read whole.
+#[test]
+fn a_real_mask_folder_opens_structure_by_structure() {
+    let Some(dir) = std::env::var_os("CUTAWAY_ANATOMY")
+        .map(|d| PathBuf::from(d).join("volumes/nifti_chest/per_structure"))
+        .filter(|d| d.is_dir())
+    else {
+        println!("skipped: set CUTAWAY_ANATOMY to the anatomy folder to open its chest masks");
+        return;
+    };
+    let mut h = window("chest");
+    let ctx = h.ctx.clone();
+    h.state_mut().open_paths(&ctx, vec![dir.clone()], true);
+    step_until(&mut h, "the chest masks", |app| !app.busy());
+    h.run_steps(2);
+    let whole = crate::io::read_parts(&dir).unwrap();
+    // Added to a scene (File → Add), the folder is read whole as one volume, not searched for
+    // meshes.
+    let (added, _) =
+        crate::scene::open::load_paths(std::slice::from_ref(&dir), &Default::default()).unwrap();
+    assert_eq!(added.len(), whole.len());
+    let app = h.state();
+    assert!(!app.status.is_error, "{}", app.status.message);
+    assert_eq!(app.scene.models.len(), whole.len());
+    for (i, (shown, read)) in app.scene.models.iter().zip(&whole).enumerate() {
+        assert_eq!((&shown.model.name, shown.model.index), (&read.name, i));
+        assert_eq!(shown.model.group, "per_structure");
+        assert_eq!(
+            shown.model.mesh.triangles.len(),
+            read.mesh.triangles.len(),
+            "{}",
+            read.name
+        );
+    }
+}
