@@ -5,6 +5,10 @@
 //! Open Example (`open_to_…`), for the default (the embedded head atlas) and, as the peer
 //! measured in the same run, the synthetic knee phantom that was the default before, with the
 //! ratio of the two, and with `CUTAWAY_ANATOMY` set the HuBMAP female body opened from its folder.
+//! With `CUTAWAY_MASK_FOLDER=DIR` (a folder of masks as TotalSegmentator writes it, e.g. the
+//! `label_folders` bench's inputs kept with `--keep`) it also opens that folder: milliseconds to
+//! the first structure drawn, to every structure drawn, and the process's peak resident memory
+//! during the opens (reset before them).
 //! Best of five runs each.
 //!
 //! Run: `WGPU_BACKEND=vulkan cargo bench -p cutaway --bench first_open` (release; on a machine
@@ -135,6 +139,20 @@ fn main() {
         "{{\"atlas_over_knee\":{:.2}}}",
         atlas.first_frame_ms / knee.complete_ms
     );
+    if let Some(folder) = std::env::var_os("CUTAWAY_MASK_FOLDER").map(PathBuf::from) {
+        let folder = std::path::absolute(&folder).expect("absolute path");
+        let files = std::fs::read_dir(&folder).map_or(0, |d| d.count());
+        // Peak resident memory from here on (Linux: writing 5 to clear_refs resets VmHWM).
+        std::fs::write("/proc/self/clear_refs", "5").ok();
+        let opened = best(Some(folder.to_str().expect("UTF-8 path")));
+        println!(
+            "{{\"scene\":\"mask folder ({files} files)\",\"open_to_first_structure_ms\":{:.1},\"open_to_all_ms\":{:.1},\"triangles\":{},\"peak_mb\":{},\"runs\":{runs}}}",
+            opened.first_frame_ms,
+            opened.complete_ms,
+            opened.triangles,
+            peak_mb().map_or("null".to_string(), |mb| format!("{mb:.0}"))
+        );
+    }
     // The HuBMAP female body (metres, Y up: opens upright), when the anatomy folder is there.
     let body = std::env::var_os("CUTAWAY_ANATOMY")
         .map(PathBuf::from)
@@ -154,4 +172,12 @@ fn main() {
         }
         None => println!("HuBMAP body skipped: set CUTAWAY_ANATOMY to the anatomy folder"),
     }
+}
+
+/// This process's peak resident memory (`VmHWM`), in MB.
+fn peak_mb() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb / 1024.0)
 }

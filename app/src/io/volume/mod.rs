@@ -538,8 +538,26 @@ fn layer_surfaces<T: csg::labels::LabelValue>(
 
 /// A volume as mesh parts: one per structure, named and coloured (what
 /// [`super::read_parts`] returns for a volume).
+/// A folder of masks is surfaced mask by mask as its files are read ([`mask_surfaces`]), never
+/// packed into a full-size label map.
 pub fn read_parts(path: &Path) -> anyhow::Result<Vec<super::Model>> {
+    if path.is_dir() {
+        let made = std::sync::Mutex::new(Vec::new());
+        let options = csg::labels::SurfaceOptions::default();
+        mask_surfaces::surfaces_each(path, &[], &options, &|_| true, &|_, surface| {
+            made.lock().unwrap_or_else(|e| e.into_inner()).extend(surface);
+            true
+        })?;
+        let mut made = made.into_inner().unwrap_or_else(|e| e.into_inner());
+        made.sort_by_key(|s| s.structure.value);
+        return Ok(made.into_iter().map(part_of).collect());
+    }
     parts_of(&read_volume(path, None)?)
+}
+
+fn part_of(s: StructureSurface) -> super::Model {
+    let color = s.structure.color.map(|c| c as f32 / 255.0);
+    super::Model::part(s.structure.name, Some(color), s.mesh)
 }
 
 /// A label volume's structures as mesh parts (see [`read_parts`]).
@@ -554,13 +572,7 @@ pub fn parts_of_with(
 ) -> anyhow::Result<Vec<super::Model>> {
     let path = &volume.source;
     let surfaces = surfaces(volume, None, progress).with_context(|| path.display().to_string())?;
-    Ok(surfaces
-        .into_iter()
-        .map(|s| {
-            let color = s.structure.color.map(|c| c as f32 / 255.0);
-            super::Model::part(s.structure.name, Some(color), s.mesh)
-        })
-        .collect())
+    Ok(surfaces.into_iter().map(part_of).collect())
 }
 
 #[cfg(test)]
