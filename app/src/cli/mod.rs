@@ -38,7 +38,7 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Open the GUI with meshes, directories of meshes, or a session file.
+    /// Open the GUI with meshes, label volumes, folders of masks or of meshes, or a session file.
     Open(open::OpenArgs),
     /// Print mesh facts (of a label volume: its surfaces, grid and labels).
     Info(info::InfoArgs),

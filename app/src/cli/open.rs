@@ -7,7 +7,8 @@ use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
 pub struct OpenArgs {
-    /// Meshes, directories of meshes, or one session file. None: the embedded default scene.
+    /// Meshes, label volumes (a folder of masks is shown structure by structure as it is read),
+    /// directories of meshes, or one session file. None: the embedded default scene.
     pub paths: Vec<PathBuf>,
     /// The intensity image (CT, MR) the segmentation was drawn on, shown on the cut walls.
     #[arg(long)]

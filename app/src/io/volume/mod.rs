@@ -545,7 +545,9 @@ pub fn read_parts(path: &Path) -> anyhow::Result<Vec<super::Model>> {
         let made = std::sync::Mutex::new(Vec::new());
         let options = csg::labels::SurfaceOptions::default();
         mask_surfaces::surfaces_each(path, &[], &options, &|_| true, &|_, surface| {
-            made.lock().unwrap_or_else(|e| e.into_inner()).extend(surface);
+            made.lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .extend(surface);
             true
         })?;
         let mut made = made.into_inner().unwrap_or_else(|e| e.into_inner());
