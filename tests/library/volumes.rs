@@ -379,6 +379,28 @@ fn info_on_a_volume_adds_grid_and_labels_to_the_mesh_fields() {
         serde_json::json!({"value": 1, "name": "ribs", "color": [253, 232, 158], "voxels": labels[0]["voxels"]})
     );
     assert!(labels[0]["voxels"].as_u64().unwrap() > 0);
+    // The same structures as a folder of masks, surfaced mask by mask: the same grid, every
+    // label's voxels (named after its file), the same surfaces in all.
+    let folder = dir.join("nifti_chest/per_structure");
+    let masks = run_json(&["info".as_ref(), folder.as_os_str(), "--json".as_ref()]);
+    assert_eq!(masks["dims"], json["dims"]);
+    assert_eq!(masks["spacing"], json["spacing"]);
+    for key in ["triangles", "vertices", "regions", "closed", "manifold"] {
+        assert_eq!(masks[key], json[key], "{key}");
+    }
+    let mut voxels: Vec<(String, u64)> = labels
+        .iter()
+        .map(|l| (l["name"].as_str().unwrap().to_owned(), l["voxels"].as_u64().unwrap()))
+        .collect();
+    let mut mask_voxels: Vec<(String, u64)> = masks["labels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| (l["name"].as_str().unwrap().to_owned(), l["voxels"].as_u64().unwrap()))
+        .collect();
+    voxels.sort();
+    mask_voxels.sort();
+    assert_eq!(mask_voxels, voxels);
 }
 
 /// A closed cube OBJ (outward).

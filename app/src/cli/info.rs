@@ -90,55 +90,92 @@ pub fn info_with_labels(path: &Path, labels: Option<&Path>) -> anyhow::Result<In
 
 fn volume_info(path: &Path, labels: Option<&Path>) -> anyhow::Result<Info> {
     use crate::io::volume::content::{VolumeContent, read_content};
+    if path.is_dir() {
+        return mask_folder_info(path, labels);
+    }
     let volume = match read_content(path, labels)? {
         VolumeContent::Labels(volume) => volume,
         VolumeContent::Image { image, reason } => return Ok(image_info(&image, reason)),
     };
-    let mut info = surfaces_info(&volume).with_context(|| path.display().to_string())?;
+    let mut info = surfaces_info(&|each| {
+        crate::io::volume::surfaces_each(
+            &volume,
+            csg::labels::SurfaceOptions::default(),
+            &|_| true,
+            each,
+        )
+    })
+    .with_context(|| path.display().to_string())?;
     info.dims = Some(volume.dims);
     info.spacing = Some(volume.spacing());
-    info.labels = Some(
-        volume
-            .structures
-            .iter()
-            .map(|s| LabelInfo {
-                value: s.value,
-                name: s.name.clone(),
-                color: s.color,
-                voxels: s.voxels,
-            })
-            .collect(),
-    );
+    info.labels = Some(label_infos(&volume.structures));
     Ok(info)
 }
 
-/// The mesh fields of a volume's label surfaces together, each surface measured by the worker
+/// A folder of masks, surfaced mask by mask as its files are read (never packed into a
+/// full-size label map).
+fn mask_folder_info(dir: &Path, labels: Option<&Path>) -> anyhow::Result<Info> {
+    use crate::io::volume::{color_table, mask_surfaces};
+    let table = match labels {
+        Some(table) => color_table::read(table)?,
+        None => Vec::new(),
+    };
+    let folder = std::sync::Mutex::new(None);
+    let mut info = surfaces_info(&|each| {
+        let options = csg::labels::SurfaceOptions::default();
+        let found = mask_surfaces::surfaces_each(dir, &table, &options, &|_| true, &|_, s| {
+            s.is_none_or(each)
+        })?;
+        *folder.lock().unwrap_or_else(|e| e.into_inner()) = Some(found);
+        Ok(())
+    })
+    .with_context(|| dir.display().to_string())?;
+    let folder = folder.into_inner().unwrap_or_else(|e| e.into_inner());
+    let folder = folder.expect("set when the surfaces were made");
+    let m = folder.world_from_voxel.matrix3;
+    info.dims = Some(folder.dims);
+    info.spacing = Some([m.x_axis.length(), m.y_axis.length(), m.z_axis.length()]);
+    info.labels = Some(label_infos(&folder.structures));
+    Ok(info)
+}
+
+fn label_infos(structures: &[crate::io::volume::Structure]) -> Vec<LabelInfo> {
+    structures
+        .iter()
+        .map(|s| LabelInfo {
+            value: s.value,
+            name: s.name.clone(),
+            color: s.color,
+            voxels: s.voxels,
+        })
+        .collect()
+}
+
+/// What takes each structure's surface as it is made; false stops.
+type SurfaceSink<'a> = dyn Fn(crate::io::volume::StructureSurface) -> bool + Sync + 'a;
+
+/// The mesh fields of a volume's label surfaces together (`make` hands each to the sink), each surface measured by the worker
 /// that made it and dropped: no surface is kept and none is copied into one large mesh. The
 /// surfaces are separate meshes, so vertices, triangles, volume and the box add up, and
 /// `closed`/`manifold` hold for all when they hold for each; a label's cavities are its own,
 /// so `regions` is the sum of each label's regions.
-fn surfaces_info(volume: &crate::io::volume::LabelVolume) -> anyhow::Result<Info> {
+fn surfaces_info(make: &dyn Fn(&SurfaceSink) -> anyhow::Result<()>) -> anyhow::Result<Info> {
     let total = std::sync::Mutex::new((Info::default(), csg::Aabb::EMPTY, 0usize));
-    crate::io::volume::surfaces_each(
-        volume,
-        csg::labels::SurfaceOptions::default(),
-        &|_| true,
-        &|surface| {
-            let one = label_surface_info(&surface.mesh);
-            let bbox = surface.mesh.bbox();
-            let mut total = total.lock().unwrap_or_else(|e| e.into_inner());
-            let (info, total_box, count) = &mut *total;
-            info.vertices += one.vertices;
-            info.triangles += one.triangles;
-            info.regions += one.regions;
-            info.closed = (*count == 0 || info.closed) && one.closed;
-            info.manifold = (*count == 0 || info.manifold) && one.manifold;
-            info.volume += one.volume;
-            *total_box = total_box.union(&bbox);
-            *count += 1;
-            true
-        },
-    )?;
+    make(&|surface: crate::io::volume::StructureSurface| {
+        let one = label_surface_info(&surface.mesh);
+        let bbox = surface.mesh.bbox();
+        let mut total = total.lock().unwrap_or_else(|e| e.into_inner());
+        let (info, total_box, count) = &mut *total;
+        info.vertices += one.vertices;
+        info.triangles += one.triangles;
+        info.regions += one.regions;
+        info.closed = (*count == 0 || info.closed) && one.closed;
+        info.manifold = (*count == 0 || info.manifold) && one.manifold;
+        info.volume += one.volume;
+        *total_box = total_box.union(&bbox);
+        *count += 1;
+        true
+    })?;
     let (mut info, bbox, _) = total.into_inner().unwrap_or_else(|e| e.into_inner());
     info.bbox_min = bbox.min.to_array();
     info.bbox_max = bbox.max.to_array();
