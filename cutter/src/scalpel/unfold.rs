@@ -18,11 +18,10 @@
 //! Deterministic and proportional to the moved vertices, so the window and `cutaway scalpel`
 //! still show the same positions bit for bit.
 
-use std::collections::{HashMap, HashSet};
-
 use glam::DVec3;
 
 use super::dyn_mesh::{DynMesh, prev};
+use super::fast_hash::{FastMap, FastSet};
 
 /// A surface triangle may turn at most this far (degrees) from its rest pose when opened.
 pub const MAX_TURN_DEG: f64 = 60.0;
@@ -44,7 +43,7 @@ const CORRECTION_KEEP: f64 = 0.75;
 
 /// The surface triangles with a moved corner, and where each moved vertex is in the list.
 struct Moved {
-    at: HashMap<u32, usize>,
+    at: FastMap<u32, usize>,
     /// Surface triangles with a moved corner, by their three corners (each once).
     triangles: Vec<[u32; 3]>,
     /// Per triangle, where its corners are in the moved list (the checks of every pass look
@@ -55,9 +54,9 @@ struct Moved {
 
 impl Moved {
     fn new(mesh: &DynMesh, moved: &[(u32, DVec3)]) -> Moved {
-        let at: HashMap<u32, usize> = moved.iter().enumerate().map(|(i, m)| (m.0, i)).collect();
+        let at: FastMap<u32, usize> = moved.iter().enumerate().map(|(i, m)| (m.0, i)).collect();
         let mut triangles: Vec<[u32; 3]> = Vec::new();
-        let mut seen: HashSet<u32> = HashSet::new();
+        let mut seen: FastSet<u32> = FastSet::default();
         let mut fan = Vec::new();
         for &(v, _) in moved.iter() {
             mesh.fan_into(v, &mut fan);
