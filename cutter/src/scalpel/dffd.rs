@@ -48,6 +48,7 @@ use glam::DVec3;
 use super::cut_grid::{Cell, CutGrid, cell_of};
 use super::dyn_mesh::{DynMesh, prev};
 use super::fast_hash::{FastMap, FastSet};
+use super::feet::Feet;
 pub use super::frames::{Frame, frames};
 use super::nearest_cut::{self, Balls};
 use super::step::Scalpel;
@@ -106,7 +107,7 @@ fn displacements(
     now: f64,
     onto_path: bool,
 ) -> Vec<(u32, DVec3)> {
-    let Some(inputs) = Inputs::new(scalpel, options, now, onto_path) else {
+    let Some(inputs) = Inputs::new(scalpel, options, now, onto_path, None) else {
         return Vec::new();
     };
     let mesh = scalpel.dyn_mesh();
@@ -135,11 +136,13 @@ pub(crate) struct Inputs {
 
 impl Inputs {
     /// `None` when nothing opens (no width, no cut).
+    /// `feet`: the samples' feet kept from before, valid for this mesh ([`super::feet`]).
     pub fn new(
         scalpel: &Scalpel,
         options: &OpenOptions,
         now: f64,
         onto_path: bool,
+        feet: Option<&mut Feet>,
     ) -> Option<Inputs> {
         let mesh = scalpel.dyn_mesh();
         let w = options.width;
@@ -162,7 +165,7 @@ impl Inputs {
         let taper_len = taper_length(w, scalpel.options().depth);
         // Per segment end, the lateral move onto the drawn path (see the module doc).
         let corrections = if onto_path {
-            super::drawn::corrections(mesh, &scalpel.drawn, segments, &frames, w)
+            super::drawn::corrections(mesh, &scalpel.drawn, segments, &frames, w, feet)
         } else {
             vec![[DVec3::ZERO; 2]; segments.len()]
         };

@@ -25,13 +25,15 @@
 //! inner vertex's side, and every folded patch it belongs to, lies within the margin of it
 //! (the tests compare both, bit for bit, on long strokes); everything else is exact by
 //! construction. Cost: the changed region, never the incision or the mesh, plus one pass over
-//! the segments to compare them.
+//! the segments to compare them (and to make their frames and corrections; the samples' feet on
+//! the surface those need, a search each, are kept between steps, [`super::feet`]).
 
 use glam::DVec3;
 
 use super::cut_grid::{Cell, CutGrid, cell_of, cells_within};
 use super::dffd::{Inputs, OpenOptions, Region, compute, taper_length};
 use super::fast_hash::{FastMap, FastSet};
+use super::feet::Feet;
 use super::step::{CutSegment, Scalpel};
 
 /// Cells of margin walked around the recomputed cells (see the module doc).
@@ -57,6 +59,8 @@ pub struct LiveOpening {
     moved: FastMap<u32, DVec3>,
     /// The vertices of `moved` by the cell of their rest position (may hold stale ids).
     by_cell: FastMap<Cell, Vec<u32>>,
+    /// The drawn samples' feet on the surface, kept for the path corrections.
+    feet: Feet,
 }
 
 /// What the kept opening was computed from.
@@ -104,7 +108,16 @@ impl LiveOpening {
         }
         let mesh = scalpel.dyn_mesh();
         let cursor = mesh.edit_cursor();
-        let Some(inputs) = Inputs::new(scalpel, options, now, true) else {
+        // The kept feet hold for the mesh of the last update: drop those its edits reach.
+        match self
+            .state
+            .as_ref()
+            .and_then(|st| mesh.edits_since(st.cursor))
+        {
+            Some(edits) => self.feet.forget(edits),
+            None => self.feet.clear(),
+        }
+        let Some(inputs) = Inputs::new(scalpel, options, now, true, Some(&mut self.feet)) else {
             self.state = None;
             self.moved.clear();
             self.by_cell.clear();

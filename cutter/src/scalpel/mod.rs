@@ -89,6 +89,7 @@ pub mod dffd;
 pub mod drawn;
 pub mod dyn_mesh;
 pub mod fast_hash;
+pub mod feet;
 pub mod frames;
 pub mod groove;
 pub mod invariants;
