@@ -11,10 +11,9 @@
 //! The live opening ([`super::live_opening`]) keeps one grid between steps and moves only the
 //! segments a step changed ([`CutGrid::insert`], [`CutGrid::remove`]).
 
-use std::collections::{HashMap, HashSet};
-
 use glam::DVec3;
 
+use super::fast_hash::{FastMap, FastSet};
 use super::step::CutSegment;
 
 /// A grid cell: the point's coordinates divided by the cell size, rounded down.
@@ -26,10 +25,32 @@ pub fn cell_of(p: DVec3, size: f64) -> Cell {
     (c.x as i64, c.y as i64, c.z as i64)
 }
 
+/// Adds to `cells` every cell of size `size` that holds a point within `radius` of `p`: the
+/// cells whose box comes that near (a ball, not the cube of cells around `p`'s: around a crack
+/// tip the cube held three times the cells, and the live opening recomputed all their vertices).
+/// Measured in cell units as [`cell_of`] divides, with a little slack, so that no cell holding
+/// such a point is missed to rounding.
+pub fn cells_within(cells: &mut FastSet<Cell>, p: DVec3, radius: f64, size: f64) {
+    let q = p / size;
+    let reach = radius / size * (1.0 + 1e-9) + 1e-9;
+    let (lo, hi) = ((q - reach).floor(), (q + reach).floor());
+    for x in lo.x as i64..=hi.x as i64 {
+        for y in lo.y as i64..=hi.y as i64 {
+            for z in lo.z as i64..=hi.z as i64 {
+                let corner = DVec3::new(x as f64, y as f64, z as f64);
+                let gap = (corner - q).max(q - (corner + 1.0)).max(DVec3::ZERO);
+                if gap.length_squared() <= reach * reach {
+                    cells.insert((x, y, z));
+                }
+            }
+        }
+    }
+}
+
 /// Segments by grid cell (see the module doc).
 pub struct CutGrid {
     size: f64,
-    cells: HashMap<Cell, Vec<usize>>,
+    cells: FastMap<Cell, Vec<usize>>,
     /// The cell last asked for and the segments around it (each once, in index order).
     last: Option<(i64, i64, i64)>,
     near: Vec<usize>,
@@ -40,7 +61,7 @@ impl CutGrid {
     pub fn new(segments: &[CutSegment], vertex_count: u32, size: f64) -> CutGrid {
         let mut grid = CutGrid {
             size,
-            cells: HashMap::new(),
+            cells: FastMap::default(),
             last: None,
             near: Vec::new(),
         };
@@ -92,7 +113,7 @@ impl CutGrid {
     }
 
     /// The segments listed in `cells`, each once, in index order.
-    pub fn segments_in(&self, cells: &HashSet<Cell>) -> Vec<usize> {
+    pub fn segments_in(&self, cells: &FastSet<Cell>) -> Vec<usize> {
         let mut out: Vec<usize> = cells
             .iter()
             .filter_map(|c| self.cells.get(c))
@@ -124,5 +145,47 @@ impl CutGrid {
             self.last = Some(c0);
         }
         &self.near
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cells_within_hold_every_point_of_the_ball_and_fewer_cells_than_the_cube() {
+        let size = 6.0;
+        let mut state = 12345u64;
+        let mut random = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..200 {
+            let p = DVec3::new(random(), random(), random()) * 40.0 - 20.0;
+            let radius = 8.0 * random();
+            let mut cells = FastSet::default();
+            cells_within(&mut cells, p, radius, size);
+            for _ in 0..200 {
+                let d = DVec3::new(random(), random(), random()) * 2.0 - 1.0;
+                let x = p + d.normalize_or_zero() * radius * random().sqrt();
+                assert!(
+                    cells.contains(&cell_of(x, size)),
+                    "{x:?} within {radius} of {p:?}, its cell missing"
+                );
+                // Points on the sphere itself too (the farthest the ball reaches).
+                let y = p + d.normalize_or_zero() * radius;
+                assert!(cells.contains(&cell_of(y, size)));
+            }
+            let reach = (radius / size).ceil() as usize + 1;
+            assert!(cells.len() <= (2 * reach + 1).pow(3));
+        }
+        // A ball of 8 around a cell's centre, cells of 6: not the 125 of the cube around it.
+        let mut cells = FastSet::default();
+        cells_within(&mut cells, DVec3::splat(3.0), 8.0, size);
+        assert!(cells.len() < 60, "{} cells", cells.len());
+        assert!(cells.contains(&(0, 0, 0)) && cells.contains(&(1, 0, 0)));
+        assert!(!cells.contains(&(2, 2, 2)));
     }
 }

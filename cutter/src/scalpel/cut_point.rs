@@ -186,6 +186,19 @@ pub fn closest_face_near(
     p: DVec3,
     limit: usize,
 ) -> Option<(u32, DVec3, f64)> {
+    closest_face_near_examining(mesh, v, p, limit, &mut Vec::new())
+}
+
+/// [`closest_face_near`], also listing in `examined` the triangles it examined (the answer
+/// depends on nothing else than them, their neighbours over twins and `v`'s triangles: the
+/// samples' feet kept between steps, [`super::feet`], are dropped when one of those changes).
+pub fn closest_face_near_examining(
+    mesh: &DynMesh,
+    v: u32,
+    p: DVec3,
+    limit: usize,
+    examined: &mut Vec<u32>,
+) -> Option<(u32, DVec3, f64)> {
     let mut best: Option<(u32, DVec3, f64)> = None;
     // On the surface (to rounding): no unvisited triangle can be nearer.
     let on_surface = 1e-9 * (1.0 + p.length());
@@ -193,6 +206,7 @@ pub fn closest_face_near(
         if best.is_some_and(|(_, _, d)| d <= on_surface && box_distance >= d) {
             return false;
         }
+        examined.push(t);
         if !mesh.is_wall(t) {
             let [a, b, c] = mesh.triangles[t as usize].map(|x| mesh.pos(x));
             let w = closest_on_triangle(p, a, b, c);

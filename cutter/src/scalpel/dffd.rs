@@ -41,13 +41,16 @@
 //! position bit for bit. The rest pose itself is never changed (cutting continues
 //! in the rest pose).
 
-use std::collections::{HashMap, HashSet, VecDeque};
+use std::collections::VecDeque;
 
 use glam::DVec3;
 
 use super::cut_grid::{Cell, CutGrid, cell_of};
 use super::dyn_mesh::{DynMesh, prev};
+use super::fast_hash::{FastMap, FastSet};
+use super::feet::Feet;
 pub use super::frames::{Frame, frames};
+use super::nearest_cut::{self, Balls};
 use super::step::Scalpel;
 
 /// How the incision opens.
@@ -104,7 +107,7 @@ fn displacements(
     now: f64,
     onto_path: bool,
 ) -> Vec<(u32, DVec3)> {
-    let Some(inputs) = Inputs::new(scalpel, options, now, onto_path) else {
+    let Some(inputs) = Inputs::new(scalpel, options, now, onto_path, None) else {
         return Vec::new();
     };
     let mesh = scalpel.dyn_mesh();
@@ -128,16 +131,18 @@ pub(crate) struct Inputs {
     pub corrections: Vec<[DVec3; 2]>,
     /// Crack tips: segment ends whose vertex was never copied.
     pub tips: Vec<DVec3>,
-    pub fixed: HashSet<u32>,
+    pub fixed: FastSet<u32>,
 }
 
 impl Inputs {
     /// `None` when nothing opens (no width, no cut).
+    /// `feet`: the samples' feet kept from before, valid for this mesh ([`super::feet`]).
     pub fn new(
         scalpel: &Scalpel,
         options: &OpenOptions,
         now: f64,
         onto_path: bool,
+        feet: Option<&mut Feet>,
     ) -> Option<Inputs> {
         let mesh = scalpel.dyn_mesh();
         let w = options.width;
@@ -160,7 +165,7 @@ impl Inputs {
         let taper_len = taper_length(w, scalpel.options().depth);
         // Per segment end, the lateral move onto the drawn path (see the module doc).
         let corrections = if onto_path {
-            super::drawn::corrections(mesh, &scalpel.drawn, segments, &frames, w)
+            super::drawn::corrections(mesh, &scalpel.drawn, segments, &frames, w, feet)
         } else {
             vec![[DVec3::ZERO; 2]; segments.len()]
         };
@@ -192,8 +197,8 @@ impl Inputs {
 /// it gives (`inner`) and those it walks over to give them as the whole computation would
 /// (`outer`, a margin of cells around `inner`).
 pub(crate) struct Region {
-    pub inner: HashSet<Cell>,
-    pub outer: HashSet<Cell>,
+    pub inner: FastSet<Cell>,
+    pub outer: FastSet<Cell>,
 }
 
 /// The opening of the vertices of `region` (every vertex when `None`): the field of the module
@@ -215,24 +220,13 @@ pub(crate) fn compute(
     let size = grid.size();
     let in_outer = |p: DVec3| region.is_none_or(|g| g.outer.contains(&cell_of(p, size)));
     // Nearest point on the cut among the segments `near`: (distance, point, segment index).
-    let nearest = |p: DVec3, near: &[usize]| -> Option<(f64, DVec3, usize)> {
-        let mut best: Option<(f64, DVec3, usize)> = None;
-        for &i in near {
-            let s = &segments[i];
-            let ab = s.pb - s.pa;
-            let l2 = ab.length_squared();
-            let u = if l2 > 0.0 {
-                ((p - s.pa).dot(ab) / l2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let c = s.pa + ab * u;
-            let d2 = c.distance_squared(p);
-            if best.is_none_or(|b| d2 < b.0) {
-                best = Some((d2, c, i));
-            }
-        }
-        best.map(|(d2, c, i)| (d2.sqrt(), c, i))
+    // `last` is the previous answer's segment, measured first (see [`nearest_cut`]).
+    let balls = Balls::new(segments);
+    let mut last: Option<usize> = None;
+    let mut nearest = |p: DVec3, near: &[usize]| -> Option<(f64, DVec3, usize)> {
+        let found = nearest_cut::nearest(segments, &balls, p, near, last);
+        last = found.map(|f| f.2).or(last);
+        found
     };
     // The correction at a point: the corrections at the ends of the segments `near` within
     // the support, weighted by inverse squared distance (exact at a lip vertex; smooth around
@@ -240,7 +234,7 @@ pub(crate) fn compute(
     // correction taken from it alone would squash the small triangles there).
     let correction_at = |p: DVec3, near: &[usize]| -> DVec3 {
         let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
-        for &i in near {
+        for &i in near.iter().filter(|&&i| balls.may_reach(i, p, r)) {
             let s = &segments[i];
             for (end, c) in [(s.pa, corrections[i][0]), (s.pb, corrections[i][1])] {
                 let d2 = end.distance_squared(p);
@@ -265,7 +259,7 @@ pub(crate) fn compute(
     // vertex takes the side of the first seed, in seed order, among those fewest surface edges
     // away: a region's vertices take the sides the whole walk gives them when its margin holds
     // those seeds and paths.)
-    let mut side: HashMap<u32, f64> = HashMap::new();
+    let mut side: FastMap<u32, f64> = FastMap::default();
     let mut corrected: Vec<DVec3> = Vec::new();
     let mut queue: VecDeque<u32> = VecDeque::new();
     let mut fan = Vec::new();
@@ -356,7 +350,7 @@ pub(crate) fn compute(
     // and the two walls are alike.
     floors.sort_unstable();
     floors.dedup();
-    let index: HashMap<u32, usize> = out.iter().enumerate().map(|(k, m)| (m.0, k)).collect();
+    let index: FastMap<u32, usize> = out.iter().enumerate().map(|(k, m)| (m.0, k)).collect();
     let mut floor_moves = Vec::new();
     for f in floors {
         mesh.fan_into(f, &mut fan);

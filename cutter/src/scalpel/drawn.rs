@@ -19,16 +19,13 @@
 
 use glam::DVec3;
 
-use super::cut_point::{closest_face_near, segment_parameter};
+use super::cut_point::segment_parameter;
 use super::dyn_mesh::DynMesh;
+use super::feet::{Feet, foot};
 use super::frames::Frame;
 use super::step::CutSegment;
 
 pub use super::sample::Sample;
-
-/// Triangles examined to put a sample onto the surface (searched outward from the cut vertex
-/// its step reached).
-const FOOT_SEARCH: usize = 64;
 
 /// A correction is used only when the smoothed path lies within this many (segment length plus
 /// width) of the segment's end.
@@ -105,13 +102,15 @@ fn nearest_on(points: &[DVec3], lo: usize, hi: usize, p: DVec3) -> DVec3 {
 /// segment's frame lateral from the end to the nearest point of its stroke's drawn path,
 /// smoothed over `width` (see the module doc). Zero where the segment has no sample or the path
 /// is out of reach. Cost: the samples of the strokes the segments come from, plus a few samples
-/// of path per segment.
+/// of path per segment; each sample's foot on the surface is searched for unless `feet` keeps
+/// it ([`super::feet`]).
 pub fn corrections(
     mesh: &DynMesh,
     samples: &[Sample],
     segments: &[CutSegment],
     frames: &[Frame],
     width: f64,
+    mut feet: Option<&mut Feet>,
 ) -> Vec<[DVec3; 2]> {
     let mut out = vec![[DVec3::ZERO; 2]; segments.len()];
     if samples.is_empty() || width.is_nan() || width <= 0.0 {
@@ -164,11 +163,11 @@ pub fn corrections(
                 .zip(start)
                 .map(|(k, v)| {
                     let q = samples[k].point;
-                    v.and_then(|v| closest_face_near(mesh, v, q, FOOT_SEARCH))
-                        .map_or(q, |(t, b, _)| {
-                            let [x, y, z] = mesh.triangles()[t as usize].map(|u| mesh.pos(u));
-                            x * b.x + y * b.y + z * b.z
-                        })
+                    match (v, feet.as_deref_mut()) {
+                        (None, _) => q,
+                        (Some(v), Some(feet)) => feet.foot(mesh, v, q),
+                        (Some(v), None) => foot(mesh, v, q),
+                    }
                 })
                 .collect();
             smoothed[lo..=hi].copy_from_slice(&smooth(&points, 0.5 * width));

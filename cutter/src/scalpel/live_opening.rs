@@ -11,8 +11,9 @@
 //! recomputes the cells of the cut grid around what changed:
 //! - a vertex's opening depends on the cut segments within the support `r` of it (nearest
 //!   segment, frame, ramp, corrections) and on the crack tips within the taper length of its
-//!   nearest cut point, so the *inner* region is the cells within one cell (`r`) of a changed
-//!   segment's ends or a changed vertex, and within `taper + r` of a tip that appeared or went;
+//!   nearest cut point, so the *inner* region is the cells holding a point within `r` of a
+//!   changed segment or vertex, or within `taper + r` of a tip that appeared or went (a ball of
+//!   cells, [`cells_within`]: the cube of cells around a tip held three times as many);
 //! - which side of the cut a vertex opens to is decided by a walk from the lips (the first
 //!   lip, in seed order, fewest surface edges away), and the unfolding pulls back folded
 //!   triangles together with their neighbours; the walk, the seeds and the unfolding are run
@@ -24,14 +25,15 @@
 //! inner vertex's side, and every folded patch it belongs to, lies within the margin of it
 //! (the tests compare both, bit for bit, on long strokes); everything else is exact by
 //! construction. Cost: the changed region, never the incision or the mesh, plus one pass over
-//! the segments to compare them.
-
-use std::collections::{HashMap, HashSet};
+//! the segments to compare them (and to make their frames and corrections; the samples' feet on
+//! the surface those need, a search each, are kept between steps, [`super::feet`]).
 
 use glam::DVec3;
 
-use super::cut_grid::{Cell, CutGrid, cell_of};
+use super::cut_grid::{Cell, CutGrid, cell_of, cells_within};
 use super::dffd::{Inputs, OpenOptions, Region, compute, taper_length};
+use super::fast_hash::{FastMap, FastSet};
+use super::feet::Feet;
 use super::step::{CutSegment, Scalpel};
 
 /// Cells of margin walked around the recomputed cells (see the module doc).
@@ -54,9 +56,11 @@ pub struct OpeningUpdate {
 pub struct LiveOpening {
     state: Option<State>,
     /// Every vertex the opening moves, with its display position.
-    moved: HashMap<u32, DVec3>,
+    moved: FastMap<u32, DVec3>,
     /// The vertices of `moved` by the cell of their rest position (may hold stale ids).
-    by_cell: HashMap<Cell, Vec<u32>>,
+    by_cell: FastMap<Cell, Vec<u32>>,
+    /// The drawn samples' feet on the surface, kept for the path corrections.
+    feet: Feet,
 }
 
 /// What the kept opening was computed from.
@@ -77,7 +81,7 @@ impl LiveOpening {
     }
 
     /// The vertices the opening moves, with their display positions (in no order).
-    pub fn moved(&self) -> &HashMap<u32, DVec3> {
+    pub fn moved(&self) -> &FastMap<u32, DVec3> {
         &self.moved
     }
 
@@ -104,7 +108,16 @@ impl LiveOpening {
         }
         let mesh = scalpel.dyn_mesh();
         let cursor = mesh.edit_cursor();
-        let Some(inputs) = Inputs::new(scalpel, options, now, true) else {
+        // The kept feet hold for the mesh of the last update: drop those its edits reach.
+        match self
+            .state
+            .as_ref()
+            .and_then(|st| mesh.edits_since(st.cursor))
+        {
+            Some(edits) => self.feet.forget(edits),
+            None => self.feet.clear(),
+        }
+        let Some(inputs) = Inputs::new(scalpel, options, now, true, Some(&mut self.feet)) else {
             self.state = None;
             self.moved.clear();
             self.by_cell.clear();
@@ -146,8 +159,10 @@ impl LiveOpening {
         };
         let size = state.grid.size();
         let (old, new) = (&state.inputs, &inputs);
-        // Points whose cells (and the cells `reach` around them) change.
-        let mut dirty: Vec<(DVec3, i64)> = Vec::new();
+        // Cells recomputed: those holding a point within the given distance of a change (see
+        // the module doc).
+        let mut inner: FastSet<Cell> = FastSet::default();
+        let r = new.r;
         for i in 0..state.segments.len().max(segments.len()) {
             let (before, after) = (state.segments.get(i), segments.get(i));
             let same = match (before, after) {
@@ -163,21 +178,26 @@ impl LiveOpening {
             if same {
                 continue;
             }
+            // Every point within `r` of the segment is within `r` and half its length of its
+            // middle.
+            let around = |s: &CutSegment| (s.pa.midpoint(s.pb), r + 0.5 * s.pa.distance(s.pb));
             if let Some(a) = before {
-                dirty.extend([(a.pa, 1), (a.pb, 1)]);
+                let (p, reach) = around(a);
+                cells_within(&mut inner, p, reach, size);
                 state.grid.remove(i, a);
             }
             if let Some(b) = after {
-                dirty.extend([(b.pa, 1), (b.pb, 1)]);
+                let (p, reach) = around(b);
+                cells_within(&mut inner, p, reach, size);
                 state.grid.insert(i, b, nv);
             }
         }
-        let tip_reach = ((new.taper_len + new.r) / size).ceil() as i64;
+        let tip_reach = new.taper_len + r;
         for t in old.tips.iter().filter(|t| !new.tips.contains(t)) {
-            dirty.push((*t, tip_reach));
+            cells_within(&mut inner, *t, tip_reach, size);
         }
         for t in new.tips.iter().filter(|t| !old.tips.contains(t)) {
-            dirty.push((*t, tip_reach));
+            cells_within(&mut inner, *t, tip_reach, size);
         }
         let common = state
             .fixed
@@ -187,22 +207,19 @@ impl LiveOpening {
             .count();
         for &v in state.fixed[common..].iter().chain(&scalpel.fixed[common..]) {
             if v < nv {
-                dirty.push((mesh.pos(v), 1));
+                cells_within(&mut inner, mesh.pos(v), r, size);
             }
         }
         for &v in edits {
             if let Some(p) = self.moved.remove(&v) {
-                dirty.push((p, 1));
+                // Its display position: its rest one is gone; the cells around it.
+                grow(&mut inner, cell_of(p, size), 1);
             }
             if v < nv {
-                dirty.push((mesh.pos(v), 1));
+                cells_within(&mut inner, mesh.pos(v), r, size);
             }
         }
-        let mut inner: HashSet<Cell> = HashSet::new();
-        for &(p, reach) in &dirty {
-            grow(&mut inner, cell_of(p, size), reach);
-        }
-        let mut outer = HashSet::with_capacity(inner.len() * 4);
+        let mut outer = FastSet::with_capacity_and_hasher(inner.len() * 4, Default::default());
         for &c in &inner {
             grow(&mut outer, c, MARGIN);
         }
@@ -255,7 +272,7 @@ impl LiveOpening {
 }
 
 /// Adds to `cells` the cells within `reach` cells of `c` (a cube).
-fn grow(cells: &mut HashSet<Cell>, c: Cell, reach: i64) {
+fn grow(cells: &mut FastSet<Cell>, c: Cell, reach: i64) {
     for x in c.0 - reach..=c.0 + reach {
         for y in c.1 - reach..=c.1 + reach {
             for z in c.2 - reach..=c.2 + reach {

@@ -18,11 +18,10 @@
 //! Deterministic and proportional to the moved vertices, so the window and `cutaway scalpel`
 //! still show the same positions bit for bit.
 
-use std::collections::{HashMap, HashSet};
-
 use glam::DVec3;
 
 use super::dyn_mesh::{DynMesh, prev};
+use super::fast_hash::{FastMap, FastSet};
 
 /// A surface triangle may turn at most this far (degrees) from its rest pose when opened.
 pub const MAX_TURN_DEG: f64 = 60.0;
@@ -44,20 +43,24 @@ const CORRECTION_KEEP: f64 = 0.75;
 
 /// The surface triangles with a moved corner, and where each moved vertex is in the list.
 struct Moved {
-    at: HashMap<u32, usize>,
+    at: FastMap<u32, usize>,
     /// Surface triangles with a moved corner, by their three corners (each once).
     triangles: Vec<[u32; 3]>,
     /// Per triangle, where its corners are in the moved list (the checks of every pass look
     /// them up here, not in `at`), their rest positions and its rest normal.
     slots: Vec<[Option<usize>; 3]>,
     rest: Vec<([DVec3; 3], DVec3)>,
+    /// Per moved vertex `i`, the triangles it is a corner of:
+    /// `corner_of[corner_start[i]..corner_start[i + 1]]`.
+    corner_start: Vec<usize>,
+    corner_of: Vec<usize>,
 }
 
 impl Moved {
     fn new(mesh: &DynMesh, moved: &[(u32, DVec3)]) -> Moved {
-        let at: HashMap<u32, usize> = moved.iter().enumerate().map(|(i, m)| (m.0, i)).collect();
+        let at: FastMap<u32, usize> = moved.iter().enumerate().map(|(i, m)| (m.0, i)).collect();
         let mut triangles: Vec<[u32; 3]> = Vec::new();
-        let mut seen: HashSet<u32> = HashSet::new();
+        let mut seen: FastSet<u32> = FastSet::default();
         let mut fan = Vec::new();
         for &(v, _) in moved.iter() {
             mesh.fan_into(v, &mut fan);
@@ -80,11 +83,54 @@ impl Moved {
                 (p, (p[1] - p[0]).cross(p[2] - p[0]))
             })
             .collect();
+        let slots: Vec<[Option<usize>; 3]> = slots;
+        let mut corner_start = vec![0; moved.len() + 1];
+        for &i in slots.iter().flatten().flatten() {
+            corner_start[i + 1] += 1;
+        }
+        for i in 0..moved.len() {
+            corner_start[i + 1] += corner_start[i];
+        }
+        let mut corner_of = vec![0; corner_start[moved.len()]];
+        let mut fill = corner_start.clone();
+        for (k, s) in slots.iter().enumerate() {
+            for &i in s.iter().flatten() {
+                corner_of[fill[i]] = k;
+                fill[i] += 1;
+            }
+        }
         Moved {
             at,
             triangles,
             slots,
             rest,
+            corner_start,
+            corner_of,
+        }
+    }
+
+    /// Brings `folding` (per triangle, whether `test` holds) up to date: every triangle on the
+    /// first pass (`changed` is `None`), afterwards only those with a corner among `changed`
+    /// (indices into the moved list: the only ones whose shown corners moved since, so the
+    /// others' answers stand). A pass costs what it changed, not the whole region.
+    fn refold(
+        &self,
+        folding: &mut Vec<bool>,
+        changed: Option<&[usize]>,
+        test: impl Fn(usize) -> bool,
+    ) {
+        match changed {
+            None => {
+                folding.clear();
+                folding.extend((0..self.triangles.len()).map(&test));
+            }
+            Some(changed) => {
+                for &i in changed {
+                    for &k in &self.corner_of[self.corner_start[i]..self.corner_start[i + 1]] {
+                        folding[k] = test(k);
+                    }
+                }
+            }
         }
     }
 
@@ -111,16 +157,19 @@ pub fn unfold_correction(mesh: &DynMesh, moved: &mut [(u32, DVec3)], correction:
         return;
     }
     let m = Moved::new(mesh, moved);
+    let mut folding = Vec::new();
+    let mut shrink: Vec<usize> = Vec::new();
     for pass in 0..=CORRECTION_PASSES {
-        let mut shrink: Vec<usize> = Vec::new();
-        for (k, tri) in m.triangles.iter().enumerate() {
-            if m.folds(k, |i| moved[i].1) && !m.folds(k, |i| moved[i].1 - correction[i]) {
-                for &v in tri {
-                    if m.at.contains_key(&v) {
-                        for c in std::iter::once(v).chain(mesh.copies(v)) {
-                            if let Some(&i) = m.at.get(&c) {
-                                shrink.push(i);
-                            }
+        m.refold(&mut folding, (pass > 0).then_some(&shrink[..]), |k| {
+            m.folds(k, |i| moved[i].1) && !m.folds(k, |i| moved[i].1 - correction[i])
+        });
+        shrink.clear();
+        for (tri, _) in m.triangles.iter().zip(&folding).filter(|f| *f.1) {
+            for &v in tri {
+                if m.at.contains_key(&v) {
+                    for c in std::iter::once(v).chain(mesh.copies(v)) {
+                        if let Some(&i) = m.at.get(&c) {
+                            shrink.push(i);
                         }
                     }
                 }
@@ -131,7 +180,7 @@ pub fn unfold_correction(mesh: &DynMesh, moved: &mut [(u32, DVec3)], correction:
         }
         shrink.sort_unstable();
         shrink.dedup();
-        for i in shrink {
+        for &i in &shrink {
             let keep = if pass == CORRECTION_PASSES {
                 0.0
             } else {
@@ -155,18 +204,23 @@ pub fn unfold(mesh: &DynMesh, moved: &mut Vec<(u32, DVec3)>) {
     let (at, triangles) = (&m.at, &m.triangles);
     let rest = |v: u32| mesh.pos(v);
     let mut fan = Vec::new();
+    let mut folding = Vec::new();
+    let mut changed: Vec<usize> = Vec::new();
     for pass in 0..=PASSES {
+        m.refold(&mut folding, (pass > 0).then_some(&changed[..]), |k| {
+            m.folds(k, |i| moved[i].1)
+        });
         let mut shrink: Vec<u32> = Vec::new();
-        for (k, tri) in triangles.iter().enumerate() {
-            if m.folds(k, |i| moved[i].1) {
-                shrink.extend(tri.iter().copied().filter(|v| at.contains_key(v)));
-            }
+        for (tri, _) in triangles.iter().zip(&folding).filter(|f| *f.1) {
+            shrink.extend(tri.iter().copied().filter(|v| at.contains_key(v)));
         }
         if shrink.is_empty() {
             break;
         }
         shrink.sort_unstable();
         shrink.dedup();
+        changed.clear();
+        changed.extend(shrink.iter().map(|v| at[v]));
         if pass < SMOOTHING {
             // The corners take the mean displacement of themselves and their moved neighbours
             // over surface triangles (all on their side of the cut: a lip's surface fan never
@@ -245,6 +299,36 @@ mod tests {
             worst = worst.max(turn);
         }
         worst
+    }
+
+    #[test]
+    fn refolding_only_around_the_changed_corners_gives_the_full_answer() {
+        let (mesh, id) = grid();
+        let mut moved: Vec<(u32, DVec3)> = (0..=6)
+            .flat_map(|j| (0..=3).map(move |i| (i, j)))
+            .map(|(i, j)| (id(i, j), mesh.pos(id(i, j)) + DVec3::new(0.3, 0.0, 0.0)))
+            .collect();
+        let m = Moved::new(&mesh, &moved);
+        let mut folding = Vec::new();
+        m.refold(&mut folding, None, |k| m.folds(k, |i| moved[i].1));
+        assert!(!folding.iter().any(|&f| f));
+        // Push two vertices past their neighbours: the triangles around them fold.
+        let changed: Vec<usize> = [id(3, 2), id(1, 5)].iter().map(|v| m.at[v]).collect();
+        for &i in &changed {
+            moved[i].1 += DVec3::new(1.5, 0.4, 0.0);
+        }
+        let mut full = Vec::new();
+        m.refold(&mut full, None, |k| m.folds(k, |i| moved[i].1));
+        assert!(full.iter().any(|&f| f));
+        m.refold(&mut folding, Some(&changed), |k| m.folds(k, |i| moved[i].1));
+        assert_eq!(folding, full);
+        // Told nothing changed, it keeps its answers (so the pass costs only what changed).
+        let stale = folding.clone();
+        for &i in &changed {
+            moved[i].1 -= DVec3::new(1.5, 0.4, 0.0);
+        }
+        m.refold(&mut folding, Some(&[]), |k| m.folds(k, |i| moved[i].1));
+        assert_eq!(folding, stale);
     }
 
     #[test]

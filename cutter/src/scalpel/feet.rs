@@ -1,0 +1,148 @@
+//! The drawn samples' feet on the surface, kept between steps by the live opening.
+//!
+//! The path corrections ([`super::drawn::corrections`]) put each tool sample onto the surface
+//! first: the nearest point of the triangles searched outward from the cut vertex its step
+//! reached ([`closest_face_near`]). Every step recomputed the corrections of the whole incision,
+//! so every sample's foot: a search of [`FOOT_SEARCH`] triangles each, which made a third of
+//! a step's opening on a long stroke and grew with it. A foot only changes when the mesh
+//! changes where its search went, and a step edits the mesh around its own cut only.
+//!
+//! [`Feet`] keeps each foot, by its start vertex and sample, with the vertices its search
+//! depended on: those of the triangles it examined, of their neighbours over twins (the ones
+//! it could have examined next: their distances decided the order and the stop) and of the
+//! start vertex's triangles and its copies'. Every change of the mesh logs the vertices of the
+//! triangles it touches ([`DynMesh::edits_since`]): [`Feet::forget`] drops the feet watching
+//! one of them, so a kept foot is the one a new search would give, bit for bit.
+
+use glam::DVec3;
+
+use super::cut_point::closest_face_near_examining;
+use super::dyn_mesh::{DynMesh, is_real};
+use super::fast_hash::{FastMap, FastSet};
+
+/// Triangles examined to put a sample onto the surface (searched outward from the cut vertex
+/// its step reached).
+pub const FOOT_SEARCH: usize = 64;
+
+/// A foot's start vertex and sample (its coordinates' bits).
+type Key = (u32, [u64; 3]);
+
+/// The feet kept between steps (see the module doc).
+#[derive(Default)]
+pub struct Feet {
+    known: FastMap<Key, DVec3>,
+    /// The feet to drop when a vertex changes (may name feet already dropped).
+    watch: FastMap<u32, Vec<Key>>,
+}
+
+impl Feet {
+    /// Drops every foot.
+    pub fn clear(&mut self) {
+        self.known.clear();
+        self.watch.clear();
+    }
+
+    /// Drops the feet whose search depended on one of the vertices `edited`.
+    pub fn forget(&mut self, edited: &[u32]) {
+        for v in edited {
+            if let Some(keys) = self.watch.remove(v) {
+                for k in keys {
+                    self.known.remove(&k);
+                }
+            }
+        }
+        // Watches of dropped feet pile up; start over once they outnumber the feet by far.
+        if self.watch.len() > 64 * self.known.len() + 65_536 {
+            self.clear();
+        }
+    }
+
+    /// The foot of sample `q` searched from vertex `v` ([`foot`]), kept or searched now.
+    pub fn foot(&mut self, mesh: &DynMesh, v: u32, q: DVec3) -> DVec3 {
+        let key = (v, q.to_array().map(f64::to_bits));
+        if let Some(&p) = self.known.get(&key) {
+            return p;
+        }
+        let mut examined = Vec::new();
+        let p = search(mesh, v, q, &mut examined);
+        let mut seen: FastSet<u32> = FastSet::default();
+        let mut fan = Vec::new();
+        for s in std::iter::once(v).chain(mesh.copies(v)) {
+            mesh.fan_into(s, &mut fan);
+            seen.extend(fan.iter().map(|h| h / 3));
+        }
+        for &t in &examined {
+            seen.insert(t);
+            for k in 0..3 {
+                let g = mesh.twin(3 * t + k);
+                if is_real(g) {
+                    seen.insert(g / 3);
+                }
+            }
+        }
+        let mut watched: FastSet<u32> = FastSet::default();
+        for t in seen {
+            watched.extend(mesh.triangles()[t as usize]);
+        }
+        for w in watched {
+            self.watch.entry(w).or_default().push(key);
+        }
+        self.known.insert(key, p);
+        p
+    }
+}
+
+/// The foot of sample `q` on the surface, searched from cut vertex `v`: the nearest point of
+/// the triangles [`closest_face_near`] finds, or `q` itself when it finds none.
+pub fn foot(mesh: &DynMesh, v: u32, q: DVec3) -> DVec3 {
+    search(mesh, v, q, &mut Vec::new())
+}
+
+fn search(mesh: &DynMesh, v: u32, q: DVec3, examined: &mut Vec<u32>) -> DVec3 {
+    closest_face_near_examining(mesh, v, q, FOOT_SEARCH, examined).map_or(q, |(t, b, _)| {
+        let [x, y, z] = mesh.triangles()[t as usize].map(|u| mesh.pos(u));
+        x * b.x + y * b.y + z * b.z
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalpel::cut_point::closest_face_near;
+
+    #[test]
+    fn a_kept_foot_is_searched_again_once_the_mesh_changes_under_it_and_only_then() {
+        let mut mesh = DynMesh::from_mesh(&csg::testkit::icosphere(4, 10.0));
+        let v = 0;
+        let q = mesh.pos(v) * 1.02 + DVec3::new(0.3, -0.2, 0.1);
+        let far = (0..mesh.vertex_count() as u32)
+            .max_by(|&a, &b| {
+                let d = |x: u32| mesh.pos(x).distance_squared(mesh.pos(v));
+                d(a).total_cmp(&d(b))
+            })
+            .unwrap();
+        let mut feet = Feet::default();
+        let first = feet.foot(&mesh, v, q);
+        assert_eq!(first, foot(&mesh, v, q));
+        // A change on the far side of the sphere keeps the foot.
+        let cursor = mesh.edit_cursor();
+        mesh.set_pos(far, mesh.pos(far) * 1.01);
+        feet.forget(mesh.edits_since(cursor).unwrap());
+        assert_eq!(feet.known.len(), 1);
+        // Moving the corners of the triangle under the sample drops it; the kept foot is then
+        // the new one.
+        let cursor = mesh.edit_cursor();
+        let mut examined = Vec::new();
+        closest_face_near_examining(&mesh, v, q, FOOT_SEARCH, &mut examined);
+        let (t, _, _) = closest_face_near(&mesh, v, q, FOOT_SEARCH).unwrap();
+        assert!(examined.contains(&t));
+        for c in mesh.triangles()[t as usize] {
+            mesh.set_pos(c, mesh.pos(c) * 1.05);
+        }
+        feet.forget(mesh.edits_since(cursor).unwrap());
+        assert!(feet.known.is_empty());
+        let again = feet.foot(&mesh, v, q);
+        assert_eq!(again, foot(&mesh, v, q));
+        assert_ne!(again, first);
+    }
+}

@@ -1,0 +1,185 @@
+//! The nearest cut point to a vertex, and the cut segments within reach of it, for the opening
+//! ([`super::dffd`]).
+//!
+//! The opening asks, for every vertex within its support, which of the cut segments the cut
+//! grid lists around it ([`super::cut_grid::CutGrid::near`], some seventy on a groove opened
+//! two wide) is nearest, and blends the path corrections of the segment ends within the
+//! support. Measuring each of those segments exactly was most of the opening's time. So each
+//! segment is bounded by a ball (its middle, half its length, [`Balls`]): a segment whose ball
+//! lies farther than the best distance so far, or than the reach, cannot change the answer and
+//! is skipped after one distance to its middle. The segment nearest the vertex before (the walk
+//! goes from a vertex to its neighbours) is measured first, so most others are skipped.
+//!
+//! The answers are those of the plain scan in index order, bit for bit: the same segment (the
+//! lowest index among equally near ones), its point computed the same way; a skip needs the
+//! ball to be farther by a slack far above rounding (relative to the coordinates).
+
+use glam::DVec3;
+
+use super::step::CutSegment;
+
+/// Relative slack of a skip (times the largest coordinate and the distance).
+const SLACK: f64 = 1e-9;
+
+/// Per cut segment, a ball holding it: its middle and half its length (see the module doc).
+pub(crate) struct Balls {
+    balls: Vec<(DVec3, f64)>,
+}
+
+impl Balls {
+    pub fn new(segments: &[CutSegment]) -> Balls {
+        Balls {
+            balls: segments
+                .iter()
+                .map(|s| (s.pa.midpoint(s.pb), 0.5 * s.pa.distance(s.pb)))
+                .collect(),
+        }
+    }
+
+    /// Whether segment `i` may come within `reach` of `p` (false only when it cannot).
+    #[inline]
+    pub fn may_reach(&self, i: usize, p: DVec3, reach: f64) -> bool {
+        let (m, h) = self.balls[i];
+        let lim = reach + h + slack(p, reach);
+        m.distance_squared(p) <= lim * lim
+    }
+}
+
+/// The absolute slack of a skip at `p` for distance `d` (see [`SLACK`]).
+#[inline]
+fn slack(p: DVec3, d: f64) -> f64 {
+    SLACK * (1.0 + p.abs().max_element() + d)
+}
+
+/// The point of segment `s` nearest `p`, and its squared distance (the one formula every
+/// caller uses, so that equal inputs give equal bits).
+#[inline]
+fn point_on(s: &CutSegment, p: DVec3) -> (f64, DVec3) {
+    let ab = s.pb - s.pa;
+    let l2 = ab.length_squared();
+    let u = if l2 > 0.0 {
+        ((p - s.pa).dot(ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let c = s.pa + ab * u;
+    (c.distance_squared(p), c)
+}
+
+/// The nearest point to `p` on the segments `near` (indices into `segments`, ascending):
+/// (distance, point, segment index), the lowest index among equally near ones. `first`, when
+/// it is one of `near`, is measured first (see the module doc); the answer does not depend on
+/// it.
+pub(crate) fn nearest(
+    segments: &[CutSegment],
+    balls: &Balls,
+    p: DVec3,
+    near: &[usize],
+    first: Option<usize>,
+) -> Option<(f64, DVec3, usize)> {
+    let mut best: Option<(f64, DVec3, usize)> = None;
+    let mut reach = f64::INFINITY;
+    let mut consider = |i: usize| {
+        if !balls.may_reach(i, p, reach) {
+            return;
+        }
+        let (d2, c) = point_on(&segments[i], p);
+        if best.is_none_or(|b| d2 < b.0 || (d2 == b.0 && i < b.2)) {
+            best = Some((d2, c, i));
+            reach = d2.sqrt();
+        }
+    };
+    let first = first.filter(|f| near.binary_search(f).is_ok());
+    if let Some(f) = first {
+        consider(f);
+    }
+    for &i in near {
+        if Some(i) != first {
+            consider(i);
+        }
+    }
+    best.map(|(d2, c, i)| (d2.sqrt(), c, i))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plain(segments: &[CutSegment], p: DVec3, near: &[usize]) -> Option<(f64, DVec3, usize)> {
+        let mut best: Option<(f64, DVec3, usize)> = None;
+        for &i in near {
+            let (d2, c) = point_on(&segments[i], p);
+            if best.is_none_or(|b| d2 < b.0) {
+                best = Some((d2, c, i));
+            }
+        }
+        best.map(|(d2, c, i)| (d2.sqrt(), c, i))
+    }
+
+    fn segment(pa: DVec3, pb: DVec3) -> CutSegment {
+        CutSegment {
+            a: 0,
+            b: 1,
+            pa,
+            pb,
+            normal: DVec3::Z,
+            time: 0.0,
+        }
+    }
+
+    #[test]
+    fn nearest_is_the_plain_scan_bit_for_bit_whatever_is_measured_first() {
+        let mut state = 7u64;
+        let mut random = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        // A zigzag polyline far from the origin (large coordinates, short segments), with a
+        // repeated segment (an exact tie) and a degenerate one.
+        let mut points = vec![DVec3::new(100.0, -40.0, 7.0)];
+        for _ in 0..80 {
+            let last = *points.last().unwrap();
+            points.push(last + DVec3::new(0.4, random() - 0.5, 0.2 * (random() - 0.5)));
+        }
+        let mut segments: Vec<CutSegment> =
+            points.windows(2).map(|w| segment(w[0], w[1])).collect();
+        segments.push(segments[10]);
+        segments.push(segment(points[20], points[20]));
+        let balls = Balls::new(&segments);
+        let all: Vec<usize> = (0..segments.len()).collect();
+        let mut queries: Vec<DVec3> = points.clone();
+        for _ in 0..400 {
+            let k = (random() * 80.0) as usize;
+            let d = DVec3::new(random(), random(), random()) - 0.5;
+            queries.push(points[k].lerp(points[k + 1], random()) + d * 3.0);
+        }
+        for (n, &p) in queries.iter().enumerate() {
+            let want = plain(&segments, p, &all);
+            for first in [None, Some(0), Some(n % segments.len()), Some(10), Some(999)] {
+                let got = nearest(&segments, &balls, p, &all, first);
+                let bits = |x: Option<(f64, DVec3, usize)>| {
+                    x.map(|(d, c, i)| (d.to_bits(), c.to_array().map(f64::to_bits), i))
+                };
+                assert_eq!(bits(got), bits(want), "{p:?} first {first:?}");
+            }
+        }
+        // The repeated segment ties with the original: the lower index wins.
+        let on = points[10].lerp(points[11], 0.5);
+        assert_eq!(
+            nearest(&segments, &balls, on, &all, Some(80)).unwrap().2,
+            10
+        );
+    }
+
+    #[test]
+    fn a_ball_out_of_reach_holds_no_point_within_reach() {
+        let s = segment(DVec3::new(50.0, 0.0, 0.0), DVec3::new(51.0, 0.0, 0.0));
+        let balls = Balls::new(std::slice::from_ref(&s));
+        let p = DVec3::new(50.5, 2.0, 0.0);
+        assert!(balls.may_reach(0, p, 2.0));
+        assert!(!balls.may_reach(0, p, 1.0));
+        assert!(balls.may_reach(0, DVec3::new(53.0, 0.0, 0.0), 2.0));
+    }
+}
