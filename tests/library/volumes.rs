@@ -390,13 +390,23 @@ fn info_on_a_volume_adds_grid_and_labels_to_the_mesh_fields() {
     }
     let mut voxels: Vec<(String, u64)> = labels
         .iter()
-        .map(|l| (l["name"].as_str().unwrap().to_owned(), l["voxels"].as_u64().unwrap()))
+        .map(|l| {
+            (
+                l["name"].as_str().unwrap().to_owned(),
+                l["voxels"].as_u64().unwrap(),
+            )
+        })
         .collect();
     let mut mask_voxels: Vec<(String, u64)> = masks["labels"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|l| (l["name"].as_str().unwrap().to_owned(), l["voxels"].as_u64().unwrap()))
+        .map(|l| {
+            (
+                l["name"].as_str().unwrap().to_owned(),
+                l["voxels"].as_u64().unwrap(),
+            )
+        })
         .collect();
     voxels.sort();
     mask_voxels.sort();

@@ -210,7 +210,8 @@ enum Source {
     /// Gzip: the voxel bytes inflated with the header, then the decoder at the next one.
     Gzip {
         first: Vec<u8>,
-        reader: flate2::read::MultiGzDecoder<std::io::Cursor<Vec<u8>>>,
+        /// Boxed: the decoder's state is large beside the other variant.
+        reader: Box<flate2::read::MultiGzDecoder<std::io::Cursor<Vec<u8>>>>,
         compressed: usize,
     },
 }
@@ -221,7 +222,9 @@ impl SampleStream {
         let gz = file.starts_with(&[0x1f, 0x8b]);
         let compressed = file.len();
         let (mut head, mut reader) = if gz {
-            let mut reader = flate2::read::MultiGzDecoder::new(std::io::Cursor::new(file));
+            let mut reader = Box::new(flate2::read::MultiGzDecoder::new(std::io::Cursor::new(
+                file,
+            )));
             let mut head = Vec::new();
             (&mut reader)
                 .take(540)
