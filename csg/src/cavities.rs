@@ -62,12 +62,7 @@ impl Regions {
         if closed.iter().all(|&c| !c) {
             return components;
         }
-        let lattice = Lattice::for_box(&Aabb::from_points(&mesh.positions));
-        let lpoints: Vec<LPoint> = mesh
-            .positions
-            .iter()
-            .map(|&p| lattice.quantize(p).unwrap_or([0, 0, 0]))
-            .collect();
+        let lpoints = lattice_points(mesh);
         let boxes: Vec<IBox> = mesh
             .triangles
             .iter()
@@ -125,18 +120,22 @@ impl Regions {
             region_of_triangle,
             count: count as usize,
         };
-        let lattice = Lattice::for_box(&Aabb::from_points(&mesh.positions));
-        let lpoints: Vec<LPoint> = mesh
-            .positions
-            .iter()
-            .map(|&p| lattice.quantize(p).unwrap_or([0, 0, 0]))
-            .collect();
+        let lpoints = lattice_points(mesh);
         let closed = vec![true; components.count];
         component_volumes(mesh, &lpoints, &components, &closed)
             .iter()
             .filter(|&&v| v > 0)
             .count()
     }
+}
+
+/// The mesh's vertices on the lattice of its own box (the boolean's exact coordinates).
+fn lattice_points(mesh: &Mesh) -> Vec<LPoint> {
+    let lattice = Lattice::for_box(&Aabb::from_points(&mesh.positions));
+    mesh.positions
+        .iter()
+        .map(|&p| lattice.quantize(p).unwrap_or([0, 0, 0]))
+        .collect()
 }
 
 /// How many vertices of an inward component are tried before it is left as its own region

@@ -10,9 +10,6 @@
 //! - Segment `(t, f)`: `t ∩ f`, exactly two endpoints (EF points on t's edges, FE points on f's
 //!   edges), or empty.
 
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
-
 use glam::DVec3;
 
 use crate::adjacency::NO_EDGE;
@@ -20,36 +17,7 @@ use crate::exact::{self, HPoint, LPoint, Sign};
 use crate::phases::Phases;
 use crate::target::{Bvh, IBox, TargetIndex};
 
-/// A small, fast, non-cryptographic hasher for integer keys (FxHash's multiply-rotate).
-#[derive(Default, Clone, Copy)]
-pub(crate) struct FxHasher(u64);
-
-impl Hasher for FxHasher {
-    #[inline]
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    #[inline]
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(b as u64);
-        }
-    }
-    #[inline]
-    fn write_u32(&mut self, i: u32) {
-        self.write_u64(i as u64);
-    }
-    #[inline]
-    fn write_u64(&mut self, i: u64) {
-        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-    #[inline]
-    fn write_usize(&mut self, i: usize) {
-        self.write_u64(i as u64);
-    }
-}
-
-pub(crate) type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
+pub(crate) use crate::fast_hash::FastMap as FxMap;
 
 /// The cutter after validation: lattice coordinates, edges, components, boxes.
 #[derive(Clone, Debug)]

@@ -14,6 +14,7 @@ pub(crate) mod classify;
 pub(crate) mod contour;
 pub mod cutcheck;
 pub mod exact;
+pub mod fast_hash;
 pub(crate) mod intersect;
 pub mod labels;
 pub mod lattice;

@@ -214,33 +214,25 @@ fn image_info(image: &crate::io::intensity::IntensityImage, reason: String) -> I
 /// `volume_surfaces_exact` on every shared volume) instead of the full report: the regions are
 /// counted without edge adjacency or rays ([`csg::regions::Regions::count_of_valid_closed`]).
 fn label_surface_info(mesh: &csg::Mesh) -> Info {
-    let bbox = mesh.bbox();
     let made = !mesh.triangles.is_empty();
-    Info {
-        vertices: mesh.positions.len(),
-        triangles: mesh.triangles.len(),
-        regions: csg::regions::Regions::count_of_valid_closed(mesh),
-        closed: made,
-        manifold: made,
-        bbox_min: bbox.min.to_array(),
-        bbox_max: bbox.max.to_array(),
-        volume: mesh.volume(),
-        dims: None,
-        spacing: None,
-        labels: None,
-        intensity: None,
-    }
+    let regions = csg::regions::Regions::count_of_valid_closed(mesh);
+    info_of(mesh, regions, made, made)
 }
 
 fn mesh_info(mesh: &csg::Mesh) -> Info {
     let report = mesh.report();
+    info_of(mesh, report.regions, report.closed, report.manifold)
+}
+
+/// The mesh fields of `mesh` with its region count and closed/manifold facts.
+fn info_of(mesh: &csg::Mesh, regions: usize, closed: bool, manifold: bool) -> Info {
     let bbox = mesh.bbox();
     Info {
-        vertices: report.vertices,
-        triangles: report.triangles,
-        regions: report.regions,
-        closed: report.closed,
-        manifold: report.manifold,
+        vertices: mesh.positions.len(),
+        triangles: mesh.triangles.len(),
+        regions,
+        closed,
+        manifold,
         bbox_min: bbox.min.to_array(),
         bbox_max: bbox.max.to_array(),
         volume: mesh.volume(),

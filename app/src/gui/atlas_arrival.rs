@@ -59,19 +59,9 @@ pub fn status_ui(ui: &mut egui::Ui, app: &mut AppState) {
     let Some(fraction) = app.atlas.fraction() else {
         return;
     };
-    let mut cancel = false;
-    ui.horizontal(|ui| {
-        ui.label(format!("{}…", AtlasArrival::LABEL));
-        ui.add(
-            egui::ProgressBar::new(fraction)
-                .show_percentage()
-                .desired_width(180.0),
-        );
-        cancel = ui.button("Cancel").clicked();
-    });
-    if cancel {
+    let label = format!("{}…", AtlasArrival::LABEL);
+    if crate::gui::jobs::arrival_line_ui(ui, &label, fraction) {
         app.atlas.cancel();
         app.say("Head atlas labels cancelled: the skin stays");
     }
-    ui.ctx().request_repaint_after(Duration::from_millis(100));
 }

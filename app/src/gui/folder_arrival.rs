@@ -150,26 +150,16 @@ pub fn status_ui(ui: &mut egui::Ui, app: &mut AppState) {
     let Some(fraction) = app.folder.fraction() else {
         return;
     };
-    let mut cancel = false;
-    ui.horizontal(|ui| {
-        ui.label(format!(
-            "Opening {}: {} structures shown…",
-            file_label(&app.folder.folder),
-            app.folder.order.released()
-        ));
-        ui.add(
-            egui::ProgressBar::new(fraction)
-                .show_percentage()
-                .desired_width(180.0),
-        );
-        cancel = ui.button("Cancel").clicked();
-    });
-    if cancel {
+    let text = format!(
+        "Opening {}: {} structures shown…",
+        file_label(&app.folder.folder),
+        app.folder.order.released()
+    );
+    if crate::gui::jobs::arrival_line_ui(ui, &text, fraction) {
         let folder = file_label(&app.folder.folder);
         restore(app);
         app.say(format!(
             "Opening {folder} cancelled: the scene is as it was"
         ));
     }
-    ui.ctx().request_repaint_after(Duration::from_millis(100));
 }

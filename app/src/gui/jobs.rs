@@ -54,3 +54,20 @@ pub fn progress_window_ui<T: Send + 'static>(ctx: &egui::Context, jobs: &[Job<T>
     ctx.request_repaint_after(Duration::from_millis(100));
     cancel
 }
+
+/// The status bar's line for structures arriving in the background: `text`, a bar with the
+/// fraction done, and Cancel. True when Cancel was clicked. Keeps the bar moving.
+pub fn arrival_line_ui(ui: &mut egui::Ui, text: &str, fraction: f32) -> bool {
+    let mut cancel = false;
+    ui.horizontal(|ui| {
+        ui.label(text);
+        ui.add(
+            egui::ProgressBar::new(fraction)
+                .show_percentage()
+                .desired_width(180.0),
+        );
+        cancel = ui.button("Cancel").clicked();
+    });
+    ui.ctx().request_repaint_after(Duration::from_millis(100));
+    cancel
+}

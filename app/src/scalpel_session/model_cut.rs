@@ -239,7 +239,7 @@ impl ModelCut {
         for f in floors {
             visit(f, &mut stroke.touched, &mut more);
         }
-        let no_opening = cutter::scalpel::fast_hash::FastMap::default();
+        let no_opening = csg::fast_hash::FastMap::default();
         let displaced = if open.width > 0.0 {
             self.opening
                 .update(&self.scalpel, open, self.scalpel.clock());

@@ -13,8 +13,8 @@
 
 use glam::DVec3;
 
-use super::fast_hash::{FastMap, FastSet};
 use super::step::CutSegment;
+use csg::fast_hash::{FastMap, FastSet};
 
 /// A grid cell: the point's coordinates divided by the cell size, rounded down.
 pub type Cell = (i64, i64, i64);

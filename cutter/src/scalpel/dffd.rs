@@ -47,11 +47,11 @@ use glam::DVec3;
 
 use super::cut_grid::{Cell, CutGrid, cell_of};
 use super::dyn_mesh::{DynMesh, prev};
-use super::fast_hash::{FastMap, FastSet};
 use super::feet::Feet;
 pub use super::frames::{Frame, frames};
 use super::nearest_cut::{self, Balls};
 use super::step::Scalpel;
+use csg::fast_hash::{FastMap, FastSet};
 
 /// How the incision opens.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -18,7 +18,7 @@ use glam::DVec3;
 
 use super::cut_point::closest_face_near_examining;
 use super::dyn_mesh::{DynMesh, is_real};
-use super::fast_hash::{FastMap, FastSet};
+use csg::fast_hash::{FastMap, FastSet};
 
 /// Triangles examined to put a sample onto the surface (searched outward from the cut vertex
 /// its step reached).

@@ -32,9 +32,9 @@ use glam::DVec3;
 
 use super::cut_grid::{Cell, CutGrid, cell_of, cells_within};
 use super::dffd::{Inputs, OpenOptions, Region, compute, taper_length};
-use super::fast_hash::{FastMap, FastSet};
 use super::feet::Feet;
 use super::step::{CutSegment, Scalpel};
+use csg::fast_hash::{FastMap, FastSet};
 
 /// Cells of margin walked around the recomputed cells (see the module doc).
 pub const MARGIN: i64 = 1;

@@ -88,7 +88,6 @@ pub mod cut_point;
 pub mod dffd;
 pub mod drawn;
 pub mod dyn_mesh;
-pub mod fast_hash;
 pub mod feet;
 pub mod frames;
 pub mod groove;

@@ -21,7 +21,7 @@
 use glam::DVec3;
 
 use super::dyn_mesh::{DynMesh, prev};
-use super::fast_hash::{FastMap, FastSet};
+use csg::fast_hash::{FastMap, FastSet};
 
 /// A surface triangle may turn at most this far (degrees) from its rest pose when opened.
 pub const MAX_TURN_DEG: f64 = 60.0;

@@ -1,12 +1,10 @@
-//! Hash maps and sets for the opening's small integer keys (vertex ids, grid cells).
+//! Hash maps and sets for small integer keys: vertex, edge and face ids, grid cells.
 //!
-//! The live opening ([`super::live_opening`]) and the field it recomputes ([`super::dffd`],
-//! [`super::unfold`]) look up a vertex id or a grid cell in a map several times per vertex
-//! they visit. The standard library's default hasher (SipHash, keyed at random against
-//! collision attacks) took a large share of each step; these keys are our own vertex ids and
-//! cells, not untrusted input, so a multiply-rotate hash (FxHash's) is enough. Nothing reads
-//! these maps in iteration order where it could change a result (the results are sorted, or
-//! only looked up), so the hasher does not change the opening.
+//! The boolean's intersection stage and the scalpel's live opening look such keys up several
+//! times per element they visit. The standard library's default hasher (SipHash, keyed at
+//! random against collision attacks) took a large share of that time; these keys are our own
+//! ids, not untrusted input, so a multiply-rotate hash (FxHash's) is enough. A caller must not
+//! let a map's iteration order decide a result (sort, or only look up); none does.
 
 use std::collections::{HashMap, HashSet};
 use std::hash::{BuildHasherDefault, Hasher};
