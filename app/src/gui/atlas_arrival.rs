@@ -35,22 +35,12 @@ pub fn poll(app: &mut AppState) {
 }
 
 fn add_structures(app: &mut AppState, models: Vec<Model>, took: Duration) {
-    let first = app.scene.models.len();
     let count = models.len();
-    let added = crate::scene::open::structures(models, first);
-    for scene in app.scenes_mut() {
-        scene.models.extend(added.iter().cloned());
-    }
+    app.append_arrived(models);
     app.say(format!(
         "Loaded the head atlas: {count} structures in {:.1} s, {} triangles",
         took.as_secs_f64(),
-        crate::gui::panels::status_bar::grouped(
-            app.scene
-                .models
-                .iter()
-                .map(|m| m.model.mesh.triangle_count())
-                .sum()
-        )
+        crate::gui::panels::status_bar::grouped(crate::gui::app::triangle_count(&app.scene))
     ));
 }
 

@@ -34,17 +34,7 @@ pub fn start(app: &mut AppState, ctx: &egui::Context, folder: PathBuf) {
 
 /// Shows what has come, once per frame, and ends the arrival when the worker is done.
 pub fn poll(app: &mut AppState) {
-    let Some(outcomes) = app.folder.outcomes.as_ref() else {
-        return;
-    };
-    let came: Vec<_> = outcomes.try_iter().collect();
-    for (file, model) in came {
-        app.folder.order.put(file, model);
-    }
-    let ready = app.folder.order.ready();
-    if !ready.is_empty() {
-        show(app, ready);
-    }
+    show_what_came(app);
     let Some(job) = app.folder.job.as_mut() else {
         return;
     };
@@ -55,27 +45,29 @@ pub fn poll(app: &mut AppState) {
     match result {
         Ok(count) => {
             // Every outcome was sent before the result.
-            let outcomes = app.folder.outcomes.take();
-            for (file, model) in outcomes.iter().flat_map(|o| o.try_iter()) {
-                app.folder.order.put(file, model);
-            }
-            let ready = app.folder.order.ready();
-            if !ready.is_empty() {
-                show(app, ready);
-            }
+            show_what_came(app);
             finish(app, count, took);
         }
+        Err(e) if is_cancelled(&e) => cancel(app),
         Err(e) => {
-            let folder = file_label(&app.folder.folder);
             restore(app);
-            if is_cancelled(&e) {
-                app.say(format!(
-                    "Opening {folder} cancelled: the scene is as it was"
-                ));
-            } else {
-                app.complain(&e);
-            }
+            app.complain(&e);
         }
+    }
+}
+
+/// Takes the outcomes the worker has sent and shows those whose turn has come.
+fn show_what_came(app: &mut AppState) {
+    let Some(outcomes) = app.folder.outcomes.as_ref() else {
+        return;
+    };
+    let came: Vec<_> = outcomes.try_iter().collect();
+    for (file, model) in came {
+        app.folder.order.put(file, model);
+    }
+    let ready = app.folder.order.ready();
+    if !ready.is_empty() {
+        show(app, ready);
     }
 }
 
@@ -95,11 +87,7 @@ fn show(app: &mut AppState, models: Vec<Model>) {
         app.last_committed = app.scene.clone();
         app.folder.first_shown = app.folder.job.as_ref().map(|j| j.started.elapsed());
     }
-    let first = app.scene.models.len();
-    let added = crate::scene::open::structures(models, first);
-    for scene in app.scenes_mut() {
-        scene.models.extend(added.iter().cloned());
-    }
+    app.append_arrived(models);
     match app.folder.framed {
         None => {
             crate::gui::viewport::view_menu::orient_new_scene(app, false, true);
@@ -123,13 +111,16 @@ fn finish(app: &mut AppState, count: usize, took: Duration) {
         "Loaded {folder}: {count} structures in {:.1} s (the first shown after {:.1} s), {} triangles",
         took.as_secs_f64(),
         first.as_secs_f64(),
-        crate::gui::panels::status_bar::grouped(
-            app.scene
-                .models
-                .iter()
-                .map(|m| m.model.mesh.triangle_count())
-                .sum()
-        )
+        crate::gui::panels::status_bar::grouped(crate::gui::app::triangle_count(&app.scene))
+    ));
+}
+
+/// Cancel: the arrival stopped, the scene the user had brought back, and said.
+fn cancel(app: &mut AppState) {
+    let folder = file_label(&app.folder.folder);
+    restore(app);
+    app.say(format!(
+        "Opening {folder} cancelled: the scene is as it was"
     ));
 }
 
@@ -156,10 +147,6 @@ pub fn status_ui(ui: &mut egui::Ui, app: &mut AppState) {
         app.folder.order.released()
     );
     if crate::gui::jobs::arrival_line_ui(ui, &text, fraction) {
-        let folder = file_label(&app.folder.folder);
-        restore(app);
-        app.say(format!(
-            "Opening {folder} cancelled: the scene is as it was"
-        ));
+        cancel(app);
     }
 }

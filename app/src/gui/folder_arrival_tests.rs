@@ -2,48 +2,40 @@
 //! are drawn while the other files are read, in file order at their final places, with the
 //! progress and Cancel in the status bar; Cancel brings back the scene the user had.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 
-use super::{CutawayApp, StartOptions};
+use super::CutawayApp;
+use super::state::folder::Outcome;
+use super::volume_jobs_tests::step_until;
 use crate::io::Model;
 
+/// A window on the skin alone, settled.
 fn window(name: &str) -> Harness<'static, CutawayApp> {
-    let state_dir = std::env::temp_dir().join(format!(
-        "cutaway-folder-arrival-{name}-{}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&state_dir);
-    std::fs::create_dir_all(&state_dir).expect("state dir");
-    let skin = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets/spl_head")
-        .join(crate::anatomy::default_scene::SKIN_FILE);
-    let start = StartOptions {
-        paths: vec![skin],
-        state_dir,
-        offer_recovery: false,
-    };
-    let mut h = Harness::builder()
-        .with_size(egui::vec2(1280.0, 800.0))
-        .with_max_steps(4)
-        .with_accessibility_check(false)
-        .build_eframe(move |cc| CutawayApp::new(cc, start));
+    let mut h = super::volume_jobs_tests::window(
+        &format!("folder-{name}"),
+        vec![super::volume_jobs_tests::skin_file()],
+    );
     step_until(&mut h, "the skin", |app| !app.busy());
     h
 }
 
-fn step_until(h: &mut Harness<'_, CutawayApp>, what: &str, done: impl Fn(&CutawayApp) -> bool) {
-    let deadline = Instant::now() + Duration::from_secs(120);
-    while !done(h.state()) {
-        assert!(Instant::now() < deadline, "timed out waiting for {what}");
-        h.step();
-        std::thread::sleep(Duration::from_millis(5));
-    }
+/// Opens a folder of masks whose outcomes `work` sends.
+fn start(
+    h: &mut Harness<'static, CutawayApp>,
+    work: impl FnOnce(&crate::gui::jobs::Progress, &(dyn Fn(Outcome) + Sync)) -> anyhow::Result<usize>
+    + Send
+    + 'static,
+) {
+    let ctx = h.ctx.clone();
+    h.state_mut()
+        .folder
+        .start_with(&ctx, "/masks".into(), "Opening masks".into(), work);
 }
 
 fn structure(name: &str, x: f64) -> Option<Model> {
@@ -73,24 +65,18 @@ fn structures_are_shown_in_file_order_while_the_rest_arrive() {
     let mut h = window("order");
     let gate = Arc::new(AtomicBool::new(false));
     let open = gate.clone();
-    let ctx = h.ctx.clone();
-    h.state_mut().folder.start_with(
-        &ctx,
-        "/masks".into(),
-        "Opening masks".into(),
-        move |progress, send| {
-            send((1, structure("b", 2.0)));
-            send((0, structure("a", 0.0)));
-            send((3, structure("d", 6.0)));
-            while !open.load(Ordering::Relaxed) {
-                progress.check()?;
-                std::thread::sleep(Duration::from_millis(5));
-            }
-            send((2, None));
-            send((4, structure("e", 8.0)));
-            Ok(4)
-        },
-    );
+    start(&mut h, move |progress, send| {
+        send((1, structure("b", 2.0)));
+        send((0, structure("a", 0.0)));
+        send((3, structure("d", 6.0)));
+        while !open.load(Ordering::Relaxed) {
+            progress.check()?;
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        send((2, None));
+        send((4, structure("e", 8.0)));
+        Ok(4)
+    });
     step_until(&mut h, "the first structures", |app| {
         app.scene.models.len() == 2
     });
@@ -134,32 +120,20 @@ fn structures_are_shown_in_file_order_while_the_rest_arrive() {
 #[test]
 fn cancel_restores_the_scene_the_user_had() {
     let mut h = window("cancel");
-    let before: Vec<String> = h
-        .state()
-        .scene
-        .models
-        .iter()
-        .map(|m| m.model.name.clone())
-        .collect();
+    let before = names(h.state());
     let stopped = Arc::new(AtomicBool::new(false));
     let seen = stopped.clone();
-    let ctx = h.ctx.clone();
-    h.state_mut().folder.start_with(
-        &ctx,
-        "/masks".into(),
-        "Opening masks".into(),
-        move |progress, send| {
-            send((0, structure("a", 0.0)));
-            let waited = progress.check().and_then(|()| {
-                loop {
-                    progress.check()?;
-                    std::thread::sleep(Duration::from_millis(5));
-                }
-            });
-            seen.store(true, Ordering::Relaxed);
-            waited
-        },
-    );
+    start(&mut h, move |progress, send| {
+        send((0, structure("a", 0.0)));
+        let waited = progress.check().and_then(|()| {
+            loop {
+                progress.check()?;
+                std::thread::sleep(Duration::from_millis(5));
+            }
+        });
+        seen.store(true, Ordering::Relaxed);
+        waited
+    });
     step_until(&mut h, "the first structure", |app| {
         app.scene.models.len() == 1 && app.scene.models[0].model.name == "a"
     });
@@ -170,13 +144,7 @@ fn cancel_restores_the_scene_the_user_had() {
     });
     h.run_steps(2);
     let app = h.state();
-    let after: Vec<String> = app
-        .scene
-        .models
-        .iter()
-        .map(|m| m.model.name.clone())
-        .collect();
-    assert_eq!(after, before, "the scene before the folder");
+    assert_eq!(names(app), before, "the scene before the folder");
     assert!(
         app.status.message.contains("cancelled"),
         "{}",

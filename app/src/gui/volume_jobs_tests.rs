@@ -23,7 +23,7 @@ fn state_dir(name: &str) -> PathBuf {
 }
 
 /// A window that is not settled: the test sees the frames while the jobs run.
-fn window(name: &str, paths: Vec<PathBuf>) -> Harness<'static, CutawayApp> {
+pub(super) fn window(name: &str, paths: Vec<PathBuf>) -> Harness<'static, CutawayApp> {
     let start = StartOptions {
         paths,
         state_dir: state_dir(name),
@@ -39,7 +39,7 @@ fn window(name: &str, paths: Vec<PathBuf>) -> Harness<'static, CutawayApp> {
 }
 
 /// Steps frames until `done` holds (at most two minutes); returns the frames stepped.
-fn step_until(
+pub(super) fn step_until(
     h: &mut Harness<'_, CutawayApp>,
     what: &str,
     done: impl Fn(&CutawayApp) -> bool,
@@ -88,7 +88,7 @@ fn atlas_file() -> PathBuf {
 }
 
 /// A small mesh to start the window with instead of the default scene.
-fn skin_file() -> PathBuf {
+pub(super) fn skin_file() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../assets/spl_head")
         .join(crate::anatomy::default_scene::SKIN_FILE)

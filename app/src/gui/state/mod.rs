@@ -147,6 +147,17 @@ impl AppState {
             .chain(self.history.scenes_mut())
     }
 
+    /// Structures that arrive from a background job (the default scene's labels, a folder of
+    /// masks) join the scene after its models, and every undo snapshot of it: no model moves,
+    /// so cutters keep their targets, and undoing an edit made meanwhile keeps them; their
+    /// arrival is no undo step of its own.
+    pub(in crate::gui) fn append_arrived(&mut self, models: Vec<crate::io::Model>) {
+        let added = crate::scene::open::structures(models, self.scene.models.len());
+        for scene in self.scenes_mut() {
+            scene.models.extend(added.iter().cloned());
+        }
+    }
+
     /// Sets the status message.
     pub fn say(&mut self, message: impl Into<String>) {
         self.status.message = message.into();
