@@ -124,13 +124,10 @@ pub fn stream_mask_folder(
         &|file, surface| {
             arrive(
                 file,
-                surface.map(|s| {
-                    let color = s.structure.color.map(|c| c as f32 / 255.0);
-                    Model {
-                        source: dir.to_path_buf(),
-                        group: group.clone(),
-                        ..Model::part(s.structure.name, Some(color), s.mesh)
-                    }
+                surface.map(|s| Model {
+                    source: dir.to_path_buf(),
+                    group: group.clone(),
+                    ..crate::io::volume::part_of(s)
                 }),
             );
             !progress.is_cancelled()

@@ -180,12 +180,9 @@ fn surface(
         only: Some(vec![1]),
         ..options.clone()
     };
-    let made = Mutex::new(None);
-    csg::labels::label_surfaces_each(&grid, &options, &|_| true, &|s| {
-        *lock(&made) = Some(s.mesh);
-        true
-    })?;
-    made.into_inner()
-        .unwrap_or_else(|e| e.into_inner())
+    let made = csg::labels::label_surfaces(&grid, &options, &|_| true)?;
+    made.into_iter()
+        .next()
+        .map(|s| s.mesh)
         .ok_or_else(|| anyhow::anyhow!("the mask's voxels gave no surface"))
 }

@@ -557,7 +557,8 @@ pub fn read_parts(path: &Path) -> anyhow::Result<Vec<super::Model>> {
     parts_of(&read_volume(path, None)?)
 }
 
-fn part_of(s: StructureSurface) -> super::Model {
+/// A structure's surface as a mesh part, named and coloured.
+pub fn part_of(s: StructureSurface) -> super::Model {
     let color = s.structure.color.map(|c| c as f32 / 255.0);
     super::Model::part(s.structure.name, Some(color), s.mesh)
 }
