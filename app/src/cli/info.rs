@@ -128,8 +128,8 @@ fn mask_folder_info(dir: &Path, labels: Option<&Path>) -> anyhow::Result<Info> {
         })?;
         *folder.lock().unwrap_or_else(|e| e.into_inner()) = Some(found);
         Ok(())
-    })
-    .with_context(|| dir.display().to_string())?;
+    })?;
+    // The folder's errors name the folder or the mask file already.
     let folder = folder.into_inner().unwrap_or_else(|e| e.into_inner());
     let folder = folder.expect("set when the surfaces were made");
     let m = folder.world_from_voxel.matrix3;

@@ -174,7 +174,9 @@ pub fn surfaces(args: &SurfacesArgs) -> anyhow::Result<SurfacesReport> {
             sent && !stop.load(Ordering::Relaxed)
         };
         let made = match &volume {
-            Some(v) => volume::surfaces_each(v, options.clone(), &|_| true, &each),
+            Some(v) => volume::surfaces_each(v, options.clone(), &|_| true, &each)
+                .with_context(|| args.volume.display().to_string()),
+            // Its errors name the folder or the mask file.
             None => volume::mask_surfaces::surfaces_each(
                 &args.volume,
                 &table,
@@ -191,7 +193,7 @@ pub fn surfaces(args: &SurfacesArgs) -> anyhow::Result<SurfacesReport> {
     if let Some(e) = write_error.into_inner().unwrap_or_else(|e| e.into_inner()) {
         return Err(e);
     }
-    made.with_context(|| args.volume.display().to_string())?;
+    made?;
     for earlier in earlier_surface_files(&args.out)? {
         set.replace_file(&earlier)?;
     }
@@ -349,6 +351,29 @@ mod tests {
         ] {
             assert!(!is_surface_file_name(name), "{name}");
         }
+    }
+
+    /// A folder with no volume file is one error that names it once.
+    #[test]
+    fn a_folder_without_volumes_is_named_once() {
+        let dir =
+            std::env::temp_dir().join(format!("cutaway-surfaces-no-masks-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("notes.txt"), "not a mask").unwrap();
+        let args = SurfacesArgs {
+            volume: dir.clone(),
+            out: dir.join("out"),
+            labels: None,
+            smoothing: None,
+            decimate: None,
+            format: MeshFormat::Ply,
+            json: true,
+        };
+        let err = format!("{:#}", surfaces(&args).unwrap_err());
+        let named = dir.display().to_string();
+        assert_eq!(err.matches(&named).count(), 1, "{err}");
+        assert!(err.contains("no volume files"), "{err}");
+        std::fs::remove_dir_all(&dir).ok();
     }
 
     #[test]
