@@ -514,10 +514,16 @@ pub fn run(options: Options) -> Report {
 
     // Undo everything, then redo everything, in Edit mode (each state is cut live).
     act(&mut h, Action::SetMode(Mode::Edit));
+    // Diagnostic only (`CUTAWAY_MEMORY_EVERY_STEP=1`): a reading after every undo and redo, to
+    // find the step whose transients make the peak.
+    let every_step = std::env::var_os("CUTAWAY_MEMORY_EVERY_STEP").is_some();
     let mut undone = 0;
     while h.state().history.undo_label().is_some() {
         act(&mut h, Action::Undo);
         undone += 1;
+        if every_step {
+            trace.sample(&mut h, &format!("undo {undone}"));
+        }
         if undone % 10 == 0 {
             settle(&mut h);
         }
@@ -528,6 +534,9 @@ pub fn run(options: Options) -> Report {
     while h.state().history.redo_label().is_some() {
         act(&mut h, Action::Redo);
         redone += 1;
+        if every_step {
+            trace.sample(&mut h, &format!("redo {redone}"));
+        }
         if redone % 10 == 0 {
             settle(&mut h);
         }

@@ -49,15 +49,15 @@ pub struct LiveResult {
     pub geometry: Arc<PreviewGeometry>,
     /// The kept part of each model cut by one cutter, as a delta against the model's mesh.
     pub deltas: Vec<Arc<MeshDelta>>,
-    /// The cutters and target meshes it was computed for.
-    pub key: PreviewKey,
+    /// The scene state it was computed for.
+    pub key: LiveKey,
     /// Wall time of the cut in milliseconds (index builds included when they happened).
     pub ms: f64,
 }
 
 struct Request {
     scene: Scene,
-    key: PreviewKey,
+    key: LiveKey,
     /// Called when the result is ready (None in tests).
     repaint: Option<Repaint>,
 }
@@ -91,7 +91,7 @@ pub struct LiveCut {
     shared: Arc<Shared>,
     results: Option<Receiver<LiveResult>>,
     /// Key of the newest request (one scene state is cut once).
-    requested: Option<PreviewKey>,
+    requested: Option<LiveKey>,
     /// The newest finished cut, shown in Edit mode.
     shown: Option<LiveResult>,
     /// Cuts finished so far.
@@ -143,13 +143,41 @@ pub fn live_scene(scene: &Scene) -> Scene {
     live
 }
 
+/// What a live cut depends on: the cutters and their target meshes (as Preview's), and whether
+/// each cutter's target is drawn solid. A solid model's kept part is drawn as a delta against its
+/// mesh, a wireframe's from whole cut parts (its edges come from the mesh the delta would leave
+/// uncut), so turning a cut model to wireframe or back is a new state to cut.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LiveKey {
+    cut: PreviewKey,
+    solid_targets: Vec<bool>,
+}
+
+impl LiveKey {
+    pub fn of(scene: &Scene) -> LiveKey {
+        LiveKey {
+            cut: PreviewKey::of(scene),
+            solid_targets: scene
+                .cutters
+                .iter()
+                .map(|c| {
+                    scene
+                        .models
+                        .get(c.target)
+                        .is_some_and(|m| m.style == crate::scene::ModelStyle::Solid)
+                })
+                .collect(),
+        }
+    }
+}
+
 impl LiveCut {
     /// Asks for the live cut of `scene` (its cutters as Normal Cuts). Does nothing when that
     /// state was already requested; replaces a request the worker has not started (latest wins).
     /// Returns true when a request was made. Never blocks on a cut.
     pub fn request(&mut self, scene: &Scene, repaint: Option<Repaint>) -> bool {
         let scene = live_scene(scene);
-        let key = PreviewKey::of(&scene);
+        let key = LiveKey::of(&scene);
         if self.requested.as_ref() == Some(&key) {
             return false;
         }

@@ -275,6 +275,10 @@ impl Renderer {
         let draws = self.upload_and_list(device, queue, frame, [on(true), on(false)]);
         let (draws, uniforms) = draws;
         self.apply_patches(device, encoder);
+        if let Some(mut targets) = self.targets.take() {
+            self.keep_transparency_targets(device, &mut targets, !draws.transparent.is_empty());
+            self.targets = Some(targets);
+        }
 
         // Phase 2: uniforms.
         let line_scale = supersample as f32 * (full_size(frame)[1] as f32 / 800.0).max(1.0);

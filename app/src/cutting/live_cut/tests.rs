@@ -57,7 +57,7 @@ fn stale_requests_are_dropped_and_the_newest_wins() {
     assert!(live.wait(Duration::from_secs(60)), "no live cut arrived");
     assert_eq!(
         live.shown().unwrap().key,
-        PreviewKey::of(&live_scene(&scene))
+        LiveKey::of(&live_scene(&scene))
     );
     // Every request was either cut (in order, so all arrived before the newest) or dropped.
     assert_eq!(live.finished + live.dropped(), 40);
@@ -113,4 +113,35 @@ fn the_worker_keeps_an_index_only_while_its_cutter_changes_and_forgets_all_when_
     assert!(live.request(&scene, None));
     assert!(live.wait(Duration::from_secs(60)), "no live cut arrived");
     assert_eq!(live.census().model_cuts, 3);
+}
+
+#[test]
+fn a_cut_model_turned_wireframe_and_back_is_cut_again_for_how_it_is_drawn() {
+    let mut scene = crate::test_support::cubes_each_cut(2, 1);
+    let mut live = LiveCut::default();
+    assert!(live.request(&scene, None));
+    assert!(live.wait(Duration::from_secs(60)), "no live cut arrived");
+    assert_eq!(live.shown().unwrap().deltas.len(), 2);
+    // A wireframe is drawn from whole cut parts: the style is part of the state.
+    scene.models[1].style = crate::scene::ModelStyle::Wireframe;
+    assert!(live.request(&scene, None), "the style change was not cut");
+    assert!(live.wait(Duration::from_secs(60)), "no live cut arrived");
+    let shown = live.shown().unwrap();
+    assert_eq!(shown.deltas.len(), 1, "the wireframe model is not a delta");
+    assert!(
+        shown
+            .geometry
+            .parts
+            .iter()
+            .any(|p| p.model == 1 && p.kind == PartKind::Kept),
+        "the wireframe model's kept part is drawn whole"
+    );
+    // Back to solid: a delta again, and the worker no longer holds the whole-part cut.
+    scene.models[1].style = crate::scene::ModelStyle::Solid;
+    assert!(live.request(&scene, None), "the style change was not cut");
+    assert!(live.wait(Duration::from_secs(60)), "no live cut arrived");
+    assert_eq!(live.shown().unwrap().deltas.len(), 2);
+    let census = live.census();
+    assert_eq!(census.cuts.previews, 0, "{census:?}");
+    assert_eq!(census.model_cuts, 2, "{census:?}");
 }

@@ -45,13 +45,17 @@ impl Renderer {
             pass.set_bind_group(0, &self.frame_bind_group, &[frame_offset]);
             self.draw_all(&mut pass, &draws.opaque, false);
         }
-        if !draws.transparent.is_empty() {
+        let transparency = targets
+            .transparency
+            .as_ref()
+            .filter(|_| !draws.transparent.is_empty());
+        if let Some(oit) = transparency {
             {
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("cutaway transparency pass"),
                     color_attachments: &[
                         Some(wgpu::RenderPassColorAttachment {
-                            view: &targets.accum_view,
+                            view: &oit.accum_view,
                             resolve_target: None,
                             ops: wgpu::Operations {
                                 load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
@@ -60,7 +64,7 @@ impl Renderer {
                             depth_slice: None,
                         }),
                         Some(wgpu::RenderPassColorAttachment {
-                            view: &targets.revealage_view,
+                            view: &oit.revealage_view,
                             resolve_target: None,
                             ops: wgpu::Operations {
                                 load: wgpu::LoadOp::Clear(wgpu::Color::WHITE),
@@ -85,7 +89,7 @@ impl Renderer {
                 self.draw_all(&mut pass, &draws.transparent, true);
             }
         }
-        if !draws.transparent.is_empty() || !draws.overlay.is_empty() {
+        if transparency.is_some() || !draws.overlay.is_empty() {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("cutaway composite pass"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -109,9 +113,9 @@ impl Renderer {
                 timestamp_writes: None,
                 multiview_mask: None,
             });
-            if !draws.transparent.is_empty() {
+            if let Some(oit) = transparency {
                 pass.set_pipeline(&self.pipelines.composite);
-                pass.set_bind_group(0, &targets.composite_bind_group, &[]);
+                pass.set_bind_group(0, &oit.composite_bind_group, &[]);
                 pass.draw(0..3, 0..1);
             }
             if !draws.overlay.is_empty() {
