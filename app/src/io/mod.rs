@@ -175,6 +175,8 @@ pub fn read_parts(path: &Path) -> anyhow::Result<Vec<Model>> {
 }
 
 fn read_parts_inner(path: &Path) -> anyhow::Result<Vec<Model>> {
+    // A path that is not there is missing, whatever its name says about its format.
+    std::fs::metadata(path)?;
     let format = Format::from_path(path).ok_or_else(|| {
         let ext = path
             .extension()
