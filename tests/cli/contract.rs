@@ -58,7 +58,11 @@ fn assert_one_error_line(out: &Output, file: &Path) -> String {
 fn missing_file_is_one_error_line() {
     // With or without an extension, a path that is not there is said to be missing (not of an
     // unknown format).
-    for missing in ["/nonexistent/knee.stl", "/nonexistent/knee", "/nonexistent/masks/"] {
+    for missing in [
+        "/nonexistent/knee.stl",
+        "/nonexistent/knee",
+        "/nonexistent/masks/",
+    ] {
         let out = cutaway()
             .args(["info", missing, "--json"])
             .output()

@@ -55,10 +55,7 @@ fn stale_requests_are_dropped_and_the_newest_wins() {
         last_x = x;
     }
     assert!(live.wait(Duration::from_secs(60)), "no live cut arrived");
-    assert_eq!(
-        live.shown().unwrap().key,
-        LiveKey::of(&live_scene(&scene))
-    );
+    assert_eq!(live.shown().unwrap().key, LiveKey::of(&live_scene(&scene)));
     // Every request was either cut (in order, so all arrived before the newest) or dropped.
     assert_eq!(live.finished + live.dropped(), 40);
     // The newest state's cut: the corner box from x = last_x removes (2 - x) · 1 · 1.
