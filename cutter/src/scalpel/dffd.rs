@@ -48,6 +48,7 @@ use glam::DVec3;
 use super::cut_grid::{Cell, CutGrid, cell_of};
 use super::dyn_mesh::{DynMesh, prev};
 use super::feet::Feet;
+use super::field::FieldAt;
 pub use super::frames::{Frame, frames};
 use super::nearest_cut::{self, Balls};
 use super::step::Scalpel;
@@ -210,15 +211,31 @@ pub(crate) fn compute(
     grid: &mut CutGrid,
     region: Option<&Region>,
 ) -> Vec<(u32, DVec3)> {
+    let outer = region.map(|g| &g.outer);
+    let field = walk(scalpel, inputs, grid, outer);
+    let floors = floors_by_lips(scalpel, grid, outer);
+    let keep = region.map(|g| (&g.inner, grid.size()));
+    finish(scalpel, inputs, field.iter(), floors, keep)
+}
+
+/// The field of every vertex the walk of the module doc reaches within the support, in the
+/// order it reaches them, apart from the clock ([`FieldAt`]); fixed vertices are walked over,
+/// not given. With `outer`, the walk stays in those cells and seeds only at lips there.
+pub(crate) fn walk(
+    scalpel: &Scalpel,
+    inputs: &Inputs,
+    grid: &mut CutGrid,
+    outer: Option<&FastSet<Cell>>,
+) -> Vec<FieldAt> {
     let mesh = scalpel.dyn_mesh();
     let segments = scalpel.segments();
-    let mut out = Vec::new();
-    let (w, r) = (inputs.width, inputs.r);
+    let mut field = Vec::new();
+    let r = inputs.r;
     let nv = mesh.vertex_count() as u32;
     let (frames, corrections, tips) = (&inputs.frames, &inputs.corrections, &inputs.tips);
     let onto_path = inputs.onto_path;
     let size = grid.size();
-    let in_outer = |p: DVec3| region.is_none_or(|g| g.outer.contains(&cell_of(p, size)));
+    let in_outer = |p: DVec3| outer.is_none_or(|o| o.contains(&cell_of(p, size)));
     // Nearest point on the cut among the segments `near`: (distance, point, segment index).
     // `last` is the previous answer's segment, measured first (see [`nearest_cut`]).
     let balls = Balls::new(segments);
@@ -260,14 +277,11 @@ pub(crate) fn compute(
     // away: a region's vertices take the sides the whole walk gives them when its margin holds
     // those seeds and paths.)
     let mut side: FastMap<u32, f64> = FastMap::default();
-    let mut corrected: Vec<DVec3> = Vec::new();
     let mut queue: VecDeque<u32> = VecDeque::new();
     let mut fan = Vec::new();
-    // Floor vertices next to the lip copies (groove bottoms): moved by the lips' correction.
-    let mut floors: Vec<u32> = Vec::new();
-    let seed_segments: Vec<usize> = match region {
+    let seed_segments: Vec<usize> = match outer {
         None => (0..segments.len()).collect(),
-        Some(g) => grid.segments_in(&g.outer),
+        Some(o) => grid.segments_in(o),
     };
     for s in seed_segments.iter().map(|&i| &segments[i]) {
         for v in [s.a, s.b] {
@@ -282,14 +296,6 @@ pub(crate) fn compute(
                 let Some((_, _, i)) = nearest(p, grid.near(p)) else {
                     continue;
                 };
-                mesh.fan_into(c, &mut fan);
-                for &h in &fan {
-                    floors.extend(
-                        mesh.triangles()[(h / 3) as usize]
-                            .iter()
-                            .filter(|&&f| mesh.is_floor(f)),
-                    );
-                }
                 let sigma = lip_side(mesh, c, &frames[i], &mut fan);
                 if sigma != 0.0 {
                     side.insert(c, sigma);
@@ -320,9 +326,6 @@ pub(crate) fn compute(
         if inputs.fixed.contains(&v) {
             continue;
         }
-        let s = &segments[i];
-        let lateral = frames[i].lateral;
-        let ramp = inputs.ramp(s.time);
         let tip_dist = tips
             .iter()
             .map(|t| t.distance(c))
@@ -333,25 +336,96 @@ pub(crate) fn compute(
             let s2 = (dist / r) * (dist / r);
             (1.0 - s2) * (1.0 - s2)
         };
-        let amount = sigma * 0.5 * w * ramp * taper * falloff;
         let correction = if onto_path {
-            correction_at(p, grid.near(p)) * (ramp * falloff)
+            correction_at(p, grid.near(p))
         } else {
             DVec3::ZERO
         };
-        if amount != 0.0 || correction != DVec3::ZERO {
-            out.push((v, p + correction + lateral * amount));
-            corrected.push(correction);
+        field.push(FieldAt {
+            vertex: v,
+            segment: i as u32,
+            rest: p,
+            sigma,
+            taper,
+            falloff,
+            correction,
+        });
+    }
+    field
+}
+
+/// The floor vertices next to the lip copies (groove bottoms), those of the lips in `outer`
+/// when given: the opening moves them by the lips' correction. Sorted, each once.
+pub(crate) fn floors_by_lips(
+    scalpel: &Scalpel,
+    grid: &mut CutGrid,
+    outer: Option<&FastSet<Cell>>,
+) -> Vec<u32> {
+    let mesh = scalpel.dyn_mesh();
+    let segments = scalpel.segments();
+    let nv = mesh.vertex_count() as u32;
+    let size = grid.size();
+    let in_outer = |p: DVec3| outer.is_none_or(|o| o.contains(&cell_of(p, size)));
+    let lip_segments: Vec<usize> = match outer {
+        None => (0..segments.len()).collect(),
+        Some(o) => grid.segments_in(o),
+    };
+    let mut floors = Vec::new();
+    let mut fan = Vec::new();
+    for s in lip_segments.iter().map(|&i| &segments[i]) {
+        for v in [s.a, s.b] {
+            if v >= nv || mesh.copies(v).is_empty() || !in_outer(mesh.pos(v)) {
+                continue;
+            }
+            for c in std::iter::once(v).chain(mesh.copies(v)) {
+                // A lip copy with no cut segment near it seeds nothing (see `walk`).
+                if grid.near(mesh.pos(c)).is_empty() {
+                    continue;
+                }
+                mesh.fan_into(c, &mut fan);
+                for &h in &fan {
+                    floors.extend(
+                        mesh.triangles()[(h / 3) as usize]
+                            .iter()
+                            .filter(|&&f| mesh.is_floor(f)),
+                    );
+                }
+            }
+        }
+    }
+    floors.sort_unstable();
+    floors.dedup();
+    floors
+}
+
+/// The opening from the field of the vertices within the support ([`walk`]) and the floors
+/// next to the lips ([`floors_by_lips`]): each field evaluated at this clock, the path
+/// corrections and then the displacements unfolded, the floors moved by the lips' corrections.
+/// With `keep` (cells, their size), only the vertices of those cells are given.
+pub(crate) fn finish<'a>(
+    scalpel: &Scalpel,
+    inputs: &Inputs,
+    field: impl Iterator<Item = &'a FieldAt>,
+    floors: Vec<u32>,
+    keep: Option<(&FastSet<Cell>, f64)>,
+) -> Vec<(u32, DVec3)> {
+    let mesh = scalpel.dyn_mesh();
+    let segments = scalpel.segments();
+    let mut out = Vec::new();
+    let mut corrected: Vec<DVec3> = Vec::new();
+    for f in field {
+        if let Some((p, c)) = f.opened(inputs, segments) {
+            out.push((f.vertex, p));
+            corrected.push(c);
         }
     }
     super::unfold::unfold_correction(mesh, &mut out, &mut corrected);
     // Floor vertices under the lips: the mean correction of the surface vertices their walls
     // reach (both lips of a groove have the same), so that the floor stays under the drawn path
     // and the two walls are alike.
-    floors.sort_unstable();
-    floors.dedup();
     let index: FastMap<u32, usize> = out.iter().enumerate().map(|(k, m)| (m.0, k)).collect();
     let mut floor_moves = Vec::new();
+    let mut fan = Vec::new();
     for f in floors {
         mesh.fan_into(f, &mut fan);
         let (mut sum, mut count) = (DVec3::ZERO, 0.0);
@@ -369,8 +443,8 @@ pub(crate) fn compute(
     }
     super::unfold::unfold(mesh, &mut out);
     out.extend(floor_moves);
-    if let Some(g) = region {
-        out.retain(|&(v, _)| g.inner.contains(&cell_of(mesh.pos(v), size)));
+    if let Some((cells, size)) = keep {
+        out.retain(|&(v, _)| cells.contains(&cell_of(mesh.pos(v), size)));
     }
     out
 }

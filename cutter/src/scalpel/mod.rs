@@ -89,6 +89,7 @@ pub mod dffd;
 pub mod drawn;
 pub mod dyn_mesh;
 pub mod feet;
+mod field;
 pub mod frames;
 pub mod groove;
 pub mod invariants;
