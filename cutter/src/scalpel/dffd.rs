@@ -113,7 +113,7 @@ fn displacements(
     };
     let mesh = scalpel.dyn_mesh();
     let mut grid = CutGrid::new(scalpel.segments(), mesh.vertex_count() as u32, inputs.r);
-    compute(scalpel, &inputs, &mut grid, None)
+    compute(scalpel, &inputs, &mut grid)
 }
 
 /// What the opening of every vertex is computed from, besides the mesh: per cut segment its
@@ -194,28 +194,12 @@ impl Inputs {
     }
 }
 
-/// Where a partial computation works: the grid cells (of the cut grid's size) whose vertices
-/// it gives (`inner`) and those it walks over to give them as the whole computation would
-/// (`outer`, a margin of cells around `inner`).
-pub(crate) struct Region {
-    pub inner: FastSet<Cell>,
-    pub outer: FastSet<Cell>,
-}
-
-/// The opening of the vertices of `region` (every vertex when `None`): the field of the module
-/// doc, the unfolding and the groove floors. With a region, the walk over the surface stays in
-/// its outer cells and seeds only at lips there, and only vertices of its inner cells are given.
-pub(crate) fn compute(
-    scalpel: &Scalpel,
-    inputs: &Inputs,
-    grid: &mut CutGrid,
-    region: Option<&Region>,
-) -> Vec<(u32, DVec3)> {
-    let outer = region.map(|g| &g.outer);
-    let field = walk(scalpel, inputs, grid, outer);
-    let floors = floors_by_lips(scalpel, grid, outer);
-    let keep = region.map(|g| (&g.inner, grid.size()));
-    finish(scalpel, inputs, field.iter(), floors, keep)
+/// The opening of every vertex: the field of the module doc, the unfolding and the groove
+/// floors.
+fn compute(scalpel: &Scalpel, inputs: &Inputs, grid: &mut CutGrid) -> Vec<(u32, DVec3)> {
+    let field = walk(scalpel, inputs, grid, None);
+    let floors = floors_by_lips(scalpel, grid, None);
+    finish(scalpel, inputs, field.iter(), floors, None)
 }
 
 /// The field of every vertex the walk of the module doc reaches within the support, in the
