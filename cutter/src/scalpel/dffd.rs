@@ -49,6 +49,7 @@ use super::cut_grid::{Cell, CutGrid, cell_of};
 use super::dyn_mesh::{DynMesh, prev};
 use super::feet::Feet;
 use super::field::FieldAt;
+use super::field_cache::{Changes, FieldCache};
 pub use super::frames::{Frame, frames};
 use super::nearest_cut::{self, Balls};
 use super::step::Scalpel;
@@ -202,15 +203,27 @@ fn compute(scalpel: &Scalpel, inputs: &Inputs, grid: &mut CutGrid) -> Vec<(u32, 
     finish(scalpel, inputs, field.iter(), floors, None)
 }
 
+/// Where a partial walk works: the cells it walks over (and seeds at the lips of), those whose
+/// vertices' field it gives, and the field kept from before with what changed since (a
+/// vertex's kept field is given when no change reaches it, [`FieldCache::kept`]).
+pub(crate) struct WalkRegion<'a> {
+    pub outer: &'a FastSet<Cell>,
+    pub keep: &'a FastSet<Cell>,
+    pub known: &'a FieldCache,
+    pub changes: &'a Changes,
+}
+
 /// The field of every vertex the walk of the module doc reaches within the support, in the
 /// order it reaches them, apart from the clock ([`FieldAt`]); fixed vertices are walked over,
-/// not given. With `outer`, the walk stays in those cells and seeds only at lips there.
+/// not given. With a region, the walk stays in its outer cells and seeds only at lips there,
+/// and gives the vertices of its kept cells only.
 pub(crate) fn walk(
     scalpel: &Scalpel,
     inputs: &Inputs,
     grid: &mut CutGrid,
-    outer: Option<&FastSet<Cell>>,
+    region: Option<&WalkRegion>,
 ) -> Vec<FieldAt> {
+    let outer = region.map(|g| g.outer);
     let mesh = scalpel.dyn_mesh();
     let segments = scalpel.segments();
     let mut field = Vec::new();
@@ -290,14 +303,21 @@ pub(crate) fn walk(
     }
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
-        let near = grid.near(p);
-        let Some((dist, c, i)) = nearest(p, near) else {
-            continue;
+        let sigma = side[&v];
+        // A kept field says the vertex is within the support, as before.
+        let kept = region.and_then(|g| g.known.kept(v, p, sigma, g.changes));
+        let (dist, c, i) = match kept {
+            Some(f) => (0.0, f.nearest, f.segment as usize),
+            None => {
+                let Some(found) = nearest(p, grid.near(p)) else {
+                    continue;
+                };
+                found
+            }
         };
         if dist >= r {
             continue;
         }
-        let sigma = side[&v];
         mesh.surface_fan_into(v, &mut fan);
         for &h in &fan {
             for n in [mesh.dest(h), mesh.origin(prev(h))] {
@@ -308,6 +328,13 @@ pub(crate) fn walk(
             }
         }
         if inputs.fixed.contains(&v) {
+            continue;
+        }
+        if region.is_some_and(|g| !g.keep.contains(&cell_of(p, size))) {
+            continue;
+        }
+        if let Some(f) = kept {
+            field.push(f);
             continue;
         }
         let tip_dist = tips
@@ -329,6 +356,7 @@ pub(crate) fn walk(
             vertex: v,
             segment: i as u32,
             rest: p,
+            nearest: c,
             sigma,
             taper,
             falloff,

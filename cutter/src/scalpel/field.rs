@@ -24,6 +24,8 @@ pub(crate) struct FieldAt {
     pub segment: u32,
     /// Rest position.
     pub rest: DVec3,
+    /// The nearest cut point (the taper is measured from it).
+    pub nearest: DVec3,
     /// The side of the cut, `±1`.
     pub sigma: f64,
     pub taper: f64,

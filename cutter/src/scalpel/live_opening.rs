@@ -31,9 +31,9 @@
 use glam::DVec3;
 
 use super::cut_grid::{Cell, CutGrid, cell_of, cells_within};
-use super::dffd::{Inputs, OpenOptions, finish, floors_by_lips, taper_length, walk};
+use super::dffd::{Inputs, OpenOptions, WalkRegion, finish, floors_by_lips, taper_length, walk};
 use super::feet::Feet;
-use super::field_cache::FieldCache;
+use super::field_cache::{Changes, FieldCache};
 use super::step::{CutSegment, Scalpel};
 use csg::fast_hash::{FastMap, FastSet};
 
@@ -172,6 +172,10 @@ impl LiveOpening {
         let mut walked: FastSet<Cell> = FastSet::default();
         let mut clock_only: FastSet<Cell> = FastSet::default();
         let r = new.r;
+        let mut changes = Changes {
+            taper_len: new.taper_len,
+            ..Changes::default()
+        };
         for i in 0..state.segments.len().max(segments.len()) {
             let (before, after) = (state.segments.get(i), segments.get(i));
             let same_field = match (before, after) {
@@ -199,19 +203,23 @@ impl LiveOpening {
                 let (p, reach) = around(a);
                 cells_within(&mut walked, p, reach, size);
                 state.grid.remove(i, a);
+                changes.segment(a, r);
             }
             if let Some(b) = after {
                 let (p, reach) = around(b);
                 cells_within(&mut walked, p, reach, size);
                 state.grid.insert(i, b, nv);
+                changes.segment(b, r);
             }
         }
         let tip_reach = new.taper_len + r;
         for t in old.tips.iter().filter(|t| !new.tips.contains(t)) {
             cells_within(&mut walked, *t, tip_reach, size);
+            changes.tips.push(*t);
         }
         for t in new.tips.iter().filter(|t| !old.tips.contains(t)) {
             cells_within(&mut walked, *t, tip_reach, size);
+            changes.tips.push(*t);
         }
         let common = state
             .fixed
@@ -245,7 +253,13 @@ impl LiveOpening {
             for &c in &walked {
                 grow(&mut around, c, MARGIN);
             }
-            let field = walk(scalpel, &inputs, &mut state.grid, Some(&around));
+            let region = WalkRegion {
+                outer: &around,
+                keep: &walked,
+                known: &self.field,
+                changes: &changes,
+            };
+            let field = walk(scalpel, &inputs, &mut state.grid, Some(&region));
             self.field.replace(Some(&walked), field, size);
         }
         let mut inner = walked;
