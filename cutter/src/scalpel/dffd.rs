@@ -273,7 +273,10 @@ pub(crate) fn walk(
     // vertex takes the side of the first seed, in seed order, among those fewest surface edges
     // away: a region's vertices take the sides the whole walk gives them when its margin holds
     // those seeds and paths.)
-    let mut side: FastMap<u32, f64> = FastMap::default();
+    // A region's walk reaches some thousands of vertices: room for them up front.
+    let capacity = if region.is_some() { 1 << 13 } else { 0 };
+    let mut side: FastMap<u32, f64> =
+        FastMap::with_capacity_and_hasher(capacity, Default::default());
     let mut queue: VecDeque<u32> = VecDeque::new();
     let mut fan = Vec::new();
     let seed_segments: Vec<usize> = match outer {
@@ -431,7 +434,9 @@ pub(crate) fn finish<'a>(
             corrected.push(c);
         }
     }
-    super::unfold::unfold_correction(mesh, &mut out, &mut corrected);
+    // Both unfoldings look at the triangles around the same moved vertices.
+    let mut around = None;
+    super::unfold::unfold_correction(mesh, &mut out, &mut corrected, &mut around);
     // Floor vertices under the lips: the mean correction of the surface vertices their walls
     // reach (both lips of a groove have the same), so that the floor stays under the drawn path
     // and the two walls are alike.
@@ -453,7 +458,7 @@ pub(crate) fn finish<'a>(
             floor_moves.push((f, mesh.pos(f) + sum / count));
         }
     }
-    super::unfold::unfold(mesh, &mut out);
+    super::unfold::unfold(mesh, &mut out, &mut around);
     out.extend(floor_moves);
     if let Some((cells, size)) = keep {
         out.retain(|&(v, _)| cells.contains(&cell_of(mesh.pos(v), size)));
