@@ -45,7 +45,7 @@ use std::collections::VecDeque;
 
 use glam::DVec3;
 
-use super::cut_grid::{Cell, CutGrid, cell_of};
+use super::cut_grid::{Cell, CutGrid, InCells};
 use super::dyn_mesh::{DynMesh, prev};
 use super::feet::Feet;
 use super::field::FieldAt;
@@ -232,7 +232,8 @@ pub(crate) fn walk(
     let (frames, corrections, tips) = (&inputs.frames, &inputs.corrections, &inputs.tips);
     let onto_path = inputs.onto_path;
     let size = grid.size();
-    let in_outer = |p: DVec3| outer.is_none_or(|o| o.contains(&cell_of(p, size)));
+    let mut in_outer = InCells::new(outer, size);
+    let mut in_keep = InCells::new(region.map(|g| g.keep), size);
     // Nearest point on the cut among the segments `near`: (distance, point, segment index).
     // `last` is the previous answer's segment, measured first (see [`nearest_cut`]).
     let balls = Balls::new(segments);
@@ -285,7 +286,7 @@ pub(crate) fn walk(
     };
     for s in seed_segments.iter().map(|&i| &segments[i]) {
         for v in [s.a, s.b] {
-            if v >= nv || mesh.copies(v).is_empty() || !in_outer(mesh.pos(v)) {
+            if v >= nv || mesh.copies(v).is_empty() || !in_outer.contains(mesh.pos(v)) {
                 continue;
             }
             for c in std::iter::once(v).chain(mesh.copies(v)) {
@@ -324,7 +325,7 @@ pub(crate) fn walk(
         mesh.surface_fan_into(v, &mut fan);
         for &h in &fan {
             for n in [mesh.dest(h), mesh.origin(prev(h))] {
-                if !mesh.is_floor(n) && !side.contains_key(&n) && in_outer(mesh.pos(n)) {
+                if !mesh.is_floor(n) && !side.contains_key(&n) && in_outer.contains(mesh.pos(n)) {
                     side.insert(n, sigma);
                     queue.push_back(n);
                 }
@@ -333,7 +334,7 @@ pub(crate) fn walk(
         if inputs.fixed.contains(&v) {
             continue;
         }
-        if region.is_some_and(|g| !g.keep.contains(&cell_of(p, size))) {
+        if !in_keep.contains(p) {
             continue;
         }
         if let Some(f) = kept {
@@ -380,7 +381,7 @@ pub(crate) fn floors_by_lips(
     let segments = scalpel.segments();
     let nv = mesh.vertex_count() as u32;
     let size = grid.size();
-    let in_outer = |p: DVec3| outer.is_none_or(|o| o.contains(&cell_of(p, size)));
+    let mut in_outer = InCells::new(outer, size);
     let lip_segments: Vec<usize> = match outer {
         None => (0..segments.len()).collect(),
         Some(o) => grid.segments_in(o),
@@ -389,7 +390,7 @@ pub(crate) fn floors_by_lips(
     let mut fan = Vec::new();
     for s in lip_segments.iter().map(|&i| &segments[i]) {
         for v in [s.a, s.b] {
-            if v >= nv || mesh.copies(v).is_empty() || !in_outer(mesh.pos(v)) {
+            if v >= nv || mesh.copies(v).is_empty() || !in_outer.contains(mesh.pos(v)) {
                 continue;
             }
             for c in std::iter::once(v).chain(mesh.copies(v)) {
@@ -440,7 +441,9 @@ pub(crate) fn finish<'a>(
     // Floor vertices under the lips: the mean correction of the surface vertices their walls
     // reach (both lips of a groove have the same), so that the floor stays under the drawn path
     // and the two walls are alike.
-    let index: FastMap<u32, usize> = out.iter().enumerate().map(|(k, m)| (m.0, k)).collect();
+    let index = around
+        .get_or_insert_with(|| super::unfold::Moved::new(mesh, &out))
+        .index();
     let mut floor_moves = Vec::new();
     let mut fan = Vec::new();
     for f in floors {
@@ -461,7 +464,8 @@ pub(crate) fn finish<'a>(
     super::unfold::unfold(mesh, &mut out, &mut around);
     out.extend(floor_moves);
     if let Some((cells, size)) = keep {
-        out.retain(|&(v, _)| cells.contains(&cell_of(mesh.pos(v), size)));
+        let mut in_cells = InCells::new(Some(cells), size);
+        out.retain(|&(v, _)| in_cells.contains(mesh.pos(v)));
     }
     out
 }

@@ -59,7 +59,7 @@ pub struct Moved {
 }
 
 impl Moved {
-    fn new(mesh: &DynMesh, moved: &[(u32, DVec3)]) -> Moved {
+    pub(crate) fn new(mesh: &DynMesh, moved: &[(u32, DVec3)]) -> Moved {
         let at: FastMap<u32, usize> = moved.iter().enumerate().map(|(i, m)| (m.0, i)).collect();
         let mut triangles: Vec<[u32; 3]> = Vec::new();
         let mut seen: FastSet<u32> = FastSet::default();
@@ -109,6 +109,11 @@ impl Moved {
             corner_start,
             corner_of,
         }
+    }
+
+    /// Where each moved vertex is in the moved list.
+    pub(crate) fn index(&self) -> &FastMap<u32, usize> {
+        &self.at
     }
 
     /// Brings `folding` (per triangle, whether `test` holds) up to date: every triangle on the
