@@ -132,3 +132,88 @@ impl FieldCache {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn field(vertex: u32, rest: DVec3) -> FieldAt {
+        FieldAt {
+            vertex,
+            segment: 0,
+            rest,
+            nearest: rest + DVec3::X,
+            sigma: 1.0,
+            taper: 1.0,
+            falloff: 0.5,
+            correction: DVec3::ZERO,
+        }
+    }
+
+    fn segment(pa: DVec3, pb: DVec3) -> CutSegment {
+        CutSegment {
+            a: 0,
+            b: 1,
+            pa,
+            pb,
+            normal: DVec3::Z,
+            time: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_vertex_is_kept_once_in_the_cell_of_its_rest_position_now() {
+        let size = 2.0;
+        let mut cache = FieldCache::default();
+        let (a, b) = (DVec3::new(0.5, 0.5, 0.5), DVec3::new(4.5, 0.5, 0.5));
+        cache.replace(None, vec![field(7, a), field(8, a)], size);
+        let (ca, cb) = (cell_of(a, size), cell_of(b, size));
+        assert_eq!(cache.cell_of_vertex(7), Some(ca));
+        // Vertex 7 moved to another cell, which alone is walked again.
+        let walked: FastSet<Cell> = [cb].into_iter().collect();
+        cache.replace(Some(&walked), vec![field(7, b), field(9, a)], size);
+        assert_eq!(cache.cell_of_vertex(7), Some(cb));
+        // 9 lies outside the walked cells: not kept.
+        assert_eq!(cache.cell_of_vertex(9), None);
+        let both: FastSet<Cell> = [ca, cb].into_iter().collect();
+        let mut kept: Vec<(u32, DVec3)> =
+            cache.in_cells(&both).map(|f| (f.vertex, f.rest)).collect();
+        kept.sort_by_key(|k| k.0);
+        assert_eq!(kept, vec![(7, b), (8, a)]);
+        // Walking the first cell again drops what it held.
+        let first: FastSet<Cell> = [ca].into_iter().collect();
+        cache.replace(Some(&first), Vec::new(), size);
+        assert_eq!(cache.cell_of_vertex(8), None);
+        assert_eq!(cache.cell_of_vertex(7), Some(cb));
+    }
+
+    #[test]
+    fn a_kept_field_is_given_only_where_no_change_reaches_and_the_vertex_did_not_move() {
+        let mut cache = FieldCache::default();
+        let p = DVec3::new(10.0, 0.0, 0.0);
+        cache.replace(None, vec![field(1, p)], 6.0);
+        let r = 3.0;
+        let mut changes = Changes {
+            taper_len: 1.0,
+            ..Changes::default()
+        };
+        // No change: the kept field, on the side the walk gives now.
+        let f = cache.kept(1, p, -1.0, &changes).unwrap();
+        assert_eq!((f.sigma, f.rest, f.falloff), (-1.0, p, 0.5));
+        // The vertex moved.
+        assert!(cache.kept(1, p + DVec3::Z * 1e-12, 1.0, &changes).is_none());
+        // A segment changed just out of the support of it, then just within.
+        let far = p + DVec3::Y * (r + 0.5 + 1e-3);
+        changes.segment(&segment(far - DVec3::X * 0.5, far + DVec3::X * 0.5), r);
+        assert!(cache.kept(1, p, 1.0, &changes).is_some());
+        let near = p + DVec3::Y * r;
+        changes.segment(&segment(near - DVec3::X * 0.5, near + DVec3::X * 0.5), r);
+        assert!(cache.kept(1, p, 1.0, &changes).is_none());
+        // A crack tip within the taper length of the nearest cut point.
+        changes.balls.clear();
+        changes.tips.push(f.nearest + DVec3::Y * 1.5);
+        assert!(cache.kept(1, p, 1.0, &changes).is_some());
+        changes.tips.push(f.nearest + DVec3::Y * 0.9);
+        assert!(cache.kept(1, p, 1.0, &changes).is_none());
+    }
+}
