@@ -49,7 +49,7 @@ use super::cut_grid::{Cell, CutGrid, InCells};
 use super::dyn_mesh::{DynMesh, prev};
 use super::feet::Feet;
 use super::field::FieldAt;
-use super::field_cache::{Changes, FieldCache};
+use super::field_cache::{Changes, FieldCache, Kept};
 pub use super::frames::{Frame, frames};
 use super::nearest_cut::{self, Balls};
 use super::step::Scalpel;
@@ -311,7 +311,7 @@ pub(crate) fn walk(
         // A kept field says the vertex is within the support, as before.
         let kept = region.and_then(|g| g.known.kept(v, p, sigma, g.changes));
         let (dist, c, i) = match kept {
-            Some(f) => (0.0, f.nearest, f.segment as usize),
+            Some(Kept::Field(f) | Kept::Correction(f)) => (0.0, f.nearest, f.segment as usize),
             None => {
                 let Some(found) = nearest(p, grid.near(p)) else {
                     continue;
@@ -337,9 +337,21 @@ pub(crate) fn walk(
         if !in_keep.contains(p) {
             continue;
         }
-        if let Some(f) = kept {
-            field.push(f);
-            continue;
+        match kept {
+            Some(Kept::Field(f)) => {
+                field.push(f);
+                continue;
+            }
+            Some(Kept::Correction(f)) => {
+                let correction = if onto_path {
+                    correction_at(p, grid.near(p))
+                } else {
+                    DVec3::ZERO
+                };
+                field.push(FieldAt { correction, ..f });
+                continue;
+            }
+            None => {}
         }
         let tip_dist = tips
             .iter()

@@ -11,12 +11,15 @@
 //! ([`FieldCache::cell_of_vertex`]) so that its old cell is walked again too.
 //!
 //! Even in the walked cells most vertices' field is the one kept: the walk is needed for the
-//! sides (a cut changes which lip reaches a vertex first), but a vertex's nearest segment,
-//! taper and path correction only change when a cut segment within the support of it changed
-//! (cut, undone, or given another frame or path correction), when a crack tip within the taper
-//! length of its nearest cut point appeared or went, or when the vertex itself moved.
-//! [`Changes`] holds those and [`FieldCache::kept`] gives a vertex's kept field when none of
-//! them reaches it, with the side the walk gives it now (the side only multiplies the field).
+//! sides (a cut changes which lip reaches a vertex first, a segment's frame decides its lips'
+//! sides), but a vertex's nearest segment, taper and path correction only change when a cut
+//! segment within the support of it was cut, undone or moved, when a crack tip within the
+//! taper length of its nearest cut point appeared or went, or when the vertex itself moved; a
+//! segment near the tool whose frame and path corrections follow the path drawn past it
+//! changes the path correction alone (the frame's lateral is read when the field is
+//! evaluated). [`Changes`] holds those and [`FieldCache::kept`] gives a vertex's kept field
+//! when none of them reaches it, or tells the walk to measure its path correction again, with
+//! the side the walk gives it now (the side only multiplies the field).
 
 use glam::DVec3;
 
@@ -46,6 +49,8 @@ pub(crate) struct FieldCache {
 pub(crate) struct Changes {
     /// Balls holding every point within the support of a changed segment (before and after).
     pub balls: Vec<(DVec3, f64)>,
+    /// The same for the segments that only changed their path corrections.
+    pub correction_balls: Vec<(DVec3, f64)>,
     /// Crack tips that appeared or went.
     pub tips: Vec<DVec3>,
     pub taper_len: f64,
@@ -54,22 +59,62 @@ pub(crate) struct Changes {
 impl Changes {
     /// Adds the segment `s`, changed, whose support reaches `r` from it.
     pub fn segment(&mut self, s: &CutSegment, r: f64) {
-        self.balls
-            .push((s.pa.midpoint(s.pb), r + 0.5 * s.pa.distance(s.pb)));
+        self.balls.push(ball(s, r));
     }
 
-    /// Whether the field at rest position `p` with nearest cut point `c` may differ from the
+    /// Adds the segment `s`, in place but with other path corrections at its ends.
+    pub fn corrections(&mut self, s: &CutSegment, r: f64) {
+        self.correction_balls.push(ball(s, r));
+    }
+
+    /// What of the field at rest position `p` with nearest cut point `c` may differ from the
     /// one kept.
-    fn reach(&self, p: DVec3, c: DVec3) -> bool {
-        let slack = |d: f64, x: DVec3| d * (1.0 + SLACK) + SLACK * (1.0 + x.abs().max_element());
-        self.balls.iter().any(|&(m, reach)| {
-            let lim = slack(reach, p);
-            m.distance_squared(p) <= lim * lim
-        }) || self.tips.iter().any(|&t| {
+    fn reach(&self, p: DVec3, c: DVec3) -> Reach {
+        let within = |balls: &[(DVec3, f64)]| {
+            balls.iter().any(|&(m, reach)| {
+                let lim = slack(reach, p);
+                m.distance_squared(p) <= lim * lim
+            })
+        };
+        let tip = self.tips.iter().any(|&t| {
             let lim = slack(self.taper_len, c);
             t.distance_squared(c) <= lim * lim
-        })
+        });
+        if tip || within(&self.balls) {
+            Reach::Field
+        } else if within(&self.correction_balls) {
+            Reach::Correction
+        } else {
+            Reach::Nothing
+        }
     }
+}
+
+/// What a change reaches of a kept field.
+enum Reach {
+    Nothing,
+    /// The path correction only.
+    Correction,
+    Field,
+}
+
+/// A ball holding every point within `r` of segment `s`.
+fn ball(s: &CutSegment, r: f64) -> (DVec3, f64) {
+    (s.pa.midpoint(s.pb), r + 0.5 * s.pa.distance(s.pb))
+}
+
+/// `d` with the slack of [`SLACK`] at `x`.
+fn slack(d: f64, x: DVec3) -> f64 {
+    d * (1.0 + SLACK) + SLACK * (1.0 + x.abs().max_element())
+}
+
+/// A kept field as a walk may use it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Kept {
+    /// As it is (with the side the walk gives now).
+    Field(FieldAt),
+    /// With its path correction measured again.
+    Correction(FieldAt),
 }
 
 impl FieldCache {
@@ -84,12 +129,19 @@ impl FieldCache {
     }
 
     /// The field kept for vertex `v` at rest position `p`, on side `sigma` now, when `changes`
-    /// cannot have changed it (see the module doc).
+    /// cannot have changed it, or changed only its path correction (see the module doc).
     #[inline]
-    pub fn kept(&self, v: u32, p: DVec3, sigma: f64, changes: &Changes) -> Option<FieldAt> {
+    pub fn kept(&self, v: u32, p: DVec3, sigma: f64, changes: &Changes) -> Option<Kept> {
         let f = self.fields.get(&v)?;
-        let same_place = f.rest.to_array().map(f64::to_bits) == p.to_array().map(f64::to_bits);
-        (same_place && !changes.reach(p, f.nearest)).then(|| FieldAt { sigma, ..*f })
+        if f.rest.to_array().map(f64::to_bits) != p.to_array().map(f64::to_bits) {
+            return None;
+        }
+        let f = FieldAt { sigma, ..*f };
+        match changes.reach(p, f.nearest) {
+            Reach::Nothing => Some(Kept::Field(f)),
+            Reach::Correction => Some(Kept::Correction(f)),
+            Reach::Field => None,
+        }
     }
 
     /// Replaces the field kept in `cells` by the entries of `field` whose rest position lies in
@@ -197,22 +249,34 @@ mod tests {
             taper_len: 1.0,
             ..Changes::default()
         };
+        let whole = |k: Option<Kept>| match k {
+            Some(Kept::Field(f)) => Some(f),
+            _ => None,
+        };
         // No change: the kept field, on the side the walk gives now.
-        let f = cache.kept(1, p, -1.0, &changes).unwrap();
+        let f = whole(cache.kept(1, p, -1.0, &changes)).unwrap();
         assert_eq!((f.sigma, f.rest, f.falloff), (-1.0, p, 0.5));
         // The vertex moved.
         assert!(cache.kept(1, p + DVec3::Z * 1e-12, 1.0, &changes).is_none());
         // A segment changed just out of the support of it, then just within.
         let far = p + DVec3::Y * (r + 0.5 + 1e-3);
-        changes.segment(&segment(far - DVec3::X * 0.5, far + DVec3::X * 0.5), r);
-        assert!(cache.kept(1, p, 1.0, &changes).is_some());
         let near = p + DVec3::Y * r;
-        changes.segment(&segment(near - DVec3::X * 0.5, near + DVec3::X * 0.5), r);
+        let along = |m: DVec3| segment(m - DVec3::X * 0.5, m + DVec3::X * 0.5);
+        changes.segment(&along(far), r);
+        assert!(whole(cache.kept(1, p, 1.0, &changes)).is_some());
+        // One within only changed its path corrections: the field is kept but its correction.
+        changes.corrections(&along(near), r);
+        assert!(matches!(
+            cache.kept(1, p, 1.0, &changes),
+            Some(Kept::Correction(_))
+        ));
+        changes.segment(&along(near), r);
         assert!(cache.kept(1, p, 1.0, &changes).is_none());
         // A crack tip within the taper length of the nearest cut point.
         changes.balls.clear();
+        changes.correction_balls.clear();
         changes.tips.push(f.nearest + DVec3::Y * 1.5);
-        assert!(cache.kept(1, p, 1.0, &changes).is_some());
+        assert!(whole(cache.kept(1, p, 1.0, &changes)).is_some());
         changes.tips.push(f.nearest + DVec3::Y * 0.9);
         assert!(cache.kept(1, p, 1.0, &changes).is_none());
     }

@@ -178,24 +178,28 @@ impl LiveOpening {
         };
         for i in 0..state.segments.len().max(segments.len()) {
             let (before, after) = (state.segments.get(i), segments.get(i));
-            let same_field = match (before, after) {
-                (Some(a), Some(b)) => {
-                    a == b
-                        && old.frames[i].tangent == new.frames[i].tangent
-                        && old.frames[i].lateral == new.frames[i].lateral
-                        && old.corrections[i] == new.corrections[i]
-                }
-                _ => false,
-            };
             // Every point within `r` of the segment is within `r` and half its length of its
             // middle.
             let around = |s: &CutSegment| (s.pa.midpoint(s.pb), r + 0.5 * s.pa.distance(s.pb));
-            if same_field {
-                if let Some(a) = before
-                    && old.ramp(a.time) != new.ramp(a.time)
-                {
-                    let (p, reach) = around(a);
-                    cells_within(&mut clock_only, p, reach, size);
+            if let (Some(a), Some(b)) = (before, after)
+                && a == b
+            {
+                let same_frame = old.frames[i].tangent == new.frames[i].tangent
+                    && old.frames[i].lateral == new.frames[i].lateral;
+                let same_corrections = old.corrections[i] == new.corrections[i];
+                let (p, reach) = around(a);
+                if same_frame && same_corrections {
+                    if old.ramp(a.time) != new.ramp(a.time) {
+                        cells_within(&mut clock_only, p, reach, size);
+                    }
+                    continue;
+                }
+                // The segment stays where it was: the nearest segments and tapers around it
+                // too. Its frame decides the sides of the lips near it (walked again); the kept
+                // path corrections near it are measured again when its own changed.
+                cells_within(&mut walked, p, reach, size);
+                if !same_corrections {
+                    changes.corrections(a, r);
                 }
                 continue;
             }
