@@ -61,8 +61,10 @@ pub struct Moved {
 impl Moved {
     pub(crate) fn new(mesh: &DynMesh, moved: &[(u32, DVec3)]) -> Moved {
         let at: FastMap<u32, usize> = moved.iter().enumerate().map(|(i, m)| (m.0, i)).collect();
-        let mut triangles: Vec<[u32; 3]> = Vec::new();
-        let mut seen: FastSet<u32> = FastSet::default();
+        // About two surface triangles per moved vertex, more along the edge of the moved patch.
+        let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(3 * moved.len());
+        let mut seen: FastSet<u32> =
+            FastSet::with_capacity_and_hasher(3 * moved.len(), Default::default());
         let mut fan = Vec::new();
         for &(v, _) in moved.iter() {
             mesh.fan_into(v, &mut fan);
