@@ -21,13 +21,13 @@
 //!   inner cells' vertices are taken.
 //!
 //! Most inner cells are there only because the segments near them opened a little further with
-//! the clock (the last half second of path is still opening): the field there ([`super::field::FieldAt`]:
-//! side, nearest segment, taper, path correction) is what it was. So the field of every vertex
-//! is kept ([`FieldCache`]); only the *walked* cells (those around a segment cut, undone,
-//! moved or given another frame or path correction, a tip, a fixed vertex or an edit) are
-//! walked again, over them and the margin, and there too a vertex keeps its field unless such
-//! a change reaches it. The field of the outer region is then evaluated at the new clock, and
-//! the unfolding and the floors run over it as before.
+//! the clock (the last half second of path is still opening): the field there
+//! ([`super::field::FieldAt`]: side, nearest segment, taper, path correction) is what it was.
+//! So the field of every vertex is kept ([`FieldCache`]); only the *walked* cells (those around
+//! a segment cut, undone, moved or given another frame or path correction, a tip, a fixed
+//! vertex or an edit) are walked again, over them and the margin, and there too a vertex keeps
+//! its field unless such a change reaches it. The field of the outer region is then evaluated
+//! at the new clock, and the unfolding and the floors run over it as before.
 //!
 //! The cut grid (the segments by cell) is kept and only the changed segments are moved in it.
 //! The result equals the opening computed from scratch when every seed and walk deciding an
