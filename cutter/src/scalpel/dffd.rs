@@ -308,8 +308,11 @@ pub(crate) fn walk(
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
         let sigma = side[&v];
-        // A kept field says the vertex is within the support, as before.
-        let kept = region.and_then(|g| g.known.kept(v, p, sigma, g.changes));
+        // A kept field says the vertex is within the support, as before. Outside the kept
+        // cells (the margin) no change reaches (they would be kept cells otherwise), and only
+        // that is asked of it.
+        let wanted = in_keep.contains(p);
+        let kept = region.and_then(|g| g.known.kept(v, p, sigma, wanted.then_some(g.changes)));
         let (dist, c, i) = match kept {
             Some(Kept::Field(f) | Kept::Correction(f)) => (0.0, f.nearest, f.segment as usize),
             None => {
@@ -334,7 +337,7 @@ pub(crate) fn walk(
         if inputs.fixed.contains(&v) {
             continue;
         }
-        if !in_keep.contains(p) {
+        if !wanted {
             continue;
         }
         match kept {

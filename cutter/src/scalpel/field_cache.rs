@@ -129,15 +129,16 @@ impl FieldCache {
     }
 
     /// The field kept for vertex `v` at rest position `p`, on side `sigma` now, when `changes`
-    /// cannot have changed it, or changed only its path correction (see the module doc).
+    /// cannot have changed it, or changed only its path correction (see the module doc);
+    /// `changes` `None` when none can reach `p`.
     #[inline]
-    pub fn kept(&self, v: u32, p: DVec3, sigma: f64, changes: &Changes) -> Option<Kept> {
+    pub fn kept(&self, v: u32, p: DVec3, sigma: f64, changes: Option<&Changes>) -> Option<Kept> {
         let f = self.fields.get(&v)?;
         if f.rest.to_array().map(f64::to_bits) != p.to_array().map(f64::to_bits) {
             return None;
         }
         let f = FieldAt { sigma, ..*f };
-        match changes.reach(p, f.nearest) {
+        match changes.map_or(Reach::Nothing, |c| c.reach(p, f.nearest)) {
             Reach::Nothing => Some(Kept::Field(f)),
             Reach::Correction => Some(Kept::Correction(f)),
             Reach::Field => None,
@@ -254,30 +255,34 @@ mod tests {
             _ => None,
         };
         // No change: the kept field, on the side the walk gives now.
-        let f = whole(cache.kept(1, p, -1.0, &changes)).unwrap();
+        let f = whole(cache.kept(1, p, -1.0, Some(&changes))).unwrap();
         assert_eq!((f.sigma, f.rest, f.falloff), (-1.0, p, 0.5));
         // The vertex moved.
-        assert!(cache.kept(1, p + DVec3::Z * 1e-12, 1.0, &changes).is_none());
+        assert!(
+            cache
+                .kept(1, p + DVec3::Z * 1e-12, 1.0, Some(&changes))
+                .is_none()
+        );
         // A segment changed just out of the support of it, then just within.
         let far = p + DVec3::Y * (r + 0.5 + 1e-3);
         let near = p + DVec3::Y * r;
         let along = |m: DVec3| segment(m - DVec3::X * 0.5, m + DVec3::X * 0.5);
         changes.segment(&along(far), r);
-        assert!(whole(cache.kept(1, p, 1.0, &changes)).is_some());
+        assert!(whole(cache.kept(1, p, 1.0, Some(&changes))).is_some());
         // One within only changed its path corrections: the field is kept but its correction.
         changes.corrections(&along(near), r);
         assert!(matches!(
-            cache.kept(1, p, 1.0, &changes),
+            cache.kept(1, p, 1.0, Some(&changes)),
             Some(Kept::Correction(_))
         ));
         changes.segment(&along(near), r);
-        assert!(cache.kept(1, p, 1.0, &changes).is_none());
+        assert!(cache.kept(1, p, 1.0, Some(&changes)).is_none());
         // A crack tip within the taper length of the nearest cut point.
         changes.balls.clear();
         changes.correction_balls.clear();
         changes.tips.push(f.nearest + DVec3::Y * 1.5);
-        assert!(whole(cache.kept(1, p, 1.0, &changes)).is_some());
+        assert!(whole(cache.kept(1, p, 1.0, Some(&changes))).is_some());
         changes.tips.push(f.nearest + DVec3::Y * 0.9);
-        assert!(cache.kept(1, p, 1.0, &changes).is_none());
+        assert!(cache.kept(1, p, 1.0, Some(&changes)).is_none());
     }
 }
