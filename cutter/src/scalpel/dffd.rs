@@ -48,7 +48,7 @@ use glam::DVec3;
 use super::cut_grid::{Cell, CutGrid, InCells};
 use super::dyn_mesh::{DynMesh, prev};
 use super::feet::Feet;
-use super::field::FieldAt;
+use super::field::{FieldAt, taper_at};
 use super::field_cache::{Changes, FieldCache, Kept};
 pub use super::frames::{Frame, frames};
 use super::nearest_cut::{self, Balls};
@@ -314,7 +314,7 @@ pub(crate) fn walk(
         let wanted = in_keep.contains(p);
         let kept = region.and_then(|g| g.known.kept(v, p, sigma, wanted.then_some(g.changes)));
         let (dist, c, i) = match kept {
-            Some(Kept::Field(f) | Kept::Correction(f)) => (0.0, f.nearest, f.segment as usize),
+            Some(k) => (0.0, k.field_at.nearest, k.field_at.segment as usize),
             None => {
                 let Some(found) = nearest(p, grid.near(p)) else {
                     continue;
@@ -340,28 +340,22 @@ pub(crate) fn walk(
         if !wanted {
             continue;
         }
-        match kept {
-            Some(Kept::Field(f)) => {
-                field.push(f);
-                continue;
+        if let Some(Kept {
+            mut field_at,
+            taper,
+            correction,
+        }) = kept
+        {
+            if taper {
+                field_at.taper = taper_at(tips, field_at.nearest, inputs.taper_len);
             }
-            Some(Kept::Correction(f)) => {
-                let correction = if onto_path {
-                    correction_at(p, grid.near(p))
-                } else {
-                    DVec3::ZERO
-                };
-                field.push(FieldAt { correction, ..f });
-                continue;
+            if correction && onto_path {
+                field_at.correction = correction_at(p, grid.near(p));
             }
-            None => {}
+            field.push(field_at);
+            continue;
         }
-        let tip_dist = tips
-            .iter()
-            .map(|t| t.distance(c))
-            .fold(f64::INFINITY, f64::min);
-        let x = (tip_dist / inputs.taper_len).min(1.0);
-        let taper = x * x * (3.0 - 2.0 * x);
+        let taper = taper_at(tips, c, inputs.taper_len);
         let falloff = {
             let s2 = (dist / r) * (dist / r);
             (1.0 - s2) * (1.0 - s2)
@@ -376,6 +370,7 @@ pub(crate) fn walk(
             segment: i as u32,
             rest: p,
             nearest: c,
+            dist,
             sigma,
             taper,
             falloff,

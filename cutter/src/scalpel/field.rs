@@ -24,8 +24,9 @@ pub(crate) struct FieldAt {
     pub segment: u32,
     /// Rest position.
     pub rest: DVec3,
-    /// The nearest cut point (the taper is measured from it).
+    /// The nearest cut point (the taper is measured from it) and its distance.
     pub nearest: DVec3,
+    pub dist: f64,
     /// The side of the cut, `±1`.
     pub sigma: f64,
     pub taper: f64,
@@ -34,6 +35,18 @@ pub(crate) struct FieldAt {
     /// The blended path correction at the vertex, before the ramp and the falloff scale it
     /// (zero when the lips are not moved onto the drawn path).
     pub correction: DVec3,
+}
+
+/// The taper at nearest cut point `c`: from 0 at a crack tip of `tips` to 1 `taper_len` from
+/// the nearest.
+#[inline]
+pub(crate) fn taper_at(tips: &[DVec3], c: DVec3, taper_len: f64) -> f64 {
+    let tip_dist = tips
+        .iter()
+        .map(|t| t.distance(c))
+        .fold(f64::INFINITY, f64::min);
+    let x = (tip_dist / taper_len).min(1.0);
+    x * x * (3.0 - 2.0 * x)
 }
 
 impl FieldAt {

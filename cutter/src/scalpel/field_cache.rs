@@ -12,19 +12,24 @@
 //!
 //! Even in the walked cells most vertices' field is the one kept: the walk is needed for the
 //! sides (a cut changes which lip reaches a vertex first, a segment's frame decides its lips'
-//! sides), but a vertex's nearest segment, taper and path correction only change when a cut
-//! segment within the support of it was cut, undone or moved, when a crack tip within the
-//! taper length of its nearest cut point appeared or went, or when the vertex itself moved; a
-//! segment near the tool whose frame and path corrections follow the path drawn past it
-//! changes the path correction alone (the frame's lateral is read when the field is
-//! evaluated). [`Changes`] holds those and [`FieldCache::kept`] gives a vertex's kept field
-//! when none of them reaches it, or tells the walk to measure its path correction again, with
-//! the side the walk gives it now (the side only multiplies the field).
+//! sides), but of a vertex's field (the frame's lateral is read when it is evaluated)
+//! - the nearest segment changes only when a segment cut, undone or moved is that segment or
+//!   comes as near (then everything is measured again);
+//! - the taper only when a crack tip within the taper length of its nearest cut point
+//!   appeared or went;
+//! - the path correction only when a segment with an end within the support was cut, undone
+//!   or moved, or a segment within the support got other path corrections (those near the tool
+//!   follow the path drawn past them).
+//!
+//! [`Changes`] holds those and [`FieldCache::kept`] gives a vertex's kept field, with the side
+//! the walk gives it now (the side only multiplies the field) and what of it to measure again;
+//! nothing when the vertex itself moved.
 
 use glam::DVec3;
 
 use super::cut_grid::{Cell, cell_of};
 use super::field::FieldAt;
+use super::nearest_cut::point_on;
 use super::step::CutSegment;
 use csg::fast_hash::{FastMap, FastSet};
 
@@ -47,19 +52,23 @@ pub(crate) struct FieldCache {
 /// (see the module doc).
 #[derive(Default)]
 pub(crate) struct Changes {
-    /// Balls holding every point within the support of a changed segment (before and after).
-    pub balls: Vec<(DVec3, f64)>,
-    /// The same for the segments that only changed their path corrections.
+    /// The segments cut, undone or moved, by index (as they were and as they are), with a ball
+    /// holding every point within the support of each.
+    pub segments: Vec<(u32, CutSegment, (DVec3, f64))>,
+    /// Balls holding every point within the support of the segments that only changed their
+    /// path corrections.
     pub correction_balls: Vec<(DVec3, f64)>,
     /// Crack tips that appeared or went.
     pub tips: Vec<DVec3>,
     pub taper_len: f64,
+    /// The support radius.
+    pub r: f64,
 }
 
 impl Changes {
-    /// Adds the segment `s`, changed, whose support reaches `r` from it.
-    pub fn segment(&mut self, s: &CutSegment, r: f64) {
-        self.balls.push(ball(s, r));
+    /// Adds segment `i` as it was or is now, `s`, changed (its support reaches `r` from it).
+    pub fn segment(&mut self, i: usize, s: &CutSegment, r: f64) {
+        self.segments.push((i as u32, *s, ball(s, r)));
     }
 
     /// Adds the segment `s`, in place but with other path corrections at its ends.
@@ -67,35 +76,35 @@ impl Changes {
         self.correction_balls.push(ball(s, r));
     }
 
-    /// What of the field at rest position `p` with nearest cut point `c` may differ from the
-    /// one kept.
-    fn reach(&self, p: DVec3, c: DVec3) -> Reach {
-        let within = |balls: &[(DVec3, f64)]| {
-            balls.iter().any(|&(m, reach)| {
-                let lim = slack(reach, p);
-                m.distance_squared(p) <= lim * lim
-            })
+    /// What of the field `f` kept at rest position `p` may differ now: `None` when its nearest
+    /// segment may have (a changed segment is it, or comes as near), else whether its taper and
+    /// its path correction may have.
+    fn reach(&self, p: DVec3, f: &FieldAt) -> Option<(bool, bool)> {
+        let within = |m: DVec3, reach: f64| {
+            let lim = slack(reach, p);
+            m.distance_squared(p) <= lim * lim
         };
-        let tip = self.tips.iter().any(|&t| {
-            let lim = slack(self.taper_len, c);
-            t.distance_squared(c) <= lim * lim
-        });
-        if tip || within(&self.balls) {
-            Reach::Field
-        } else if within(&self.correction_balls) {
-            Reach::Correction
-        } else {
-            Reach::Nothing
+        let mut correction = self
+            .correction_balls
+            .iter()
+            .any(|&(m, reach)| within(m, reach));
+        for (i, s, (m, reach)) in &self.segments {
+            if !within(*m, *reach) {
+                continue;
+            }
+            let (d2, _) = point_on(s, p);
+            if *i == f.segment || d2.sqrt() <= slack(f.dist, p) {
+                return None;
+            }
+            // Its ends' path corrections are blended at `p` when within the support.
+            correction |= within(s.pa, self.r) || within(s.pb, self.r);
         }
+        let taper = self.tips.iter().any(|&t| {
+            let lim = slack(self.taper_len, f.nearest);
+            t.distance_squared(f.nearest) <= lim * lim
+        });
+        Some((taper, correction))
     }
-}
-
-/// What a change reaches of a kept field.
-enum Reach {
-    Nothing,
-    /// The path correction only.
-    Correction,
-    Field,
 }
 
 /// A ball holding every point within `r` of segment `s`.
@@ -108,13 +117,13 @@ fn slack(d: f64, x: DVec3) -> f64 {
     d * (1.0 + SLACK) + SLACK * (1.0 + x.abs().max_element())
 }
 
-/// A kept field as a walk may use it.
+/// A kept field as a walk may use it: with the side the walk gives now, its taper and its
+/// path correction to be measured again where a change may have changed them.
 #[derive(Clone, Copy, Debug)]
-pub(crate) enum Kept {
-    /// As it is (with the side the walk gives now).
-    Field(FieldAt),
-    /// With its path correction measured again.
-    Correction(FieldAt),
+pub(crate) struct Kept {
+    pub field_at: FieldAt,
+    pub taper: bool,
+    pub correction: bool,
 }
 
 impl FieldCache {
@@ -137,12 +146,15 @@ impl FieldCache {
         if f.rest.to_array().map(f64::to_bits) != p.to_array().map(f64::to_bits) {
             return None;
         }
-        let f = FieldAt { sigma, ..*f };
-        match changes.map_or(Reach::Nothing, |c| c.reach(p, f.nearest)) {
-            Reach::Nothing => Some(Kept::Field(f)),
-            Reach::Correction => Some(Kept::Correction(f)),
-            Reach::Field => None,
-        }
+        let (taper, correction) = match changes {
+            Some(changes) => changes.reach(p, f)?,
+            None => (false, false),
+        };
+        Some(Kept {
+            field_at: FieldAt { sigma, ..*f },
+            taper,
+            correction,
+        })
     }
 
     /// Replaces the field kept in `cells` by the entries of `field` whose rest position lies in
@@ -196,6 +208,7 @@ mod tests {
             segment: 0,
             rest,
             nearest: rest + DVec3::X,
+            dist: 1.0,
             sigma: 1.0,
             taper: 1.0,
             falloff: 0.5,
@@ -244,45 +257,66 @@ mod tests {
     fn a_kept_field_is_given_only_where_no_change_reaches_and_the_vertex_did_not_move() {
         let mut cache = FieldCache::default();
         let p = DVec3::new(10.0, 0.0, 0.0);
+        // Its nearest cut point one away (segment 0).
         cache.replace(None, vec![field(1, p)], 6.0);
         let r = 3.0;
         let mut changes = Changes {
-            taper_len: 1.0,
+            taper_len: 0.5,
+            r,
             ..Changes::default()
         };
-        let whole = |k: Option<Kept>| match k {
-            Some(Kept::Field(f)) => Some(f),
-            _ => None,
-        };
+        let parts = |k: Option<Kept>| k.map(|k| (k.taper, k.correction));
         // No change: the kept field, on the side the walk gives now.
-        let f = whole(cache.kept(1, p, -1.0, Some(&changes))).unwrap();
-        assert_eq!((f.sigma, f.rest, f.falloff), (-1.0, p, 0.5));
+        let k = cache.kept(1, p, -1.0, Some(&changes)).unwrap();
+        assert_eq!((k.field_at.sigma, k.field_at.rest), (-1.0, p));
+        assert_eq!((k.taper, k.correction), (false, false));
         // The vertex moved.
         assert!(
             cache
                 .kept(1, p + DVec3::Z * 1e-12, 1.0, Some(&changes))
                 .is_none()
         );
-        // A segment changed just out of the support of it, then just within.
-        let far = p + DVec3::Y * (r + 0.5 + 1e-3);
-        let near = p + DVec3::Y * r;
-        let along = |m: DVec3| segment(m - DVec3::X * 0.5, m + DVec3::X * 0.5);
-        changes.segment(&along(far), r);
-        assert!(whole(cache.kept(1, p, 1.0, Some(&changes))).is_some());
-        // One within only changed its path corrections: the field is kept but its correction.
-        changes.corrections(&along(near), r);
-        assert!(matches!(
-            cache.kept(1, p, 1.0, Some(&changes)),
-            Some(Kept::Correction(_))
-        ));
-        changes.segment(&along(near), r);
+        let across = |m: DVec3| segment(m - DVec3::Z * 0.1, m + DVec3::Z * 0.1);
+        // A segment changed out of the support of it: nothing to measure again.
+        changes.segment(5, &across(p + DVec3::Y * (r + 0.5)), r);
+        assert_eq!(
+            parts(cache.kept(1, p, 1.0, Some(&changes))),
+            Some((false, false))
+        );
+        // One within the support but farther than its nearest cut point: the path correction
+        // (its ends are blended).
+        changes.segment(6, &across(p + DVec3::Y * 2.0), r);
+        assert_eq!(
+            parts(cache.kept(1, p, 1.0, Some(&changes))),
+            Some((false, true))
+        );
+        // One as near as its nearest cut point, or its nearest segment itself: all of it.
+        changes.segment(7, &across(p - DVec3::Y), r);
         assert!(cache.kept(1, p, 1.0, Some(&changes)).is_none());
-        // A crack tip within the taper length of the nearest cut point.
-        changes.balls.clear();
+        changes.segments.clear();
+        changes.segment(0, &across(p + DVec3::Y * 2.5), r);
+        assert!(cache.kept(1, p, 1.0, Some(&changes)).is_none());
+        changes.segments.clear();
+        // A segment in place whose path corrections changed, within the support.
+        changes.corrections(&across(p + DVec3::Y * 2.0), r);
+        assert_eq!(
+            parts(cache.kept(1, p, 1.0, Some(&changes))),
+            Some((false, true))
+        );
         changes.correction_balls.clear();
-        changes.tips.push(f.nearest + DVec3::Y * 1.5);
-        assert!(whole(cache.kept(1, p, 1.0, Some(&changes))).is_some());
-        changes.tips.push(f.nearest + DVec3::Y * 0.9);
-        assert!(cache.kept(1, p, 1.0, Some(&changes)).is_none());
+        // A crack tip within the taper length of the nearest cut point: the taper.
+        let c = p + DVec3::X;
+        changes.tips.push(c + DVec3::Y * 0.6);
+        assert_eq!(
+            parts(cache.kept(1, p, 1.0, Some(&changes))),
+            Some((false, false))
+        );
+        changes.tips.push(c + DVec3::Y * 0.4);
+        assert_eq!(
+            parts(cache.kept(1, p, 1.0, Some(&changes))),
+            Some((true, false))
+        );
+        // No change can reach it (a margin vertex): kept as it is.
+        assert_eq!(parts(cache.kept(1, p, 1.0, None)), Some((false, false)));
     }
 }

@@ -183,6 +183,7 @@ impl LiveOpening {
         let r = new.r;
         let mut changes = Changes {
             taper_len: new.taper_len,
+            r,
             ..Changes::default()
         };
         for i in 0..state.segments.len().max(segments.len()) {
@@ -216,13 +217,13 @@ impl LiveOpening {
                 let (p, reach) = around(a);
                 cells_within(&mut walked, p, reach, size);
                 state.grid.remove(i, a);
-                changes.segment(a, r);
+                changes.segment(i, a, r);
             }
             if let Some(b) = after {
                 let (p, reach) = around(b);
                 cells_within(&mut walked, p, reach, size);
                 state.grid.insert(i, b, nv);
-                changes.segment(b, r);
+                changes.segment(i, b, r);
             }
         }
         let tip_reach = new.taper_len + r;
