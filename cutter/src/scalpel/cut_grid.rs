@@ -47,6 +47,42 @@ pub fn cells_within(cells: &mut FastSet<Cell>, p: DVec3, radius: f64, size: f64)
     }
 }
 
+/// Whether points lie in a set of cells (every point when there is no set), remembering the
+/// answer for the last cell asked about: the opening's walks ask about neighbouring vertices,
+/// mostly in one cell, and hashing a cell for each was a good part of a walk.
+pub struct InCells<'a> {
+    cells: Option<&'a FastSet<Cell>>,
+    size: f64,
+    last: Option<(Cell, bool)>,
+}
+
+impl<'a> InCells<'a> {
+    pub fn new(cells: Option<&'a FastSet<Cell>>, size: f64) -> InCells<'a> {
+        InCells {
+            cells,
+            size,
+            last: None,
+        }
+    }
+
+    /// Whether `p`'s cell is one of the cells.
+    #[inline]
+    pub fn contains(&mut self, p: DVec3) -> bool {
+        let Some(cells) = self.cells else {
+            return true;
+        };
+        let c = cell_of(p, self.size);
+        match self.last {
+            Some((l, answer)) if l == c => answer,
+            _ => {
+                let answer = cells.contains(&c);
+                self.last = Some((c, answer));
+                answer
+            }
+        }
+    }
+}
+
 /// Segments by grid cell (see the module doc).
 pub struct CutGrid {
     size: f64,

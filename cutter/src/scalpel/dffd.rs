@@ -45,9 +45,11 @@ use std::collections::VecDeque;
 
 use glam::DVec3;
 
-use super::cut_grid::{Cell, CutGrid, cell_of};
+use super::cut_grid::{Cell, CutGrid, InCells};
 use super::dyn_mesh::{DynMesh, prev};
 use super::feet::Feet;
+use super::field::{FieldAt, taper_at};
+use super::field_cache::{Changes, FieldCache, Kept};
 pub use super::frames::{Frame, frames};
 use super::nearest_cut::{self, Balls};
 use super::step::Scalpel;
@@ -112,7 +114,7 @@ fn displacements(
     };
     let mesh = scalpel.dyn_mesh();
     let mut grid = CutGrid::new(scalpel.segments(), mesh.vertex_count() as u32, inputs.r);
-    compute(scalpel, &inputs, &mut grid, None)
+    compute(scalpel, &inputs, &mut grid)
 }
 
 /// What the opening of every vertex is computed from, besides the mesh: per cut segment its
@@ -193,32 +195,45 @@ impl Inputs {
     }
 }
 
-/// Where a partial computation works: the grid cells (of the cut grid's size) whose vertices
-/// it gives (`inner`) and those it walks over to give them as the whole computation would
-/// (`outer`, a margin of cells around `inner`).
-pub(crate) struct Region {
-    pub inner: FastSet<Cell>,
-    pub outer: FastSet<Cell>,
+/// The opening of every vertex: the field of the module doc, the unfolding and the groove
+/// floors.
+fn compute(scalpel: &Scalpel, inputs: &Inputs, grid: &mut CutGrid) -> Vec<(u32, DVec3)> {
+    let field = walk(scalpel, inputs, grid, None);
+    let floors = floors_by_lips(scalpel, grid, None);
+    finish(scalpel, inputs, field.iter(), floors, None)
 }
 
-/// The opening of the vertices of `region` (every vertex when `None`): the field of the module
-/// doc, the unfolding and the groove floors. With a region, the walk over the surface stays in
-/// its outer cells and seeds only at lips there, and only vertices of its inner cells are given.
-pub(crate) fn compute(
+/// Where a partial walk works: the cells it walks over (and seeds at the lips of), those whose
+/// vertices' field it gives, and the field kept from before with what changed since (a
+/// vertex's kept field is given when no change reaches it, [`FieldCache::kept`]).
+pub(crate) struct WalkRegion<'a> {
+    pub outer: &'a FastSet<Cell>,
+    pub keep: &'a FastSet<Cell>,
+    pub known: &'a FieldCache,
+    pub changes: &'a Changes,
+}
+
+/// The field of every vertex the walk of the module doc reaches within the support, in the
+/// order it reaches them, apart from the clock ([`FieldAt`]); fixed vertices are walked over,
+/// not given. With a region, the walk stays in its outer cells and seeds only at lips there,
+/// and gives the vertices of its kept cells only.
+pub(crate) fn walk(
     scalpel: &Scalpel,
     inputs: &Inputs,
     grid: &mut CutGrid,
-    region: Option<&Region>,
-) -> Vec<(u32, DVec3)> {
+    region: Option<&WalkRegion>,
+) -> Vec<FieldAt> {
+    let outer = region.map(|g| g.outer);
     let mesh = scalpel.dyn_mesh();
     let segments = scalpel.segments();
-    let mut out = Vec::new();
-    let (w, r) = (inputs.width, inputs.r);
+    let mut field = Vec::new();
+    let r = inputs.r;
     let nv = mesh.vertex_count() as u32;
     let (frames, corrections, tips) = (&inputs.frames, &inputs.corrections, &inputs.tips);
     let onto_path = inputs.onto_path;
     let size = grid.size();
-    let in_outer = |p: DVec3| region.is_none_or(|g| g.outer.contains(&cell_of(p, size)));
+    let mut in_outer = InCells::new(outer, size);
+    let mut in_keep = InCells::new(region.map(|g| g.keep), size);
     // Nearest point on the cut among the segments `near`: (distance, point, segment index).
     // `last` is the previous answer's segment, measured first (see [`nearest_cut`]).
     let balls = Balls::new(segments);
@@ -259,19 +274,19 @@ pub(crate) fn compute(
     // vertex takes the side of the first seed, in seed order, among those fewest surface edges
     // away: a region's vertices take the sides the whole walk gives them when its margin holds
     // those seeds and paths.)
-    let mut side: FastMap<u32, f64> = FastMap::default();
-    let mut corrected: Vec<DVec3> = Vec::new();
+    // A region's walk reaches some thousands of vertices: room for them up front.
+    let capacity = if region.is_some() { 1 << 13 } else { 0 };
+    let mut side: FastMap<u32, f64> =
+        FastMap::with_capacity_and_hasher(capacity, Default::default());
     let mut queue: VecDeque<u32> = VecDeque::new();
     let mut fan = Vec::new();
-    // Floor vertices next to the lip copies (groove bottoms): moved by the lips' correction.
-    let mut floors: Vec<u32> = Vec::new();
-    let seed_segments: Vec<usize> = match region {
+    let seed_segments: Vec<usize> = match outer {
         None => (0..segments.len()).collect(),
-        Some(g) => grid.segments_in(&g.outer),
+        Some(o) => grid.segments_in(o),
     };
     for s in seed_segments.iter().map(|&i| &segments[i]) {
         for v in [s.a, s.b] {
-            if v >= nv || mesh.copies(v).is_empty() || !in_outer(mesh.pos(v)) {
+            if v >= nv || mesh.copies(v).is_empty() || !in_outer.contains(mesh.pos(v)) {
                 continue;
             }
             for c in std::iter::once(v).chain(mesh.copies(v)) {
@@ -282,14 +297,6 @@ pub(crate) fn compute(
                 let Some((_, _, i)) = nearest(p, grid.near(p)) else {
                     continue;
                 };
-                mesh.fan_into(c, &mut fan);
-                for &h in &fan {
-                    floors.extend(
-                        mesh.triangles()[(h / 3) as usize]
-                            .iter()
-                            .filter(|&&f| mesh.is_floor(f)),
-                    );
-                }
                 let sigma = lip_side(mesh, c, &frames[i], &mut fan);
                 if sigma != 0.0 {
                     side.insert(c, sigma);
@@ -300,18 +307,28 @@ pub(crate) fn compute(
     }
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
-        let near = grid.near(p);
-        let Some((dist, c, i)) = nearest(p, near) else {
-            continue;
+        let sigma = side[&v];
+        // A kept field says the vertex is within the support, as before. Outside the kept
+        // cells (the margin) no change reaches (they would be kept cells otherwise), and only
+        // that is asked of it.
+        let wanted = in_keep.contains(p);
+        let kept = region.and_then(|g| g.known.kept(v, p, sigma, wanted.then_some(g.changes)));
+        let (dist, c, i) = match kept {
+            Some(k) => (0.0, k.field_at.nearest, k.field_at.segment as usize),
+            None => {
+                let Some(found) = nearest(p, grid.near(p)) else {
+                    continue;
+                };
+                found
+            }
         };
         if dist >= r {
             continue;
         }
-        let sigma = side[&v];
         mesh.surface_fan_into(v, &mut fan);
         for &h in &fan {
             for n in [mesh.dest(h), mesh.origin(prev(h))] {
-                if !mesh.is_floor(n) && !side.contains_key(&n) && in_outer(mesh.pos(n)) {
+                if !mesh.is_floor(n) && !side.contains_key(&n) && in_outer.contains(mesh.pos(n)) {
                     side.insert(n, sigma);
                     queue.push_back(n);
                 }
@@ -320,38 +337,125 @@ pub(crate) fn compute(
         if inputs.fixed.contains(&v) {
             continue;
         }
-        let s = &segments[i];
-        let lateral = frames[i].lateral;
-        let ramp = inputs.ramp(s.time);
-        let tip_dist = tips
-            .iter()
-            .map(|t| t.distance(c))
-            .fold(f64::INFINITY, f64::min);
-        let x = (tip_dist / inputs.taper_len).min(1.0);
-        let taper = x * x * (3.0 - 2.0 * x);
+        if !wanted {
+            continue;
+        }
+        if let Some(Kept {
+            mut field_at,
+            taper,
+            correction,
+        }) = kept
+        {
+            if taper {
+                field_at.taper = taper_at(tips, field_at.nearest, inputs.taper_len);
+            }
+            if correction && onto_path {
+                field_at.correction = correction_at(p, grid.near(p));
+            }
+            field.push(field_at);
+            continue;
+        }
+        let taper = taper_at(tips, c, inputs.taper_len);
         let falloff = {
             let s2 = (dist / r) * (dist / r);
             (1.0 - s2) * (1.0 - s2)
         };
-        let amount = sigma * 0.5 * w * ramp * taper * falloff;
         let correction = if onto_path {
-            correction_at(p, grid.near(p)) * (ramp * falloff)
+            correction_at(p, grid.near(p))
         } else {
             DVec3::ZERO
         };
-        if amount != 0.0 || correction != DVec3::ZERO {
-            out.push((v, p + correction + lateral * amount));
-            corrected.push(correction);
+        field.push(FieldAt {
+            vertex: v,
+            segment: i as u32,
+            rest: p,
+            nearest: c,
+            dist,
+            sigma,
+            taper,
+            falloff,
+            correction,
+        });
+    }
+    field
+}
+
+/// The floor vertices next to the lip copies (groove bottoms), those of the lips in `outer`
+/// when given: the opening moves them by the lips' correction. Sorted, each once.
+pub(crate) fn floors_by_lips(
+    scalpel: &Scalpel,
+    grid: &mut CutGrid,
+    outer: Option<&FastSet<Cell>>,
+) -> Vec<u32> {
+    let mesh = scalpel.dyn_mesh();
+    let segments = scalpel.segments();
+    let nv = mesh.vertex_count() as u32;
+    let size = grid.size();
+    let mut in_outer = InCells::new(outer, size);
+    let lip_segments: Vec<usize> = match outer {
+        None => (0..segments.len()).collect(),
+        Some(o) => grid.segments_in(o),
+    };
+    let mut floors = Vec::new();
+    let mut fan = Vec::new();
+    for s in lip_segments.iter().map(|&i| &segments[i]) {
+        for v in [s.a, s.b] {
+            if v >= nv || mesh.copies(v).is_empty() || !in_outer.contains(mesh.pos(v)) {
+                continue;
+            }
+            for c in std::iter::once(v).chain(mesh.copies(v)) {
+                // A lip copy with no cut segment near it seeds nothing (see `walk`).
+                if grid.near(mesh.pos(c)).is_empty() {
+                    continue;
+                }
+                mesh.fan_into(c, &mut fan);
+                for &h in &fan {
+                    floors.extend(
+                        mesh.triangles()[(h / 3) as usize]
+                            .iter()
+                            .filter(|&&f| mesh.is_floor(f)),
+                    );
+                }
+            }
         }
     }
-    super::unfold::unfold_correction(mesh, &mut out, &mut corrected);
+    floors.sort_unstable();
+    floors.dedup();
+    floors
+}
+
+/// The opening from the field of the vertices within the support ([`walk`]) and the floors
+/// next to the lips ([`floors_by_lips`]): each field evaluated at this clock, the path
+/// corrections and then the displacements unfolded, the floors moved by the lips' corrections.
+/// With `keep` (cells, their size), only the vertices of those cells are given.
+pub(crate) fn finish<'a>(
+    scalpel: &Scalpel,
+    inputs: &Inputs,
+    field: impl Iterator<Item = &'a FieldAt>,
+    floors: Vec<u32>,
+    keep: Option<(&FastSet<Cell>, f64)>,
+) -> Vec<(u32, DVec3)> {
+    let mesh = scalpel.dyn_mesh();
+    let segments = scalpel.segments();
+    let mut out = Vec::new();
+    let mut corrected: Vec<DVec3> = Vec::new();
+    for f in field {
+        if let Some((p, c)) = f.opened(inputs, segments) {
+            out.push((f.vertex, p));
+            corrected.push(c);
+        }
+    }
+    // Both unfoldings look at the triangles around the same moved vertices.
+    let mut around = None;
+    super::unfold::unfold_correction(mesh, &mut out, &mut corrected, &mut around);
     // Floor vertices under the lips: the mean correction of the surface vertices their walls
     // reach (both lips of a groove have the same), so that the floor stays under the drawn path
     // and the two walls are alike.
-    floors.sort_unstable();
-    floors.dedup();
-    let index: FastMap<u32, usize> = out.iter().enumerate().map(|(k, m)| (m.0, k)).collect();
+    let index = around
+        .get_or_insert_with(|| super::unfold::Moved::new(mesh, &out))
+        .index();
     let mut floor_moves = Vec::new();
+    let mut fan = Vec::new();
     for f in floors {
         mesh.fan_into(f, &mut fan);
         let (mut sum, mut count) = (DVec3::ZERO, 0.0);
@@ -367,10 +471,11 @@ pub(crate) fn compute(
             floor_moves.push((f, mesh.pos(f) + sum / count));
         }
     }
-    super::unfold::unfold(mesh, &mut out);
+    super::unfold::unfold(mesh, &mut out, &mut around);
     out.extend(floor_moves);
-    if let Some(g) = region {
-        out.retain(|&(v, _)| g.inner.contains(&cell_of(mesh.pos(v), size)));
+    if let Some((cells, size)) = keep {
+        let mut in_cells = InCells::new(Some(cells), size);
+        out.retain(|&(v, _)| in_cells.contains(mesh.pos(v)));
     }
     out
 }

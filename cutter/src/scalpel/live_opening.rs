@@ -20,6 +20,15 @@
 //!   over the inner cells and [`MARGIN`] cells around them (the *outer* region), and only the
 //!   inner cells' vertices are taken.
 //!
+//! Most inner cells are there only because the segments near them opened a little further with
+//! the clock (the last half second of path is still opening): the field there
+//! ([`super::field::FieldAt`]: side, nearest segment, taper, path correction) is what it was.
+//! So the field of every vertex is kept ([`FieldCache`]); only the *walked* cells (those around
+//! a segment cut, undone, moved or given another frame or path correction, a tip, a fixed
+//! vertex or an edit) are walked again, over them and the margin, and there too a vertex keeps
+//! its field unless such a change reaches it. The field of the outer region is then evaluated
+//! at the new clock, and the unfolding and the floors run over it as before.
+//!
 //! The cut grid (the segments by cell) is kept and only the changed segments are moved in it.
 //! The result equals the opening computed from scratch when every seed and walk deciding an
 //! inner vertex's side, and every folded patch it belongs to, lies within the margin of it
@@ -31,8 +40,9 @@
 use glam::DVec3;
 
 use super::cut_grid::{Cell, CutGrid, cell_of, cells_within};
-use super::dffd::{Inputs, OpenOptions, Region, compute, taper_length};
+use super::dffd::{Inputs, OpenOptions, WalkRegion, finish, floors_by_lips, taper_length, walk};
 use super::feet::Feet;
+use super::field_cache::{Changes, FieldCache};
 use super::step::{CutSegment, Scalpel};
 use csg::fast_hash::{FastMap, FastSet};
 
@@ -61,6 +71,8 @@ pub struct LiveOpening {
     by_cell: FastMap<Cell, Vec<u32>>,
     /// The drawn samples' feet on the surface, kept for the path corrections.
     feet: Feet,
+    /// The field of every vertex within the support, apart from the clock.
+    field: FieldCache,
 }
 
 /// What the kept opening was computed from.
@@ -121,6 +133,7 @@ impl LiveOpening {
             self.state = None;
             self.moved.clear();
             self.by_cell.clear();
+            self.field.clear();
             return OpeningUpdate {
                 full: true,
                 ..OpeningUpdate::default()
@@ -136,10 +149,13 @@ impl LiveOpening {
         });
         let (Some(edits), Some(mut state)) = (edits, self.state.take()) else {
             let mut grid = CutGrid::new(segments, nv, inputs.r);
-            let out = compute(scalpel, &inputs, &mut grid, None);
+            let size = grid.size();
+            let field = walk(scalpel, &inputs, &mut grid, None);
+            let floors = floors_by_lips(scalpel, &mut grid, None);
+            let out = finish(scalpel, &inputs, field.iter(), floors, None);
+            self.field.replace(None, field, size);
             self.moved.clear();
             self.by_cell.clear();
-            let size = grid.size();
             self.insert(scalpel, out, size);
             let vertices = self.moved.len();
             self.state = Some(State {
@@ -160,44 +176,64 @@ impl LiveOpening {
         let size = state.grid.size();
         let (old, new) = (&state.inputs, &inputs);
         // Cells recomputed: those holding a point within the given distance of a change (see
-        // the module doc).
-        let mut inner: FastSet<Cell> = FastSet::default();
+        // the module doc). Of those, the cells where only segments' ramps changed keep their
+        // field ([`FieldCache`]); the field of the others (`walked`) is walked again.
+        let mut walked: FastSet<Cell> = FastSet::default();
+        let mut clock_only: FastSet<Cell> = FastSet::default();
         let r = new.r;
+        let mut changes = Changes {
+            taper_len: new.taper_len,
+            r,
+            ..Changes::default()
+        };
         for i in 0..state.segments.len().max(segments.len()) {
             let (before, after) = (state.segments.get(i), segments.get(i));
-            let same = match (before, after) {
-                (Some(a), Some(b)) => {
-                    a == b
-                        && old.frames[i].tangent == new.frames[i].tangent
-                        && old.frames[i].lateral == new.frames[i].lateral
-                        && old.corrections[i] == new.corrections[i]
-                        && old.ramp(a.time) == new.ramp(b.time)
-                }
-                _ => false,
-            };
-            if same {
-                continue;
-            }
             // Every point within `r` of the segment is within `r` and half its length of its
             // middle.
             let around = |s: &CutSegment| (s.pa.midpoint(s.pb), r + 0.5 * s.pa.distance(s.pb));
+            if let (Some(a), Some(b)) = (before, after)
+                && a == b
+            {
+                let same_frame = old.frames[i].tangent == new.frames[i].tangent
+                    && old.frames[i].lateral == new.frames[i].lateral;
+                let same_corrections = old.corrections[i] == new.corrections[i];
+                let (p, reach) = around(a);
+                if same_frame && same_corrections {
+                    if old.ramp(a.time) != new.ramp(a.time) {
+                        cells_within(&mut clock_only, p, reach, size);
+                    }
+                    continue;
+                }
+                // The segment stays where it was: the nearest segments and tapers around it
+                // too. Its frame decides the sides of the lips near it (walked again); the kept
+                // path corrections near it are measured again when its own changed.
+                cells_within(&mut walked, p, reach, size);
+                if !same_corrections {
+                    changes.corrections(a, r);
+                }
+                continue;
+            }
             if let Some(a) = before {
                 let (p, reach) = around(a);
-                cells_within(&mut inner, p, reach, size);
+                cells_within(&mut walked, p, reach, size);
                 state.grid.remove(i, a);
+                changes.segment(i, a, r);
             }
             if let Some(b) = after {
                 let (p, reach) = around(b);
-                cells_within(&mut inner, p, reach, size);
+                cells_within(&mut walked, p, reach, size);
                 state.grid.insert(i, b, nv);
+                changes.segment(i, b, r);
             }
         }
         let tip_reach = new.taper_len + r;
         for t in old.tips.iter().filter(|t| !new.tips.contains(t)) {
-            cells_within(&mut inner, *t, tip_reach, size);
+            cells_within(&mut walked, *t, tip_reach, size);
+            changes.tips.push(*t);
         }
         for t in new.tips.iter().filter(|t| !old.tips.contains(t)) {
-            cells_within(&mut inner, *t, tip_reach, size);
+            cells_within(&mut walked, *t, tip_reach, size);
+            changes.tips.push(*t);
         }
         let common = state
             .fixed
@@ -207,18 +243,41 @@ impl LiveOpening {
             .count();
         for &v in state.fixed[common..].iter().chain(&scalpel.fixed[common..]) {
             if v < nv {
-                cells_within(&mut inner, mesh.pos(v), r, size);
+                cells_within(&mut walked, mesh.pos(v), r, size);
             }
         }
         for &v in edits {
             if let Some(p) = self.moved.remove(&v) {
                 // Its display position: its rest one is gone; the cells around it.
-                grow(&mut inner, cell_of(p, size), 1);
+                grow(&mut walked, cell_of(p, size), 1);
+            }
+            // The cell its field was kept in, by its rest position then.
+            if let Some(c) = self.field.cell_of_vertex(v) {
+                walked.insert(c);
             }
             if v < nv {
-                cells_within(&mut inner, mesh.pos(v), r, size);
+                cells_within(&mut walked, mesh.pos(v), r, size);
             }
         }
+        // The field of the walked cells, walked over them and a margin around them as the whole
+        // walk would (see the module doc).
+        if !walked.is_empty() {
+            let mut around =
+                FastSet::with_capacity_and_hasher(walked.len() * 4, Default::default());
+            for &c in &walked {
+                grow(&mut around, c, MARGIN);
+            }
+            let region = WalkRegion {
+                outer: &around,
+                keep: &walked,
+                known: &self.field,
+                changes: &changes,
+            };
+            let field = walk(scalpel, &inputs, &mut state.grid, Some(&region));
+            self.field.replace(Some(&walked), field, size);
+        }
+        let mut inner = walked;
+        inner.extend(clock_only);
         let mut outer = FastSet::with_capacity_and_hasher(inner.len() * 4, Default::default());
         for &c in &inner {
             grow(&mut outer, c, MARGIN);
@@ -246,8 +305,9 @@ impl LiveOpening {
         state.samples = scalpel.drawn.len();
         let mut vertices = 0;
         if cells > 0 {
-            let region = Region { inner, outer };
-            let out = compute(scalpel, &state.inputs, &mut state.grid, Some(&region));
+            let floors = floors_by_lips(scalpel, &mut state.grid, Some(&outer));
+            let field = self.field.in_cells(&outer);
+            let out = finish(scalpel, &state.inputs, field, floors, Some((&inner, size)));
             vertices = out.len();
             self.insert(scalpel, out, size);
         }

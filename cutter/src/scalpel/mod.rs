@@ -89,6 +89,8 @@ pub mod dffd;
 pub mod drawn;
 pub mod dyn_mesh;
 pub mod feet;
+mod field;
+mod field_cache;
 pub mod frames;
 pub mod groove;
 pub mod invariants;

@@ -54,7 +54,7 @@ fn slack(p: DVec3, d: f64) -> f64 {
 /// The point of segment `s` nearest `p`, and its squared distance (the one formula every
 /// caller uses, so that equal inputs give equal bits).
 #[inline]
-fn point_on(s: &CutSegment, p: DVec3) -> (f64, DVec3) {
+pub(crate) fn point_on(s: &CutSegment, p: DVec3) -> (f64, DVec3) {
     let ab = s.pb - s.pa;
     let l2 = ab.length_squared();
     let u = if l2 > 0.0 {

@@ -42,7 +42,9 @@ const CORRECTION_PASSES: usize = 16;
 const CORRECTION_KEEP: f64 = 0.75;
 
 /// The surface triangles with a moved corner, and where each moved vertex is in the list.
-struct Moved {
+/// It depends on which vertices move, not where to: [`unfold_correction`] and [`unfold`] of
+/// the same moved vertices share one, made by whichever needs it first.
+pub struct Moved {
     at: FastMap<u32, usize>,
     /// Surface triangles with a moved corner, by their three corners (each once).
     triangles: Vec<[u32; 3]>,
@@ -57,10 +59,12 @@ struct Moved {
 }
 
 impl Moved {
-    fn new(mesh: &DynMesh, moved: &[(u32, DVec3)]) -> Moved {
+    pub(crate) fn new(mesh: &DynMesh, moved: &[(u32, DVec3)]) -> Moved {
         let at: FastMap<u32, usize> = moved.iter().enumerate().map(|(i, m)| (m.0, i)).collect();
-        let mut triangles: Vec<[u32; 3]> = Vec::new();
-        let mut seen: FastSet<u32> = FastSet::default();
+        // About two surface triangles per moved vertex, more along the edge of the moved patch.
+        let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(3 * moved.len());
+        let mut seen: FastSet<u32> =
+            FastSet::with_capacity_and_hasher(3 * moved.len(), Default::default());
         let mut fan = Vec::new();
         for &(v, _) in moved.iter() {
             mesh.fan_into(v, &mut fan);
@@ -109,6 +113,11 @@ impl Moved {
         }
     }
 
+    /// Where each moved vertex is in the moved list.
+    pub(crate) fn index(&self) -> &FastMap<u32, usize> {
+        &self.at
+    }
+
     /// Brings `folding` (per triangle, whether `test` holds) up to date: every triangle on the
     /// first pass (`changed` is `None`), afterwards only those with a corner among `changed`
     /// (indices into the moved list: the only ones whose shown corners moved since, so the
@@ -151,12 +160,17 @@ impl Moved {
 /// displacement that moves the lips onto the drawn path, see [`super::drawn`]) where they fold
 /// a surface triangle that the rest of the displacement does not fold: shrunk at its corners
 /// and their coincident copies, up to [`CORRECTION_PASSES`] times, then dropped. `moved` is
-/// updated with them.
-pub fn unfold_correction(mesh: &DynMesh, moved: &mut [(u32, DVec3)], correction: &mut [DVec3]) {
+/// updated with them. `around`: the [`Moved`] of these moved vertices, made here if `None`.
+pub fn unfold_correction(
+    mesh: &DynMesh,
+    moved: &mut [(u32, DVec3)],
+    correction: &mut [DVec3],
+    around: &mut Option<Moved>,
+) {
     if moved.is_empty() || correction.iter().all(|c| *c == DVec3::ZERO) {
         return;
     }
-    let m = Moved::new(mesh, moved);
+    let m = &*around.get_or_insert_with(|| Moved::new(mesh, moved));
     let mut folding = Vec::new();
     let mut shrink: Vec<usize> = Vec::new();
     for pass in 0..=CORRECTION_PASSES {
@@ -195,12 +209,13 @@ pub fn unfold_correction(mesh: &DynMesh, moved: &mut [(u32, DVec3)], correction:
 
 /// Shrinks the displacements in `moved` (vertex, opened position) until no surface triangle
 /// with a moved corner turns more than [`MAX_TURN_DEG`] from its rest normal (see the module
-/// doc). Entries that end at rest are dropped.
-pub fn unfold(mesh: &DynMesh, moved: &mut Vec<(u32, DVec3)>) {
+/// doc). Entries that end at rest are dropped. `around`: the [`Moved`] of these moved
+/// vertices, made here if `None`.
+pub fn unfold(mesh: &DynMesh, moved: &mut Vec<(u32, DVec3)>, around: &mut Option<Moved>) {
     if moved.is_empty() {
         return;
     }
-    let m = Moved::new(mesh, moved);
+    let m = &*around.get_or_insert_with(|| Moved::new(mesh, moved));
     let (at, triangles) = (&m.at, &m.triangles);
     let rest = |v: u32| mesh.pos(v);
     let mut fan = Vec::new();
@@ -337,7 +352,7 @@ mod tests {
         let v = id(3, 3);
         let mut moved = vec![(v, mesh.pos(v) + DVec3::new(1.6, 0.0, 0.0))];
         assert!(largest_turn(&mesh, &moved) > 90.0, "the input folds");
-        unfold(&mesh, &mut moved);
+        unfold(&mesh, &mut moved, &mut None);
         let turn = largest_turn(&mesh, &moved);
         assert!(turn <= MAX_TURN_DEG, "still turned {turn}°");
         // Pulled back only as far as needed: it still moves along +x.
@@ -360,7 +375,7 @@ mod tests {
         }
         let before = moved.clone();
         assert!(largest_turn(&mesh, &before) > 90.0, "the input folds");
-        unfold(&mesh, &mut moved);
+        unfold(&mesh, &mut moved, &mut None);
         assert!(largest_turn(&mesh, &moved) <= MAX_TURN_DEG);
         let kink = moved.iter().find(|m| m.0 == id(2, 3)).unwrap().1;
         assert!(
