@@ -216,17 +216,6 @@ mod tests {
         }
     }
 
-    fn segment(pa: DVec3, pb: DVec3) -> CutSegment {
-        CutSegment {
-            a: 0,
-            b: 1,
-            pa,
-            pb,
-            normal: DVec3::Z,
-            time: 0.0,
-        }
-    }
-
     #[test]
     fn a_vertex_is_kept_once_in_the_cell_of_its_rest_position_now() {
         let size = 2.0;
@@ -276,7 +265,7 @@ mod tests {
                 .kept(1, p + DVec3::Z * 1e-12, 1.0, Some(&changes))
                 .is_none()
         );
-        let across = |m: DVec3| segment(m - DVec3::Z * 0.1, m + DVec3::Z * 0.1);
+        let across = |m: DVec3| CutSegment::between(m - DVec3::Z * 0.1, m + DVec3::Z * 0.1);
         // A segment changed out of the support of it: nothing to measure again.
         changes.segment(5, &across(p + DVec3::Y * (r + 0.5)), r);
         assert_eq!(

@@ -116,17 +116,6 @@ mod tests {
         best.map(|(d2, c, i)| (d2.sqrt(), c, i))
     }
 
-    fn segment(pa: DVec3, pb: DVec3) -> CutSegment {
-        CutSegment {
-            a: 0,
-            b: 1,
-            pa,
-            pb,
-            normal: DVec3::Z,
-            time: 0.0,
-        }
-    }
-
     #[test]
     fn nearest_is_the_plain_scan_bit_for_bit_whatever_is_measured_first() {
         let mut state = 7u64;
@@ -143,10 +132,12 @@ mod tests {
             let last = *points.last().unwrap();
             points.push(last + DVec3::new(0.4, random() - 0.5, 0.2 * (random() - 0.5)));
         }
-        let mut segments: Vec<CutSegment> =
-            points.windows(2).map(|w| segment(w[0], w[1])).collect();
+        let mut segments: Vec<CutSegment> = points
+            .windows(2)
+            .map(|w| CutSegment::between(w[0], w[1]))
+            .collect();
         segments.push(segments[10]);
-        segments.push(segment(points[20], points[20]));
+        segments.push(CutSegment::between(points[20], points[20]));
         let balls = Balls::new(&segments);
         let all: Vec<usize> = (0..segments.len()).collect();
         let mut queries: Vec<DVec3> = points.clone();
@@ -175,7 +166,7 @@ mod tests {
 
     #[test]
     fn a_ball_out_of_reach_holds_no_point_within_reach() {
-        let s = segment(DVec3::new(50.0, 0.0, 0.0), DVec3::new(51.0, 0.0, 0.0));
+        let s = CutSegment::between(DVec3::new(50.0, 0.0, 0.0), DVec3::new(51.0, 0.0, 0.0));
         let balls = Balls::new(std::slice::from_ref(&s));
         let p = DVec3::new(50.5, 2.0, 0.0);
         assert!(balls.may_reach(0, p, 2.0));

@@ -87,6 +87,22 @@ pub struct CutSegment {
     pub time: f64,
 }
 
+#[cfg(test)]
+impl CutSegment {
+    /// A segment from `pa` to `pb` between vertices 0 and 1, cut at time 0 on a +Z surface
+    /// (the unit tests' segment).
+    pub(crate) fn between(pa: DVec3, pb: DVec3) -> CutSegment {
+        CutSegment {
+            a: 0,
+            b: 1,
+            pa,
+            pb,
+            normal: DVec3::Z,
+            time: 0.0,
+        }
+    }
+}
+
 /// One connected run of a stroke on the surface.
 #[derive(Clone, Debug)]
 pub(crate) struct Cut {
