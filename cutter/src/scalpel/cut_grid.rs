@@ -191,13 +191,8 @@ mod tests {
     #[test]
     fn cells_within_hold_every_point_of_the_ball_and_fewer_cells_than_the_cube() {
         let size = 6.0;
-        let mut state = 12345u64;
-        let mut random = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = csg::testkit::SplitMix(12345);
+        let mut random = || rng.next_f64();
         for _ in 0..200 {
             let p = DVec3::new(random(), random(), random()) * 40.0 - 20.0;
             let radius = 8.0 * random();

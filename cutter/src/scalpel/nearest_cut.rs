@@ -118,13 +118,8 @@ mod tests {
 
     #[test]
     fn nearest_is_the_plain_scan_bit_for_bit_whatever_is_measured_first() {
-        let mut state = 7u64;
-        let mut random = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = csg::testkit::SplitMix(7);
+        let mut random = || rng.next_f64();
         // A zigzag polyline far from the origin (large coordinates, short segments), with a
         // repeated segment (an exact tie) and a degenerate one.
         let mut points = vec![DVec3::new(100.0, -40.0, 7.0)];
