@@ -106,6 +106,11 @@ impl HeadlessRenderer {
         (&mut self.risk, &mut self.drawn)
     }
 
+    /// Sets how many triangles the GPU bins at a time (see [`Renderer::set_batch_triangles`]).
+    pub fn set_batch_triangles(&mut self, triangles: Option<u32>) {
+        self.renderer.set_batch_triangles(triangles);
+    }
+
     /// True for software rasterizers (lavapipe, llvmpipe).
     pub fn is_software(&self) -> bool {
         self.adapter.device_type == wgpu::DeviceType::Cpu

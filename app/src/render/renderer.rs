@@ -8,6 +8,7 @@
 //! This file holds what lives across frames: the caches of uploads, keyed by the meshes'
 //! addresses and dropped with them, and the frame's order of work.
 
+mod batches;
 mod draw_list;
 mod index_patches;
 mod passes;
@@ -134,6 +135,8 @@ pub struct Renderer {
     free_pages: crate::platform::free_pages::FreePages,
     /// Bytes uploaded since the uploads were last submitted ([`staging`]).
     staging: staging::Staging,
+    /// Triangles per submitted batch of a pass ([`batches`]): set on software adapters.
+    batch_triangles: Option<u32>,
 }
 
 impl Renderer {
@@ -186,7 +189,15 @@ impl Renderer {
             risk_pipelines: Default::default(),
             free_pages: Default::default(),
             staging: Default::default(),
+            batch_triangles: (device.adapter_info().device_type == wgpu::DeviceType::Cpu)
+                .then_some(batches::CPU_BATCH),
         }
+    }
+
+    /// Sets the triangles per submitted batch of a pass (`None`: a pass is one batch in the
+    /// caller's encoder). [`Renderer::new`] batches on software adapters only.
+    pub fn set_batch_triangles(&mut self, triangles: Option<u32>) {
+        self.batch_triangles = triangles;
     }
 
     /// The target this renderer paints into.
@@ -234,7 +245,8 @@ impl Renderer {
     }
 
     /// Renders `frame` offscreen, recording into `encoder` (egui's encoder in a paint callback's
-    /// `prepare`). Uploads new or changed meshes first. Call [`Renderer::paint`] afterwards.
+    /// `prepare`), or on a software adapter submitting it batch by batch ([`batches`]). Uploads
+    /// new or changed meshes first. Call [`Renderer::paint`] afterwards.
     pub fn prepare(
         &mut self,
         device: &wgpu::Device,
@@ -274,7 +286,6 @@ impl Renderer {
         }
         let draws = self.upload_and_list(device, queue, frame, [on(true), on(false)]);
         let (draws, uniforms) = draws;
-        self.apply_patches(device, encoder);
         if let Some(mut targets) = self.targets.take() {
             self.keep_transparency_targets(device, &mut targets, !draws.transparent.is_empty());
             self.targets = Some(targets);
@@ -330,9 +341,13 @@ impl Renderer {
             b: srgb_to_linear(background[2]) as f64 * alpha,
             a: alpha,
         };
+        let mut out =
+            batches::Submissions::new(device, queue, encoder, self.batch_triangles.is_some());
+        self.apply_patches(device, out.encoder());
         for eye in 0..eyes {
-            self.encode_eye(encoder, eye, clear, &draws);
+            self.encode_eye(&mut out, eye, clear, &draws);
         }
+        drop(out);
         self.evict();
         self.free_pages.trim_if_due(std::time::Instant::now());
     }

@@ -1,16 +1,19 @@
 //! The render passes of one eye, replaying a frame's [`DrawList`]: (1) opaque meshes and lines
 //! with depth; (2) transparent meshes into the weighted-blended accumulation targets, depth-tested
 //! against (1) without writing; (3) the transparency composite over (1), then overlay lines
-//! (cutter outlines) on top. Passes that would draw nothing are not begun.
+//! (cutter outlines) on top. Passes that would draw nothing are not begun. On a software adapter
+//! (1) and (2) are each cut into batches, one render pass and submission each ([`batches`]): the
+//! first clears, the others load what it drew.
 
 use super::Renderer;
+use super::batches::{self, BatchDraw, Submissions};
 use super::draw_list::{Draw, DrawList};
 use crate::render::gpu_data::DRAW_UNIFORM_STRIDE;
 
 impl Renderer {
     pub(super) fn encode_eye(
         &self,
-        encoder: &mut wgpu::CommandEncoder,
+        out: &mut Submissions<'_>,
         eye: usize,
         clear: wgpu::Color,
         draws: &DrawList,
@@ -18,65 +21,34 @@ impl Renderer {
         let Some(targets) = &self.targets else { return };
         let frame_offset = (eye as u64 * DRAW_UNIFORM_STRIDE) as u32;
         let color_view = &targets.color_views[eye];
-        {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("cutaway opaque pass"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: color_view,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(clear),
-                        store: wgpu::StoreOp::Store,
-                    },
-                    depth_slice: None,
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &targets.depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                occlusion_query_set: None,
-                timestamp_writes: None,
-                multiview_mask: None,
-            });
-            pass.set_bind_group(0, &self.frame_bind_group, &[frame_offset]);
-            self.draw_all(&mut pass, &draws.opaque, false);
-        }
-        let transparency = targets
-            .transparency
-            .as_ref()
-            .filter(|_| !draws.transparent.is_empty());
-        if let Some(oit) = transparency {
+        let load = |first: bool, value: wgpu::Color| {
+            if first {
+                wgpu::LoadOp::Clear(value)
+            } else {
+                wgpu::LoadOp::Load
+            }
+        };
+        for (i, batch) in self.batches(&draws.opaque).iter().enumerate() {
             {
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("cutaway transparency pass"),
-                    color_attachments: &[
-                        Some(wgpu::RenderPassColorAttachment {
-                            view: &oit.accum_view,
-                            resolve_target: None,
-                            ops: wgpu::Operations {
-                                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                                store: wgpu::StoreOp::Store,
-                            },
-                            depth_slice: None,
-                        }),
-                        Some(wgpu::RenderPassColorAttachment {
-                            view: &oit.revealage_view,
-                            resolve_target: None,
-                            ops: wgpu::Operations {
-                                load: wgpu::LoadOp::Clear(wgpu::Color::WHITE),
-                                store: wgpu::StoreOp::Store,
-                            },
-                            depth_slice: None,
-                        }),
-                    ],
+                let mut pass = out.encoder().begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("cutaway opaque pass"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: color_view,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: load(i == 0, clear),
+                            store: wgpu::StoreOp::Store,
+                        },
+                        depth_slice: None,
+                    })],
                     depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                         view: &targets.depth_view,
                         depth_ops: Some(wgpu::Operations {
-                            load: wgpu::LoadOp::Load,
+                            load: if i == 0 {
+                                wgpu::LoadOp::Clear(1.0)
+                            } else {
+                                wgpu::LoadOp::Load
+                            },
                             store: wgpu::StoreOp::Store,
                         }),
                         stencil_ops: None,
@@ -86,11 +58,59 @@ impl Renderer {
                     multiview_mask: None,
                 });
                 pass.set_bind_group(0, &self.frame_bind_group, &[frame_offset]);
-                self.draw_all(&mut pass, &draws.transparent, true);
+                self.draw_all(&mut pass, batch, false);
+            }
+            out.end_batch();
+        }
+        let transparency = targets
+            .transparency
+            .as_ref()
+            .filter(|_| !draws.transparent.is_empty());
+        if let Some(oit) = transparency {
+            for (i, batch) in self.batches(&draws.transparent).iter().enumerate() {
+                {
+                    let mut pass = out.encoder().begin_render_pass(&wgpu::RenderPassDescriptor {
+                        label: Some("cutaway transparency pass"),
+                        color_attachments: &[
+                            Some(wgpu::RenderPassColorAttachment {
+                                view: &oit.accum_view,
+                                resolve_target: None,
+                                ops: wgpu::Operations {
+                                    load: load(i == 0, wgpu::Color::TRANSPARENT),
+                                    store: wgpu::StoreOp::Store,
+                                },
+                                depth_slice: None,
+                            }),
+                            Some(wgpu::RenderPassColorAttachment {
+                                view: &oit.revealage_view,
+                                resolve_target: None,
+                                ops: wgpu::Operations {
+                                    load: load(i == 0, wgpu::Color::WHITE),
+                                    store: wgpu::StoreOp::Store,
+                                },
+                                depth_slice: None,
+                            }),
+                        ],
+                        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                            view: &targets.depth_view,
+                            depth_ops: Some(wgpu::Operations {
+                                load: wgpu::LoadOp::Load,
+                                store: wgpu::StoreOp::Store,
+                            }),
+                            stencil_ops: None,
+                        }),
+                        occlusion_query_set: None,
+                        timestamp_writes: None,
+                        multiview_mask: None,
+                    });
+                    pass.set_bind_group(0, &self.frame_bind_group, &[frame_offset]);
+                    self.draw_all(&mut pass, batch, true);
+                }
+                out.end_batch();
             }
         }
         if transparency.is_some() || !draws.overlay.is_empty() {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            let mut pass = out.encoder().begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("cutaway composite pass"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                     view: color_view,
@@ -120,13 +140,32 @@ impl Renderer {
             }
             if !draws.overlay.is_empty() {
                 pass.set_bind_group(0, &self.frame_bind_group, &[frame_offset]);
-                self.draw_all(&mut pass, &draws.overlay, false);
+                let whole = self.batches_of(&draws.overlay, None);
+                self.draw_all(&mut pass, &whole[0], false);
             }
         }
     }
 
-    fn draw_all(&self, pass: &mut wgpu::RenderPass<'_>, draws: &[Draw], transparent: bool) {
-        for &draw in draws {
+    /// `draws` cut into this renderer's batches.
+    fn batches(&self, draws: &[Draw]) -> Vec<Vec<BatchDraw>> {
+        self.batches_of(draws, self.batch_triangles)
+    }
+
+    fn batches_of(&self, draws: &[Draw], budget: Option<u32>) -> Vec<Vec<BatchDraw>> {
+        batches::split(draws, budget, |draw| match draw {
+            Draw::Mesh(source, _) | Draw::ImageMesh(source, _) | Draw::RiskMesh(source, ..) => {
+                (self.mesh(source).map_or(0, |m| m.index_count / 3), false)
+            }
+            Draw::Edges(..) | Draw::Contour(..) | Draw::Lines(..) => {
+                (self.segments(draw).map_or(0, |s| s.count), true)
+            }
+        })
+    }
+
+    fn draw_all(&self, pass: &mut wgpu::RenderPass<'_>, draws: &[BatchDraw], transparent: bool) {
+        for BatchDraw { draw, range } in draws {
+            let (draw, range) = (*draw, range.clone());
+            let indices = 3 * range.start..3 * range.end;
             match draw {
                 Draw::Mesh(source, u) | Draw::ImageMesh(source, u) => {
                     let Some(mesh) = self.mesh(source) else {
@@ -147,7 +186,7 @@ impl Renderer {
                     );
                     pass.set_vertex_buffer(0, mesh.vertex_buffer.slice(..));
                     pass.set_index_buffer(mesh.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
-                    pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+                    pass.draw_indexed(indices.clone(), 0, 0..1);
                 }
                 Draw::RiskMesh(source, u, over_image) => {
                     let Some(mesh) = self.mesh(source) else {
@@ -164,7 +203,7 @@ impl Renderer {
                     );
                     pass.set_vertex_buffer(0, mesh.vertex_buffer.slice(..));
                     pass.set_index_buffer(mesh.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
-                    pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+                    pass.draw_indexed(indices.clone(), 0, 0..1);
                 }
                 Draw::Edges(_, u) | Draw::Contour(_, u) | Draw::Lines(_, u) => {
                     let Some(segments) = self.segments(draw) else {
@@ -181,7 +220,7 @@ impl Renderer {
                         &[u * DRAW_UNIFORM_STRIDE as u32],
                     );
                     pass.set_vertex_buffer(0, segments.buffer.slice(..));
-                    pass.draw(0..6, 0..segments.count);
+                    pass.draw(0..6, range);
                 }
             }
         }
