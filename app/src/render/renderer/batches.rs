@@ -15,8 +15,8 @@ use std::ops::Range;
 
 use super::draw_list::Draw;
 
-/// Triangles per batch on a software adapter (a line segment counts two): about 20 MB binned.
-pub(super) const CPU_BATCH: u32 = 1 << 16;
+/// Triangles per batch on a software adapter (a line segment counts two): about 10 MB binned.
+pub(super) const CPU_BATCH: u32 = 1 << 15;
 
 /// A draw, or the part of it one batch takes: `range` counts triangles for meshes and segments
 /// for lines.
