@@ -52,8 +52,9 @@ use super::field::{FieldAt, taper_at};
 use super::field_cache::{Changes, FieldCache, Kept};
 pub use super::frames::{Frame, frames};
 use super::nearest_cut::{self, Balls};
+use super::sides::Sides;
 use super::step::Scalpel;
-use csg::fast_hash::{FastMap, FastSet};
+use csg::fast_hash::FastSet;
 
 /// How the incision opens.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -198,7 +199,7 @@ impl Inputs {
 /// The opening of every vertex: the field of the module doc, the unfolding and the groove
 /// floors.
 fn compute(scalpel: &Scalpel, inputs: &Inputs, grid: &mut CutGrid) -> Vec<(u32, DVec3)> {
-    let field = walk(scalpel, inputs, grid, None);
+    let field = walk(scalpel, inputs, grid, None, &mut Sides::default());
     let floors = floors_by_lips(scalpel, grid, None);
     finish(scalpel, inputs, field.iter(), floors, None)
 }
@@ -222,6 +223,7 @@ pub(crate) fn walk(
     inputs: &Inputs,
     grid: &mut CutGrid,
     region: Option<&WalkRegion>,
+    side: &mut Sides,
 ) -> Vec<FieldAt> {
     let outer = region.map(|g| g.outer);
     let mesh = scalpel.dyn_mesh();
@@ -274,10 +276,7 @@ pub(crate) fn walk(
     // vertex takes the side of the first seed, in seed order, among those fewest surface edges
     // away: a region's vertices take the sides the whole walk gives them when its margin holds
     // those seeds and paths.)
-    // A region's walk reaches some thousands of vertices: room for them up front.
-    let capacity = if region.is_some() { 1 << 13 } else { 0 };
-    let mut side: FastMap<u32, f64> =
-        FastMap::with_capacity_and_hasher(capacity, Default::default());
+    side.start(mesh.vertex_count());
     let mut queue: VecDeque<u32> = VecDeque::new();
     let mut fan = Vec::new();
     let seed_segments: Vec<usize> = match outer {
@@ -290,7 +289,7 @@ pub(crate) fn walk(
                 continue;
             }
             for c in std::iter::once(v).chain(mesh.copies(v)) {
-                if side.contains_key(&c) {
+                if side.contains(c) {
                     continue;
                 }
                 let p = mesh.pos(c);
@@ -307,7 +306,9 @@ pub(crate) fn walk(
     }
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
-        let sigma = side[&v];
+        let Some(sigma) = side.get(v) else {
+            continue;
+        };
         // A kept field says the vertex is within the support, as before. Outside the kept
         // cells (the margin) no change reaches (they would be kept cells otherwise), and only
         // that is asked of it.
@@ -328,7 +329,7 @@ pub(crate) fn walk(
         mesh.surface_fan_into(v, &mut fan);
         for &h in &fan {
             for n in [mesh.dest(h), mesh.origin(prev(h))] {
-                if !mesh.is_floor(n) && !side.contains_key(&n) && in_outer.contains(mesh.pos(n)) {
+                if !mesh.is_floor(n) && !side.contains(n) && in_outer.contains(mesh.pos(n)) {
                     side.insert(n, sigma);
                     queue.push_back(n);
                 }

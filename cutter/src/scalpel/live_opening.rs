@@ -43,6 +43,7 @@ use super::cut_grid::{Cell, CutGrid, cell_of, cells_within};
 use super::dffd::{Inputs, OpenOptions, WalkRegion, finish, floors_by_lips, taper_length, walk};
 use super::feet::Feet;
 use super::field_cache::{Changes, FieldCache};
+use super::sides::Sides;
 use super::step::{CutSegment, Scalpel};
 use csg::fast_hash::{FastMap, FastSet};
 
@@ -73,6 +74,8 @@ pub struct LiveOpening {
     feet: Feet,
     /// The field of every vertex within the support, apart from the clock.
     field: FieldCache,
+    /// The walk's sides, kept between steps (a walk clears only what it set).
+    sides: Sides,
 }
 
 /// What the kept opening was computed from.
@@ -150,7 +153,7 @@ impl LiveOpening {
         let (Some(edits), Some(mut state)) = (edits, self.state.take()) else {
             let mut grid = CutGrid::new(segments, nv, inputs.r);
             let size = grid.size();
-            let field = walk(scalpel, &inputs, &mut grid, None);
+            let field = walk(scalpel, &inputs, &mut grid, None, &mut self.sides);
             let floors = floors_by_lips(scalpel, &mut grid, None);
             let out = finish(scalpel, &inputs, field.iter(), floors, None);
             self.field.replace(None, field, size);
@@ -273,7 +276,13 @@ impl LiveOpening {
                 known: &self.field,
                 changes: &changes,
             };
-            let field = walk(scalpel, &inputs, &mut state.grid, Some(&region));
+            let field = walk(
+                scalpel,
+                &inputs,
+                &mut state.grid,
+                Some(&region),
+                &mut self.sides,
+            );
             self.field.replace(Some(&walked), field, size);
         }
         let mut inner = walked;
