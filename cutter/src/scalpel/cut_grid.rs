@@ -62,13 +62,18 @@ pub fn cells_within(cells: &mut FastSet<Cell>, p: DVec3, radius: f64, size: f64)
     }
 }
 
+/// Answers [`InCells`] remembers, at most (a power of two).
+const REMEMBERED: usize = 64;
+
 /// Whether points lie in a set of cells (every point when there is no set), remembering the
-/// answer for the last cell asked about: the opening's walks ask about neighbouring vertices,
-/// mostly in one cell, and hashing a cell for each was a good part of a walk.
+/// answers for the last cells asked about (a small table indexed by the cell): the opening's
+/// walks ask about every vertex they visit and its neighbours, and hashing a cell for each was
+/// a good part of a walk. The walk's queue goes from one lip's vertices to another's, so one
+/// remembered answer was not enough.
 pub struct InCells<'a> {
     cells: Option<&'a FastSet<Cell>>,
     size: f64,
-    last: Option<(Cell, bool)>,
+    remembered: Box<[Option<(Cell, bool)>; REMEMBERED]>,
 }
 
 impl<'a> InCells<'a> {
@@ -76,7 +81,7 @@ impl<'a> InCells<'a> {
         InCells {
             cells,
             size,
-            last: None,
+            remembered: Box::new([None; REMEMBERED]),
         }
     }
 
@@ -87,11 +92,15 @@ impl<'a> InCells<'a> {
             return true;
         };
         let c = cell_of(p, self.size);
-        match self.last {
+        let slot = (c.0.wrapping_mul(73_856_093)
+            ^ c.1.wrapping_mul(19_349_663)
+            ^ c.2.wrapping_mul(83_492_791)) as usize
+            % REMEMBERED;
+        match self.remembered[slot] {
             Some((l, answer)) if l == c => answer,
             _ => {
                 let answer = cells.contains(&c);
-                self.last = Some((c, answer));
+                self.remembered[slot] = Some((c, answer));
                 answer
             }
         }
@@ -105,6 +114,11 @@ pub struct CutGrid {
     /// The cell last asked for and the segments around it (each once, in index order).
     last: Option<(i64, i64, i64)>,
     near: Vec<usize>,
+    /// The segments around each cell asked for since the grid last changed: the walk's queue
+    /// goes from one lip's vertices to another's, so consecutive questions are often about
+    /// other cells than the last, and gathering and sorting 27 cells' lists again each time
+    /// was a good part of a walk.
+    near_by_cell: FastMap<Cell, Vec<usize>>,
 }
 
 impl CutGrid {
@@ -115,6 +129,7 @@ impl CutGrid {
             cells: FastMap::default(),
             last: None,
             near: Vec::new(),
+            near_by_cell: FastMap::default(),
         };
         for (i, s) in segments.iter().enumerate() {
             grid.insert(i, s, vertex_count);
@@ -147,7 +162,7 @@ impl CutGrid {
         for c in self.cells_of(s) {
             self.cells.entry(c).or_default().push(i);
         }
-        self.last = None;
+        self.forget_near();
     }
 
     /// Unlists segment `i`, which was `s` when listed.
@@ -160,7 +175,7 @@ impl CutGrid {
                 }
             }
         }
-        self.last = None;
+        self.forget_near();
     }
 
     /// The segments listed in `cells`, each once, in index order.
@@ -176,23 +191,35 @@ impl CutGrid {
         out
     }
 
+    /// Forgets the segments found around cells (the grid changed).
+    fn forget_near(&mut self) {
+        self.last = None;
+        self.near_by_cell.clear();
+    }
+
     /// The segments in the 27 cells around `p`'s (every segment within `size` of `p` among
     /// them), each once, in index order.
     pub fn near(&mut self, p: DVec3) -> &[usize] {
         let c0 = self.cell(p);
         if self.last != Some(c0) {
-            self.near.clear();
-            for x in c0.0 - 1..=c0.0 + 1 {
-                for y in c0.1 - 1..=c0.1 + 1 {
-                    for z in c0.2 - 1..=c0.2 + 1 {
-                        if let Some(list) = self.cells.get(&(x, y, z)) {
-                            self.near.extend_from_slice(list);
+            let cells = &self.cells;
+            let near = self.near_by_cell.entry(c0).or_insert_with(|| {
+                let mut near = Vec::new();
+                for x in c0.0 - 1..=c0.0 + 1 {
+                    for y in c0.1 - 1..=c0.1 + 1 {
+                        for z in c0.2 - 1..=c0.2 + 1 {
+                            if let Some(list) = cells.get(&(x, y, z)) {
+                                near.extend_from_slice(list);
+                            }
                         }
                     }
                 }
-            }
-            self.near.sort_unstable();
-            self.near.dedup();
+                near.sort_unstable();
+                near.dedup();
+                near
+            });
+            self.near.clear();
+            self.near.extend_from_slice(near);
             self.last = Some(c0);
         }
         &self.near
