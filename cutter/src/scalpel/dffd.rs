@@ -54,6 +54,7 @@ pub use super::frames::{Frame, frames};
 use super::nearest_cut::{self, Balls};
 use super::sides::Sides;
 use super::step::Scalpel;
+use super::unfold::{Moved, MovedTables};
 use csg::fast_hash::FastSet;
 
 /// How the incision opens.
@@ -201,7 +202,8 @@ impl Inputs {
 fn compute(scalpel: &Scalpel, inputs: &Inputs, grid: &mut CutGrid) -> Vec<(u32, DVec3)> {
     let field = walk(scalpel, inputs, grid, None, &mut Sides::default());
     let floors = floors_by_lips(scalpel, grid, None);
-    finish(scalpel, inputs, field.iter(), floors, None)
+    let mut tables = MovedTables::default();
+    finish(scalpel, inputs, field.iter(), floors, None, &mut tables)
 }
 
 /// Where a partial walk works: the cells it walks over (and seeds at the lips of), those whose
@@ -428,13 +430,15 @@ pub(crate) fn floors_by_lips(
 /// The opening from the field of the vertices within the support ([`walk`]) and the floors
 /// next to the lips ([`floors_by_lips`]): each field evaluated at this clock, the path
 /// corrections and then the displacements unfolded, the floors moved by the lips' corrections.
-/// With `keep` (cells, their size), only the vertices of those cells are given.
+/// With `keep` (cells, their size), only the vertices of those cells are given. `tables`: the
+/// unfolding's tables, cleared ([`MovedTables`]), cleared again after.
 pub(crate) fn finish<'a>(
     scalpel: &Scalpel,
     inputs: &Inputs,
     field: impl Iterator<Item = &'a FieldAt>,
     floors: Vec<u32>,
     keep: Option<(&FastSet<Cell>, f64)>,
+    tables: &mut MovedTables,
 ) -> Vec<(u32, DVec3)> {
     let mesh = scalpel.dyn_mesh();
     let segments = scalpel.segments();
@@ -447,14 +451,12 @@ pub(crate) fn finish<'a>(
         }
     }
     // Both unfoldings look at the triangles around the same moved vertices.
-    let mut around = None;
+    let mut around = Some(Moved::with_tables(mesh, &out, std::mem::take(tables)));
     super::unfold::unfold_correction(mesh, &mut out, &mut corrected, &mut around);
     // Floor vertices under the lips: the mean correction of the surface vertices their walls
     // reach (both lips of a groove have the same), so that the floor stays under the drawn path
     // and the two walls are alike.
-    let index = around
-        .get_or_insert_with(|| super::unfold::Moved::new(mesh, &out))
-        .index();
+    let index = around.as_ref().expect("made above");
     let mut floor_moves = Vec::new();
     let mut fan = Vec::new();
     for f in floors {
@@ -463,7 +465,7 @@ pub(crate) fn finish<'a>(
         for &h in &fan {
             for n in [mesh.dest(h), mesh.origin(prev(h))] {
                 if !mesh.is_floor(n) {
-                    sum += index.get(&n).map_or(DVec3::ZERO, |&k| corrected[k]);
+                    sum += index.slot(n).map_or(DVec3::ZERO, |k| corrected[k]);
                     count += 1.0;
                 }
             }
@@ -473,6 +475,9 @@ pub(crate) fn finish<'a>(
         }
     }
     super::unfold::unfold(mesh, &mut out, &mut around);
+    if let Some(m) = around {
+        *tables = m.into_tables();
+    }
     out.extend(floor_moves);
     if let Some((cells, size)) = keep {
         let mut in_cells = InCells::new(Some(cells), size);

@@ -45,6 +45,7 @@ use super::feet::Feet;
 use super::field_cache::{Changes, FieldCache};
 use super::sides::Sides;
 use super::step::{CutSegment, Scalpel};
+use super::unfold::MovedTables;
 use csg::fast_hash::{FastMap, FastSet};
 
 /// Cells of margin walked around the recomputed cells (see the module doc).
@@ -76,6 +77,8 @@ pub struct LiveOpening {
     field: FieldCache,
     /// The walk's sides, kept between steps (a walk clears only what it set).
     sides: Sides,
+    /// The unfolding's tables, kept between steps likewise.
+    tables: MovedTables,
 }
 
 /// What the kept opening was computed from.
@@ -155,7 +158,14 @@ impl LiveOpening {
             let size = grid.size();
             let field = walk(scalpel, &inputs, &mut grid, None, &mut self.sides);
             let floors = floors_by_lips(scalpel, &mut grid, None);
-            let out = finish(scalpel, &inputs, field.iter(), floors, None);
+            let out = finish(
+                scalpel,
+                &inputs,
+                field.iter(),
+                floors,
+                None,
+                &mut self.tables,
+            );
             self.field.replace(None, field, size);
             self.moved.clear();
             self.by_cell.clear();
@@ -316,7 +326,14 @@ impl LiveOpening {
         if cells > 0 {
             let floors = floors_by_lips(scalpel, &mut state.grid, Some(&outer));
             let field = self.field.in_cells(&outer);
-            let out = finish(scalpel, &state.inputs, field, floors, Some((&inner, size)));
+            let out = finish(
+                scalpel,
+                &state.inputs,
+                field,
+                floors,
+                Some((&inner, size)),
+                &mut self.tables,
+            );
             vertices = out.len();
             self.insert(scalpel, out, size);
         }
