@@ -308,6 +308,12 @@ pub(crate) fn walk(
     }
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
+        // Neighbours are queued without asking where they lie (several per vertex, most
+        // already queued); one outside the region is dropped here, given nothing and walked
+        // from nowhere, as if never queued.
+        if !in_outer.contains(p) {
+            continue;
+        }
         let Some(sigma) = side.get(v) else {
             continue;
         };
@@ -331,16 +337,13 @@ pub(crate) fn walk(
         mesh.surface_fan_into(v, &mut fan);
         for &h in &fan {
             for n in [mesh.dest(h), mesh.origin(prev(h))] {
-                if !mesh.is_floor(n) && !side.contains(n) && in_outer.contains(mesh.pos(n)) {
+                if !mesh.is_floor(n) && !side.contains(n) {
                     side.insert(n, sigma);
                     queue.push_back(n);
                 }
             }
         }
-        if inputs.fixed.contains(&v) {
-            continue;
-        }
-        if !wanted {
+        if !wanted || (!inputs.fixed.is_empty() && inputs.fixed.contains(&v)) {
             continue;
         }
         if let Some(Kept {

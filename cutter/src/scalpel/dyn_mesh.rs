@@ -385,15 +385,18 @@ impl DynMesh {
             out.clear();
             return false;
         };
-        let mut run = Vec::with_capacity(n);
-        for i in 0..n {
-            let h = out[(start + i) % n];
-            if self.is_wall(h / 3) || (!closed && start + i >= n) {
-                break;
-            }
-            run.push(h);
+        // The run from `start` to the next wall (around the end when the fan is closed), in
+        // place.
+        if closed {
+            out.rotate_left(start);
+        } else {
+            out.drain(..start);
         }
-        *out = run;
+        let end = out
+            .iter()
+            .position(|&h| self.is_wall(h / 3))
+            .unwrap_or(out.len());
+        out.truncate(end);
         !out.is_empty()
     }
 
