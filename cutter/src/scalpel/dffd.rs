@@ -159,7 +159,7 @@ impl Inputs {
         let mut tips: Vec<DVec3> = Vec::new();
         for s in segments {
             for (v, p) in [(s.a, s.pa), (s.b, s.pb)] {
-                if v < nv && mesh.copies(v).is_empty() && !tips.contains(&p) {
+                if v < nv && !mesh.has_copies(v) && !tips.contains(&p) {
                     tips.push(p);
                 }
             }
@@ -287,7 +287,7 @@ pub(crate) fn walk(
     };
     for s in seed_segments.iter().map(|&i| &segments[i]) {
         for v in [s.a, s.b] {
-            if v >= nv || mesh.copies(v).is_empty() || !in_outer.contains(mesh.pos(v)) {
+            if v >= nv || !mesh.has_copies(v) || !in_outer.contains(mesh.pos(v)) {
                 continue;
             }
             for c in std::iter::once(v).chain(mesh.copies(v)) {
@@ -406,7 +406,7 @@ pub(crate) fn floors_by_lips(
     let mut fan = Vec::new();
     for s in lip_segments.iter().map(|&i| &segments[i]) {
         for v in [s.a, s.b] {
-            if v >= nv || mesh.copies(v).is_empty() || !in_outer.contains(mesh.pos(v)) {
+            if v >= nv || !mesh.has_copies(v) || !in_outer.contains(mesh.pos(v)) {
                 continue;
             }
             for c in std::iter::once(v).chain(mesh.copies(v)) {

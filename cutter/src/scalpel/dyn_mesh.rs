@@ -231,6 +231,13 @@ impl DynMesh {
         out
     }
 
+    /// Whether a cut made coincident copies of `v` ([`DynMesh::copies`] is not empty), without
+    /// listing them.
+    #[inline]
+    pub fn has_copies(&self, v: u32) -> bool {
+        self.next_copy[v as usize] != v
+    }
+
     /// True when `a` and `b` are the same vertex or coincident copies of one.
     pub fn same_point(&self, a: u32, b: u32) -> bool {
         a == b || self.copies(a).contains(&b)
