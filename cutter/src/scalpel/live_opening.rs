@@ -254,8 +254,11 @@ impl LiveOpening {
             .zip(&scalpel.fixed)
             .take_while(|(a, b)| a == b)
             .count();
+        // Only whether a vertex is fixed matters: those that became fixed or stopped being so
+        // (a step undoes its temporary tip's groove and makes it again, so the lists often part
+        // early and hold the same vertices after).
         for &v in state.fixed[common..].iter().chain(&scalpel.fixed[common..]) {
-            if v < nv {
+            if v < nv && old.fixed.contains(&v) != new.fixed.contains(&v) {
                 cells_within(&mut walked, mesh.pos(v), r, size);
             }
         }
