@@ -254,11 +254,12 @@ impl LiveOpening {
             .zip(&scalpel.fixed)
             .take_while(|(a, b)| a == b)
             .count();
-        // Only whether a vertex is fixed matters: those that became fixed or stopped being so
-        // (a step undoes its temporary tip's groove and makes it again, so the lists often part
-        // early and hold the same vertices after).
+        // Only whether a vertex is fixed matters, and only to the walk, which never visits a
+        // groove floor (the groove bottoms, which are nearly all the fixed vertices; a step
+        // undoes its temporary tip's groove and makes it again, with new ones): the surface
+        // vertices that became fixed or stopped being so.
         for &v in state.fixed[common..].iter().chain(&scalpel.fixed[common..]) {
-            if v < nv && old.fixed.contains(&v) != new.fixed.contains(&v) {
+            if v < nv && !mesh.is_floor(v) && old.fixed.contains(&v) != new.fixed.contains(&v) {
                 cells_within(&mut walked, mesh.pos(v), r, size);
             }
         }
