@@ -263,7 +263,12 @@ impl LiveOpening {
                 cells_within(&mut walked, mesh.pos(v), r, size);
             }
         }
-        for &v in edits {
+        // The log repeats a vertex for each edit of it (a step undoes its temporary tip and
+        // makes it again): each once.
+        let mut edited = edits.to_vec();
+        edited.sort_unstable();
+        edited.dedup();
+        for v in edited {
             if let Some(p) = self.moved.remove(&v) {
                 // Its display position: its rest one is gone; the cells around it.
                 grow(&mut walked, cell_of(p, size), 1);
