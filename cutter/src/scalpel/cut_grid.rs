@@ -6,7 +6,9 @@
 //! 27 cells around the point's cell. The breadth-first walk of the opening visits neighbouring
 //! vertices one after the other, mostly in the same cell, so the answer for the last cell is
 //! kept: a visit usually costs no hashing at all (hashing the 27 cells per vertex was most of
-//! the opening's time).
+//! the opening's time). Its queue also goes from one lip's vertices to another's (on a crossing
+//! of two grooves, from one groove to the other), so the answer for every cell asked about is
+//! kept too, until the grid changes.
 //!
 //! The live opening ([`super::live_opening`]) keeps one grid between steps and moves only the
 //! segments a step changed ([`CutGrid::insert`], [`CutGrid::remove`]).
