@@ -6,7 +6,9 @@
 //! 27 cells around the point's cell. The breadth-first walk of the opening visits neighbouring
 //! vertices one after the other, mostly in the same cell, so the answer for the last cell is
 //! kept: a visit usually costs no hashing at all (hashing the 27 cells per vertex was most of
-//! the opening's time).
+//! the opening's time). Its queue also goes from one lip's vertices to another's (on a crossing
+//! of two grooves, from one groove to the other), so the answer for every cell asked about is
+//! kept too, until the grid changes.
 //!
 //! The live opening ([`super::live_opening`]) keeps one grid between steps and moves only the
 //! segments a step changed ([`CutGrid::insert`], [`CutGrid::remove`]).
@@ -20,9 +22,24 @@ use csg::fast_hash::{FastMap, FastSet};
 pub type Cell = (i64, i64, i64);
 
 /// The cell of size `size` that holds `p`.
+#[inline]
 pub fn cell_of(p: DVec3, size: f64) -> Cell {
-    let c = (p / size).floor();
-    (c.x as i64, c.y as i64, c.z as i64)
+    let c = p / size;
+    (floor_i64(c.x), floor_i64(c.y), floor_i64(c.z))
+}
+
+/// `x.floor() as i64`, without the library's `floor`: on the baseline x86-64 target (no
+/// SSE4.1 rounding instruction) it is a software routine, and the opening's walks find the
+/// cell of every vertex they visit and of each of its neighbours (a tenth of a step on a
+/// crossing of two grooves).
+#[inline]
+fn floor_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) > x {
+        t.saturating_sub(1)
+    } else {
+        t
+    }
 }
 
 /// Adds to `cells` every cell of size `size` that holds a point within `radius` of `p`: the
@@ -33,10 +50,10 @@ pub fn cell_of(p: DVec3, size: f64) -> Cell {
 pub fn cells_within(cells: &mut FastSet<Cell>, p: DVec3, radius: f64, size: f64) {
     let q = p / size;
     let reach = radius / size * (1.0 + 1e-9) + 1e-9;
-    let (lo, hi) = ((q - reach).floor(), (q + reach).floor());
-    for x in lo.x as i64..=hi.x as i64 {
-        for y in lo.y as i64..=hi.y as i64 {
-            for z in lo.z as i64..=hi.z as i64 {
+    let (lo, hi) = (cell_of(q - reach, 1.0), cell_of(q + reach, 1.0));
+    for x in lo.0..=hi.0 {
+        for y in lo.1..=hi.1 {
+            for z in lo.2..=hi.2 {
                 let corner = DVec3::new(x as f64, y as f64, z as f64);
                 let gap = (corner - q).max(q - (corner + 1.0)).max(DVec3::ZERO);
                 if gap.length_squared() <= reach * reach {
@@ -47,13 +64,18 @@ pub fn cells_within(cells: &mut FastSet<Cell>, p: DVec3, radius: f64, size: f64)
     }
 }
 
+/// Answers [`InCells`] remembers, at most (a power of two).
+const REMEMBERED: usize = 64;
+
 /// Whether points lie in a set of cells (every point when there is no set), remembering the
-/// answer for the last cell asked about: the opening's walks ask about neighbouring vertices,
-/// mostly in one cell, and hashing a cell for each was a good part of a walk.
+/// answers for the last cells asked about (a small table indexed by the cell): the opening's
+/// walks ask about every vertex they visit and its neighbours, and hashing a cell for each was
+/// a good part of a walk. The walk's queue goes from one lip's vertices to another's, so one
+/// remembered answer was not enough.
 pub struct InCells<'a> {
     cells: Option<&'a FastSet<Cell>>,
     size: f64,
-    last: Option<(Cell, bool)>,
+    remembered: Box<[Option<(Cell, bool)>; REMEMBERED]>,
 }
 
 impl<'a> InCells<'a> {
@@ -61,7 +83,7 @@ impl<'a> InCells<'a> {
         InCells {
             cells,
             size,
-            last: None,
+            remembered: Box::new([None; REMEMBERED]),
         }
     }
 
@@ -72,11 +94,15 @@ impl<'a> InCells<'a> {
             return true;
         };
         let c = cell_of(p, self.size);
-        match self.last {
+        let slot = (c.0.wrapping_mul(73_856_093)
+            ^ c.1.wrapping_mul(19_349_663)
+            ^ c.2.wrapping_mul(83_492_791)) as usize
+            % REMEMBERED;
+        match self.remembered[slot] {
             Some((l, answer)) if l == c => answer,
             _ => {
                 let answer = cells.contains(&c);
-                self.last = Some((c, answer));
+                self.remembered[slot] = Some((c, answer));
                 answer
             }
         }
@@ -90,6 +116,11 @@ pub struct CutGrid {
     /// The cell last asked for and the segments around it (each once, in index order).
     last: Option<(i64, i64, i64)>,
     near: Vec<usize>,
+    /// The segments around each cell asked for since the grid last changed: the walk's queue
+    /// goes from one lip's vertices to another's, so consecutive questions are often about
+    /// other cells than the last, and gathering and sorting 27 cells' lists again each time
+    /// was a good part of a walk.
+    near_by_cell: FastMap<Cell, Vec<usize>>,
 }
 
 impl CutGrid {
@@ -100,6 +131,7 @@ impl CutGrid {
             cells: FastMap::default(),
             last: None,
             near: Vec::new(),
+            near_by_cell: FastMap::default(),
         };
         for (i, s) in segments.iter().enumerate() {
             grid.insert(i, s, vertex_count);
@@ -132,7 +164,7 @@ impl CutGrid {
         for c in self.cells_of(s) {
             self.cells.entry(c).or_default().push(i);
         }
-        self.last = None;
+        self.forget_near();
     }
 
     /// Unlists segment `i`, which was `s` when listed.
@@ -145,7 +177,7 @@ impl CutGrid {
                 }
             }
         }
-        self.last = None;
+        self.forget_near();
     }
 
     /// The segments listed in `cells`, each once, in index order.
@@ -161,23 +193,35 @@ impl CutGrid {
         out
     }
 
+    /// Forgets the segments found around cells (the grid changed).
+    fn forget_near(&mut self) {
+        self.last = None;
+        self.near_by_cell.clear();
+    }
+
     /// The segments in the 27 cells around `p`'s (every segment within `size` of `p` among
     /// them), each once, in index order.
     pub fn near(&mut self, p: DVec3) -> &[usize] {
         let c0 = self.cell(p);
         if self.last != Some(c0) {
-            self.near.clear();
-            for x in c0.0 - 1..=c0.0 + 1 {
-                for y in c0.1 - 1..=c0.1 + 1 {
-                    for z in c0.2 - 1..=c0.2 + 1 {
-                        if let Some(list) = self.cells.get(&(x, y, z)) {
-                            self.near.extend_from_slice(list);
+            let cells = &self.cells;
+            let near = self.near_by_cell.entry(c0).or_insert_with(|| {
+                let mut near = Vec::new();
+                for x in c0.0 - 1..=c0.0 + 1 {
+                    for y in c0.1 - 1..=c0.1 + 1 {
+                        for z in c0.2 - 1..=c0.2 + 1 {
+                            if let Some(list) = cells.get(&(x, y, z)) {
+                                near.extend_from_slice(list);
+                            }
                         }
                     }
                 }
-            }
-            self.near.sort_unstable();
-            self.near.dedup();
+                near.sort_unstable();
+                near.dedup();
+                near
+            });
+            self.near.clear();
+            self.near.extend_from_slice(near);
             self.last = Some(c0);
         }
         &self.near
@@ -187,6 +231,37 @@ impl CutGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn floor_i64_is_the_library_floor() {
+        let mut rng = csg::testkit::SplitMix(99);
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            -1e-300,
+            1e-300,
+            4503599627370495.5,
+            -4503599627370495.5,
+            9007199254740993.0,
+            -9007199254740993.0,
+            1e30,
+            -1e30,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ];
+        for _ in 0..10_000 {
+            let x = (rng.next_f64() - 0.5) * 2e3;
+            xs.extend([x, x.floor(), x.floor() - f64::EPSILON * x.abs()]);
+        }
+        for x in xs {
+            assert_eq!(floor_i64(x), x.floor() as i64, "{x}");
+        }
+    }
 
     #[test]
     fn cells_within_hold_every_point_of_the_ball_and_fewer_cells_than_the_cube() {

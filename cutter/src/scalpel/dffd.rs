@@ -52,8 +52,10 @@ use super::field::{FieldAt, taper_at};
 use super::field_cache::{Changes, FieldCache, Kept};
 pub use super::frames::{Frame, frames};
 use super::nearest_cut::{self, Balls};
+use super::sides::Sides;
 use super::step::Scalpel;
-use csg::fast_hash::{FastMap, FastSet};
+use super::unfold::{Moved, MovedTables};
+use csg::fast_hash::FastSet;
 
 /// How the incision opens.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -157,7 +159,7 @@ impl Inputs {
         let mut tips: Vec<DVec3> = Vec::new();
         for s in segments {
             for (v, p) in [(s.a, s.pa), (s.b, s.pb)] {
-                if v < nv && mesh.copies(v).is_empty() && !tips.contains(&p) {
+                if v < nv && !mesh.has_copies(v) && !tips.contains(&p) {
                     tips.push(p);
                 }
             }
@@ -198,9 +200,10 @@ impl Inputs {
 /// The opening of every vertex: the field of the module doc, the unfolding and the groove
 /// floors.
 fn compute(scalpel: &Scalpel, inputs: &Inputs, grid: &mut CutGrid) -> Vec<(u32, DVec3)> {
-    let field = walk(scalpel, inputs, grid, None);
+    let field = walk(scalpel, inputs, grid, None, &mut Sides::default());
     let floors = floors_by_lips(scalpel, grid, None);
-    finish(scalpel, inputs, field.iter(), floors, None)
+    let mut tables = MovedTables::default();
+    finish(scalpel, inputs, field.iter(), floors, None, &mut tables)
 }
 
 /// Where a partial walk works: the cells it walks over (and seeds at the lips of), those whose
@@ -222,6 +225,7 @@ pub(crate) fn walk(
     inputs: &Inputs,
     grid: &mut CutGrid,
     region: Option<&WalkRegion>,
+    side: &mut Sides,
 ) -> Vec<FieldAt> {
     let outer = region.map(|g| g.outer);
     let mesh = scalpel.dyn_mesh();
@@ -274,10 +278,7 @@ pub(crate) fn walk(
     // vertex takes the side of the first seed, in seed order, among those fewest surface edges
     // away: a region's vertices take the sides the whole walk gives them when its margin holds
     // those seeds and paths.)
-    // A region's walk reaches some thousands of vertices: room for them up front.
-    let capacity = if region.is_some() { 1 << 13 } else { 0 };
-    let mut side: FastMap<u32, f64> =
-        FastMap::with_capacity_and_hasher(capacity, Default::default());
+    side.start(mesh.vertex_count());
     let mut queue: VecDeque<u32> = VecDeque::new();
     let mut fan = Vec::new();
     let seed_segments: Vec<usize> = match outer {
@@ -286,11 +287,11 @@ pub(crate) fn walk(
     };
     for s in seed_segments.iter().map(|&i| &segments[i]) {
         for v in [s.a, s.b] {
-            if v >= nv || mesh.copies(v).is_empty() || !in_outer.contains(mesh.pos(v)) {
+            if v >= nv || !mesh.has_copies(v) || !in_outer.contains(mesh.pos(v)) {
                 continue;
             }
             for c in std::iter::once(v).chain(mesh.copies(v)) {
-                if side.contains_key(&c) {
+                if side.contains(c) {
                     continue;
                 }
                 let p = mesh.pos(c);
@@ -307,7 +308,15 @@ pub(crate) fn walk(
     }
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
-        let sigma = side[&v];
+        // Neighbours are queued without asking where they lie (several per vertex, most
+        // already queued); one outside the region is dropped here, given nothing and walked
+        // from nowhere, as if never queued.
+        if !in_outer.contains(p) {
+            continue;
+        }
+        let Some(sigma) = side.get(v) else {
+            continue;
+        };
         // A kept field says the vertex is within the support, as before. Outside the kept
         // cells (the margin) no change reaches (they would be kept cells otherwise), and only
         // that is asked of it.
@@ -328,16 +337,13 @@ pub(crate) fn walk(
         mesh.surface_fan_into(v, &mut fan);
         for &h in &fan {
             for n in [mesh.dest(h), mesh.origin(prev(h))] {
-                if !mesh.is_floor(n) && !side.contains_key(&n) && in_outer.contains(mesh.pos(n)) {
+                if !mesh.is_floor(n) && !side.contains(n) {
                     side.insert(n, sigma);
                     queue.push_back(n);
                 }
             }
         }
-        if inputs.fixed.contains(&v) {
-            continue;
-        }
-        if !wanted {
+        if !wanted || (!inputs.fixed.is_empty() && inputs.fixed.contains(&v)) {
             continue;
         }
         if let Some(Kept {
@@ -400,7 +406,7 @@ pub(crate) fn floors_by_lips(
     let mut fan = Vec::new();
     for s in lip_segments.iter().map(|&i| &segments[i]) {
         for v in [s.a, s.b] {
-            if v >= nv || mesh.copies(v).is_empty() || !in_outer.contains(mesh.pos(v)) {
+            if v >= nv || !mesh.has_copies(v) || !in_outer.contains(mesh.pos(v)) {
                 continue;
             }
             for c in std::iter::once(v).chain(mesh.copies(v)) {
@@ -427,13 +433,15 @@ pub(crate) fn floors_by_lips(
 /// The opening from the field of the vertices within the support ([`walk`]) and the floors
 /// next to the lips ([`floors_by_lips`]): each field evaluated at this clock, the path
 /// corrections and then the displacements unfolded, the floors moved by the lips' corrections.
-/// With `keep` (cells, their size), only the vertices of those cells are given.
+/// With `keep` (cells, their size), only the vertices of those cells are given. `tables`: the
+/// unfolding's tables, cleared ([`MovedTables`]), cleared again after.
 pub(crate) fn finish<'a>(
     scalpel: &Scalpel,
     inputs: &Inputs,
     field: impl Iterator<Item = &'a FieldAt>,
     floors: Vec<u32>,
     keep: Option<(&FastSet<Cell>, f64)>,
+    tables: &mut MovedTables,
 ) -> Vec<(u32, DVec3)> {
     let mesh = scalpel.dyn_mesh();
     let segments = scalpel.segments();
@@ -446,14 +454,12 @@ pub(crate) fn finish<'a>(
         }
     }
     // Both unfoldings look at the triangles around the same moved vertices.
-    let mut around = None;
+    let mut around = Some(Moved::with_tables(mesh, &out, std::mem::take(tables)));
     super::unfold::unfold_correction(mesh, &mut out, &mut corrected, &mut around);
     // Floor vertices under the lips: the mean correction of the surface vertices their walls
     // reach (both lips of a groove have the same), so that the floor stays under the drawn path
     // and the two walls are alike.
-    let index = around
-        .get_or_insert_with(|| super::unfold::Moved::new(mesh, &out))
-        .index();
+    let index = around.as_ref().expect("made above");
     let mut floor_moves = Vec::new();
     let mut fan = Vec::new();
     for f in floors {
@@ -462,7 +468,7 @@ pub(crate) fn finish<'a>(
         for &h in &fan {
             for n in [mesh.dest(h), mesh.origin(prev(h))] {
                 if !mesh.is_floor(n) {
-                    sum += index.get(&n).map_or(DVec3::ZERO, |&k| corrected[k]);
+                    sum += index.slot(n).map_or(DVec3::ZERO, |k| corrected[k]);
                     count += 1.0;
                 }
             }
@@ -472,6 +478,9 @@ pub(crate) fn finish<'a>(
         }
     }
     super::unfold::unfold(mesh, &mut out, &mut around);
+    if let Some(m) = around {
+        *tables = m.into_tables();
+    }
     out.extend(floor_moves);
     if let Some((cells, size)) = keep {
         let mut in_cells = InCells::new(Some(cells), size);

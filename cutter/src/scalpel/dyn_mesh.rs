@@ -231,6 +231,13 @@ impl DynMesh {
         out
     }
 
+    /// Whether a cut made coincident copies of `v` ([`DynMesh::copies`] is not empty), without
+    /// listing them.
+    #[inline]
+    pub fn has_copies(&self, v: u32) -> bool {
+        self.next_copy[v as usize] != v
+    }
+
     /// True when `a` and `b` are the same vertex or coincident copies of one.
     pub fn same_point(&self, a: u32, b: u32) -> bool {
         a == b || self.copies(a).contains(&b)
@@ -385,15 +392,18 @@ impl DynMesh {
             out.clear();
             return false;
         };
-        let mut run = Vec::with_capacity(n);
-        for i in 0..n {
-            let h = out[(start + i) % n];
-            if self.is_wall(h / 3) || (!closed && start + i >= n) {
-                break;
-            }
-            run.push(h);
+        // The run from `start` to the next wall (around the end when the fan is closed), in
+        // place.
+        if closed {
+            out.rotate_left(start);
+        } else {
+            out.drain(..start);
         }
-        *out = run;
+        let end = out
+            .iter()
+            .position(|&h| self.is_wall(h / 3))
+            .unwrap_or(out.len());
+        out.truncate(end);
         !out.is_empty()
     }
 

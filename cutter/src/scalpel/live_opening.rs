@@ -43,7 +43,9 @@ use super::cut_grid::{Cell, CutGrid, cell_of, cells_within};
 use super::dffd::{Inputs, OpenOptions, WalkRegion, finish, floors_by_lips, taper_length, walk};
 use super::feet::Feet;
 use super::field_cache::{Changes, FieldCache};
+use super::sides::Sides;
 use super::step::{CutSegment, Scalpel};
+use super::unfold::MovedTables;
 use csg::fast_hash::{FastMap, FastSet};
 
 /// Cells of margin walked around the recomputed cells (see the module doc).
@@ -73,6 +75,10 @@ pub struct LiveOpening {
     feet: Feet,
     /// The field of every vertex within the support, apart from the clock.
     field: FieldCache,
+    /// The walk's sides, kept between steps (a walk clears only what it set).
+    sides: Sides,
+    /// The unfolding's tables, kept between steps likewise.
+    tables: MovedTables,
 }
 
 /// What the kept opening was computed from.
@@ -150,9 +156,16 @@ impl LiveOpening {
         let (Some(edits), Some(mut state)) = (edits, self.state.take()) else {
             let mut grid = CutGrid::new(segments, nv, inputs.r);
             let size = grid.size();
-            let field = walk(scalpel, &inputs, &mut grid, None);
+            let field = walk(scalpel, &inputs, &mut grid, None, &mut self.sides);
             let floors = floors_by_lips(scalpel, &mut grid, None);
-            let out = finish(scalpel, &inputs, field.iter(), floors, None);
+            let out = finish(
+                scalpel,
+                &inputs,
+                field.iter(),
+                floors,
+                None,
+                &mut self.tables,
+            );
             self.field.replace(None, field, size);
             self.moved.clear();
             self.by_cell.clear();
@@ -241,12 +254,21 @@ impl LiveOpening {
             .zip(&scalpel.fixed)
             .take_while(|(a, b)| a == b)
             .count();
+        // Only whether a vertex is fixed matters, and only to the walk, which never visits a
+        // groove floor (the groove bottoms, which are nearly all the fixed vertices; a step
+        // undoes its temporary tip's groove and makes it again, with new ones): the surface
+        // vertices that became fixed or stopped being so.
         for &v in state.fixed[common..].iter().chain(&scalpel.fixed[common..]) {
-            if v < nv {
+            if v < nv && !mesh.is_floor(v) && old.fixed.contains(&v) != new.fixed.contains(&v) {
                 cells_within(&mut walked, mesh.pos(v), r, size);
             }
         }
-        for &v in edits {
+        // The log repeats a vertex for each edit of it (a step undoes its temporary tip and
+        // makes it again): each once.
+        let mut edited = edits.to_vec();
+        edited.sort_unstable();
+        edited.dedup();
+        for v in edited {
             if let Some(p) = self.moved.remove(&v) {
                 // Its display position: its rest one is gone; the cells around it.
                 grow(&mut walked, cell_of(p, size), 1);
@@ -273,7 +295,13 @@ impl LiveOpening {
                 known: &self.field,
                 changes: &changes,
             };
-            let field = walk(scalpel, &inputs, &mut state.grid, Some(&region));
+            let field = walk(
+                scalpel,
+                &inputs,
+                &mut state.grid,
+                Some(&region),
+                &mut self.sides,
+            );
             self.field.replace(Some(&walked), field, size);
         }
         let mut inner = walked;
@@ -307,7 +335,14 @@ impl LiveOpening {
         if cells > 0 {
             let floors = floors_by_lips(scalpel, &mut state.grid, Some(&outer));
             let field = self.field.in_cells(&outer);
-            let out = finish(scalpel, &state.inputs, field, floors, Some((&inner, size)));
+            let out = finish(
+                scalpel,
+                &state.inputs,
+                field,
+                floors,
+                Some((&inner, size)),
+                &mut self.tables,
+            );
             vertices = out.len();
             self.insert(scalpel, out, size);
         }

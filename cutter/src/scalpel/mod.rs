@@ -103,6 +103,7 @@ pub mod loop_tool;
 mod nearest_cut;
 pub mod relocate;
 pub mod sample;
+mod sides;
 pub mod step;
 pub mod survey;
 pub mod taper;

@@ -21,7 +21,6 @@
 use glam::DVec3;
 
 use super::dyn_mesh::{DynMesh, prev};
-use csg::fast_hash::{FastMap, FastSet};
 
 /// A surface triangle may turn at most this far (degrees) from its rest pose when opened.
 pub const MAX_TURN_DEG: f64 = 60.0;
@@ -45,11 +44,15 @@ const CORRECTION_KEEP: f64 = 0.75;
 /// It depends on which vertices move, not where to: [`unfold_correction`] and [`unfold`] of
 /// the same moved vertices share one, made by whichever needs it first.
 pub struct Moved {
-    at: FastMap<u32, usize>,
-    /// Surface triangles with a moved corner, by their three corners (each once).
+    /// The tables by vertex and by triangle (see [`MovedTables`]).
+    tables: MovedTables,
+    /// The moved vertices, in the moved list's order.
+    vertices: Vec<u32>,
+    /// Surface triangles with a moved corner, by their three corners (each once), and their ids.
     triangles: Vec<[u32; 3]>,
+    triangle_ids: Vec<u32>,
     /// Per triangle, where its corners are in the moved list (the checks of every pass look
-    /// them up here, not in `at`), their rest positions and its rest normal.
+    /// them up here), their rest positions and its rest normal.
     slots: Vec<[Option<usize>; 3]>,
     rest: Vec<([DVec3; 3], DVec3)>,
     /// Per moved vertex `i`, the triangles it is a corner of:
@@ -58,28 +61,65 @@ pub struct Moved {
     corner_of: Vec<usize>,
 }
 
+/// Where each vertex is in a moved list, by vertex id, and which triangles are listed, by
+/// triangle id: the unfolding looks a vertex up for every corner of every triangle around the
+/// moved vertices, and hash maps of them were most of making a [`Moved`] (thousands of moved
+/// vertices on a step of the live opening). The tables span the mesh; a [`Moved`] sets only the
+/// entries of its own vertices and triangles and [`Moved::into_tables`] clears them again, so
+/// tables kept between steps cost what is moved, not the mesh.
+#[derive(Default)]
+pub struct MovedTables {
+    /// Per vertex, its index in the moved list, [`NOT_MOVED`] when it does not move.
+    at: Vec<u32>,
+    /// Per triangle, whether it is listed (bits).
+    listed: Vec<u64>,
+}
+
+/// The index of a vertex that does not move, in [`MovedTables`].
+const NOT_MOVED: u32 = u32::MAX;
+
 impl Moved {
     pub(crate) fn new(mesh: &DynMesh, moved: &[(u32, DVec3)]) -> Moved {
-        let at: FastMap<u32, usize> = moved.iter().enumerate().map(|(i, m)| (m.0, i)).collect();
+        Moved::with_tables(mesh, moved, MovedTables::default())
+    }
+
+    /// [`Moved::new`], in `tables` (cleared, of any size: they grow to the mesh's).
+    pub(crate) fn with_tables(
+        mesh: &DynMesh,
+        moved: &[(u32, DVec3)],
+        mut tables: MovedTables,
+    ) -> Moved {
+        if tables.at.len() < mesh.vertex_count() {
+            tables.at.resize(mesh.vertex_count(), NOT_MOVED);
+        }
+        let words = mesh.triangle_count().div_ceil(64);
+        if tables.listed.len() < words {
+            tables.listed.resize(words, 0);
+        }
+        let vertices: Vec<u32> = moved.iter().map(|m| m.0).collect();
+        for (i, &v) in vertices.iter().enumerate() {
+            tables.at[v as usize] = i as u32;
+        }
         // About two surface triangles per moved vertex, more along the edge of the moved patch.
         let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(3 * moved.len());
-        let mut seen: FastSet<u32> =
-            FastSet::with_capacity_and_hasher(3 * moved.len(), Default::default());
+        let mut triangle_ids: Vec<u32> = Vec::with_capacity(3 * moved.len());
         let mut fan = Vec::new();
-        for &(v, _) in moved.iter() {
+        for &v in &vertices {
             mesh.fan_into(v, &mut fan);
             for &h in &fan {
                 let t = h / 3;
-                if mesh.is_wall(t) || !seen.insert(t) {
+                let (word, bit) = ((t / 64) as usize, 1u64 << (t % 64));
+                if mesh.is_wall(t) || tables.listed[word] & bit != 0 {
                     continue;
                 }
+                tables.listed[word] |= bit;
                 triangles.push([mesh.origin(h), mesh.dest(h), mesh.origin(prev(h))]);
+                triangle_ids.push(t);
             }
         }
-        let slots = triangles
-            .iter()
-            .map(|t| t.map(|v| at.get(&v).copied()))
-            .collect();
+        let at = &tables.at;
+        let slot = |v: u32| Some(at[v as usize] as usize).filter(|&i| i != NOT_MOVED as usize);
+        let slots: Vec<[Option<usize>; 3]> = triangles.iter().map(|t| t.map(slot)).collect();
         let rest = triangles
             .iter()
             .map(|t| {
@@ -87,7 +127,6 @@ impl Moved {
                 (p, (p[1] - p[0]).cross(p[2] - p[0]))
             })
             .collect();
-        let slots: Vec<[Option<usize>; 3]> = slots;
         let mut corner_start = vec![0; moved.len() + 1];
         for &i in slots.iter().flatten().flatten() {
             corner_start[i + 1] += 1;
@@ -104,8 +143,10 @@ impl Moved {
             }
         }
         Moved {
-            at,
+            tables,
+            vertices,
             triangles,
+            triangle_ids,
             slots,
             rest,
             corner_start,
@@ -113,9 +154,23 @@ impl Moved {
         }
     }
 
-    /// Where each moved vertex is in the moved list.
-    pub(crate) fn index(&self) -> &FastMap<u32, usize> {
-        &self.at
+    /// The tables, cleared for the next [`Moved::with_tables`].
+    pub(crate) fn into_tables(self) -> MovedTables {
+        let mut tables = self.tables;
+        for v in self.vertices {
+            tables.at[v as usize] = NOT_MOVED;
+        }
+        for t in self.triangle_ids {
+            tables.listed[(t / 64) as usize] = 0;
+        }
+        tables
+    }
+
+    /// Where vertex `v` is in the moved list, `None` when it does not move.
+    #[inline]
+    pub(crate) fn slot(&self, v: u32) -> Option<usize> {
+        let i = *self.tables.at.get(v as usize)?;
+        (i != NOT_MOVED).then_some(i as usize)
     }
 
     /// Brings `folding` (per triangle, whether `test` holds) up to date: every triangle on the
@@ -180,9 +235,9 @@ pub fn unfold_correction(
         shrink.clear();
         for (tri, _) in m.triangles.iter().zip(&folding).filter(|f| *f.1) {
             for &v in tri {
-                if m.at.contains_key(&v) {
+                if m.slot(v).is_some() {
                     for c in std::iter::once(v).chain(mesh.copies(v)) {
-                        if let Some(&i) = m.at.get(&c) {
+                        if let Some(i) = m.slot(c) {
                             shrink.push(i);
                         }
                     }
@@ -216,7 +271,7 @@ pub fn unfold(mesh: &DynMesh, moved: &mut Vec<(u32, DVec3)>, around: &mut Option
         return;
     }
     let m = &*around.get_or_insert_with(|| Moved::new(mesh, moved));
-    let (at, triangles) = (&m.at, &m.triangles);
+    let triangles = &m.triangles;
     let rest = |v: u32| mesh.pos(v);
     let mut fan = Vec::new();
     let mut folding = Vec::new();
@@ -227,7 +282,7 @@ pub fn unfold(mesh: &DynMesh, moved: &mut Vec<(u32, DVec3)>, around: &mut Option
         });
         let mut shrink: Vec<u32> = Vec::new();
         for (tri, _) in triangles.iter().zip(&folding).filter(|f| *f.1) {
-            shrink.extend(tri.iter().copied().filter(|v| at.contains_key(v)));
+            shrink.extend(tri.iter().copied().filter(|&v| m.slot(v).is_some()));
         }
         if shrink.is_empty() {
             break;
@@ -235,19 +290,19 @@ pub fn unfold(mesh: &DynMesh, moved: &mut Vec<(u32, DVec3)>, around: &mut Option
         shrink.sort_unstable();
         shrink.dedup();
         changed.clear();
-        changed.extend(shrink.iter().map(|v| at[v]));
+        changed.extend(shrink.iter().filter_map(|&v| m.slot(v)));
         if pass < SMOOTHING {
             // The corners take the mean displacement of themselves and their moved neighbours
             // over surface triangles (all on their side of the cut: a lip's surface fan never
             // crosses it): the opening stays, its kink goes.
             let mut next = Vec::with_capacity(shrink.len());
             for &v in &shrink {
-                let mut sum = moved[at[&v]].1 - rest(v);
+                let mut sum = moved[m.slot(v).expect("moved")].1 - rest(v);
                 let mut count = 1.0;
                 mesh.surface_fan_into(v, &mut fan);
                 for &h in &fan {
                     for n in [mesh.dest(h), mesh.origin(prev(h))] {
-                        if let Some(&i) = at.get(&n) {
+                        if let Some(i) = m.slot(n) {
                             sum += moved[i].1 - rest(n);
                             count += 1.0;
                         }
@@ -256,12 +311,12 @@ pub fn unfold(mesh: &DynMesh, moved: &mut Vec<(u32, DVec3)>, around: &mut Option
                 next.push(rest(v) + sum / count);
             }
             for (&v, p) in shrink.iter().zip(next) {
-                moved[at[&v]].1 = p;
+                moved[m.slot(v).expect("moved")].1 = p;
             }
             continue;
         }
         for v in shrink {
-            let i = at[&v];
+            let i = m.slot(v).expect("moved");
             moved[i].1 = if pass == PASSES {
                 rest(v)
             } else {
@@ -328,7 +383,10 @@ mod tests {
         m.refold(&mut folding, None, |k| m.folds(k, |i| moved[i].1));
         assert!(!folding.iter().any(|&f| f));
         // Push two vertices past their neighbours: the triangles around them fold.
-        let changed: Vec<usize> = [id(3, 2), id(1, 5)].iter().map(|v| m.at[v]).collect();
+        let changed: Vec<usize> = [id(3, 2), id(1, 5)]
+            .iter()
+            .map(|&v| m.slot(v).unwrap())
+            .collect();
         for &i in &changed {
             moved[i].1 += DVec3::new(1.5, 0.4, 0.0);
         }
