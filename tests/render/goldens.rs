@@ -37,7 +37,10 @@ fn golden_plain_scene() {
 fn batched_passes_draw_the_same_picture() {
     let Some(mut r) = renderer() else { return };
     let mut scene = two_transparent_layers();
-    let wire = plain_scene(WIRE).models.pop().expect("the wireframe sphere");
+    let wire = plain_scene(WIRE)
+        .models
+        .pop()
+        .expect("the wireframe sphere");
     scene.models.push(wire);
     r.set_batch_triangles(None);
     let whole = render(&mut r, &scene, None);
@@ -49,9 +52,15 @@ fn batched_passes_draw_the_same_picture() {
             .zip(batched.pixels())
             .filter(|(a, b)| a != b)
             .count();
-        assert_eq!(differ, 0, "batches of {batch} triangles changed {differ} pixels");
+        assert_eq!(
+            differ, 0,
+            "batches of {batch} triangles changed {differ} pixels"
+        );
     }
-    assert!(coverage(&whole, [255, 255, 255]) > 0.15, "the scene is drawn");
+    assert!(
+        coverage(&whole, [255, 255, 255]) > 0.15,
+        "the scene is drawn"
+    );
 }
 
 #[test]

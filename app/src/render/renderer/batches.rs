@@ -129,8 +129,8 @@ fn batch_encoder(device: &wgpu::Device) -> wgpu::CommandEncoder {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use super::super::draw_list::Source;
+    use super::*;
 
     fn sizes(draws: &[(u32, bool)]) -> Vec<Draw> {
         (0..draws.len())

@@ -28,35 +28,22 @@ impl Renderer {
                 wgpu::LoadOp::Load
             }
         };
+        let depth = &targets.depth_view;
         for (i, batch) in self.batches(&draws.opaque).iter().enumerate() {
             {
-                let mut pass = out.encoder().begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("cutaway opaque pass"),
-                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                        view: color_view,
-                        resolve_target: None,
-                        ops: wgpu::Operations {
-                            load: load(i == 0, clear),
-                            store: wgpu::StoreOp::Store,
-                        },
-                        depth_slice: None,
-                    })],
-                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                        view: &targets.depth_view,
-                        depth_ops: Some(wgpu::Operations {
-                            load: if i == 0 {
-                                wgpu::LoadOp::Clear(1.0)
-                            } else {
-                                wgpu::LoadOp::Load
-                            },
-                            store: wgpu::StoreOp::Store,
-                        }),
-                        stencil_ops: None,
-                    }),
-                    occlusion_query_set: None,
-                    timestamp_writes: None,
-                    multiview_mask: None,
-                });
+                let colors = [attachment(color_view, load(i == 0, clear))];
+                let depth_load = if i == 0 {
+                    wgpu::LoadOp::Clear(1.0)
+                } else {
+                    wgpu::LoadOp::Load
+                };
+                let mut pass = begin(
+                    out.encoder(),
+                    "cutaway opaque pass",
+                    &colors,
+                    depth,
+                    depth_load,
+                );
                 pass.set_bind_group(0, &self.frame_bind_group, &[frame_offset]);
                 self.draw_all(&mut pass, batch, false);
             }
@@ -69,40 +56,12 @@ impl Renderer {
         if let Some(oit) = transparency {
             for (i, batch) in self.batches(&draws.transparent).iter().enumerate() {
                 {
-                    let mut pass = out.encoder().begin_render_pass(&wgpu::RenderPassDescriptor {
-                        label: Some("cutaway transparency pass"),
-                        color_attachments: &[
-                            Some(wgpu::RenderPassColorAttachment {
-                                view: &oit.accum_view,
-                                resolve_target: None,
-                                ops: wgpu::Operations {
-                                    load: load(i == 0, wgpu::Color::TRANSPARENT),
-                                    store: wgpu::StoreOp::Store,
-                                },
-                                depth_slice: None,
-                            }),
-                            Some(wgpu::RenderPassColorAttachment {
-                                view: &oit.revealage_view,
-                                resolve_target: None,
-                                ops: wgpu::Operations {
-                                    load: load(i == 0, wgpu::Color::WHITE),
-                                    store: wgpu::StoreOp::Store,
-                                },
-                                depth_slice: None,
-                            }),
-                        ],
-                        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                            view: &targets.depth_view,
-                            depth_ops: Some(wgpu::Operations {
-                                load: wgpu::LoadOp::Load,
-                                store: wgpu::StoreOp::Store,
-                            }),
-                            stencil_ops: None,
-                        }),
-                        occlusion_query_set: None,
-                        timestamp_writes: None,
-                        multiview_mask: None,
-                    });
+                    let colors = [
+                        attachment(&oit.accum_view, load(i == 0, wgpu::Color::TRANSPARENT)),
+                        attachment(&oit.revealage_view, load(i == 0, wgpu::Color::WHITE)),
+                    ];
+                    let label = "cutaway transparency pass";
+                    let mut pass = begin(out.encoder(), label, &colors, depth, wgpu::LoadOp::Load);
                     pass.set_bind_group(0, &self.frame_bind_group, &[frame_offset]);
                     self.draw_all(&mut pass, batch, true);
                 }
@@ -110,29 +69,9 @@ impl Renderer {
             }
         }
         if transparency.is_some() || !draws.overlay.is_empty() {
-            let mut pass = out.encoder().begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("cutaway composite pass"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: color_view,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    },
-                    depth_slice: None,
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &targets.depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                occlusion_query_set: None,
-                timestamp_writes: None,
-                multiview_mask: None,
-            });
+            let colors = [attachment(color_view, wgpu::LoadOp::Load)];
+            let label = "cutaway composite pass";
+            let mut pass = begin(out.encoder(), label, &colors, depth, wgpu::LoadOp::Load);
             if let Some(oit) = transparency {
                 pass.set_pipeline(&self.pipelines.composite);
                 pass.set_bind_group(0, &oit.composite_bind_group, &[]);
@@ -225,4 +164,45 @@ impl Renderer {
             }
         }
     }
+}
+
+/// A colour target of a pass, stored at its end.
+fn attachment(
+    view: &wgpu::TextureView,
+    load: wgpu::LoadOp<wgpu::Color>,
+) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load,
+            store: wgpu::StoreOp::Store,
+        },
+        depth_slice: None,
+    })
+}
+
+/// Begins a pass drawing into `colors` with the depth target `depth`, both stored at its end.
+fn begin<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    colors: &[Option<wgpu::RenderPassColorAttachment<'_>>],
+    depth: &wgpu::TextureView,
+    depth_load: wgpu::LoadOp<f32>,
+) -> wgpu::RenderPass<'e> {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: colors,
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: depth,
+            depth_ops: Some(wgpu::Operations {
+                load: depth_load,
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        occlusion_query_set: None,
+        timestamp_writes: None,
+        multiview_mask: None,
+    })
 }
