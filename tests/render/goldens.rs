@@ -47,11 +47,7 @@ fn batched_passes_draw_the_same_picture() {
     for batch in [2, 37, 500] {
         r.set_batch_triangles(Some(batch));
         let batched = render(&mut r, &scene, None);
-        let differ = whole
-            .pixels()
-            .zip(batched.pixels())
-            .filter(|(a, b)| a != b)
-            .count();
+        let differ = differing_pixels(&whole, &batched);
         assert_eq!(
             differ, 0,
             "batches of {batch} triangles changed {differ} pixels"
@@ -148,11 +144,7 @@ fn golden_ribbons() {
         &with_cutter(layered_scene(), CutterViews::default()),
         None,
     );
-    let changed = image
-        .pixels()
-        .zip(plain_cut.pixels())
-        .filter(|(a, b)| a != b)
-        .count();
+    let changed = differing_pixels(&image, &plain_cut);
     assert!(changed > 60, "ribbons changed only {changed} pixels");
     compare_to_golden("ribbons", &image, r.is_software());
 }
@@ -174,11 +166,7 @@ fn golden_slices() {
     };
     let ribbon_image = render(&mut r, &with_cutter(layered_scene(), ribbons), None);
     // Slices add walls to the ribbons.
-    let changed = image
-        .pixels()
-        .zip(ribbon_image.pixels())
-        .filter(|(a, b)| a != b)
-        .count();
+    let changed = differing_pixels(&image, &ribbon_image);
     assert!(
         changed > 30,
         "slices look like ribbons ({changed} pixels differ)"
@@ -222,11 +210,7 @@ fn golden_edit_mode_cutter_overlay() {
     let scene = with_cutter(layered_scene(), CutterViews::default());
     let image = render(&mut r, &scene, Some(ViewMode::Edit));
     let camera_mode = render(&mut r, &scene, Some(ViewMode::Camera));
-    let changed = image
-        .pixels()
-        .zip(camera_mode.pixels())
-        .filter(|(a, b)| a != b)
-        .count();
+    let changed = differing_pixels(&image, &camera_mode);
     assert!(
         changed > 200,
         "the cutter overlay changed only {changed} pixels"

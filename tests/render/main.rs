@@ -216,6 +216,11 @@ fn coverage(image: &image::RgbaImage, background: [u8; 3]) -> f64 {
     n as f64 / (image.width() * image.height()) as f64
 }
 
+/// How many pixels of two images of one size differ at all.
+fn differing_pixels(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
+    a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count()
+}
+
 fn pixel(image: &image::RgbaImage, x: u32, y: u32) -> [u8; 4] {
     image.get_pixel(x, y).0
 }
