@@ -155,8 +155,6 @@ pub fn corrections(
     // Smoothed strokes, made when a segment first needs them.
     let mut smoothed: Vec<DVec3> = samples.iter().map(|s| s.point).collect();
     let mut done: Vec<bool> = vec![false; samples.len()];
-    // Per sample, whether its stroke's smoothed points are the kept ones.
-    let mut stroke_kept: Vec<bool> = vec![false; samples.len()];
     for (i, s) in segments.iter().enumerate() {
         let Some(j) = sample_of[i] else {
             if let Some(k) = kept.as_deref_mut() {
@@ -190,11 +188,7 @@ pub fn corrections(
                 .collect();
             let smooth_stroke = |p: &[DVec3]| smooth(p, 0.5 * width);
             match kept.as_deref_mut() {
-                Some(k) => {
-                    let (path, same) = k.smoothed(lo, points, smooth_stroke);
-                    smoothed[lo..=hi].copy_from_slice(path);
-                    stroke_kept[lo..=hi].iter_mut().for_each(|d| *d = same);
-                }
+                Some(k) => smoothed[lo..=hi].copy_from_slice(k.smoothed(lo, points, smooth_stroke)),
                 None => smoothed[lo..=hi].copy_from_slice(&smooth_stroke(&points)),
             }
             done[lo..=hi].iter_mut().for_each(|d| *d = true);
@@ -210,18 +204,20 @@ pub fn corrections(
                     lateral,
                     sample: j,
                     run: (lo, hi),
+                    read: (j, j),
                     corrections: [DVec3::ZERO; 2],
                 };
-                k.corrections(i, stroke_kept[j], inputs, measure)
+                k.corrections(i, inputs, measure)
             }
-            None => measure(),
+            None => measure().0,
         };
     }
     out
 }
 
 /// The lateral corrections at the ends of segment `s` (frame lateral `lateral`), cut at sample
-/// `j` of the stroke whose samples are `lo..=hi`, against the smoothed path `smoothed`.
+/// `j` of the stroke whose samples are `lo..=hi`, against the smoothed path `smoothed`, and the
+/// samples of it read (first, last).
 fn measure(
     smoothed: &[DVec3],
     (lo, hi): (usize, usize),
@@ -229,7 +225,7 @@ fn measure(
     s: &CutSegment,
     lateral: DVec3,
     width: f64,
-) -> [DVec3; 2] {
+) -> ([DVec3; 2], (usize, usize)) {
     let mut out = [DVec3::ZERO; 2];
     // The path the segment was cut along: behind its sample by the segment's length and a
     // width (the cut trails the tool), ahead by a width.
@@ -253,7 +249,7 @@ fn measure(
             out[k] = lateral * (q - p).dot(lateral);
         }
     }
-    out
+    (out, (a, b))
 }
 
 #[cfg(test)]

@@ -28,10 +28,19 @@ pub struct KeptPath {
     pub feet: Feet,
     /// The width the strokes were smoothed and the corrections measured for (its bits).
     width: u64,
-    /// Per stroke, by its first sample's index: its feet and the smoothed stroke.
-    strokes: FastMap<usize, (Vec<DVec3>, Vec<DVec3>)>,
+    /// Per stroke, by its first sample's index.
+    strokes: FastMap<usize, Stroke>,
     /// Per segment, what its corrections were measured from and the corrections.
     segments: Vec<Option<Measured>>,
+}
+
+/// A stroke as it was smoothed.
+struct Stroke {
+    /// The feet it was smoothed from and the smoothed points.
+    feet: Vec<DVec3>,
+    smoothed: Vec<DVec3>,
+    /// The smoothed points of the step before, when this step smoothed it again.
+    before: Option<Vec<DVec3>>,
 }
 
 /// A segment's path corrections and what they were measured from.
@@ -44,18 +53,21 @@ pub(crate) struct Measured {
     /// The sample of the step that cut it and its stroke's samples (first, last).
     pub sample: usize,
     pub run: (usize, usize),
+    /// The samples of the smoothed stroke the measure read (first, last).
+    pub read: (usize, usize),
     pub corrections: [DVec3; 2],
 }
 
 impl Measured {
-    /// Whether `self` was measured from the same values as `other`, bit for bit.
-    fn same_inputs(&self, other: &Measured) -> bool {
+    /// Whether `self` was measured for the same segment, frame and sample as `other`, bit for
+    /// bit, in a stroke starting at the same sample.
+    fn same_segment(&self, other: &Measured) -> bool {
         same_bits(self.pa, other.pa)
             && same_bits(self.pb, other.pb)
             && self.time.to_bits() == other.time.to_bits()
             && same_bits(self.lateral, other.lateral)
             && self.sample == other.sample
-            && self.run == other.run
+            && self.run.0 == other.run.0
     }
 }
 
@@ -80,44 +92,77 @@ impl KeptPath {
             self.width = width.to_bits();
         }
         self.segments.resize(segments, None);
+        for stroke in self.strokes.values_mut() {
+            stroke.before = None;
+        }
     }
 
     /// The stroke starting at sample `lo` smoothed from `feet`: the kept one when it was
-    /// smoothed from the same feet, else `smooth(feet)`, kept. Also whether it was kept.
+    /// smoothed from the same feet, else `smooth(feet)`, kept.
     pub(crate) fn smoothed(
         &mut self,
         lo: usize,
         feet: Vec<DVec3>,
         smooth: impl FnOnce(&[DVec3]) -> Vec<DVec3>,
-    ) -> (&[DVec3], bool) {
-        let same = self.strokes.get(&lo).is_some_and(|(kept, _)| {
-            kept.len() == feet.len() && kept.iter().zip(&feet).all(|(a, b)| same_bits(*a, *b))
+    ) -> &[DVec3] {
+        let same = self.strokes.get(&lo).is_some_and(|k| {
+            k.feet.len() == feet.len() && k.feet.iter().zip(&feet).all(|(a, b)| same_bits(*a, *b))
         });
         if !same {
             let smoothed = smooth(&feet);
-            self.strokes.insert(lo, (feet, smoothed));
+            let before = self.strokes.remove(&lo).map(|k| k.smoothed);
+            self.strokes.insert(
+                lo,
+                Stroke {
+                    feet,
+                    smoothed,
+                    before,
+                },
+            );
         }
-        (&self.strokes[&lo].1, same)
+        &self.strokes[&lo].smoothed
     }
 
-    /// The corrections of segment `i` when they were measured from the same values as
-    /// `measure` (its stroke's smoothed points kept), else those `measure` gives, kept.
+    /// The corrections of segment `i` (its stroke smoothed by [`KeptPath::smoothed`] in this
+    /// pass) when they were measured from the same values as `measure` would read now, else
+    /// those `measure` gives (with the samples it read), kept.
+    ///
+    /// Every segment is measured or kept in every pass, so a segment's kept measure read its
+    /// stroke as the pass before smoothed it: the stroke's kept points if it was not smoothed
+    /// again, else its points `before`. The measure walks the smoothed stroke from the
+    /// segment's sample out to the samples it read (or the stroke's ends) and reads nothing
+    /// else: those points equal bit for bit, and no end of the stroke cut the walk short where
+    /// it moved, give the same corrections.
     pub(crate) fn corrections(
         &mut self,
         i: usize,
-        stroke_kept: bool,
         inputs: Measured,
-        measure: impl FnOnce() -> [DVec3; 2],
+        measure: impl FnOnce() -> ([DVec3; 2], (usize, usize)),
     ) -> [DVec3; 2] {
-        if stroke_kept
-            && let Some(kept) = self.segments[i]
-            && kept.same_inputs(&inputs)
+        if let Some(kept) = self.segments[i]
+            && kept.same_segment(&inputs)
+            && let Some(stroke) = self.strokes.get(&inputs.run.0)
         {
-            return kept.corrections;
+            let (lo, (a, b)) = (inputs.run.0, kept.read);
+            let (hi_then, hi_now) = (kept.run.1, inputs.run.1);
+            let same = match &stroke.before {
+                None => hi_then == hi_now,
+                Some(before) => {
+                    (hi_then == hi_now || (b < hi_then && b < hi_now))
+                        && before[a - lo..=b - lo]
+                            .iter()
+                            .zip(&stroke.smoothed[a - lo..=b - lo])
+                            .all(|(x, y)| same_bits(*x, *y))
+                }
+            };
+            if same {
+                return kept.corrections;
+            }
         }
-        let corrections = measure();
+        let (corrections, read) = measure();
         self.segments[i] = Some(Measured {
             corrections,
+            read,
             ..inputs
         });
         corrections
