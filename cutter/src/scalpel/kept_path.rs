@@ -11,8 +11,11 @@
 //!   function of those points and the width alone, so feet equal bit for bit give the kept
 //!   smoothed stroke;
 //! - per segment, what its corrections were measured from (its ends, its clock, its frame's
-//!   lateral, its sample and its stroke's range) and the corrections: with those equal bit for
-//!   bit and its stroke's smoothed points kept, the measurement gives the kept corrections.
+//!   lateral, its sample, its stroke's range and the smoothed points it read) and the
+//!   corrections: with those equal bit for bit, the measurement gives the kept corrections.
+//!   The stroke being drawn is smoothed again every step, but only its last points change (a
+//!   point's smoothing reads the points within half a width of it), so its segments behind the
+//!   tool keep their corrections too.
 //!
 //! So the corrections made with a [`KeptPath`] equal those made from scratch, bit for bit.
 
