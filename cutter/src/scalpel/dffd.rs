@@ -47,10 +47,10 @@ use glam::DVec3;
 
 use super::cut_grid::{Cell, CutGrid, InCells};
 use super::dyn_mesh::{DynMesh, prev};
-use super::feet::Feet;
 use super::field::{FieldAt, taper_at};
 use super::field_cache::{Changes, FieldCache, Kept};
 pub use super::frames::{Frame, frames};
+use super::kept_path::KeptPath;
 use super::nearest_cut::{self, Balls};
 use super::sides::Sides;
 use super::step::Scalpel;
@@ -140,13 +140,14 @@ pub(crate) struct Inputs {
 
 impl Inputs {
     /// `None` when nothing opens (no width, no cut).
-    /// `feet`: the samples' feet kept from before, valid for this mesh ([`super::feet`]).
+    /// `kept`: the path corrections' feet, smoothed strokes and measures kept from before, the
+    /// feet valid for this mesh ([`KeptPath`]).
     pub fn new(
         scalpel: &Scalpel,
         options: &OpenOptions,
         now: f64,
         onto_path: bool,
-        feet: Option<&mut Feet>,
+        kept: Option<&mut KeptPath>,
     ) -> Option<Inputs> {
         let mesh = scalpel.dyn_mesh();
         let w = options.width;
@@ -169,7 +170,7 @@ impl Inputs {
         let taper_len = taper_length(w, scalpel.options().depth);
         // Per segment end, the lateral move onto the drawn path (see the module doc).
         let corrections = if onto_path {
-            super::drawn::corrections(mesh, &scalpel.drawn, segments, &frames, w, feet)
+            super::drawn::corrections(mesh, &scalpel.drawn, segments, &frames, w, kept)
         } else {
             vec![[DVec3::ZERO; 2]; segments.len()]
         };

@@ -21,8 +21,9 @@ use glam::DVec3;
 
 use super::cut_point::segment_parameter;
 use super::dyn_mesh::DynMesh;
-use super::feet::{Feet, foot};
+use super::feet::foot;
 use super::frames::Frame;
+use super::kept_path::{KeptPath, Measured};
 use super::step::CutSegment;
 
 pub use super::sample::Sample;
@@ -102,20 +103,32 @@ fn nearest_on(points: &[DVec3], lo: usize, hi: usize, p: DVec3) -> DVec3 {
 /// segment's frame lateral from the end to the nearest point of its stroke's drawn path,
 /// smoothed over `width` (see the module doc). Zero where the segment has no sample or the path
 /// is out of reach. Cost: the samples of the strokes the segments come from, plus a few samples
-/// of path per segment; each sample's foot on the surface is searched for unless `feet` keeps
-/// it ([`super::feet`]).
+/// of path per segment; each sample's foot on the surface is searched for unless `kept` keeps
+/// it ([`super::feet`]), and the strokes whose feet and the segments whose ends, frame and
+/// stroke are what `kept` holds are not smoothed and measured again ([`KeptPath`]).
 pub fn corrections(
     mesh: &DynMesh,
     samples: &[Sample],
     segments: &[CutSegment],
     frames: &[Frame],
     width: f64,
-    mut feet: Option<&mut Feet>,
+    mut kept: Option<&mut KeptPath>,
 ) -> Vec<[DVec3; 2]> {
     let mut out = vec![[DVec3::ZERO; 2]; segments.len()];
     if samples.is_empty() || width.is_nan() || width <= 0.0 {
         return out;
     }
+    if let Some(k) = kept.as_deref_mut() {
+        k.begin(segments.len(), width);
+    }
+    // Each segment's sample: the one its step recorded (the same clock), if any.
+    let sample_of: Vec<Option<usize>> = segments
+        .iter()
+        .map(|s| {
+            let j = samples.partition_point(|x| x.time < s.time);
+            (j < samples.len() && samples[j].time == s.time).then_some(j)
+        })
+        .collect();
     // Each sample's stroke as the range of its samples (first, last), in one pass.
     let mut runs: Vec<(usize, usize)> = Vec::with_capacity(samples.len());
     let mut start = 0;
@@ -129,9 +142,10 @@ pub fn corrections(
     // end nearest the sample among its segments' (a through-cut's step also cuts the far side),
     // else that of the sample before or after it in its stroke.
     let mut reached: Vec<Option<(u32, f64)>> = vec![None; samples.len()];
-    for s in segments {
-        let j = samples.partition_point(|x| x.time < s.time);
-        if j < samples.len() && samples[j].time == s.time && (s.b as usize) < mesh.vertex_count() {
+    for (s, j) in segments.iter().zip(&sample_of) {
+        if let Some(j) = *j
+            && (s.b as usize) < mesh.vertex_count()
+        {
             let d = s.pb.distance(samples[j].point);
             if reached[j].is_none_or(|(_, e)| d < e) {
                 reached[j] = Some((s.b, d));
@@ -142,10 +156,12 @@ pub fn corrections(
     let mut smoothed: Vec<DVec3> = samples.iter().map(|s| s.point).collect();
     let mut done: Vec<bool> = vec![false; samples.len()];
     for (i, s) in segments.iter().enumerate() {
-        let j = samples.partition_point(|x| x.time < s.time);
-        if j >= samples.len() || samples[j].time != s.time {
+        let Some(j) = sample_of[i] else {
+            if let Some(k) = kept.as_deref_mut() {
+                k.unmeasured(i);
+            }
             continue;
-        }
+        };
         let (lo, hi) = runs[j];
         if !done[j] {
             // The samples as the tool gave them may be off the surface (a path file's points):
@@ -163,41 +179,77 @@ pub fn corrections(
                 .zip(start)
                 .map(|(k, v)| {
                     let q = samples[k].point;
-                    match (v, feet.as_deref_mut()) {
+                    match (v, kept.as_deref_mut()) {
                         (None, _) => q,
-                        (Some(v), Some(feet)) => feet.foot(mesh, v, q),
+                        (Some(v), Some(kept)) => kept.feet.foot(mesh, v, q),
                         (Some(v), None) => foot(mesh, v, q),
                     }
                 })
                 .collect();
-            smoothed[lo..=hi].copy_from_slice(&smooth(&points, 0.5 * width));
+            let smooth_stroke = |p: &[DVec3]| smooth(p, 0.5 * width);
+            match kept.as_deref_mut() {
+                Some(k) => smoothed[lo..=hi].copy_from_slice(k.smoothed(lo, points, smooth_stroke)),
+                None => smoothed[lo..=hi].copy_from_slice(&smooth_stroke(&points)),
+            }
             done[lo..=hi].iter_mut().for_each(|d| *d = true);
         }
-        // The path the segment was cut along: behind its sample by the segment's length and a
-        // width (the cut trails the tool), ahead by a width.
-        let len = s.pa.distance(s.pb);
-        let mut a = j;
-        let mut back = 0.0;
-        while a > lo && (back < len + width || j - a < 2) {
-            back += smoothed[a].distance(smoothed[a - 1]);
-            a -= 1;
-        }
-        let mut b = j;
-        let mut ahead = 0.0;
-        while b < hi && (ahead < width || b - j < 2) {
-            ahead += smoothed[b].distance(smoothed[b + 1]);
-            b += 1;
-        }
         let lateral = frames[i].lateral;
-        let reach = REACH * (len + width);
-        for (k, p) in [s.pa, s.pb].into_iter().enumerate() {
-            let q = nearest_on(&smoothed, a, b, p);
-            if q.distance(p) <= reach {
-                out[i][k] = lateral * (q - p).dot(lateral);
+        let measure = || measure(&smoothed, (lo, hi), j, s, lateral, width);
+        out[i] = match kept.as_deref_mut() {
+            Some(k) => {
+                let inputs = Measured {
+                    pa: s.pa,
+                    pb: s.pb,
+                    time: s.time,
+                    lateral,
+                    sample: j,
+                    run: (lo, hi),
+                    read: (j, j),
+                    corrections: [DVec3::ZERO; 2],
+                };
+                k.corrections(i, inputs, measure)
             }
-        }
+            None => measure().0,
+        };
     }
     out
+}
+
+/// The lateral corrections at the ends of segment `s` (frame lateral `lateral`), cut at sample
+/// `j` of the stroke whose samples are `lo..=hi`, against the smoothed path `smoothed`, and the
+/// samples of it read (first, last).
+fn measure(
+    smoothed: &[DVec3],
+    (lo, hi): (usize, usize),
+    j: usize,
+    s: &CutSegment,
+    lateral: DVec3,
+    width: f64,
+) -> ([DVec3; 2], (usize, usize)) {
+    let mut out = [DVec3::ZERO; 2];
+    // The path the segment was cut along: behind its sample by the segment's length and a
+    // width (the cut trails the tool), ahead by a width.
+    let len = s.pa.distance(s.pb);
+    let mut a = j;
+    let mut back = 0.0;
+    while a > lo && (back < len + width || j - a < 2) {
+        back += smoothed[a].distance(smoothed[a - 1]);
+        a -= 1;
+    }
+    let mut b = j;
+    let mut ahead = 0.0;
+    while b < hi && (ahead < width || b - j < 2) {
+        ahead += smoothed[b].distance(smoothed[b + 1]);
+        b += 1;
+    }
+    let reach = REACH * (len + width);
+    for (k, p) in [s.pa, s.pb].into_iter().enumerate() {
+        let q = nearest_on(smoothed, a, b, p);
+        if q.distance(p) <= reach {
+            out[k] = lateral * (q - p).dot(lateral);
+        }
+    }
+    (out, (a, b))
 }
 
 #[cfg(test)]

@@ -35,14 +35,15 @@
 //! (the tests compare both, bit for bit, on long strokes); everything else is exact by
 //! construction. Cost: the changed region, never the incision or the mesh, plus one pass over
 //! the segments to compare them (and to make their frames and corrections; the samples' feet on
-//! the surface those need, a search each, are kept between steps, [`super::feet`]).
+//! the surface those need, a search each, the smoothed strokes and the corrections of the
+//! segments whose stroke and frame stayed are kept between steps, [`super::kept_path`]).
 
 use glam::DVec3;
 
 use super::cut_grid::{Cell, CutGrid, cell_of, cells_within};
 use super::dffd::{Inputs, OpenOptions, WalkRegion, finish, floors_by_lips, taper_length, walk};
-use super::feet::Feet;
 use super::field_cache::{Changes, FieldCache};
+use super::kept_path::KeptPath;
 use super::sides::Sides;
 use super::step::{CutSegment, Scalpel};
 use super::unfold::MovedTables;
@@ -71,8 +72,9 @@ pub struct LiveOpening {
     moved: FastMap<u32, DVec3>,
     /// The vertices of `moved` by the cell of their rest position (may hold stale ids).
     by_cell: FastMap<Cell, Vec<u32>>,
-    /// The drawn samples' feet on the surface, kept for the path corrections.
-    feet: Feet,
+    /// The drawn samples' feet on the surface, the smoothed strokes and the segments' path
+    /// corrections, kept for the path corrections.
+    path: KeptPath,
     /// The field of every vertex within the support, apart from the clock.
     field: FieldCache,
     /// The walk's sides, kept between steps (a walk clears only what it set).
@@ -132,10 +134,10 @@ impl LiveOpening {
             .as_ref()
             .and_then(|st| mesh.edits_since(st.cursor))
         {
-            Some(edits) => self.feet.forget(edits),
-            None => self.feet.clear(),
+            Some(edits) => self.path.feet.forget(edits),
+            None => self.path.clear(),
         }
-        let Some(inputs) = Inputs::new(scalpel, options, now, true, Some(&mut self.feet)) else {
+        let Some(inputs) = Inputs::new(scalpel, options, now, true, Some(&mut self.path)) else {
             self.state = None;
             self.moved.clear();
             self.by_cell.clear();

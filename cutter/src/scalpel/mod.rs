@@ -94,6 +94,7 @@ mod field_cache;
 pub mod frames;
 pub mod groove;
 pub mod invariants;
+pub mod kept_path;
 pub mod layers;
 pub mod lip_measure;
 pub mod live_opening;
