@@ -347,7 +347,7 @@ impl Renderer {
         for eye in 0..eyes {
             self.encode_eye(&mut out, eye, clear, &draws);
         }
-        drop(out);
+        out.finish();
         self.evict();
         self.free_pages.trim_if_due(std::time::Instant::now());
     }

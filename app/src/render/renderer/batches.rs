@@ -62,11 +62,14 @@ pub(super) fn split(
 }
 
 /// Where the passes are recorded: the caller's encoder, or on a software adapter one encoder
-/// per batch, submitted at [`Submissions::end_batch`].
+/// per batch, made when the batch records its first command and submitted at
+/// [`Submissions::end_batch`] (so no empty batch is submitted).
 pub(super) struct Submissions<'a> {
     device: &'a wgpu::Device,
     queue: &'a wgpu::Queue,
     caller: &'a mut wgpu::CommandEncoder,
+    /// Whether batches are submitted on their own.
+    separate: bool,
     /// The batch being recorded, when batches are submitted on their own.
     own: Option<wgpu::CommandEncoder>,
     /// The last batch submitted, not yet waited for.
@@ -81,21 +84,26 @@ impl<'a> Submissions<'a> {
         caller: &'a mut wgpu::CommandEncoder,
         separate: bool,
     ) -> Self {
-        let own = separate.then(|| batch_encoder(device));
         Submissions {
             device,
             queue,
             caller,
-            own,
+            separate,
+            own: None,
             in_flight: None,
         }
     }
 
     pub(super) fn encoder(&mut self) -> &mut wgpu::CommandEncoder {
-        match &mut self.own {
-            Some(own) => own,
-            None => self.caller,
+        if !self.separate {
+            return self.caller;
         }
+        let device = self.device;
+        self.own.get_or_insert_with(|| {
+            device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("cutaway batch"),
+            })
+        })
     }
 
     /// Ends the batch recorded so far: submits it, then waits for the batch before it.
@@ -108,23 +116,14 @@ impl<'a> Submissions<'a> {
                 timeout: None,
             });
         }
-        self.own = Some(batch_encoder(self.device));
     }
-}
 
-impl Drop for Submissions<'_> {
     /// Submits what was recorded after the last batch (the composite), without waiting.
-    fn drop(&mut self) {
+    pub(super) fn finish(mut self) {
         if let Some(own) = self.own.take() {
             self.queue.submit([own.finish()]);
         }
     }
-}
-
-fn batch_encoder(device: &wgpu::Device) -> wgpu::CommandEncoder {
-    device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-        label: Some("cutaway batch"),
-    })
 }
 
 #[cfg(test)]
