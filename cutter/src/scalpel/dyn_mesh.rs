@@ -15,6 +15,7 @@
 use glam::DVec3;
 
 mod journal;
+mod twins;
 use journal::Change;
 pub use journal::Mark;
 
@@ -86,32 +87,7 @@ impl DynMesh {
     pub fn from_mesh(mesh: &csg::Mesh) -> DynMesh {
         let nt = mesh.triangles.len();
         let nv = mesh.positions.len();
-        let mut twin = vec![NO_TWIN; 3 * nt];
-        // Sort directed edges so that an edge and its reverse are found by binary search.
-        let mut directed: Vec<(u32, u32, u32)> = Vec::with_capacity(3 * nt);
-        for (t, tri) in mesh.triangles.iter().enumerate() {
-            for k in 0..3 {
-                directed.push((tri[k], tri[(k + 1) % 3], (3 * t + k) as u32));
-            }
-        }
-        directed.sort_unstable();
-        let range_of = |a: u32, b: u32| {
-            let lo = directed.partition_point(|&(x, y, _)| (x, y) < (a, b));
-            let hi = directed.partition_point(|&(x, y, _)| (x, y) <= (a, b));
-            lo..hi
-        };
-        for i in 0..directed.len() {
-            let (a, b, h) = directed[i];
-            let same = range_of(a, b);
-            let rev = range_of(b, a);
-            twin[h as usize] = if a == b || same.len() != 1 || rev.len() > 1 {
-                NONMANIFOLD
-            } else if rev.len() == 1 {
-                directed[rev.start].2
-            } else {
-                NO_TWIN
-            };
-        }
+        let mut twin = twins::twins(&mesh.triangles);
         // A degenerate triangle (repeated index) makes all its edges unusable.
         for (t, tri) in mesh.triangles.iter().enumerate() {
             if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
