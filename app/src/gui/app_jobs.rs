@@ -113,8 +113,13 @@ impl CutawayApp {
         for p in &paths {
             self.state.recent.add(p);
         }
-        if replace && crate::scene::open::is_one_mask_folder(&paths) {
-            crate::gui::folder_arrival::start(&mut self.state, ctx, paths[0].clone());
+        if crate::scene::open::is_one_mask_folder(&paths) {
+            let folder = paths[0].clone();
+            if replace {
+                crate::gui::folder_arrival::start(&mut self.state, ctx, folder);
+            } else {
+                crate::gui::folder_arrival::start_adding(&mut self.state, ctx, folder);
+            }
             return;
         }
         let label = match paths.as_slice() {

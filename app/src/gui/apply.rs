@@ -282,6 +282,7 @@ impl CutawayApp {
     }
 
     pub(super) fn undo(&mut self) {
+        crate::gui::folder_arrival::stop_adding(&mut self.state);
         if let Some((label, before)) = self.state.pending_edit.take() {
             self.state
                 .history
@@ -296,6 +297,7 @@ impl CutawayApp {
     }
 
     pub(super) fn redo(&mut self) {
+        crate::gui::folder_arrival::stop_adding(&mut self.state);
         let state = match self.state.history.redo() {
             Some(Apply::Scene(state)) => Some(state.clone()),
             Some(Apply::Editor) | None => None,

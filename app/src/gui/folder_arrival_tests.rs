@@ -154,7 +154,7 @@ fn cancel_restores_the_scene_the_user_had() {
 }
 
 /// The chest's mask folder opened as a user opens it: its seven structures, named after their
-/// files, in file order, the same meshes as the folder read whole.
+/// files, in file order, the same meshes as the folder read whole; then added to that scene.
 #[test]
 fn a_real_mask_folder_opens_structure_by_structure() {
     let Some(dir) = std::env::var_os("CUTAWAY_ANATOMY")
@@ -170,8 +170,7 @@ fn a_real_mask_folder_opens_structure_by_structure() {
     step_until(&mut h, "the chest masks", |app| !app.busy());
     h.run_steps(2);
     let whole = crate::io::read_parts(&dir).unwrap();
-    // Added to a scene (File → Add), the folder is read whole as one volume, not searched for
-    // meshes.
+    // Among other paths, the folder is read whole as one volume, not searched for meshes.
     let (added, _) =
         crate::scene::open::load_paths(std::slice::from_ref(&dir), &Default::default()).unwrap();
     assert_eq!(added.len(), whole.len());
@@ -186,6 +185,183 @@ fn a_real_mask_folder_opens_structure_by_structure() {
             read.mesh.triangles.len(),
             "{}",
             read.name
+        );
+    }
+    // Added to the scene (File → Add Model… or a drop): the same structures again, after the
+    // ones there, one undo step.
+    h.state_mut().open_paths(&ctx, vec![dir.clone()], false);
+    step_until(&mut h, "the chest masks added", |app| !app.busy());
+    h.run_steps(2);
+    let app = h.state();
+    assert!(!app.status.is_error, "{}", app.status.message);
+    assert_eq!(app.scene.models.len(), 2 * whole.len());
+    for (shown, read) in app.scene.models[whole.len()..].iter().zip(&whole) {
+        assert_eq!(&shown.model.name, &read.name);
+        assert_eq!(shown.model.mesh.triangles.len(), read.mesh.triangles.len());
+    }
+    h.state_mut().undo();
+    assert_eq!(h.state().scene.models.len(), whole.len(), "one Undo");
+}
+
+/// Adds a folder of masks whose outcomes `work` sends to the window's scene (File → Add Model…).
+fn add(
+    h: &mut Harness<'static, CutawayApp>,
+    work: impl FnOnce(&crate::gui::jobs::Progress, &(dyn Fn(Outcome) + Sync)) -> anyhow::Result<usize>
+    + Send
+    + 'static,
+) {
+    let ctx = h.ctx.clone();
+    super::folder_arrival::add_with(h.state_mut(), &ctx, "/masks".into(), work);
+}
+
+/// A worker that sends `first`, waits for `gate` (stopping when cancelled), then sends `rest`;
+/// `stopped` is set when it ends either way.
+fn gated(
+    first: Vec<Outcome>,
+    gate: Arc<AtomicBool>,
+    rest: Vec<Outcome>,
+    stopped: Arc<AtomicBool>,
+) -> impl FnOnce(&crate::gui::jobs::Progress, &(dyn Fn(Outcome) + Sync)) -> anyhow::Result<usize>
++ Send
++ 'static {
+    move |progress, send| {
+        // The structures, as the worker counts them (an empty mask gives none).
+        let count = first.iter().chain(&rest).filter(|o| o.1.is_some()).count();
+        for o in first {
+            send(o);
+        }
+        let waited = (|| {
+            while !gate.load(Ordering::Relaxed) {
+                progress.check()?;
+                std::thread::sleep(Duration::from_millis(5));
+            }
+            Ok(())
+        })();
+        if waited.is_ok() {
+            for o in rest {
+                send(o);
+            }
+        }
+        stopped.store(true, Ordering::Relaxed);
+        waited.map(|()| count)
+    }
+}
+
+/// Added to a scene, a folder's structures come after the models there, the camera stays, and
+/// the whole folder is one undo step: an edit made while it arrives is undone on its own and
+/// keeps them, the next Undo removes them all, Redo brings them back.
+#[test]
+fn a_folder_added_to_the_scene_arrives_as_one_undo_step() {
+    let mut h = window("add");
+    let before = names(h.state());
+    assert_eq!(before.len(), 1, "the skin");
+    let camera = h.state().scene.camera;
+    let (gate, stopped) = (
+        Arc::new(AtomicBool::new(false)),
+        Arc::new(AtomicBool::new(false)),
+    );
+    add(
+        &mut h,
+        gated(
+            vec![(0, structure("a", 0.0))],
+            gate.clone(),
+            vec![
+                (1, structure("b", 2.0)),
+                (2, None),
+                (3, structure("d", 6.0)),
+            ],
+            stopped,
+        ),
+    );
+    step_until(&mut h, "the first structure", |app| {
+        app.scene.models.len() == 2
+    });
+    // Each structure's index is its place in the folder, as a session names it.
+    assert_eq!(names(h.state())[1], ("a".to_owned(), 0));
+    assert!(
+        h.query_by_label_contains("Adding masks: 1 structures shown")
+            .is_some(),
+        "the status bar's progress"
+    );
+    // An edit while the folder arrives: the skin's colour.
+    let edit_before = h.state().scene.clone();
+    h.state_mut().scene.models[0].color = [1.0, 0.0, 0.0];
+    h.state_mut().record("colour change", edit_before);
+    gate.store(true, Ordering::Relaxed);
+    step_until(&mut h, "the folder", |app| !app.busy());
+    h.run_steps(2);
+    let all = [
+        ("skin".to_owned(), 0),
+        ("a".to_owned(), 0),
+        ("b".to_owned(), 1),
+        ("d".to_owned(), 2),
+    ];
+    let app = h.state();
+    assert_eq!(names(app)[1..], all[1..]);
+    assert_eq!(app.scene.camera, camera, "the camera stays");
+    assert!(
+        app.status.message.contains("Added masks: 3 structures"),
+        "{}",
+        app.status.message
+    );
+    h.state_mut().undo();
+    assert_eq!(
+        names(h.state())[1..],
+        all[1..],
+        "undoing the edit keeps them"
+    );
+    assert_ne!(h.state().scene.models[0].color, [1.0, 0.0, 0.0]);
+    h.state_mut().undo();
+    assert_eq!(names(h.state()), before, "one Undo removes the folder");
+    h.state_mut().redo();
+    assert_eq!(names(h.state())[1..], all[1..], "Redo brings it back");
+}
+
+/// Cancel, or an Undo, while a folder is added: the worker stops, what has come stays, and one
+/// Undo removes it.
+#[test]
+fn a_folder_being_added_stops_on_cancel_or_undo_and_keeps_what_came() {
+    for how in ["Cancel", "Undo"] {
+        let mut h = window(&format!("add-{how}"));
+        let before = names(h.state());
+        let stopped = Arc::new(AtomicBool::new(false));
+        add(
+            &mut h,
+            gated(
+                vec![(0, structure("a", 0.0)), (1, structure("b", 2.0))],
+                Arc::new(AtomicBool::new(false)),
+                Vec::new(),
+                stopped.clone(),
+            ),
+        );
+        step_until(&mut h, "the first structures", |app| {
+            app.scene.models.len() == 3
+        });
+        match how {
+            "Cancel" => {
+                h.get_by_label("Cancel").click();
+                h.run_steps(2);
+                assert!(
+                    h.state().status.message.contains("2 structures added"),
+                    "{}",
+                    h.state().status.message
+                );
+                assert_eq!(names(h.state()).len(), 3, "what came stays");
+                h.state_mut().undo();
+            }
+            _ => h.state_mut().undo(),
+        }
+        step_until(&mut h, "the worker to stop", |_| {
+            stopped.load(Ordering::Relaxed)
+        });
+        h.run_steps(2);
+        assert!(!h.state().folder.busy(), "{how}");
+        assert_eq!(names(h.state()), before, "{how}: the folder undone");
+        h.state_mut().redo();
+        assert_eq!(
+            names(h.state()).len(),
+            3,
+            "{how}: Redo brings back what came"
         );
     }
 }

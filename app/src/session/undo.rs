@@ -37,12 +37,14 @@ pub enum Apply<'a, S> {
 /// Undo and redo stacks with a size limit (oldest steps are forgotten first).
 #[derive(Debug)]
 pub struct History<S> {
-    /// Steps that can be undone, oldest first.
-    done: Vec<Step<S>>,
+    /// Steps that can be undone, oldest first, each with its number ([`History::last_number`]).
+    done: Vec<(u64, Step<S>)>,
     /// Steps that can be redone, most recently undone last.
-    undone: Vec<Step<S>>,
+    undone: Vec<(u64, Step<S>)>,
     /// At most this many steps are kept in `done`.
     limit: usize,
+    /// Steps recorded so far: the next step's number.
+    recorded: u64,
 }
 
 impl<S> Default for History<S> {
@@ -57,6 +59,7 @@ impl<S> History<S> {
             done: Vec::new(),
             undone: Vec::new(),
             limit: limit.max(1),
+            recorded: 0,
         }
     }
 
@@ -78,7 +81,8 @@ impl<S> History<S> {
 
     fn push(&mut self, step: Step<S>) {
         self.undone.clear();
-        self.done.push(step);
+        self.done.push((self.recorded, step));
+        self.recorded += 1;
         if self.done.len() > self.limit {
             let excess = self.done.len() - self.limit;
             self.done.drain(..excess);
@@ -89,7 +93,7 @@ impl<S> History<S> {
     pub fn undo(&mut self) -> Option<Apply<'_, S>> {
         let step = self.done.pop()?;
         self.undone.push(step);
-        Some(match self.undone.last()? {
+        Some(match &self.undone.last()?.1 {
             Step::Scene { before, .. } => Apply::Scene(before),
             Step::Editor { .. } => Apply::Editor,
         })
@@ -99,7 +103,7 @@ impl<S> History<S> {
     pub fn redo(&mut self) -> Option<Apply<'_, S>> {
         let step = self.undone.pop()?;
         self.done.push(step);
-        Some(match self.done.last()? {
+        Some(match &self.done.last()?.1 {
             Step::Scene { after, .. } => Apply::Scene(after),
             Step::Editor { .. } => Apply::Editor,
         })
@@ -107,12 +111,12 @@ impl<S> History<S> {
 
     /// Label of the step [`History::undo`] would undo.
     pub fn undo_label(&self) -> Option<&str> {
-        self.done.last().map(Step::label)
+        self.done.last().map(|(_, s)| s.label())
     }
 
     /// Label of the step [`History::redo`] would redo.
     pub fn redo_label(&self) -> Option<&str> {
-        self.undone.last().map(Step::label)
+        self.undone.last().map(|(_, s)| s.label())
     }
 
     /// Forgets everything (a new scene or session was opened).
@@ -124,19 +128,40 @@ impl<S> History<S> {
     /// Every scene snapshot held, done and undone (to add what arrived after the steps were
     /// recorded, such as structures surfaced in the background, to each of them).
     pub fn scenes_mut(&mut self) -> impl Iterator<Item = &mut S> {
+        self.scenes_after_mut(None)
+    }
+
+    /// The number of the step [`History::undo`] would undo: steps are numbered in the order
+    /// they were recorded, and a number stays with its step through undo and redo.
+    pub fn last_number(&self) -> Option<u64> {
+        self.done.last().map(|(n, _)| *n)
+    }
+
+    /// The scene snapshots made from step `number` on: that step's after, and both of every
+    /// later step's, done and undone (to add what arrived for that step to the scenes made
+    /// since, and not to those before it).
+    pub fn scenes_since_mut(&mut self, number: u64) -> impl Iterator<Item = &mut S> {
+        self.scenes_after_mut(Some(number))
+    }
+
+    fn scenes_after_mut(&mut self, from: Option<u64>) -> impl Iterator<Item = &mut S> {
         self.done
             .iter_mut()
             .chain(self.undone.iter_mut())
-            .flat_map(|step| match step {
-                Step::Scene { before, after, .. } => vec![before, after],
+            .flat_map(move |(n, step)| match step {
+                Step::Scene { before, after, .. } => match from {
+                    Some(from) if *n < from => Vec::new(),
+                    Some(from) if *n == from => vec![after],
+                    _ => vec![before, after],
+                },
                 Step::Editor { .. } => Vec::new(),
             })
     }
 
     /// Forgets editor steps only (the editor was replaced, its stack is gone).
     pub fn forget_editor_steps(&mut self) {
-        self.done.retain(|s| matches!(s, Step::Scene { .. }));
-        self.undone.retain(|s| matches!(s, Step::Scene { .. }));
+        self.done.retain(|(_, s)| matches!(s, Step::Scene { .. }));
+        self.undone.retain(|(_, s)| matches!(s, Step::Scene { .. }));
     }
 }
 
@@ -173,6 +198,28 @@ mod tests {
         assert_eq!(h.undo(), Some(Apply::Scene(&2)));
         assert_eq!(h.undo(), Some(Apply::Scene(&1)));
         assert_eq!(h.undo(), None);
+    }
+
+    #[test]
+    fn the_scenes_since_a_step_are_its_after_and_every_later_snapshot() {
+        let mut h = History::<i32>::default();
+        h.push_scene("a", 0, 1);
+        h.push_scene("add", 1, 10);
+        let add = h.last_number().unwrap();
+        h.push_editor("e");
+        h.push_scene("b", 10, 20);
+        h.push_scene("c", 20, 30);
+        assert_eq!(h.undo(), Some(Apply::Scene(&20)));
+        for s in h.scenes_since_mut(add) {
+            *s += 1000;
+        }
+        let mut all: Vec<i32> = h.scenes_mut().map(|s| *s).collect();
+        all.sort();
+        assert_eq!(all, [0, 1, 1, 1010, 1010, 1020, 1020, 1030]);
+        // Numbers stay with their steps through undo and redo.
+        assert_eq!(h.last_number(), Some(add + 2));
+        assert_eq!(h.redo(), Some(Apply::Scene(&1030)));
+        assert_eq!(h.last_number(), Some(add + 3));
     }
 
     #[test]

@@ -25,6 +25,9 @@ pub struct FolderArrival {
     pub(in crate::gui) before: Option<Box<Scene>>,
     /// This folder's first structures replaced the scene.
     pub(in crate::gui) replaced: bool,
+    /// The folder is added to the scene (File → Add Model…), not opened: the number of its undo step
+    /// ([`crate::session::undo::History::last_number`]).
+    pub(in crate::gui) adding: Option<u64>,
     /// The camera the arrivals last framed; while the user has not moved it, every arrival
     /// frames the structures shown so far.
     pub(in crate::gui) framed: Option<cutter::Camera>,

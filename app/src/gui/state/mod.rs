@@ -158,6 +158,26 @@ impl AppState {
         }
     }
 
+    /// Structures that arrive for undo step `step` (a folder of masks added to the scene): they
+    /// join the scene after its models, that step's after snapshot and every snapshot made
+    /// since, and not the snapshots before it, so that undoing the step removes them all and
+    /// undoing an edit made meanwhile keeps them.
+    pub(in crate::gui) fn append_arrived_since(
+        &mut self,
+        models: Vec<crate::io::Model>,
+        step: u64,
+    ) {
+        let added = crate::scene::open::structures(models, self.scene.models.len());
+        let pending = self.pending_edit.as_mut().map(|(_, scene)| scene);
+        for scene in [&mut self.scene, &mut self.last_committed]
+            .into_iter()
+            .chain(pending)
+            .chain(self.history.scenes_since_mut(step))
+        {
+            scene.models.extend(added.iter().cloned());
+        }
+    }
+
     /// Sets the status message.
     pub fn say(&mut self, message: impl Into<String>) {
         self.status.message = message.into();
