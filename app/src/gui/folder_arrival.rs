@@ -20,9 +20,9 @@
 use std::path::PathBuf;
 use std::time::Duration;
 
-use crate::gui::jobs::{Progress, is_cancelled};
+use crate::gui::jobs::is_cancelled;
 use crate::gui::state::AppState;
-use crate::gui::state::folder::Outcome;
+use crate::gui::state::folder::FolderWork;
 use crate::io::Model;
 use crate::scene::ViewPreset;
 use crate::scene::open::file_label;
@@ -58,7 +58,7 @@ pub(in crate::gui) fn add_with(
     app: &mut AppState,
     ctx: &egui::Context,
     folder: PathBuf,
-    work: impl FnOnce(&Progress, &(dyn Fn(Outcome) + Sync)) -> anyhow::Result<usize> + Send + 'static,
+    work: impl FolderWork,
 ) {
     if app.folder.busy() {
         app.complain(&anyhow::anyhow!(

@@ -11,7 +11,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 
 use super::CutawayApp;
-use super::state::folder::Outcome;
+use super::state::folder::{FolderWork, Outcome};
 use super::volume_jobs_tests::step_until;
 use crate::io::Model;
 
@@ -26,12 +26,7 @@ fn window(name: &str) -> Harness<'static, CutawayApp> {
 }
 
 /// Opens a folder of masks whose outcomes `work` sends.
-fn start(
-    h: &mut Harness<'static, CutawayApp>,
-    work: impl FnOnce(&crate::gui::jobs::Progress, &(dyn Fn(Outcome) + Sync)) -> anyhow::Result<usize>
-    + Send
-    + 'static,
-) {
+fn start(h: &mut Harness<'static, CutawayApp>, work: impl FolderWork) {
     let ctx = h.ctx.clone();
     h.state_mut()
         .folder
@@ -204,12 +199,7 @@ fn a_real_mask_folder_opens_structure_by_structure() {
 }
 
 /// Adds a folder of masks whose outcomes `work` sends to the window's scene (File → Add Model…).
-fn add(
-    h: &mut Harness<'static, CutawayApp>,
-    work: impl FnOnce(&crate::gui::jobs::Progress, &(dyn Fn(Outcome) + Sync)) -> anyhow::Result<usize>
-    + Send
-    + 'static,
-) {
+fn add(h: &mut Harness<'static, CutawayApp>, work: impl FolderWork) {
     let ctx = h.ctx.clone();
     super::folder_arrival::add_with(h.state_mut(), &ctx, "/masks".into(), work);
 }
@@ -221,9 +211,7 @@ fn gated(
     gate: Arc<AtomicBool>,
     rest: Vec<Outcome>,
     stopped: Arc<AtomicBool>,
-) -> impl FnOnce(&crate::gui::jobs::Progress, &(dyn Fn(Outcome) + Sync)) -> anyhow::Result<usize>
-+ Send
-+ 'static {
+) -> impl FolderWork {
     move |progress, send| {
         // The structures, as the worker counts them (an empty mask gives none).
         let count = first.iter().chain(&rest).filter(|o| o.1.is_some()).count();

@@ -13,6 +13,18 @@ use crate::scene::arrivals::InOrder;
 /// One file's outcome from the worker: its number and its structure (None: an empty mask).
 pub type Outcome = (usize, Option<Model>);
 
+/// What surfaces a folder's masks on the worker: it sends each file's outcome through the
+/// function it is given and returns how many structures there were.
+pub trait FolderWork:
+    FnOnce(&Progress, &(dyn Fn(Outcome) + Sync)) -> anyhow::Result<usize> + Send + 'static
+{
+}
+
+impl<F> FolderWork for F where
+    F: FnOnce(&Progress, &(dyn Fn(Outcome) + Sync)) -> anyhow::Result<usize> + Send + 'static
+{
+}
+
 /// The mask folder being opened, if any.
 #[derive(Default)]
 pub struct FolderArrival {
@@ -43,9 +55,7 @@ impl FolderArrival {
         ctx: &egui::Context,
         folder: PathBuf,
         label: String,
-        work: impl FnOnce(&Progress, &(dyn Fn(Outcome) + Sync)) -> anyhow::Result<usize>
-        + Send
-        + 'static,
+        work: impl FolderWork,
     ) {
         let before = self.cancel();
         let (send, receive) = std::sync::mpsc::channel::<Outcome>();
