@@ -76,13 +76,17 @@ pub(in crate::gui) fn add_with(
     app.folder.adding = step;
 }
 
-/// Stops a folder being added, keeping what has come (before an Undo or Redo: the snapshots
-/// it would add to are about to change).
-pub fn stop_adding(app: &mut AppState) {
-    if app.folder.adding.is_some() && app.folder.busy() {
-        show_what_came(app);
-        app.folder.cancel();
+/// Stops a folder being added, keeping what has come (on Cancel, and before an Undo or Redo:
+/// the snapshots it would add to are about to change). How many structures came; 0 when no
+/// folder is being added.
+pub fn stop_adding(app: &mut AppState) -> usize {
+    if app.folder.adding.is_none() {
+        return 0;
     }
+    show_what_came(app);
+    let added = app.folder.order.released();
+    app.folder.cancel();
+    added
 }
 
 /// Shows what has come, once per frame, and ends the arrival when the worker is done.
@@ -185,8 +189,7 @@ fn finish(app: &mut AppState, count: usize, took: Duration) {
 fn cancel(app: &mut AppState) {
     let folder = file_label(&app.folder.folder);
     if app.folder.adding.is_some() {
-        let added = app.folder.order.released();
-        app.folder.cancel();
+        let added = stop_adding(app);
         app.say(format!(
             "Adding {folder} stopped: {added} structures added (Undo removes them)"
         ));
