@@ -8,7 +8,9 @@
 //! kept: a visit usually costs no hashing at all (hashing the 27 cells per vertex was most of
 //! the opening's time). Its queue also goes from one lip's vertices to another's (on a crossing
 //! of two grooves, from one groove to the other), so the answer for every cell asked about is
-//! kept too, until the grid changes.
+//! kept too. The answers are kept by whoever asks ([`Near`]), not by the grid: a walk and the
+//! thread that blends its path corrections beside it ([`super::blend`]) each keep their own,
+//! for the grid as it is during the walk.
 //!
 //! The live opening ([`super::live_opening`]) keeps one grid between steps and moves only the
 //! segments a step changed ([`CutGrid::insert`], [`CutGrid::remove`]).
@@ -113,14 +115,50 @@ impl<'a> InCells<'a> {
 pub struct CutGrid {
     size: f64,
     cells: FastMap<Cell, Vec<usize>>,
+}
+
+/// The segments around the cells one walker asked a [`CutGrid`] about, kept for its next
+/// questions while the grid stays as it is (see the module doc). Each thread of a walk keeps
+/// its own.
+#[derive(Default)]
+pub struct Near {
     /// The cell last asked for and the segments around it (each once, in index order).
-    last: Option<(i64, i64, i64)>,
+    last: Option<Cell>,
     near: Vec<usize>,
-    /// The segments around each cell asked for since the grid last changed: the walk's queue
-    /// goes from one lip's vertices to another's, so consecutive questions are often about
-    /// other cells than the last, and gathering and sorting 27 cells' lists again each time
-    /// was a good part of a walk.
-    near_by_cell: FastMap<Cell, Vec<usize>>,
+    /// The segments around each cell asked for: the walk's queue goes from one lip's vertices
+    /// to another's, so consecutive questions are often about other cells than the last, and
+    /// gathering and sorting 27 cells' lists again each time was a good part of a walk.
+    by_cell: FastMap<Cell, Vec<usize>>,
+}
+
+impl Near {
+    /// The segments of `grid` in the 27 cells around `p`'s (every segment within the cell size
+    /// of `p` among them), each once, in index order. `grid` must be the grid of every earlier
+    /// question.
+    pub fn near(&mut self, grid: &CutGrid, p: DVec3) -> &[usize] {
+        let c0 = grid.cell(p);
+        if self.last != Some(c0) {
+            let near = self.by_cell.entry(c0).or_insert_with(|| {
+                let mut near = Vec::new();
+                for x in c0.0 - 1..=c0.0 + 1 {
+                    for y in c0.1 - 1..=c0.1 + 1 {
+                        for z in c0.2 - 1..=c0.2 + 1 {
+                            if let Some(list) = grid.cells.get(&(x, y, z)) {
+                                near.extend_from_slice(list);
+                            }
+                        }
+                    }
+                }
+                near.sort_unstable();
+                near.dedup();
+                near
+            });
+            self.near.clear();
+            self.near.extend_from_slice(near);
+            self.last = Some(c0);
+        }
+        &self.near
+    }
 }
 
 impl CutGrid {
@@ -129,9 +167,6 @@ impl CutGrid {
         let mut grid = CutGrid {
             size,
             cells: FastMap::default(),
-            last: None,
-            near: Vec::new(),
-            near_by_cell: FastMap::default(),
         };
         for (i, s) in segments.iter().enumerate() {
             grid.insert(i, s, vertex_count);
@@ -164,7 +199,6 @@ impl CutGrid {
         for c in self.cells_of(s) {
             self.cells.entry(c).or_default().push(i);
         }
-        self.forget_near();
     }
 
     /// Unlists segment `i`, which was `s` when listed.
@@ -177,7 +211,6 @@ impl CutGrid {
                 }
             }
         }
-        self.forget_near();
     }
 
     /// The segments listed in `cells`, each once, in index order.
@@ -191,40 +224,6 @@ impl CutGrid {
         out.sort_unstable();
         out.dedup();
         out
-    }
-
-    /// Forgets the segments found around cells (the grid changed).
-    fn forget_near(&mut self) {
-        self.last = None;
-        self.near_by_cell.clear();
-    }
-
-    /// The segments in the 27 cells around `p`'s (every segment within `size` of `p` among
-    /// them), each once, in index order.
-    pub fn near(&mut self, p: DVec3) -> &[usize] {
-        let c0 = self.cell(p);
-        if self.last != Some(c0) {
-            let cells = &self.cells;
-            let near = self.near_by_cell.entry(c0).or_insert_with(|| {
-                let mut near = Vec::new();
-                for x in c0.0 - 1..=c0.0 + 1 {
-                    for y in c0.1 - 1..=c0.1 + 1 {
-                        for z in c0.2 - 1..=c0.2 + 1 {
-                            if let Some(list) = cells.get(&(x, y, z)) {
-                                near.extend_from_slice(list);
-                            }
-                        }
-                    }
-                }
-                near.sort_unstable();
-                near.dedup();
-                near
-            });
-            self.near.clear();
-            self.near.extend_from_slice(near);
-            self.last = Some(c0);
-        }
-        &self.near
     }
 }
 

@@ -41,17 +41,14 @@
 //! position bit for bit. The rest pose itself is never changed (cutting continues
 //! in the rest pose).
 
-use std::collections::VecDeque;
-
 use glam::DVec3;
 
-use super::cut_grid::{Cell, CutGrid, InCells};
-use super::dyn_mesh::{DynMesh, prev};
-use super::field::{FieldAt, taper_at};
-use super::field_cache::{Changes, FieldCache, Kept};
+use super::cut_grid::{Cell, CutGrid, InCells, Near};
+use super::dyn_mesh::prev;
+use super::field::FieldAt;
 pub use super::frames::{Frame, frames};
 use super::kept_path::KeptPath;
-use super::nearest_cut::{self, Balls};
+use super::side_walk::walk;
 use super::sides::Sides;
 use super::step::Scalpel;
 use super::unfold::{Moved, MovedTables};
@@ -115,8 +112,8 @@ fn displacements(
         return Vec::new();
     };
     let mesh = scalpel.dyn_mesh();
-    let mut grid = CutGrid::new(scalpel.segments(), mesh.vertex_count() as u32, inputs.r);
-    compute(scalpel, &inputs, &mut grid)
+    let grid = CutGrid::new(scalpel.segments(), mesh.vertex_count() as u32, inputs.r);
+    compute(scalpel, &inputs, &grid)
 }
 
 /// What the opening of every vertex is computed from, besides the mesh: per cut segment its
@@ -200,198 +197,18 @@ impl Inputs {
 
 /// The opening of every vertex: the field of the module doc, the unfolding and the groove
 /// floors.
-fn compute(scalpel: &Scalpel, inputs: &Inputs, grid: &mut CutGrid) -> Vec<(u32, DVec3)> {
+fn compute(scalpel: &Scalpel, inputs: &Inputs, grid: &CutGrid) -> Vec<(u32, DVec3)> {
     let field = walk(scalpel, inputs, grid, None, &mut Sides::default());
     let floors = floors_by_lips(scalpel, grid, None);
     let mut tables = MovedTables::default();
     finish(scalpel, inputs, field.iter(), floors, None, &mut tables)
 }
 
-/// Where a partial walk works: the cells it walks over (and seeds at the lips of), those whose
-/// vertices' field it gives, and the field kept from before with what changed since (a
-/// vertex's kept field is given when no change reaches it, [`FieldCache::kept`]).
-pub(crate) struct WalkRegion<'a> {
-    pub outer: &'a FastSet<Cell>,
-    pub keep: &'a FastSet<Cell>,
-    pub known: &'a FieldCache,
-    pub changes: &'a Changes,
-}
-
-/// The field of every vertex the walk of the module doc reaches within the support, in the
-/// order it reaches them, apart from the clock ([`FieldAt`]); fixed vertices are walked over,
-/// not given. With a region, the walk stays in its outer cells and seeds only at lips there,
-/// and gives the vertices of its kept cells only.
-pub(crate) fn walk(
-    scalpel: &Scalpel,
-    inputs: &Inputs,
-    grid: &mut CutGrid,
-    region: Option<&WalkRegion>,
-    side: &mut Sides,
-) -> Vec<FieldAt> {
-    let outer = region.map(|g| g.outer);
-    let mesh = scalpel.dyn_mesh();
-    let segments = scalpel.segments();
-    let mut field = Vec::new();
-    let r = inputs.r;
-    let nv = mesh.vertex_count() as u32;
-    let (frames, corrections, tips) = (&inputs.frames, &inputs.corrections, &inputs.tips);
-    let onto_path = inputs.onto_path;
-    let size = grid.size();
-    let mut in_outer = InCells::new(outer, size);
-    let mut in_keep = InCells::new(region.map(|g| g.keep), size);
-    // Nearest point on the cut among the segments `near`: (distance, point, segment index).
-    // `last` is the previous answer's segment, measured first (see [`nearest_cut`]).
-    let balls = Balls::new(segments);
-    let mut last: Option<usize> = None;
-    let mut nearest = |p: DVec3, near: &[usize]| -> Option<(f64, DVec3, usize)> {
-        let found = nearest_cut::nearest(segments, &balls, p, near, last);
-        last = found.map(|f| f.2).or(last);
-        found
-    };
-    // The correction at a point: the corrections at the ends of the segments `near` within
-    // the support, weighted by inverse squared distance (exact at a lip vertex; smooth around
-    // the zigzag's corners, where the nearest segment changes from one vertex to the next and a
-    // correction taken from it alone would squash the small triangles there).
-    let correction_at = |p: DVec3, near: &[usize]| -> DVec3 {
-        let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
-        for &i in near.iter().filter(|&&i| balls.may_reach(i, p, r)) {
-            let s = &segments[i];
-            for (end, c) in [(s.pa, corrections[i][0]), (s.pb, corrections[i][1])] {
-                let d2 = end.distance_squared(p);
-                if d2 == 0.0 {
-                    return c;
-                }
-                if d2 < r * r {
-                    let k = d2.recip();
-                    sum += c * k;
-                    weight += k;
-                }
-            }
-        }
-        if weight > 0.0 {
-            sum / weight
-        } else {
-            DVec3::ZERO
-        }
-    };
-    // Breadth-first over surface vertices from the lip copies (seeds with their side), within
-    // the support; every other vertex takes the side of the vertex it was reached from. (So a
-    // vertex takes the side of the first seed, in seed order, among those fewest surface edges
-    // away: a region's vertices take the sides the whole walk gives them when its margin holds
-    // those seeds and paths.)
-    side.start(mesh.vertex_count());
-    let mut queue: VecDeque<u32> = VecDeque::new();
-    let mut fan = Vec::new();
-    let seed_segments: Vec<usize> = match outer {
-        None => (0..segments.len()).collect(),
-        Some(o) => grid.segments_in(o),
-    };
-    for s in seed_segments.iter().map(|&i| &segments[i]) {
-        for v in [s.a, s.b] {
-            if v >= nv || !mesh.has_copies(v) || !in_outer.contains(mesh.pos(v)) {
-                continue;
-            }
-            for c in std::iter::once(v).chain(mesh.copies(v)) {
-                if side.contains(c) {
-                    continue;
-                }
-                let p = mesh.pos(c);
-                let Some((_, _, i)) = nearest(p, grid.near(p)) else {
-                    continue;
-                };
-                let sigma = lip_side(mesh, c, &frames[i], &mut fan);
-                if sigma != 0.0 {
-                    side.insert(c, sigma);
-                    queue.push_back(c);
-                }
-            }
-        }
-    }
-    while let Some(v) = queue.pop_front() {
-        let p = mesh.pos(v);
-        // Neighbours are queued without asking where they lie (several per vertex, most
-        // already queued); one outside the region is dropped here, given nothing and walked
-        // from nowhere, as if never queued.
-        if !in_outer.contains(p) {
-            continue;
-        }
-        let Some(sigma) = side.get(v) else {
-            continue;
-        };
-        // A kept field says the vertex is within the support, as before. Outside the kept
-        // cells (the margin) no change reaches (they would be kept cells otherwise), and only
-        // that is asked of it.
-        let wanted = in_keep.contains(p);
-        let kept = region.and_then(|g| g.known.kept(v, p, sigma, wanted.then_some(g.changes)));
-        let (dist, c, i) = match kept {
-            Some(k) => (0.0, k.field_at.nearest, k.field_at.segment as usize),
-            None => {
-                let Some(found) = nearest(p, grid.near(p)) else {
-                    continue;
-                };
-                found
-            }
-        };
-        if dist >= r {
-            continue;
-        }
-        mesh.surface_fan_into(v, &mut fan);
-        for &h in &fan {
-            for n in [mesh.dest(h), mesh.origin(prev(h))] {
-                if !mesh.is_floor(n) && !side.contains(n) {
-                    side.insert(n, sigma);
-                    queue.push_back(n);
-                }
-            }
-        }
-        if !wanted || (!inputs.fixed.is_empty() && inputs.fixed.contains(&v)) {
-            continue;
-        }
-        if let Some(Kept {
-            mut field_at,
-            taper,
-            correction,
-        }) = kept
-        {
-            if taper {
-                field_at.taper = taper_at(tips, field_at.nearest, inputs.taper_len);
-            }
-            if correction && onto_path {
-                field_at.correction = correction_at(p, grid.near(p));
-            }
-            field.push(field_at);
-            continue;
-        }
-        let taper = taper_at(tips, c, inputs.taper_len);
-        let falloff = {
-            let s2 = (dist / r) * (dist / r);
-            (1.0 - s2) * (1.0 - s2)
-        };
-        let correction = if onto_path {
-            correction_at(p, grid.near(p))
-        } else {
-            DVec3::ZERO
-        };
-        field.push(FieldAt {
-            vertex: v,
-            segment: i as u32,
-            rest: p,
-            nearest: c,
-            dist,
-            sigma,
-            taper,
-            falloff,
-            correction,
-        });
-    }
-    field
-}
-
 /// The floor vertices next to the lip copies (groove bottoms), those of the lips in `outer`
 /// when given: the opening moves them by the lips' correction. Sorted, each once.
 pub(crate) fn floors_by_lips(
     scalpel: &Scalpel,
-    grid: &mut CutGrid,
+    grid: &CutGrid,
     outer: Option<&FastSet<Cell>>,
 ) -> Vec<u32> {
     let mesh = scalpel.dyn_mesh();
@@ -403,27 +220,34 @@ pub(crate) fn floors_by_lips(
         None => (0..segments.len()).collect(),
         Some(o) => grid.segments_in(o),
     };
-    let mut floors = Vec::new();
-    let mut fan = Vec::new();
+    // The lip copies, each once (a path vertex ends two segments, and its copies are the
+    // other lip's).
+    let mut lips: Vec<u32> = Vec::new();
     for s in lip_segments.iter().map(|&i| &segments[i]) {
         for v in [s.a, s.b] {
-            if v >= nv || !mesh.has_copies(v) || !in_outer.contains(mesh.pos(v)) {
-                continue;
+            if v < nv && mesh.has_copies(v) && in_outer.contains(mesh.pos(v)) {
+                lips.push(v);
+                lips.extend(mesh.copies(v));
             }
-            for c in std::iter::once(v).chain(mesh.copies(v)) {
-                // A lip copy with no cut segment near it seeds nothing (see `walk`).
-                if grid.near(mesh.pos(c)).is_empty() {
-                    continue;
-                }
-                mesh.fan_into(c, &mut fan);
-                for &h in &fan {
-                    floors.extend(
-                        mesh.triangles()[(h / 3) as usize]
-                            .iter()
-                            .filter(|&&f| mesh.is_floor(f)),
-                    );
-                }
-            }
+        }
+    }
+    lips.sort_unstable();
+    lips.dedup();
+    let mut floors = Vec::new();
+    let mut fan = Vec::new();
+    let mut near = Near::default();
+    for c in lips {
+        // A lip copy with no cut segment near it seeds nothing (see `walk`).
+        if near.near(grid, mesh.pos(c)).is_empty() {
+            continue;
+        }
+        mesh.fan_into(c, &mut fan);
+        for &h in &fan {
+            floors.extend(
+                mesh.triangles()[(h / 3) as usize]
+                    .iter()
+                    .filter(|&&f| mesh.is_floor(f)),
+            );
         }
     }
     floors.sort_unstable();
@@ -431,7 +255,8 @@ pub(crate) fn floors_by_lips(
     floors
 }
 
-/// The opening from the field of the vertices within the support ([`walk`]) and the floors
+/// The opening from the field of the vertices within the support
+/// ([`super::side_walk::walk`]) and the floors
 /// next to the lips ([`floors_by_lips`]): each field evaluated at this clock, the path
 /// corrections and then the displacements unfolded, the floors moved by the lips' corrections.
 /// With `keep` (cells, their size), only the vertices of those cells are given. `tables`: the
@@ -456,7 +281,7 @@ pub(crate) fn finish<'a>(
     }
     // Both unfoldings look at the triangles around the same moved vertices.
     let mut around = Some(Moved::with_tables(mesh, &out, std::mem::take(tables)));
-    super::unfold::unfold_correction(mesh, &mut out, &mut corrected, &mut around);
+    let folding = super::unfold::unfold_correction(mesh, &mut out, &mut corrected, &mut around);
     // Floor vertices under the lips: the mean correction of the surface vertices their walls
     // reach (both lips of a groove have the same), so that the floor stays under the drawn path
     // and the two walls are alike.
@@ -478,7 +303,7 @@ pub(crate) fn finish<'a>(
             floor_moves.push((f, mesh.pos(f) + sum / count));
         }
     }
-    super::unfold::unfold(mesh, &mut out, &mut around);
+    super::unfold::unfold(mesh, &mut out, &mut around, folding);
     if let Some(m) = around {
         *tables = m.into_tables();
     }
@@ -493,28 +318,4 @@ pub(crate) fn finish<'a>(
 /// How far from a crack tip the opening of `width` tapers, for a blade `depth` deep.
 pub fn taper_length(width: f64, depth: f64) -> f64 {
     width.max(super::groove::TAPER_DEPTHS * depth)
-}
-
-/// The side (`±1` along the frame's lateral) lip copy `v` opens to, from its own surface
-/// triangles: they lie left of the lip `y → v → x` (the first and last edges of its surface
-/// fan), so the side is `+1` when that lip runs along the path. `0` when `v` is no lip (a
-/// closed surface fan) or the lip runs across the path.
-fn lip_side(mesh: &DynMesh, v: u32, frame: &Frame, fan: &mut Vec<u32>) -> f64 {
-    let closed = mesh.fan_into(v, fan);
-    if closed && !fan.iter().any(|&h| mesh.is_wall(h / 3)) {
-        return 0.0;
-    }
-    if !mesh.surface_fan_into(v, fan) {
-        return 0.0;
-    }
-    let (Some(&first), Some(&last)) = (fan.first(), fan.last()) else {
-        return 0.0;
-    };
-    let along = mesh.pos(mesh.dest(first)) - mesh.pos(mesh.origin(prev(last)));
-    let d = along.dot(frame.tangent);
-    if d.abs() <= 1e-6 * along.length() {
-        0.0
-    } else {
-        d.signum()
-    }
 }

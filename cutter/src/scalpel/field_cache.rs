@@ -28,7 +28,7 @@
 use glam::DVec3;
 
 use super::cut_grid::{Cell, cell_of};
-use super::field::FieldAt;
+use super::field::{FieldAt, taper_at};
 use super::nearest_cut::point_on;
 use super::step::CutSegment;
 use csg::fast_hash::{FastMap, FastSet};
@@ -181,6 +181,20 @@ impl FieldCache {
             if cells.is_none_or(|cells| cells.contains(&c)) {
                 self.fields.insert(f.vertex, f);
                 self.cells.entry(c).or_default().push(f.vertex);
+            }
+        }
+    }
+
+    /// Measures again the taper of the field kept in `cells`, from the crack tips `tips` (their
+    /// nearest cut points stay: only tips changed near them).
+    pub fn retaper(&mut self, cells: &FastSet<Cell>, tips: &[DVec3], taper_len: f64) {
+        for c in cells {
+            for v in self.cells.get(c).into_iter().flatten() {
+                if let Some(f) = self.fields.get_mut(v)
+                    && cell_of(f.rest, self.size) == *c
+                {
+                    f.taper = taper_at(tips, f.nearest, taper_len);
+                }
             }
         }
     }

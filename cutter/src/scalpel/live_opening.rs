@@ -24,10 +24,13 @@
 //! the clock (the last half second of path is still opening): the field there
 //! ([`super::field::FieldAt`]: side, nearest segment, taper, path correction) is what it was.
 //! So the field of every vertex is kept ([`FieldCache`]); only the *walked* cells (those around
-//! a segment cut, undone, moved or given another frame or path correction, a tip, a fixed
-//! vertex or an edit) are walked again, over them and the margin, and there too a vertex keeps
-//! its field unless such a change reaches it. The field of the outer region is then evaluated
-//! at the new clock, and the unfolding and the floors run over it as before.
+//! a segment cut, undone, moved or given another frame or path correction, a fixed vertex or
+//! an edit) are walked again, over them and the margin, and there too a vertex keeps its field
+//! unless such a change reaches it. A crack tip appears or goes only where a segment was cut or
+//! undone or a vertex copied, all walked; further out, up to `taper + r`, only the tapers of
+//! the kept field are measured again ([`FieldCache::retaper`]): walking those cells too had
+//! the walk cover half as much again. The field of the outer region is then evaluated at the
+//! new clock, and the unfolding and the floors run over it as before.
 //!
 //! The cut grid (the segments by cell) is kept and only the changed segments are moved in it.
 //! The result equals the opening computed from scratch when every seed and walk deciding an
@@ -41,9 +44,10 @@
 use glam::DVec3;
 
 use super::cut_grid::{Cell, CutGrid, cell_of, cells_within};
-use super::dffd::{Inputs, OpenOptions, WalkRegion, finish, floors_by_lips, taper_length, walk};
+use super::dffd::{Inputs, OpenOptions, finish, floors_by_lips, taper_length};
 use super::field_cache::{Changes, FieldCache};
 use super::kept_path::KeptPath;
+use super::side_walk::{WalkRegion, walk};
 use super::sides::Sides;
 use super::step::{CutSegment, Scalpel};
 use super::unfold::MovedTables;
@@ -156,10 +160,10 @@ impl LiveOpening {
             same.then(|| mesh.edits_since(st.cursor)).flatten()
         });
         let (Some(edits), Some(mut state)) = (edits, self.state.take()) else {
-            let mut grid = CutGrid::new(segments, nv, inputs.r);
+            let grid = CutGrid::new(segments, nv, inputs.r);
             let size = grid.size();
-            let field = walk(scalpel, &inputs, &mut grid, None, &mut self.sides);
-            let floors = floors_by_lips(scalpel, &mut grid, None);
+            let field = walk(scalpel, &inputs, &grid, None, &mut self.sides);
+            let floors = floors_by_lips(scalpel, &grid, None);
             let out = finish(
                 scalpel,
                 &inputs,
@@ -241,13 +245,16 @@ impl LiveOpening {
                 changes.segment(i, b, r);
             }
         }
+        // A crack tip appears or goes only where segments were cut or undone, or a vertex was
+        // copied (all walked above and below): around it, further out, only the tapers change.
+        let mut retaper: FastSet<Cell> = FastSet::default();
         let tip_reach = new.taper_len + r;
         for t in old.tips.iter().filter(|t| !new.tips.contains(t)) {
-            cells_within(&mut walked, *t, tip_reach, size);
+            cells_within(&mut retaper, *t, tip_reach, size);
             changes.tips.push(*t);
         }
         for t in new.tips.iter().filter(|t| !old.tips.contains(t)) {
-            cells_within(&mut walked, *t, tip_reach, size);
+            cells_within(&mut retaper, *t, tip_reach, size);
             changes.tips.push(*t);
         }
         let common = state
@@ -300,14 +307,17 @@ impl LiveOpening {
             let field = walk(
                 scalpel,
                 &inputs,
-                &mut state.grid,
+                &state.grid,
                 Some(&region),
                 &mut self.sides,
             );
             self.field.replace(Some(&walked), field, size);
         }
+        retaper.retain(|c| !walked.contains(c));
+        self.field.retaper(&retaper, &inputs.tips, inputs.taper_len);
         let mut inner = walked;
         inner.extend(clock_only);
+        inner.extend(retaper);
         let mut outer = FastSet::with_capacity_and_hasher(inner.len() * 4, Default::default());
         for &c in &inner {
             grow(&mut outer, c, MARGIN);
@@ -335,7 +345,7 @@ impl LiveOpening {
         state.samples = scalpel.drawn.len();
         let mut vertices = 0;
         if cells > 0 {
-            let floors = floors_by_lips(scalpel, &mut state.grid, Some(&outer));
+            let floors = floors_by_lips(scalpel, &state.grid, Some(&outer));
             let field = self.field.in_cells(&outer);
             let out = finish(
                 scalpel,

@@ -81,6 +81,7 @@
 //! `csg::exact::orient3d_f64`;
 //! snapping thresholds are relative to local edge lengths, never absolute.
 
+pub mod blend;
 pub mod budget;
 pub mod cross;
 pub mod cut_grid;
@@ -104,6 +105,7 @@ pub mod loop_tool;
 mod nearest_cut;
 pub mod relocate;
 pub mod sample;
+mod side_walk;
 mod sides;
 pub mod step;
 pub mod survey;

@@ -2,7 +2,7 @@
 //! ([`super::dffd`]).
 //!
 //! The opening asks, for every vertex within its support, which of the cut segments the cut
-//! grid lists around it ([`super::cut_grid::CutGrid::near`], some seventy on a groove opened
+//! grid lists around it ([`super::cut_grid::Near::near`], some seventy on a groove opened
 //! two wide) is nearest, and blends the path corrections of the segment ends within the
 //! support. Measuring each of those segments exactly was most of the opening's time. So each
 //! segment is bounded by a ball (its middle, half its length, [`Balls`]): a segment whose ball

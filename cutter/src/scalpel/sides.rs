@@ -1,4 +1,4 @@
-//! The side of the cut each vertex took in the opening's walk ([`super::dffd::walk`]), by
+//! The side of the cut each vertex took in the opening's walk ([`super::side_walk::walk`]), by
 //! vertex id.
 //!
 //! The walk asks, for every neighbour of every vertex it visits, whether the neighbour has a

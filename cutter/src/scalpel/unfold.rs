@@ -216,21 +216,30 @@ impl Moved {
 /// a surface triangle that the rest of the displacement does not fold: shrunk at its corners
 /// and their coincident copies, up to [`CORRECTION_PASSES`] times, then dropped. `moved` is
 /// updated with them. `around`: the [`Moved`] of these moved vertices, made here if `None`.
+/// Returns which triangles fold at `moved` when it left `moved` as it was (the first check
+/// of [`unfold`] after it, already made here), `None` when it changed it or checked nothing.
 pub fn unfold_correction(
     mesh: &DynMesh,
     moved: &mut [(u32, DVec3)],
     correction: &mut [DVec3],
     around: &mut Option<Moved>,
-) {
+) -> Option<Vec<bool>> {
     if moved.is_empty() || correction.iter().all(|c| *c == DVec3::ZERO) {
-        return;
+        return None;
     }
     let m = &*around.get_or_insert_with(|| Moved::new(mesh, moved));
+    // Which triangles fold as the displacements are: those the correction may be folding.
+    let mut plain = Vec::new();
+    m.refold(&mut plain, None, |k| m.folds(k, |i| moved[i].1));
     let mut folding = Vec::new();
     let mut shrink: Vec<usize> = Vec::new();
     for pass in 0..=CORRECTION_PASSES {
         m.refold(&mut folding, (pass > 0).then_some(&shrink[..]), |k| {
-            m.folds(k, |i| moved[i].1) && !m.folds(k, |i| moved[i].1 - correction[i])
+            (if pass == 0 {
+                plain[k]
+            } else {
+                m.folds(k, |i| moved[i].1)
+            }) && !m.folds(k, |i| moved[i].1 - correction[i])
         });
         shrink.clear();
         for (tri, _) in m.triangles.iter().zip(&folding).filter(|f| *f.1) {
@@ -245,7 +254,7 @@ pub fn unfold_correction(
             }
         }
         if shrink.is_empty() {
-            break;
+            return (pass == 0).then_some(plain);
         }
         shrink.sort_unstable();
         shrink.dedup();
@@ -260,26 +269,36 @@ pub fn unfold_correction(
             moved[i].1 -= c * (1.0 - keep);
         }
     }
+    None
 }
 
 /// Shrinks the displacements in `moved` (vertex, opened position) until no surface triangle
 /// with a moved corner turns more than [`MAX_TURN_DEG`] from its rest normal (see the module
 /// doc). Entries that end at rest are dropped. `around`: the [`Moved`] of these moved
-/// vertices, made here if `None`.
-pub fn unfold(mesh: &DynMesh, moved: &mut Vec<(u32, DVec3)>, around: &mut Option<Moved>) {
+/// vertices, made here if `None`. `folding`: which of its triangles fold at `moved` now, when
+/// known ([`unfold_correction`] gives it).
+pub fn unfold(
+    mesh: &DynMesh,
+    moved: &mut Vec<(u32, DVec3)>,
+    around: &mut Option<Moved>,
+    folding: Option<Vec<bool>>,
+) {
     if moved.is_empty() {
         return;
     }
+    let known = folding.is_some();
     let m = &*around.get_or_insert_with(|| Moved::new(mesh, moved));
     let triangles = &m.triangles;
     let rest = |v: u32| mesh.pos(v);
     let mut fan = Vec::new();
-    let mut folding = Vec::new();
+    let mut folding = folding.unwrap_or_default();
     let mut changed: Vec<usize> = Vec::new();
     for pass in 0..=PASSES {
-        m.refold(&mut folding, (pass > 0).then_some(&changed[..]), |k| {
-            m.folds(k, |i| moved[i].1)
-        });
+        if pass > 0 || !known {
+            m.refold(&mut folding, (pass > 0).then_some(&changed[..]), |k| {
+                m.folds(k, |i| moved[i].1)
+            });
+        }
         let mut shrink: Vec<u32> = Vec::new();
         for (tri, _) in triangles.iter().zip(&folding).filter(|f| *f.1) {
             shrink.extend(tri.iter().copied().filter(|&v| m.slot(v).is_some()));
@@ -410,7 +429,7 @@ mod tests {
         let v = id(3, 3);
         let mut moved = vec![(v, mesh.pos(v) + DVec3::new(1.6, 0.0, 0.0))];
         assert!(largest_turn(&mesh, &moved) > 90.0, "the input folds");
-        unfold(&mesh, &mut moved, &mut None);
+        unfold(&mesh, &mut moved, &mut None, None);
         let turn = largest_turn(&mesh, &moved);
         assert!(turn <= MAX_TURN_DEG, "still turned {turn}°");
         // Pulled back only as far as needed: it still moves along +x.
@@ -433,7 +452,7 @@ mod tests {
         }
         let before = moved.clone();
         assert!(largest_turn(&mesh, &before) > 90.0, "the input folds");
-        unfold(&mesh, &mut moved, &mut None);
+        unfold(&mesh, &mut moved, &mut None, None);
         assert!(largest_turn(&mesh, &moved) <= MAX_TURN_DEG);
         let kink = moved.iter().find(|m| m.0 == id(2, 3)).unwrap().1;
         assert!(
