@@ -2,8 +2,8 @@
 //! drag frames each, every view toggled, everything undone and redone) on a fixed scene, the
 //! knee phantom's folder (`assets/knee`), so that it does not change with the default scene. It
 //! fails when the resident size after loading is over 4× the loaded triangle data +
-//! 300 MB, when any step after the first cut is more than 25 % above the level after the first
-//! cut, or when, once every cutter's every view, every model style and every mode was shown, any
+//! 300 MB, when any step after the first cut is more than 25 % (at least 64 MB) above the level
+//! after the first cut, or when, once every cutter's every view, every model style and every mode was shown, any
 //! later step (undo and redo of everything, each state drawn again) is more than 10 % (at least
 //! 32 MB) above that level: repeating work must not pile memory up. It prints the highest level
 //! after the first cut against the goal of +10 %, which is not met yet: on the earlier default scene (the head's
@@ -77,10 +77,11 @@ fn window_memory_stays_flat_over_a_scripted_session() {
     );
     assert!(
         report.worst.1 <= report.growth_guard(),
-        "memory grew to {:.1} MB at \"{}\", over the {:.1} MB after the first cut + 25 %",
+        "memory grew to {:.1} MB at \"{}\", over the {:.1} MB after the first cut + 25 % (at least 64 MB): {:.1} MB",
         mb(report.worst.1),
         report.worst.0,
-        mb(report.first_cut)
+        mb(report.first_cut),
+        mb(report.growth_guard())
     );
     assert!(
         report.worst_after_all_shown.1 <= report.repeat_limit(),
