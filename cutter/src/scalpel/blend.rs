@@ -176,6 +176,14 @@ pub struct Blends<'scope, 'env> {
 }
 
 impl Blends<'_, '_> {
+    /// No more batches will come: the helper, if any, finishes what is queued and ends.
+    fn close(&self) {
+        self.queue.closed.store(true, Ordering::Release);
+        if let Some(helper) = &self.helper {
+            helper.thread().unpark();
+        }
+    }
+
     /// Asks for the blend at `p`, for entry `k` of the walk's field.
     pub fn ask(&mut self, k: u32, p: DVec3) {
         self.pending.push((k, p));
@@ -201,6 +209,14 @@ impl Blends<'_, '_> {
                 }
             }
         }
+    }
+}
+
+/// A walk that panics leaves through here too: the helper must end, or the scope would wait
+/// for it forever.
+impl Drop for Blends<'_, '_> {
+    fn drop(&mut self) {
+        self.close();
     }
 }
 
@@ -232,10 +248,7 @@ pub fn with_blends<R>(
         for (k, p) in std::mem::take(&mut blends.pending) {
             measured.push((k, blend.correction_at(&inputs, p)));
         }
-        queue.closed.store(true, Ordering::Release);
-        if let Some(helper) = &blends.helper {
-            helper.thread().unpark();
-        }
+        blends.close();
         while let Some(batch) = queue.take() {
             measured.extend(
                 batch
@@ -316,5 +329,35 @@ mod tests {
         }
         // Points at an end take its correction.
         assert_eq!(one.correction_at(&inputs, points[5]), corrections[4][1]);
+    }
+
+    #[test]
+    fn a_walk_that_panics_ends_the_helper_and_panics() {
+        // On its own thread, so that a walk that never ends fails the test instead of hanging it.
+        let (done, ended) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let segments = vec![CutSegment::between(DVec3::ZERO, DVec3::X)];
+            let corrections = vec![[DVec3::X, DVec3::Y]];
+            let grid = CutGrid::new(&segments, 2, 1.0);
+            let inputs = BlendInputs {
+                grid: &grid,
+                segments: &segments,
+                corrections: &corrections,
+                r: 1.0,
+            };
+            let walked = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                with_blends(inputs, |blends| {
+                    // Enough batches for the helper to start, then wait for more.
+                    for k in 0..(START_AT + 2) * BATCH {
+                        blends.ask(k as u32, DVec3::new(0.5, 0.1, 0.0));
+                    }
+                    std::thread::sleep(std::time::Duration::from_millis(20));
+                    panic!("the walk fails");
+                })
+            }));
+            let _ = done.send(walked.is_err());
+        });
+        let panicked = ended.recv_timeout(std::time::Duration::from_secs(30));
+        assert_eq!(panicked, Ok(true), "the walk did not end, or did not panic");
     }
 }
