@@ -111,6 +111,17 @@ impl Blend {
 /// The blends a walk asks for: which of its field entries, at which point.
 type Asked = Vec<(u32, DVec3)>;
 
+impl Blend {
+    /// Adds to `out` the blend of every entry of `asked`, with its entry.
+    fn measure(&mut self, inputs: &BlendInputs, asked: Asked, out: &mut Vec<(u32, DVec3)>) {
+        out.extend(
+            asked
+                .into_iter()
+                .map(|(k, p)| (k, self.correction_at(inputs, p))),
+        );
+    }
+}
+
 /// Batches of blends waiting for a thread, and whether more may come.
 struct Queue {
     batches: Mutex<Vec<Asked>>,
@@ -130,22 +141,14 @@ fn serve(queue: &Queue, inputs: &BlendInputs) -> Vec<(u32, DVec3)> {
     let mut idle = 0u32;
     loop {
         if let Some(batch) = queue.take() {
-            out.extend(
-                batch
-                    .into_iter()
-                    .map(|(k, p)| (k, blend.correction_at(inputs, p))),
-            );
+            blend.measure(inputs, batch, &mut out);
             idle = 0;
             continue;
         }
         if queue.closed.load(Ordering::Acquire) {
             // Everything was queued before the close: one more look.
             match queue.take() {
-                Some(batch) => out.extend(
-                    batch
-                        .into_iter()
-                        .map(|(k, p)| (k, blend.correction_at(inputs, p))),
-                ),
+                Some(batch) => blend.measure(inputs, batch, &mut out),
                 None => return out,
             }
             continue;
@@ -245,16 +248,10 @@ pub fn with_blends<R>(
         let out = walk(&mut blends);
         let mut measured: Vec<(u32, DVec3)> = Vec::new();
         let mut blend = Blend::default();
-        for (k, p) in std::mem::take(&mut blends.pending) {
-            measured.push((k, blend.correction_at(&inputs, p)));
-        }
+        blend.measure(&inputs, std::mem::take(&mut blends.pending), &mut measured);
         blends.close();
         while let Some(batch) = queue.take() {
-            measured.extend(
-                batch
-                    .into_iter()
-                    .map(|(k, p)| (k, blend.correction_at(&inputs, p))),
-            );
+            blend.measure(&inputs, batch, &mut measured);
         }
         if let Some(helper) = blends.helper.take() {
             match helper.join() {

@@ -255,10 +255,10 @@ pub(crate) fn floors_by_lips(
     floors
 }
 
-/// The opening from the field of the vertices within the support
-/// ([`super::side_walk::walk`]) and the floors
-/// next to the lips ([`floors_by_lips`]): each field evaluated at this clock, the path
-/// corrections and then the displacements unfolded, the floors moved by the lips' corrections.
+/// The opening from the field of the vertices within the support ([`super::side_walk::walk`])
+/// and the floors next to the lips ([`floors_by_lips`]): each field evaluated at this clock,
+/// the path corrections and then the displacements unfolded, the floors moved by the lips'
+/// corrections.
 /// With `keep` (cells, their size), only the vertices of those cells are given. `tables`: the
 /// unfolding's tables, cleared ([`MovedTables`]), cleared again after.
 pub(crate) fn finish<'a>(
