@@ -234,45 +234,34 @@ impl DynMesh {
     /// The fan (as in [`DynMesh::fan_into`]) that contains outgoing half-edge `start`.
     pub fn fan_from(&self, start: u32, out: &mut Vec<u32>) -> bool {
         out.clear();
-        // Rewind clockwise: cw(h) = next(twin(h)).
-        let mut h = start;
-        let mut guard = 0usize;
-        loop {
-            let g = self.twin[h as usize];
-            if !is_real(g) {
-                break;
-            }
-            let h2 = next(g);
-            if h2 == start {
-                // Closed fan: iterate from start.
-                h = start;
-                let mut x = h;
-                loop {
-                    out.push(x);
-                    let g = self.twin[prev(x) as usize];
-                    x = g;
-                    if x == start || !is_real(x) || out.len() > 4096 {
-                        break;
-                    }
-                }
-                return true;
-            }
-            h = h2;
-            guard += 1;
-            if guard > 4096 {
-                break;
-            }
-        }
-        // Forward counter-clockwise: ccw(h) = twin(prev(h)).
-        let mut x = h;
+        // Counter-clockwise from `start` (ccw(h) = twin(prev(h))): most fans close, and that
+        // one turn is the whole fan.
+        let mut x = start;
         loop {
             out.push(x);
             let g = self.twin[prev(x) as usize];
+            if g == start {
+                return true;
+            }
             if !is_real(g) || out.len() > 4096 {
                 break;
             }
             x = g;
         }
+        // Open: the half-edges clockwise of `start` (cw(h) = next(twin(h))) up to the boundary
+        // come first.
+        let ccw = out.len();
+        let mut h = start;
+        loop {
+            let g = self.twin[h as usize];
+            if !is_real(g) || out.len() > 8192 {
+                break;
+            }
+            h = next(g);
+            out.push(h);
+        }
+        out[..ccw].reverse();
+        out.reverse();
         false
     }
 
@@ -568,6 +557,74 @@ mod tests {
         assert_eq!(fan.len(), 2);
         // Starts at the clockwise-most triangle: 0 -> 1 is a boundary edge at the start.
         assert_eq!(m.dest(fan[0]), 1);
+    }
+
+    /// Checks every fan of `m` against its definition: the half-edges leaving the vertex,
+    /// each once, counter-clockwise; an open fan runs from boundary edge to boundary edge, a
+    /// closed one starts at the half-edge asked for.
+    fn check_fans(m: &DynMesh) {
+        let mut fan = Vec::new();
+        for h in 0..3 * m.triangles.len() as u32 {
+            let v = m.origin(h);
+            let closed = m.fan_from(h, &mut fan);
+            assert!(fan.contains(&h), "half-edge {h}");
+            assert!(fan.iter().all(|&g| m.origin(g) == v));
+            let mut sorted = fan.clone();
+            sorted.sort_unstable();
+            sorted.dedup();
+            assert_eq!(sorted.len(), fan.len(), "a half-edge twice around {v}");
+            for w in fan.windows(2) {
+                assert_eq!(m.twin[prev(w[0]) as usize], w[1], "not counter-clockwise");
+            }
+            let (first, last) = (fan[0], fan[fan.len() - 1]);
+            if closed {
+                assert_eq!(fan[0], h);
+                assert_eq!(m.twin[prev(last) as usize], first);
+            } else {
+                assert!(!is_real(m.twin[first as usize]), "open fan starts inside");
+                assert!(
+                    !is_real(m.twin[prev(last) as usize]),
+                    "open fan ends inside"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn fans_are_whole_ordered_and_start_at_the_boundary() {
+        // Closed fans (a sphere), open ones (a grid's border), a vertex with two fans.
+        check_fans(&DynMesh::from_mesh(&csg::testkit::geodesic_sphere(4, 1.0)));
+        let n = 4u32;
+        let positions = (0..=n)
+            .flat_map(|j| (0..=n).map(move |i| DVec3::new(i as f64, j as f64, 0.0)))
+            .collect();
+        let id = |i: u32, j: u32| j * (n + 1) + i;
+        let triangles = (0..n)
+            .flat_map(|j| (0..n).map(move |i| (i, j)))
+            .flat_map(|(i, j)| {
+                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                [[a, b, c], [a, c, d]]
+            })
+            .collect();
+        let grid = DynMesh::from_mesh(&csg::Mesh {
+            positions,
+            triangles,
+        });
+        check_fans(&grid);
+        let mut fan = Vec::new();
+        assert!(grid.fan_into(id(2, 2), &mut fan) && fan.len() == 6);
+        assert!(!grid.fan_into(id(2, 0), &mut fan) && fan.len() == 3);
+        let bow_tie = csg::Mesh {
+            positions: vec![
+                DVec3::new(0., 0., 0.),
+                DVec3::new(1., 0., 0.),
+                DVec3::new(1., 1., 0.),
+                DVec3::new(-1., 0., 0.),
+                DVec3::new(-1., -1., 0.),
+            ],
+            triangles: vec![[0, 1, 2], [0, 3, 4]],
+        };
+        check_fans(&DynMesh::from_mesh(&bow_tie));
     }
 
     #[test]

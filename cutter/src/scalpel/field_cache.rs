@@ -37,15 +37,20 @@ use csg::fast_hash::{FastMap, FastSet};
 /// a vertex at the edge of a reach is measured again.
 const SLACK: f64 = 1e-9;
 
-/// The field of the opening by vertex and cell (see the module doc).
+/// The field of the opening by vertex and cell (see the module doc). Each cell's fields lie
+/// together in one list, in the order the walk gave them: a step evaluates every field of the
+/// cells around it one after another, and the walk looks one up for each vertex it reaches, so
+/// a map of whole fields by vertex (their slots in hash order) had each of those fetch its own
+/// memory.
 #[derive(Default)]
 pub(crate) struct FieldCache {
-    fields: FastMap<u32, FieldAt>,
-    /// The vertices kept by the cell of their rest position (may hold ids since listed
-    /// elsewhere: [`FieldCache::in_cells`] checks).
-    cells: FastMap<Cell, Vec<u32>>,
-    /// The cell size.
-    size: f64,
+    /// Per slot, a cell and the fields kept in it (a slot stays with its cell until
+    /// [`FieldCache::clear`]).
+    slots: Vec<(Cell, Vec<FieldAt>)>,
+    /// The slot of each cell given one.
+    slot_of: FastMap<Cell, u32>,
+    /// Where each kept vertex's field is: its slot and its index there.
+    at: FastMap<u32, (u32, u32)>,
 }
 
 /// What changed between the field kept and the field now, apart from the mesh and the sides
@@ -128,13 +133,14 @@ pub(crate) struct Kept {
 
 impl FieldCache {
     pub fn clear(&mut self) {
-        self.fields.clear();
-        self.cells.clear();
+        self.slots.clear();
+        self.slot_of.clear();
+        self.at.clear();
     }
 
     /// The cell vertex `v`'s field is kept in, if it is kept.
     pub fn cell_of_vertex(&self, v: u32) -> Option<Cell> {
-        self.fields.get(&v).map(|f| cell_of(f.rest, self.size))
+        self.at.get(&v).map(|&(s, _)| self.slots[s as usize].0)
     }
 
     /// The field kept for vertex `v` at rest position `p`, on side `sigma` now, when `changes`
@@ -142,7 +148,8 @@ impl FieldCache {
     /// `changes` `None` when none can reach `p`.
     #[inline]
     pub fn kept(&self, v: u32, p: DVec3, sigma: f64, changes: Option<&Changes>) -> Option<Kept> {
-        let f = self.fields.get(&v)?;
+        let &(s, i) = self.at.get(&v)?;
+        let f = &self.slots[s as usize].1[i as usize];
         if f.rest.to_array().map(f64::to_bits) != p.to_array().map(f64::to_bits) {
             return None;
         }
@@ -162,15 +169,12 @@ impl FieldCache {
     /// everything kept is replaced by `field`.
     pub fn replace(&mut self, cells: Option<&FastSet<Cell>>, field: Vec<FieldAt>, size: f64) {
         match cells {
-            None => {
-                self.clear();
-                self.size = size;
-            }
+            None => self.clear(),
             Some(cells) => {
                 for c in cells {
-                    for v in self.cells.remove(c).into_iter().flatten() {
-                        if self.cell_of_vertex(v) == Some(*c) {
-                            self.fields.remove(&v);
+                    if let Some(&s) = self.slot_of.get(c) {
+                        for f in self.slots[s as usize].1.drain(..) {
+                            self.at.remove(&f.vertex);
                         }
                     }
                 }
@@ -178,10 +182,25 @@ impl FieldCache {
         }
         for f in field {
             let c = cell_of(f.rest, size);
-            if cells.is_none_or(|cells| cells.contains(&c)) {
-                self.fields.insert(f.vertex, f);
-                self.cells.entry(c).or_default().push(f.vertex);
+            if cells.is_some_and(|cells| !cells.contains(&c)) {
+                continue;
             }
+            // Kept elsewhere still: its rest position moved out of a cell not replaced.
+            if let Some((s, i)) = self.at.remove(&f.vertex) {
+                let list = &mut self.slots[s as usize].1;
+                list.swap_remove(i as usize);
+                if let Some(g) = list.get(i as usize) {
+                    self.at.insert(g.vertex, (s, i));
+                }
+            }
+            let slots = &mut self.slots;
+            let s = *self.slot_of.entry(c).or_insert_with(|| {
+                slots.push((c, Vec::new()));
+                (slots.len() - 1) as u32
+            });
+            let list = &mut self.slots[s as usize].1;
+            self.at.insert(f.vertex, (s, list.len() as u32));
+            list.push(f);
         }
     }
 
@@ -189,10 +208,8 @@ impl FieldCache {
     /// nearest cut points stay: only tips changed near them).
     pub fn retaper(&mut self, cells: &FastSet<Cell>, tips: &[DVec3], taper_len: f64) {
         for c in cells {
-            for v in self.cells.get(c).into_iter().flatten() {
-                if let Some(f) = self.fields.get_mut(v)
-                    && cell_of(f.rest, self.size) == *c
-                {
+            if let Some(&s) = self.slot_of.get(c) {
+                for f in &mut self.slots[s as usize].1 {
                     f.taper = taper_at(tips, f.nearest, taper_len);
                 }
             }
@@ -201,14 +218,10 @@ impl FieldCache {
 
     /// The field kept in `cells`.
     pub fn in_cells<'a>(&'a self, cells: &'a FastSet<Cell>) -> impl Iterator<Item = &'a FieldAt> {
-        cells.iter().flat_map(move |c| {
-            self.cells
-                .get(c)
-                .into_iter()
-                .flatten()
-                .filter_map(move |v| self.fields.get(v))
-                .filter(move |f| cell_of(f.rest, self.size) == *c)
-        })
+        cells
+            .iter()
+            .filter_map(|c| self.slot_of.get(c))
+            .flat_map(|&s| self.slots[s as usize].1.iter())
     }
 }
 
@@ -242,6 +255,12 @@ mod tests {
         let walked: FastSet<Cell> = [cb].into_iter().collect();
         cache.replace(Some(&walked), vec![field(7, b), field(9, a)], size);
         assert_eq!(cache.cell_of_vertex(7), Some(cb));
+        // 8 took 7's place in the first cell's list: still found by its id.
+        let found = |v: u32, p: DVec3| cache.kept(v, p, 1.0, None).map(|k| k.field_at.vertex);
+        assert_eq!(
+            (found(8, a), found(7, b), found(7, a)),
+            (Some(8), Some(7), None)
+        );
         // 9 lies outside the walked cells: not kept.
         assert_eq!(cache.cell_of_vertex(9), None);
         let both: FastSet<Cell> = [ca, cb].into_iter().collect();

@@ -157,13 +157,15 @@ fn walk_asking(
         if dist >= r {
             continue;
         }
+        // The neighbours over the surface fan, each once, in the order the fan gives them: the
+        // far corner of one triangle is the near corner of the next (`dest` of the next
+        // half-edge), so only the last triangle's far corner is added.
         mesh.surface_fan_into(v, &mut fan);
-        for &h in &fan {
-            for n in [mesh.dest(h), mesh.origin(prev(h))] {
-                if !mesh.is_floor(n) && !side.contains(n) {
-                    side.insert(n, sigma);
-                    queue.push_back(n);
-                }
+        let far = fan.last().map(|&h| mesh.origin(prev(h)));
+        for n in fan.iter().map(|&h| mesh.dest(h)).chain(far) {
+            if !mesh.is_floor(n) && !side.contains(n) {
+                side.insert(n, sigma);
+                queue.push_back(n);
             }
         }
         if !wanted || (!inputs.fixed.is_empty() && inputs.fixed.contains(&v)) {
