@@ -17,6 +17,7 @@
 
 use glam::DVec3;
 
+use super::nearest_cut::Balls;
 use super::step::CutSegment;
 use csg::fast_hash::{FastMap, FastSet};
 
@@ -122,13 +123,15 @@ pub struct CutGrid {
 /// its own.
 #[derive(Default)]
 pub struct Near {
-    /// The cell last asked for and the segments around it (each once, in index order).
+    /// The cell last asked for, the segments around it (each once, in index order) and the
+    /// balls of their runs ([`Balls::blocks`], when asked with balls).
     last: Option<Cell>,
     near: Vec<usize>,
-    /// The segments around each cell asked for: the walk's queue goes from one lip's vertices
-    /// to another's, so consecutive questions are often about other cells than the last, and
+    blocks: Vec<(DVec3, f64)>,
+    /// The same for each cell asked for: the walk's queue goes from one lip's vertices to
+    /// another's, so consecutive questions are often about other cells than the last, and
     /// gathering and sorting 27 cells' lists again each time was a good part of a walk.
-    by_cell: FastMap<Cell, Vec<usize>>,
+    by_cell: FastMap<Cell, (Vec<usize>, Vec<(DVec3, f64)>)>,
 }
 
 impl Near {
@@ -136,28 +139,48 @@ impl Near {
     /// of `p` among them), each once, in index order. `grid` must be the grid of every earlier
     /// question.
     pub fn near(&mut self, grid: &CutGrid, p: DVec3) -> &[usize] {
+        self.lists(grid, p, None);
+        &self.near
+    }
+
+    /// [`Near::near`], with the balls of its runs of segments ([`Balls::blocks`]). A walker
+    /// asks with the same `balls` every time.
+    pub(crate) fn near_in_blocks(
+        &mut self,
+        grid: &CutGrid,
+        p: DVec3,
+        balls: &Balls,
+    ) -> (&[usize], &[(DVec3, f64)]) {
+        self.lists(grid, p, Some(balls));
+        (&self.near, &self.blocks)
+    }
+
+    fn lists(&mut self, grid: &CutGrid, p: DVec3, balls: Option<&Balls>) {
         let c0 = grid.cell(p);
-        if self.last != Some(c0) {
-            let near = self.by_cell.entry(c0).or_insert_with(|| {
-                let mut near = Vec::new();
-                for x in c0.0 - 1..=c0.0 + 1 {
-                    for y in c0.1 - 1..=c0.1 + 1 {
-                        for z in c0.2 - 1..=c0.2 + 1 {
-                            if let Some(list) = grid.cells.get(&(x, y, z)) {
-                                near.extend_from_slice(list);
-                            }
+        if self.last == Some(c0) {
+            return;
+        }
+        let (near, blocks) = self.by_cell.entry(c0).or_insert_with(|| {
+            let mut near = Vec::new();
+            for x in c0.0 - 1..=c0.0 + 1 {
+                for y in c0.1 - 1..=c0.1 + 1 {
+                    for z in c0.2 - 1..=c0.2 + 1 {
+                        if let Some(list) = grid.cells.get(&(x, y, z)) {
+                            near.extend_from_slice(list);
                         }
                     }
                 }
-                near.sort_unstable();
-                near.dedup();
-                near
-            });
-            self.near.clear();
-            self.near.extend_from_slice(near);
-            self.last = Some(c0);
-        }
-        &self.near
+            }
+            near.sort_unstable();
+            near.dedup();
+            let blocks = balls.map_or_else(Vec::new, |b| b.blocks(&near));
+            (near, blocks)
+        });
+        self.near.clear();
+        self.near.extend_from_slice(near);
+        self.blocks.clear();
+        self.blocks.extend_from_slice(blocks);
+        self.last = Some(c0);
     }
 }
 

@@ -9,6 +9,10 @@
 //! lies farther than the best distance so far, or than the reach, cannot change the answer and
 //! is skipped after one distance to its middle. The segment nearest the vertex before (the walk
 //! goes from a vertex to its neighbours) is measured first, so most others are skipped.
+//! A vertex near a crossing of two grooves has some ninety segments around it, and one distance
+//! each was still most of a question: the list is cut into runs of [`BLOCK`] (in index order, so
+//! mostly stretches of one path) and each run bounded by a ball of its balls
+//! ([`Balls::blocks`]), a run whose ball is out of reach skipped whole.
 //!
 //! The answers are those of the plain scan in index order, bit for bit: the same segment (the
 //! lowest index among equally near ones), its point computed the same way; a skip needs the
@@ -20,6 +24,9 @@ use super::step::CutSegment;
 
 /// Relative slack of a skip (times the largest coordinate and the distance).
 const SLACK: f64 = 1e-9;
+
+/// Segments per run of a list bounded by one ball ([`Balls::blocks`]).
+pub(crate) const BLOCK: usize = 8;
 
 /// Per cut segment, a ball holding it: its middle and half its length (see the module doc).
 pub(crate) struct Balls {
@@ -40,9 +47,36 @@ impl Balls {
     #[inline]
     pub fn may_reach(&self, i: usize, p: DVec3, reach: f64) -> bool {
         let (m, h) = self.balls[i];
-        let lim = reach + h + slack(p, reach);
-        m.distance_squared(p) <= lim * lim
+        ball_may_reach((m, h), p, reach)
     }
+
+    /// Per run of [`BLOCK`] segments of `list` (indices), a ball holding their balls: its
+    /// middle is that of their middles' bounding box, its radius the farthest reach of theirs
+    /// from it, widened far past rounding (so a run skipped holds no segment
+    /// [`Balls::may_reach`] would keep).
+    pub fn blocks(&self, list: &[usize]) -> Vec<(DVec3, f64)> {
+        list.chunks(BLOCK)
+            .map(|run| {
+                let (lo, hi) = run.iter().fold(
+                    (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+                    |(lo, hi), &i| (lo.min(self.balls[i].0), hi.max(self.balls[i].0)),
+                );
+                let m = lo.midpoint(hi);
+                let h = run
+                    .iter()
+                    .map(|&i| m.distance(self.balls[i].0) + self.balls[i].1)
+                    .fold(0.0, f64::max);
+                (m, h * (1.0 + 1e-12))
+            })
+            .collect()
+    }
+}
+
+/// Whether a ball `(middle, radius)` may come within `reach` of `p`.
+#[inline]
+fn ball_may_reach((m, h): (DVec3, f64), p: DVec3, reach: f64) -> bool {
+    let lim = reach + h + slack(p, reach);
+    m.distance_squared(p) <= lim * lim
 }
 
 /// The absolute slack of a skip at `p` for distance `d` (see [`SLACK`]).
@@ -67,35 +101,40 @@ pub(crate) fn point_on(s: &CutSegment, p: DVec3) -> (f64, DVec3) {
 }
 
 /// The nearest point to `p` on the segments `near` (indices into `segments`, ascending):
-/// (distance, point, segment index), the lowest index among equally near ones. `first`, when
-/// it is one of `near`, is measured first (see the module doc); the answer does not depend on
-/// it.
+/// (distance, point, segment index), the lowest index among equally near ones. `blocks`: the
+/// balls of `near`'s runs ([`Balls::blocks`]). `first`, when it is one of `near`, is measured
+/// first (see the module doc); the answer does not depend on it.
 pub(crate) fn nearest(
     segments: &[CutSegment],
     balls: &Balls,
     p: DVec3,
-    near: &[usize],
+    (near, blocks): (&[usize], &[(DVec3, f64)]),
     first: Option<usize>,
 ) -> Option<(f64, DVec3, usize)> {
     let mut best: Option<(f64, DVec3, usize)> = None;
     let mut reach = f64::INFINITY;
-    let mut consider = |i: usize| {
-        if !balls.may_reach(i, p, reach) {
+    let mut consider = |i: usize, reach: &mut f64| {
+        if !balls.may_reach(i, p, *reach) {
             return;
         }
         let (d2, c) = point_on(&segments[i], p);
         if best.is_none_or(|b| d2 < b.0 || (d2 == b.0 && i < b.2)) {
             best = Some((d2, c, i));
-            reach = d2.sqrt();
+            *reach = d2.sqrt();
         }
     };
     let first = first.filter(|f| near.binary_search(f).is_ok());
     if let Some(f) = first {
-        consider(f);
+        consider(f, &mut reach);
     }
-    for &i in near {
-        if Some(i) != first {
-            consider(i);
+    for (run, &block) in near.chunks(BLOCK).zip(blocks) {
+        if !ball_may_reach(block, p, reach) {
+            continue;
+        }
+        for &i in run {
+            if Some(i) != first {
+                consider(i, &mut reach);
+            }
         }
     }
     best.map(|(d2, c, i)| (d2.sqrt(), c, i))
@@ -135,6 +174,7 @@ mod tests {
         segments.push(CutSegment::between(points[20], points[20]));
         let balls = Balls::new(&segments);
         let all: Vec<usize> = (0..segments.len()).collect();
+        let blocks = balls.blocks(&all);
         let mut queries: Vec<DVec3> = points.clone();
         for _ in 0..400 {
             let k = (random() * 80.0) as usize;
@@ -144,7 +184,7 @@ mod tests {
         for (n, &p) in queries.iter().enumerate() {
             let want = plain(&segments, p, &all);
             for first in [None, Some(0), Some(n % segments.len()), Some(10), Some(999)] {
-                let got = nearest(&segments, &balls, p, &all, first);
+                let got = nearest(&segments, &balls, p, (&all, &blocks), first);
                 let bits = |x: Option<(f64, DVec3, usize)>| {
                     x.map(|(d, c, i)| (d.to_bits(), c.to_array().map(f64::to_bits), i))
                 };
@@ -154,7 +194,9 @@ mod tests {
         // The repeated segment ties with the original: the lower index wins.
         let on = points[10].lerp(points[11], 0.5);
         assert_eq!(
-            nearest(&segments, &balls, on, &all, Some(80)).unwrap().2,
+            nearest(&segments, &balls, on, (&all, &blocks), Some(80))
+                .unwrap()
+                .2,
             10
         );
     }

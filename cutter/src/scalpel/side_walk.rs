@@ -86,7 +86,8 @@ fn walk_asking(
     let mut last: Option<usize> = None;
     let mut near = Near::default();
     let mut nearest = |p: DVec3| -> Option<(f64, DVec3, usize)> {
-        let found = nearest_cut::nearest(segments, &balls, p, near.near(grid, p), last);
+        let lists = near.near_in_blocks(grid, p, &balls);
+        let found = nearest_cut::nearest(segments, &balls, p, lists, last);
         last = found.map(|f| f.2).or(last);
         found
     };
