@@ -93,10 +93,15 @@ impl<'a> InCells<'a> {
     /// Whether `p`'s cell is one of the cells.
     #[inline]
     pub fn contains(&mut self, p: DVec3) -> bool {
+        self.cells.is_none() || self.contains_cell(cell_of(p, self.size))
+    }
+
+    /// Whether cell `c` is one of the cells.
+    #[inline]
+    pub fn contains_cell(&mut self, c: Cell) -> bool {
         let Some(cells) = self.cells else {
             return true;
         };
-        let c = cell_of(p, self.size);
         let slot = (c.0.wrapping_mul(73_856_093)
             ^ c.1.wrapping_mul(19_349_663)
             ^ c.2.wrapping_mul(83_492_791)) as usize

@@ -18,7 +18,7 @@ use glam::DVec3;
 
 use super::cut_point::closest_face_near_examining;
 use super::dyn_mesh::{DynMesh, is_real};
-use csg::fast_hash::{FastMap, FastSet};
+use csg::fast_hash::FastMap;
 
 /// Triangles examined to put a sample onto the surface (searched outward from the cut vertex
 /// its step reached).
@@ -65,25 +65,31 @@ impl Feet {
         }
         let mut examined = Vec::new();
         let p = search(mesh, v, q, &mut examined);
-        let mut seen: FastSet<u32> = FastSet::default();
+        // The triangles, then their vertices, each once (sorted lists: a few hundred entries,
+        // cheaper than sets).
+        let mut seen: Vec<u32> = Vec::with_capacity(4 * examined.len() + 16);
         let mut fan = Vec::new();
         for s in std::iter::once(v).chain(mesh.copies(v)) {
             mesh.fan_into(s, &mut fan);
             seen.extend(fan.iter().map(|h| h / 3));
         }
         for &t in &examined {
-            seen.insert(t);
+            seen.push(t);
             for k in 0..3 {
                 let g = mesh.twin(3 * t + k);
                 if is_real(g) {
-                    seen.insert(g / 3);
+                    seen.push(g / 3);
                 }
             }
         }
-        let mut watched: FastSet<u32> = FastSet::default();
-        for t in seen {
-            watched.extend(mesh.triangles()[t as usize]);
-        }
+        seen.sort_unstable();
+        seen.dedup();
+        let mut watched: Vec<u32> = seen
+            .iter()
+            .flat_map(|&t| mesh.triangles()[t as usize])
+            .collect();
+        watched.sort_unstable();
+        watched.dedup();
         for w in watched {
             self.watch.entry(w).or_default().push(key);
         }

@@ -13,7 +13,7 @@ use std::collections::VecDeque;
 use glam::DVec3;
 
 use super::blend::{BlendInputs, Blends, with_blends};
-use super::cut_grid::{Cell, CutGrid, InCells, Near};
+use super::cut_grid::{Cell, CutGrid, InCells, Near, cell_of};
 use super::dffd::{Frame, Inputs};
 use super::dyn_mesh::{DynMesh, prev};
 use super::field::{FieldAt, taper_at};
@@ -132,10 +132,11 @@ fn walk_asking(
     }
     while let Some(v) = queue.pop_front() {
         let p = mesh.pos(v);
+        let cell = cell_of(p, size);
         // Neighbours are queued without asking where they lie (several per vertex, most
         // already queued); one outside the region is dropped here, given nothing and walked
         // from nowhere, as if never queued.
-        if !in_outer.contains(p) {
+        if !in_outer.contains_cell(cell) {
             continue;
         }
         let Some(sigma) = side.get(v) else {
@@ -144,7 +145,7 @@ fn walk_asking(
         // A kept field says the vertex is within the support, as before. Outside the kept
         // cells (the margin) no change reaches (they would be kept cells otherwise), and only
         // that is asked of it.
-        let wanted = in_keep.contains(p);
+        let wanted = in_keep.contains_cell(cell);
         let kept = region.and_then(|g| g.known.kept(v, p, sigma, wanted.then_some(g.changes)));
         let (dist, c, i) = match kept {
             Some(k) => (0.0, k.field_at.nearest, k.field_at.segment as usize),

@@ -52,9 +52,10 @@ pub struct Moved {
     triangles: Vec<[u32; 3]>,
     triangle_ids: Vec<u32>,
     /// Per triangle, where its corners are in the moved list (the checks of every pass look
-    /// them up here), their rest positions and its rest normal.
+    /// them up here), their rest positions, its rest normal and that normal's length (computed
+    /// once, not at every check).
     slots: Vec<[Option<usize>; 3]>,
-    rest: Vec<([DVec3; 3], DVec3)>,
+    rest: Vec<([DVec3; 3], DVec3, f64)>,
     /// Per moved vertex `i`, the triangles it is a corner of:
     /// `corner_of[corner_start[i]..corner_start[i + 1]]`.
     corner_start: Vec<usize>,
@@ -124,7 +125,8 @@ impl Moved {
             .iter()
             .map(|t| {
                 let p = t.map(|v| mesh.pos(v));
-                (p, (p[1] - p[0]).cross(p[2] - p[0]))
+                let n0 = (p[1] - p[0]).cross(p[2] - p[0]);
+                (p, n0, n0.length())
             })
             .collect();
         let mut corner_start = vec![0; moved.len() + 1];
@@ -202,11 +204,11 @@ impl Moved {
     /// corners are shown at `shown(index in moved)`.
     fn folds(&self, k: usize, shown: impl Fn(usize) -> DVec3) -> bool {
         let cos_max = MAX_TURN_DEG.to_radians().cos();
-        let (p, n0) = self.rest[k];
+        let (p, n0, l0) = self.rest[k];
         let s = self.slots[k];
         let q: [DVec3; 3] = std::array::from_fn(|c| s[c].map_or(p[c], &shown));
         let n1 = (q[1] - q[0]).cross(q[2] - q[0]);
-        let (l0, l1) = (n0.length(), n1.length());
+        let l1 = n1.length();
         l0 != 0.0 && (l1 == 0.0 || n0.dot(n1) < cos_max * l0 * l1)
     }
 }
