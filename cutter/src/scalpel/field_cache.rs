@@ -51,6 +51,10 @@ pub(crate) struct FieldCache {
     slot_of: FastMap<Cell, u32>,
     /// Where each kept vertex's field is: its slot and its index there.
     at: FastMap<u32, (u32, u32)>,
+    /// Per vertex, whether a field is kept for it (bits): the walk asks this of every vertex of
+    /// its margin, where a field kept is one still valid (see [`FieldCache::holds`]), and a
+    /// table of bits answers from the cache where the map would fetch from memory.
+    held: Vec<u64>,
 }
 
 /// What changed between the field kept and the field now, apart from the mesh and the sides
@@ -136,6 +140,28 @@ impl FieldCache {
         self.slots.clear();
         self.slot_of.clear();
         self.at.clear();
+        self.held.clear();
+    }
+
+    /// Whether a field is kept for vertex `v`, whatever its rest position now (the walk's
+    /// margin holds no vertex edited since it was kept: the cells of those are walked).
+    #[inline]
+    pub fn holds(&self, v: u32) -> bool {
+        self.held
+            .get((v / 64) as usize)
+            .is_some_and(|w| w & (1 << (v % 64)) != 0)
+    }
+
+    fn hold(&mut self, v: u32, held: bool) {
+        let word = (v / 64) as usize;
+        if word >= self.held.len() {
+            self.held.resize(word + 1, 0);
+        }
+        if held {
+            self.held[word] |= 1 << (v % 64);
+        } else {
+            self.held[word] &= !(1 << (v % 64));
+        }
     }
 
     /// The cell vertex `v`'s field is kept in, if it is kept.
@@ -173,9 +199,12 @@ impl FieldCache {
             Some(cells) => {
                 for c in cells {
                     if let Some(&s) = self.slot_of.get(c) {
-                        for f in self.slots[s as usize].1.drain(..) {
+                        let mut list = std::mem::take(&mut self.slots[s as usize].1);
+                        for f in list.drain(..) {
                             self.at.remove(&f.vertex);
+                            self.hold(f.vertex, false);
                         }
+                        self.slots[s as usize].1 = list;
                     }
                 }
             }
@@ -200,7 +229,9 @@ impl FieldCache {
             });
             let list = &mut self.slots[s as usize].1;
             self.at.insert(f.vertex, (s, list.len() as u32));
+            let v = f.vertex;
             list.push(f);
+            self.hold(v, true);
         }
     }
 
@@ -273,6 +304,14 @@ mod tests {
         cache.replace(Some(&first), Vec::new(), size);
         assert_eq!(cache.cell_of_vertex(8), None);
         assert_eq!(cache.cell_of_vertex(7), Some(cb));
+        // Whether a field is kept, by vertex, follows.
+        assert_eq!(
+            (cache.holds(7), cache.holds(8), cache.holds(9)),
+            (true, false, false)
+        );
+        assert!(!cache.holds(1 << 20));
+        cache.clear();
+        assert!(!cache.holds(7));
     }
 
     #[test]

@@ -144,11 +144,20 @@ fn walk_asking(
         };
         // A kept field says the vertex is within the support, as before. Outside the kept
         // cells (the margin) no change reaches (they would be kept cells otherwise), and only
-        // that is asked of it.
+        // that is asked of it: no vertex there was edited (the cells of those are walked), so
+        // a field kept for one is its own and need not be fetched.
         let wanted = in_keep.contains_cell(cell);
-        let kept = region.and_then(|g| g.known.kept(v, p, sigma, wanted.then_some(g.changes)));
+        let kept = match region {
+            Some(g) if wanted => g.known.kept(v, p, sigma, Some(g.changes)),
+            _ => None,
+        };
         let (dist, c, i) = match kept {
             Some(k) => (0.0, k.field_at.nearest, k.field_at.segment as usize),
+            None if !wanted && region.is_some_and(|g| g.known.holds(v)) => {
+                debug_assert!(region.is_some_and(|g| g.known.kept(v, p, sigma, None).is_some()));
+                // Within the support; a margin vertex gives no field, so no nearest point.
+                (0.0, p, 0)
+            }
             None => {
                 let Some(found) = nearest(p) else {
                     continue;
