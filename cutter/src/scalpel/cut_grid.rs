@@ -17,7 +17,7 @@
 
 use glam::DVec3;
 
-use super::nearest_cut::Balls;
+use super::nearest_cut::{Ball, Balls};
 use super::step::CutSegment;
 use csg::fast_hash::{FastMap, FastSet};
 
@@ -132,11 +132,11 @@ pub struct Near {
     /// balls of their runs ([`Balls::blocks`], when asked with balls).
     last: Option<Cell>,
     near: Vec<usize>,
-    blocks: Vec<(DVec3, f64)>,
+    blocks: Vec<Ball>,
     /// The same for each cell asked for: the walk's queue goes from one lip's vertices to
     /// another's, so consecutive questions are often about other cells than the last, and
     /// gathering and sorting 27 cells' lists again each time was a good part of a walk.
-    by_cell: FastMap<Cell, (Vec<usize>, Vec<(DVec3, f64)>)>,
+    by_cell: FastMap<Cell, (Vec<usize>, Vec<Ball>)>,
 }
 
 impl Near {
@@ -155,7 +155,7 @@ impl Near {
         grid: &CutGrid,
         p: DVec3,
         balls: &Balls,
-    ) -> (&[usize], &[(DVec3, f64)]) {
+    ) -> (&[usize], &[Ball]) {
         self.lists(grid, p, Some(balls));
         (&self.near, &self.blocks)
     }

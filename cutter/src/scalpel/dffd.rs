@@ -153,7 +153,11 @@ impl Inputs {
             return None;
         }
         let nv = mesh.vertex_count() as u32;
-        let frames = frames(segments, w);
+        let mut kept = kept;
+        let frames = match kept.as_deref_mut() {
+            Some(kept) => kept.frames(segments, w),
+            None => frames(segments, w),
+        };
         let mut tips: Vec<DVec3> = Vec::new();
         for s in segments {
             for (v, p) in [(s.a, s.pa), (s.b, s.pb)] {

@@ -30,28 +30,59 @@ type Key = (u32, [u64; 3]);
 /// The feet kept between steps (see the module doc).
 #[derive(Default)]
 pub struct Feet {
-    known: FastMap<Key, DVec3>,
-    /// The feet to drop when a vertex changes (may name feet already dropped).
-    watch: FastMap<u32, Vec<Key>>,
+    /// The feet by slot: the foot kept there (`None` when free) and the slot's generation
+    /// (counted up as its foot is dropped, so a watch left on another vertex knows it is old).
+    feet: Vec<(Option<(Key, DVec3)>, u32)>,
+    free_feet: Vec<u32>,
+    /// The feet kept, by key: their slot.
+    known: FastMap<Key, u32>,
+    /// Per watched vertex, its last watch in `watches`. A foot watches a hundred vertices and
+    /// more; a list of its own for each of them was a hundred allocations per foot.
+    watch: FastMap<u32, u32>,
+    /// The watches of all vertices, each a foot's slot and generation and the vertex's watch
+    /// before ([`NONE`] for its first); a forgotten vertex's watches are reused.
+    watches: Vec<Watch>,
+    free_watches: Vec<u32>,
 }
+
+#[derive(Clone, Copy)]
+struct Watch {
+    slot: u32,
+    generation: u32,
+    before: u32,
+}
+
+/// The end of a vertex's watch list.
+const NONE: u32 = u32::MAX;
 
 impl Feet {
     /// Drops every foot.
     pub fn clear(&mut self) {
-        self.known.clear();
-        self.watch.clear();
+        *self = Feet::default();
     }
 
     /// Drops the feet whose search depended on one of the vertices `edited`.
     pub fn forget(&mut self, edited: &[u32]) {
         for v in edited {
-            if let Some(keys) = self.watch.remove(v) {
-                for k in keys {
-                    self.known.remove(&k);
+            let Some(mut at) = self.watch.remove(v) else {
+                continue;
+            };
+            while at != NONE {
+                let w = self.watches[at as usize];
+                let (foot, generation) = &mut self.feet[w.slot as usize];
+                if *generation == w.generation
+                    && let Some((key, _)) = foot.take()
+                {
+                    self.known.remove(&key);
+                    *generation = generation.wrapping_add(1);
+                    self.free_feet.push(w.slot);
                 }
+                self.free_watches.push(at);
+                at = w.before;
             }
         }
-        // Watches of dropped feet pile up; start over once they outnumber the feet by far.
+        // Watches of dropped feet pile up on the vertices never edited; start over once they
+        // outnumber the feet by far.
         if self.watch.len() > 64 * self.known.len() + 65_536 {
             self.clear();
         }
@@ -60,8 +91,8 @@ impl Feet {
     /// The foot of sample `q` searched from vertex `v` ([`foot`]), kept or searched now.
     pub fn foot(&mut self, mesh: &DynMesh, v: u32, q: DVec3) -> DVec3 {
         let key = (v, q.to_array().map(f64::to_bits));
-        if let Some(&p) = self.known.get(&key) {
-            return p;
+        if let Some(&slot) = self.known.get(&key) {
+            return self.feet[slot as usize].0.expect("a known foot is kept").1;
         }
         let mut examined = Vec::new();
         let p = search(mesh, v, q, &mut examined);
@@ -90,10 +121,29 @@ impl Feet {
             .collect();
         watched.sort_unstable();
         watched.dedup();
-        for w in watched {
-            self.watch.entry(w).or_default().push(key);
+        let slot = self.free_feet.pop().unwrap_or_else(|| {
+            self.feet.push((None, 0));
+            (self.feet.len() - 1) as u32
+        });
+        let generation = self.feet[slot as usize].1;
+        self.feet[slot as usize].0 = Some((key, p));
+        self.known.insert(key, slot);
+        for v in watched {
+            let at = self.free_watches.pop().unwrap_or_else(|| {
+                self.watches.push(Watch {
+                    slot,
+                    generation,
+                    before: NONE,
+                });
+                (self.watches.len() - 1) as u32
+            });
+            let before = self.watch.insert(v, at).unwrap_or(NONE);
+            self.watches[at as usize] = Watch {
+                slot,
+                generation,
+                before,
+            };
         }
-        self.known.insert(key, p);
         p
     }
 }
@@ -150,5 +200,42 @@ mod tests {
         let again = feet.foot(&mesh, v, q);
         assert_eq!(again, foot(&mesh, v, q));
         assert_ne!(again, first);
+    }
+
+    #[test]
+    fn a_watch_left_by_a_dropped_foot_drops_no_later_foot_in_its_slot() {
+        let mesh = DynMesh::from_mesh(&csg::testkit::icosphere(4, 10.0));
+        let mut feet = Feet::default();
+        let near = |v: u32| mesh.pos(v) * 1.02;
+        feet.foot(&mesh, 0, near(0));
+        // The vertices the first foot watches (all its watches are in slot 0).
+        let watched: Vec<u32> = feet.watch.keys().copied().collect();
+        assert!(watched.len() > 2);
+        feet.forget(&watched[..1]);
+        assert!(feet.known.is_empty());
+        // A foot on the far side takes the freed slot and watches none of those vertices.
+        let far = (0..mesh.vertex_count() as u32)
+            .max_by(|&a, &b| {
+                let d = |x: u32| mesh.pos(x).distance_squared(mesh.pos(0));
+                d(a).total_cmp(&d(b))
+            })
+            .unwrap();
+        feet.foot(&mesh, far, near(far));
+        assert_eq!(feet.known.values().copied().collect::<Vec<_>>(), vec![0]);
+        assert!(
+            watched
+                .iter()
+                .all(|w| !feet.watch.get(w).is_some_and(|&at| {
+                    let w = feet.watches[at as usize];
+                    w.generation == feet.feet[0].1
+                }))
+        );
+        // The first foot's other watches are old: forgetting them keeps the new foot.
+        feet.forget(&watched[1..]);
+        assert_eq!(feet.known.len(), 1);
+        assert_eq!(
+            feet.foot(&mesh, far, near(far)),
+            foot(&mesh, far, near(far))
+        );
     }
 }

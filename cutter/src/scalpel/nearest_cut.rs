@@ -28,9 +28,12 @@ const SLACK: f64 = 1e-9;
 /// Segments per run of a list bounded by one ball ([`Balls::blocks`]).
 pub(crate) const BLOCK: usize = 8;
 
+/// A ball: its middle and radius.
+pub(crate) type Ball = (DVec3, f64);
+
 /// Per cut segment, a ball holding it: its middle and half its length (see the module doc).
 pub(crate) struct Balls {
-    balls: Vec<(DVec3, f64)>,
+    balls: Vec<Ball>,
 }
 
 impl Balls {
@@ -54,7 +57,7 @@ impl Balls {
     /// middle is that of their middles' bounding box, its radius the farthest reach of theirs
     /// from it, widened far past rounding (so a run skipped holds no segment
     /// [`Balls::may_reach`] would keep).
-    pub fn blocks(&self, list: &[usize]) -> Vec<(DVec3, f64)> {
+    pub fn blocks(&self, list: &[usize]) -> Vec<Ball> {
         list.chunks(BLOCK)
             .map(|run| {
                 let (lo, hi) = run.iter().fold(
@@ -74,7 +77,7 @@ impl Balls {
 
 /// Whether a ball `(middle, radius)` may come within `reach` of `p`.
 #[inline]
-fn ball_may_reach((m, h): (DVec3, f64), p: DVec3, reach: f64) -> bool {
+fn ball_may_reach((m, h): Ball, p: DVec3, reach: f64) -> bool {
     let lim = reach + h + slack(p, reach);
     m.distance_squared(p) <= lim * lim
 }
@@ -108,7 +111,7 @@ pub(crate) fn nearest(
     segments: &[CutSegment],
     balls: &Balls,
     p: DVec3,
-    (near, blocks): (&[usize], &[(DVec3, f64)]),
+    (near, blocks): (&[usize], &[Ball]),
     first: Option<usize>,
 ) -> Option<(f64, DVec3, usize)> {
     let mut best: Option<(f64, DVec3, usize)> = None;
