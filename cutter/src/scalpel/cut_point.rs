@@ -11,6 +11,7 @@
 use glam::DVec3;
 
 use super::dyn_mesh::{DynMesh, is_real};
+use csg::fast_hash::FastSet;
 
 /// At most this many triangles examined when a cut restarts inside a stroke (see
 /// `Scalpel::start_cut`), or when a stroke starts near a known vertex ([`super::locate`]).
@@ -233,12 +234,14 @@ pub fn visit_near(
     mut visit: impl FnMut(u32, f64) -> bool,
 ) {
     use std::cmp::Reverse;
-    use std::collections::{BinaryHeap, HashSet};
+    use std::collections::BinaryHeap;
     let box_distance = |t: u32| {
         let [a, b, c] = mesh.triangles[t as usize].map(|x| mesh.pos(x));
         p.clamp(a.min(b).min(c), a.max(b).max(c)).distance(p)
     };
-    let mut seen = HashSet::new();
+    // The triangles queued: a few hundred per search (the opening searches a few per step), so
+    // the fast hash, not the standard one.
+    let mut seen: FastSet<u32> = FastSet::with_capacity_and_hasher(4 * limit, Default::default());
     let mut heap = BinaryHeap::new();
     let mut fan = Vec::new();
     let mut seeds = vec![v];
