@@ -17,7 +17,7 @@
 
 use glam::DVec3;
 
-use super::nearest_cut::{Ball, Balls};
+use super::nearest_cut::{BLOCK, Ball, Balls};
 use super::step::CutSegment;
 use csg::fast_hash::{FastMap, FastSet};
 
@@ -178,9 +178,14 @@ impl Near {
             }
             near.sort_unstable();
             near.dedup();
-            let blocks = balls.map_or_else(Vec::new, |b| b.blocks(&near));
-            (near, blocks)
+            (near, Vec::new())
         });
+        // The runs' balls, made the first time they are asked for.
+        if let Some(balls) = balls
+            && blocks.len() != near.len().div_ceil(BLOCK)
+        {
+            *blocks = balls.blocks(near);
+        }
         self.near.clear();
         self.near.extend_from_slice(near);
         self.blocks.clear();
@@ -320,5 +325,28 @@ mod tests {
         assert!(cells.len() < 60, "{} cells", cells.len());
         assert!(cells.contains(&(0, 0, 0)) && cells.contains(&(1, 0, 0)));
         assert!(!cells.contains(&(2, 2, 2)));
+    }
+
+    #[test]
+    fn a_cells_list_asked_for_without_balls_gets_them_when_asked_with() {
+        // A path of 40 short segments through a few cells.
+        let segments: Vec<CutSegment> = (0..40)
+            .map(|k| {
+                let x = 0.5 * k as f64;
+                CutSegment::between(DVec3::new(x, 1.0, 1.0), DVec3::new(x + 0.5, 1.0, 1.0))
+            })
+            .collect();
+        let grid = CutGrid::new(&segments, 2, 6.0);
+        let balls = Balls::new(&segments);
+        let p = DVec3::new(9.0, 1.0, 1.0);
+        let mut near = Near::default();
+        let plain = near.near(&grid, p).to_vec();
+        assert!(plain.len() > BLOCK);
+        // Another cell in between, so that the first cell's list comes from the kept lists.
+        near.near(&grid, DVec3::new(40.0, 1.0, 1.0));
+        let (list, blocks) = near.near_in_blocks(&grid, p, &balls);
+        assert_eq!(list, &plain[..]);
+        assert_eq!(blocks.len(), list.len().div_ceil(BLOCK));
+        assert_eq!(blocks, &balls.blocks(list)[..]);
     }
 }

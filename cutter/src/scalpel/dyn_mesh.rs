@@ -614,17 +614,7 @@ mod tests {
         let mut fan = Vec::new();
         assert!(grid.fan_into(id(2, 2), &mut fan) && fan.len() == 6);
         assert!(!grid.fan_into(id(2, 0), &mut fan) && fan.len() == 3);
-        let bow_tie = csg::Mesh {
-            positions: vec![
-                DVec3::new(0., 0., 0.),
-                DVec3::new(1., 0., 0.),
-                DVec3::new(1., 1., 0.),
-                DVec3::new(-1., 0., 0.),
-                DVec3::new(-1., -1., 0.),
-            ],
-            triangles: vec![[0, 1, 2], [0, 3, 4]],
-        };
-        check_fans(&DynMesh::from_mesh(&bow_tie));
+        check_fans(&DynMesh::from_mesh(&bow_tie()));
     }
 
     #[test]
@@ -674,9 +664,9 @@ mod tests {
         assert!(m.local_problem(&touched, false).is_some());
     }
 
-    #[test]
-    fn bow_tie_is_singular() {
-        let mesh = csg::Mesh {
+    /// Two triangles meeting only at vertex 0.
+    fn bow_tie() -> csg::Mesh {
+        csg::Mesh {
             positions: vec![
                 DVec3::new(0., 0., 0.),
                 DVec3::new(1., 0., 0.),
@@ -685,8 +675,12 @@ mod tests {
                 DVec3::new(-1., -1., 0.),
             ],
             triangles: vec![[0, 1, 2], [0, 3, 4]],
-        };
-        let m = DynMesh::from_mesh(&mesh);
+        }
+    }
+
+    #[test]
+    fn bow_tie_is_singular() {
+        let m = DynMesh::from_mesh(&bow_tie());
         assert!(m.singular[0]);
         assert!(!m.singular[1]);
     }

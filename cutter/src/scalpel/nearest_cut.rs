@@ -126,6 +126,7 @@ pub(crate) fn nearest(
             *reach = d2.sqrt();
         }
     };
+    debug_assert_eq!(blocks.len(), near.len().div_ceil(BLOCK), "a ball per run");
     let first = first.filter(|f| near.binary_search(f).is_ok());
     if let Some(f) = first {
         consider(f, &mut reach);
