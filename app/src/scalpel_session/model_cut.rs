@@ -18,6 +18,7 @@ use cutter::scalpel::live_opening::LiveOpening;
 use cutter::scalpel::{OpenOptions, Scalpel, ScalpelOptions, dffd};
 
 use crate::cutting::delta::{self, MeshDelta, VertexFaces};
+use crate::platform::background::yield_to_foreground;
 use crate::scene::Scene;
 
 /// A scalpel working on one model of the scene.
@@ -112,7 +113,10 @@ impl ModelCut {
             let mesh = mesh.clone();
             std::thread::Builder::new()
                 .name("cutaway scalpel faces".into())
-                .spawn(move || VertexFaces::build(&mesh))
+                .spawn(move || {
+                    yield_to_foreground();
+                    VertexFaces::build(&mesh)
+                })
         };
         self.faces = Some((
             mesh.clone(),
@@ -154,7 +158,10 @@ impl ModelCut {
             let mesh = mesh.clone();
             std::thread::Builder::new()
                 .name("cutaway scalpel rest".into())
-                .spawn(move || RestIndexes::build(mesh))
+                .spawn(move || {
+                    yield_to_foreground();
+                    RestIndexes::build(mesh)
+                })
         };
         self.rest = Some((
             self.revision,
