@@ -46,11 +46,12 @@ use glam::DVec3;
 use super::cut_grid::{Cell, CutGrid, InCells, Near};
 use super::dyn_mesh::prev;
 use super::field::FieldAt;
+use super::frames::frames_reusing;
 pub use super::frames::{Frame, frames};
 use super::kept_path::KeptPath;
 use super::side_walk::walk;
 use super::sides::Sides;
-use super::step::Scalpel;
+use super::step::{CutSegment, Scalpel};
 use super::unfold::{Moved, MovedTables};
 use csg::fast_hash::FastSet;
 
@@ -108,7 +109,7 @@ fn displacements(
     now: f64,
     onto_path: bool,
 ) -> Vec<(u32, DVec3)> {
-    let Some(inputs) = Inputs::new(scalpel, options, now, onto_path, None) else {
+    let Some(inputs) = Inputs::new(scalpel, options, now, onto_path, None, None) else {
         return Vec::new();
     };
     let mesh = scalpel.dyn_mesh();
@@ -138,13 +139,15 @@ pub(crate) struct Inputs {
 impl Inputs {
     /// `None` when nothing opens (no width, no cut).
     /// `kept`: the path corrections' feet, smoothed strokes and measures kept from before, the
-    /// feet valid for this mesh ([`KeptPath`]).
+    /// feet valid for this mesh ([`KeptPath`]). `before`: the segments and inputs of the last
+    /// step, whose frames are taken where they read the same segments ([`frames_reusing`]).
     pub fn new(
         scalpel: &Scalpel,
         options: &OpenOptions,
         now: f64,
         onto_path: bool,
         kept: Option<&mut KeptPath>,
+        before: Option<(&[CutSegment], &Inputs)>,
     ) -> Option<Inputs> {
         let mesh = scalpel.dyn_mesh();
         let w = options.width;
@@ -153,10 +156,11 @@ impl Inputs {
             return None;
         }
         let nv = mesh.vertex_count() as u32;
-        let mut kept = kept;
-        let frames = match kept.as_deref_mut() {
-            Some(kept) => kept.frames(segments, w),
-            None => frames(segments, w),
+        let frames = match before {
+            Some((old, last)) if last.width.to_bits() == w.to_bits() => {
+                frames_reusing(segments, w, (old, &last.frames))
+            }
+            _ => frames(segments, w),
         };
         let mut tips: Vec<DVec3> = Vec::new();
         for s in segments {

@@ -22,8 +22,6 @@
 use glam::DVec3;
 
 use super::feet::Feet;
-use super::frames::{Frame, frames, frames_reusing};
-use super::step::CutSegment;
 use csg::fast_hash::FastMap;
 
 /// What the path corrections kept from the last step (see the module doc).
@@ -37,8 +35,6 @@ pub struct KeptPath {
     strokes: FastMap<usize, Stroke>,
     /// Per segment, what its corrections were measured from and the corrections.
     segments: Vec<Option<Measured>>,
-    /// The segments the last frames were made from, for the width (bits), and those frames.
-    framed: Option<(Vec<CutSegment>, u64, Vec<Frame>)>,
 }
 
 /// A stroke as it was smoothed.
@@ -89,28 +85,6 @@ impl KeptPath {
     fn forget_measures(&mut self) {
         self.strokes.clear();
         self.segments.clear();
-        self.framed = None;
-    }
-
-    /// The frames of `segments` for `width` ([`frames`]), those of the last call kept where
-    /// they read the same segments ([`frames_reusing`]).
-    pub(crate) fn frames(&mut self, segments: &[CutSegment], width: f64) -> Vec<Frame> {
-        let made = match &self.framed {
-            Some((old, w, old_frames)) if *w == width.to_bits() => {
-                frames_reusing(segments, width, (old, old_frames))
-            }
-            _ => frames(segments, width),
-        };
-        match &mut self.framed {
-            Some((old, w, old_frames)) => {
-                old.clear();
-                old.extend_from_slice(segments);
-                *w = width.to_bits();
-                old_frames.clone_from(&made);
-            }
-            None => self.framed = Some((segments.to_vec(), width.to_bits(), made.clone())),
-        }
-        made
     }
 
     /// Starts a pass over `segments` segments measured for `width`: what was kept for another

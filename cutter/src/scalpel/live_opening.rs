@@ -141,7 +141,9 @@ impl LiveOpening {
             Some(edits) => self.path.feet.forget(edits),
             None => self.path.clear(),
         }
-        let Some(inputs) = Inputs::new(scalpel, options, now, true, Some(&mut self.path)) else {
+        let before = self.state.as_ref().map(|st| (&st.segments[..], &st.inputs));
+        let Some(inputs) = Inputs::new(scalpel, options, now, true, Some(&mut self.path), before)
+        else {
             self.state = None;
             self.moved.clear();
             self.by_cell.clear();
