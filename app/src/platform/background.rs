@@ -28,24 +28,25 @@ pub fn yield_to_foreground() {
 /// The nice value of a thread that yields (the lowest priority).
 pub const LOWEST: i32 = 19;
 
-/// The calling thread's nice value (Linux; 0 elsewhere).
-pub fn this_threads_nice() -> i32 {
-    #[cfg(target_os = "linux")]
-    {
-        // SAFETY: as above; `getpriority` returns the value and writes no memory of ours.
-        #[allow(unsafe_code)] // as above
-        unsafe {
-            let tid = libc::syscall(libc::SYS_gettid) as libc::id_t;
-            return libc::getpriority(libc::PRIO_PROCESS, tid);
-        }
-    }
-    #[allow(unreachable_code)]
-    0
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The calling thread's nice value.
+    #[cfg(target_os = "linux")]
+    fn this_threads_nice() -> i32 {
+        // SAFETY: `gettid` and `getpriority` take plain integers and touch no memory of ours.
+        #[allow(unsafe_code)] // a thread's own priority is only reachable through libc
+        unsafe {
+            let tid = libc::syscall(libc::SYS_gettid) as libc::id_t;
+            libc::getpriority(libc::PRIO_PROCESS, tid)
+        }
+    }
+
+    #[cfg(not(target_os = "linux"))]
+    fn this_threads_nice() -> i32 {
+        0
+    }
 
     #[test]
     fn a_thread_that_yields_gets_the_lowest_priority_and_only_it() {
