@@ -36,10 +36,12 @@
 //! The result equals the opening computed from scratch when every seed and walk deciding an
 //! inner vertex's side, and every folded patch it belongs to, lies within the margin of it
 //! (the tests compare both, bit for bit, on long strokes); everything else is exact by
-//! construction. Cost: the changed region, never the incision or the mesh, plus one pass over
-//! the segments to compare them (and to make their frames and corrections; the samples' feet on
-//! the surface those need, a search each, the smoothed strokes and the corrections of the
-//! segments whose stroke and frame stayed are kept between steps, [`super::kept_path`]).
+//! construction. Cost: the changed region, never the incision or the mesh, plus a few passes
+//! over the segments: to compare them, and for their frames (taken from the last step where
+//! the segments a frame reads stayed, [`super::frames::frames_reusing`]) and corrections (the
+//! samples' feet on the surface those need, a search each, the smoothed strokes and the
+//! corrections of the segments whose stroke and frame stayed are kept between steps,
+//! [`super::kept_path`]).
 
 use glam::DVec3;
 
